@@ -1,0 +1,31 @@
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"cpgi: cell-portal global illumination (radiosity baking for indoor scenes)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cpgi 0.1.0");
+  cpgi::cli::CommandFn selected;
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;
+  }
+  try {
+    return selected ? selected() : 1;
+  } catch (const cpgi::InputError& e) {
+    std::cerr << "cpgi: " << e.what() << "\n";
+  } catch (const cpgi::SystemError& e) {
+    std::cerr << "cpgi: " << e.what() << "\n";
+  } catch (const std::bad_alloc&) {
+    std::cerr << "cpgi: out of memory\n";
+  } catch (const std::exception& e) {
+    std::cerr << "cpgi: internal error: " << e.what() << "\n";
+  }
+  return 1;
+}

@@ -1,0 +1,59 @@
+#include "core/output_dir.h"
+
+#include <fstream>
+#include <system_error>
+#include <unistd.h>
+
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace cpgi {
+
+OutputDir::OutputDir(fs::path dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_)) throw InputError(dir_.string(), "cannot create output folder");
+}
+
+OutputDir::~OutputDir() {
+  if (committed_) return;
+  std::error_code ec;
+  for (const auto& [temp, final] : staged_) fs::remove(temp, ec);
+}
+
+fs::path OutputDir::file(const std::string& name) {
+  fs::path final = dir_ / name;
+  fs::path temp = dir_ / ("." + name + ".partial-" + std::to_string(::getpid()));
+  staged_.emplace_back(temp, final);
+  return temp;
+}
+
+void OutputDir::commit() {
+  for (const auto& [temp, final] : staged_) {
+    std::error_code ec;
+    if (!fs::exists(temp, ec)) continue;
+    fs::rename(temp, final, ec);
+    if (ec) throw SystemError(final.string() + ": cannot move result into place: " + ec.message());
+  }
+  committed_ = true;
+}
+
+void writeFileAtomically(const fs::path& path, const std::string& bytes) {
+  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".partial-" +
+                                              std::to_string(::getpid()));
+  {
+    std::ofstream out(temp, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    if (!out) {
+      std::error_code ec;
+      fs::remove(temp, ec);
+      throw SystemError(path.string() + ": cannot write");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) throw SystemError(path.string() + ": cannot move result into place: " + ec.message());
+}
+
+}  // namespace cpgi

@@ -1,0 +1,65 @@
+// The passive scene description every back end builds from (pbrt-v4's split of description and solver):
+// a triangle soup in metres with materials, the glTF node each triangle came from, and cameras.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cpgi {
+
+/// A diffuse material. Units follow design.md §3.
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.5f};    ///< reflectance per channel, in [0, 1]
+  glm::vec3 emission{0.0f};  ///< emitted radiosity, W/m² per channel (the thesis's "100 units")
+  bool isEmitter() const { return emission.r > 0.0f || emission.g > 0.0f || emission.b > 0.0f; }
+};
+
+/// One triangle, positions and shading normals already in world space (node transforms applied).
+struct Triangle {
+  std::array<glm::vec3, 3> p{};
+  std::array<glm::vec3, 3> n{};  ///< per-vertex normals; the geometric normal where the file has none
+  uint32_t material = 0;         ///< index into Scene::materials
+  uint32_t node = 0;             ///< index into Scene::nodePaths
+
+  glm::vec3 geometricNormal() const;  ///< unit normal by the winding order; zero for a degenerate triangle
+  float area() const;
+  glm::vec3 centroid() const { return (p[0] + p[1] + p[2]) / 3.0f; }
+};
+
+/// A pinhole camera taken from the scene file (glTF perspective cameras) or made up by a tool.
+struct Camera {
+  std::string name;
+  glm::vec3 position{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  ///< unit view direction
+  glm::vec3 up{0.0f, 1.0f, 0.0f};        ///< unit, orthogonal to forward
+  float yfov = 1.0f;                     ///< vertical field of view, radians
+  float aspect = 4.0f / 3.0f;            ///< width / height
+};
+
+struct Bounds {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{-std::numeric_limits<float>::max()};
+  void extend(const glm::vec3& q) { lo = glm::min(lo, q), hi = glm::max(hi, q); }
+  bool empty() const { return lo.x > hi.x; }
+  glm::vec3 size() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
+};
+
+struct Scene {
+  std::vector<Material> materials;
+  std::vector<Triangle> triangles;
+  /// Slash-joined glTF node names from the root ("building/cell:A/walls"); OBJ: the object/group name.
+  std::vector<std::string> nodePaths;
+  std::vector<Camera> cameras;
+
+  Bounds bounds() const;
+  /// Total emitted power, W per channel: Σ emission × area over emissive triangles.
+  glm::vec3 emittedPower() const;
+};
+
+}  // namespace cpgi

@@ -1,0 +1,39 @@
+// Reading scenes (glTF 2.0 .glb/.gltf, OBJ+MTL) and writing them back as glTF. Every failure is an
+// InputError naming the file and the problem; nothing here prints.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/cell_graph.h"
+#include "core/scene.h"
+
+namespace cpgi {
+
+struct LoadedScene {
+  Scene scene;
+  CellGraph cells;                    ///< hand-made cells when the file has `cell:`/`portal:` nodes
+  std::vector<std::string> warnings;  ///< e.g. dropped zero-area or duplicate triangles
+};
+
+/// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,
+/// NaN/inf positions, an unsupported primitive mode, bad cell naming, or a scene with no triangles.
+LoadedScene loadScene(const std::string& path);
+
+struct GltfWriteOptions {
+  /// When set, triangles are grouped under `cell:NAME` nodes and portals written as `portal:A:B` quads
+  /// (design.md §3), so loadScene reads the same graph back.
+  const CellGraph* cells = nullptr;
+  /// Per triangle, the lightmap coordinates of its three corners (TEXCOORD_0); size = triangle count.
+  const std::vector<std::array<glm::vec2, 3>>* lightmapUVs = nullptr;
+  /// PNG bytes of the baked lightmap. With lightmapUVs, every material becomes unlit
+  /// (KHR_materials_unlit) with this texture as base colour, so any viewer shows the baked light.
+  std::string lightmapPng;
+};
+
+/// Writes `.glb` (binary) or `.gltf` (embedded buffers) by the extension, atomically.
+void writeGltf(const std::string& path, const Scene& scene, const GltfWriteOptions& options = {});
+
+}  // namespace cpgi

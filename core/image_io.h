@@ -15,8 +15,16 @@ struct ImageRGB {
   const glm::vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
 };
 
-void writeExr(const std::string& path, const ImageRGB& image);  ///< 32-bit float RGB, atomically
-ImageRGB readExr(const std::string& path);                       ///< throws InputError
+/// An extra float channel stored beside R, G, B (e.g. the lightmap's per-texel area, "area").
+struct ExrChannel {
+  std::string name;
+  std::vector<float> values;  ///< width × height, row-major
+};
+
+/// 32-bit float RGB plus optional extra channels, written atomically.
+void writeExr(const std::string& path, const ImageRGB& image, const std::vector<ExrChannel>& extra = {});
+/// Reads R, G, B (and any extra channels into `extra` when given). Throws InputError.
+ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra = nullptr);
 /// sRGB PNG; `exposure` scales linear values before a Reinhard-free clamp + sRGB curve.
 void writePng(const std::string& path, const ImageRGB& image, float exposure = 1.0f);
 /// Encodes to PNG bytes in memory (for embedding in glTF).

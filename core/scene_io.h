@@ -18,9 +18,16 @@ struct LoadedScene {
   std::vector<std::string> warnings;  ///< e.g. dropped zero-area or duplicate triangles
 };
 
+struct LoadOptions {
+  /// Zero-area and duplicate triangles are errors by default (they usually mean a broken export); with
+  /// repair they are dropped and counted in LoadedScene::warnings instead (the CLI's --repair).
+  bool repair = false;
+};
+
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,
-/// NaN/inf positions, an unsupported primitive mode, bad cell naming, or a scene with no triangles.
-LoadedScene loadScene(const std::string& path);
+/// NaN/inf positions, an unsupported primitive mode, bad cell naming, degenerate triangles (unless
+/// repair), or a scene with no triangles.
+LoadedScene loadScene(const std::string& path, const LoadOptions& options = {});
 
 struct GltfWriteOptions {
   /// When set, triangles are grouped under `cell:NAME` nodes and portals written as `portal:A:B` quads

@@ -40,8 +40,12 @@ void OutputDir::commit() {
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".partial-" +
-                                              std::to_string(::getpid()));
+  // Appended piecewise: GCC 12 reports a false -Wrestrict on the chained operator+ here.
+  std::string tempName = ".";
+  tempName += path.filename().string();
+  tempName += ".partial-";
+  tempName += std::to_string(::getpid());
+  const fs::path temp = path.parent_path() / tempName;
   {
     std::ofstream out(temp, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -1,8 +1,8 @@
 #include "core/output_dir.h"
 
+#include <unistd.h>
 #include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "core/error.h"
 
@@ -40,8 +40,8 @@ void OutputDir::commit() {
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".partial-" +
-                                              std::to_string(::getpid()));
+  const fs::path temp =
+      path.parent_path() / ("." + path.filename().string() + ".partial-" + std::to_string(::getpid()));
   {
     std::ofstream out(temp, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -9,6 +9,14 @@
 namespace fs = std::filesystem;
 
 namespace cpgi {
+namespace {
+// ".NAME.partial-PID": hidden, and never mistaken for a finished result.
+fs::path temporaryName(const fs::path& dir, const std::string& name) {
+  std::string temp = ".";
+  temp.append(name).append(".partial-").append(std::to_string(::getpid()));
+  return dir / temp;
+}
+}  // namespace
 
 OutputDir::OutputDir(fs::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
@@ -24,7 +32,7 @@ OutputDir::~OutputDir() {
 
 fs::path OutputDir::file(const std::string& name) {
   fs::path final = dir_ / name;
-  fs::path temp = dir_ / ("." + name + ".partial-" + std::to_string(::getpid()));
+  fs::path temp = temporaryName(dir_, name);
   staged_.emplace_back(temp, final);
   return temp;
 }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 
 #include "core/error.h"
@@ -12,9 +13,10 @@ namespace cpgi {
 namespace {
 // ".NAME.partial-PID": hidden, and never mistaken for a finished result.
 fs::path temporaryName(const fs::path& dir, const std::string& name) {
-  std::string temp = ".";
-  temp.append(name).append(".partial-").append(std::to_string(::getpid()));
-  return dir / temp;
+  // (An ostringstream rather than string operator+: GCC 12 warns falsely on the latter, PR 105329.)
+  std::ostringstream temp;
+  temp << '.' << name << ".partial-" << ::getpid();
+  return dir / temp.str();
 }
 }  // namespace
 

@@ -50,8 +50,7 @@ void OutputDir::commit() {
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temp =
-      path.parent_path() / ("." + path.filename().string() + ".partial-" + std::to_string(::getpid()));
+  const fs::path temp = temporaryName(path.parent_path(), path.filename().string());
   {
     std::ofstream out(temp, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

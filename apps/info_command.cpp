@@ -44,13 +44,19 @@ nlohmann::json summarise(const LoadedScene& loaded) {
   json emitters = json::array();
   for (size_t m = 0; m < s.materials.size(); ++m)
     if (s.materials[m].isEmitter() && count[m] > 0)
-      emitters.push_back({{"material", s.materials[m].name}, {"triangles", count[m]}, {"area_m2", area[m]},
+      emitters.push_back({{"material", s.materials[m].name},
+                          {"triangles", count[m]},
+                          {"area_m2", area[m]},
                           {"power_w", toJson(s.materials[m].emission * float(area[m]))}});
 
   json cameras = json::array();
   for (const Camera& c : s.cameras)
-    cameras.push_back({{"name", c.name}, {"position", toJson(c.position)}, {"forward", toJson(c.forward)},
-                       {"up", toJson(c.up)}, {"yfov", c.yfov}, {"aspect", c.aspect}});
+    cameras.push_back({{"name", c.name},
+                       {"position", toJson(c.position)},
+                       {"forward", toJson(c.forward)},
+                       {"up", toJson(c.up)},
+                       {"yfov", c.yfov},
+                       {"aspect", c.aspect}});
   const Bounds b = s.bounds();
   const json graph = cellGraphToJson(s, loaded.cells);
   return {{"triangles", s.triangles.size()},
@@ -67,21 +73,24 @@ nlohmann::json summarise(const LoadedScene& loaded) {
           {"warnings", loaded.warnings}};
 }
 
-glm::vec3 vec(const nlohmann::json& j) { return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()}; }
+glm::vec3 vec(const nlohmann::json& j) {
+  return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+}
 
 void printText(const std::string& path, const nlohmann::json& info) {
   std::ostream& out = std::cout;
   out << path << "\n";
-  out << "  triangles      " << info["triangles"].get<size_t>() << " (" << info["quads"].get<size_t>() << " quads, "
-      << info["loose_triangles"].get<size_t>() << " loose triangles)\n";
+  out << "  triangles      " << info["triangles"].get<size_t>() << " (" << info["quads"].get<size_t>()
+      << " quads, " << info["loose_triangles"].get<size_t>() << " loose triangles)\n";
   out << "  materials      " << info["materials"].size() << "\n";
   out << "  emitters       " << info["emitters"].size();
   for (const auto& e : info["emitters"])
-    out << "\n    " << e["material"].get<std::string>() << ": " << e["triangles"].get<size_t>() << " triangles, "
-        << fmt("%.4g m², ", e["area_m2"].get<double>()) << triple(vec(e["power_w"]), " W");
+    out << "\n    " << e["material"].get<std::string>() << ": " << e["triangles"].get<size_t>()
+        << " triangles, " << fmt("%.4g m², ", e["area_m2"].get<double>()) << triple(vec(e["power_w"]), " W");
   out << "\n  emitted power  " << triple(vec(info["emitted_power"]), " W (RGB)") << "\n";
-  out << "  bounds         " << triple(vec(info["bounds"]["min"])) << "  to  " << triple(vec(info["bounds"]["max"]))
-      << "  (size " << triple(vec(info["bounds"]["size"]), " m") << ")\n";
+  out << "  bounds         " << triple(vec(info["bounds"]["min"])) << "  to  "
+      << triple(vec(info["bounds"]["max"])) << "  (size " << triple(vec(info["bounds"]["size"]), " m")
+      << ")\n";
   out << "  cameras        " << info["cameras"].size();
   for (const auto& c : info["cameras"])
     out << "\n    " << c["name"].get<std::string>() << " at " << triple(vec(c["position"])) << " looking "
@@ -101,7 +110,8 @@ void printText(const std::string& path, const nlohmann::json& info) {
 
 void addInfoCommand(CLI::App& app, CommandFn& selected) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Describe a scene: triangles, quads, materials, emitters, cameras, cells");
+  CLI::App* sub =
+      app.add_subcommand("info", "Describe a scene: triangles, quads, materials, emitters, cameras, cells");
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->add_flag("--repair", options->repair, "Drop zero-area and duplicate triangles instead of failing");

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <set>
 
+#include <tiny_gltf.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
 
 #include "core/error.h"
 #include "core/scene_io_detail.h"
@@ -28,13 +28,15 @@ uint32_t readU32(const std::string& b, size_t at) {
 // truncated file gets a message saying so. Returns the JSON chunk text.
 std::string checkGlbContainer(const std::string& path, const std::string& b) {
   if (b.size() < 12)
-    throw InputError(path, "truncated .glb: " + std::to_string(b.size()) + " bytes, the header alone needs 12");
+    throw InputError(path,
+                     "truncated .glb: " + std::to_string(b.size()) + " bytes, the header alone needs 12");
   if (b.compare(0, 4, "glTF") != 0) throw InputError(path, "not a binary glTF file (no 'glTF' magic)");
-  if (readU32(b, 4) != 2) throw InputError(path, "glTF container version " + std::to_string(readU32(b, 4)) + ", expected 2");
+  if (readU32(b, 4) != 2)
+    throw InputError(path, "glTF container version " + std::to_string(readU32(b, 4)) + ", expected 2");
   const uint64_t declared = readU32(b, 8);
   if (declared > b.size())
-    throw InputError(path, "truncated .glb: the header says " + std::to_string(declared) + " bytes, the file has " +
-                               std::to_string(b.size()));
+    throw InputError(path, "truncated .glb: the header says " + std::to_string(declared) +
+                               " bytes, the file has " + std::to_string(b.size()));
   if (declared < 20) throw InputError(path, "invalid .glb: no JSON chunk");
   const uint64_t jsonLength = readU32(b, 12);
   if (readU32(b, 16) != 0x4E4F534Au) throw InputError(path, "invalid .glb: the first chunk is not JSON");
@@ -71,11 +73,16 @@ std::string firstLine(std::string s) {
 
 const char* modeName(int mode) {
   switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    default: return "unknown";
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return "unknown";
   }
 }
 
@@ -168,9 +175,14 @@ class GltfReader {
           fail(name + ": two nodes define the same cell");
         cell = raw_.cellIndex(tag.a);
         break;
-      case CellTag::Kind::Portal: taggedList = &raw_.portals; break;
-      case CellTag::Kind::CellVolume: taggedList = &raw_.volumes; break;
-      case CellTag::Kind::None: break;
+      case CellTag::Kind::Portal:
+        taggedList = &raw_.portals;
+        break;
+      case CellTag::Kind::CellVolume:
+        taggedList = &raw_.volumes;
+        break;
+      case CellTag::Kind::None:
+        break;
     }
     if (taggedList) {
       if (tagged) fail(name + ": is inside " + tagged->node);
@@ -180,7 +192,8 @@ class GltfReader {
 
     if (node.camera >= 0) addCamera(node.camera, world, name);
     if (node.mesh >= 0) {
-      if (node.mesh >= static_cast<int>(m_.meshes.size())) fail("node '" + name + "': mesh index out of range");
+      if (node.mesh >= static_cast<int>(m_.meshes.size()))
+        fail("node '" + name + "': mesh index out of range");
       addMesh(m_.meshes[node.mesh], world, path, cell, tagged);
     }
     // Nothing below a tagged node can add another tagged node, so `tagged` stays valid.
@@ -188,7 +201,8 @@ class GltfReader {
   }
 
   void addCamera(int index, const glm::dmat4& world, const std::string& nodeName) {
-    if (index >= static_cast<int>(m_.cameras.size())) fail("node '" + nodeName + "': camera index out of range");
+    if (index >= static_cast<int>(m_.cameras.size()))
+      fail("node '" + nodeName + "': camera index out of range");
     const tinygltf::Camera& c = m_.cameras[index];
     if (c.type != "perspective") {
       raw_.warnings.push_back("camera of node '" + nodeName + "' is not perspective; ignored");
@@ -204,7 +218,8 @@ class GltfReader {
     cam.forward = glm::normalize(forward);
     cam.up = glm::normalize(up - glm::dot(up, cam.forward) * cam.forward);
     cam.yfov = static_cast<float>(c.perspective.yfov);
-    cam.aspect = c.perspective.aspectRatio > 0.0 ? static_cast<float>(c.perspective.aspectRatio) : 4.0f / 3.0f;
+    cam.aspect =
+        c.perspective.aspectRatio > 0.0 ? static_cast<float>(c.perspective.aspectRatio) : 4.0f / 3.0f;
     if (!(cam.yfov > 0.0f && cam.yfov < 3.14159f)) fail("camera '" + cam.name + "': yfov must be in (0, pi)");
     raw_.scene.cameras.push_back(cam);
   }
@@ -226,7 +241,8 @@ class GltfReader {
     v.componentType = a.componentType;
     const int componentSize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
     v.components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
-    if (componentSize <= 0 || v.components <= 0) fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
+    if (componentSize <= 0 || v.components <= 0)
+      fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
     const uint64_t elemSize = uint64_t(componentSize) * v.components;
     if (a.bufferView < 0) return v;
     if (a.bufferView >= static_cast<int>(m_.bufferViews.size()))
@@ -238,7 +254,8 @@ class GltfReader {
     if (uint64_t(bv.byteOffset) + bv.byteLength > data.size())
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of its buffer");
     v.stride = bv.byteStride ? bv.byteStride : elemSize;
-    if (v.stride < elemSize) fail(what + ": bufferView " + std::to_string(a.bufferView) + " has a stride smaller than its elements");
+    if (v.stride < elemSize)
+      fail(what + ": bufferView " + std::to_string(a.bufferView) + " has a stride smaller than its elements");
     if (v.count > 0 && (v.count > (uint64_t(1) << 40) ||
                         uint64_t(a.byteOffset) + v.stride * (v.count - 1) + elemSize > bv.byteLength))
       fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
@@ -264,15 +281,20 @@ class GltfReader {
     for (size_t i = 0; i < v.count; ++i) {
       const unsigned char* p = v.data + i * v.stride;
       switch (v.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out[i] = *p; break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          out[i] = *p;
+          break;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
           uint16_t s;
           std::memcpy(&s, p, 2);
           out[i] = s;
           break;
         }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out[i], p, 4); break;
-        default: fail(what + ": indices must be unsigned byte, short or int");
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+          std::memcpy(&out[i], p, 4);
+          break;
+        default:
+          fail(what + ": indices must be unsigned byte, short or int");
       }
     }
     return out;
@@ -283,7 +305,8 @@ class GltfReader {
     if (textureIndex < 0) return glm::vec3(1.0f);
     if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
     const int source = m_.textures[textureIndex].source;
-    if (source < 0 || source >= static_cast<int>(m_.images.size())) fail(what + ": texture has no valid image");
+    if (source < 0 || source >= static_cast<int>(m_.images.size()))
+      fail(what + ": texture has no valid image");
     const tinygltf::Image& img = m_.images[source];
     const size_t texels = size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0));
     const int bytes = img.bits == 16 ? 2 : 1;
@@ -330,7 +353,8 @@ class GltfReader {
       }
       return static_cast<uint32_t>(defaultMaterial_);
     }
-    if (index >= static_cast<int>(m_.materials.size())) fail("material " + std::to_string(index) + " does not exist");
+    if (index >= static_cast<int>(m_.materials.size()))
+      fail("material " + std::to_string(index) + " does not exist");
     if (materialIndex_[index] >= 0) return static_cast<uint32_t>(materialIndex_[index]);
     const tinygltf::Material& gm = m_.materials[index];
     Material mat;
@@ -357,8 +381,10 @@ class GltfReader {
     if (readNumbers(gm.extras.Get("cpgi_albedo"), v)) mat.albedo = v;
     if (readNumbers(gm.extras.Get("cpgi_emission"), v)) mat.emission = v;
     for (int i = 0; i < 3; ++i) {
-      if (!std::isfinite(mat.albedo[i]) || mat.albedo[i] < 0.0f) fail(what + ": base colour is negative or not finite");
-      if (!std::isfinite(mat.emission[i]) || mat.emission[i] < 0.0f) fail(what + ": emission is negative or not finite");
+      if (!std::isfinite(mat.albedo[i]) || mat.albedo[i] < 0.0f)
+        fail(what + ": base colour is negative or not finite");
+      if (!std::isfinite(mat.emission[i]) || mat.emission[i] < 0.0f)
+        fail(what + ": emission is negative or not finite");
     }
     if (glm::any(glm::greaterThan(mat.albedo, glm::vec3(1.0f))))
       raw_.warnings.push_back(what + ": albedo above 1 (energy is not conserved)");
@@ -378,7 +404,8 @@ class GltfReader {
       const tinygltf::Primitive& prim = mesh.primitives[pi];
       const std::string what = "mesh '" + meshName + "' primitive " + std::to_string(pi);
       const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN)
         fail(what + ": primitive mode " + modeName(mode) + " is not supported (only triangles)");
       auto pos = prim.attributes.find("POSITION");
       if (pos == prim.attributes.end()) fail(what + ": has no POSITION attribute");
@@ -400,13 +427,15 @@ class GltfReader {
       // Strips and fans become triangle lists, alternating strip winding kept consistent.
       std::vector<std::array<uint32_t, 3>> corners;
       if (mode == TINYGLTF_MODE_TRIANGLES) {
-        for (size_t i = 0; i + 2 < indices.size(); i += 3) corners.push_back({indices[i], indices[i + 1], indices[i + 2]});
+        for (size_t i = 0; i + 2 < indices.size(); i += 3)
+          corners.push_back({indices[i], indices[i + 1], indices[i + 2]});
       } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (size_t i = 0; i + 2 < indices.size(); ++i)
           corners.push_back(i % 2 ? std::array<uint32_t, 3>{indices[i + 1], indices[i], indices[i + 2]}
                                   : std::array<uint32_t, 3>{indices[i], indices[i + 1], indices[i + 2]});
       } else {
-        for (size_t i = 1; i + 1 < indices.size(); ++i) corners.push_back({indices[0], indices[i], indices[i + 1]});
+        for (size_t i = 1; i + 1 < indices.size(); ++i)
+          corners.push_back({indices[0], indices[i], indices[i + 1]});
       }
       const uint32_t material = tagged ? 0 : materialFor(prim.material);
       for (const auto& c : corners) {
@@ -441,10 +470,12 @@ class GltfReader {
 RawScene readGltf(const std::string& path) {
   const std::string bytes = readFileBytes(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-  const bool glbName = std::filesystem::path(path).extension() == ".glb" ||
-                       std::filesystem::path(path).extension() == ".GLB";
-  if (glbName || binary) checkJson(path, checkGlbContainer(path, bytes), "chunk");
-  else checkJson(path, bytes, "document");
+  const bool glbName =
+      std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
+  if (glbName || binary)
+    checkJson(path, checkGlbContainer(path, bytes), "chunk");
+  else
+    checkJson(path, bytes, "document");
   if (bytes.size() > 0xFFFFFFFFu) throw InputError(path, "larger than 4 GiB");
 
   tinygltf::TinyGLTF loader;
@@ -453,15 +484,17 @@ RawScene readGltf(const std::string& path) {
   const std::string baseDir = std::filesystem::path(path).parent_path().string();
   bool ok = false;
   try {
-    ok = glbName || binary
-             ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                           static_cast<unsigned>(bytes.size()), baseDir)
-             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
-                                          baseDir);
+    ok = glbName || binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                         reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                         static_cast<unsigned>(bytes.size()), baseDir)
+                           : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                                        static_cast<unsigned>(bytes.size()), baseDir);
   } catch (const std::exception& e) {
     throw InputError(path, std::string("invalid glTF: ") + firstLine(e.what()));
   }
-  if (!ok) throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser") : firstLine(err)));
+  if (!ok)
+    throw InputError(
+        path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser") : firstLine(err)));
   return GltfReader(path, model).read();
 }
 

@@ -79,7 +79,9 @@ class GltfBuilder {
 
   int addVec3(const std::vector<glm::vec3>& v, bool withBounds) {
     json a = {{"bufferView", addView(v.data(), v.size() * sizeof(glm::vec3), kArrayBuffer)},
-              {"componentType", kFloat}, {"count", v.size()}, {"type", "VEC3"}};
+              {"componentType", kFloat},
+              {"count", v.size()},
+              {"type", "VEC3"}};
     if (withBounds) {  // required on POSITION
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
       for (const glm::vec3& q : v) lo = glm::min(lo, q), hi = glm::max(hi, q);
@@ -91,12 +93,16 @@ class GltfBuilder {
 
   int addVec2(const std::vector<glm::vec2>& v) {
     return push("accessors", {{"bufferView", addView(v.data(), v.size() * sizeof(glm::vec2), kArrayBuffer)},
-                              {"componentType", kFloat}, {"count", v.size()}, {"type", "VEC2"}});
+                              {"componentType", kFloat},
+                              {"count", v.size()},
+                              {"type", "VEC2"}});
   }
 
   int addIndices(const std::vector<uint32_t>& v) {
     return push("accessors", {{"bufferView", addView(v.data(), v.size() * 4, kElementArrayBuffer)},
-                              {"componentType", kUnsignedInt}, {"count", v.size()}, {"type", "SCALAR"}});
+                              {"componentType", kUnsignedInt},
+                              {"count", v.size()},
+                              {"type", "SCALAR"}});
   }
 
   int push(const char* key, json value) {
@@ -170,7 +176,9 @@ class Tree {
   }
 };
 
-json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+json vec(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 class SceneWriter {
  public:
@@ -180,7 +188,8 @@ class SceneWriter {
     if (options_.lightmapUVs && options_.lightmapUVs->size() != scene_.triangles.size())
       throw std::invalid_argument("writeGltf: lightmapUVs must have one entry per triangle");
     for (const Triangle& t : scene_.triangles)
-      if (t.material >= scene_.materials.size()) throw std::invalid_argument("writeGltf: material index out of range");
+      if (t.material >= scene_.materials.size())
+        throw std::invalid_argument("writeGltf: material index out of range");
     writeMaterials();
     buildTree();
     for (int r : tree_.roots) sceneRoots_.push_back(emitTreeNode(r));
@@ -208,17 +217,21 @@ class SceneWriter {
         // Viewers show the baked light as is; the material it was baked with stays in extras.
         mat["pbrMetallicRoughness"] = {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
                                        {"baseColorTexture", {{"index", texture}}},
-                                       {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}};
+                                       {"metallicFactor", 0.0},
+                                       {"roughnessFactor", 1.0}};
         mat["extensions"]["KHR_materials_unlit"] = json::object();
         mat["extras"] = {{"cpgi_albedo", vec(m.albedo)}, {"cpgi_emission", vec(m.emission)}};
       } else {
         mat["pbrMetallicRoughness"] = {{"baseColorFactor", {m.albedo.r, m.albedo.g, m.albedo.b, 1.0}},
-                                       {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}};
+                                       {"metallicFactor", 0.0},
+                                       {"roughnessFactor", 1.0}};
         if (m.isEmitter()) {
           // emissiveFactor is limited to [0,1]; the rest goes into KHR_materials_emissive_strength.
-          const double strength = std::max({double(m.emission.r), double(m.emission.g), double(m.emission.b)});
+          const double strength =
+              std::max({double(m.emission.r), double(m.emission.g), double(m.emission.b)});
           if (strength > 1.0) {
-            mat["emissiveFactor"] = {m.emission.r / strength, m.emission.g / strength, m.emission.b / strength};
+            mat["emissiveFactor"] = {m.emission.r / strength, m.emission.g / strength,
+                                     m.emission.b / strength};
             mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
             b_.useExtension("KHR_materials_emissive_strength");
           } else {
@@ -287,9 +300,12 @@ class SceneWriter {
 
   int helperMaterial(const char* name, glm::vec4 colour) {
     json mat = {{"name", name},
-                {"pbrMetallicRoughness", {{"baseColorFactor", {colour.r, colour.g, colour.b, colour.a}},
-                                          {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
-                {"alphaMode", "BLEND"}, {"doubleSided", true}};
+                {"pbrMetallicRoughness",
+                 {{"baseColorFactor", {colour.r, colour.g, colour.b, colour.a}},
+                  {"metallicFactor", 0.0},
+                  {"roughnessFactor", 1.0}}},
+                {"alphaMode", "BLEND"},
+                {"doubleSided", true}};
     return b_.push("materials", mat);
   }
 
@@ -318,8 +334,10 @@ class SceneWriter {
       const std::vector<glm::vec3> pos(c.begin(), c.end());
       const std::vector<glm::vec3> nrm(4, n);
       json attributes = {{"POSITION", b_.addVec3(pos, true)}, {"NORMAL", b_.addVec3(nrm, false)}};
-      json prim = {{"attributes", attributes}, {"indices", b_.addIndices({0, 1, 2, 0, 2, 3})},
-                   {"material", portalMaterial}, {"mode", 4}};
+      json prim = {{"attributes", attributes},
+                   {"indices", b_.addIndices({0, 1, 2, 0, 2, 3})},
+                   {"material", portalMaterial},
+                   {"mode", 4}};
       const int mesh = b_.push("meshes", {{"name", name}, {"primitives", json::array({prim})}});
       sceneRoots_.push_back(b_.push("nodes", {{"name", name}, {"mesh", mesh}}));
     }
@@ -345,10 +363,10 @@ class SceneWriter {
       const glm::vec3 up = glm::cross(right, forward);
       // The camera looks down its -Z with +Y up.
       const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(right, up, -forward)));
-      const int camera = b_.push("cameras", {{"name", cam.name},
-                                             {"type", "perspective"},
-                                             {"perspective", {{"yfov", cam.yfov}, {"aspectRatio", cam.aspect},
-                                                              {"znear", 0.01}}}});
+      const int camera = b_.push(
+          "cameras", {{"name", cam.name},
+                      {"type", "perspective"},
+                      {"perspective", {{"yfov", cam.yfov}, {"aspectRatio", cam.aspect}, {"znear", 0.01}}}});
       sceneRoots_.push_back(b_.push("nodes", {{"name", cam.name.empty() ? "camera" : cam.name},
                                               {"camera", camera},
                                               {"translation", vec(cam.position)},

@@ -58,11 +58,14 @@ void writeExr(const std::string& path, const ImageRGB& image, const std::vector<
   char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
   const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
   for (int c = 0; c < 3; ++c)
-    frame.insert(c == 0 ? "R" : c == 1 ? "G" : "B",
+    frame.insert(c == 0   ? "R"
+                 : c == 1 ? "G"
+                          : "B",
                  Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
   for (const ExrChannel& c : extra)
-    frame.insert(c.name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
-                                     sizeof(float), sizeof(float) * image.width));
+    frame.insert(c.name,
+                 Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
+                            sizeof(float), sizeof(float) * image.width));
 
   std::ostringstream bytes;
   try {
@@ -93,7 +96,8 @@ ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
       throw InputError(path, "OpenEXR data window is empty or too large");
     const Imf::ChannelList& channels = file.header().channels();
     for (const char* c : {"R", "G", "B"})
-      if (!channels.findChannel(c)) throw InputError(path, std::string("OpenEXR file has no ") + c + " channel");
+      if (!channels.findChannel(c))
+        throw InputError(path, std::string("OpenEXR file has no ") + c + " channel");
     image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
 
     // Slices are addressed from the data window's origin, which need not be (0, 0).
@@ -102,7 +106,10 @@ ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
     char* base = reinterpret_cast<char*>(image.pixels.data()) - origin * ptrdiff_t(sizeof(glm::vec3));
     const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
     for (int c = 0; c < 3; ++c)
-      frame.insert(c == 0 ? "R" : c == 1 ? "G" : "B", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(c == 0   ? "R"
+                   : c == 1 ? "G"
+                            : "B",
+                   Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
     if (extra) {
       extra->clear();
       for (auto it = channels.begin(); it != channels.end(); ++it) {
@@ -111,8 +118,10 @@ ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
         extra->push_back({name, std::vector<float>(image.pixels.size(), 0.0f)});
       }
       for (ExrChannel& c : *extra)
-        frame.insert(c.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(c.values.data()) - origin * ptrdiff_t(sizeof(float)),
-                                         sizeof(float), sizeof(float) * image.width));
+        frame.insert(c.name,
+                     Imf::Slice(Imf::FLOAT,
+                                reinterpret_cast<char*>(c.values.data()) - origin * ptrdiff_t(sizeof(float)),
+                                sizeof(float), sizeof(float) * image.width));
     }
     file.setFrameBuffer(frame);
     file.readPixels(dw.min.y, dw.max.y);
@@ -132,7 +141,8 @@ std::string encodePng(const ImageRGB& image, float exposure) {
   for (size_t i = 0; i < image.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) {
       const float v = image.pixels[i][c] * exposure;
-      rgb[3 * i + c] = static_cast<unsigned char>(std::lround(255.0f * linearToSrgb(std::isnan(v) ? 0.0f : v)));
+      rgb[3 * i + c] =
+          static_cast<unsigned char>(std::lround(255.0f * linearToSrgb(std::isnan(v) ? 0.0f : v)));
     }
   std::string out;
   auto append = [](void* context, void* data, int size) {

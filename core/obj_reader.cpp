@@ -78,7 +78,8 @@ RawScene readObj(const std::string& path) {
       Triangle t;
       for (int k = 0; k < 3; ++k) {
         const tinyobj::index_t& idx = mesh.indices[offset + k];
-        if (idx.vertex_index < 0) throw InputError(path, "object '" + name + "': face without a vertex index");
+        if (idx.vertex_index < 0)
+          throw InputError(path, "object '" + name + "': face without a vertex index");
         t.p[k] = vertex(attrib.vertices, idx.vertex_index, "object '" + name + "'");
         t.n[k] = vertex(attrib.normals, idx.normal_index, "object '" + name + "'");
       }

@@ -19,7 +19,9 @@ namespace detail {
 
 namespace {
 
-bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+bool startsWith(const std::string& s, const char* prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
 
 // Blender renames the second "portal:A:B" to "portal:A:B.001"; the suffix is not part of the cell name.
 std::string stripBlenderSuffix(const std::string& name) {
@@ -36,7 +38,9 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Collinear within float precision: the doubled area is tiny against the longest edge squared.
 bool isDegenerate(const Triangle& t) {
@@ -80,7 +84,9 @@ double meanSide(const Scene& scene, const Cell& cell, const glm::vec3& centre, c
   return area > 0.0 ? sum / area : 0.0;
 }
 
-void reverseCorners(PortalQuad& portal) { std::swap(portal.corners[1], portal.corners[3]); }
+void reverseCorners(PortalQuad& portal) {
+  std::swap(portal.corners[1], portal.corners[3]);
+}
 
 }  // namespace
 
@@ -140,7 +146,8 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
   std::vector<glm::vec3> unique;
   for (const Triangle& t : triangles)
     for (const glm::vec3& q : t.p)
-      if (std::none_of(unique.begin(), unique.end(), [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
+      if (std::none_of(unique.begin(), unique.end(),
+                       [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
         unique.push_back(q);
   auto notAQuad = [&] {
     return InputError(file, node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
@@ -157,8 +164,10 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
   const Triangle& t1 = triangles[1];
   int own0 = -1, shared = 0;
   for (int i = 0; i < 3; ++i) {
-    if (inTriangle(t1, t0.p[i])) ++shared;
-    else own0 = i;
+    if (inTriangle(t1, t0.p[i]))
+      ++shared;
+    else
+      own0 = i;
   }
   glm::vec3 own1(0.0f);
   int own1Count = 0;
@@ -176,7 +185,8 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
   for (const Triangle& t : scene.triangles)
     for (const glm::vec3& q : t.p)
       if (!isFinite(q))
-        throw InputError(path, "node '" + nodeOf(scene, t) + "': a vertex position is not finite (NaN or inf)");
+        throw InputError(path,
+                         "node '" + nodeOf(scene, t) + "': a vertex position is not finite (NaN or inf)");
   for (const auto* meshes : {&raw.portals, &raw.volumes})
     for (const RawScene::TaggedMesh& m : *meshes)
       for (const Triangle& t : m.triangles)
@@ -207,8 +217,9 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
   }
   if (!options.repair) {
     if (degenerate)
-      throw InputError(path, std::to_string(degenerate) + " zero-area triangle" + (degenerate > 1 ? "s" : "") +
-                                 " (first in node '" + nodeOf(scene, scene.triangles[firstDegenerate]) +
+      throw InputError(path, std::to_string(degenerate) + " zero-area triangle" +
+                                 (degenerate > 1 ? "s" : "") + " (first in node '" +
+                                 nodeOf(scene, scene.triangles[firstDegenerate]) +
                                  "'); run with --repair to drop them");
     if (duplicate)
       throw InputError(path, std::to_string(duplicate) + " duplicate triangle" + (duplicate > 1 ? "s" : "") +
@@ -228,8 +239,8 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     scene.triangles = std::move(kept);
   }
   if (scene.triangles.empty())
-    throw InputError(path, degenerate + duplicate > 0 ? "no triangles left after --repair"
-                                                      : "the scene has no triangles");
+    throw InputError(
+        path, degenerate + duplicate > 0 ? "no triangles left after --repair" : "the scene has no triangles");
   for (Triangle& t : scene.triangles)
     for (glm::vec3& n : t.n) {
       const float len = glm::length(n);

@@ -89,11 +89,14 @@ TEST(CellsIo, PortalThatIsNotAQuad) {
   g.addNode({{"name", "cell:A"}, {"mesh", g.addMesh(floorAt(0))}});
   g.addNode({{"name", "cell:B"}, {"mesh", g.addMesh(floorAt(1))}});
   g.addNode({{"name", "portal:A:B"}, {"mesh", g.addMesh({1, 0, 0, 1, 1, 0, 1, 0, 1})}});
-  EXPECT_EQ(errorOf(g), "portal:A:B: a portal must be one quad (2 triangles, 4 vertices), found 1 triangles and 3 vertices");
+  EXPECT_EQ(
+      errorOf(g),
+      "portal:A:B: a portal must be one quad (2 triangles, 4 vertices), found 1 triangles and 3 vertices");
   test::GlbBuilder two;  // two triangles that do not share an edge
   two.addNode({{"name", "cell:A"}, {"mesh", two.addMesh(floorAt(0))}});
   two.addNode({{"name", "cell:B"}, {"mesh", two.addMesh(floorAt(1))}});
-  two.addNode({{"name", "portal:A:B"}, {"mesh", two.addMesh({1, 0, 0, 1, 1, 0, 1, 0, 1, 1, 5, 5, 1, 6, 5, 1, 5, 6})}});
+  two.addNode({{"name", "portal:A:B"},
+               {"mesh", two.addMesh({1, 0, 0, 1, 1, 0, 1, 0, 1, 1, 5, 5, 1, 6, 5, 1, 5, 6})}});
   EXPECT_NE(errorOf(two).find("portal:A:B: a portal must be one quad"), std::string::npos) << errorOf(two);
 }
 

@@ -1,8 +1,8 @@
 // The glTF reader against files built byte by byte (tests/support/glb_builder.h), not by cpgi's writer.
 #include <cmath>
 
-#include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -22,8 +22,10 @@ void expectNear(const glm::vec3& got, const glm::vec3& want, float tol = 1e-5f) 
 
 LoadedScene load(const test::GlbBuilder& g, const std::string& name = "scene.glb", LoadOptions options = {}) {
   test::TempDir dir;
-  if (name.size() > 5 && name.substr(name.size() - 5) == ".gltf") test::GlbBuilder::writeBytes(dir / name, g.gltf());
-  else g.writeGlb(dir / name);
+  if (name.size() > 5 && name.substr(name.size() - 5) == ".gltf")
+    test::GlbBuilder::writeBytes(dir / name, g.gltf());
+  else
+    g.writeGlb(dir / name);
   return loadScene(dir / name, options);
 }
 
@@ -42,7 +44,11 @@ TEST(GltfReader, TranslatedRotatedScaledNode) {
   test::GlbBuilder g;
   const int mesh = g.addMesh(kTriangle);
   const double s = std::sqrt(0.5);
-  g.addNode({{"name", "trs"}, {"mesh", mesh}, {"translation", {1, 2, 3}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}});
+  g.addNode({{"name", "trs"},
+             {"mesh", mesh},
+             {"translation", {1, 2, 3}},
+             {"rotation", {0, 0, s, s}},
+             {"scale", {2, 2, 2}}});
   const Scene scene = load(g).scene;
   ASSERT_EQ(scene.triangles.size(), 1u);
   const Triangle& t = scene.triangles[0];
@@ -59,11 +65,12 @@ TEST(GltfReader, MatrixOfChildComposesWithParentAndNormalsUseInverseTranspose) {
   // A triangle whose plane is x + y = 1 (normal (1,1,0)/√2) with per-vertex normals.
   const std::vector<float> p = {1, 0, 0, 0, 1, 0, 1, 0, 1};
   const float r = std::sqrt(0.5f);
-  json prim = {{"attributes", {{"POSITION", g.addVec3(p)}, {"NORMAL", g.addVec3({r, r, 0, r, r, 0, r, r, 0})}}}};
+  json prim = {
+      {"attributes", {{"POSITION", g.addVec3(p)}, {"NORMAL", g.addVec3({r, r, 0, r, r, 0, r, r, 0})}}}};
   g.doc["meshes"].push_back({{"name", "slanted"}, {"primitives", json::array({prim})}});
   // Child: a column-major matrix scaling x by 2; parent: a translation.
-  const int child = g.addNode({{"name", "child"}, {"mesh", 0},
-                               {"matrix", {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}}, false);
+  const int child = g.addNode(
+      {{"name", "child"}, {"mesh", 0}, {"matrix", {2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}}, false);
   g.addNode({{"name", "parent"}, {"translation", {10, 0, 0}}, {"children", {child}}});
   const Scene scene = load(g).scene;
   ASSERT_EQ(scene.triangles.size(), 1u);
@@ -79,7 +86,8 @@ TEST(GltfReader, MatrixOfChildComposesWithParentAndNormalsUseInverseTranspose) {
 
 TEST(GltfReader, MirroringTransformKeepsWindingConsistentWithNormals) {
   test::GlbBuilder g;
-  json prim = {{"attributes", {{"POSITION", g.addVec3(kTriangle)}, {"NORMAL", g.addVec3({0, 0, 1, 0, 0, 1, 0, 0, 1})}}}};
+  json prim = {{"attributes",
+                {{"POSITION", g.addVec3(kTriangle)}, {"NORMAL", g.addVec3({0, 0, 1, 0, 0, 1, 0, 0, 1})}}}};
   g.doc["meshes"].push_back({{"primitives", json::array({prim})}});
   g.addNode({{"mesh", 0}, {"scale", {-1, 1, 1}}});
   const Triangle t = load(g).scene.triangles.at(0);
@@ -114,7 +122,8 @@ TEST(GltfReader, EveryIndexTypeStripAndFan) {
 }
 
 TEST(GltfReader, LinesArePointsAreRejectedNamingMeshAndMode) {
-  for (const auto& [mode, name] : {std::pair{1, "LINES"}, std::pair{0, "POINTS"}, std::pair{3, "LINE_STRIP"}}) {
+  for (const auto& [mode, name] :
+       {std::pair{1, "LINES"}, std::pair{0, "POINTS"}, std::pair{3, "LINE_STRIP"}}) {
     test::GlbBuilder g;
     const int mesh = g.addMesh(kTriangle, {}, -1, mode);
     g.doc["meshes"][mesh]["name"] = "wires";
@@ -133,14 +142,17 @@ TEST(GltfReader, MaterialsFactorTextureMeanEmissiveStrengthAndDefault) {
   tex.width = 2, tex.height = 1;
   tex.pixels = {glm::vec3(1, 0.5f, 0), glm::vec3(0, 0.5f, 1)};
   const std::string png = encodePng(tex);
-  g.doc["images"] = json::array({{{"bufferView", g.addView(png.data(), png.size())}, {"mimeType", "image/png"}}});
+  g.doc["images"] =
+      json::array({{{"bufferView", g.addView(png.data(), png.size())}, {"mimeType", "image/png"}}});
   g.doc["textures"] = json::array({{{"source", 0}}});
-  const int textured = g.addMaterial({{"name", "textured"},
-                                      {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.4, 0.2, 1}},
-                                                                {"baseColorTexture", {{"index", 0}}}}}});
-  const int lamp = g.addMaterial({{"name", "lamp"},
-                                  {"emissiveFactor", {1.0, 0.5, 0.25}},
-                                  {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 40.0}}}}}});
+  const int textured =
+      g.addMaterial({{"name", "textured"},
+                     {"pbrMetallicRoughness",
+                      {{"baseColorFactor", {0.8, 0.4, 0.2, 1}}, {"baseColorTexture", {{"index", 0}}}}}});
+  const int lamp =
+      g.addMaterial({{"name", "lamp"},
+                     {"emissiveFactor", {1.0, 0.5, 0.25}},
+                     {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 40.0}}}}}});
   g.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
   g.doc["extensionsRequired"] = {"KHR_materials_emissive_strength"};
   g.addNode({{"mesh", g.addMesh(kTriangle, {}, textured)}});
@@ -165,9 +177,11 @@ TEST(GltfReader, MaterialsFactorTextureMeanEmissiveStrengthAndDefault) {
 TEST(GltfReader, PerspectiveCameraFromNode) {
   test::GlbBuilder g;
   g.addNode({{"mesh", g.addMesh(kTriangle)}});
-  g.doc["cameras"] = json::array({{{"type", "perspective"}, {"name", "eye"},
-                                   {"perspective", {{"yfov", 0.7}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
-                                  {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
+  g.doc["cameras"] =
+      json::array({{{"type", "perspective"},
+                    {"name", "eye"},
+                    {"perspective", {{"yfov", 0.7}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
+                   {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
   const double s = std::sqrt(0.5);
   // Turned 90° about +y: looks down −x instead of −z.
   g.addNode({{"name", "cam"}, {"camera", 0}, {"translation", {1, 2, 3}}, {"rotation", {0, s, 0, s}}});
@@ -189,7 +203,7 @@ TEST(GltfReader, PerspectiveCameraFromNode) {
 TEST(GltfReader, DefaultSceneIsChosenAndInstancedMeshesRepeat) {
   test::GlbBuilder g;
   const int mesh = g.addMesh(kTriangle);
-  g.addNode({{"name", "in0"}, {"mesh", mesh}});                                  // scene 0
+  g.addNode({{"name", "in0"}, {"mesh", mesh}});  // scene 0
   const int a = g.addNode({{"name", "a"}, {"mesh", mesh}}, false);
   const int b = g.addNode({{"name", "b"}, {"mesh", mesh}, {"translation", {0, 0, 5}}}, false);
   g.doc["scenes"].push_back({{"nodes", {a, b}}});
@@ -259,8 +273,8 @@ TEST(GltfReader, DegenerateAndDuplicateTrianglesNeedRepair) {
   test::GlbBuilder g;
   // Two copies of one triangle, one with its corners rotated (the same triangle), a zero-area one and
   // the mirror-wound copy (a two-sided face, kept).
-  const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0,  1, 0, 0, 0, 1, 0, 0, 0, 0,
-                                0, 0, 0, 1, 1, 1, 2, 2, 2,  0, 0, 0, 0, 1, 0, 1, 0, 0};
+  const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0,
+                                0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 1, 0, 1, 0, 0};
   g.addNode({{"name", "messy"}, {"mesh", g.addMesh(p)}});
   EXPECT_NE(loadError(g).find("--repair"), std::string::npos);
   EXPECT_NE(loadError(g).find("zero-area"), std::string::npos) << loadError(g);

@@ -38,14 +38,16 @@ struct TwoRooms {
                        Material{"light", glm::vec3(0.8f), glm::vec3(100.0f, 50.0f, 0.5f)},
                        Material{"dim", glm::vec3(0.1f, 0.2f, 0.3f), glm::vec3(0.25f, 0.5f, 0.75f)}};
     scene.nodePaths = {"house/floorA", "house/lampA", "house/floorB"};
-    addQuad(scene, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0, 0);                // A floor, normal +y
+    addQuad(scene, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0, 0);                    // A floor, normal +y
     addQuad(scene, {0.25f, 0.99f, 0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, 1, 1);  // A lamp, normal -y
-    addQuad(scene, {1, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2, 2);                // B floor
-    addQuad(scene, {1, 1, 0}, {1, 0, 0}, {0, 0, 1}, 0, 2);                // B ceiling, normal -y
-    scene.cameras.push_back(Camera{"view", glm::vec3(0.5f, 0.5f, 2.0f), glm::normalize(glm::vec3(0.3f, -0.1f, -1.0f)),
-                                   glm::vec3(0, 1, 0), 0.9f, 1.5f});
-    scene.cameras[0].up = glm::normalize(scene.cameras[0].up -
-                                         glm::dot(scene.cameras[0].up, scene.cameras[0].forward) * scene.cameras[0].forward);
+    addQuad(scene, {1, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2, 2);                    // B floor
+    addQuad(scene, {1, 1, 0}, {1, 0, 0}, {0, 0, 1}, 0, 2);                    // B ceiling, normal -y
+    scene.cameras.push_back(Camera{"view", glm::vec3(0.5f, 0.5f, 2.0f),
+                                   glm::normalize(glm::vec3(0.3f, -0.1f, -1.0f)), glm::vec3(0, 1, 0), 0.9f,
+                                   1.5f});
+    scene.cameras[0].up =
+        glm::normalize(scene.cameras[0].up -
+                       glm::dot(scene.cameras[0].up, scene.cameras[0].forward) * scene.cameras[0].forward);
     cells.cells = {Cell{"A", {0, 1, 2, 3}, {}}, Cell{"B", {4, 5, 6, 7}, {}}};
     PortalQuad p;
     p.name = "portal:A:B";
@@ -160,7 +162,8 @@ TEST(GltfWriter, BakedFileIsUnlitWithLightmapAndKeepsMaterialsInExtras) {
   const TwoRooms rooms;
   test::TempDir dir;
   std::vector<std::array<glm::vec2, 3>> uvs(rooms.scene.triangles.size());
-  for (size_t i = 0; i < uvs.size(); ++i) uvs[i] = {glm::vec2(0.1f * i, 0.0f), glm::vec2(0.1f * i, 1.0f), glm::vec2(0.5f, 0.5f)};
+  for (size_t i = 0; i < uvs.size(); ++i)
+    uvs[i] = {glm::vec2(0.1f * i, 0.0f), glm::vec2(0.1f * i, 1.0f), glm::vec2(0.5f, 0.5f)};
   ImageRGB light;
   light.width = 2, light.height = 2;
   light.pixels = {glm::vec3(1.0f), glm::vec3(0.5f), glm::vec3(0.25f), glm::vec3(0.0f)};

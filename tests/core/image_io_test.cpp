@@ -23,7 +23,8 @@ ImageRGB gradient(int w, int h) {
   ImageRGB img;
   img.width = w, img.height = h;
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) img.pixels.push_back(glm::vec3(x * 0.37f + 1e-7f, y * 1234.5f, -0.125f * (x + y)));
+    for (int x = 0; x < w; ++x)
+      img.pixels.push_back(glm::vec3(x * 0.37f + 1e-7f, y * 1234.5f, -0.125f * (x + y)));
   return img;
 }
 
@@ -69,7 +70,8 @@ TEST(ImageIo, PngAppliesExposureAndSrgbCurve) {
   img.pixels = {glm::vec3(0.0f), glm::vec3(0.25f), glm::vec3(0.5f), glm::vec3(2.0f)};
   const std::string png = encodePng(img, 2.0f);
   int w = 0, h = 0, n = 0;
-  unsigned char* px = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()), int(png.size()), &w, &h, &n, 3);
+  unsigned char* px = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(png.data()),
+                                            int(png.size()), &w, &h, &n, 3);
   ASSERT_NE(px, nullptr);
   ASSERT_EQ(w, 4);
   ASSERT_EQ(h, 1);

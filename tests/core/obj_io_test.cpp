@@ -10,7 +10,9 @@
 namespace cpgi {
 namespace {
 
-void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+void write(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 TEST(ObjIo, MaterialsObjectsAndCells) {
   test::TempDir dir;
@@ -19,11 +21,11 @@ TEST(ObjIo, MaterialsObjectsAndCells) {
         "newmtl lamp\nKd 0.8 0.8 0.8\nKe 100 90 80\n");
   write(dir / "rooms.obj",
         "mtllib rooms.mtl\n"
-        "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\n"      // 1-4: floor of A
-        "v 1 0 0\nv 1 0 1\nv 2 0 1\nv 2 0 0\n"      // 5-8: floor of B
-        "v 1 0 0\nv 1 1 0\nv 1 1 1\nv 1 0 1\n"      // 9-12: the opening at x = 1
+        "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\n"  // 1-4: floor of A
+        "v 1 0 0\nv 1 0 1\nv 2 0 1\nv 2 0 0\n"  // 5-8: floor of B
+        "v 1 0 0\nv 1 1 0\nv 1 1 1\nv 1 0 1\n"  // 9-12: the opening at x = 1
         "vn 0 1 0\n"
-        "o loose\nf 1 3 2\n"                      // before any usemtl: the default grey
+        "o loose\nf 1 3 2\n"  // before any usemtl: the default grey
         "o cell:A\nusemtl wall\nf 1//1 2//1 3//1 4//1\n"
         "o cell:B\nusemtl lamp\nf 5 6 7 8\n"
         "o portal:A:B\nf 9 10 11 12\n");

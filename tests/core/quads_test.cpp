@@ -31,7 +31,9 @@ TEST(Quads, UnitSquareSplitEitherDiagonal) {
     EXPECT_NEAR(q.quads[0].area(), 1.0f, 1e-6f);
     EXPECT_NEAR(q.quads[0].normal.z, 1.0f, 1e-6f);
     const Quad& quad = q.quads[0];
-    EXPECT_GT(glm::dot(glm::cross(quad.corners[1] - quad.corners[0], quad.corners[3] - quad.corners[0]), quad.normal), 0.0f);
+    EXPECT_GT(glm::dot(glm::cross(quad.corners[1] - quad.corners[0], quad.corners[3] - quad.corners[0]),
+                       quad.normal),
+              0.0f);
   }
 }
 
@@ -42,9 +44,11 @@ TEST(Quads, NonRectanglesAndMismatchesStayLoose) {
   const Scene trapezoid = sceneOf({tri(a, b, {1.5f, 1, 0}), tri(a, {1.5f, 1, 0}, {0.5f, 1, 0})});
   EXPECT_EQ(findQuads(trapezoid).quads.size(), 0u);
   // A square folded along its diagonal (not coplanar) and one whose halves have different materials.
-  const Scene folded = sceneOf({tri({0, 0, 0}, {1, 0, 0}, {1, 1, 0}), tri({0, 0, 0}, {1, 1, 0}, {0, 1, 0.5f})});
+  const Scene folded =
+      sceneOf({tri({0, 0, 0}, {1, 0, 0}, {1, 1, 0}), tri({0, 0, 0}, {1, 1, 0}, {0, 1, 0.5f})});
   EXPECT_EQ(findQuads(folded).quads.size(), 0u);
-  const Scene twoMaterials = sceneOf({tri({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, 0), tri({0, 0, 0}, {1, 1, 0}, {0, 1, 0}, 1)});
+  const Scene twoMaterials =
+      sceneOf({tri({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, 0), tri({0, 0, 0}, {1, 1, 0}, {0, 1, 0}, 1)});
   const QuadSet q = findQuads(twoMaterials);
   EXPECT_EQ(q.quads.size(), 0u);
   EXPECT_EQ(q.looseTriangles(), 2u);

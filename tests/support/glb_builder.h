@@ -48,13 +48,13 @@ class GlbBuilder {
     return addAccessor(addView(bytes.data(), bytes.size()), componentType, idx.size(), "SCALAR");
   }
   int addAccessor(int view, int componentType, size_t count, const char* type) {
-    doc["accessors"].push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count},
-                                {"type", type}});
+    doc["accessors"].push_back(
+        {{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
     return static_cast<int>(doc["accessors"].size() - 1);
   }
   /// A mesh of one primitive; returns the mesh index.
-  int addMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices = {}, int material = -1,
-              int mode = 4, int indexType = 5125) {
+  int addMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices = {},
+              int material = -1, int mode = 4, int indexType = 5125) {
     nlohmann::json prim = {{"attributes", {{"POSITION", addVec3(positions)}}}, {"mode", mode}};
     if (!indices.empty()) prim["indices"] = addIndices(indices, indexType);
     if (material >= 0) prim["material"] = material;

@@ -68,21 +68,17 @@ std::string firstLine(std::string s) {
   while (!s.empty() && (s.front() == '\n' || s.front() == ' ')) s.erase(s.begin());
   const size_t nl = s.find('\n');
   if (nl != std::string::npos) s.resize(nl);
+  while (!s.empty() && (s.back() == '.' || s.back() == ' ' || s.back() == '\r')) s.pop_back();
   return s;
 }
 
-const char* modeName(int mode) {
+std::string modeName(int mode) {
   switch (mode) {
-    case TINYGLTF_MODE_POINTS:
-      return "POINTS";
-    case TINYGLTF_MODE_LINE:
-      return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP:
-      return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP:
-      return "LINE_STRIP";
-    default:
-      return "unknown";
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    default: return std::to_string(mode);
   }
 }
 

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "cpgi 0.1.0");
   cpgi::cli::CommandFn selected;
   cpgi::cli::addInfoCommand(app, selected);
+  cpgi::cli::addGenerateCommand(app, selected);
 
   try {
     app.parse(argc, argv);

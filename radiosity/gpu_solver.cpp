@@ -1,0 +1,501 @@
+#include "radiosity/gpu_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "radiosity/gl.h"
+#include "radiosity/shader_library.h"
+
+namespace cpgi {
+namespace {
+
+// Mirrors of the std430 structs in shaders/common.glsl and select_shooter.comp.
+struct GpuPatch {
+  glm::ivec4 rect;
+};
+struct GpuStats {
+  glm::vec4 unshot, incident, absorbed;
+};
+struct GpuBlock {
+  glm::vec4 centreArea, radiosityRadius;
+  glm::ivec4 rect;
+};
+struct GpuSelection {
+  int32_t winner, winnerPending, pad0, pad1;
+  glm::vec4 winnerUnshot, unshot, incident, absorbed;
+};
+static_assert(sizeof(GpuBlock) == 48 && sizeof(GpuSelection) == 80);
+
+constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
+constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
+constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
+
+// Shader-storage binding points (shaders/*.comp).
+enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
+                     kBlocks = 6, kPending = 7, kSelection = 8 };
+// Image units.
+enum Image : GLuint { kPosArea = 0, kNormalPatch = 1, kAlbedo = 2, kRadiosity = 3, kResidual = 4, kIncident = 5 };
+
+struct Face {
+  glm::vec3 right, up, forward;
+};
+// The hemicube in shooter coordinates (z = shooter normal); must match visibility.glsl.
+constexpr Face kFaces[5] = {
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}},
+    {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+};
+
+// glm matrices are column-major; these are uploaded so that `M * v` in GLSL gives dot(row_i, v).
+glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return glm::transpose(glm::mat3(a, b, c)); }
+
+GLint loc(const gl::Program& p, const char* name) { return glGetUniformLocation(p.get(), name); }
+void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(), loc(p, n), v); }
+void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
+void set(const gl::Program& p, const char* n, glm::ivec2 v) { glProgramUniform2i(p.get(), loc(p, n), v.x, v.y); }
+void set(const gl::Program& p, const char* n, glm::ivec4 v) {
+  glProgramUniform4i(p.get(), loc(p, n), v.x, v.y, v.z, v.w);
+}
+void set(const gl::Program& p, const char* n, const glm::mat3& m) {
+  glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
+}
+
+GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
+
+void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
+  if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
+      (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
+    throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
+                                          std::to_string(maxTexture) + ")");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("--neighbourhood", "must be in 0..4");
+  if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
+    throw InputError("--unshot", "must be a fraction in (0, 1)");
+  if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
+  if (!(p.farField >= 1.0f)) throw InputError("far field", "ratio must be at least 1");
+  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("sub-shooters", "blocks per edge must be in 1..8");
+  if (atlas.width > maxTexture || atlas.height > maxTexture)
+    throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
+                                  std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
+                                  std::to_string(maxTexture) + "; lower the resolution");
+}
+
+// Where a shooter patch sits: the item buffer's eye and frame, and what shooter_blocks.comp needs.
+struct ShooterFrame {
+  glm::vec3 centre, tangent, bitangent, normal;
+  float texelRadius = 0.0f;
+};
+
+ShooterFrame frameOf(const Scene& scene, const LightmapAtlas& atlas, int patchIndex) {
+  const Patch& p = atlas.patches[patchIndex];
+  ShooterFrame f;
+  glm::dvec3 moment(0.0);
+  double area = 0.0;
+  for (int32_t tri : p.triangles)
+    if (tri >= 0) {
+      const Triangle& t = scene.triangles[tri];
+      moment += glm::dvec3(t.centroid()) * double(t.area());
+      area += t.area();
+    }
+  f.centre = area > 0.0 ? glm::vec3(moment / area) : glm::vec3(0.0f);
+  f.normal = p.normal;
+  // Tangent along the chart's rows when two neighbouring texels are valid (quads), else any.
+  auto texel = [&](int x, int y) { return size_t(p.y + y) * atlas.width + (p.x + x); };
+  glm::vec3 along(0.0f), across(0.0f);
+  if (p.w >= 2 && atlas.patch[texel(1, 0)] == patchIndex) along = atlas.position[texel(1, 0)] - atlas.position[texel(0, 0)];
+  if (p.h >= 2 && atlas.patch[texel(0, 1)] == patchIndex) across = atlas.position[texel(0, 1)] - atlas.position[texel(0, 0)];
+  if (glm::length(along) > 0.0f) {
+    f.tangent = glm::normalize(along - glm::dot(along, f.normal) * f.normal);
+  } else {
+    const glm::vec3 axis = std::abs(f.normal.x) < 0.6f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    f.tangent = glm::normalize(glm::cross(axis, f.normal));
+  }
+  f.bitangent = glm::cross(f.normal, f.tangent);
+  // Half a texel's diagonal; loose triangles' texels are sheared squares of the triangle's legs.
+  if (p.quad >= 0 && glm::length(along) > 0.0f && glm::length(across) > 0.0f) {
+    f.texelRadius = 0.5f * std::sqrt(glm::dot(along, along) + glm::dot(across, across));
+  } else {
+    const Triangle& t = scene.triangles[p.triangles[0]];
+    float edge = 0.0f;
+    for (int k = 0; k < 3; ++k) edge = std::max(edge, glm::length(t.p[k] - t.p[(k + 1) % 3]));
+    f.texelRadius = 0.5f * edge / float(std::max(p.w, 1));
+  }
+  return f;
+}
+
+class Solver {
+ public:
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
+      : scene_(scene), atlas_(atlas), params_(params) {
+    const std::vector<std::string> visDefine =
+        params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
+    itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
+    markProgram_ = buildProgram({"mark_visible.comp"});
+    compactProgram_ = buildProgram({"compact.comp"});
+    finishProgram_ = buildProgram({"finish_lists.comp"});
+    blocksProgram_ = buildProgram({"shooter_blocks.comp"});
+    receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
+    statsProgram_ = buildProgram({"patch_stats.comp"});
+    selectProgram_ = buildProgram({"select_shooter.comp"});
+    uploadAtlas();
+    uploadGeometry();
+    makeItemBuffer();
+    setConstantUniforms();
+    gl::check("solver setup");
+  }
+
+  // Statistics of every patch from the initial state, then the first selection.
+  GpuSelection start() {
+    std::vector<uint32_t> all(kListHeader / 4 + atlas_.patches.size());
+    all[0] = uint32_t(atlas_.patches.size());
+    for (size_t i = 0; i < atlas_.patches.size(); ++i) all[kListHeader / 4 + i] = uint32_t(i);
+    glNamedBufferSubData(patchList_.get(), 0, GLsizeiptr(all.size() * 4), all.data());
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    runStats(-1);
+    return select();
+  }
+
+  GpuSelection shoot(int shooter) {
+    const ShooterFrame f = frameOf(scene_, atlas_, shooter);
+    const Patch& p = atlas_.patches[shooter];
+    const glm::ivec2 blocks(std::min(params_.maxBlocks, p.w), std::min(params_.maxBlocks, p.h));
+    const glm::vec3 eye = f.centre + f.normal * eyeOffset_;
+    const glm::mat3 toShooter = rowsOf(f.tangent, f.bitangent, f.normal);
+
+    // Sub-shooters from the residual before it is zeroed.
+    set(blocksProgram_, "uShooter", shooter);
+    set(blocksProgram_, "uRect", glm::ivec4(p.x, p.y, p.w, p.h));
+    set(blocksProgram_, "uBlocks", blocks);
+    set(blocksProgram_, "uTexelRadius", f.texelRadius);
+    glUseProgram(blocksProgram_.get());
+    glDispatchCompute(1, 1, 1);
+
+    renderItemBuffer(eye, toShooter);
+
+    // Flag visible patches and list their tiles.
+    const GLuint zero = 0;
+    glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    const uint32_t header[4] = {0, 0, 1, 1};
+    glNamedBufferSubData(tileList_.get(), 0, sizeof header, header);
+    glNamedBufferSubData(patchList_.get(), 0, sizeof header, header);
+    set(markProgram_, "uShooter", shooter);
+    glUseProgram(markProgram_.get());
+    glDispatchCompute(groups(itemPixels_, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(compactProgram_.get());
+    glDispatchCompute(groups(std::max(tileCount_, atlas_.patches.size()), 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    // Gather.
+    set(receiveProgram_, "uShooter", shooter);
+    set(receiveProgram_, "uBlockCount", blocks.x * blocks.y);
+    set(receiveProgram_, "uEye", eye);
+    set(receiveProgram_, "uToShooter", toShooter);
+    set(receiveProgram_, "uShooterNormal", f.normal);
+    glUseProgram(receiveProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    runStats(shooter);
+    return select();
+  }
+
+  std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
+  std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
+
+ private:
+  void runStats(int shooter) {
+    set(statsProgram_, "uShooter", shooter);
+    glUseProgram(statsProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, patchList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+
+  GpuSelection select() {
+    glUseProgram(selectProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GpuSelection s{};
+    glGetNamedBufferSubData(selection_.get(), 0, sizeof s, &s);
+    gl::check("shot");
+    return s;
+  }
+
+  void renderItemBuffer(const glm::vec3& eye, const glm::mat3& toShooter) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    const GLint none = -1;
+    const GLfloat far = 1.0f;
+    glClearNamedFramebufferiv(fbo_.get(), GL_COLOR, 0, &none);
+    glClearNamedFramebufferfv(fbo_.get(), GL_DEPTH, 0, &far);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CLIP_DISTANCE0);
+    glUseProgram(itemProgram_.get());
+    set(itemProgram_, "uEye", eye);
+    set(itemProgram_, "uToShooter", toShooter);
+    glBindVertexArray(vao_.get());
+    if (params_.visibility == Visibility::Hemisphere) {
+      glViewport(0, 0, itemSize_, itemSize_);
+      glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+    } else {
+      const int f = itemSize_, half = f / 2;
+      for (int i = 0; i < 5; ++i) {
+        set(itemProgram_, "uFace", rowsOf(kFaces[i].right, kFaces[i].up, kFaces[i].forward));
+        set(itemProgram_, "uHalfFace", i == 0 ? 0 : 1);
+        if (i == 0)
+          glViewport(0, 0, f, f);
+        else
+          glViewport(0, f + (i - 1) * half, f, half);
+        glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+      }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  std::vector<glm::vec3> readImage(const gl::Texture& t) const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetTextureImage(t.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    std::vector<glm::vec3> out(v.size());
+    for (size_t i = 0; i < v.size(); ++i) out[i] = glm::vec3(v[i]);
+    return out;
+  }
+
+  void uploadAtlas() {
+    const int w = atlas_.width, h = atlas_.height;
+    const size_t n = atlas_.texelCount();
+    std::vector<glm::vec4> posArea(n), normalPatch(n), albedo(n), emission(n, glm::vec4(0.0f));
+    for (size_t i = 0; i < n; ++i) {
+      posArea[i] = glm::vec4(atlas_.position[i], atlas_.area[i]);
+      normalPatch[i] = glm::vec4(atlas_.normal[i], float(atlas_.patch[i]));
+      albedo[i] = glm::vec4(atlas_.albedo[i], 0.0f);
+      if (atlas_.patch[i] >= 0) emission[i] = glm::vec4(atlas_.emission[i], 0.0f);
+    }
+    if (atlas_.patches.size() >= (1u << 24)) throw InputError("atlas", "more than 2^24 patches");
+    auto image = [&](gl::Texture& t, const std::vector<glm::vec4>& data, Image unit, GLenum access) {
+      t = gl::makeTexture2D(GL_RGBA32F, w, h);
+      glTextureSubImage2D(t.get(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data.data());
+      glBindImageTexture(unit, t.get(), 0, GL_FALSE, 0, access, GL_RGBA32F);
+    };
+    image(posArea_, posArea, kPosArea, GL_READ_ONLY);
+    image(normalPatch_, normalPatch, kNormalPatch, GL_READ_ONLY);
+    image(albedo_, albedo, kAlbedo, GL_READ_ONLY);
+    image(radiosity_, emission, kRadiosity, GL_READ_WRITE);
+    image(residual_, emission, kResidual, GL_READ_WRITE);
+    image(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident, GL_READ_WRITE);
+
+    const size_t np = atlas_.patches.size();
+    std::vector<GpuPatch> patches(np);
+    std::vector<uint32_t> pending(np, 0);
+    std::vector<glm::ivec4> tiles;
+    for (size_t i = 0; i < np; ++i) {
+      const Patch& p = atlas_.patches[i];
+      patches[i].rect = {p.x, p.y, p.w, p.h};
+      for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+          const size_t t = size_t(p.y + y) * w + p.x + x;
+          if (atlas_.patch[t] == int(i) && atlas_.emission[t] != glm::vec3(0.0f)) pending[i] = 1;
+        }
+      for (int y = 0; y < p.h; y += kTile)
+        for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+    }
+    tileCount_ = tiles.size();
+    auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes, const void* data) {
+      b = gl::makeBuffer(bytes, data);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
+    };
+    ssbo(patches_, kPatches, np * sizeof(GpuPatch), patches.data());
+    ssbo(stats_, kStats, np * sizeof(GpuStats), nullptr);
+    ssbo(visible_, kVisible, np * 4, nullptr);
+    ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
+    ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
+    ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
+    ssbo(blocks_, kBlocks, (1 + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
+    ssbo(pending_, kPending, np * 4, pending.data());
+    ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
+    const GLuint zero = 0;
+    glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  }
+
+  void uploadGeometry() {
+    // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
+    std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
+    for (size_t i = 0; i < atlas_.patches.size(); ++i)
+      for (int32_t t : atlas_.patches[i].triangles)
+        if (t >= 0) patchOf[t] = int32_t(i);
+    std::vector<glm::vec3> positions;
+    std::vector<int32_t> ids;
+    for (size_t t = 0; t < scene_.triangles.size(); ++t) {
+      const Triangle& tri = scene_.triangles[t];
+      if (!(tri.area() > 0.0f)) continue;
+      for (const glm::vec3& q : tri.p) positions.push_back(q), ids.push_back(patchOf[t]);
+    }
+    vertexCount_ = GLsizei(positions.size());
+    positionBuffer_ = gl::makeBuffer(positions.size() * sizeof(glm::vec3), positions.data(), 0);
+    idBuffer_ = gl::makeBuffer(ids.size() * 4, ids.data(), 0);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    vao_ = gl::VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, positionBuffer_.get(), 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayVertexBuffer(vao, 1, idBuffer_.get(), 0, 4);
+    glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, 0);
+    glVertexArrayAttribBinding(vao, 1, 1);
+    glEnableVertexArrayAttrib(vao, 1);
+
+    const Bounds b = scene_.bounds();
+    const float diagonal = std::max(glm::length(b.size()), 1e-3f);
+    far_ = 2.0f * diagonal;
+    near_ = 1e-3f * diagonal;
+    eyeOffset_ = 1e-4f * diagonal;
+  }
+
+  void makeItemBuffer() {
+    int w, h;
+    if (params_.visibility == Visibility::Hemisphere) {
+      itemSize_ = params_.itemBuffer;
+      w = h = itemSize_;
+    } else {
+      itemSize_ = params_.itemBuffer / 2 + (params_.itemBuffer / 2) % 2;  // face edge, even
+      w = itemSize_;
+      h = itemSize_ * 3;  // top face, then four half-height side faces
+    }
+    itemPixels_ = size_t(w) * h;
+    items_ = gl::makeTexture2D(GL_R32I, w, h);
+    depth_ = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    fbo_ = gl::Framebuffer(fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, items_.get(), 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw SystemError("OpenGL: the item-buffer framebuffer (R32I + depth) is incomplete");
+    glBindTextureUnit(0, items_.get());
+  }
+
+  void setConstantUniforms() {
+    set(itemProgram_, "uFar", far_);
+    set(itemProgram_, "uNear", near_);
+    set(receiveProgram_, "uItemSize", itemSize_);
+    set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
+    set(receiveProgram_, "uFarField", params_.farField);
+    setU(compactProgram_, "uTiles", GLuint(tileCount_));
+    setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
+    set(selectProgram_, "uPatches", int(atlas_.patches.size()));
+  }
+
+  const Scene& scene_;
+  const LightmapAtlas& atlas_;
+  SolverParams params_;
+  gl::Program itemProgram_, markProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
+      statsProgram_, selectProgram_;
+  gl::Texture posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, items_, depth_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
+  gl::Buffer positionBuffer_, idBuffer_;
+  gl::VertexArray vao_;
+  gl::Framebuffer fbo_;
+  GLsizei vertexCount_ = 0;
+  size_t tileCount_ = 0, itemPixels_ = 0;
+  int itemSize_ = 0;
+  float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
+};
+
+double channelSum(const glm::vec4& v) { return double(v.r) + double(v.g) + double(v.b); }
+
+std::string formatStatus(int shots, double fraction, double eta) {
+  char buf[96];
+  if (eta >= 0.0)
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%, ETA %.0f s", shots, 100.0 * fraction, eta);
+  else
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace
+
+const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
+
+Visibility parseVisibility(const std::string& name) {
+  if (name == "hemisphere") return Visibility::Hemisphere;
+  if (name == "hemicube") return Visibility::Hemicube;
+  throw InputError("--visibility", "must be hemisphere or hemicube, not '" + name + "'");
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& context, Context& ctx) {
+  checkParams(params, atlas, context.maxTextureSize());
+  SolveResult result;
+  result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
+  if (atlas.patches.empty()) return result;
+
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  Solver solver(scene, atlas, params);
+  result.setupSeconds = since(start);
+  ctx.addTiming("solve: setup", result.setupSeconds);
+
+  const auto shootStart = std::chrono::steady_clock::now();
+  GpuSelection sel = solver.start();
+  EnergyTotals e;
+  e.emitted = channelSum(sel.unshot);
+  auto record = [&](const GpuSelection& s) {
+    e.unshot = channelSum(s.unshot);
+    e.received = channelSum(s.incident);
+    e.absorbed = channelSum(s.absorbed);
+    result.history.push_back(e);
+  };
+  record(sel);
+  double lastReport = -1.0;
+  double firstLog = 0.0;  // log of the unshot fraction after the first reflector shot, for the ETA
+  int firstShot = -1;
+  while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
+    const double fraction = e.unshot / e.emitted;
+    if (fraction <= params.unshotFraction) break;
+    e.shot += channelSum(sel.winnerUnshot);
+    sel = solver.shoot(sel.winner);
+    ++result.shots;
+    record(sel);
+
+    const double elapsed = since(shootStart), now = e.unshot / e.emitted;
+    if (elapsed - lastReport > 0.25) {
+      // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
+      double eta = -1.0;
+      if (firstShot < 0 && !sel.winnerPending) firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
+      if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
+        const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
+        if (rate < 0.0) eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+      }
+      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
+      lastReport = elapsed;
+    }
+  }
+  result.energy = e;
+  result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
+  ctx.addTiming("solve: shots", since(shootStart));
+  {
+    auto t = ctx.time("solve: read back");
+    result.radiosity = solver.readRadiosity();
+  }
+  for (size_t i = 0; i < result.radiosity.size(); ++i)
+    if (atlas.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
+  ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
+  result.seconds = since(start);
+  return result;
+}
+
+}  // namespace cpgi

@@ -21,16 +21,17 @@ struct GpuStats {
 };
 struct GpuBlock {
   glm::vec4 centreArea, radiosityRadius;
-  glm::ivec4 rect;
+  glm::ivec4 rect, region;
 };
 struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuBlock) == 48 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuBlock) == 64 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
 constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
+constexpr int kMaxRegions = 4;   // per chart edge; receive.comp's MAX_REGIONS is its square
 constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 
 // Shader-storage binding points (shaders/*.comp).
@@ -77,53 +78,58 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("far field", "ratio must be at least 1");
   if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("sub-shooters", "blocks per edge must be in 1..8");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("--regions", "must be in 1..4");
+  if (!(p.regionSize > 0.0f)) throw InputError("--region-size", "must be positive");
   if (atlas.width > maxTexture || atlas.height > maxTexture)
     throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
                                   std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
                                   std::to_string(maxTexture) + "; lower the resolution");
 }
 
-// Where a shooter patch sits: the item buffer's eye and frame, and what shooter_blocks.comp needs.
-struct ShooterFrame {
-  glm::vec3 centre, tangent, bitangent, normal;
+// How a shooter is cut up: texel blocks (sub-shooters for the form factor) grouped into regions (one
+// item buffer each), and where each region's eye sits.
+struct ShooterLayout {
+  glm::vec3 tangent, bitangent, normal;
+  glm::ivec2 blocks{1}, regions{1};
+  std::vector<glm::vec3> eyes;  ///< region centres (mean of their texel sample points), row-major
   float texelRadius = 0.0f;
 };
 
-ShooterFrame frameOf(const Scene& scene, const LightmapAtlas& atlas, int patchIndex) {
+ShooterLayout layoutOf(const LightmapAtlas& atlas, int patchIndex, const SolverParams& params) {
   const Patch& p = atlas.patches[patchIndex];
-  ShooterFrame f;
-  glm::dvec3 moment(0.0);
-  double area = 0.0;
-  for (int32_t tri : p.triangles)
-    if (tri >= 0) {
-      const Triangle& t = scene.triangles[tri];
-      moment += glm::dvec3(t.centroid()) * double(t.area());
-      area += t.area();
+  ShooterLayout l;
+  l.normal = p.normal;
+  const glm::vec3 u = p.texelU - glm::dot(p.texelU, p.normal) * p.normal;
+  l.tangent = glm::normalize(glm::length(u) > 0.0f ? u : glm::cross(glm::vec3(0.6f, 0.8f, 0.0f), p.normal));
+  l.bitangent = glm::cross(l.normal, l.tangent);
+  l.texelRadius = 0.5f * glm::length(p.texelU + p.texelV);
+  l.texelRadius = std::max(l.texelRadius, 0.5f * glm::length(p.texelU - p.texelV));
+  auto regionsAlong = [&](float length, int texels) {
+    const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
+    return std::clamp(n, 1, std::min({params.maxRegions, texels, params.maxBlocks}));
+  };
+  l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w), regionsAlong(glm::length(p.texelV) * p.h, p.h)};
+  // Blocks: as many as allowed, a multiple of the regions so every block lies in one region.
+  for (int a = 0; a < 2; ++a) {
+    const int texels = a == 0 ? p.w : p.h;
+    const int per = std::max(1, std::min(params.maxBlocks, texels) / l.regions[a]);
+    l.blocks[a] = per * l.regions[a];
+  }
+  for (int ry = 0; ry < l.regions.y; ++ry)
+    for (int rx = 0; rx < l.regions.x; ++rx) {
+      const int x0 = p.w * rx / l.regions.x, x1 = p.w * (rx + 1) / l.regions.x;
+      const int y0 = p.h * ry / l.regions.y, y1 = p.h * (ry + 1) / l.regions.y;
+      glm::dvec3 sum(0.0);
+      int n = 0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const size_t t = size_t(p.y + y) * atlas.width + p.x + x;
+          if (atlas.patch[t] == patchIndex) sum += glm::dvec3(atlas.position[t]), ++n;
+        }
+      // A region of a loose triangle may hold no valid texel; its eye is never used (zero area).
+      l.eyes.push_back(n > 0 ? glm::vec3(sum / double(n)) : p.origin);
     }
-  f.centre = area > 0.0 ? glm::vec3(moment / area) : glm::vec3(0.0f);
-  f.normal = p.normal;
-  // Tangent along the chart's rows when two neighbouring texels are valid (quads), else any.
-  auto texel = [&](int x, int y) { return size_t(p.y + y) * atlas.width + (p.x + x); };
-  glm::vec3 along(0.0f), across(0.0f);
-  if (p.w >= 2 && atlas.patch[texel(1, 0)] == patchIndex) along = atlas.position[texel(1, 0)] - atlas.position[texel(0, 0)];
-  if (p.h >= 2 && atlas.patch[texel(0, 1)] == patchIndex) across = atlas.position[texel(0, 1)] - atlas.position[texel(0, 0)];
-  if (glm::length(along) > 0.0f) {
-    f.tangent = glm::normalize(along - glm::dot(along, f.normal) * f.normal);
-  } else {
-    const glm::vec3 axis = std::abs(f.normal.x) < 0.6f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    f.tangent = glm::normalize(glm::cross(axis, f.normal));
-  }
-  f.bitangent = glm::cross(f.normal, f.tangent);
-  // Half a texel's diagonal; loose triangles' texels are sheared squares of the triangle's legs.
-  if (p.quad >= 0 && glm::length(along) > 0.0f && glm::length(across) > 0.0f) {
-    f.texelRadius = 0.5f * std::sqrt(glm::dot(along, along) + glm::dot(across, across));
-  } else {
-    const Triangle& t = scene.triangles[p.triangles[0]];
-    float edge = 0.0f;
-    for (int k = 0; k < 3; ++k) edge = std::max(edge, glm::length(t.p[k] - t.p[(k + 1) % 3]));
-    f.texelRadius = 0.5f * edge / float(std::max(p.w, 1));
-  }
-  return f;
+  return l;
 }
 
 class Solver {
@@ -161,21 +167,23 @@ class Solver {
   }
 
   GpuSelection shoot(int shooter) {
-    const ShooterFrame f = frameOf(scene_, atlas_, shooter);
+    const ShooterLayout l = layoutOf(atlas_, shooter, params_);
     const Patch& p = atlas_.patches[shooter];
-    const glm::ivec2 blocks(std::min(params_.maxBlocks, p.w), std::min(params_.maxBlocks, p.h));
-    const glm::vec3 eye = f.centre + f.normal * eyeOffset_;
-    const glm::mat3 toShooter = rowsOf(f.tangent, f.bitangent, f.normal);
+    const int regions = l.regions.x * l.regions.y;
+    std::vector<glm::vec3> eyes;
+    for (const glm::vec3& e : l.eyes) eyes.push_back(e + l.normal * eyeOffset_);
+    const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
 
     // Sub-shooters from the residual before it is zeroed.
     set(blocksProgram_, "uShooter", shooter);
     set(blocksProgram_, "uRect", glm::ivec4(p.x, p.y, p.w, p.h));
-    set(blocksProgram_, "uBlocks", blocks);
-    set(blocksProgram_, "uTexelRadius", f.texelRadius);
+    set(blocksProgram_, "uBlocks", l.blocks);
+    set(blocksProgram_, "uRegions", l.regions);
+    set(blocksProgram_, "uTexelRadius", l.texelRadius);
     glUseProgram(blocksProgram_.get());
     glDispatchCompute(1, 1, 1);
 
-    renderItemBuffer(eye, toShooter);
+    for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
 
     // Flag visible patches and list their tiles.
     const GLuint zero = 0;
@@ -184,8 +192,9 @@ class Solver {
     glNamedBufferSubData(tileList_.get(), 0, sizeof header, header);
     glNamedBufferSubData(patchList_.get(), 0, sizeof header, header);
     set(markProgram_, "uShooter", shooter);
+    set(markProgram_, "uLayers", regions);
     glUseProgram(markProgram_.get());
-    glDispatchCompute(groups(itemPixels_, 64), 1, 1);
+    glDispatchCompute(groups(itemPixels_ * regions, 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(compactProgram_.get());
     glDispatchCompute(groups(std::max(tileCount_, atlas_.patches.size()), 64), 1, 1);
@@ -196,10 +205,14 @@ class Solver {
 
     // Gather.
     set(receiveProgram_, "uShooter", shooter);
-    set(receiveProgram_, "uBlockCount", blocks.x * blocks.y);
-    set(receiveProgram_, "uEye", eye);
+    set(receiveProgram_, "uRegions", regions);
+    set(receiveProgram_, "uBlockCount", l.blocks.x * l.blocks.y);
+    glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram_, "uToShooter", toShooter);
-    set(receiveProgram_, "uShooterNormal", f.normal);
+    set(receiveProgram_, "uShooterNormal", l.normal);
+    set(receiveProgram_, "uTexelU", p.texelU);
+    set(receiveProgram_, "uTexelV", p.texelV);
+    set(receiveProgram_, "uTexelRadius", l.texelRadius);
     glUseProgram(receiveProgram_.get());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
@@ -231,7 +244,8 @@ class Solver {
     return s;
   }
 
-  void renderItemBuffer(const glm::vec3& eye, const glm::mat3& toShooter) {
+  void renderItemBuffer(int layer, const glm::vec3& eye, const glm::mat3& toShooter) {
+    glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT0, items_.get(), 0, layer);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
     const GLint none = -1;
     const GLfloat far = 1.0f;
@@ -281,6 +295,7 @@ class Solver {
       albedo[i] = glm::vec4(atlas_.albedo[i], 0.0f);
       if (atlas_.patch[i] >= 0) emission[i] = glm::vec4(atlas_.emission[i], 0.0f);
     }
+    // Patch IDs travel as floats in uNormalPatch.w.
     if (atlas_.patches.size() >= (1u << 24)) throw InputError("atlas", "more than 2^24 patches");
     auto image = [&](gl::Texture& t, const std::vector<glm::vec4>& data, Image unit, GLenum access) {
       t = gl::makeTexture2D(GL_RGBA32F, w, h);
@@ -320,7 +335,7 @@ class Solver {
     ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
     ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
     ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
-    ssbo(blocks_, kBlocks, (1 + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
+    ssbo(blocks_, kBlocks, (kMaxRegions * kMaxRegions + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
     ssbo(pending_, kPending, np * 4, pending.data());
     ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
     const GLuint zero = 0;
@@ -373,12 +388,18 @@ class Solver {
       h = itemSize_ * 3;  // top face, then four half-height side faces
     }
     itemPixels_ = size_t(w) * h;
-    items_ = gl::makeTexture2D(GL_R32I, w, h);
+    // One layer per shooter region.
+    GLuint items = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &items);
+    items_ = gl::Texture(items);
+    glTextureStorage3D(items, 1, GL_R32I, w, h, params_.maxRegions * params_.maxRegions);
+    glTextureParameteri(items, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // else incomplete for texelFetch
+    glTextureParameteri(items, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     depth_ = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);
     GLuint fbo = 0;
     glCreateFramebuffers(1, &fbo);
     fbo_ = gl::Framebuffer(fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, items_.get(), 0);
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, items, 0, 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
     if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw SystemError("OpenGL: the item-buffer framebuffer (R32I + depth) is incomplete");

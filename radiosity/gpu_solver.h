@@ -46,6 +46,11 @@ struct SolverParams {
   float farField = 2.0f;
   /// Texel blocks per chart edge of the shooter (sub-shooters), 1..8.
   int maxBlocks = 8;
+  /// A shooter is split into visibility regions about this long (m), each with its own item buffer
+  /// drawn from its centre, so a lamp just under a ceiling's centre does not hide the whole ceiling.
+  float regionSize = 1.0f;
+  /// At most this many regions per chart edge, 1..4 (so at most 16 item buffers per shot).
+  int maxRegions = 2;
 };
 
 /// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,

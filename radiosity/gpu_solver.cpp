@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "core/error.h"
 #include "radiosity/gl.h"
@@ -132,14 +133,38 @@ ShooterLayout layoutOf(const LightmapAtlas& atlas, int patchIndex, const SolverP
   return l;
 }
 
+// Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
+// previous mark to `stage`.
+class PassClock {
+ public:
+  explicit PassClock(bool on) : on_(on) {}
+  void mark(const char* stage) {
+    if (!on_) return;
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    seconds_[stage] += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+  void restart() {
+    if (on_) glFinish(), last_ = std::chrono::steady_clock::now();
+  }
+  void report(Context& ctx) const {
+    for (const auto& [stage, s] : seconds_) ctx.addTiming(std::string("solve: ") + stage, s);
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::map<std::string, double> seconds_;
+};
+
 class Solver {
  public:
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
-      : scene_(scene), atlas_(atlas), params_(params) {
+      : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
     const std::vector<std::string> visDefine =
         params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
     itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
-    markProgram_ = buildProgram({"mark_visible.comp"});
     compactProgram_ = buildProgram({"compact.comp"});
     finishProgram_ = buildProgram({"finish_lists.comp"});
     blocksProgram_ = buildProgram({"shooter_blocks.comp"});
@@ -173,6 +198,7 @@ class Solver {
     std::vector<glm::vec3> eyes;
     for (const glm::vec3& e : l.eyes) eyes.push_back(e + l.normal * eyeOffset_);
     const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
+    clock_.restart();
 
     // Sub-shooters from the residual before it is zeroed.
     set(blocksProgram_, "uShooter", shooter);
@@ -182,19 +208,19 @@ class Solver {
     set(blocksProgram_, "uTexelRadius", l.texelRadius);
     glUseProgram(blocksProgram_.get());
     glDispatchCompute(1, 1, 1);
+    clock_.mark("shooter blocks");
 
-    for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
-
-    // Flag visible patches and list their tiles.
     const GLuint zero = 0;
     glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
+    clock_.mark("item buffers");
+
+    // The item-buffer fragments flag the patches they show (item.frag); list those patches' tiles.
+    const GLuint one = 1;
+    glNamedBufferSubData(visible_.get(), GLintptr(shooter) * 4, 4, &one);  // its residual is zeroed below
     const uint32_t header[4] = {0, 0, 1, 1};
     glNamedBufferSubData(tileList_.get(), 0, sizeof header, header);
     glNamedBufferSubData(patchList_.get(), 0, sizeof header, header);
-    set(markProgram_, "uShooter", shooter);
-    set(markProgram_, "uLayers", regions);
-    glUseProgram(markProgram_.get());
-    glDispatchCompute(groups(itemPixels_ * regions, 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(compactProgram_.get());
     glDispatchCompute(groups(std::max(tileCount_, atlas_.patches.size()), 64), 1, 1);
@@ -202,6 +228,7 @@ class Solver {
     glUseProgram(finishProgram_.get());
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    clock_.mark("visible lists");
 
     // Gather.
     set(receiveProgram_, "uShooter", shooter);
@@ -217,10 +244,16 @@ class Solver {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    clock_.mark("receive");
 
     runStats(shooter);
-    return select();
+    clock_.mark("patch statistics");
+    GpuSelection s = select();
+    clock_.mark("select");
+    return s;
   }
+
+  void reportPasses(Context& ctx) const { clock_.report(ctx); }
 
   std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
   std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
@@ -387,7 +420,6 @@ class Solver {
       w = itemSize_;
       h = itemSize_ * 3;  // top face, then four half-height side faces
     }
-    itemPixels_ = size_t(w) * h;
     // One layer per shooter region.
     GLuint items = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &items);
@@ -420,15 +452,16 @@ class Solver {
   const Scene& scene_;
   const LightmapAtlas& atlas_;
   SolverParams params_;
-  gl::Program itemProgram_, markProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
+  gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
       statsProgram_, selectProgram_;
   gl::Texture posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
+  PassClock clock_;
   GLsizei vertexCount_ = 0;
-  size_t tileCount_ = 0, itemPixels_ = 0;
+  size_t tileCount_ = 0;
   int itemSize_ = 0;
   float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
 };
@@ -508,6 +541,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   result.energy = e;
   result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
   ctx.addTiming("solve: shots", since(shootStart));
+  solver.reportPasses(ctx);
   {
     auto t = ctx.time("solve: read back");
     result.radiosity = solver.readRadiosity();

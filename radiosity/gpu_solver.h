@@ -51,6 +51,9 @@ struct SolverParams {
   float regionSize = 1.0f;
   /// At most this many regions per chart edge, 1..4 (so at most 16 item buffers per shot).
   int maxRegions = 2;
+  /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
+  /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
+  bool profilePasses = false;
 };
 
 /// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,

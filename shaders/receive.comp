@@ -83,9 +83,10 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
   if (far(x, g.centreArea.xyz, g.radiosityRadius.w))
     return piece(x, n, g);
   vec3 sum = vec3(0.0);
-  for (int k = uRegions; k < uRegions + uBlockCount; ++k) {
+  int per = uBlockCount / uRegions;  // blocks are stored region by region (shooter_blocks.comp)
+  for (int k = uRegions + r * per; k < uRegions + (r + 1) * per; ++k) {
     Block b = blocks[k];
-    if (b.region.x != r || b.centreArea.w <= 0.0) continue;
+    if (b.centreArea.w <= 0.0) continue;
     if (far(x, b.centreArea.xyz, b.radiosityRadius.w)) {
       sum += piece(x, n, b);
       continue;

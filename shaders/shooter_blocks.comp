@@ -22,9 +22,9 @@ void main() {
   int count = uBlocks.x * uBlocks.y, regions = uRegions.x * uRegions.y;
   vec4 ca = vec4(0.0), rr = vec4(0.0);
   int region = -1;
+  ivec2 per = uBlocks / uRegions;
   if (int(k) < count) {
     ivec2 b = ivec2(int(k) % uBlocks.x, int(k) / uBlocks.x);
-    ivec2 per = uBlocks / uRegions;
     region = (b.x / per.x) + (b.y / per.y) * uRegions.x;
     ivec2 lo = uRect.xy + (uRect.zw * b) / uBlocks;
     ivec2 hi = uRect.xy + (uRect.zw * (b + 1)) / uBlocks;
@@ -49,7 +49,9 @@ void main() {
       }
     ca = vec4(centre, area);
     rr = vec4(area > 0.0 ? power / area : vec3(0.0), radius + uTexelRadius);
-    uint slot = uint(regions) + k;
+    // Blocks are stored region by region, so a receiver near one region walks only that region's.
+    ivec2 inRegion = b % per;
+    uint slot = uint(regions + region * per.x * per.y + inRegion.y * per.x + inRegion.x);
     blocks[slot].centreArea = ca;
     blocks[slot].radiosityRadius = rr;
     blocks[slot].rect = ivec4(lo, hi);

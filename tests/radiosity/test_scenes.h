@@ -1,0 +1,64 @@
+// Tiny scenes built in code for the radiosity tests: quads as triangle pairs, closed boxes, and sample
+// points laid on them.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "radiosity/reference_tracer.h"
+
+namespace cpgi::testing {
+
+/// Appends a material and returns its index.
+inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
+  scene.materials.push_back({"m" + std::to_string(scene.materials.size()), albedo, emission});
+  return static_cast<uint32_t>(scene.materials.size() - 1);
+}
+
+/// The parallelogram origin + s·u + t·v as two triangles facing u × v.
+inline void addQuad(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t material) {
+  const glm::vec3 n = glm::normalize(glm::cross(u, v));
+  const glm::vec3 c[4] = {origin, origin + u, origin + u + v, origin + v};
+  for (const auto& idx : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) t.p[k] = c[idx[k]], t.n[k] = n;
+    t.material = material;
+    scene.triangles.push_back(t);
+  }
+}
+
+struct Face {
+  glm::vec3 origin, u, v;  ///< u × v is the face's normal
+  uint32_t material;
+};
+
+/// The six inward-facing faces of the box [0, size]³; `materials[k]` for face k
+/// (floor z=0, ceiling z=size, x=0, x=size, y=0, y=size).
+inline std::vector<Face> boxFaces(float s, const std::array<uint32_t, 6>& materials) {
+  return {{{0, 0, 0}, {s, 0, 0}, {0, s, 0}, materials[0]}, {{0, 0, s}, {0, s, 0}, {s, 0, 0}, materials[1]},
+          {{0, 0, 0}, {0, s, 0}, {0, 0, s}, materials[2]}, {{s, 0, 0}, {0, 0, s}, {0, s, 0}, materials[3]},
+          {{0, 0, 0}, {0, 0, s}, {s, 0, 0}, materials[4]}, {{0, s, 0}, {s, 0, 0}, {0, 0, s}, materials[5]}};
+}
+
+inline void addFaces(Scene& scene, const std::vector<Face>& faces) {
+  for (const Face& f : faces) addQuad(scene, f.origin, f.u, f.v, f.material);
+}
+
+/// k × k sample points at cell centres of each face, with the face's material.
+inline std::vector<SamplePoint> facePoints(const Scene& scene, const std::vector<Face>& faces, int k) {
+  std::vector<SamplePoint> points;
+  for (const Face& f : faces)
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const Material& m = scene.materials[f.material];
+        points.push_back({f.origin + (i + 0.5f) / k * f.u + (j + 0.5f) / k * f.v,
+                          glm::normalize(glm::cross(f.u, f.v)), m.albedo, m.emission});
+      }
+  return points;
+}
+
+}  // namespace cpgi::testing

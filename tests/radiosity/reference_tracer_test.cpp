@@ -7,12 +7,12 @@
 
 #include "core/error.h"
 #include "radiosity/form_factors.h"
-#include "test_scenes.h"
+#include "path_test_scenes.h"
 
 namespace cpgi {
 namespace {
 
-using namespace cpgi::testing;
+using namespace cpgi::pathtest;
 
 /// |estimate − exact| within `sigmas` standard errors (plus a float-rounding floor), per channel.
 void expectWithinError(const glm::vec3& estimate, const glm::vec3& error, const glm::vec3& exact,

@@ -11,7 +11,7 @@
 #include "core/scene.h"
 #include "radiosity/reference_tracer.h"
 
-namespace cpgi::testing {
+namespace cpgi::pathtest {
 
 /// Appends a material and returns its index.
 inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
@@ -61,4 +61,4 @@ inline std::vector<SamplePoint> facePoints(const Scene& scene, const std::vector
   return points;
 }
 
-}  // namespace cpgi::testing
+}  // namespace cpgi::pathtest

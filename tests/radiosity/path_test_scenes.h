@@ -1,5 +1,4 @@
-// Tiny scenes built in code for the radiosity tests: quads as triangle pairs, closed boxes, and sample
-// points laid on them.
+// Closed boxes with a material per face, and sample points laid on them, for the reference tracer tests.
 #pragma once
 
 #include <array>
@@ -10,26 +9,9 @@
 
 #include "core/scene.h"
 #include "radiosity/reference_tracer.h"
+#include "test_scenes.h"
 
 namespace cpgi::pathtest {
-
-/// Appends a material and returns its index.
-inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
-  scene.materials.push_back({"m" + std::to_string(scene.materials.size()), albedo, emission});
-  return static_cast<uint32_t>(scene.materials.size() - 1);
-}
-
-/// The parallelogram origin + s·u + t·v as two triangles facing u × v.
-inline void addQuad(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t material) {
-  const glm::vec3 n = glm::normalize(glm::cross(u, v));
-  const glm::vec3 c[4] = {origin, origin + u, origin + u + v, origin + v};
-  for (const auto& idx : {std::array<int, 3>{0, 1, 2}, std::array<int, 3>{0, 2, 3}}) {
-    Triangle t;
-    for (int k = 0; k < 3; ++k) t.p[k] = c[idx[k]], t.n[k] = n;
-    t.material = material;
-    scene.triangles.push_back(t);
-  }
-}
 
 struct Face {
   glm::vec3 origin, u, v;  ///< u × v is the face's normal
@@ -45,7 +27,7 @@ inline std::vector<Face> boxFaces(float s, const std::array<uint32_t, 6>& materi
 }
 
 inline void addFaces(Scene& scene, const std::vector<Face>& faces) {
-  for (const Face& f : faces) addQuad(scene, f.origin, f.u, f.v, f.material);
+  for (const Face& f : faces) testing::addRect(scene, f.origin, f.u, f.v, f.material);
 }
 
 /// k × k sample points at cell centres of each face, with the face's material.

@@ -12,6 +12,7 @@
 namespace cpgi {
 namespace {
 
+using namespace cpgi::testing;
 using namespace cpgi::pathtest;
 
 /// |estimate − exact| within `sigmas` standard errors (plus a float-rounding floor), per channel.
@@ -48,7 +49,7 @@ TEST(ReferenceTracer, WhiteFurnaceConvergesToEOverOneMinusRho) {
 Scene emitterScene(float a, float h, glm::vec3 emission) {
   Scene scene;
   const uint32_t m = addMaterial(scene, glm::vec3(0.0f), emission);
-  addQuad(scene, {-a / 2, -a / 2, h}, {0, a, 0}, {a, 0, 0}, m);
+  addRect(scene, {-a / 2, -a / 2, h}, {0, a, 0}, {a, 0, 0}, m);
   return scene;
 }
 
@@ -85,7 +86,7 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
 TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
   const uint32_t black = addMaterial(scene, glm::vec3(0.0f));
-  addQuad(scene, {-1.0f, -1.0f, 0.5f}, {2.0f, 0, 0}, {0, 2.0f, 0}, black);  // a blocker facing the point
+  addRect(scene, {-1.0f, -1.0f, 0.5f}, {2.0f, 0, 0}, {0, 2.0f, 0}, black);  // a blocker facing the point
   const std::vector<SamplePoint> points = {
       {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},    // under the blocker
       {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // above the emitter's back

@@ -16,6 +16,9 @@ namespace cpgi {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
+/// Independent batches per point: enough degrees of freedom for a usable per-texel error (t-tails of
+/// 15 dof), few enough that each batch's low-discrepancy set still has many points.
+constexpr int kBatches = 16;
 
 /// PCG32 (O'Neill 2014): small, fast, and seedable per sample point, which is what makes the
 /// result independent of how TBB splits the work.
@@ -63,6 +66,29 @@ glm::vec3 sampleCosine(const glm::vec3& n, float r1, float r2) {
   return glm::normalize(radius * std::cos(phi) * t1 + radius * std::sin(phi) * t2 + z * n);
 }
 
+/// The uniforms one vertex consumes: emitter choice and point on it, then the bounce direction.
+struct FirstVertexSamples {
+  float light[3];
+  float direction[2];
+};
+
+/// Roberts' R_d low-discrepancy sequences ("The unreasonable effectiveness of quasirandom sequences",
+/// 2018): frac(i·α) with α from the generalised golden ratio. Any count of points is well spread, so spp
+/// need not be a square. Shifted by a random vector per batch (Cranley–Patterson), each point is still
+/// uniform, the estimate unbiased, and the spread of batch means an honest error.
+double fraction(double x) { return x - std::floor(x); }
+void r2Point(uint64_t i, const float shift[2], float out[2]) {
+  constexpr double g = 1.32471795724474602596;  // plastic number, x³ = x + 1
+  out[0] = float(fraction(shift[0] + double(i) / g));
+  out[1] = float(fraction(shift[1] + double(i) / (g * g)));
+}
+void r3Point(uint64_t i, const float shift[3], float out[3]) {
+  constexpr double g = 1.22074408460575947536;  // x⁴ = x + 1
+  out[0] = float(fraction(shift[0] + double(i) / g));
+  out[1] = float(fraction(shift[1] + double(i) / (g * g)));
+  out[2] = float(fraction(shift[2] + double(i) / (g * g * g)));
+}
+
 float powerHeuristic(float a, float b) {
   const float a2 = a * a, b2 = b * b;
   return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
@@ -73,17 +99,18 @@ struct SurfaceTable {
   std::vector<glm::vec3> normal;     ///< geometric, by winding; zero for degenerate triangles
   std::vector<glm::vec3> albedo;
   std::vector<glm::vec3> emission;
-  std::vector<float> emitterPdfArea;  ///< density of NEE picking a point here, per m² (0: not an emitter)
-  // Emitter selection, proportional to emitted power (area × Σ emission).
-  std::vector<uint32_t> emitters;
+  std::vector<int32_t> emitterIndex;  ///< position in `emitters`, -1 for a triangle that does not emit
+  std::vector<uint32_t> emitters;     ///< emissive triangles
+  // The fallback selection for scenes with many emitters: proportional to power (area × Σ emission).
   std::vector<float> emitterCdf;
+  std::vector<float> emitterProbability;
 
   explicit SurfaceTable(const Scene& scene) {
     const size_t count = scene.triangles.size();
     normal.resize(count);
     albedo.resize(count, glm::vec3(0.0f));
     emission.resize(count, glm::vec3(0.0f));
-    emitterPdfArea.resize(count, 0.0f);
+    emitterIndex.resize(count, -1);
     std::vector<double> weights;
     for (size_t t = 0; t < count; ++t) {
       const Triangle& tri = scene.triangles[t];
@@ -94,6 +121,7 @@ struct SurfaceTable {
       }
       const double weight = double(tri.area()) * (emission[t].x + emission[t].y + emission[t].z);
       if (weight > 0.0 && normal[t] != glm::vec3(0.0f)) {
+        emitterIndex[t] = static_cast<int32_t>(emitters.size());
         emitters.push_back(static_cast<uint32_t>(t));
         weights.push_back(weight);
       }
@@ -104,14 +132,76 @@ struct SurfaceTable {
     for (size_t k = 0; k < emitters.size(); ++k) {
       running += weights[k];
       emitterCdf.push_back(float(running / total));
-      emitterPdfArea[emitters[k]] = float(weights[k] / total / scene.triangles[emitters[k]].area());
+      emitterProbability.push_back(float(weights[k] / total));
     }
     if (!emitterCdf.empty()) emitterCdf.back() = 1.0f;
   }
 
-  uint32_t pickEmitter(float u) const {
-    const auto it = std::upper_bound(emitterCdf.begin(), emitterCdf.end(), u);
-    return emitters[std::min<size_t>(it - emitterCdf.begin(), emitters.size() - 1)];
+};
+
+/// F(dA → triangle), unoccluded, by Lambert's contour formula after clipping to the front half-space
+/// (the float, allocation-free twin of form_factors.h's oracle, for choosing lights per vertex).
+float triangleFormFactor(const glm::vec3& x, const glm::vec3& n, const Triangle& tri) {
+  glm::vec3 poly[4];
+  int m = 0;
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3 a = tri.p[i] - x, b = tri.p[(i + 1) % 3] - x;
+    const float da = glm::dot(n, a), db = glm::dot(n, b);
+    if (da >= 0.0f) poly[m++] = a;
+    if ((da >= 0.0f) != (db >= 0.0f)) poly[m++] = a + (da / (da - db)) * (b - a);
+  }
+  float sum = 0.0f;
+  for (int i = 0; i < m && m >= 3; ++i) {
+    const glm::vec3 c = glm::cross(poly[i], poly[(i + 1) % m]);
+    const float cl = glm::length(c);
+    if (cl > 0.0f) sum += std::atan2(cl, glm::dot(poly[i], poly[(i + 1) % m])) * glm::dot(n, c) / cl;
+  }
+  return std::abs(sum) / (2.0f * kPi);
+}
+
+/// How next-event estimation picks an emitter at one vertex. With few emitters, in proportion to each
+/// one's exact unoccluded irradiance there (so a lamp in another room is rarely tried); with many, by
+/// power. Any emitter that could light the vertex keeps a non-zero chance, or else is left wholly to the
+/// BSDF strategy by MIS (its light pdf is 0), so the choice never biases the estimate.
+struct LightSelection {
+  static constexpr size_t kMaxAdaptive = 64;
+  bool adaptive = false;
+  float cdf[kMaxAdaptive];
+  float total = 0.0f;
+
+  LightSelection(const SurfaceTable& s, const Scene& scene, const glm::vec3& x, const glm::vec3& n) {
+    if (s.emitters.size() > kMaxAdaptive) return;
+    adaptive = true;
+    for (size_t k = 0; k < s.emitters.size(); ++k) {
+      const uint32_t t = s.emitters[k];
+      const Triangle& tri = scene.triangles[t];
+      float w = 0.0f;
+      if (glm::dot(s.normal[t], x - tri.p[0]) > 0.0f) {  // only the emitting side lights anything
+        const glm::vec3& e = s.emission[t];
+        w = (e.x + e.y + e.z) * triangleFormFactor(x, n, tri);
+      }
+      total += w;
+      cdf[k] = total;
+    }
+  }
+  /// The emitter (index into SurfaceTable::emitters) for a uniform u, or −1 when none can be chosen.
+  int pick(const SurfaceTable& s, float u) const {
+    if (!adaptive) {
+      const auto it = std::upper_bound(s.emitterCdf.begin(), s.emitterCdf.end(), u);
+      return int(std::min<size_t>(it - s.emitterCdf.begin(), s.emitters.size() - 1));
+    }
+    if (!(total > 0.0f)) return -1;
+    const float target = u * total;
+    for (size_t k = 0; k < s.emitters.size(); ++k)
+      if (target < cdf[k]) return int(k);
+    for (size_t k = s.emitters.size(); k-- > 0;)  // u·total rounded up to total: the last with weight
+      if (k == 0 || cdf[k] > cdf[k - 1]) return int(k);
+    return -1;
+  }
+  float probability(const SurfaceTable& s, int k) const {
+    if (!adaptive) return s.emitterProbability[k];
+    if (!(total > 0.0f)) return 0.0f;
+    return (cdf[k] - (k > 0 ? cdf[k - 1] : 0.0f)) / total;
   }
 };
 
@@ -122,18 +212,24 @@ class PathTracer {
     offset_ = params.rayOffset > 0.0f ? params.rayOffset : std::max(1e-5f * rays_.diagonal(), 1e-6f);
   }
 
-  /// One path's estimate of ρ·H at the point (B minus the point's own emission).
-  glm::vec3 reflected(const SamplePoint& point, Pcg32& rng, uint64_t& rayCount) const {
+  /// One path's estimate of ρ·H at the point (B minus the point's own emission). `first` holds the
+  /// uniforms for the first vertex (stratified by the caller); deeper vertices draw from `rng`.
+  glm::vec3 reflected(const SamplePoint& point, const FirstVertexSamples& first, Pcg32& rng,
+                      uint64_t& rayCount) const {
     glm::vec3 throughput = glm::clamp(point.albedo, 0.0f, 1.0f);
-    if (maxComponent(throughput) <= 0.0f) return glm::vec3(0.0f);
+    const float startAlbedo = maxComponent(throughput);
+    if (startAlbedo <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 sum(0.0f);
     glm::vec3 x = point.position;
     glm::vec3 n = point.normal;
     for (int bounce = 0; bounce < params_.maxBounces; ++bounce) {
       const glm::vec3 origin = x + offset_ * n;
-      sum += throughput * directLight(x, origin, n, rng, rayCount);
+      FirstVertexSamples u = first;
+      if (bounce > 0) u = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
+      const LightSelection lights(surfaces_, scene_, x, n);
+      sum += throughput * directLight(x, origin, n, lights, u, rayCount);
 
-      const glm::vec3 dir = sampleCosine(n, rng.uniform(), rng.uniform());
+      const glm::vec3 dir = sampleCosine(n, u.direction[0], u.direction[1]);
       ++rayCount;
       const RayScene::Hit hit = rays_.intersect(origin, dir);
       if (!hit) break;
@@ -141,15 +237,18 @@ class PathTracer {
       const glm::vec3& ny = surfaces_.normal[t];
       const float cosY = -glm::dot(ny, dir);
       if (cosY <= 0.0f) break;  // a back face: one-sided surfaces show black from behind
-      if (surfaces_.emitterPdfArea[t] > 0.0f) {
-        const float pdfLight = surfaces_.emitterPdfArea[t] * hit.t * hit.t / cosY;
+      if (const int k = surfaces_.emitterIndex[t]; k >= 0) {
+        const float pdfArea = lights.probability(surfaces_, k) / scene_.triangles[t].area();
+        const float pdfLight = pdfArea * hit.t * hit.t / cosY;
         const float pdfBsdf = std::max(glm::dot(n, dir), 0.0f) / kPi;
         // π·L with L = E/π: the BSDF strategy's estimate of H is w·E.
         sum += throughput * powerHeuristic(pdfBsdf, pdfLight) * surfaces_.emission[t];
       }
       throughput *= surfaces_.albedo[t];
       if (bounce + 1 >= params_.rouletteAfter) {
-        const float survive = std::min(0.95f, maxComponent(throughput));
+        // Relative to the point's own albedo, which scales the whole estimate: what matters is how much
+        // of the point's reflected light this path can still carry.
+        const float survive = std::min(0.95f, maxComponent(throughput) / startAlbedo);
         if (survive <= 0.0f || rng.uniform() >= survive) break;
         throughput /= survive;
       } else if (maxComponent(throughput) <= 0.0f) {
@@ -164,13 +263,15 @@ class PathTracer {
 
  private:
   /// Next-event estimate of the irradiance at x from one point on one emitter, MIS-weighted.
-  glm::vec3 directLight(const glm::vec3& x, const glm::vec3& origin, const glm::vec3& n, Pcg32& rng,
-                        uint64_t& rayCount) const {
+  glm::vec3 directLight(const glm::vec3& x, const glm::vec3& origin, const glm::vec3& n,
+                        const LightSelection& lights, const FirstVertexSamples& u, uint64_t& rayCount) const {
     if (surfaces_.emitters.empty()) return glm::vec3(0.0f);
-    const uint32_t e = surfaces_.pickEmitter(rng.uniform());
+    const int k = lights.pick(surfaces_, u.light[0]);
+    if (k < 0) return glm::vec3(0.0f);
+    const uint32_t e = surfaces_.emitters[k];
     const Triangle& tri = scene_.triangles[e];
-    const float su = std::sqrt(rng.uniform());
-    const float b1 = 1.0f - su, b2 = rng.uniform() * su;
+    const float su = std::sqrt(u.light[1]);
+    const float b1 = 1.0f - su, b2 = u.light[2] * su;
     const glm::vec3 y = b1 * tri.p[0] + b2 * tri.p[1] + (1.0f - b1 - b2) * tri.p[2];
     const glm::vec3& ny = surfaces_.normal[e];
     const glm::vec3 d = y - x;
@@ -186,7 +287,7 @@ class PathTracer {
     ++rayCount;
     if (distance <= offset_ || rays_.occluded(origin, toTarget / distance, 0.0f, distance - offset_))
       return glm::vec3(0.0f);
-    const float pdfLight = surfaces_.emitterPdfArea[e] * r2 / cosY;  // per steradian
+    const float pdfLight = lights.probability(surfaces_, k) / tri.area() * r2 / cosY;  // per steradian
     const float pdfBsdf = cosX / kPi;
     return powerHeuristic(pdfLight, pdfBsdf) * (surfaces_.emission[e] / kPi) * cosX / pdfLight;
   }
@@ -206,8 +307,11 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
   auto timer = ctx.time("reference");
   const PathTracer tracer(scene, params);
 
+  // Independent randomly shifted batches of a low-discrepancy set; spp rounds up to a whole number of them.
+  const int batches = std::min(params.spp, kBatches);
+  const int perBatch = (params.spp + batches - 1) / batches;
   ReferenceResult result;
-  result.spp = params.spp;
+  result.spp = batches * perBatch;
   result.radiosity.assign(points.size(), glm::vec3(0.0f));
   result.standardError.assign(points.size(), glm::vec3(0.0f));
   std::atomic<uint64_t> rays{0};
@@ -222,16 +326,26 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
         const SamplePoint& point = points[i];
         Pcg32 rng(splitmix64(params.seed ^ splitmix64(i)));
         glm::dvec3 sum(0.0), sumSquares(0.0);
-        for (int s = 0; s < params.spp; ++s) {
-          const glm::dvec3 value(tracer.reflected(point, rng, localRays));
-          sum += value;
-          sumSquares += value * value;
+        for (int b = 0; b < batches; ++b) {
+          const float lightShift[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+          const float directionShift[2] = {rng.uniform(), rng.uniform()};
+          glm::dvec3 batchSum(0.0);
+          for (int s = 0; s < perBatch; ++s) {
+            FirstVertexSamples first;
+            r3Point(uint64_t(s), lightShift, first.light);
+            r2Point(uint64_t(s), directionShift, first.direction);
+            batchSum += glm::dvec3(tracer.reflected(point, first, rng, localRays));
+          }
+          const glm::dvec3 batchMean = batchSum / double(perBatch);
+          sum += batchMean;
+          sumSquares += batchMean * batchMean;
         }
-        const double n = params.spp;
-        const glm::dvec3 mean = sum / n;
-        const glm::dvec3 variance = glm::max((sumSquares - n * mean * mean) / (n - 1.0), 0.0);
+        const double k = batches;
+        const glm::dvec3 mean = sum / k;
+        // The batch means are independent and identically distributed: their spread is the error.
+        const glm::dvec3 variance = glm::max((sumSquares - k * mean * mean) / (k - 1.0), 0.0);
         result.radiosity[i] = glm::vec3(glm::dvec3(point.emission) + mean);
-        result.standardError[i] = glm::vec3(glm::sqrt(variance / n));
+        result.standardError[i] = glm::vec3(glm::sqrt(variance / k));
       }
       rays += localRays;
     });

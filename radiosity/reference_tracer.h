@@ -28,7 +28,10 @@ struct SamplePoint {
 };
 
 struct ReferenceParams {
-  int spp = 256;            ///< paths per sample point, ≥ 2 (the standard error needs two)
+  /// Paths per sample point, ≥ 2. They are drawn as 16 (or spp, if fewer) independent batches, each a
+  /// randomly shifted low-discrepancy set for the first vertex (randomised quasi-Monte Carlo), so spp is
+  /// rounded up to a multiple of the batch count; the standard error comes from the batch means.
+  int spp = 256;
   int rouletteAfter = 3;    ///< bounces that always continue before Russian roulette may stop a path
   int maxBounces = 1000;    ///< safety cap; only albedo ≈ 1 gets near it
   uint64_t seed = 0x5eedu;  ///< with the point's index, fixes each point's random sequence
@@ -40,7 +43,7 @@ struct ReferenceResult {
   std::vector<glm::vec3> radiosity;      ///< B per point, W/m² (0 where no point, e.g. atlas padding)
   std::vector<glm::vec3> standardError;  ///< per channel, standard error of B's mean
   uint64_t rays = 0;                     ///< rays cast (intersections + shadow rays)
-  int spp = 0;
+  int spp = 0;                           ///< paths per point actually traced (rounded up, see spp)
 };
 
 /// Estimates B at every point. Deterministic: the same scene, points and params give bit-identical

@@ -83,6 +83,48 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
   }
 }
 
+TEST(ReferenceTracer, SeveralEmittersAddUp) {
+  // Three lamps of different colours: one near above, one far and tilted, one facing away from the
+  // point (contributes nothing). Direct light only: B = ρ Σ_k E_k F_k.
+  Scene scene;
+  const glm::vec3 e1(10.0f, 1.0f, 1.0f), e2(1.0f, 30.0f, 1.0f), e3(1.0f, 1.0f, 50.0f);
+  addRect(scene, {-0.3f, -0.3f, 1.0f}, {0, 0.6f, 0}, {0.6f, 0, 0}, addMaterial(scene, glm::vec3(0.0f), e1));
+  addRect(scene, {3.0f, -1.0f, 0.5f}, {0, 0, 2.0f}, {0, 2.0f, 0}, addMaterial(scene, glm::vec3(0.0f), e2));
+  addRect(scene, {-1.0f, -1.0f, 2.0f}, {2.0f, 0, 0}, {0, 2.0f, 0}, addMaterial(scene, glm::vec3(0.0f), e3));
+  const glm::vec3 albedo(0.6f);
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f));
+  const std::vector<SamplePoint> points = {{{0, 0, 0}, n, albedo, glm::vec3(0.0f)}};
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 8192;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const glm::dvec3 nd(n);
+  const double f1 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
+  const double f2 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
+  const glm::vec3 exact = albedo * (e1 * float(f1) + e2 * float(f2));
+  expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "three lamps");
+  for (int c = 0; c < 3; ++c) EXPECT_LT(r.standardError[0][c], 0.02f * exact[c]);
+}
+
+TEST(ReferenceTracer, ManyEmittersFallBackToPowerSelection) {
+  // A 1 m² lamp cut into 12 × 12 quads (288 triangles, more than the per-vertex selection handles).
+  Scene scene;
+  const uint32_t m = addMaterial(scene, glm::vec3(0.0f), glm::vec3(8.0f));
+  const int cells = 12;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      addRect(scene, {-0.5f + float(i) / cells, -0.5f + float(j) / cells, 0.8f}, {0, 1.0f / cells, 0},
+              {1.0f / cells, 0, 0}, m);
+  const std::vector<SamplePoint> points = {{{0.2f, 0.1f, 0}, {0, 0, 1}, glm::vec3(0.5f), glm::vec3(0.0f)}};
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 4096;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const double f = pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
+  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f, "split lamp");
+  EXPECT_LT(r.standardError[0].x, 0.02f * 4.0f * float(f));
+}
+
 TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
   const uint32_t black = addMaterial(scene, glm::vec3(0.0f));

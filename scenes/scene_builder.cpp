@@ -63,4 +63,59 @@ void SceneBuilder::boxOnFloor(glm::vec3 lo, glm::vec3 hi, uint32_t material, uin
   rect(2, hi.z, +1, {lo.x, lo.y}, {hi.x, hi.y}, material, node);
 }
 
+void SceneBuilder::room(const Room& r) {
+  const glm::vec3 lo = r.lo, hi = r.hi;
+  const float sub = r.maxCell;
+  rect(1, lo.y, +1, {lo.z, lo.x}, {hi.z, hi.x}, r.floor, node(r.name + "/floor"), sub);
+  rect(1, hi.y, -1, {lo.z, lo.x}, {hi.z, hi.x}, r.ceiling, node(r.name + "/ceiling"), sub);
+  rect(2, lo.z, +1, {lo.x, lo.y}, {hi.x, hi.y}, r.south, node(r.name + "/wall-south"), sub);
+  rect(2, hi.z, -1, {lo.x, lo.y}, {hi.x, hi.y}, r.north, node(r.name + "/wall-north"), sub);
+  for (int side = 0; side < 2; ++side) {
+    const float x = side == 0 ? lo.x : hi.x, sign = side == 0 ? 1.0f : -1.0f;
+    const uint32_t mat = side == 0 ? r.west : r.east;
+    const uint32_t n = node(r.name + (side == 0 ? "/wall-west" : "/wall-east"));
+    if (!(side == 0 ? r.doorWest : r.doorEast)) {
+      rect(0, x, sign, {lo.y, lo.z}, {hi.y, hi.z}, mat, n, sub);
+      continue;
+    }
+    const Door& d = r.door;
+    rect(0, x, sign, {lo.y, lo.z}, {hi.y, d.z0}, mat, n, sub);
+    rect(0, x, sign, {lo.y, d.z1}, {hi.y, hi.z}, mat, n, sub);
+    rect(0, x, sign, {d.top, d.z0}, {hi.y, d.z1}, mat, n, sub);
+  }
+}
+
+void SceneBuilder::doorReveal(float x0, float x1, const Door& d, const std::string& west,
+                              const std::string& east, uint32_t wallMaterial, uint32_t floorMaterial) {
+  const float xm = 0.5f * (x0 + x1);
+  for (int side = 0; side < 2; ++side) {
+    const float a = side == 0 ? x0 : xm, c = side == 0 ? xm : x1;
+    const uint32_t n = node((side == 0 ? west : east) + "/door-" + west + east);
+    rect(2, d.z0, +1, {a, 0}, {c, d.top}, wallMaterial, n);
+    rect(2, d.z1, -1, {a, 0}, {c, d.top}, wallMaterial, n);
+    rect(1, d.top, -1, {d.z0, a}, {d.z1, c}, wallMaterial, n);
+    rect(1, 0.0f, +1, {d.z0, a}, {d.z1, c}, floorMaterial, n);
+  }
+}
+
+Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target) {
+  Camera cam;
+  cam.name = name;
+  cam.position = eye;
+  cam.forward = glm::normalize(target - eye);
+  cam.up = glm::normalize(glm::vec3(0, 1, 0) - cam.forward * cam.forward.y);
+  cam.yfov = glm::radians(60.0f);
+  cam.aspect = 4.0f / 3.0f;
+  return cam;
+}
+
+void cellsFromNodePaths(const Scene& scene, const std::vector<std::string>& names, CellGraph& cells) {
+  for (const std::string& n : names) cells.cells.push_back({n, {}, {}});
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    const std::string& path = scene.nodePaths[scene.triangles[t].node];
+    const int c = cells.findCell(path.substr(0, path.find('/')));
+    if (c >= 0) cells.cells[c].triangles.push_back(t);
+  }
+}
+
 }  // namespace cpgi

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/cell_graph.h"
 #include "core/scene.h"
 
 namespace cpgi {
@@ -25,11 +26,38 @@ class SceneBuilder {
   /// The five visible faces of an axis-aligned box standing on y = lo.y (its bottom is hidden).
   void boxOnFloor(glm::vec3 lo, glm::vec3 hi, uint32_t material, uint32_t node);
 
+  /// The inside faces of a box room spanning [lo, hi] (y up), facing inwards, under node paths
+  /// "NAME/floor", "NAME/wall-west", ... . Walls perpendicular to x get `door` cut out when asked.
+  struct Door {
+    float z0 = 1.5f, z1 = 2.5f, top = 2.1f;  ///< the opening in the x walls, metres
+  };
+  struct Room {
+    std::string name;
+    glm::vec3 lo{0.0f}, hi{1.0f};
+    uint32_t floor = 0, ceiling = 0, south = 0, north = 0, west = 0, east = 0;  ///< materials
+    bool doorWest = false, doorEast = false;
+    Door door;
+    float maxCell = 0.0f;  ///< > 0: cut every face into quads no larger than this
+  };
+  void room(const Room& r);
+
+  /// The reveal of a door through a wall spanning x in [x0, x1] (sides, lintel soffit, threshold), cut at
+  /// the wall's mid-plane: the half at x0 goes under node "WEST/door-WESTEAST", the other under EAST's.
+  void doorReveal(float x0, float x1, const Door& door, const std::string& west, const std::string& east,
+                  uint32_t wallMaterial, uint32_t floorMaterial);
+
   /// One quad from its origin and two edges; the normal is normalize(u × v).
   void quad(glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t material, uint32_t node);
 
  private:
   Scene& scene_;
 };
+
+/// A 60° camera at `eye` looking at `target`, y up.
+Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target);
+
+/// One cell per name; each triangle goes to the cell named by the first component of its node path
+/// ("B/door-AB" belongs to B), the convention of every generated scene.
+void cellsFromNodePaths(const Scene& scene, const std::vector<std::string>& names, CellGraph& cells);
 
 }  // namespace cpgi

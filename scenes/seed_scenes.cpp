@@ -11,6 +11,7 @@ namespace {
 // Dimensions of design.md §4 (metres). Rooms run along +x, y is up (glTF), doors in the x walls.
 constexpr float kRoom = 4.0f, kHeight = 3.0f, kWall = 0.2f;
 constexpr float kDoorZ0 = 1.5f, kDoorZ1 = 2.5f, kDoorTop = 2.1f;
+constexpr SceneBuilder::Door kDoor{kDoorZ0, kDoorZ1, kDoorTop};
 constexpr float kLightSize = 1.0f, kLightDrop = 0.01f, kLightEmission = 100.0f;
 // seed3: B's surfaces cut into squares of at most this size; 0.28 m brings seed3 to 1204 quads (thesis:
 // 1224).
@@ -25,27 +26,23 @@ struct Materials {
   uint32_t wall, red, green, floor, ceiling, light, occluder;
 };
 
-// A wall perpendicular to x at `x`, facing `sign`, with the door opening cut out when `door`.
-void xWall(SceneBuilder& b, float x, float sign, bool door, uint32_t mat, uint32_t node, float maxCell) {
-  if (!door) {
-    b.rect(0, x, sign, {0, 0}, {kHeight, kRoom}, mat, node, maxCell);
-    return;
-  }
-  b.rect(0, x, sign, {0, 0}, {kHeight, kDoorZ0}, mat, node, maxCell);
-  b.rect(0, x, sign, {0, kDoorZ1}, {kHeight, kRoom}, mat, node, maxCell);
-  b.rect(0, x, sign, {kDoorTop, kDoorZ0}, {kHeight, kDoorZ1}, mat, node, maxCell);
-}
-
 void addRoom(SceneBuilder& b, const Materials& m, int r, int level) {
   const std::string name = kNames[r];
   const float x0 = roomX0(r), x1 = x0 + kRoom;
-  const float sub = (level >= 3 && r == 1) ? kSubdivision : 0.0f;
-  b.rect(1, 0.0f, +1, {0, x0}, {kRoom, x1}, m.floor, b.node(name + "/floor"), sub);
-  b.rect(1, kHeight, -1, {0, x0}, {kRoom, x1}, m.ceiling, b.node(name + "/ceiling"), sub);
-  b.rect(2, 0.0f, +1, {x0, 0}, {x1, kHeight}, m.wall, b.node(name + "/wall-south"), sub);
-  b.rect(2, kRoom, -1, {x0, 0}, {x1, kHeight}, m.wall, b.node(name + "/wall-north"), sub);
-  xWall(b, x0, +1, r > 0, r == 0 ? m.red : m.wall, b.node(name + "/wall-west"), sub);
-  xWall(b, x1, -1, r < 2, r == 2 ? m.green : m.wall, b.node(name + "/wall-east"), sub);
+  SceneBuilder::Room room;
+  room.name = name;
+  room.lo = glm::vec3(x0, 0, 0);
+  room.hi = glm::vec3(x1, kHeight, kRoom);
+  room.floor = m.floor;
+  room.ceiling = m.ceiling;
+  room.south = room.north = m.wall;
+  room.west = r == 0 ? m.red : m.wall;
+  room.east = r == 2 ? m.green : m.wall;
+  room.doorWest = r > 0;
+  room.doorEast = r < 2;
+  room.door = kDoor;
+  room.maxCell = (level >= 3 && r == 1) ? kSubdivision : 0.0f;
+  b.room(room);
 
   // The light: 1 m², facing down, 1 cm under the ceiling centre of A and C.
   if (r != 1) {
@@ -81,31 +78,6 @@ void addRoom(SceneBuilder& b, const Materials& m, int r, int level) {
   }
 }
 
-// The door's reveal (two sides, lintel soffit, threshold) inside the wall between rooms r and r+1, cut
-// at the wall's mid-plane so each half belongs to the room on its side.
-void addDoor(SceneBuilder& b, const Materials& m, int r) {
-  const float xw = roomX0(r) + kRoom, xm = xw + kWall / 2, xe = xw + kWall;
-  for (int side = 0; side < 2; ++side) {
-    const float a = side == 0 ? xw : xm, c = side == 0 ? xm : xe;
-    const uint32_t node = b.node(std::string(kNames[r + side]) + "/door-" + kNames[r] + kNames[r + 1]);
-    b.rect(2, kDoorZ0, +1, {a, 0}, {c, kDoorTop}, m.wall, node);
-    b.rect(2, kDoorZ1, -1, {a, 0}, {c, kDoorTop}, m.wall, node);
-    b.rect(1, kDoorTop, -1, {kDoorZ0, a}, {kDoorZ1, c}, m.wall, node);
-    b.rect(1, 0.0f, +1, {kDoorZ0, a}, {kDoorZ1, c}, m.floor, node);
-  }
-}
-
-Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target) {
-  Camera cam;
-  cam.name = name;
-  cam.position = eye;
-  cam.forward = glm::normalize(target - eye);
-  cam.up = glm::normalize(glm::vec3(0, 1, 0) - cam.forward * cam.forward.y);
-  cam.yfov = glm::radians(60.0f);
-  cam.aspect = 4.0f / 3.0f;
-  return cam;
-}
-
 }  // namespace
 
 SeedScene makeSeedScene(int level) {
@@ -122,14 +94,10 @@ SeedScene makeSeedScene(int level) {
   m.occluder = b.material("occluder", glm::vec3(0.6f));
 
   for (int r = 0; r < 3; ++r) addRoom(b, m, r, level);
-  for (int r = 0; r < 2; ++r) addDoor(b, m, r);
+  for (int r = 0; r < 2; ++r)
+    b.doorReveal(roomX0(r) + kRoom, roomX0(r + 1), kDoor, kNames[r], kNames[r + 1], m.wall, m.floor);
 
-  // Cells from the first component of each node path ("B/door-AB" belongs to B).
-  for (int r = 0; r < 3; ++r) out.cells.cells.push_back({kNames[r], {}, {}});
-  for (uint32_t t = 0; t < out.scene.triangles.size(); ++t) {
-    const std::string& path = out.scene.nodePaths[out.scene.triangles[t].node];
-    out.cells.cells[out.cells.findCell(path.substr(0, path.find('/')))].triangles.push_back(t);
-  }
+  cellsFromNodePaths(out.scene, {"A", "B", "C"}, out.cells);
   // Portals: exactly the door openings at the wall mid-planes, normals from the lower room into the next.
   for (int r = 0; r < 2; ++r) {
     const float xm = roomX0(r) + kRoom + kWall / 2;

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -159,26 +160,36 @@ float triangleFormFactor(const glm::vec3& x, const glm::vec3& n, const Triangle&
   return std::abs(sum) / (2.0f * kPi);
 }
 
-/// How next-event estimation picks an emitter at one vertex. With few emitters, in proportion to each
-/// one's exact unoccluded irradiance there (so a lamp in another room is rarely tried); with many, by
-/// power. Any emitter that could light the vertex keeps a non-zero chance, or else is left wholly to the
-/// BSDF strategy by MIS (its light pdf is 0), so the choice never biases the estimate.
+/// How next-event estimation picks an emitter at one vertex. With few emitters, in proportion to an
+/// estimate of each one's unoccluded irradiance there (so a lamp in another room is rarely tried): exact
+/// (Lambert) at the sample point, where it is computed once for all its paths, and a point-source estimate
+/// at deeper vertices, where it must be cheap. With many emitters, by power. An emitter that could light
+/// the vertex keeps a non-zero chance, or else is left wholly to the BSDF strategy by MIS (its light pdf
+/// is 0), so the choice never biases the estimate, only its variance.
 struct LightSelection {
   static constexpr size_t kMaxAdaptive = 64;
   bool adaptive = false;
   float cdf[kMaxAdaptive];
   float total = 0.0f;
 
-  LightSelection(const SurfaceTable& s, const Scene& scene, const glm::vec3& x, const glm::vec3& n) {
+  LightSelection(const SurfaceTable& s, const Scene& scene, const glm::vec3& x, const glm::vec3& n, bool exact) {
     if (s.emitters.size() > kMaxAdaptive) return;
     adaptive = true;
     for (size_t k = 0; k < s.emitters.size(); ++k) {
       const uint32_t t = s.emitters[k];
       const Triangle& tri = scene.triangles[t];
+      const glm::vec3& e = s.emission[t];
       float w = 0.0f;
       if (glm::dot(s.normal[t], x - tri.p[0]) > 0.0f) {  // only the emitting side lights anything
-        const glm::vec3& e = s.emission[t];
-        w = (e.x + e.y + e.z) * triangleFormFactor(x, n, tri);
+        if (exact) {
+          w = (e.x + e.y + e.z) * triangleFormFactor(x, n, tri);
+        } else if (glm::dot(n, tri.p[0] - x) > 0.0f || glm::dot(n, tri.p[1] - x) > 0.0f ||
+                   glm::dot(n, tri.p[2] - x) > 0.0f) {
+          const glm::vec3 d = tri.centroid() - x;
+          const float r2 = glm::dot(d, d), r = std::sqrt(r2), area = tri.area();
+          const float cosX = std::max(glm::dot(n, d) / r, 0.05f), cosY = std::max(-glm::dot(s.normal[t], d) / r, 0.05f);
+          w = (e.x + e.y + e.z) * area * cosX * cosY / (r2 + area);
+        }
       }
       total += w;
       cdf[k] = total;
@@ -214,7 +225,7 @@ class PathTracer {
 
   /// One path's estimate of ρ·H at the point (B minus the point's own emission). `first` holds the
   /// uniforms for the first vertex (stratified by the caller); deeper vertices draw from `rng`.
-  glm::vec3 reflected(const SamplePoint& point, const FirstVertexSamples& first, Pcg32& rng,
+  glm::vec3 reflected(const SamplePoint& point, const LightSelection& firstLights, const FirstVertexSamples& first, Pcg32& rng,
                       uint64_t& rayCount) const {
     glm::vec3 throughput = glm::clamp(point.albedo, 0.0f, 1.0f);
     const float startAlbedo = maxComponent(throughput);
@@ -226,7 +237,9 @@ class PathTracer {
       const glm::vec3 origin = x + offset_ * n;
       FirstVertexSamples u = first;
       if (bounce > 0) u = {rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform()};
-      const LightSelection lights(surfaces_, scene_, x, n);
+      std::optional<LightSelection> deeperLights;
+      if (bounce > 0) deeperLights.emplace(surfaces_, scene_, x, n, false);
+      const LightSelection& lights = bounce > 0 ? *deeperLights : firstLights;
       sum += throughput * directLight(x, origin, n, lights, u, rayCount);
 
       const glm::vec3 dir = sampleCosine(n, u.direction[0], u.direction[1]);
@@ -259,6 +272,10 @@ class PathTracer {
       n = ny;
     }
     return sum;
+  }
+
+  LightSelection lightsAt(const glm::vec3& x, const glm::vec3& n) const {
+    return LightSelection(surfaces_, scene_, x, n, true);
   }
 
  private:
@@ -325,6 +342,7 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
       for (size_t i = range.begin(); i < range.end(); ++i) {
         const SamplePoint& point = points[i];
         Pcg32 rng(splitmix64(params.seed ^ splitmix64(i)));
+        const LightSelection firstLights = tracer.lightsAt(point.position, point.normal);
         glm::dvec3 sum(0.0), sumSquares(0.0);
         for (int b = 0; b < batches; ++b) {
           const float lightShift[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
@@ -334,7 +352,7 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
             FirstVertexSamples first;
             r3Point(uint64_t(s), lightShift, first.light);
             r2Point(uint64_t(s), directionShift, first.direction);
-            batchSum += glm::dvec3(tracer.reflected(point, first, rng, localRays));
+            batchSum += glm::dvec3(tracer.reflected(point, firstLights, first, rng, localRays));
           }
           const glm::dvec3 batchMean = batchSum / double(perBatch);
           sum += batchMean;

@@ -25,8 +25,11 @@ struct SpaceGrid {
 };
 
 /// Floods the outside from the grid's border (always empty, see voxelize), then splits the rest of the
-/// empty space into 6-connected components. A component is inside when most of its voxels next to the
-/// surface lie in front of their nearest triangle (by its winding), void otherwise.
+/// empty space into 6-connected components. A component is void when it lies inside a closed outward-
+/// facing solid (generalized winding number > 1/2 at the median of three of its voxels) or when most of its
+/// voxels next to the surface lie behind their nearest triangle; inside otherwise. Rooms built of wall
+/// boxes (winding 0, in front of the walls) and levels built as inward-facing shells (winding −1) are
+/// both inside.
 /// Run after voxelize.
 SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const ClassifyParams& params, Context& ctx);
 

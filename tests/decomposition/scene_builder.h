@@ -2,8 +2,10 @@
 // boxes, doors cut as gaps. Y is up (glTF), metres.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "core/cell_graph.h"
 #include "core/scene.h"
 
 namespace cpgi::testing {
@@ -55,28 +57,65 @@ struct ThreeRooms {
   static int roomOf(const glm::vec3& p) { return p.x < doorCentre(1).x ? 0 : p.x < doorCentre(2).x ? 1 : 2; }
 };
 
-/// Builds the three rooms; `wall` overrides the inner walls' thickness (thin-wall tests).
-inline Scene makeThreeRooms(float doorWidth = 1.0f, float innerWall = ThreeRooms::kWall) {
+struct ThreeRoomsOptions {
+  float doorWidth = 1.0f;
+  float innerWall = ThreeRooms::kWall;  ///< thickness of the two inner walls (thin-wall tests)
+  bool slabsPerRoom = false;            ///< floor, ceiling and outer walls cut at the inner walls' mid-planes
+  float crackWidth = 0.0f;              ///< > 0: a floor-to-ceiling slit this wide in inner wall 1, 1 m from a corner
+};
+
+/// Builds the three rooms.
+inline Scene makeThreeRooms(const ThreeRoomsOptions& o = {}) {
   using R = ThreeRooms;
   SceneBuilder b;
   const float w = R::kWall, len = 3 * R::kRoom + 4 * w, depth = R::kRoom + 2 * w, H = R::kHeight;
-  b.box({0, -w, 0}, {len, 0, depth});
-  b.box({0, H, 0}, {len, H + w, depth});
-  b.box({0, 0, 0}, {len, H, w});
-  b.box({0, 0, depth - w}, {len, H, depth});
+  const int segments = o.slabsPerRoom ? 3 : 1;
+  for (int s = 0; s < segments; ++s) {
+    const float x0 = s == 0 ? 0.0f : R::doorCentre(s).x, x1 = s == segments - 1 ? len : R::doorCentre(s + 1).x;
+    b.box({x0, -w, 0}, {x1, 0, depth});
+    b.box({x0, H, 0}, {x1, H + w, depth});
+    b.box({x0, 0, 0}, {x1, H, w});
+    b.box({x0, 0, depth - w}, {x1, H, depth});
+  }
   for (int k = 0; k < 4; ++k) {
-    const float x0 = R::wallX(k) + (k == 1 || k == 2 ? 0.5f * (w - innerWall) : 0.0f);
-    const float x1 = x0 + (k == 1 || k == 2 ? innerWall : w);
     if (k == 0 || k == 3) {
-      b.box({x0, 0, w}, {x1, H, depth - w});
+      b.box({R::wallX(k), 0, w}, {R::wallX(k) + w, H, depth - w});
       continue;
     }
-    const float zc = w + 0.5f * R::kRoom, z0 = zc - 0.5f * doorWidth, z1 = zc + 0.5f * doorWidth;
-    b.box({x0, 0, w}, {x1, H, z0});
+    const float x0 = R::wallX(k) + 0.5f * (w - o.innerWall), x1 = x0 + o.innerWall;
+    const float zc = w + 0.5f * R::kRoom, z0 = zc - 0.5f * o.doorWidth, z1 = zc + 0.5f * o.doorWidth;
+    if (k == 1 && o.crackWidth > 0.0f) {
+      const float c0 = w + 1.0f, c1 = c0 + o.crackWidth;
+      b.box({x0, 0, w}, {x1, H, c0});
+      b.box({x0, 0, c1}, {x1, H, z0});
+    } else {
+      b.box({x0, 0, w}, {x1, H, z0});
+    }
     b.box({x0, 0, z1}, {x1, H, depth - w});
     b.box({x0, R::kDoorHeight, z0}, {x1, H, z1});
   }
   return b.scene();
+}
+
+/// The hand-made cells of makeThreeRooms({.slabsPerRoom = true}): triangles by the room their centroid
+/// lies in, portals exactly the door openings at the inner walls' mid-planes.
+inline CellGraph manualThreeRooms(const Scene& scene, float doorWidth = 1.0f) {
+  using R = ThreeRooms;
+  CellGraph g;
+  for (const char* name : {"A", "B", "C"}) g.cells.push_back({name, {}, {}});
+  for (size_t t = 0; t < scene.triangles.size(); ++t)
+    g.cells[size_t(R::roomOf(scene.triangles[t].centroid()))].triangles.push_back(uint32_t(t));
+  for (int k = 1; k <= 2; ++k) {
+    PortalQuad q;
+    const glm::vec3 c = R::doorCentre(k);
+    const float hw = 0.5f * doorWidth, hh = 0.5f * R::kDoorHeight;
+    q.corners = {c + glm::vec3(0, -hh, hw), c + glm::vec3(0, -hh, -hw), c + glm::vec3(0, hh, -hw), c + glm::vec3(0, hh, hw)};
+    q.cellA = k - 1, q.cellB = k;
+    q.name = std::string("portal:") + g.cells[size_t(k - 1)].name + ":" + g.cells[size_t(k)].name;
+    computePortalFrame(q);
+    g.portals.push_back(q);
+  }
+  return g;
 }
 
 }  // namespace cpgi::testing

@@ -63,7 +63,8 @@ CellValidation validateCells(const Scene& scene, const CellGraph& graph, float p
       v.errors.push_back(node + ": names a cell that does not exist");
       continue;
     }
-    if (p.cellA == p.cellB) v.errors.push_back(node + ": joins cell " + graph.cells[p.cellA].name + " to itself");
+    if (p.cellA == p.cellB)
+      v.errors.push_back(node + ": joins cell " + graph.cells[p.cellA].name + " to itself");
     if (!(p.area > 0.0f)) {
       v.errors.push_back(node + ": has zero area");
       continue;

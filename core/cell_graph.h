@@ -17,11 +17,11 @@ namespace cpgi {
 
 /// One portal: a planar quad, corners in order around the boundary.
 struct PortalQuad {
-  std::string name;                      ///< the glTF node name, "portal:A:B"
-  std::array<glm::vec3, 4> corners{};    ///< world space, metres, in boundary order
-  glm::vec3 normal{0.0f};                ///< unit; points from cellA into cellB
-  float area = 0.0f;                     ///< m²
-  int cellA = -1;                        ///< index into CellGraph::cells
+  std::string name;                    ///< the glTF node name, "portal:A:B"
+  std::array<glm::vec3, 4> corners{};  ///< world space, metres, in boundary order
+  glm::vec3 normal{0.0f};              ///< unit; points from cellA into cellB
+  float area = 0.0f;                   ///< m²
+  int cellA = -1;                      ///< index into CellGraph::cells
   int cellB = -1;
   glm::vec3 centre() const { return (corners[0] + corners[1] + corners[2] + corners[3]) * 0.25f; }
 };

@@ -1,14 +1,24 @@
 #include "core/output_dir.h"
 
-#include <fstream>
-#include <system_error>
 #include <unistd.h>
+#include <fstream>
+#include <sstream>
+#include <system_error>
 
 #include "core/error.h"
 
 namespace fs = std::filesystem;
 
 namespace cpgi {
+namespace {
+// ".NAME.partial-PID": hidden, and never mistaken for a finished result.
+fs::path temporaryName(const fs::path& dir, const std::string& name) {
+  // (An ostringstream rather than string operator+: GCC 12 warns falsely on the latter, PR 105329.)
+  std::ostringstream temp;
+  temp << '.' << name << ".partial-" << ::getpid();
+  return dir / temp.str();
+}
+}  // namespace
 
 OutputDir::OutputDir(fs::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
@@ -24,7 +34,7 @@ OutputDir::~OutputDir() {
 
 fs::path OutputDir::file(const std::string& name) {
   fs::path final = dir_ / name;
-  fs::path temp = dir_ / ("." + name + ".partial-" + std::to_string(::getpid()));
+  fs::path temp = temporaryName(dir_, name);
   staged_.emplace_back(temp, final);
   return temp;
 }
@@ -40,8 +50,7 @@ void OutputDir::commit() {
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
-  const fs::path temp = path.parent_path() / ("." + path.filename().string() + ".partial-" +
-                                              std::to_string(::getpid()));
+  const fs::path temp = temporaryName(path.parent_path(), path.filename().string());
   {
     std::ofstream out(temp, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

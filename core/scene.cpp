@@ -8,7 +8,9 @@ glm::vec3 Triangle::geometricNormal() const {
   return len > 0.0f ? c / len : glm::vec3(0.0f);
 }
 
-float Triangle::area() const { return 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0])); }
+float Triangle::area() const {
+  return 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+}
 
 Bounds Scene::bounds() const {
   Bounds b;

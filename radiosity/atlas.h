@@ -30,19 +30,19 @@ struct AtlasParams {
   int texelsPerQuad = 0;
   /// With texelsPerQuad == 0: texels per metre along each edge of a patch.
   float density = 10.0f;
-  int minTexels = 2;     ///< per chart edge, so a thin ledge still has a texel across it
-  int maxTexels = 256;   ///< per chart edge, so a huge floor does not take the whole atlas
-  int padding = 1;       ///< texels of gutter around each chart, filled by dilation
-  int maxSize = 8192;    ///< atlas edge limit in texels; exceeded → InputError naming the option
+  int minTexels = 2;    ///< per chart edge, so a thin ledge still has a texel across it
+  int maxTexels = 256;  ///< per chart edge, so a huge floor does not take the whole atlas
+  int padding = 1;      ///< texels of gutter around each chart, filled by dilation
+  int maxSize = 8192;   ///< atlas edge limit in texels; exceeded → InputError naming the option
 };
 
 struct Patch {
-  int quad = -1;                         ///< index into the QuadSet, or -1 for a loose triangle
+  int quad = -1;                             ///< index into the QuadSet, or -1 for a loose triangle
   std::array<int32_t, 2> triangles{-1, -1};  ///< scene triangles (the second is -1 for a loose one)
   uint32_t material = 0;
   glm::vec3 normal{0.0f};
-  float area = 0.0f;                     ///< m²
-  int x = 0, y = 0, w = 0, h = 0;        ///< the chart in atlas texels (without padding)
+  float area = 0.0f;               ///< m²
+  int x = 0, y = 0, w = 0, h = 0;  ///< the chart in atlas texels (without padding)
 };
 
 struct LightmapAtlas {
@@ -50,12 +50,12 @@ struct LightmapAtlas {
   std::vector<Patch> patches;
 
   // Per texel, row-major, width × height.
-  std::vector<int32_t> patch;      ///< owning patch, -1 for padding/unused
-  std::vector<glm::vec3> position; ///< world-space sample point (metres)
-  std::vector<glm::vec3> normal;   ///< unit
+  std::vector<int32_t> patch;       ///< owning patch, -1 for padding/unused
+  std::vector<glm::vec3> position;  ///< world-space sample point (metres)
+  std::vector<glm::vec3> normal;    ///< unit
   std::vector<glm::vec3> albedo;
-  std::vector<glm::vec3> emission; ///< W/m²
-  std::vector<float> area;         ///< m²; 0 for padding
+  std::vector<glm::vec3> emission;  ///< W/m²
+  std::vector<float> area;          ///< m²; 0 for padding
 
   /// Per scene triangle, the atlas coordinates (in [0,1]², v down the rows) of its three corners;
   /// triangles not in the atlas (e.g. outside the cell being baked) get all zeros.
@@ -67,8 +67,8 @@ struct LightmapAtlas {
 
 /// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
 /// Deterministic: the same scene and params give the same atlas.
-LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params,
-                         Context& ctx, const std::vector<uint32_t>& subset = {});
+LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
+                         const std::vector<uint32_t>& subset = {});
 
 /// Fills padding texels with the value of their nearest valid texel (within `radius` texels), so that
 /// bilinear lookups at chart edges don't pull in black.

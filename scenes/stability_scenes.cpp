@@ -1,0 +1,118 @@
+#include "scenes/stability_scenes.h"
+
+#include <stdexcept>
+
+#include "scenes/scene_builder.h"
+
+namespace cpgi {
+namespace {
+
+constexpr float kRoom = 4.0f, kHeight = 3.0f;
+
+struct Palette {
+  uint32_t wall, floor, ceiling, black, light;
+};
+
+Palette addPalette(SceneBuilder& b, glm::vec3 lightEmission) {
+  Palette p;
+  p.wall = b.material("wall", glm::vec3(0.7f));
+  p.floor = b.material("floor", glm::vec3(0.5f));
+  p.ceiling = b.material("ceiling", glm::vec3(0.8f));
+  p.black = b.material("black", glm::vec3(0.0f));
+  p.light = b.material("light", glm::vec3(0.8f), lightEmission);
+  return p;
+}
+
+SceneBuilder::Room plainRoom(const std::string& name, float x0, const Palette& p) {
+  SceneBuilder::Room r;
+  r.name = name;
+  r.lo = glm::vec3(x0, 0, 0);
+  r.hi = glm::vec3(x0 + kRoom, kHeight, kRoom);
+  r.floor = p.floor;
+  r.ceiling = p.ceiling;
+  r.south = r.north = r.west = r.east = p.wall;
+  return r;
+}
+
+}  // namespace
+
+SeedScene makeSpotThroughDoor() {
+  SeedScene s;
+  SceneBuilder b(s.scene);
+  // 0.1 m × 0.1 m at 5000 W/m²: 50 W, about what the seed scenes' 1 m² lights put into a room.
+  const Palette p = addPalette(b, glm::vec3(5000.0f));
+  const float wall = 0.2f, xb = kRoom + wall;
+  SceneBuilder::Room a = plainRoom("A", 0.0f, p), rb = plainRoom("B", xb, p);
+  a.doorEast = rb.doorWest = true;
+  b.room(a);
+  b.room(rb);
+  b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
+
+  // The lamp: a black tube 0.5 m long, 0.1 m square inside (1 cm walls), its open end facing +x at door
+  // height, the emitter at its closed end. Its beam half-angle is atan(0.1 / 0.5) ≈ 11°.
+  const glm::vec3 lo(0.05f, 0.95f, 1.95f), hi(0.55f, 1.05f, 2.05f);
+  const float t = 0.01f;
+  const uint32_t lamp = b.node("A/lamp");
+  b.rect(0, lo.x + 0.001f, +1, {lo.y, lo.z}, {hi.y, hi.z}, p.light, lamp);  // emitter
+  b.rect(0, lo.x, +1, {lo.y, lo.z}, {hi.y, hi.z}, p.black, lamp);           // back, inside
+  b.rect(1, lo.y, +1, {lo.z, lo.x}, {hi.z, hi.x}, p.black, lamp);           // inside faces
+  b.rect(1, hi.y, -1, {lo.z, lo.x}, {hi.z, hi.x}, p.black, lamp);
+  b.rect(2, lo.z, +1, {lo.x, lo.y}, {hi.x, hi.y}, p.black, lamp);
+  b.rect(2, hi.z, -1, {lo.x, lo.y}, {hi.x, hi.y}, p.black, lamp);
+  const glm::vec3 olo = lo - glm::vec3(t), ohi = hi + glm::vec3(0, t, t);
+  b.rect(0, olo.x, -1, {olo.y, olo.z}, {ohi.y, ohi.z}, p.black, lamp);  // outside faces
+  b.rect(1, olo.y, -1, {olo.z, olo.x}, {ohi.z, ohi.x}, p.black, lamp);
+  b.rect(1, ohi.y, +1, {olo.z, olo.x}, {ohi.z, ohi.x}, p.black, lamp);
+  b.rect(2, olo.z, -1, {olo.x, olo.y}, {ohi.x, ohi.y}, p.black, lamp);
+  b.rect(2, ohi.z, +1, {olo.x, olo.y}, {ohi.x, ohi.y}, p.black, lamp);
+  b.rect(0, hi.x, +1, {olo.y, olo.z}, {lo.y, ohi.z}, p.black, lamp);  // rim at the open end
+  b.rect(0, hi.x, +1, {hi.y, olo.z}, {ohi.y, ohi.z}, p.black, lamp);
+  b.rect(0, hi.x, +1, {lo.y, olo.z}, {hi.y, lo.z}, p.black, lamp);
+  b.rect(0, hi.x, +1, {lo.y, hi.z}, {hi.y, ohi.z}, p.black, lamp);
+
+  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
+  PortalQuad portal;
+  portal.name = "portal:A:B";
+  const float xm = kRoom + wall / 2;
+  portal.corners = {glm::vec3(xm, 0, a.door.z0), glm::vec3(xm, a.door.top, a.door.z0),
+                    glm::vec3(xm, a.door.top, a.door.z1), glm::vec3(xm, 0, a.door.z1)};
+  portal.cellA = 0;
+  portal.cellB = 1;
+  computePortalFrame(portal);
+  s.cells.portals.push_back(portal);
+  s.scene.cameras.push_back(lookAt("B", {xb + 0.3f, 1.8f, 3.7f}, {xb + kRoom, 1.0f, 2.0f}));
+  s.scene.cameras.push_back(lookAt("A", {3.7f, 1.8f, 3.7f}, {0.0f, 1.0f, 2.0f}));
+  return s;
+}
+
+SeedScene makeThinWall(float thickness) {
+  if (!(thickness >= 0.0f)) throw std::invalid_argument("wall thickness must be >= 0");
+  SeedScene s;
+  SceneBuilder b(s.scene);
+  const Palette p = addPalette(b, glm::vec3(100.0f));
+  b.room(plainRoom("A", 0.0f, p));
+  b.room(plainRoom("B", kRoom + thickness, p));
+  const float c = kRoom / 2;
+  b.rect(1, kHeight - 0.01f, -1, {c - 0.5f, c - 0.5f}, {c + 0.5f, c + 0.5f}, p.light, b.node("A/light"));
+  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
+  s.scene.cameras.push_back(lookAt("B", {kRoom + thickness + 3.7f, 1.6f, 3.7f}, {kRoom, 1.0f, 0.5f}));
+  return s;
+}
+
+const std::vector<std::string>& builtinSceneNames() {
+  static const std::vector<std::string> names = {"seed1",     "seed2",     "seed3",
+                                                 "spot-door", "thin-wall", "thin-wall-5cm"};
+  return names;
+}
+
+SeedScene makeBuiltinScene(const std::string& name) {
+  if (name == "seed1") return makeSeedScene(1);
+  if (name == "seed2") return makeSeedScene(2);
+  if (name == "seed3") return makeSeedScene(3);
+  if (name == "spot-door") return makeSpotThroughDoor();
+  if (name == "thin-wall") return makeThinWall(0.0f);
+  if (name == "thin-wall-5cm") return makeThinWall(0.05f);
+  throw std::invalid_argument("unknown built-in scene '" + name + "'");
+}
+
+}  // namespace cpgi

@@ -1,0 +1,50 @@
+// Small scenes built in code for the radiosity tests: rectangles as two triangles that findQuads pairs,
+// closed boxes, single triangles.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+
+namespace cpgi::testing {
+
+inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
+  scene.materials.push_back({"m" + std::to_string(scene.materials.size()), albedo, emission});
+  return uint32_t(scene.materials.size() - 1);
+}
+
+inline void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node = 0) {
+  Triangle t;
+  t.p = {a, b, c};
+  const glm::vec3 n = t.geometricNormal();
+  t.n = {n, n, n};
+  t.material = material;
+  t.node = node;
+  scene.triangles.push_back(t);
+  if (scene.nodePaths.size() <= node) scene.nodePaths.resize(node + 1, "node");
+}
+
+/// The rectangle origin, origin+u, origin+u+v, origin+v; its normal is u × v.
+inline void addRect(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t material,
+                    uint32_t node = 0) {
+  const glm::vec3 c0 = origin, c1 = origin + u, c2 = origin + u + v, c3 = origin + v;
+  addTriangle(scene, c0, c1, c2, material, node);
+  addTriangle(scene, c0, c2, c3, material, node);
+}
+
+/// The six inward-facing faces of the box [lo, hi].
+inline void addClosedBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
+  const glm::vec3 d = hi - lo;
+  const glm::vec3 X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);
+  addRect(scene, lo, X, Y, material);      // z = lo, normal +z
+  addRect(scene, lo + Z, Y, X, material);  // z = hi, normal -z
+  addRect(scene, lo, Y, Z, material);      // x = lo, normal +x
+  addRect(scene, lo + X, Z, Y, material);  // x = hi, normal -x
+  addRect(scene, lo, Z, X, material);      // y = lo, normal +y
+  addRect(scene, lo + Y, X, Z, material);  // y = hi, normal -y
+}
+
+}  // namespace cpgi::testing

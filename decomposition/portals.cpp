@@ -113,6 +113,53 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
   return out;
 }
 
+// Moves the portal along its normal to the middle of the narrowest stretch of the opening. The watershed
+// interface lies anywhere along a door's depth (its width is the same all through the wall); the cross-
+// section of empty voxels within the quad's footprint, slice by slice along the normal, is smallest
+// across the whole depth of the wall, and the middle of that run is the wall's mid-plane.
+void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vector<int32_t>& cell, float searchRange) {
+  PortalQuad& q = fp.quad;
+  const float h = float(f.voxel);
+  const glm::vec3 c = q.centre();
+  const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
+  const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
+  if (hu <= 0.0f || hv <= 0.0f) return;
+  const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
+  const int bins = 2 * int(std::ceil(searchRange / h)) + 1, mid = bins / 2;
+  // Slices measured from the voxel centre nearest the quad's centre, so that for axis-aligned portals
+  // every voxel layer falls in the middle of one slice.
+  const glm::vec3 ref = f.centre(f.voxelOf(c));
+  std::vector<size_t> count(size_t(bins), 0);
+  Bounds box;
+  for (const glm::vec3& k : q.corners) box.extend(k - searchRange * q.normal), box.extend(k + searchRange * q.normal);
+  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0)), hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        if (cell[i] != q.cellA && cell[i] != q.cellB) continue;
+        const glm::vec3 p = f.centre(i) - c;
+        if (std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
+        const int b = mid + int(std::floor(glm::dot(f.centre(i) - ref, q.normal) / h + 0.5f));
+        if (b >= 0 && b < bins) ++count[size_t(b)];
+      }
+  // The run of near-minimal slices nearest the fitted plane.
+  const size_t least = *std::min_element(count.begin(), count.end());
+  const size_t limit = least + std::max<size_t>(1, least / 50);
+  int best = -1;
+  for (int b = 0; b < bins; ++b)
+    if (count[size_t(b)] <= limit && (best < 0 || std::abs(b - mid) < std::abs(best - mid))) best = b;
+  if (best < 0) return;
+  int first = best, last = best;
+  while (first > 0 && count[size_t(first - 1)] <= limit) --first;
+  while (last + 1 < bins && count[size_t(last + 1)] <= limit) ++last;
+  // A run reaching the end of the search is not a constriction we can centre on.
+  if (first == 0 || last == bins - 1) return;
+  const float shift = glm::dot(ref - c, q.normal) + 0.5f * float(first + last - 2 * mid) * h;
+  for (glm::vec3& k : q.corners) k += shift * q.normal;
+  fp.depth += std::abs(shift);
+}
+
 }  // namespace
 
 bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance) {
@@ -214,7 +261,10 @@ PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, cons
     lo = hi;
   }
 
-  // 3. Relabel a slab around each portal by the side of its plane, so the cells meet at the quad.
+  // 3. Each portal to the middle of its constriction.
+  for (FittedPortal& fp : out.portals) centreInConstriction(fp, f, cells.cell, params.searchRange);
+
+  // 4. Relabel a slab around each portal by the side of its plane, so the cells meet at the quad.
   for (const FittedPortal& fp : out.portals) {
     const PortalQuad& q = fp.quad;
     Bounds box;

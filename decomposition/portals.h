@@ -18,6 +18,9 @@ struct PortalParams {
   /// Added to every side of the fitted rectangle, voxels: the empty voxels stop up to about half a voxel
   /// short of the real surface (the solid band is half a voxel thick), so the quad is widened back.
   double marginVoxels = 0.5;
+  /// How far along its normal a portal may move to reach the middle of its constriction, metres (the
+  /// deepest door reveal expected; the watershed puts the interface anywhere along a door's depth).
+  float searchRange = 0.6f;
 };
 
 struct FittedPortal {

@@ -11,5 +11,7 @@ namespace cpgi::cli {
 using CommandFn = std::function<int()>;
 
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
+void addDecomposeCommand(CLI::App& app, CommandFn& selected);
+void addCompareCellsCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

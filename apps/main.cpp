@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "cpgi 0.1.0");
   cpgi::cli::CommandFn selected;
+  cpgi::cli::addDecomposeCommand(app, selected);
+  cpgi::cli::addCompareCellsCommand(app, selected);
 
   try {
     app.parse(argc, argv);

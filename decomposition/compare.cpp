@@ -6,6 +6,9 @@
 #include <map>
 #include <unordered_map>
 
+#include "decomposition/classify.h"
+#include "decomposition/voxelize.h"
+
 namespace cpgi::decomp {
 namespace {
 
@@ -45,6 +48,14 @@ void fillVolume(const std::vector<Triangle>& mesh, const GridFrame& f, const std
 double choose2(double n) { return 0.5 * n * (n - 1.0); }
 
 }  // namespace
+
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx) {
+  VoxelizeParams vp;
+  vp.voxelSize = voxelSize;
+  const SolidGrid solid = voxelize(scene, vp, ctx);
+  SpaceGrid space = classifySpace(scene, solid, {}, ctx);
+  return {solid.frame, std::move(space.space)};
+}
 
 std::vector<int32_t> labelsFromCells(const Scene& scene, const CellGraph& graph, const GridFrame& f,
                                      const std::vector<Space>& space) {

@@ -14,6 +14,14 @@
 
 namespace cpgi::decomp {
 
+/// The empty space both decompositions are labelled over: the scene's voxels classified as decompose
+/// does (same voxel, no seal), so an automatic decomposition's labels fit it voxel for voxel.
+struct VoxelSpace {
+  GridFrame frame;
+  std::vector<Space> space;
+};
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx);
+
 /// Labels the inside voxels of `space` by the cells of `graph` over `scene` (the scene the graph's triangle
 /// indices refer to; it must have the same geometry as the one `space` was made from). A cell with a
 /// `cellvolume:` mesh owns the inside voxels whose centres that closed mesh contains; the others grow

@@ -98,6 +98,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   out.space = std::move(space.space);
 
   Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
+  out.inputTriangles = scene.triangles.size();
   out.scene = std::move(assigned.scene);
   out.splitTriangles = assigned.splitTriangles;
   out.fallbackTriangles = assigned.fallbackTriangles;

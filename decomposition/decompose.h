@@ -57,6 +57,7 @@ struct Decomposition {
   bool enclosed = true;               ///< false: no enclosed empty space; the outside is the only cell
   int basins = 0;                     ///< watershed basins before merging
   size_t leakingFaces = 0;            ///< see PortalSet::leakingFaces
+  size_t inputTriangles = 0;
   size_t splitTriangles = 0;
   size_t fallbackTriangles = 0;
   double thinWallArea = 0.0;          ///< m², see Assignment::thinWallArea

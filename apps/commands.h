@@ -15,5 +15,7 @@ void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);
 void addReferenceCommand(CLI::App& app, CommandFn& selected);
 void addCompareLightCommand(CLI::App& app, CommandFn& selected);
+void addDecomposeCommand(CLI::App& app, CommandFn& selected);
+void addCompareCellsCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   cpgi::cli::addGenerateCommand(app, selected);
   cpgi::cli::addReferenceCommand(app, selected);
   cpgi::cli::addCompareLightCommand(app, selected);
+  cpgi::cli::addDecomposeCommand(app, selected);
+  cpgi::cli::addCompareCellsCommand(app, selected);
 
   try {
     app.parse(argc, argv);

@@ -13,5 +13,6 @@ using CommandFn = std::function<int()>;
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
 void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);
+void addBakeCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

@@ -1,15 +1,14 @@
 // `cpgi bake SCENE -o DIR [--method global] [--texels-per-quad N | --density T] [--unshot F] [--max-shots N]
 //  [--visibility hemisphere|hemicube] [--item-buffer N] [--repair]`: GPU progressive radiosity over a
-// lightmap atlas (design.md §1, §3). Writes lightmap.exr (R, G, B radiosity + "area"), baked.glb (the
-// scene with the lightmap as an unlit texture), lightmap.png and report.json, all or nothing.
+// lightmap atlas (design.md §1, §3). Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
+// baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
+// camera (radiosity/views.h) and report.json, all or nothing.
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -26,6 +25,7 @@
 #include "radiosity/atlas.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/gpu_solver.h"
+#include "radiosity/views.h"
 
 namespace cpgi::cli {
 namespace {
@@ -44,13 +44,6 @@ struct BakeOptions {
   bool quiet = false;
 };
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw SystemError(path.string() + ": cannot read back");
-  return bytes;
-}
-
 // A one-line progress display on a terminal; nothing when stderr is a file or a pipe.
 Context::ProgressFn progressPrinter(bool quiet) {
   if (quiet || !::isatty(STDERR_FILENO)) return {};
@@ -61,18 +54,6 @@ Context::ProgressFn progressPrinter(bool quiet) {
     if (fraction >= 1.0) std::fputc('\n', stderr);
     std::fflush(stderr);
   };
-}
-
-// Exposure that maps the 95th percentile of the brightest channel to 0.8, so the PNG shows the room
-// rather than the lamp.
-float autoExposure(const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity) {
-  std::vector<float> levels;
-  for (size_t t = 0; t < radiosity.size(); ++t)
-    if (atlas.patch[t] >= 0) levels.push_back(std::max({radiosity[t].r, radiosity[t].g, radiosity[t].b}));
-  if (levels.empty()) return 1.0f;
-  auto p95 = levels.begin() + std::ptrdiff_t(0.95 * double(levels.size() - 1));
-  std::nth_element(levels.begin(), p95, levels.end());
-  return *p95 > 0.0f ? 0.8f / *p95 : 1.0f;
 }
 
 int runBake(const BakeOptions& o) {
@@ -119,28 +100,35 @@ int runBake(const BakeOptions& o) {
     solved = solveProgressive(loaded.scene, atlas, solverParams, *gl, ctx);
   }
 
+  std::vector<std::string> views;
   {
     auto t = ctx.time("write");
     std::vector<glm::vec3> lit = solved.radiosity;
     dilate(atlas, lit);
     ImageRGB image{atlas.width, atlas.height, lit};
-    writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}});
-    const std::string png = encodePng(image, autoExposure(atlas, solved.radiosity));
+    // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out.
+    ExrChannel emissive{"emissive", std::vector<float>(atlas.texelCount(), 0.0f)};
+    for (size_t i = 0; i < atlas.texelCount(); ++i)
+      if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
+    writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}, emissive});
+
+    // The PNG (alone and inside baked.glb) shows radiance B/π at the views' exposure, like the reference's.
+    const float exposure = viewExposure(atlas, lit);
+    const std::string png = encodePng(image, exposure / 3.14159265f);
     writeFileAtomically(out.file("lightmap.png"), png);
     GltfWriteOptions gltf;
     gltf.lightmapUVs = &atlas.triangleUV;
     gltf.lightmapPng = png;
-    // writeGltf picks the format by extension, which OutputDir's staged names hide: write beside them
-    // under a .glb name, then stage the bytes.
-    const std::filesystem::path glb = out.dir() / (".baked-" + std::to_string(::getpid()) + ".glb");
-    try {
-      writeGltf(glb.string(), loaded.scene, gltf);
-      writeFileAtomically(out.file("baked.glb"), readFile(glb));
-    } catch (...) {
-      std::filesystem::remove(glb);
-      throw;
-    }
-    std::filesystem::remove(glb);
+    // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
+    const std::filesystem::path stagedGlb = out.file("baked.glb");
+    std::filesystem::path withExtension = stagedGlb;
+    withExtension += ".glb";
+    writeGltf(withExtension.string(), loaded.scene, gltf);
+    std::filesystem::rename(withExtension, stagedGlb);
+
+    ViewParams viewParams;
+    viewParams.exposure = exposure;
+    views = renderViews(loaded.scene, loaded.cells, atlas, lit, out, ctx, viewParams);
   }
 
   nlohmann::json timings = nlohmann::json::object();
@@ -180,6 +168,7 @@ int runBake(const BakeOptions& o) {
         {"absorbed_w", e.absorbed},
         {"unshot_w", e.unshot},
         {"escaped_w", e.escaped()}}},
+      {"views", views},
       {"warnings", ctx.warnings()}};
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();

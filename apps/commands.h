@@ -14,5 +14,9 @@ using CommandFn = std::function<int()>;
 void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);
 void addBakeCommand(CLI::App& app, CommandFn& selected);
+void addReferenceCommand(CLI::App& app, CommandFn& selected);
+void addCompareLightCommand(CLI::App& app, CommandFn& selected);
+void addDecomposeCommand(CLI::App& app, CommandFn& selected);
+void addCompareCellsCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
   cpgi::cli::addInfoCommand(app, selected);
   cpgi::cli::addGenerateCommand(app, selected);
   cpgi::cli::addBakeCommand(app, selected);
+  cpgi::cli::addReferenceCommand(app, selected);
+  cpgi::cli::addCompareLightCommand(app, selected);
+  cpgi::cli::addDecomposeCommand(app, selected);
+  cpgi::cli::addCompareCellsCommand(app, selected);
 
   try {
     app.parse(argc, argv);

@@ -58,13 +58,21 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   std::vector<ExrChannel> extra;
   const ImageRGB lightmap = readExr(dir / "out/lightmap.exr", &extra);
   EXPECT_EQ(lightmap.width, report["atlas"]["width"].get<int>());
-  ASSERT_EQ(extra.size(), 1u);
-  EXPECT_EQ(extra[0].name, "area");
-  double area = 0.0, lit = 0.0;
-  for (size_t i = 0; i < extra[0].values.size(); ++i) {
-    area += extra[0].values[i];
-    lit += extra[0].values[i] * lightmap.pixels[i].r;
+  ASSERT_EQ(extra.size(), 2u);
+  const auto& areas = extra[0].name == "area" ? extra[0] : extra[1];
+  const auto& emissive = extra[0].name == "emissive" ? extra[0] : extra[1];
+  EXPECT_EQ(areas.name, "area");
+  EXPECT_EQ(emissive.name, "emissive");
+  double area = 0.0, lit = 0.0, lampArea = 0.0;
+  for (size_t i = 0; i < areas.values.size(); ++i) {
+    area += areas.values[i];
+    lit += areas.values[i] * lightmap.pixels[i].r;
+    lampArea += areas.values[i] * emissive.values[i];
   }
+  EXPECT_NEAR(lampArea, 2.0, 1e-3);  // two 1 m × 1 m lamps
+  EXPECT_FALSE(report["views"].empty());
+  for (const auto& v : report["views"])
+    EXPECT_TRUE(std::filesystem::exists(dir / ("out/view-" + v.get<std::string>() + ".png"))) << v;
   double sceneArea = 0.0;
   for (const Triangle& t : makeSeedScene(1).scene.triangles) sceneArea += t.area();
   EXPECT_NEAR(area, sceneArea, 1e-3 * sceneArea);

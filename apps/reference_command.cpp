@@ -38,7 +38,8 @@ struct ReferenceOptions {
 
 int runReference(const ReferenceOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  if (o.spp < 2) throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
+  if (o.spp < 2)
+    throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
   if (o.texelsPerQuad < 0) throw InputError("--texels-per-quad", "must be positive");
   if (!(o.density > 0.0f)) throw InputError("--density", "must be positive");
 
@@ -68,7 +69,8 @@ int runReference(const ReferenceOptions& o) {
   params.seed = o.seed;
   const auto solveStart = std::chrono::steady_clock::now();
   const ReferenceResult result = traceReference(scene, atlas, params, ctx);
-  const double solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  const double solveSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
   const double noise = relativeStandardError(result, atlas.area);
   // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
   // given over the texels that do not emit, where the solvers actually differ.
@@ -101,7 +103,8 @@ int runReference(const ReferenceOptions& o) {
 
   ViewParams viewParams;
   viewParams.exposure = exposure;
-  const std::vector<std::string> views = renderViews(scene, loaded.cells, atlas, lightmap, out, ctx, viewParams);
+  const std::vector<std::string> views =
+      renderViews(scene, loaded.cells, atlas, lightmap, out, ctx, viewParams);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json report = {
@@ -128,15 +131,17 @@ int runReference(const ReferenceOptions& o) {
       {"warnings", ctx.warnings()},
   };
   nlohmann::json timings = nlohmann::json::array();
-  for (const Context::Timing& t : ctx.timings()) timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
+  for (const Context::Timing& t : ctx.timings())
+    timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
   report["timings"] = timings;
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();
 
   if (!o.quiet)
-    std::printf("reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
-                atlas.validTexels(), result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
-                o.outDir.c_str());
+    std::printf(
+        "reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
+        atlas.validTexels(), result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
+        o.outDir.c_str());
   return 0;
 }
 
@@ -145,7 +150,8 @@ int runReference(const ReferenceOptions& o) {
 void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   auto opts = std::make_shared<ReferenceOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "reference", "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
+      "reference",
+      "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
   cmd->add_option("SCENE", opts->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--output", opts->outDir, "Output folder (lightmap.exr, report.json, baked.glb, view-*)")
       ->required();

@@ -6,8 +6,8 @@
 #include <tbb/global_control.h>
 
 #include "core/error.h"
-#include "radiosity/form_factors.h"
 #include "path_test_scenes.h"
+#include "radiosity/form_factors.h"
 
 namespace cpgi {
 namespace {
@@ -64,10 +64,16 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
     glm::vec3 position, normal;
   };
   const std::vector<Case> cases = {
-      {1.0f, 1.0f, {0, 0, 0}, {0, 0, 1}},                                      // centred, far
+      {1.0f, 1.0f, {0, 0, 0}, {0, 0, 1}},                                        // centred, far
       {1.0f, 1.0f, {0.8f, -0.3f, 0.2f}, glm::normalize(glm::vec3(0.6f, 0, 1))},  // off-axis, tilted
-      {1.0f, 0.5f, {0.0f, 0.1f, 0.3f}, glm::normalize(glm::vec3(1, 0.2f, 0))},  // emitter partly behind the plane
-      {2.0f, 0.05f, {0.1f, 0.2f, 0}, {0, 0, 1}},  // large and close: BSDF hits dominate, MIS must not double count
+      {1.0f,
+       0.5f,
+       {0.0f, 0.1f, 0.3f},
+       glm::normalize(glm::vec3(1, 0.2f, 0))},  // emitter partly behind the plane
+      {2.0f,
+       0.05f,
+       {0.1f, 0.2f, 0},
+       {0, 0, 1}},  // large and close: BSDF hits dominate, MIS must not double count
   };
   for (const Case& c : cases) {
     const Scene scene = emitterScene(c.a, c.h, emission);
@@ -76,10 +82,12 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
     ReferenceParams params;
     params.spp = 4096;
     const ReferenceResult r = traceReference(scene, points, params, ctx);
-    const double f = pointToPolygonFormFactor(glm::dvec3(c.position), glm::dvec3(c.normal), emitterPolygon(c.a, c.h));
+    const double f =
+        pointToPolygonFormFactor(glm::dvec3(c.position), glm::dvec3(c.normal), emitterPolygon(c.a, c.h));
     const glm::vec3 exact = albedo * emission * float(f);
     expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "h " + std::to_string(c.h));
-    EXPECT_LT(r.standardError[0].x, 0.02f * exact.x) << "h " << c.h << " B " << r.radiosity[0].x << " exact " << exact.x;
+    EXPECT_LT(r.standardError[0].x, 0.02f * exact.x)
+        << "h " << c.h << " B " << r.radiosity[0].x << " exact " << exact.x;
   }
 }
 
@@ -99,8 +107,10 @@ TEST(ReferenceTracer, SeveralEmittersAddUp) {
   params.spp = 8192;
   const ReferenceResult r = traceReference(scene, points, params, ctx);
   const glm::dvec3 nd(n);
-  const double f1 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
-  const double f2 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
+  const double f1 = pointToPolygonFormFactor(
+      glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
+  const double f2 = pointToPolygonFormFactor(
+      glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
   const glm::vec3 exact = albedo * (e1 * float(f1) + e2 * float(f2));
   expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "three lamps");
   for (int c = 0; c < 3; ++c) EXPECT_LT(r.standardError[0][c], 0.02f * exact[c]);
@@ -120,8 +130,10 @@ TEST(ReferenceTracer, ManyEmittersFallBackToPowerSelection) {
   ReferenceParams params;
   params.spp = 4096;
   const ReferenceResult r = traceReference(scene, points, params, ctx);
-  const double f = pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
-  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f, "split lamp");
+  const double f =
+      pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
+  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f,
+                    "split lamp");
   EXPECT_LT(r.standardError[0].x, 0.02f * 4.0f * float(f));
 }
 
@@ -130,8 +142,8 @@ TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   const uint32_t black = addMaterial(scene, glm::vec3(0.0f));
   addRect(scene, {-1.0f, -1.0f, 0.5f}, {2.0f, 0, 0}, {0, 2.0f, 0}, black);  // a blocker facing the point
   const std::vector<SamplePoint> points = {
-      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},    // under the blocker
-      {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // above the emitter's back
+      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // under the blocker
+      {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},  // above the emitter's back
   };
   Context ctx;
   ReferenceParams params;
@@ -143,7 +155,8 @@ TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
 
 TEST(ReferenceTracer, OwnEmissionPassesThroughWithoutNoise) {
   const Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
-  const std::vector<SamplePoint> points = {{{0, 0, 0}, {0, 0, 1}, glm::vec3(0.0f), glm::vec3(3.0f, 2.0f, 1.0f)}};
+  const std::vector<SamplePoint> points = {
+      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.0f), glm::vec3(3.0f, 2.0f, 1.0f)}};
   Context ctx;
   const ReferenceResult r = traceReference(scene, points, {}, ctx);
   EXPECT_EQ(r.radiosity[0], glm::vec3(3.0f, 2.0f, 1.0f));

@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,13 +12,12 @@
 
 #include "apps/commands.h"
 #include "core/error.h"
-#include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/atlas.h"
+#include "radiosity/lightmap_output.h"
 #include "radiosity/reference_tracer.h"
-#include "radiosity/views.h"
 
 namespace cpgi::cli {
 
@@ -81,30 +79,10 @@ int runReference(const ReferenceOptions& o) {
       emissive.values[i] = 1.0f, reflectorArea[i] = 0.0f;
   const double noiseNonEmissive = relativeStandardError(result, reflectorArea);
 
-  std::vector<glm::vec3> lightmap = result.radiosity;
-  dilate(atlas, lightmap);
-  ImageRGB image{atlas.width, atlas.height, lightmap};
-  ExrChannel area{"area", atlas.area};
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
-  writeExr(out.file("lightmap.exr").string(), image, {area, sigma, emissive});
-
-  const float exposure = viewExposure(atlas, lightmap);
-  GltfWriteOptions gltf;
-  gltf.lightmapUVs = &atlas.triangleUV;
-  // The unlit texture shows radiance B/π at the views' exposure.
-  gltf.lightmapPng = encodePng(image, exposure / 3.14159265f);
-  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
-  const std::filesystem::path stagedGlb = out.file("baked.glb");
-  std::filesystem::path withExtension = stagedGlb;
-  withExtension += ".glb";
-  writeGltf(withExtension.string(), scene, gltf);
-  std::filesystem::rename(withExtension, stagedGlb);
-
-  ViewParams viewParams;
-  viewParams.exposure = exposure;
-  const std::vector<std::string> views =
-      renderViews(scene, loaded.cells, atlas, lightmap, out, ctx, viewParams);
+  const LightmapOutputs written =
+      writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json report = {
@@ -127,7 +105,7 @@ int runReference(const ReferenceOptions& o) {
       {"portals", 0},
       {"shots", 0},
       {"unshot_fraction", 0.0},
-      {"views", views},
+      {"views", written.views},
       {"warnings", ctx.warnings()},
   };
   nlohmann::json timings = nlohmann::json::array();

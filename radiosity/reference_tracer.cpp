@@ -233,8 +233,7 @@ class PathTracer {
   glm::vec3 reflected(const SamplePoint& point, const LightSelection& firstLights,
                       const FirstVertexSamples& first, Pcg32& rng, uint64_t& rayCount) const {
     glm::vec3 throughput = glm::clamp(point.albedo, 0.0f, 1.0f);
-    const float startAlbedo = maxComponent(throughput);
-    if (startAlbedo <= 0.0f) return glm::vec3(0.0f);
+    if (maxComponent(throughput) <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 sum(0.0f);
     glm::vec3 x = point.position;
     glm::vec3 n = point.normal;
@@ -264,9 +263,10 @@ class PathTracer {
       }
       throughput *= surfaces_.albedo[t];
       if (bounce + 1 >= params_.rouletteAfter) {
-        // Relative to the point's own albedo, which scales the whole estimate: what matters is how much
-        // of the point's reflected light this path can still carry.
-        const float survive = std::min(0.95f, maxComponent(throughput) / startAlbedo);
+        // Survival by the albedo just met, weight 1/albedo: the throughput stays at the point's own
+        // albedo instead of growing on the few long paths that cumulative-throughput roulette lets live,
+        // which in rooms of albedo 0.5–0.8 was most of the noise.
+        const float survive = std::min(0.95f, maxComponent(surfaces_.albedo[t]));
         if (survive <= 0.0f || rng.uniform() >= survive) break;
         throughput /= survive;
       } else if (maxComponent(throughput) <= 0.0f) {

@@ -153,6 +153,28 @@ TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   EXPECT_EQ(r.radiosity[1], glm::vec3(0.0f));
 }
 
+TEST(ReferenceTracer, NoLeakThroughCoincidentBackToBackWalls) {
+  // Two closed boxes sharing the plane x = 1 with zero thickness between them: only A has a lamp, so
+  // every point in B must stay exactly black however close its ray origins sit to the shared plane.
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(0.8f));
+  const uint32_t lamp = addMaterial(scene, glm::vec3(0.8f), glm::vec3(50.0f));
+  auto a = boxFaces(1.0f, {wall, lamp, wall, wall, wall, wall});
+  auto b = boxFaces(1.0f, {wall, wall, wall, wall, wall, wall});
+  for (Face& f : b) f.origin.x += 1.0f;
+  addFaces(scene, a);
+  addFaces(scene, b);
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 64;
+  const auto inB = facePoints(scene, b, 8);
+  const ReferenceResult dark = traceReference(scene, inB, params, ctx);
+  for (size_t i = 0; i < inB.size(); ++i) EXPECT_EQ(dark.radiosity[i], glm::vec3(0.0f)) << i;
+  const auto inA = facePoints(scene, a, 4);
+  const ReferenceResult lit = traceReference(scene, inA, params, ctx);
+  for (size_t i = 0; i < inA.size(); ++i) EXPECT_GT(lit.radiosity[i].x, 1.0f) << i;
+}
+
 TEST(ReferenceTracer, OwnEmissionPassesThroughWithoutNoise) {
   const Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
   const std::vector<SamplePoint> points = {

@@ -74,11 +74,16 @@ std::string firstLine(std::string s) {
 
 std::string modeName(int mode) {
   switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    default: return std::to_string(mode);
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return std::to_string(mode);
   }
 }
 
@@ -209,7 +214,8 @@ class GltfReader {
     cam.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
     const glm::vec3 forward(world * glm::dvec4(0, 0, -1, 0));
     const glm::vec3 up(world * glm::dvec4(0, 1, 0, 0));
-    if (!(glm::length(forward) > 0.0f) || !std::isfinite(glm::length(forward)))
+    if (!(glm::length(forward) > 0.0f) || !std::isfinite(glm::length(forward)) ||
+        !std::isfinite(glm::length(cam.position)))
       fail("node '" + nodeName + "': camera transform is degenerate");
     cam.forward = glm::normalize(forward);
     cam.up = glm::normalize(up - glm::dot(up, cam.forward) * cam.forward);

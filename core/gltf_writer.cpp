@@ -151,6 +151,7 @@ struct TreeNode {
   std::string name;
   std::vector<int> children;
   std::vector<uint32_t> triangles;
+  std::map<std::string, int> childByName;
 };
 
 class Tree {
@@ -161,19 +162,20 @@ class Tree {
   int ensure(const std::vector<std::string>& parts) {
     int parent = -1;
     for (const std::string& name : parts) {
-      std::vector<int>& siblings = parent < 0 ? roots : nodes[parent].children;
-      int found = -1;
-      for (int s : siblings)
-        if (nodes[s].name == name) found = s;
-      if (found < 0) {
-        found = static_cast<int>(nodes.size());
-        nodes.push_back(TreeNode{name, {}, {}});
-        (parent < 0 ? roots : nodes[parent].children).push_back(found);
+      std::map<std::string, int>& byName = parent < 0 ? rootByName_ : nodes[parent].childByName;
+      const auto [it, fresh] = byName.emplace(name, static_cast<int>(nodes.size()));
+      const int index = it->second;  // read before nodes grows and moves the maps
+      if (fresh) {
+        (parent < 0 ? roots : nodes[parent].children).push_back(index);
+        nodes.push_back(TreeNode{name, {}, {}, {}});
       }
-      parent = found;
+      parent = index;
     }
     return parent;
   }
+
+ private:
+  std::map<std::string, int> rootByName_;
 };
 
 json vec(const glm::vec3& v) {
@@ -359,7 +361,10 @@ class SceneWriter {
   void writeCameras() {
     for (const Camera& cam : scene_.cameras) {
       const glm::vec3 forward = glm::normalize(cam.forward);
-      const glm::vec3 right = glm::normalize(glm::cross(forward, cam.up));
+      glm::vec3 right = glm::cross(forward, cam.up);
+      if (!(glm::length(right) > 1e-6f))  // up along forward: any perpendicular will do
+        right = glm::cross(forward, std::abs(forward.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+      right = glm::normalize(right);
       const glm::vec3 up = glm::cross(right, forward);
       // The camera looks down its -Z with +Y up.
       const glm::quat q = glm::normalize(glm::quat_cast(glm::mat3(right, up, -forward)));

@@ -122,10 +122,9 @@ int RawScene::cellIndex(const std::string& name) {
 }
 
 uint32_t RawScene::nodeIndex(const std::string& path) {
-  for (size_t i = 0; i < scene.nodePaths.size(); ++i)
-    if (scene.nodePaths[i] == path) return static_cast<uint32_t>(i);
-  scene.nodePaths.push_back(path);
-  return static_cast<uint32_t>(scene.nodePaths.size() - 1);
+  const auto [it, fresh] = nodeIndex_.emplace(path, static_cast<uint32_t>(scene.nodePaths.size()));
+  if (fresh) scene.nodePaths.push_back(path);
+  return it->second;
 }
 
 std::string readFileBytes(const std::string& path) {
@@ -144,11 +143,12 @@ std::string readFileBytes(const std::string& path) {
 std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::string& node,
                                        const std::vector<Triangle>& triangles) {
   std::vector<glm::vec3> unique;
-  for (const Triangle& t : triangles)
-    for (const glm::vec3& q : t.p)
-      if (std::none_of(unique.begin(), unique.end(),
-                       [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
-        unique.push_back(q);
+  if (triangles.size() <= 16)  // enough to tell a user what they made; a huge mesh is just "not a quad"
+    for (const Triangle& t : triangles)
+      for (const glm::vec3& q : t.p)
+        if (std::none_of(unique.begin(), unique.end(),
+                         [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
+          unique.push_back(q);
   auto notAQuad = [&] {
     return InputError(file, node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
                                 std::to_string(triangles.size()) + " triangles and " +

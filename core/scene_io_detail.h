@@ -4,6 +4,7 @@
 
 #include <array>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "core/scene.h"
@@ -38,6 +39,9 @@ struct RawScene {
   int cellIndex(const std::string& name);
   /// Index of `path` in scene.nodePaths, added if new.
   uint32_t nodeIndex(const std::string& path);
+
+ private:
+  std::unordered_map<std::string, uint32_t> nodeIndex_;  // scenes may have many thousand nodes
 };
 
 /// The whole file; InputError when it is missing, a directory or unreadable.

@@ -73,8 +73,10 @@ test::GlbBuilder oneTriangle() {
 // Two unit floors as cells A and B and a portal mesh between them.
 test::GlbBuilder twoCells(const std::string& portalName, float bulge) {
   test::GlbBuilder g;
-  g.addNode({{"name", "cell:A"}, {"mesh", g.addMesh({0, 0, 0, 0, 0, 1, 1, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0})}});
-  g.addNode({{"name", "cell:B"}, {"mesh", g.addMesh({1, 0, 0, 1, 0, 1, 2, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0, 0})}});
+  g.addNode(
+      {{"name", "cell:A"}, {"mesh", g.addMesh({0, 0, 0, 0, 0, 1, 1, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0})}});
+  g.addNode(
+      {{"name", "cell:B"}, {"mesh", g.addMesh({1, 0, 0, 1, 0, 1, 2, 0, 1, 1, 0, 0, 2, 0, 1, 2, 0, 0})}});
   g.addNode({{"name", portalName},
              {"mesh", g.addMesh({1, 0, 0, 1, 1, 0, 1 + bulge, 1, 1, 1, 0, 1}, {0, 1, 2, 0, 2, 3})}});
   return g;
@@ -102,7 +104,8 @@ TEST(BadInput, TruncatedGlb) {
 
 TEST(BadInput, InvalidJsonChunk) {
   test::TempDir dir;
-  test::GlbBuilder::writeBytes(dir / "bad.glb", oneTriangle().glbWithJson("{\"asset\": {\"version\": \"2.0\"},"));
+  test::GlbBuilder::writeBytes(dir / "bad.glb",
+                               oneTriangle().glbWithJson("{\"asset\": {\"version\": \"2.0\"},"));
   expectOneLineError(dir, dir / "bad.glb", "invalid JSON");
   std::ofstream(dir / "bad.gltf") << "{ not json";
   expectOneLineError(dir, dir / "bad.gltf", "invalid JSON");
@@ -129,9 +132,11 @@ TEST(BadInput, NanAndInfPositions) {
 TEST(BadInput, ZeroAreaTrianglesNeedRepair) {
   test::TempDir dir;
   test::GlbBuilder g;
-  g.addNode({{"name", "sliver"}, {"mesh", g.addMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2})}});
+  g.addNode(
+      {{"name", "sliver"}, {"mesh", g.addMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2})}});
   g.writeGlb(dir / "zero.glb");
-  expectOneLineError(dir, dir / "zero.glb", "1 zero-area triangle (first in node 'sliver'); run with --repair");
+  expectOneLineError(dir, dir / "zero.glb",
+                     "1 zero-area triangle (first in node 'sliver'); run with --repair");
   const CommandRun r = cpgi(dir, "info " + quote(dir / "zero.glb") + " --repair");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err, "cpgi: warning: " + (dir / "zero.glb") + ": dropped 1 zero-area triangles\n");
@@ -160,7 +165,8 @@ TEST(BadInput, LinesPrimitive) {
   g.doc["meshes"][mesh]["name"] = "wire";
   g.addNode({{"mesh", mesh}});
   g.writeGlb(dir / "lines.glb");
-  expectOneLineError(dir, dir / "lines.glb", "mesh 'wire' primitive 0: primitive mode LINES is not supported");
+  expectOneLineError(dir, dir / "lines.glb",
+                     "mesh 'wire' primitive 0: primitive mode LINES is not supported");
 }
 
 TEST(BadInput, PortalNotPlanar) {

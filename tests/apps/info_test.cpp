@@ -21,8 +21,8 @@ std::string slurp(const std::string& path) {
 }
 
 int runCpgi(const test::TempDir& dir, const std::string& args, std::string& out, std::string& err) {
-  const std::string command = std::string(CPGI_BINARY) + " " + args + " > '" + (dir / "out.txt") + "' 2> '" +
-                              (dir / "err.txt") + "'";
+  const std::string command =
+      std::string(CPGI_BINARY) + " " + args + " > '" + (dir / "out.txt") + "' 2> '" + (dir / "err.txt") + "'";
   const int raw = std::system(command.c_str());
   out = slurp(dir / "out.txt");
   err = slurp(dir / "err.txt");
@@ -64,8 +64,8 @@ TEST(InfoCommand, SeedScenesJsonMatchesTheScene) {
     for (size_t p = 0; p < 2; ++p) {
       EXPECT_NEAR(info["portals"][p]["area_m2"].get<double>(), 2.1, 1e-5);
       EXPECT_NEAR(info["portals"][p]["normal"][0].get<double>(), 1.0, 1e-6);
-      EXPECT_EQ(info["portals"][p]["cells"], nlohmann::json::array({seed.cells.cells[p].name,
-                                                                     seed.cells.cells[p + 1].name}));
+      EXPECT_EQ(info["portals"][p]["cells"],
+                nlohmann::json::array({seed.cells.cells[p].name, seed.cells.cells[p + 1].name}));
     }
     EXPECT_EQ(info["warnings"], nlohmann::json::array());
     EXPECT_NEAR(info["bounds"]["size"][1].get<double>(), 3.0, 1e-5);

@@ -235,6 +235,36 @@ TEST(GltfReader, AsciiGltfWithEmbeddedBuffer) {
   expectNear(scene.triangles[0].p[1], {1, 0, 0});
 }
 
+TEST(GltfReader, ExternalBufferAndImageFilesNextToTheGltf) {
+  test::GlbBuilder g;
+  ImageRGB tex;
+  tex.width = 1, tex.height = 1;
+  tex.pixels = {glm::vec3(0.5f, 0.25f, 1.0f)};
+  g.doc["images"] = json::array({{{"uri", "tex.png"}}});
+  g.doc["textures"] = json::array({{{"source", 0}}});
+  const int m = g.addMaterial({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  g.addNode({{"mesh", g.addMesh(kTriangle, {}, m)}});
+  json doc = g.doc;
+  doc["buffers"] = json::array({{{"byteLength", g.bin.size()}, {"uri", "data.bin"}}});
+  test::TempDir dir;
+  test::GlbBuilder::writeBytes(dir / "external.gltf", doc.dump());
+  test::GlbBuilder::writeBytes(dir / "data.bin", g.bin);
+  writePng(dir / "tex.png", tex);
+  const Scene scene = loadScene(dir / "external.gltf").scene;
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  // One texel: the mean is the texel, back through 8-bit sRGB.
+  expectNear(scene.materials[scene.triangles[0].material].albedo, {0.5f, 0.25f, 1.0f}, 4e-3f);
+
+  std::filesystem::remove(dir / "data.bin");
+  try {
+    loadScene(dir / "external.gltf");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), dir / "external.gltf");
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+}
+
 TEST(GltfReader, UnsupportedRequiredExtensionIsNamed) {
   test::GlbBuilder g;
   g.addNode({{"mesh", g.addMesh(kTriangle)}});

@@ -1,0 +1,100 @@
+// cpgi decompose SCENE -o DIR: automatic cells and portals (decomposition/decompose.h), written as
+// DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json and DIR/decomposition.png.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "apps/commands.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/output_dir.h"
+#include "core/scene_io.h"
+#include "decomposition/decompose.h"
+#include "decomposition/picture.h"
+#include "decomposition/report.h"
+
+namespace cpgi::cli {
+namespace {
+
+struct DecomposeOptions {
+  std::string scene;
+  std::string out;
+  bool repair = false;
+  bool json = false;
+  decomp::DecomposeParams params;
+};
+
+int runDecompose(DecomposeOptions o) {
+  LoadOptions load;
+  load.repair = o.repair;
+  LoadedScene loaded = loadScene(o.scene, load);
+  for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
+  if (!loaded.cells.empty())
+    std::cerr << "cpgi: " << o.scene << ": ignoring its " << loaded.cells.cells.size()
+              << " hand-made cells (compare them with `cpgi compare-cells`)\n";
+  o.params.sourceName = o.scene;
+
+  OutputDir dir(o.out);
+  Context ctx;
+  const decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
+
+  GltfWriteOptions gltf;
+  gltf.cells = &d.graph;
+  writeGltf(dir.file("cells.glb").string(), d.scene, gltf);
+  {
+    auto timer = ctx.time("picture");
+    writePng(dir.file("decomposition.png").string(), decomp::drawDecomposition(d));
+  }
+  const nlohmann::json report = decomp::decompositionReport(d, o.params, ctx);
+  writeFileAtomically(dir.file("cells.json"), report.dump(2) + "\n");
+  dir.commit();
+
+  for (const std::string& w : ctx.warnings()) std::cerr << "cpgi: warning: " << w << "\n";
+  if (o.json) {
+    std::cout << report.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%zu cells, %zu portals from %d watershed basins; voxel %.3g m (%s)\n", d.graph.cells.size(),
+              d.graph.portals.size(), d.basins, d.frame.voxel, d.voxelChoice.c_str());
+  std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
+              d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
+  for (const auto& [stage, seconds] : report["timings_s"].items())
+    std::printf("  %-10s %8.3f s\n", stage.c_str(), seconds.get<double>());
+  std::printf("wrote %s/{cells.glb, cells.json, decomposition.png}\n", o.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
+  auto o = std::make_shared<DecomposeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "decompose",
+      "Automatic cells and portals: voxelize, watershed of the distance to the geometry, merge basins that "
+      "meet at no real constriction, fit one quad per opening");
+  cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
+  cmd->add_option("--voxel", o->params.voxelSize,
+                  "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))")
+      ->capture_default_str();
+  cmd->add_option("--seal", o->params.sealRadius,
+                  "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel wide")
+      ->capture_default_str();
+  cmd->add_option("--saddle-ratio", o->params.merge.saddleRatio,
+                  "Merge two basins when saddle / smaller peak exceeds this (higher keeps more portals)")
+      ->capture_default_str();
+  cmd->add_option("--min-depth", o->params.merge.minDepth,
+                  "Merge when smaller peak - saddle is below this, metres (furniture, pillars)")
+      ->capture_default_str();
+  cmd->add_option("--opening-ratio", o->params.merge.openingRatio,
+                  "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 disables")
+      ->capture_default_str();
+  cmd->add_option("--min-cell-volume", o->params.merge.minCellVolume,
+                  "Cells smaller than this, m3, join a neighbour")
+      ->capture_default_str();
+  cmd->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
+  cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
+}
+
+}  // namespace cpgi::cli

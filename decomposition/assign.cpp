@@ -1,0 +1,166 @@
+#include "decomposition/assign.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace cpgi::decomp {
+namespace {
+
+// Per voxel, the nearest labelled voxel's cell (breadth-first over face neighbours), for triangles that
+// see no cell from either side.
+std::vector<int32_t> nearestCells(const GridFrame& f, const std::vector<int32_t>& cell) {
+  std::vector<int32_t> near = cell;
+  std::vector<size_t> queue;
+  for (size_t i = 0; i < near.size(); ++i)
+    if (near[i] >= 0) queue.push_back(i);
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const glm::ivec3 c = f.coord(queue[head]);
+    for (const auto& d : kFaceNeighbours) {
+      const glm::ivec3 n(c.x + d[0], c.y + d[1], c.z + d[2]);
+      if (!f.contains(n)) continue;
+      const size_t j = f.index(n);
+      if (near[j] < 0) near[j] = near[queue[head]], queue.push_back(j);
+    }
+  }
+  return near;
+}
+
+struct Piece {
+  Triangle tri;
+  uint32_t source;
+  int depth;
+};
+
+// Splits t by the plane (c, n) into pieces on either side, keeping the winding and interpolating normals.
+std::vector<Triangle> splitByPlane(const Triangle& t, const glm::vec3& c, const glm::vec3& n) {
+  std::array<float, 3> s{};
+  for (int i = 0; i < 3; ++i) s[size_t(i)] = glm::dot(t.p[size_t(i)] - c, n);
+  // The vertex alone on its side.
+  int lone = -1;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    if ((s[size_t(i)] > 0) != (s[size_t(j)] > 0) && (s[size_t(j)] > 0) == (s[size_t(k)] > 0)) lone = i;
+  }
+  if (lone < 0) return {t};
+  const int j = (lone + 1) % 3, k = (lone + 2) % 3;
+  auto cut = [&](int a, int b, glm::vec3& p, glm::vec3& nn) {
+    const float w = s[size_t(a)] / (s[size_t(a)] - s[size_t(b)]);
+    p = glm::mix(t.p[size_t(a)], t.p[size_t(b)], w);
+    nn = glm::mix(t.n[size_t(a)], t.n[size_t(b)], w);
+    const float len = glm::length(nn);
+    nn = len > 0.0f ? nn / len : t.n[size_t(a)];
+  };
+  glm::vec3 pj, nj, pk, nk;
+  cut(lone, j, pj, nj);
+  cut(lone, k, pk, nk);
+  Triangle a = t, b = t, d = t;
+  a.p = {t.p[size_t(lone)], pj, pk}, a.n = {t.n[size_t(lone)], nj, nk};
+  b.p = {pj, t.p[size_t(j)], t.p[size_t(k)]}, b.n = {nj, t.n[size_t(j)], t.n[size_t(k)]};
+  d.p = {pj, t.p[size_t(k)], pk}, d.n = {nj, t.n[size_t(k)], nk};
+  std::vector<Triangle> out;
+  for (const Triangle& q : {a, b, d})
+    if (q.area() > 0.0f) out.push_back(q);
+  return out;
+}
+
+}  // namespace
+
+Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::vector<int32_t>& cell,
+                           const std::vector<PortalQuad>& portals, const AssignParams& params, Context& ctx) {
+  auto timer = ctx.time("assign");
+  Assignment out;
+  out.scene.materials = scene.materials;
+  out.scene.nodePaths = scene.nodePaths;
+  out.scene.cameras = scene.cameras;
+  const std::vector<int32_t> near = nearestCells(f, cell);
+  const float h = float(f.voxel);
+
+  auto labelAt = [&](const glm::vec3& p) -> int {
+    const glm::ivec3 v = f.voxelOf(p);
+    return f.contains(v) ? cell[f.index(v)] : -1;
+  };
+  auto nearestAt = [&](const glm::vec3& p) -> int {
+    const glm::ivec3 v = glm::clamp(f.voxelOf(p), glm::ivec3(0), f.dims - 1);
+    return near[f.index(v)];
+  };
+  // The first labelled voxel stepping from p along dir.
+  auto faced = [&](const glm::vec3& p, const glm::vec3& dir) -> int {
+    for (float step : {1.0f, 1.5f, 2.0f, 3.0f}) {
+      const int l = labelAt(p + step * h * dir);
+      if (l >= 0) return l;
+    }
+    return -1;
+  };
+
+  std::vector<Piece> work;
+  for (size_t t = scene.triangles.size(); t-- > 0;) work.push_back({scene.triangles[t], uint32_t(t), 0});
+  std::vector<char> wasSplit(scene.triangles.size(), 0);
+  while (!work.empty()) {
+    const Piece piece = work.back();
+    work.pop_back();
+    const Triangle& tri = piece.tri;
+    const glm::vec3 n = tri.geometricNormal();
+    std::map<int, double> votes;
+    bool fellBack = false;
+    if (n == glm::vec3(0.0f)) {
+      votes[nearestAt(tri.centroid())] = 1.0;
+    } else {
+      float longest = 0.0f;
+      for (int i = 0; i < 3; ++i) longest = std::max(longest, glm::length(tri.p[size_t(i)] - tri.p[size_t((i + 1) % 3)]));
+      const int k = std::clamp(int(std::ceil(longest / (float(params.sampleSpacing) * h))), 1, params.maxSamplesPerEdge);
+      const float pieceArea = tri.area() / float(k * k);
+      // Centroids of the k² sub-triangles of the regular subdivision, in barycentric steps of 1/k.
+      for (int a = 0; a < k; ++a)
+        for (int b = 0; a + b < k; ++b)
+          for (int up = 0; up < 2; ++up) {
+            if (up && a + b + 1 >= k) continue;
+            const float ba = (a + (up ? 2.0f : 1.0f) / 3.0f) / float(k);
+            const float bb = (b + (up ? 2.0f : 1.0f) / 3.0f) / float(k);
+            const glm::vec3 p = tri.p[0] + ba * (tri.p[1] - tri.p[0]) + bb * (tri.p[2] - tri.p[0]);
+            int front = faced(p, n);
+            const int back = labelAt(p - h * n);
+            if (front >= 0 && back >= 0 && back != front) out.thinWallArea += pieceArea;
+            if (front < 0) front = faced(p, -n);
+            if (front < 0) front = nearestAt(p), fellBack = true;
+            votes[front] += 1.0;
+          }
+    }
+    // Two cells seen: split on the plane of a portal between them that the triangle crosses.
+    int best = -1;
+    double bestVotes = -1.0;
+    for (const auto& [c, w] : votes)
+      if (w > bestVotes) best = c, bestVotes = w;
+    if (votes.size() > 1 && piece.depth < params.maxSplitDepth) {
+      const PortalQuad* splitter = nullptr;
+      for (const PortalQuad& p : portals) {
+        if (!votes.count(p.cellA) || !votes.count(p.cellB)) continue;
+        const glm::vec3 c = p.centre();
+        float lo = 0.0f, hi = 0.0f;
+        for (const glm::vec3& q : tri.p) lo = std::min(lo, glm::dot(q - c, p.normal)), hi = std::max(hi, glm::dot(q - c, p.normal));
+        if (lo < -1e-4f && hi > 1e-4f) {
+          splitter = &p;
+          break;
+        }
+      }
+      if (splitter) {
+        const std::vector<Triangle> parts = splitByPlane(tri, splitter->centre(), splitter->normal);
+        if (parts.size() > 1) {
+          wasSplit[piece.source] = 1;
+          for (size_t q = parts.size(); q-- > 0;) work.push_back({parts[q], piece.source, piece.depth + 1});
+          continue;
+        }
+      }
+    }
+    out.fallbackTriangles += fellBack && votes.size() == 1;
+    out.scene.triangles.push_back(tri);
+    out.cellOfTriangle.push_back(best);
+    out.sourceTriangle.push_back(piece.source);
+  }
+  for (char s : wasSplit) out.splitTriangles += s;
+  ctx.progress("assign", 1.0);
+  return out;
+}
+
+}  // namespace cpgi::decomp

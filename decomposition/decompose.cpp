@@ -1,0 +1,141 @@
+#include "decomposition/decompose.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "decomposition/distance.h"
+#include "decomposition/voxelize.h"
+
+namespace cpgi::decomp {
+namespace {
+
+std::string metres(double v) {
+  std::ostringstream s;
+  s << v << " m";
+  return s.str();
+}
+
+void checkInput(const Scene& scene, const DecomposeParams& p) {
+  if (scene.triangles.empty()) throw InputError(p.sourceName, "the scene has no triangles");
+  for (size_t t = 0; t < scene.triangles.size(); ++t)
+    for (const glm::vec3& q : scene.triangles[t].p)
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+        throw InputError(p.sourceName, "triangle " + std::to_string(t) + " has a non-finite coordinate");
+  if (p.voxelSize < 0.0 || p.voxelSize > 10.0 || !std::isfinite(p.voxelSize))
+    throw InputError("--voxel", "must be in (0, 10] metres (0 chooses from the scene)");
+  if (p.sealRadius < 0.0 || p.sealRadius > 1.0 || !std::isfinite(p.sealRadius))
+    throw InputError("--seal", "must be in [0, 1] metres");
+  if (p.merge.saddleRatio < 0.0 || p.merge.saddleRatio > 1.0) throw InputError("--saddle-ratio", "must be in [0, 1]");
+  if (p.merge.minDepth < 0.0) throw InputError("--min-depth", "must be ≥ 0");
+  if (p.merge.minCellVolume < 0.0) throw InputError("--min-cell-volume", "must be ≥ 0");
+  if (p.merge.openingRatio < 0.0) throw InputError("--opening-ratio", "must be ≥ 0");
+}
+
+}  // namespace
+
+double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {
+  if (params.voxelSize > 0.0) {
+    if (how) *how = "given (--voxel)";
+    return params.voxelSize;
+  }
+  const glm::dvec3 size = glm::dvec3(scene.bounds().size()) + 0.5;  // padded so flat scenes get a volume
+  const double fromBudget = std::cbrt(size.x * size.y * size.z / params.autoVoxelBudget);
+  const double h = std::ceil(std::max(params.minAutoVoxel, fromBudget) * 1000.0) / 1000.0;
+  if (how) {
+    std::ostringstream s;
+    s << "auto: max(" << params.minAutoVoxel << " m, cbrt(padded bounds volume " << size.x * size.y * size.z
+      << " m3 / " << params.autoVoxelBudget << " voxels) = " << fromBudget << " m), rounded up to 1 mm";
+    *how = s.str();
+  }
+  return h;
+}
+
+Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
+  checkInput(scene, params);
+  Decomposition out;
+  const double h = chooseVoxelSize(scene, params, &out.voxelChoice);
+
+  VoxelizeParams vp;
+  vp.voxelSize = h;
+  vp.sealRadius = params.sealRadius;
+  const SolidGrid solid = voxelize(scene, vp, ctx);
+  out.frame = solid.frame;
+  out.sealedVoxels = solid.sealedVoxels;
+  SpaceGrid space = classifySpace(scene, solid, params.classify, ctx);
+
+  std::vector<PortalQuad> quads;
+  std::vector<float> peaks;
+  if (space.insideVoxels == 0) {
+    // Nothing enclosed: the scene is open (outdoors, or a building with a hole larger than the seal).
+    out.enclosed = false;
+    out.voxelCell.assign(out.frame.count(), -1);
+    for (size_t i = 0; i < space.space.size(); ++i)
+      if (space.space[i] == Space::Outside) out.voxelCell[i] = 0;
+    peaks.push_back(0.0f);
+    ctx.warn("decompose: " + params.sourceName + ": no enclosed empty space at " + metres(h) +
+             " voxels; the whole scene is one outside cell");
+  } else {
+    const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
+    const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
+    out.basins = basins.basinCount();
+    const CellLabels cells = mergeBasins(basins, params.merge, ctx);
+    PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
+    out.voxelCell = std::move(portals.cell);
+    out.leakingFaces = portals.leakingFaces;
+    peaks = cells.peak;
+    for (FittedPortal& fp : portals.portals) {
+      fp.quad.name = "portal:c" + std::to_string(fp.quad.cellA) + ":c" + std::to_string(fp.quad.cellB);
+      quads.push_back(fp.quad);
+    }
+    out.portals = std::move(portals.portals);
+    if (out.leakingFaces > 0)
+      ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
+               " voxel faces join two cells outside any portal");
+    if (cells.cellCount() == 0)
+      ctx.warn("decompose: " + params.sourceName + ": every enclosed region is smaller than --min-cell-volume");
+  }
+  out.space = std::move(space.space);
+
+  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
+  out.inputTriangles = scene.triangles.size();
+  out.scene = std::move(assigned.scene);
+  out.splitTriangles = assigned.splitTriangles;
+  out.fallbackTriangles = assigned.fallbackTriangles;
+  out.thinWallArea = assigned.thinWallArea;
+
+  // The graph, and per-cell statistics from the final labels.
+  const int cellCount = int(peaks.size());
+  out.graph.cells.resize(size_t(cellCount));
+  out.cellStats.resize(size_t(cellCount));
+  for (int c = 0; c < cellCount; ++c) {
+    out.graph.cells[size_t(c)].name = out.enclosed ? "c" + std::to_string(c) : "outside";
+    out.cellStats[size_t(c)].peak = peaks[size_t(c)];
+  }
+  for (size_t t = 0; t < assigned.cellOfTriangle.size(); ++t) {
+    const int c = assigned.cellOfTriangle[t];
+    if (c >= 0 && c < cellCount) out.graph.cells[size_t(c)].triangles.push_back(uint32_t(t));
+  }
+  const glm::vec3 half(float(0.5 * h));
+  for (size_t i = 0; i < out.voxelCell.size(); ++i) {
+    const int c = out.voxelCell[i];
+    if (c < 0 || c >= cellCount) continue;
+    CellStats& s = out.cellStats[size_t(c)];
+    ++s.voxels;
+    const glm::vec3 p = out.frame.centre(i);
+    s.bounds.extend(p - half), s.bounds.extend(p + half);
+  }
+  for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
+  out.graph.portals = std::move(quads);
+
+  if (out.thinWallArea > 0.1)
+    ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.thinWallArea) +
+             " m2 of wall between two cells is thinner than one voxel (" + metres(h) +
+             "); light may leak through it in a bake");
+  if (h > 0.125)
+    ctx.warn("decompose: " + params.sourceName + ": " + metres(h) + " voxels: doors narrower than " +
+             metres(8 * h) + " may not become portals (give --voxel)");
+  return out;
+}
+
+}  // namespace cpgi::decomp

@@ -1,0 +1,75 @@
+// Automatic cells and portals (Haumont, Debeir & Sillion, "Volumetric cell-and-portal generation",
+// Eurographics 2003), as a pipeline of stages over plain data, Recast style:
+//   1 voxelize   scene → solid voxels (OpenVDB unsigned distance, optional closing)     voxelize.h
+//   2 classify   empty voxels → outside / inside / void                                 classify.h
+//   3 distance   inside voxels → distance to the geometry (exact EDT)                   distance.h
+//   4 watershed  distance → basins and the saddles where they meet                      watershed.h
+//   5 merge      basins → cells (keep only real constrictions)                          merge.h
+//   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
+//   7 assign     triangles → the cell each faces, split on portal planes                assign.h
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/scene.h"
+#include "decomposition/assign.h"
+#include "decomposition/classify.h"
+#include "decomposition/merge.h"
+#include "decomposition/portals.h"
+#include "decomposition/watershed.h"
+
+namespace cpgi::decomp {
+
+struct DecomposeParams {
+  /// Voxel edge, metres; 0 = choose from the scene: max(minAutoVoxel, cbrt(padded bounds volume /
+  /// autoVoxelBudget)), rounded up to a whole millimetre. Explicit values must be in (0, 10].
+  double voxelSize = 0.0;
+  double minAutoVoxel = 0.05;       ///< metres: finer than needed for 0.7 m doors at 14 voxels
+  double autoVoxelBudget = 4.0e6;   ///< voxels the automatic choice aims at
+  double sealRadius = 0.0;          ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
+  ClassifyParams classify;
+  WatershedParams watershed;
+  MergeParams merge;
+  PortalParams portals;
+  AssignParams assign;
+  std::string sourceName = "scene"; ///< the input's name, for messages
+};
+
+struct CellStats {
+  double volume = 0.0;   ///< m³ of its empty voxels
+  Bounds bounds;         ///< of its empty voxels' cubes
+  float peak = 0.0f;     ///< largest distance to the geometry, metres (half the room's smallest extent)
+  size_t voxels = 0;
+};
+
+struct Decomposition {
+  Scene scene;      ///< the input, triangles split on portal planes where needed
+  CellGraph graph;  ///< cells (names "c0", "c1", …) and portals, indexing `scene`
+  std::vector<CellStats> cellStats;
+  std::vector<FittedPortal> portals;  ///< per graph portal: its constriction and fit
+  GridFrame frame;
+  std::vector<Space> space;           ///< per voxel
+  std::vector<int32_t> voxelCell;     ///< per voxel: the final cell, -1 for none
+  std::string voxelChoice;            ///< how the voxel size was chosen, in words
+  bool enclosed = true;               ///< false: no enclosed empty space; the outside is the only cell
+  int basins = 0;                     ///< watershed basins before merging
+  size_t leakingFaces = 0;            ///< see PortalSet::leakingFaces
+  size_t inputTriangles = 0;
+  size_t splitTriangles = 0;
+  size_t fallbackTriangles = 0;
+  double thinWallArea = 0.0;          ///< m², see Assignment::thinWallArea
+  size_t sealedVoxels = 0;
+};
+
+/// Picks the voxel size for `scene` by the rule in DecomposeParams::voxelSize; `how` gets the rule in words.
+double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how = nullptr);
+
+/// Runs the seven stages. Warnings (open scene, walls thinner than a voxel, leaks, coarse voxels) go to
+/// ctx.warn; each stage's time to ctx's timers.
+/// @throws InputError for an empty scene, non-finite coordinates or out-of-range parameters.
+Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx);
+
+}  // namespace cpgi::decomp

@@ -1,0 +1,127 @@
+#include "decomposition/merge.h"
+
+#include <cmath>
+#include <queue>
+#include <unordered_map>
+
+namespace cpgi::decomp {
+namespace {
+
+struct Interface {
+  float saddle = 0.0f;
+  uint64_t faces = 0;
+};
+
+struct Group {
+  float peak = 0.0f;
+  double volume = 0.0;  // voxels
+  std::unordered_map<int, Interface> neighbours;
+  int version = 0;
+  bool alive = true;
+};
+
+struct Candidate {
+  float saddle;
+  int a, b, versionA, versionB;
+  bool operator<(const Candidate& o) const { return saddle < o.saddle; }
+};
+
+}  // namespace
+
+CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params, Context& ctx) {
+  auto timer = ctx.time("merge");
+  const GridFrame& f = basins.frame;
+  const double h = f.voxel;
+  const int count = basins.basinCount();
+  std::vector<Group> groups(static_cast<size_t>(count));
+  for (int b = 0; b < count; ++b) groups[size_t(b)].peak = basins.peak[size_t(b)], groups[size_t(b)].volume = basins.volume[size_t(b)];
+  for (const BasinContact& c : basins.contacts) {
+    groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces};
+    groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces};
+  }
+
+  std::priority_queue<Candidate> queue;
+  auto pushAll = [&](int g) {
+    for (const auto& [other, iface] : groups[size_t(g)].neighbours)
+      queue.push({iface.saddle, g, other, groups[size_t(g)].version, groups[size_t(other)].version});
+  };
+  for (int b = 0; b < count; ++b) pushAll(b);
+
+  const double minVoxels = params.minCellVolume / f.voxelVolume();
+  auto shouldMerge = [&](const Group& x, const Group& y, const Interface& iface) {
+    const Group& small = x.volume <= y.volume ? x : y;
+    const float lowPeak = std::min(x.peak, y.peak);
+    if (small.volume < minVoxels) return true;
+    if (lowPeak <= 0.0f || iface.saddle / lowPeak > params.saddleRatio) return true;
+    if (lowPeak - iface.saddle < params.minDepth) return true;
+    const double crossSection = std::pow(small.volume, 2.0 / 3.0) * h * h;
+    return params.openingRatio > 0.0 && double(iface.faces) * h * h > params.openingRatio * crossSection;
+  };
+
+  std::vector<int> mergedInto(static_cast<size_t>(count));
+  for (int b = 0; b < count; ++b) mergedInto[size_t(b)] = b;
+  while (!queue.empty()) {
+    const Candidate c = queue.top();
+    queue.pop();
+    Group& ga = groups[size_t(c.a)];
+    Group& gb = groups[size_t(c.b)];
+    if (!ga.alive || !gb.alive || ga.version != c.versionA || gb.version != c.versionB) continue;
+    const auto it = ga.neighbours.find(c.b);
+    if (it == ga.neighbours.end() || !shouldMerge(ga, gb, it->second)) continue;
+    // Keep the group with more neighbours, fold the other into it.
+    const int keep = ga.neighbours.size() >= gb.neighbours.size() ? c.a : c.b;
+    const int gone = keep == c.a ? c.b : c.a;
+    Group& k = groups[size_t(keep)];
+    Group& g = groups[size_t(gone)];
+    for (const auto& [other, iface] : g.neighbours) {
+      if (other == keep) continue;
+      Interface& merged = k.neighbours[other];
+      merged.saddle = std::max(merged.saddle, iface.saddle);
+      merged.faces += iface.faces;
+      auto& back = groups[size_t(other)].neighbours;
+      back.erase(gone);
+      back[keep] = merged;
+    }
+    k.neighbours.erase(gone);
+    k.peak = std::max(k.peak, g.peak);
+    k.volume += g.volume;
+    ++k.version;
+    g.alive = false;
+    g.neighbours.clear();
+    mergedInto[size_t(gone)] = keep;
+    pushAll(keep);
+  }
+
+  auto root = [&](int b) {
+    while (mergedInto[size_t(b)] != b) b = mergedInto[size_t(b)];
+    return b;
+  };
+  CellLabels out;
+  out.frame = f;
+  out.cell.assign(f.count(), -1);
+  out.cellOfBasin.assign(size_t(count), -1);
+  std::vector<int> cellOfGroup(size_t(count), -1);
+  for (int b = 0; b < count; ++b) {
+    const Group& g = groups[size_t(root(b))];
+    if (g.volume < minVoxels) ++out.droppedBasins;
+  }
+  for (size_t i = 0; i < out.cell.size(); ++i) {
+    const int b = basins.basin[i];
+    if (b < 0) continue;
+    const int r = root(b);
+    if (groups[size_t(r)].volume < minVoxels) continue;
+    if (cellOfGroup[size_t(r)] < 0) {
+      cellOfGroup[size_t(r)] = out.cellCount();
+      out.peak.push_back(groups[size_t(r)].peak);
+      out.volume.push_back(0);
+    }
+    const int c = cellOfGroup[size_t(r)];
+    out.cell[i] = c;
+    ++out.volume[size_t(c)];
+  }
+  for (int b = 0; b < count; ++b) out.cellOfBasin[size_t(b)] = cellOfGroup[size_t(root(b))];
+  ctx.progress("merge", 1.0);
+  return out;
+}
+
+}  // namespace cpgi::decomp

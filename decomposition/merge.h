@@ -1,0 +1,47 @@
+// Stage 5: merging watershed basins into cells. The raw watershed over-segments: every plateau patch and
+// every gap between chair legs is a basin. Two basins stay apart only when the place where they meet is
+// a real constriction relative to both of them (Haumont et al. 2003, §3.3).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/context.h"
+#include "decomposition/watershed.h"
+
+namespace cpgi::decomp {
+
+/// Two neighbouring groups of basins A and B (peaks pA ≤ pB, saddle s, shared interface area I,
+/// volumes VA ≤ VB) are merged when ANY of these holds:
+struct MergeParams {
+  /// s / pA > saddleRatio: the opening is nearly as wide as the smaller room is deep. In [0, 1]; higher
+  /// keeps more portals. A 1 m door (s ≈ 0.5 m) between 3 m high rooms (p ≈ 1.5 m) has 0.33.
+  double saddleRatio = 0.75;
+  /// pA − s < minDepth, metres: the dip between them is shallow (furniture, pillars, plateau noise).
+  /// The same door has 1.0 m; the space between 0.3 m columns at 0.8 m spacing ~0.15 m.
+  double minDepth = 0.2;
+  /// I / VA^(2/3) > openingRatio: the interface is as large as the smaller basin's cross-section (a row
+  /// of tall pillars 2 m apart: ~1; a door into a 4 × 4 × 3 m room: ~0.16). 0 disables.
+  double openingRatio = 0.6;
+  /// Any group smaller than this, m³, joins the neighbour it meets at the highest saddle; an isolated
+  /// one is dropped (its voxels become unlabelled).
+  double minCellVolume = 1.0;
+};
+
+struct CellLabels {
+  GridFrame frame;
+  std::vector<int32_t> cell;         ///< per voxel: cell index, -1 where no cell
+  std::vector<int32_t> cellOfBasin;  ///< per watershed basin, -1 for a dropped one
+  std::vector<float> peak;           ///< per cell, metres
+  std::vector<uint32_t> volume;      ///< per cell, voxels
+  int droppedBasins = 0;
+  int cellCount() const { return int(peak.size()); }
+};
+
+/// Greedy agglomeration: candidate contacts from the highest saddle down, each re-tested whenever one of
+/// its groups changes (a merge sums volumes and interfaces and keeps the higher peak and saddle). Cells
+/// are numbered by their lowest voxel index, so the numbering does not depend on the merge order.
+/// Run after floodWatershed.
+CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params, Context& ctx);
+
+}  // namespace cpgi::decomp

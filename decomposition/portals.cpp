@@ -1,0 +1,298 @@
+#include "decomposition/portals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/linear_least_squares_fitting_3.h>
+#include <CGAL/min_quadrilateral_2.h>
+
+namespace cpgi::decomp {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// A voxel face between cells a < b: the face between voxel `lower` and its +axis neighbour.
+struct Face {
+  int a, b;
+  size_t lower;
+  int axis;
+  int sign;         // +1 when the +axis side is cell b
+  float saddle;     // min of the two voxels' distances, metres
+};
+
+uint64_t halfKey(const glm::ivec3& h) {
+  return (uint64_t(uint32_t(h.x)) << 42) | (uint64_t(uint32_t(h.y)) << 21) | uint64_t(uint32_t(h.z));
+}
+
+int findRoot(std::vector<int>& parent, int x) {
+  while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
+  return x;
+}
+
+// Fits one quad to the faces of one opening.
+FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& faces, double margin) {
+  const float h = float(f.voxel);
+  std::vector<Kernel::Point_3> mids;
+  std::vector<glm::vec3> corners;
+  glm::vec3 meanDir(0.0f);
+  FittedPortal out;
+  for (const Face* face : faces) {
+    glm::vec3 axis(0.0f);
+    axis[face->axis] = 1.0f;
+    const glm::vec3 m = f.centre(face->lower) + 0.5f * h * axis;
+    mids.emplace_back(m.x, m.y, m.z);
+    meanDir += float(face->sign) * axis;
+    glm::vec3 e1(0.0f), e2(0.0f);
+    e1[(face->axis + 1) % 3] = 0.5f * h;
+    e2[(face->axis + 2) % 3] = 0.5f * h;
+    for (float s1 : {-1.0f, 1.0f})
+      for (float s2 : {-1.0f, 1.0f}) corners.push_back(m + s1 * e1 + s2 * e2);
+    out.halfWidth = std::max(out.halfWidth, face->saddle);
+  }
+  out.faces = uint32_t(faces.size());
+
+  Kernel::Plane_3 plane;
+  Kernel::Point_3 centroid;
+  glm::vec3 n = glm::normalize(meanDir);
+  if (mids.size() >= 3) {
+    CGAL::linear_least_squares_fitting_3(mids.begin(), mids.end(), plane, centroid, CGAL::Dimension_tag<0>());
+    const auto pn = plane.orthogonal_vector();
+    glm::vec3 fitted(float(pn.x()), float(pn.y()), float(pn.z()));
+    fitted = glm::normalize(fitted);
+    if (glm::dot(fitted, n) < 0.0f) fitted = -fitted;
+    // A fit that disagrees with the faces' own orientation means the faces are (nearly) collinear — a
+    // one-voxel crack — and the plane is not determined by them; the faces' mean direction is.
+    if (glm::dot(fitted, n) > 0.5f) n = fitted;
+  } else {
+    glm::vec3 c(0.0f);
+    for (const auto& p : mids) c += glm::vec3(float(p.x()), float(p.y()), float(p.z()));
+    c /= float(mids.size());
+    centroid = Kernel::Point_3(c.x, c.y, c.z);
+  }
+  const glm::vec3 c(float(centroid.x()), float(centroid.y()), float(centroid.z()));
+  // In-plane basis (u, v, n) right-handed, u from the world axis least aligned with n.
+  glm::vec3 ref(0.0f);
+  ref[std::abs(n.x) < std::abs(n.y) ? (std::abs(n.x) < std::abs(n.z) ? 0 : 2) : (std::abs(n.y) < std::abs(n.z) ? 1 : 2)] = 1.0f;
+  const glm::vec3 u = glm::normalize(glm::cross(ref, n));
+  const glm::vec3 v = glm::cross(n, u);
+
+  std::vector<Kernel::Point_2> projected, hull, rect;
+  projected.reserve(corners.size());
+  for (const glm::vec3& p : corners) projected.emplace_back(glm::dot(p - c, u), glm::dot(p - c, v));
+  CGAL::convex_hull_2(projected.begin(), projected.end(), std::back_inserter(hull));
+  CGAL::min_rectangle_2(hull.begin(), hull.end(), std::back_inserter(rect));
+
+  // Rectangle centre and half-axes in the plane, then grown by the margin.
+  glm::vec2 r[4];
+  for (int i = 0; i < 4; ++i) r[i] = glm::vec2(float(rect[size_t(i)].x()), float(rect[size_t(i)].y()));
+  const glm::vec2 rc = 0.25f * (r[0] + r[1] + r[2] + r[3]);
+  glm::vec2 a1 = r[1] - r[0], a2 = r[3] - r[0];
+  const float l1 = glm::length(a1), l2 = glm::length(a2);
+  a1 = l1 > 0.0f ? a1 / l1 : glm::vec2(1, 0);
+  a2 = l2 > 0.0f ? a2 / l2 : glm::vec2(-a1.y, a1.x);
+  const float grow = float(margin) * h;
+  const float half1 = 0.5f * l1 + grow, half2 = 0.5f * l2 + grow;
+  const glm::vec3 centre = c + rc.x * u + rc.y * v;
+  const glm::vec3 w1 = a1.x * u + a1.y * v, w2 = a2.x * u + a2.y * v;
+  const glm::vec3 e1 = half1 * w1;
+  glm::vec3 e2 = half2 * w2;
+  if (glm::dot(glm::cross(e1, e2), n) < 0.0f) e2 = -e2;  // corners counter-clockwise about n
+  out.quad.corners = {centre - e1 - e2, centre + e1 - e2, centre + e1 + e2, centre - e1 + e2};
+  computePortalFrame(out.quad);
+  out.quad.normal = n;  // the fitted plane's normal (computePortalFrame's agrees up to rounding)
+  out.quad.cellA = faces.front()->a;
+  out.quad.cellB = faces.front()->b;
+  float depth = 0.0f;
+  for (const auto& p : mids) depth = std::max(depth, std::abs(glm::dot(glm::vec3(float(p.x()), float(p.y()), float(p.z())) - centre, n)));
+  out.depth = depth + h;
+  return out;
+}
+
+// Moves the portal along its normal to the middle of the narrowest stretch of the opening. The watershed
+// interface lies anywhere along a door's depth (its width is the same all through the wall); the cross-
+// section of empty voxels within the quad's footprint, slice by slice along the normal, is smallest
+// across the whole depth of the wall, and the middle of that run is the wall's mid-plane.
+void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vector<int32_t>& cell, float searchRange) {
+  PortalQuad& q = fp.quad;
+  const float h = float(f.voxel);
+  const glm::vec3 c = q.centre();
+  const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
+  const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
+  if (hu <= 0.0f || hv <= 0.0f) return;
+  const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
+  const int bins = 2 * int(std::ceil(searchRange / h)) + 1, mid = bins / 2;
+  // Slices measured from the voxel centre nearest the quad's centre, so that for axis-aligned portals
+  // every voxel layer falls in the middle of one slice.
+  const glm::vec3 ref = f.centre(f.voxelOf(c));
+  std::vector<size_t> count(size_t(bins), 0);
+  Bounds box;
+  for (const glm::vec3& k : q.corners) box.extend(k - searchRange * q.normal), box.extend(k + searchRange * q.normal);
+  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0)), hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        if (cell[i] != q.cellA && cell[i] != q.cellB) continue;
+        const glm::vec3 p = f.centre(i) - c;
+        if (std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
+        const int b = mid + int(std::floor(glm::dot(f.centre(i) - ref, q.normal) / h + 0.5f));
+        if (b >= 0 && b < bins) ++count[size_t(b)];
+      }
+  // The run of near-minimal slices nearest the fitted plane.
+  const size_t least = *std::min_element(count.begin(), count.end());
+  const size_t limit = least + std::max<size_t>(1, least / 50);
+  int best = -1;
+  for (int b = 0; b < bins; ++b)
+    if (count[size_t(b)] <= limit && (best < 0 || std::abs(b - mid) < std::abs(best - mid))) best = b;
+  if (best < 0) return;
+  int first = best, last = best;
+  while (first > 0 && count[size_t(first - 1)] <= limit) --first;
+  while (last + 1 < bins && count[size_t(last + 1)] <= limit) ++last;
+  // A run reaching the end of the search is not a constriction we can centre on.
+  if (first == 0 || last == bins - 1) return;
+  const float shift = glm::dot(ref - c, q.normal) + 0.5f * float(first + last - 2 * mid) * h;
+  for (glm::vec3& k : q.corners) k += shift * q.normal;
+  fp.depth += std::abs(shift);
+}
+
+}  // namespace
+
+bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance) {
+  const glm::vec3 c = portal.centre();
+  const float sa = glm::dot(a - c, portal.normal), sb = glm::dot(b - c, portal.normal);
+  if ((sa > 0.0f && sb > 0.0f) || (sa < 0.0f && sb < 0.0f) || sa == sb) return false;
+  const glm::vec3 x = a + (sa / (sa - sb)) * (b - a);
+  const glm::vec3 o = portal.corners[0];
+  const glm::vec3 eu = portal.corners[1] - o, ev = portal.corners[3] - o;
+  const float lu = glm::length(eu), lv = glm::length(ev);
+  if (lu <= 0.0f || lv <= 0.0f) return false;
+  const float pu = glm::dot(x - o, eu / lu), pv = glm::dot(x - o, ev / lv);
+  return pu >= -tolerance && pu <= lu + tolerance && pv >= -tolerance && pv <= lv + tolerance;
+}
+
+size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell, const std::vector<PortalQuad>& portals) {
+  std::map<std::pair<int, int>, std::vector<const PortalQuad*>> byPair;
+  for (const PortalQuad& p : portals) byPair[{std::min(p.cellA, p.cellB), std::max(p.cellA, p.cellB)}].push_back(&p);
+  const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+  const float tolerance = 0.5f * float(f.voxel);
+  size_t leaks = 0;
+  for (int z = 0; z + 1 < f.dims.z; ++z)
+    for (int y = 0; y + 1 < f.dims.y; ++y)
+      for (int x = 0; x + 1 < f.dims.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        const int a = cell[i];
+        if (a < 0) continue;
+        for (int k = 0; k < 3; ++k) {
+          const size_t j = size_t(ptrdiff_t(i) + strides[k]);
+          const int b = cell[j];
+          if (b < 0 || b == a) continue;
+          const auto it = byPair.find({std::min(a, b), std::max(a, b)});
+          bool crossed = false;
+          if (it != byPair.end())
+            for (const PortalQuad* p : it->second)
+              if (segmentCrossesPortal(*p, f.centre(i), f.centre(j), tolerance)) {
+                crossed = true;
+                break;
+              }
+          leaks += !crossed;
+        }
+      }
+  return leaks;
+}
+
+PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx) {
+  auto timer = ctx.time("portals");
+  const GridFrame& f = cells.frame;
+  PortalSet out;
+  out.cell = cells.cell;
+
+  // 1. Every face between two cells.
+  std::vector<Face> faces;
+  const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+  for (int z = 0; z + 1 < f.dims.z; ++z)
+    for (int y = 0; y + 1 < f.dims.y; ++y)
+      for (int x = 0; x + 1 < f.dims.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        const int a = cells.cell[i];
+        if (a < 0) continue;
+        for (int k = 0; k < 3; ++k) {
+          const size_t j = size_t(ptrdiff_t(i) + strides[k]);
+          const int b = cells.cell[j];
+          if (b < 0 || b == a) continue;
+          const float s = float(std::min(distance.metres(i), distance.metres(j)));
+          faces.push_back({std::min(a, b), std::max(a, b), i, k, a < b ? 1 : -1, s});
+        }
+      }
+  std::sort(faces.begin(), faces.end(), [](const Face& p, const Face& q) {
+    return p.a != q.a ? p.a < q.a : p.b != q.b ? p.b < q.b : p.lower < q.lower;
+  });
+
+  // 2. Per pair of cells, openings = faces connected within one voxel (half-coordinates within 2).
+  for (size_t lo = 0; lo < faces.size();) {
+    size_t hi = lo;
+    while (hi < faces.size() && faces[hi].a == faces[lo].a && faces[hi].b == faces[lo].b) ++hi;
+    const int n = int(hi - lo);
+    std::unordered_map<uint64_t, int> at;
+    std::vector<glm::ivec3> half(static_cast<size_t>(n));
+    for (int q = 0; q < n; ++q) {
+      const Face& face = faces[lo + size_t(q)];
+      glm::ivec3 hc = 2 * f.coord(face.lower);
+      hc[face.axis] += 1;
+      half[size_t(q)] = hc;
+      at[halfKey(hc)] = q;
+    }
+    std::vector<int> parent(static_cast<size_t>(n));
+    std::iota(parent.begin(), parent.end(), 0);
+    for (int q = 0; q < n; ++q)
+      for (int dz = -2; dz <= 2; ++dz)
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            const auto it = at.find(halfKey(half[size_t(q)] + glm::ivec3(dx, dy, dz)));
+            if (it != at.end()) parent[size_t(findRoot(parent, q))] = findRoot(parent, it->second);
+          }
+    std::map<int, std::vector<const Face*>> openings;
+    for (int q = 0; q < n; ++q) openings[findRoot(parent, q)].push_back(&faces[lo + size_t(q)]);
+    for (const auto& [root, members] : openings) out.portals.push_back(fitOpening(f, members, params.marginVoxels));
+    lo = hi;
+  }
+
+  // 3. Each portal to the middle of its constriction.
+  for (FittedPortal& fp : out.portals) centreInConstriction(fp, f, cells.cell, params.searchRange);
+
+  // 4. Relabel a slab around each portal by the side of its plane, so the cells meet at the quad.
+  for (const FittedPortal& fp : out.portals) {
+    const PortalQuad& q = fp.quad;
+    Bounds box;
+    for (const glm::vec3& c : q.corners) box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
+    const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
+    const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+    const glm::vec3 c = q.centre();
+    const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
+    const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
+    const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const size_t i = f.index(x, y, z);
+          const int l = out.cell[i];
+          if (l != q.cellA && l != q.cellB) continue;
+          const glm::vec3 p = f.centre(i) - c;
+          const float s = glm::dot(p, q.normal);
+          if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
+          out.cell[i] = s < 0.0f ? q.cellA : q.cellB;
+        }
+  }
+
+  std::vector<PortalQuad> quads;
+  for (const FittedPortal& fp : out.portals) quads.push_back(fp.quad);
+  out.leakingFaces = countLeakingFaces(f, out.cell, quads);
+  ctx.progress("portals", 1.0);
+  return out;
+}
+
+}  // namespace cpgi::decomp

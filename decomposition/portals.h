@@ -1,0 +1,53 @@
+// Stage 6: one planar quad per opening between two cells (Haumont et al. 2003, §3.4): the surface where
+// the cells' voxels meet, fitted with a plane (CGAL least squares) and covered by the smallest enclosing
+// rectangle in that plane (CGAL min_rectangle_2). Afterwards the voxels near each portal are relabelled
+// by the side of its plane, so the cells meet exactly at the quads, and the result is checked.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "decomposition/distance.h"
+#include "decomposition/merge.h"
+
+namespace cpgi::decomp {
+
+struct PortalParams {
+  /// Added to every side of the fitted rectangle, voxels: the empty voxels stop up to about half a voxel
+  /// short of the real surface (the solid band is half a voxel thick), so the quad is widened back.
+  double marginVoxels = 0.5;
+  /// How far along its normal a portal may move to reach the middle of its constriction, metres (the
+  /// deepest door reveal expected; the watershed puts the interface anywhere along a door's depth).
+  float searchRange = 0.6f;
+};
+
+struct FittedPortal {
+  PortalQuad quad;        ///< cellA < cellB; normal from A into B; name "portal:<A>:<B>" is set by the caller
+  float halfWidth = 0.0f; ///< the constriction: max over the interface of min(distance), metres
+  uint32_t faces = 0;     ///< voxel faces of the interface it was fitted to
+  float depth = 0.0f;     ///< half-thickness of the slab relabelled around its plane, metres
+};
+
+struct PortalSet {
+  std::vector<FittedPortal> portals;
+  std::vector<int32_t> cell;  ///< the cell labels after relabelling around the portals
+  /// Voxel faces between two different cells that do not cross a portal of those two cells (within half
+  /// a voxel of its quad): 0 means no path of empty voxels leads from one cell to another except
+  /// through a portal.
+  size_t leakingFaces = 0;
+};
+
+/// Splits the faces between each pair of cells into connected openings (faces within one voxel of each
+/// other) and fits one quad to each. Run after mergeBasins.
+PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx);
+
+/// Counts voxel faces between different cells that cross no portal joining those cells (see PortalSet).
+size_t countLeakingFaces(const GridFrame& frame, const std::vector<int32_t>& cell,
+                         const std::vector<PortalQuad>& portals);
+
+/// True when the segment a→b crosses the portal's plane inside its quad grown by `tolerance` metres.
+bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance);
+
+}  // namespace cpgi::decomp

@@ -1,0 +1,85 @@
+#include "decomposition/report.h"
+
+namespace cpgi::decomp {
+namespace {
+
+nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams& params, const Context& ctx) {
+  using nlohmann::json;
+  json j;
+  j["scene"] = params.sourceName;
+  j["parameters"] = {
+      {"voxel_m", d.frame.voxel},
+      {"voxel_choice", d.voxelChoice},
+      {"seal_m", params.sealRadius},
+      {"level_step_voxels", params.watershed.levelStep},
+      {"saddle_ratio", params.merge.saddleRatio},
+      {"min_depth_m", params.merge.minDepth},
+      {"opening_ratio", params.merge.openingRatio},
+      {"min_cell_volume_m3", params.merge.minCellVolume},
+      {"min_component_volume_m3", params.classify.minComponentVolume},
+      {"portal_margin_voxels", params.portals.marginVoxels},
+      {"portal_search_m", params.portals.searchRange},
+  };
+  size_t counts[4] = {0, 0, 0, 0};
+  for (Space s : d.space) ++counts[size_t(s)];
+  j["grid"] = {{"dims", {d.frame.dims.x, d.frame.dims.y, d.frame.dims.z}},
+               {"origin_m", {d.frame.origin.x, d.frame.origin.y, d.frame.origin.z}},
+               {"voxels", d.frame.count()},
+               {"solid", counts[size_t(Space::Solid)]},
+               {"inside", counts[size_t(Space::Inside)]},
+               {"outside", counts[size_t(Space::Outside)]},
+               {"void", counts[size_t(Space::Void)]},
+               {"sealed", d.sealedVoxels}};
+  j["enclosed"] = d.enclosed;
+  json cells = json::array();
+  for (size_t c = 0; c < d.graph.cells.size(); ++c) {
+    const CellStats& s = d.cellStats[c];
+    cells.push_back({{"name", d.graph.cells[c].name},
+                     {"volume_m3", s.volume},
+                     {"bounds_m", {vec(s.bounds.lo), vec(s.bounds.hi)}},
+                     {"peak_m", s.peak},
+                     {"voxels", s.voxels},
+                     {"triangles", d.graph.cells[c].triangles.size()},
+                     {"portals", d.graph.portalsOf(int(c))}});
+  }
+  j["cells"] = cells;
+  json portals = json::array();
+  for (size_t p = 0; p < d.graph.portals.size(); ++p) {
+    const PortalQuad& q = d.graph.portals[p];
+    json corners = json::array();
+    for (const glm::vec3& c : q.corners) corners.push_back(vec(c));
+    json e = {{"name", q.name},
+              {"cells", {d.graph.cells[size_t(q.cellA)].name, d.graph.cells[size_t(q.cellB)].name}},
+              {"corners", corners},
+              {"centre", vec(q.centre())},
+              {"normal", vec(q.normal)},
+              {"area_m2", q.area}};
+    if (p < d.portals.size()) e["half_width_m"] = d.portals[p].halfWidth, e["interface_faces"] = d.portals[p].faces;
+    portals.push_back(e);
+  }
+  j["portals"] = portals;
+  j["counts"] = {{"cells", d.graph.cells.size()},
+                 {"portals", d.graph.portals.size()},
+                 {"basins", d.basins},
+                 {"triangles_in", d.inputTriangles},
+                 {"triangles_out", d.scene.triangles.size()},
+                 {"split_triangles", d.splitTriangles},
+                 {"fallback_triangles", d.fallbackTriangles}};
+  j["checks"] = {{"leaking_faces", d.leakingFaces}, {"thin_wall_area_m2", d.thinWallArea}, {"connected", d.graph.connected()}};
+  json timings = json::object();
+  double total = 0.0;
+  for (const Context::Timing& t : ctx.timings()) {
+    timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
+    total += t.seconds;
+  }
+  timings["total"] = total;
+  j["timings_s"] = timings;
+  j["warnings"] = ctx.warnings();
+  return j;
+}
+
+}  // namespace cpgi::decomp

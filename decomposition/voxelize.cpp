@@ -1,0 +1,95 @@
+#include "decomposition/voxelize.h"
+
+#include <cmath>
+#include <string>
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/Morphology.h>
+
+#include "core/error.h"
+
+namespace cpgi::decomp {
+namespace {
+
+// meshToVolume's MeshDataAdapter over the scene's triangles, in the grid's index space.
+class TriangleAdapter {
+ public:
+  TriangleAdapter(const Scene& scene, const GridFrame& frame) : scene_(scene), frame_(frame) {}
+  size_t polygonCount() const { return scene_.triangles.size(); }
+  size_t pointCount() const { return scene_.triangles.size() * 3; }
+  size_t vertexCount(size_t) const { return 3; }
+  void getIndexSpacePoint(size_t n, size_t v, openvdb::Vec3d& pos) const {
+    const glm::dvec3 q = (glm::dvec3(scene_.triangles[n].p[v]) - frame_.origin) / frame_.voxel;
+    pos = openvdb::Vec3d(q.x, q.y, q.z);
+  }
+
+ private:
+  const Scene& scene_;
+  const GridFrame& frame_;
+};
+
+}  // namespace
+
+SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx) {
+  auto timer = ctx.time("voxelize");
+  openvdb::initialize();
+  SolidGrid out;
+  const Bounds b = scene.bounds();
+  const double h = params.voxelSize;
+  out.sealVoxels = params.sealRadius > 0.0 ? std::max(1, int(std::lround(params.sealRadius / h))) : 0;
+  const int pad = 2 + out.sealVoxels;
+  GridFrame& f = out.frame;
+  f.voxel = h;
+  f.origin = glm::dvec3(b.lo) - pad * h;
+  const glm::dvec3 span = glm::dvec3(b.hi - b.lo) / h;
+  const double total = (std::ceil(span.x) + 2 * pad + 1) * (std::ceil(span.y) + 2 * pad + 1) *
+                       (std::ceil(span.z) + 2 * pad + 1);
+  if (!(total <= double(params.maxVoxels)))
+    throw InputError("--voxel", std::to_string(h) + " m gives " + std::to_string(size_t(total)) +
+                                    " voxels, more than the limit of " + std::to_string(params.maxVoxels));
+  f.dims = glm::ivec3(int(std::ceil(span.x)) + 2 * pad + 1, int(std::ceil(span.y)) + 2 * pad + 1,
+                      int(std::ceil(span.z)) + 2 * pad + 1);
+
+  // Index space is our own (see TriangleAdapter); the transform only carries the voxel size, which
+  // meshToVolume uses to report distances in metres.
+  const auto xform = openvdb::math::Transform::createLinearTransform(h);
+  openvdb::Int32Grid indexGrid(-1);
+  openvdb::FloatGrid::Ptr udf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
+      TriangleAdapter(scene, f), *xform, 2.0f, 2.0f, openvdb::tools::UNSIGNED_DISTANCE_FIELD, &indexGrid);
+
+  // Solid where the centre is within half a voxel: then two face neighbours on opposite sides of any
+  // plane differ by at most one voxel in distance and cannot both be outside the band.
+  const float halfVoxel = float(0.5 * h) * (1.0f + 1e-4f);
+  openvdb::MaskGrid solidMask;
+  auto maskAcc = solidMask.getAccessor();
+  for (auto it = udf->cbeginValueOn(); it; ++it)
+    if (*it <= halfVoxel) maskAcc.setValueOn(it.getCoord());
+
+  if (out.sealVoxels > 0) {
+    const openvdb::Index64 before = solidMask.activeVoxelCount();
+    // Closing = dilation then erosion; face neighbours because OpenVDB erodes only by those.
+    openvdb::tools::dilateActiveValues(solidMask.tree(), out.sealVoxels, openvdb::tools::NN_FACE,
+                                       openvdb::tools::IGNORE_TILES);
+    openvdb::tools::erodeActiveValues(solidMask.tree(), out.sealVoxels, openvdb::tools::NN_FACE,
+                                      openvdb::tools::IGNORE_TILES);
+    out.sealedVoxels = size_t(solidMask.activeVoxelCount() - std::min(before, solidMask.activeVoxelCount()));
+  }
+
+  out.solid.assign(f.count(), 0);
+  out.nearestTriangle.assign(f.count(), -1);
+  for (auto it = solidMask.cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    const glm::ivec3 v(c.x(), c.y(), c.z());
+    if (f.contains(v)) out.solid[f.index(v)] = 1;
+  }
+  for (auto it = indexGrid.cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    const glm::ivec3 v(c.x(), c.y(), c.z());
+    if (f.contains(v)) out.nearestTriangle[f.index(v)] = *it;
+  }
+  ctx.progress("voxelize", 1.0);
+  return out;
+}
+
+}  // namespace cpgi::decomp

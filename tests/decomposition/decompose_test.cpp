@@ -1,0 +1,240 @@
+// End-to-end decomposition of scenes built in code, against their known rooms and doors.
+#include "decomposition/decompose.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "decomposition/compare.h"
+#include "tests/decomposition/scene_builder.h"
+
+namespace cpgi::decomp {
+namespace {
+
+using testing::makeThreeRooms;
+using testing::manualThreeRooms;
+using testing::SceneBuilder;
+using testing::ThreeRooms;
+using testing::ThreeRoomsOptions;
+
+Decomposition run(const Scene& scene, double voxel, Context& ctx, double seal = 0.0) {
+  DecomposeParams p;
+  p.voxelSize = voxel;
+  p.sealRadius = seal;
+  return decompose(scene, p, ctx);
+}
+
+// Labels of the inside voxels by the room their centre lies in.
+std::vector<int32_t> roomsByPosition(const Decomposition& d) {
+  std::vector<int32_t> rooms(d.frame.count(), -1);
+  for (size_t i = 0; i < rooms.size(); ++i)
+    if (d.space[i] == Space::Inside) rooms[i] = ThreeRooms::roomOf(d.frame.centre(i));
+  return rooms;
+}
+
+bool anyWarningContains(const Context& ctx, const std::string& text) {
+  for (const std::string& w : ctx.warnings())
+    if (w.find(text) != std::string::npos) return true;
+  return false;
+}
+
+TEST(Decompose, ThreeRoomsGiveThreeCellsAndTwoDoorPortals) {
+  Context ctx;
+  const double h = 0.1;
+  const Decomposition d = run(makeThreeRooms(), h, ctx);
+  for (const auto& w : ctx.warnings()) ADD_FAILURE() << w;
+  ASSERT_EQ(d.graph.cells.size(), 3u);
+  ASSERT_EQ(d.graph.portals.size(), 2u);
+  EXPECT_EQ(d.leakingFaces, 0u);
+  for (const PortalQuad& q : d.graph.portals) {
+    const int k = q.centre().x < 6.0f ? 1 : 2;
+    EXPECT_LT(glm::length(q.centre() - ThreeRooms::doorCentre(k)), h) << q.name;
+    EXPECT_GT(std::abs(q.normal.x), 0.999f) << q.name;
+    EXPECT_NEAR(q.area, 2.1f, 0.25f) << q.name;  // the door is 1.0 × 2.1 m
+    EXPECT_NE(q.cellA, q.cellB);
+  }
+  EXPECT_GE(adjustedRandIndex(d.voxelCell, roomsByPosition(d)), 0.97);
+  EXPECT_TRUE(d.graph.connected());
+  const CellValidation v = validateCells(d.scene, d.graph);
+  EXPECT_TRUE(v.errors.empty()) << v.errors.front();
+  EXPECT_TRUE(v.warnings.empty()) << v.warnings.front();
+}
+
+TEST(Decompose, FloorThroughTheDoorsIsSplitOnThePortalPlanes) {
+  Context ctx;
+  const Decomposition d = run(makeThreeRooms(), 0.1, ctx);
+  ASSERT_EQ(d.graph.portals.size(), 2u);
+  EXPECT_GE(d.splitTriangles, 4u);  // the floor's and the ceiling's two triangles each
+  // Every piece of the floor's top face lies on one side of each portal plane and belongs to the room
+  // on that side.
+  const float x1 = std::min(d.graph.portals[0].centre().x, d.graph.portals[1].centre().x);
+  const float x2 = std::max(d.graph.portals[0].centre().x, d.graph.portals[1].centre().x);
+  auto roomOf = [&](const glm::vec3& p) { return p.x < x1 ? 0 : p.x < x2 ? 1 : 2; };
+  std::vector<int> roomToCell(3, -1);
+  const std::vector<int> cellOf = d.graph.cellOfTriangle(d.scene.triangles.size());
+  for (size_t t = 0; t < d.scene.triangles.size(); ++t) {
+    const Triangle& tri = d.scene.triangles[t];
+    if (std::abs(tri.p[0].y) > 1e-5f || tri.geometricNormal().y < 0.99f) continue;  // floor top only
+    const int room = roomOf(tri.centroid());
+    for (const glm::vec3& q : tri.p) EXPECT_EQ(roomOf(q + 1e-3f * (tri.centroid() - q)), room);
+    if (roomToCell[size_t(room)] < 0) roomToCell[size_t(room)] = cellOf[t];
+    EXPECT_EQ(cellOf[t], roomToCell[size_t(room)]) << "floor piece " << t;
+  }
+  EXPECT_NE(roomToCell[0], roomToCell[1]);
+  EXPECT_NE(roomToCell[1], roomToCell[2]);
+}
+
+TEST(Decompose, AgreesWithHandMadeCells) {
+  Context ctx;
+  ThreeRoomsOptions o;
+  o.slabsPerRoom = true;
+  const Scene scene = makeThreeRooms(o);
+  const Decomposition d = run(scene, 0.1, ctx);
+  const CellGraph manual = manualThreeRooms(scene);
+  const std::vector<int32_t> labels = labelsFromCells(scene, manual, d.frame, d.space);
+  EXPECT_GE(adjustedRandIndex(d.voxelCell, labels), 0.95);
+  for (double iou : bestMatchIoU(labels, 3, d.voxelCell, int(d.graph.cells.size()))) EXPECT_GE(iou, 0.9);
+  const std::vector<PortalMatch> m = matchPortals(manual.portals, d.graph.portals);
+  ASSERT_EQ(m.size(), 2u);
+  for (const PortalMatch& pm : m) {
+    EXPECT_LT(pm.centreDistance, 0.1f);
+    EXPECT_LT(pm.normalAngle, 1.0f);
+    EXPECT_NEAR(pm.areaRatio, 1.0f, 0.15f);
+  }
+}
+
+TEST(Decompose, FurnishedRoomIsOneCell) {
+  SceneBuilder b;
+  b.box({-0.2f, -0.2f, -0.2f}, {5.2f, 0.0f, 4.2f});  // floor
+  b.box({-0.2f, 3.0f, -0.2f}, {5.2f, 3.2f, 4.2f});   // ceiling
+  b.box({-0.2f, 0, -0.2f}, {0, 3, 4.2f});
+  b.box({5, 0, -0.2f}, {5.2f, 3, 4.2f});
+  b.box({0, 0, -0.2f}, {5, 3, 0});
+  b.box({0, 0, 4}, {5, 3, 4.2f});
+  // A table with legs, a chair, a sofa, a wardrobe against a wall, a cube.
+  for (float x : {1.0f, 2.4f})
+    for (float z : {1.0f, 1.8f}) b.box({x, 0, z}, {x + 0.06f, 0.72f, z + 0.06f});
+  b.box({0.95f, 0.72f, 0.95f}, {2.5f, 0.76f, 1.9f});
+  b.box({1.5f, 0, 2.1f}, {1.95f, 0.45f, 2.55f});
+  b.box({1.5f, 0.45f, 2.5f}, {1.95f, 1.0f, 2.55f});
+  b.box({3.4f, 0, 0.1f}, {4.9f, 0.8f, 1.0f});
+  b.box({0.05f, 0, 3.3f}, {1.3f, 2.2f, 3.95f});
+  b.box({3.5f, 0, 2.8f}, {4.2f, 0.7f, 3.5f});
+  Context ctx;
+  const Decomposition d = run(b.scene(), 0.05, ctx);
+  EXPECT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_EQ(d.graph.portals.size(), 0u);
+  EXPECT_GT(d.basins, 1);  // the watershed did see the furniture; merging undid it
+}
+
+TEST(Decompose, LShapedCorridorIsOneCell) {
+  // A 1.2 m wide, 2.5 m high corridor: 8 m along x, then 6 m along z; walls 0.2 m.
+  SceneBuilder b;
+  const float w = 0.2f, W = 1.2f, H = 2.5f;
+  b.box({-w, -w, -w}, {8 + w, 0, 6 + w});
+  b.box({-w, H, -w}, {8 + w, H + w, 6 + w});
+  b.box({-w, 0, -w}, {8 + w, H, 0});          // outer wall along x
+  b.box({8, 0, 0}, {8 + w, H, 6 + w});        // outer wall along z
+  b.box({-w, 0, 0}, {0, H, W});               // start cap
+  b.box({-w, 0, W}, {8 - W, H, 6 + w});       // the inner block
+  b.box({8 - W, 0, 6}, {8, H, 6 + w});        // end cap
+  Context ctx;
+  const Decomposition d = run(b.scene(), 0.05, ctx);
+  EXPECT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_EQ(d.graph.portals.size(), 0u);
+}
+
+TEST(Decompose, HallOfPillarsIsNotOverSegmented) {
+  // 10 × 10 × 4 m with 0.4 m pillars every 2.5 m.
+  SceneBuilder b;
+  const float w = 0.2f, L = 10.0f, H = 4.0f;
+  b.box({-w, -w, -w}, {L + w, 0, L + w});
+  b.box({-w, H, -w}, {L + w, H + w, L + w});
+  b.box({-w, 0, -w}, {0, H, L + w});
+  b.box({L, 0, -w}, {L + w, H, L + w});
+  b.box({0, 0, -w}, {L, H, 0});
+  b.box({0, 0, L}, {L, H, L + w});
+  for (int i = 1; i < 4; ++i)
+    for (int k = 1; k < 4; ++k) b.box({2.5f * i - 0.2f, 0, 2.5f * k - 0.2f}, {2.5f * i + 0.2f, H, 2.5f * k + 0.2f});
+  Context ctx;
+  const Decomposition d = run(b.scene(), 0.1, ctx);
+  EXPECT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_EQ(d.graph.portals.size(), 0u);
+}
+
+TEST(Decompose, CrackNarrowerThanTheSealIsClosed) {
+  // A 0.1 m slit in the A|B wall: sealed by a 0.05 m closing (fills up to 3 voxels), open without one.
+  ThreeRoomsOptions o;
+  o.crackWidth = 0.1f;
+  Context sealedCtx, openCtx;
+  const Decomposition sealed = run(makeThreeRooms(o), 0.05, sealedCtx, 0.05);
+  EXPECT_GT(sealed.sealedVoxels, 0u);
+  EXPECT_EQ(sealed.graph.cells.size(), 3u);
+  EXPECT_EQ(sealed.graph.portals.size(), 2u);
+  EXPECT_EQ(sealed.leakingFaces, 0u);
+
+  const Decomposition open = run(makeThreeRooms(o), 0.05, openCtx);
+  EXPECT_EQ(open.graph.cells.size(), 3u);
+  ASSERT_EQ(open.graph.portals.size(), 3u);  // the two doors and the crack
+  EXPECT_EQ(open.leakingFaces, 0u);
+  float smallest = 1e9f;
+  for (const PortalQuad& q : open.graph.portals) smallest = std::min(smallest, q.area);
+  EXPECT_LT(smallest, 0.6f);  // the crack: 0.1 × 3 m
+}
+
+TEST(Decompose, CrackWiderThanTheSealStaysAnOpening) {
+  ThreeRoomsOptions o;
+  o.crackWidth = 0.3f;
+  Context ctx;
+  const Decomposition d = run(makeThreeRooms(o), 0.05, ctx, 0.05);
+  EXPECT_EQ(d.graph.cells.size(), 3u);
+  EXPECT_EQ(d.graph.portals.size(), 3u);
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
+TEST(Decompose, OpenSceneIsOneOutsideCellWithAMessage) {
+  SceneBuilder b;
+  b.box({-10, -0.1f, -10}, {10, 0, 10});  // ground
+  b.box({-2, 0, -2}, {2, 3, 2});          // a closed block of a house
+  b.box({4, 0, 4}, {5, 1, 6});
+  Context ctx;
+  const Decomposition d = run(b.scene(), 0.1, ctx);
+  EXPECT_FALSE(d.enclosed);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_EQ(d.graph.cells[0].name, "outside");
+  EXPECT_EQ(d.graph.cells[0].triangles.size(), d.scene.triangles.size());
+  EXPECT_TRUE(anyWarningContains(ctx, "no enclosed empty space"));
+}
+
+TEST(Decompose, WallsThinnerThanAVoxelAreReported) {
+  ThreeRoomsOptions o;
+  o.innerWall = 0.02f;
+  Context ctx;
+  const Decomposition d = run(makeThreeRooms(o), 0.1, ctx);
+  EXPECT_EQ(d.graph.cells.size(), 3u);
+  EXPECT_EQ(d.graph.portals.size(), 2u);
+  EXPECT_GT(d.thinWallArea, 10.0);  // both faces of both inner walls, less the doors: ~4 × 9.9 m²
+  EXPECT_TRUE(anyWarningContains(ctx, "thinner than one voxel"));
+}
+
+TEST(Decompose, RejectsEmptyAndNonFiniteInput) {
+  Context ctx;
+  EXPECT_THROW(run(Scene{}, 0.1, ctx), InputError);
+  Scene nan = makeThreeRooms();
+  nan.triangles[5].p[1].y = std::nanf("");
+  EXPECT_THROW(run(nan, 0.1, ctx), InputError);
+  EXPECT_THROW(run(makeThreeRooms(), -1.0, ctx), InputError);
+  EXPECT_THROW(run(makeThreeRooms(), 0.1, ctx, 5.0), InputError);
+}
+
+TEST(Decompose, ChoosesTheVoxelFromTheScene) {
+  DecomposeParams p;
+  std::string how;
+  EXPECT_DOUBLE_EQ(chooseVoxelSize(makeThreeRooms(), p, &how), 0.05);  // ~200 m³: the floor of 5 cm
+  EXPECT_NE(how.find("auto"), std::string::npos);
+  SceneBuilder big;
+  big.box({0, 0, 0}, {200, 20, 100});
+  EXPECT_NEAR(chooseVoxelSize(big.scene(), p), std::cbrt(200.5 * 20.5 * 100.5 / 4e6), 1e-3);
+}
+
+}  // namespace
+}  // namespace cpgi::decomp

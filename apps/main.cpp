@@ -10,6 +10,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "cpgi 0.1.0");
   cpgi::cli::CommandFn selected;
+  cpgi::cli::addInfoCommand(app, selected);
+  cpgi::cli::addGenerateCommand(app, selected);
+  cpgi::cli::addReferenceCommand(app, selected);
+  cpgi::cli::addCompareLightCommand(app, selected);
   cpgi::cli::addDecomposeCommand(app, selected);
   cpgi::cli::addCompareCellsCommand(app, selected);
 

@@ -100,6 +100,8 @@ void fillQuad(LightmapAtlas& atlas, int patchIndex, const Quad& q, const Scene& 
   const Material& m = scene.materials[p.material];
   const glm::vec3 u = q.corners[1] - q.corners[0], v = q.corners[3] - q.corners[0];
   const float texelArea = p.area / float(p.w * p.h);
+  Patch& chart = atlas.patches[patchIndex];
+  chart.origin = q.corners[0], chart.texelU = u / float(p.w), chart.texelV = v / float(p.h);
   for (int j = 0; j < p.h; ++j)
     for (int i = 0; i < p.w; ++i) {
       const size_t t = size_t(p.y + j) * atlas.width + (p.x + i);
@@ -133,6 +135,8 @@ void fillTriangle(LightmapAtlas& atlas, int patchIndex, uint32_t tri, const Scen
   const int o = triangleOrigin(t);
   const glm::vec3 a = t.p[o], e1 = t.p[(o + 1) % 3] - a, e2 = t.p[(o + 2) % 3] - a;
   const int s = p.w;
+  Patch& chart = atlas.patches[patchIndex];
+  chart.origin = a, chart.texelU = e1 / float(s), chart.texelV = e2 / float(s);
   // Centre (i+½, j+½)/s is strictly inside when i + j + 1 < s: s(s−1)/2 valid texels.
   const int valid = s * (s - 1) / 2;
   const float texelArea = p.area / float(valid);

@@ -43,6 +43,9 @@ struct Patch {
   glm::vec3 normal{0.0f};
   float area = 0.0f;               ///< m²
   int x = 0, y = 0, w = 0, h = 0;  ///< the chart in atlas texels (without padding)
+  /// World-space parametrisation of the chart: texel (i, j) covers the parallelogram
+  /// origin + [i, i+1]·texelU + [j, j+1]·texelV (its centre is the sample point when valid).
+  glm::vec3 origin{0.0f}, texelU{0.0f}, texelV{0.0f};
 };
 
 struct LightmapAtlas {

@@ -78,6 +78,9 @@ TEST(Atlas, TexelPositionsLieOnTheirPatch) {
     for (int32_t tri : patch.triangles)
       if (tri >= 0) on = on || onTriangle(s.triangles[tri], a.position[t]);
     EXPECT_TRUE(on) << "texel " << t << " of patch " << p;
+    const int i = int(t % a.width) - patch.x, j = int(t / a.width) - patch.y;
+    const glm::vec3 centre = patch.origin + (i + 0.5f) * patch.texelU + (j + 0.5f) * patch.texelV;
+    EXPECT_NEAR(glm::length(centre - a.position[t]), 0.0f, 1e-5f);
     EXPECT_NEAR(glm::length(a.normal[t]), 1.0f, 1e-5f);
     EXPECT_EQ(a.albedo[t], s.materials[patch.material].albedo);
     EXPECT_EQ(a.emission[t], s.materials[patch.material].emission);

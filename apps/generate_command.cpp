@@ -1,0 +1,57 @@
+// `cpgi generate NAME -o FILE`: writes one of the built-in scenes (the seed scenes of design.md §4 and the
+// stability scenes of §6) with its hand-made cells, portals and cameras, as glTF that Blender and every
+// cpgi command read back.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include "apps/commands.h"
+#include "core/error.h"
+#include "core/scene_io.h"
+#include "scenes/stability_scenes.h"
+
+namespace cpgi::cli {
+namespace {
+
+struct GenerateOptions {
+  std::string name;
+  std::string output;
+};
+
+int runGenerate(const GenerateOptions& o) {
+  const std::string ext = std::filesystem::path(o.output).extension().string();
+  if (ext != ".glb" && ext != ".gltf") throw InputError(o.output, "output must end in .glb or .gltf");
+  SeedScene scene;
+  try {
+    scene = makeBuiltinScene(o.name);
+  } catch (const std::invalid_argument&) {
+    std::string known;
+    for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+    throw InputError(o.name, "unknown built-in scene (known: " + known + ")");
+  }
+  const auto parent = std::filesystem::path(o.output).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw InputError(o.output, "cannot create its folder: " + ec.message());
+  GltfWriteOptions options;
+  options.cells = &scene.cells;
+  writeGltf(o.output, scene.scene, options);
+  std::cout << o.output << ": " << o.name << ", " << scene.scene.triangles.size() << " triangles, "
+            << scene.cells.cells.size() << " cells, " << scene.cells.portals.size() << " portals\n";
+  return 0;
+}
+
+}  // namespace
+
+void addGenerateCommand(CLI::App& app, CommandFn& selected) {
+  auto options = std::make_shared<GenerateOptions>();
+  std::string names;
+  for (const std::string& n : builtinSceneNames()) names += (names.empty() ? "" : ", ") + n;
+  CLI::App* sub = app.add_subcommand("generate", "Write a built-in scene as glTF, with its hand-made cells");
+  sub->add_option("name", options->name, names)->required();
+  sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required();
+  sub->callback([&selected, options] { selected = [options] { return runGenerate(*options); }; });
+}
+
+}  // namespace cpgi::cli

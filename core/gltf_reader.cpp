@@ -1,0 +1,503 @@
+// glTF 2.0 (.glb, .gltf) → RawScene. tinygltf parses; everything it hands back is bounds-checked here
+// before use, because a fuzzed file must end in an InputError, never in a crash.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <set>
+
+#include <tiny_gltf.h>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/scene_io_detail.h"
+
+namespace cpgi::detail {
+namespace {
+
+uint32_t readU32(const std::string& b, size_t at) {
+  uint32_t v;
+  std::memcpy(&v, b.data() + at, 4);
+  return v;  // glb is little-endian, as is every machine cpgi builds on
+}
+
+// The .glb container (12-byte header, JSON chunk, optional BIN chunk) checked up front, so that a
+// truncated file gets a message saying so. Returns the JSON chunk text.
+std::string checkGlbContainer(const std::string& path, const std::string& b) {
+  if (b.size() < 12)
+    throw InputError(path,
+                     "truncated .glb: " + std::to_string(b.size()) + " bytes, the header alone needs 12");
+  if (b.compare(0, 4, "glTF") != 0) throw InputError(path, "not a binary glTF file (no 'glTF' magic)");
+  if (readU32(b, 4) != 2)
+    throw InputError(path, "glTF container version " + std::to_string(readU32(b, 4)) + ", expected 2");
+  const uint64_t declared = readU32(b, 8);
+  if (declared > b.size())
+    throw InputError(path, "truncated .glb: the header says " + std::to_string(declared) +
+                               " bytes, the file has " + std::to_string(b.size()));
+  if (declared < 20) throw InputError(path, "invalid .glb: no JSON chunk");
+  const uint64_t jsonLength = readU32(b, 12);
+  if (readU32(b, 16) != 0x4E4F534Au) throw InputError(path, "invalid .glb: the first chunk is not JSON");
+  if (20 + jsonLength > declared)
+    throw InputError(path, "truncated .glb: the JSON chunk runs past the end of the file");
+  uint64_t at = 20 + ((jsonLength + 3) & ~uint64_t(3));
+  if (at + 8 <= declared) {
+    const uint64_t binLength = readU32(b, at);
+    if (readU32(b, at + 4) == 0x004E4942u && at + 8 + binLength > declared)
+      throw InputError(path, "truncated .glb: the BIN chunk runs past the end of the file");
+  }
+  return b.substr(20, jsonLength);
+}
+
+// nlohmann's messages start with "[json.exception.parse_error.101] "; the user needs the rest.
+void checkJson(const std::string& path, const std::string& text, const char* what) {
+  try {
+    const nlohmann::json parsed = nlohmann::json::parse(text);
+    (void)parsed;
+  } catch (const nlohmann::json::exception& e) {
+    std::string msg = e.what();
+    const size_t close = msg.find("] ");
+    if (close != std::string::npos) msg = msg.substr(close + 2);
+    throw InputError(path, std::string("invalid JSON ") + what + ": " + msg);
+  }
+}
+
+std::string firstLine(std::string s) {
+  while (!s.empty() && (s.front() == '\n' || s.front() == ' ')) s.erase(s.begin());
+  const size_t nl = s.find('\n');
+  if (nl != std::string::npos) s.resize(nl);
+  while (!s.empty() && (s.back() == '.' || s.back() == ' ' || s.back() == '\r')) s.pop_back();
+  return s;
+}
+
+std::string modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return std::to_string(mode);
+  }
+}
+
+glm::vec3 srgbToLinear(glm::vec3 c) {
+  for (int i = 0; i < 3; ++i)
+    c[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
+  return c;
+}
+
+class GltfReader {
+ public:
+  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), m_(model) {}
+
+  RawScene read() {
+    for (const std::string& ext : m_.extensionsRequired)
+      if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit")
+        fail("requires the glTF extension " + ext + ", which cpgi does not support");
+    materialIndex_.assign(m_.materials.size(), -1);
+
+    std::vector<int> roots;
+    if (m_.defaultScene >= 0 && m_.defaultScene < static_cast<int>(m_.scenes.size())) {
+      roots = m_.scenes[m_.defaultScene].nodes;
+    } else if (!m_.scenes.empty()) {
+      roots = m_.scenes[0].nodes;
+    } else {
+      std::vector<char> isChild(m_.nodes.size(), 0);
+      for (const tinygltf::Node& n : m_.nodes)
+        for (int c : n.children)
+          if (c >= 0 && c < static_cast<int>(m_.nodes.size())) isChild[c] = 1;
+      for (size_t i = 0; i < m_.nodes.size(); ++i)
+        if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+    visited_.assign(m_.nodes.size(), 0);
+    for (int r : roots) visit(r, glm::dmat4(1.0), "", -1, nullptr);
+    return std::move(raw_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) const { throw InputError(path_, problem); }
+
+  std::string nodeName(int i) const {
+    const std::string& n = m_.nodes[i].name;
+    return n.empty() ? "node" + std::to_string(i) : n;
+  }
+
+  glm::dmat4 localMatrix(const tinygltf::Node& n, const std::string& name) const {
+    if (!n.matrix.empty()) {
+      if (n.matrix.size() != 16) fail("node '" + name + "': matrix must have 16 numbers");
+      glm::dmat4 m;
+      std::memcpy(glm::value_ptr(m), n.matrix.data(), sizeof(double) * 16);  // both column-major
+      return m;
+    }
+    glm::dmat4 t(1.0), r(1.0), s(1.0);
+    if (!n.translation.empty()) {
+      if (n.translation.size() != 3) fail("node '" + name + "': translation must have 3 numbers");
+      t = glm::translate(glm::dmat4(1.0), glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+    }
+    if (!n.rotation.empty()) {
+      if (n.rotation.size() != 4) fail("node '" + name + "': rotation must have 4 numbers");
+      glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+      const double len = glm::length(q);
+      if (!(len > 0.0) || !std::isfinite(len)) fail("node '" + name + "': rotation is not a unit quaternion");
+      r = glm::mat4_cast(q / len);
+    }
+    if (!n.scale.empty()) {
+      if (n.scale.size() != 3) fail("node '" + name + "': scale must have 3 numbers");
+      s = glm::scale(glm::dmat4(1.0), glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+    }
+    return t * r * s;
+  }
+
+  void visit(int index, const glm::dmat4& parent, const std::string& parentPath, int cell,
+             RawScene::TaggedMesh* tagged) {
+    if (index < 0 || index >= static_cast<int>(m_.nodes.size()))
+      fail("a scene or node refers to node " + std::to_string(index) + ", which does not exist");
+    if (visited_[index]) fail("node '" + nodeName(index) + "' appears twice in the node hierarchy");
+    visited_[index] = 1;
+    const tinygltf::Node& node = m_.nodes[index];
+    const std::string name = nodeName(index);
+    const std::string path = parentPath.empty() ? name : parentPath + "/" + name;
+    const glm::dmat4 world = parent * localMatrix(node, name);
+
+    const CellTag tag = parseCellTag(path_, name);
+    std::vector<RawScene::TaggedMesh>* taggedList = nullptr;
+    switch (tag.kind) {
+      case CellTag::Kind::Cell:
+        if (cell >= 0) fail(name + ": is inside cell:" + raw_.cellNames[cell] + " (cells cannot nest)");
+        if (tagged) fail(name + ": is inside " + tagged->node);
+        if (std::find(raw_.cellNames.begin(), raw_.cellNames.end(), tag.a) != raw_.cellNames.end())
+          fail(name + ": two nodes define the same cell");
+        cell = raw_.cellIndex(tag.a);
+        break;
+      case CellTag::Kind::Portal:
+        taggedList = &raw_.portals;
+        break;
+      case CellTag::Kind::CellVolume:
+        taggedList = &raw_.volumes;
+        break;
+      case CellTag::Kind::None:
+        break;
+    }
+    if (taggedList) {
+      if (tagged) fail(name + ": is inside " + tagged->node);
+      taggedList->push_back({name, tag, {}});
+      tagged = &taggedList->back();
+    }
+
+    if (node.camera >= 0) addCamera(node.camera, world, name);
+    if (node.mesh >= 0) {
+      if (node.mesh >= static_cast<int>(m_.meshes.size()))
+        fail("node '" + name + "': mesh index out of range");
+      addMesh(m_.meshes[node.mesh], world, path, cell, tagged);
+    }
+    // Nothing below a tagged node can add another tagged node, so `tagged` stays valid.
+    for (int child : node.children) visit(child, world, path, cell, tagged);
+  }
+
+  void addCamera(int index, const glm::dmat4& world, const std::string& nodeName) {
+    if (index >= static_cast<int>(m_.cameras.size()))
+      fail("node '" + nodeName + "': camera index out of range");
+    const tinygltf::Camera& c = m_.cameras[index];
+    if (c.type != "perspective") {
+      raw_.warnings.push_back("camera of node '" + nodeName + "' is not perspective; ignored");
+      return;
+    }
+    Camera cam;
+    cam.name = c.name.empty() ? nodeName : c.name;
+    cam.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+    const glm::vec3 forward(world * glm::dvec4(0, 0, -1, 0));
+    const glm::vec3 up(world * glm::dvec4(0, 1, 0, 0));
+    if (!(glm::length(forward) > 0.0f) || !std::isfinite(glm::length(forward)) ||
+        !std::isfinite(glm::length(cam.position)))
+      fail("node '" + nodeName + "': camera transform is degenerate");
+    cam.forward = glm::normalize(forward);
+    cam.up = glm::normalize(up - glm::dot(up, cam.forward) * cam.forward);
+    cam.yfov = static_cast<float>(c.perspective.yfov);
+    cam.aspect =
+        c.perspective.aspectRatio > 0.0 ? static_cast<float>(c.perspective.aspectRatio) : 4.0f / 3.0f;
+    if (!(cam.yfov > 0.0f && cam.yfov < 3.14159f)) fail("camera '" + cam.name + "': yfov must be in (0, pi)");
+    raw_.scene.cameras.push_back(cam);
+  }
+
+  // A checked view of an accessor's bytes.
+  struct View {
+    const unsigned char* data = nullptr;  // null: all zeros (accessor without bufferView)
+    size_t count = 0, stride = 0;
+    int componentType = 0, components = 0;
+  };
+
+  View view(int index, const std::string& what) const {
+    if (index < 0 || index >= static_cast<int>(m_.accessors.size()))
+      fail(what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = m_.accessors[index];
+    if (a.sparse.isSparse) fail(what + ": sparse accessors are not supported");
+    View v;
+    v.count = a.count;
+    v.componentType = a.componentType;
+    const int componentSize = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+    v.components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+    if (componentSize <= 0 || v.components <= 0)
+      fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
+    const uint64_t elemSize = uint64_t(componentSize) * v.components;
+    if (a.bufferView < 0) return v;
+    if (a.bufferView >= static_cast<int>(m_.bufferViews.size()))
+      fail(what + ": accessor " + std::to_string(index) + " refers to a bufferView that does not exist");
+    const tinygltf::BufferView& bv = m_.bufferViews[a.bufferView];
+    if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m_.buffers.size()))
+      fail(what + ": bufferView " + std::to_string(a.bufferView) + " refers to a buffer that does not exist");
+    const std::vector<unsigned char>& data = m_.buffers[bv.buffer].data;
+    if (uint64_t(bv.byteOffset) + bv.byteLength > data.size())
+      fail(what + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of its buffer");
+    v.stride = bv.byteStride ? bv.byteStride : elemSize;
+    if (v.stride < elemSize)
+      fail(what + ": bufferView " + std::to_string(a.bufferView) + " has a stride smaller than its elements");
+    if (v.count > 0 && (v.count > (uint64_t(1) << 40) ||
+                        uint64_t(a.byteOffset) + v.stride * (v.count - 1) + elemSize > bv.byteLength))
+      fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
+    v.data = data.data() + bv.byteOffset + a.byteOffset;
+    return v;
+  }
+
+  std::vector<glm::vec3> readVec3(int index, const std::string& what) const {
+    const View v = view(index, what);
+    if (v.components != 3 || v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      fail(what + ": expected float VEC3 data");
+    std::vector<glm::vec3> out(v.count, glm::vec3(0.0f));
+    if (v.data)
+      for (size_t i = 0; i < v.count; ++i) std::memcpy(&out[i], v.data + i * v.stride, sizeof(glm::vec3));
+    return out;
+  }
+
+  std::vector<uint32_t> readIndices(int index, const std::string& what) const {
+    const View v = view(index, what);
+    if (v.components != 1) fail(what + ": indices must be scalars");
+    std::vector<uint32_t> out(v.count, 0);
+    if (!v.data) return out;
+    for (size_t i = 0; i < v.count; ++i) {
+      const unsigned char* p = v.data + i * v.stride;
+      switch (v.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          out[i] = *p;
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          uint16_t s;
+          std::memcpy(&s, p, 2);
+          out[i] = s;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+          std::memcpy(&out[i], p, 4);
+          break;
+        default:
+          fail(what + ": indices must be unsigned byte, short or int");
+      }
+    }
+    return out;
+  }
+
+  // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one.
+  glm::vec3 textureMean(int textureIndex, const std::string& what) {
+    if (textureIndex < 0) return glm::vec3(1.0f);
+    if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
+    const int source = m_.textures[textureIndex].source;
+    if (source < 0 || source >= static_cast<int>(m_.images.size()))
+      fail(what + ": texture has no valid image");
+    const tinygltf::Image& img = m_.images[source];
+    const size_t texels = size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0));
+    const int bytes = img.bits == 16 ? 2 : 1;
+    if (texels == 0 || img.component < 1 || (img.bits != 8 && img.bits != 16) ||
+        img.image.size() < texels * img.component * bytes) {
+      raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
+      return glm::vec3(1.0f);
+    }
+    std::array<float, 256> lut8{};
+    for (int i = 0; i < 256; ++i) lut8[i] = srgbToLinear(glm::vec3(i / 255.0f)).r;
+    glm::dvec3 sum(0.0);
+    for (size_t t = 0; t < texels; ++t) {
+      glm::vec3 c;
+      for (int ch = 0; ch < 3; ++ch) {
+        const int src = img.component >= 3 ? ch : 0;  // grey (+alpha) images
+        const size_t at = (t * img.component + src) * bytes;
+        if (bytes == 1) {
+          c[ch] = lut8[img.image[at]];
+        } else {
+          uint16_t s;
+          std::memcpy(&s, &img.image[at], 2);
+          c[ch] = srgbToLinear(glm::vec3(s / 65535.0f)).r;
+        }
+      }
+      sum += glm::dvec3(c);
+    }
+    return glm::vec3(sum / double(texels));
+  }
+
+  static bool readNumbers(const tinygltf::Value& v, glm::vec3& out) {
+    if (!v.IsArray() || v.ArrayLen() != 3) return false;
+    for (int i = 0; i < 3; ++i) {
+      if (!v.Get(i).IsNumber()) return false;
+      out[i] = static_cast<float>(v.Get(i).GetNumberAsDouble());
+    }
+    return true;
+  }
+
+  uint32_t materialFor(int index) {
+    if (index < 0) {
+      if (defaultMaterial_ < 0) {
+        defaultMaterial_ = static_cast<int>(raw_.scene.materials.size());
+        raw_.scene.materials.push_back(Material{"default", glm::vec3(0.5f), glm::vec3(0.0f)});
+      }
+      return static_cast<uint32_t>(defaultMaterial_);
+    }
+    if (index >= static_cast<int>(m_.materials.size()))
+      fail("material " + std::to_string(index) + " does not exist");
+    if (materialIndex_[index] >= 0) return static_cast<uint32_t>(materialIndex_[index]);
+    const tinygltf::Material& gm = m_.materials[index];
+    Material mat;
+    mat.name = gm.name.empty() ? "material" + std::to_string(index) : gm.name;
+    const std::string what = "material '" + mat.name + "'";
+    const auto& pbr = gm.pbrMetallicRoughness;
+    glm::vec3 factor(1.0f);
+    if (pbr.baseColorFactor.size() >= 3)
+      factor = glm::vec3(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]);
+    mat.albedo = factor * textureMean(pbr.baseColorTexture.index, what);
+    glm::vec3 emissive(0.0f);
+    if (gm.emissiveFactor.size() >= 3)
+      emissive = glm::vec3(gm.emissiveFactor[0], gm.emissiveFactor[1], gm.emissiveFactor[2]);
+    if (gm.emissiveTexture.index >= 0) emissive *= textureMean(gm.emissiveTexture.index, what);
+    float strength = 1.0f;
+    if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
+      const tinygltf::Value& s = it->second.Get("emissiveStrength");
+      if (s.IsNumber()) strength = static_cast<float>(s.GetNumberAsDouble());
+    }
+    mat.emission = emissive * strength;
+    // A baked file (writeGltf with a lightmap) shows light through an unlit texture; the material it
+    // was baked with is kept in extras.
+    glm::vec3 v;
+    if (readNumbers(gm.extras.Get("cpgi_albedo"), v)) mat.albedo = v;
+    if (readNumbers(gm.extras.Get("cpgi_emission"), v)) mat.emission = v;
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(mat.albedo[i]) || mat.albedo[i] < 0.0f)
+        fail(what + ": base colour is negative or not finite");
+      if (!std::isfinite(mat.emission[i]) || mat.emission[i] < 0.0f)
+        fail(what + ": emission is negative or not finite");
+    }
+    if (glm::any(glm::greaterThan(mat.albedo, glm::vec3(1.0f))))
+      raw_.warnings.push_back(what + ": albedo above 1 (energy is not conserved)");
+    materialIndex_[index] = static_cast<int>(raw_.scene.materials.size());
+    raw_.scene.materials.push_back(mat);
+    return static_cast<uint32_t>(materialIndex_[index]);
+  }
+
+  void addMesh(const tinygltf::Mesh& mesh, const glm::dmat4& world, const std::string& path, int cell,
+               RawScene::TaggedMesh* tagged) {
+    const std::string meshName = mesh.name.empty() ? path : mesh.name;
+    const glm::mat4 toWorld(world);
+    const glm::mat3 normalMatrix(glm::inverseTranspose(glm::dmat3(world)));
+    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;  // reverses the winding (glTF spec)
+    const uint32_t nodeIdx = tagged ? 0 : raw_.nodeIndex(path);
+    for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+      const tinygltf::Primitive& prim = mesh.primitives[pi];
+      const std::string what = "mesh '" + meshName + "' primitive " + std::to_string(pi);
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        fail(what + ": primitive mode " + modeName(mode) + " is not supported (only triangles)");
+      auto pos = prim.attributes.find("POSITION");
+      if (pos == prim.attributes.end()) fail(what + ": has no POSITION attribute");
+      const std::vector<glm::vec3> positions = readVec3(pos->second, what + " POSITION");
+      std::vector<glm::vec3> normals;
+      if (auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end()) {
+        normals = readVec3(nrm->second, what + " NORMAL");
+        if (normals.size() != positions.size()) fail(what + ": NORMAL and POSITION counts differ");
+      }
+      std::vector<uint32_t> indices;
+      if (prim.indices >= 0) {
+        indices = readIndices(prim.indices, what + " indices");
+        for (uint32_t i : indices)
+          if (i >= positions.size()) fail(what + ": index " + std::to_string(i) + " is out of range");
+      } else {
+        indices.resize(positions.size());
+        for (uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
+      }
+      // Strips and fans become triangle lists, alternating strip winding kept consistent.
+      std::vector<std::array<uint32_t, 3>> corners;
+      if (mode == TINYGLTF_MODE_TRIANGLES) {
+        for (size_t i = 0; i + 2 < indices.size(); i += 3)
+          corners.push_back({indices[i], indices[i + 1], indices[i + 2]});
+      } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < indices.size(); ++i)
+          corners.push_back(i % 2 ? std::array<uint32_t, 3>{indices[i + 1], indices[i], indices[i + 2]}
+                                  : std::array<uint32_t, 3>{indices[i], indices[i + 1], indices[i + 2]});
+      } else {
+        for (size_t i = 1; i + 1 < indices.size(); ++i)
+          corners.push_back({indices[0], indices[i], indices[i + 1]});
+      }
+      const uint32_t material = tagged ? 0 : materialFor(prim.material);
+      for (const auto& c : corners) {
+        Triangle t;
+        for (int k = 0; k < 3; ++k) {
+          const int src = mirrored && k > 0 ? 3 - k : k;
+          t.p[k] = glm::vec3(toWorld * glm::vec4(positions[c[src]], 1.0f));
+          t.n[k] = normals.empty() ? glm::vec3(0.0f) : normalMatrix * normals[c[src]];
+        }
+        t.material = material;
+        t.node = nodeIdx;
+        if (tagged) {
+          tagged->triangles.push_back(t);
+        } else {
+          raw_.scene.triangles.push_back(t);
+          raw_.cellOfTriangle.push_back(cell);
+        }
+      }
+    }
+  }
+
+  const std::string& path_;
+  const tinygltf::Model& m_;
+  RawScene raw_;
+  std::vector<int> materialIndex_;
+  int defaultMaterial_ = -1;
+  std::vector<char> visited_;
+};
+
+}  // namespace
+
+RawScene readGltf(const std::string& path) {
+  const std::string bytes = readFileBytes(path);
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  const bool glbName =
+      std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
+  if (glbName || binary)
+    checkJson(path, checkGlbContainer(path, bytes), "chunk");
+  else
+    checkJson(path, bytes, "document");
+  if (bytes.size() > 0xFFFFFFFFu) throw InputError(path, "larger than 4 GiB");
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  bool ok = false;
+  try {
+    ok = glbName || binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                         reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                         static_cast<unsigned>(bytes.size()), baseDir)
+                           : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                                        static_cast<unsigned>(bytes.size()), baseDir);
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("invalid glTF: ") + firstLine(e.what()));
+  }
+  if (!ok)
+    throw InputError(
+        path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser") : firstLine(err)));
+  return GltfReader(path, model).read();
+}
+
+}  // namespace cpgi::detail

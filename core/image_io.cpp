@@ -1,0 +1,160 @@
+// OpenEXR (linear float, exact) and PNG (sRGB, 8 bit) images.
+#include "core/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+
+// Static, so that these symbols cannot clash with the copy libtinygltf pulls in through libstb.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+#include "core/error.h"
+#include "core/output_dir.h"
+
+namespace cpgi {
+namespace {
+
+void checkImage(const ImageRGB& image, const char* who) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height)
+    throw std::invalid_argument(std::string(who) + ": image size does not match its pixels");
+}
+
+float linearToSrgb(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const ImageRGB& image, const std::vector<ExrChannel>& extra) {
+  checkImage(image, "writeExr");
+  const size_t n = image.pixels.size();
+  for (const ExrChannel& c : extra)
+    if (c.values.size() != n || c.name.empty() || c.name == "R" || c.name == "G" || c.name == "B")
+      throw std::invalid_argument("writeExr: channel '" + c.name + "' has the wrong size or a reserved name");
+
+  Imf::Header header(image.width, image.height);
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+  for (const ExrChannel& c : extra) header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+  header.compression() = Imf::ZIP_COMPRESSION;
+
+  Imf::FrameBuffer frame;
+  char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
+  const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
+  for (int c = 0; c < 3; ++c)
+    frame.insert(c == 0   ? "R"
+                 : c == 1 ? "G"
+                          : "B",
+                 Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+  for (const ExrChannel& c : extra)
+    frame.insert(c.name,
+                 Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
+                            sizeof(float), sizeof(float) * image.width));
+
+  std::ostringstream bytes;
+  try {
+    Imf::StdOSStream stream;
+    {
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(frame);
+      file.writePixels(image.height);
+    }
+    bytes << stream.str();
+  } catch (const std::exception& e) {
+    throw SystemError(path + ": cannot encode OpenEXR: " + e.what());
+  }
+  writeFileAtomically(path, bytes.str());
+}
+
+ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not an image");
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    ImageRGB image;
+    image.width = dw.max.x - dw.min.x + 1;
+    image.height = dw.max.y - dw.min.y + 1;
+    if (image.width <= 0 || image.height <= 0 || size_t(image.width) * image.height > (size_t(1) << 31))
+      throw InputError(path, "OpenEXR data window is empty or too large");
+    const Imf::ChannelList& channels = file.header().channels();
+    for (const char* c : {"R", "G", "B"})
+      if (!channels.findChannel(c))
+        throw InputError(path, std::string("OpenEXR file has no ") + c + " channel");
+    image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
+
+    // Slices are addressed from the data window's origin, which need not be (0, 0).
+    const ptrdiff_t origin = ptrdiff_t(dw.min.x) + ptrdiff_t(dw.min.y) * image.width;
+    Imf::FrameBuffer frame;
+    char* base = reinterpret_cast<char*>(image.pixels.data()) - origin * ptrdiff_t(sizeof(glm::vec3));
+    const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
+    for (int c = 0; c < 3; ++c)
+      frame.insert(c == 0   ? "R"
+                   : c == 1 ? "G"
+                            : "B",
+                   Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    if (extra) {
+      extra->clear();
+      for (auto it = channels.begin(); it != channels.end(); ++it) {
+        const std::string name = it.name();
+        if (name == "R" || name == "G" || name == "B") continue;
+        extra->push_back({name, std::vector<float>(image.pixels.size(), 0.0f)});
+      }
+      for (ExrChannel& c : *extra)
+        frame.insert(c.name,
+                     Imf::Slice(Imf::FLOAT,
+                                reinterpret_cast<char*>(c.values.data()) - origin * ptrdiff_t(sizeof(float)),
+                                sizeof(float), sizeof(float) * image.width));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(dw.min.y, dw.max.y);
+    return image;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    std::string msg = e.what();
+    if (const size_t nl = msg.find('\n'); nl != std::string::npos) msg.resize(nl);
+    throw InputError(path, "not a readable OpenEXR file: " + msg);
+  }
+}
+
+std::string encodePng(const ImageRGB& image, float exposure) {
+  checkImage(image, "encodePng");
+  std::vector<unsigned char> rgb(image.pixels.size() * 3);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float v = image.pixels[i][c] * exposure;
+      rgb[3 * i + c] =
+          static_cast<unsigned char>(std::lround(255.0f * linearToSrgb(std::isnan(v) ? 0.0f : v)));
+    }
+  std::string out;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, image.width, image.height, 3, rgb.data(), image.width * 3))
+    throw SystemError("encodePng: PNG encoding failed");
+  return out;
+}
+
+void writePng(const std::string& path, const ImageRGB& image, float exposure) {
+  writeFileAtomically(path, encodePng(image, exposure));
+}
+
+}  // namespace cpgi

@@ -1,0 +1,101 @@
+// Wavefront OBJ + MTL → RawScene via tinyobjloader: Kd is the albedo, Ke the emission (W/m²); objects
+// and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME` follow the glTF convention.
+#include <filesystem>
+
+#include <tiny_obj_loader.h>
+
+#include "core/error.h"
+#include "core/scene_io_detail.h"
+
+namespace cpgi::detail {
+
+RawScene readObj(const std::string& path) {
+  readFileBytes(path);  // missing / directory / unreadable get their own message
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  config.mtl_search_path = std::filesystem::path(path).parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config) || !reader.Valid()) {
+    std::string err = reader.Error();
+    if (const size_t nl = err.find('\n'); nl != std::string::npos) err.resize(nl);
+    throw InputError(path, "invalid OBJ: " + (err.empty() ? std::string("rejected by the parser") : err));
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  RawScene raw;
+  if (!reader.Warning().empty()) {
+    std::string warning = reader.Warning();
+    if (const size_t nl = warning.find('\n'); nl != std::string::npos) warning.resize(nl);
+    if (warning.find("Material") != std::string::npos || warning.find("material") != std::string::npos)
+      raw.warnings.push_back(warning);
+  }
+
+  for (const tinyobj::material_t& m : reader.GetMaterials()) {
+    Material mat;
+    mat.name = m.name;
+    mat.albedo = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    mat.emission = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);
+    for (int i = 0; i < 3; ++i)
+      if (!(mat.albedo[i] >= 0.0f) || !(mat.emission[i] >= 0.0f) || !std::isfinite(mat.emission[i]))
+        throw InputError(path, "material '" + m.name + "': Kd or Ke is negative or not a number");
+    raw.scene.materials.push_back(mat);
+  }
+  int defaultMaterial = -1;
+  auto materialFor = [&](int id) -> uint32_t {
+    if (id >= 0 && id < static_cast<int>(raw.scene.materials.size())) return static_cast<uint32_t>(id);
+    if (defaultMaterial < 0) {
+      defaultMaterial = static_cast<int>(raw.scene.materials.size());
+      raw.scene.materials.push_back(Material{"default", glm::vec3(0.5f), glm::vec3(0.0f)});
+    }
+    return static_cast<uint32_t>(defaultMaterial);
+  };
+
+  auto vertex = [&](const std::vector<tinyobj::real_t>& array, int index, const std::string& what) {
+    if (index < 0) return glm::vec3(0.0f);
+    if (size_t(index) * 3 + 2 >= array.size()) throw InputError(path, what + ": vertex index out of range");
+    return glm::vec3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
+  };
+
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const std::string name = shape.name.empty() ? "object" : shape.name;
+    const CellTag tag = parseCellTag(path, name);
+    RawScene::TaggedMesh* tagged = nullptr;
+    if (tag.kind == CellTag::Kind::Portal || tag.kind == CellTag::Kind::CellVolume) {
+      auto& list = tag.kind == CellTag::Kind::Portal ? raw.portals : raw.volumes;
+      list.push_back({name, tag, {}});
+      tagged = &list.back();
+    }
+    const int cell = tag.kind == CellTag::Kind::Cell ? raw.cellIndex(tag.a) : -1;
+    const uint32_t node = tagged ? 0 : raw.nodeIndex(name);
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t offset = 0;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
+      const size_t n = mesh.num_face_vertices[f];
+      if (n != 3 || offset + 3 > mesh.indices.size()) {
+        offset += n;
+        continue;  // lines and points: OBJ "l"/"p" never reach faces; a bad count is skipped
+      }
+      Triangle t;
+      for (int k = 0; k < 3; ++k) {
+        const tinyobj::index_t& idx = mesh.indices[offset + k];
+        if (idx.vertex_index < 0)
+          throw InputError(path, "object '" + name + "': face without a vertex index");
+        t.p[k] = vertex(attrib.vertices, idx.vertex_index, "object '" + name + "'");
+        t.n[k] = vertex(attrib.normals, idx.normal_index, "object '" + name + "'");
+      }
+      offset += 3;
+      const int materialId = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+      t.node = node;
+      if (tagged) {
+        tagged->triangles.push_back(t);
+      } else {
+        t.material = materialFor(materialId);
+        raw.scene.triangles.push_back(t);
+        raw.cellOfTriangle.push_back(cell);
+      }
+    }
+  }
+  return raw;
+}
+
+}  // namespace cpgi::detail

@@ -1,0 +1,303 @@
+// loadScene: dispatch by extension, then the checks every format shares and the cell graph.
+#include "core/scene_io.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/scene_io_detail.h"
+
+namespace fs = std::filesystem;
+
+namespace cpgi {
+namespace detail {
+
+namespace {
+
+bool startsWith(const std::string& s, const char* prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
+
+// Blender renames the second "portal:A:B" to "portal:A:B.001"; the suffix is not part of the cell name.
+std::string stripBlenderSuffix(const std::string& name) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string::npos || dot + 4 != name.size() || dot == 0) return name;
+  for (size_t i = dot + 1; i < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return name;
+  return name.substr(0, dot);
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Collinear within float precision: the doubled area is tiny against the longest edge squared.
+bool isDegenerate(const Triangle& t) {
+  const float twiceArea = glm::length(glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]));
+  float longest2 = 0.0f;
+  for (int i = 0; i < 3; ++i) {
+    const glm::vec3 e = t.p[(i + 1) % 3] - t.p[i];
+    longest2 = std::max(longest2, glm::dot(e, e));
+  }
+  return longest2 == 0.0f || twiceArea <= 1e-7f * longest2;
+}
+
+// Same three positions in the same cyclic order (the opposite winding is a legitimate two-sided face).
+using TriangleKey = std::array<float, 9>;
+TriangleKey canonicalKey(const Triangle& t) {
+  auto less = [](const glm::vec3& a, const glm::vec3& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+  };
+  int first = 0;
+  for (int i = 1; i < 3; ++i)
+    if (less(t.p[i], t.p[first])) first = i;
+  TriangleKey key{};
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) key[3 * i + c] = t.p[(first + i) % 3][c];
+  return key;
+}
+
+std::string nodeOf(const Scene& scene, const Triangle& t) {
+  return t.node < scene.nodePaths.size() ? scene.nodePaths[t.node] : std::string("?");
+}
+
+// Signed area-weighted mean distance of a cell's triangle centroids from the portal plane.
+double meanSide(const Scene& scene, const Cell& cell, const glm::vec3& centre, const glm::vec3& normal) {
+  double sum = 0.0, area = 0.0;
+  for (uint32_t i : cell.triangles) {
+    const Triangle& t = scene.triangles[i];
+    const double a = t.area();
+    sum += a * glm::dot(t.centroid() - centre, normal);
+    area += a;
+  }
+  return area > 0.0 ? sum / area : 0.0;
+}
+
+void reverseCorners(PortalQuad& portal) {
+  std::swap(portal.corners[1], portal.corners[3]);
+}
+
+}  // namespace
+
+CellTag parseCellTag(const std::string& file, const std::string& name) {
+  CellTag tag;
+  auto requireName = [&](const std::string& cell) {
+    if (cell.empty()) throw InputError(file, name + ": empty cell name");
+    return cell;
+  };
+  if (startsWith(name, "cellvolume:")) {
+    tag.kind = CellTag::Kind::CellVolume;
+    tag.a = requireName(name.substr(11));
+  } else if (startsWith(name, "cell:")) {
+    tag.kind = CellTag::Kind::Cell;
+    tag.a = requireName(name.substr(5));
+  } else if (startsWith(name, "portal:")) {
+    tag.kind = CellTag::Kind::Portal;
+    const std::string rest = name.substr(7);
+    const size_t colon = rest.find(':');
+    if (colon == std::string::npos || rest.find(':', colon + 1) != std::string::npos)
+      throw InputError(file, name + ": a portal is named portal:CELL_A:CELL_B");
+    tag.a = requireName(rest.substr(0, colon));
+    tag.b = requireName(stripBlenderSuffix(rest.substr(colon + 1)));
+  }
+  return tag;
+}
+
+int RawScene::cellIndex(const std::string& name) {
+  for (size_t i = 0; i < cellNames.size(); ++i)
+    if (cellNames[i] == name) return static_cast<int>(i);
+  cellNames.push_back(name);
+  return static_cast<int>(cellNames.size() - 1);
+}
+
+uint32_t RawScene::nodeIndex(const std::string& path) {
+  const auto [it, fresh] = nodeIndex_.emplace(path, static_cast<uint32_t>(scene.nodePaths.size()));
+  if (fresh) scene.nodePaths.push_back(path);
+  return it->second;
+}
+
+std::string readFileBytes(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw InputError(path, "no such file");
+  if (fs::is_directory(status)) throw InputError(path, "is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) throw InputError(path, "read error");
+  return bytes.str();
+}
+
+std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::string& node,
+                                       const std::vector<Triangle>& triangles) {
+  std::vector<glm::vec3> unique;
+  if (triangles.size() <= 16)  // enough to tell a user what they made; a huge mesh is just "not a quad"
+    for (const Triangle& t : triangles)
+      for (const glm::vec3& q : t.p)
+        if (std::none_of(unique.begin(), unique.end(),
+                         [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
+          unique.push_back(q);
+  auto notAQuad = [&] {
+    return InputError(file, node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
+                                std::to_string(triangles.size()) + " triangles and " +
+                                std::to_string(unique.size()) + " vertices");
+  };
+  if (triangles.size() != 2 || unique.size() != 4) throw notAQuad();
+  auto same = [](const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) <= 1e-6f; };
+  auto inTriangle = [&](const Triangle& t, const glm::vec3& q) {
+    return same(t.p[0], q) || same(t.p[1], q) || same(t.p[2], q);
+  };
+  // The diagonal is the edge both triangles share; walk the first triangle from its own vertex.
+  const Triangle& t0 = triangles[0];
+  const Triangle& t1 = triangles[1];
+  int own0 = -1, shared = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (inTriangle(t1, t0.p[i]))
+      ++shared;
+    else
+      own0 = i;
+  }
+  glm::vec3 own1(0.0f);
+  int own1Count = 0;
+  for (const glm::vec3& q : t1.p)
+    if (!inTriangle(t0, q)) own1 = q, ++own1Count;
+  if (shared != 2 || own0 < 0 || own1Count != 1) throw notAQuad();
+  return {t0.p[own0], t0.p[(own0 + 1) % 3], own1, t0.p[(own0 + 2) % 3]};
+}
+
+LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
+  LoadedScene out;
+  out.warnings = std::move(raw.warnings);
+  Scene& scene = raw.scene;
+
+  for (const Triangle& t : scene.triangles)
+    for (const glm::vec3& q : t.p)
+      if (!isFinite(q))
+        throw InputError(path,
+                         "node '" + nodeOf(scene, t) + "': a vertex position is not finite (NaN or inf)");
+  for (const auto* meshes : {&raw.portals, &raw.volumes})
+    for (const RawScene::TaggedMesh& m : *meshes)
+      for (const Triangle& t : m.triangles)
+        for (const glm::vec3& q : t.p)
+          if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
+
+  // Degenerate and duplicate triangles: errors, or dropped with --repair.
+  std::vector<char> drop(scene.triangles.size(), 0);
+  size_t degenerate = 0, duplicate = 0;
+  int firstDegenerate = -1, firstDuplicate = -1;
+  for (size_t i = 0; i < scene.triangles.size(); ++i)
+    if (isDegenerate(scene.triangles[i])) {
+      drop[i] = 1, ++degenerate;
+      if (firstDegenerate < 0) firstDegenerate = static_cast<int>(i);
+    }
+  {
+    std::vector<std::pair<TriangleKey, uint32_t>> keys;
+    keys.reserve(scene.triangles.size());
+    for (uint32_t i = 0; i < scene.triangles.size(); ++i)
+      if (!drop[i]) keys.emplace_back(canonicalKey(scene.triangles[i]), i);
+    std::sort(keys.begin(), keys.end());
+    for (size_t k = 1; k < keys.size(); ++k)
+      if (keys[k].first == keys[k - 1].first) {
+        drop[keys[k].second] = 1, ++duplicate;
+        if (firstDuplicate < 0 || static_cast<int>(keys[k].second) < firstDuplicate)
+          firstDuplicate = static_cast<int>(keys[k].second);
+      }
+  }
+  if (!options.repair) {
+    if (degenerate)
+      throw InputError(path, std::to_string(degenerate) + " zero-area triangle" +
+                                 (degenerate > 1 ? "s" : "") + " (first in node '" +
+                                 nodeOf(scene, scene.triangles[firstDegenerate]) +
+                                 "'); run with --repair to drop them");
+    if (duplicate)
+      throw InputError(path, std::to_string(duplicate) + " duplicate triangle" + (duplicate > 1 ? "s" : "") +
+                                 " (first in node '" + nodeOf(scene, scene.triangles[firstDuplicate]) +
+                                 "'); run with --repair to drop them");
+  }
+  if (degenerate) out.warnings.push_back("dropped " + std::to_string(degenerate) + " zero-area triangles");
+  if (duplicate) out.warnings.push_back("dropped " + std::to_string(duplicate) + " duplicate triangles");
+
+  std::vector<int> cellOf;
+  cellOf.reserve(scene.triangles.size());
+  {
+    std::vector<Triangle> kept;
+    kept.reserve(scene.triangles.size());
+    for (size_t i = 0; i < scene.triangles.size(); ++i)
+      if (!drop[i]) kept.push_back(scene.triangles[i]), cellOf.push_back(raw.cellOfTriangle[i]);
+    scene.triangles = std::move(kept);
+  }
+  if (scene.triangles.empty())
+    throw InputError(
+        path, degenerate + duplicate > 0 ? "no triangles left after --repair" : "the scene has no triangles");
+  for (Triangle& t : scene.triangles)
+    for (glm::vec3& n : t.n) {
+      const float len = glm::length(n);
+      n = std::isfinite(len) && len > 0.0f ? n / len : t.geometricNormal();
+    }
+
+  // The cell graph.
+  CellGraph& graph = out.cells;
+  for (const std::string& name : raw.cellNames) graph.cells.push_back(Cell{name, {}, {}});
+  for (uint32_t i = 0; i < cellOf.size(); ++i)
+    if (cellOf[i] >= 0) graph.cells[cellOf[i]].triangles.push_back(i);
+  for (RawScene::TaggedMesh& v : raw.volumes) {
+    const int c = graph.findCell(v.tag.a);
+    if (c < 0) throw InputError(path, v.node + ": names a cell that does not exist");
+    auto& volume = graph.cells[c].volume;
+    volume.insert(volume.end(), v.triangles.begin(), v.triangles.end());
+  }
+  for (const RawScene::TaggedMesh& m : raw.portals) {
+    PortalQuad portal;
+    portal.name = m.node;
+    portal.corners = portalCorners(path, m.node, m.triangles);
+    portal.cellA = graph.findCell(m.tag.a);
+    portal.cellB = graph.findCell(m.tag.b);
+    computePortalFrame(portal);
+    // Orient from A into B by where the cells' surfaces lie; the winding decides only when the
+    // geometry cannot (empty cells, or cells symmetric about the portal plane).
+    if (portal.cellA >= 0 && portal.cellB >= 0 && portal.cellA != portal.cellB) {
+      const glm::vec3 c = portal.centre();
+      const double score = meanSide(scene, graph.cells[portal.cellB], c, portal.normal) -
+                           meanSide(scene, graph.cells[portal.cellA], c, portal.normal);
+      if (score < -1e-6) reverseCorners(portal), computePortalFrame(portal);
+    }
+    graph.portals.push_back(portal);
+  }
+  if (!graph.cells.empty() || !graph.portals.empty()) {
+    const CellValidation v = validateCells(scene, graph);
+    if (!v.errors.empty()) {
+      std::string message = v.errors.front();
+      if (v.errors.size() > 1) message += " (and " + std::to_string(v.errors.size() - 1) + " more problems)";
+      throw InputError(path, message);
+    }
+    out.warnings.insert(out.warnings.end(), v.warnings.begin(), v.warnings.end());
+  }
+  out.scene = std::move(scene);
+  return out;
+}
+
+}  // namespace detail
+
+LoadedScene loadScene(const std::string& path, const LoadOptions& options) {
+  const std::string ext = detail::lowerExtension(path);
+  if (ext != ".glb" && ext != ".gltf" && ext != ".obj") {
+    detail::readFileBytes(path);  // a missing file is the clearer message
+    throw InputError(path, "unknown scene format '" + ext + "' (expected .glb, .gltf or .obj)");
+  }
+  detail::RawScene raw = ext == ".obj" ? detail::readObj(path) : detail::readGltf(path);
+  return detail::finishScene(path, std::move(raw), options);
+}
+
+}  // namespace cpgi

@@ -1,0 +1,62 @@
+// Internal to the scene readers: what a format reader hands to the shared checks of loadScene, and the
+// cell naming convention of design.md §3 shared by the glTF and OBJ readers and the glTF writer.
+#pragma once
+
+#include <array>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "core/scene.h"
+#include "core/scene_io.h"
+
+namespace cpgi::detail {
+
+/// What a node/object name says about its role in the cell-portal graph.
+struct CellTag {
+  enum class Kind { None, Cell, Portal, CellVolume } kind = Kind::None;
+  std::string a;  ///< the cell (Cell, CellVolume) or the first cell of a portal
+  std::string b;  ///< the second cell of a portal
+};
+/// Parses `cell:NAME`, `portal:A:B` (a Blender duplicate suffix such as ".001" on B is ignored) and
+/// `cellvolume:NAME`. Throws InputError(file, ...) for a malformed tag such as `portal:A`.
+CellTag parseCellTag(const std::string& file, const std::string& nodeName);
+
+/// A scene as a format reader found it, before the checks and the cell graph are built.
+struct RawScene {
+  Scene scene;                         ///< triangles, materials, node paths, cameras
+  std::vector<int> cellOfTriangle;     ///< per scene triangle: index into cellNames, or -1
+  std::vector<std::string> cellNames;  ///< cells in order of first appearance
+  struct TaggedMesh {
+    std::string node;  ///< full node name, e.g. "portal:A:B"
+    CellTag tag;
+    std::vector<Triangle> triangles;  ///< world space
+  };
+  std::vector<TaggedMesh> portals, volumes;
+  std::vector<std::string> warnings;
+
+  /// Index of the cell called `name`, added if new.
+  int cellIndex(const std::string& name);
+  /// Index of `path` in scene.nodePaths, added if new.
+  uint32_t nodeIndex(const std::string& path);
+
+ private:
+  std::unordered_map<std::string, uint32_t> nodeIndex_;  // scenes may have many thousand nodes
+};
+
+/// The whole file; InputError when it is missing, a directory or unreadable.
+std::string readFileBytes(const std::string& path);
+
+RawScene readGltf(const std::string& path);
+RawScene readObj(const std::string& path);
+
+/// The checks shared by every format (non-finite positions, degenerate and duplicate triangles, empty
+/// scene) and the cell graph (portal quads, orientation, validateCells).
+LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options);
+
+/// Orders a portal's 4 distinct corners around their boundary; throws InputError when the mesh is not
+/// one quad of 2 triangles.
+std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::string& node,
+                                       const std::vector<Triangle>& triangles);
+
+}  // namespace cpgi::detail

@@ -1,0 +1,39 @@
+// A headless OpenGL 4.5 core context through EGL, with no window and no X server (design.md §2):
+// a hardware EGL device first (EGL_EXT_platform_device; NVIDIA and Mesa GPUs), then Mesa's surfaceless
+// platform, then a software device (llvmpipe). The context is current on the creating thread for the
+// object's lifetime.
+#pragma once
+
+#include <string>
+
+#include "core/context.h"
+
+namespace cpgi {
+
+class EglContext {
+ public:
+  /// Makes the context current. Throws SystemError with one line naming what failed when no
+  /// OpenGL 4.5 core context can be made. Reports platform, renderer and version through
+  /// ctx.progress("egl", 1, ...).
+  explicit EglContext(Context& ctx);
+  ~EglContext();
+  EglContext(const EglContext&) = delete;
+  EglContext& operator=(const EglContext&) = delete;
+
+  /// GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+  const std::string& renderer() const { return renderer_; }
+  /// GL_VERSION.
+  const std::string& version() const { return version_; }
+  /// How the display was found: "device", "surfaceless" or "software device".
+  const std::string& platform() const { return platform_; }
+  int maxTextureSize() const { return maxTextureSize_; }
+
+ private:
+  void release();
+  void* display_ = nullptr;  // EGLDisplay
+  void* context_ = nullptr;  // EGLContext
+  std::string renderer_, version_, platform_;
+  int maxTextureSize_ = 0;
+};
+
+}  // namespace cpgi

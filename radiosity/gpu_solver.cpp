@@ -1,0 +1,556 @@
+#include "radiosity/gpu_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "core/error.h"
+#include "radiosity/gl.h"
+#include "radiosity/shader_library.h"
+
+namespace cpgi {
+namespace {
+
+// Mirrors of the std430 structs in shaders/common.glsl and select_shooter.comp.
+struct GpuPatch {
+  glm::ivec4 rect;
+};
+struct GpuStats {
+  glm::vec4 unshot, incident, absorbed;
+};
+struct GpuBlock {
+  glm::vec4 centreArea, radiosityRadius;
+  glm::ivec4 rect, region;
+};
+struct GpuSelection {
+  int32_t winner, winnerPending, pad0, pad1;
+  glm::vec4 winnerUnshot, unshot, incident, absorbed;
+};
+static_assert(sizeof(GpuBlock) == 64 && sizeof(GpuSelection) == 80);
+
+constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
+constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
+constexpr int kMaxRegions = 4;   // per chart edge; receive.comp's MAX_REGIONS is its square
+constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
+
+// Shader-storage binding points (shaders/*.comp).
+enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
+                     kBlocks = 6, kPending = 7, kSelection = 8 };
+// Image units.
+enum Image : GLuint { kPosArea = 0, kNormalPatch = 1, kAlbedo = 2, kRadiosity = 3, kResidual = 4, kIncident = 5 };
+
+struct Face {
+  glm::vec3 right, up, forward;
+};
+// The hemicube in shooter coordinates (z = shooter normal); must match visibility.glsl.
+constexpr Face kFaces[5] = {
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}},
+    {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+};
+
+// glm matrices are column-major; these are uploaded so that `M * v` in GLSL gives dot(row_i, v).
+glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return glm::transpose(glm::mat3(a, b, c)); }
+
+GLint loc(const gl::Program& p, const char* name) { return glGetUniformLocation(p.get(), name); }
+void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(), loc(p, n), v); }
+void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
+void set(const gl::Program& p, const char* n, glm::ivec2 v) { glProgramUniform2i(p.get(), loc(p, n), v.x, v.y); }
+void set(const gl::Program& p, const char* n, glm::ivec4 v) {
+  glProgramUniform4i(p.get(), loc(p, n), v.x, v.y, v.z, v.w);
+}
+void set(const gl::Program& p, const char* n, const glm::mat3& m) {
+  glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
+}
+
+GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
+
+void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
+  if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
+      (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
+    throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
+                                          std::to_string(maxTexture) + ")");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("--neighbourhood", "must be in 0..4");
+  if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
+    throw InputError("--unshot", "must be a fraction in (0, 1)");
+  if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
+  if (!(p.farField >= 1.0f)) throw InputError("far field", "ratio must be at least 1");
+  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("sub-shooters", "blocks per edge must be in 1..8");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("--regions", "must be in 1..4");
+  if (!(p.regionSize > 0.0f)) throw InputError("--region-size", "must be positive");
+  if (atlas.width > maxTexture || atlas.height > maxTexture)
+    throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
+                                  std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
+                                  std::to_string(maxTexture) + "; lower the resolution");
+}
+
+// How a shooter is cut up: texel blocks (sub-shooters for the form factor) grouped into regions (one
+// item buffer each), and where each region's eye sits.
+struct ShooterLayout {
+  glm::vec3 tangent, bitangent, normal;
+  glm::ivec2 blocks{1}, regions{1};
+  std::vector<glm::vec3> eyes;  ///< region centres (mean of their texel sample points), row-major
+  float texelRadius = 0.0f;
+};
+
+ShooterLayout layoutOf(const LightmapAtlas& atlas, int patchIndex, const SolverParams& params) {
+  const Patch& p = atlas.patches[patchIndex];
+  ShooterLayout l;
+  l.normal = p.normal;
+  const glm::vec3 u = p.texelU - glm::dot(p.texelU, p.normal) * p.normal;
+  l.tangent = glm::normalize(glm::length(u) > 0.0f ? u : glm::cross(glm::vec3(0.6f, 0.8f, 0.0f), p.normal));
+  l.bitangent = glm::cross(l.normal, l.tangent);
+  l.texelRadius = 0.5f * glm::length(p.texelU + p.texelV);
+  l.texelRadius = std::max(l.texelRadius, 0.5f * glm::length(p.texelU - p.texelV));
+  auto regionsAlong = [&](float length, int texels) {
+    const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
+    return std::clamp(n, 1, std::min({params.maxRegions, texels, params.maxBlocks}));
+  };
+  l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w), regionsAlong(glm::length(p.texelV) * p.h, p.h)};
+  // Blocks: as many as allowed, a multiple of the regions so every block lies in one region.
+  for (int a = 0; a < 2; ++a) {
+    const int texels = a == 0 ? p.w : p.h;
+    const int per = std::max(1, std::min(params.maxBlocks, texels) / l.regions[a]);
+    l.blocks[a] = per * l.regions[a];
+  }
+  for (int ry = 0; ry < l.regions.y; ++ry)
+    for (int rx = 0; rx < l.regions.x; ++rx) {
+      const int x0 = p.w * rx / l.regions.x, x1 = p.w * (rx + 1) / l.regions.x;
+      const int y0 = p.h * ry / l.regions.y, y1 = p.h * (ry + 1) / l.regions.y;
+      glm::dvec3 sum(0.0);
+      int n = 0;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const size_t t = size_t(p.y + y) * atlas.width + p.x + x;
+          if (atlas.patch[t] == patchIndex) sum += glm::dvec3(atlas.position[t]), ++n;
+        }
+      // A region of a loose triangle may hold no valid texel; its eye is never used (zero area).
+      l.eyes.push_back(n > 0 ? glm::vec3(sum / double(n)) : p.origin);
+    }
+  return l;
+}
+
+// Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
+// previous mark to `stage`.
+class PassClock {
+ public:
+  explicit PassClock(bool on) : on_(on) {}
+  void mark(const char* stage) {
+    if (!on_) return;
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    seconds_[stage] += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+  void restart() {
+    if (on_) glFinish(), last_ = std::chrono::steady_clock::now();
+  }
+  void report(Context& ctx) const {
+    for (const auto& [stage, s] : seconds_) ctx.addTiming(std::string("solve: ") + stage, s);
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::map<std::string, double> seconds_;
+};
+
+class Solver {
+ public:
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
+      : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
+    const std::vector<std::string> visDefine =
+        params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
+    itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
+    compactProgram_ = buildProgram({"compact.comp"});
+    finishProgram_ = buildProgram({"finish_lists.comp"});
+    blocksProgram_ = buildProgram({"shooter_blocks.comp"});
+    receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
+    statsProgram_ = buildProgram({"patch_stats.comp"});
+    selectProgram_ = buildProgram({"select_shooter.comp"});
+    uploadAtlas();
+    uploadGeometry();
+    makeItemBuffer();
+    setConstantUniforms();
+    gl::check("solver setup");
+  }
+
+  // Statistics of every patch from the initial state, then the first selection.
+  GpuSelection start() {
+    std::vector<uint32_t> all(kListHeader / 4 + atlas_.patches.size());
+    all[0] = uint32_t(atlas_.patches.size());
+    for (size_t i = 0; i < atlas_.patches.size(); ++i) all[kListHeader / 4 + i] = uint32_t(i);
+    glNamedBufferSubData(patchList_.get(), 0, GLsizeiptr(all.size() * 4), all.data());
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    runStats(-1);
+    return select();
+  }
+
+  GpuSelection shoot(int shooter) {
+    const ShooterLayout l = layoutOf(atlas_, shooter, params_);
+    const Patch& p = atlas_.patches[shooter];
+    const int regions = l.regions.x * l.regions.y;
+    std::vector<glm::vec3> eyes;
+    for (const glm::vec3& e : l.eyes) eyes.push_back(e + l.normal * eyeOffset_);
+    const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
+    clock_.restart();
+
+    // Sub-shooters from the residual before it is zeroed.
+    set(blocksProgram_, "uShooter", shooter);
+    set(blocksProgram_, "uRect", glm::ivec4(p.x, p.y, p.w, p.h));
+    set(blocksProgram_, "uBlocks", l.blocks);
+    set(blocksProgram_, "uRegions", l.regions);
+    set(blocksProgram_, "uTexelRadius", l.texelRadius);
+    glUseProgram(blocksProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    clock_.mark("shooter blocks");
+
+    const GLuint zero = 0;
+    glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
+    clock_.mark("item buffers");
+
+    // The item-buffer fragments flag the patches they show (item.frag); list those patches' tiles.
+    const GLuint one = 1;
+    glNamedBufferSubData(visible_.get(), GLintptr(shooter) * 4, 4, &one);  // its residual is zeroed below
+    const uint32_t header[4] = {0, 0, 1, 1};
+    glNamedBufferSubData(tileList_.get(), 0, sizeof header, header);
+    glNamedBufferSubData(patchList_.get(), 0, sizeof header, header);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(compactProgram_.get());
+    glDispatchCompute(groups(std::max(tileCount_, atlas_.patches.size()), 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    clock_.mark("visible lists");
+
+    // Gather.
+    set(receiveProgram_, "uShooter", shooter);
+    set(receiveProgram_, "uRegions", regions);
+    set(receiveProgram_, "uBlockCount", l.blocks.x * l.blocks.y);
+    glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
+    set(receiveProgram_, "uToShooter", toShooter);
+    set(receiveProgram_, "uShooterNormal", l.normal);
+    set(receiveProgram_, "uTexelU", p.texelU);
+    set(receiveProgram_, "uTexelV", p.texelV);
+    set(receiveProgram_, "uTexelRadius", l.texelRadius);
+    glUseProgram(receiveProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    clock_.mark("receive");
+
+    runStats(shooter);
+    clock_.mark("patch statistics");
+    GpuSelection s = select();
+    clock_.mark("select");
+    return s;
+  }
+
+  void reportPasses(Context& ctx) const { clock_.report(ctx); }
+
+  std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
+  std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
+
+ private:
+  void runStats(int shooter) {
+    set(statsProgram_, "uShooter", shooter);
+    glUseProgram(statsProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, patchList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+
+  GpuSelection select() {
+    glUseProgram(selectProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GpuSelection s{};
+    glGetNamedBufferSubData(selection_.get(), 0, sizeof s, &s);
+    gl::check("shot");
+    return s;
+  }
+
+  void renderItemBuffer(int layer, const glm::vec3& eye, const glm::mat3& toShooter) {
+    glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT0, items_.get(), 0, layer);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    const GLint none = -1;
+    const GLfloat far = 1.0f;
+    glClearNamedFramebufferiv(fbo_.get(), GL_COLOR, 0, &none);
+    glClearNamedFramebufferfv(fbo_.get(), GL_DEPTH, 0, &far);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CLIP_DISTANCE0);
+    glUseProgram(itemProgram_.get());
+    set(itemProgram_, "uEye", eye);
+    set(itemProgram_, "uToShooter", toShooter);
+    glBindVertexArray(vao_.get());
+    if (params_.visibility == Visibility::Hemisphere) {
+      glViewport(0, 0, itemSize_, itemSize_);
+      glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+    } else {
+      const int f = itemSize_, half = f / 2;
+      for (int i = 0; i < 5; ++i) {
+        set(itemProgram_, "uFace", rowsOf(kFaces[i].right, kFaces[i].up, kFaces[i].forward));
+        set(itemProgram_, "uHalfFace", i == 0 ? 0 : 1);
+        if (i == 0)
+          glViewport(0, 0, f, f);
+        else
+          glViewport(0, f + (i - 1) * half, f, half);
+        glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+      }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  std::vector<glm::vec3> readImage(const gl::Texture& t) const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetTextureImage(t.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    std::vector<glm::vec3> out(v.size());
+    for (size_t i = 0; i < v.size(); ++i) out[i] = glm::vec3(v[i]);
+    return out;
+  }
+
+  void uploadAtlas() {
+    const int w = atlas_.width, h = atlas_.height;
+    const size_t n = atlas_.texelCount();
+    std::vector<glm::vec4> posArea(n), normalPatch(n), albedo(n), emission(n, glm::vec4(0.0f));
+    for (size_t i = 0; i < n; ++i) {
+      posArea[i] = glm::vec4(atlas_.position[i], atlas_.area[i]);
+      normalPatch[i] = glm::vec4(atlas_.normal[i], float(atlas_.patch[i]));
+      albedo[i] = glm::vec4(atlas_.albedo[i], 0.0f);
+      if (atlas_.patch[i] >= 0) emission[i] = glm::vec4(atlas_.emission[i], 0.0f);
+    }
+    // Patch IDs travel as floats in uNormalPatch.w.
+    if (atlas_.patches.size() >= (1u << 24)) throw InputError("atlas", "more than 2^24 patches");
+    auto image = [&](gl::Texture& t, const std::vector<glm::vec4>& data, Image unit, GLenum access) {
+      t = gl::makeTexture2D(GL_RGBA32F, w, h);
+      glTextureSubImage2D(t.get(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data.data());
+      glBindImageTexture(unit, t.get(), 0, GL_FALSE, 0, access, GL_RGBA32F);
+    };
+    image(posArea_, posArea, kPosArea, GL_READ_ONLY);
+    image(normalPatch_, normalPatch, kNormalPatch, GL_READ_ONLY);
+    image(albedo_, albedo, kAlbedo, GL_READ_ONLY);
+    image(radiosity_, emission, kRadiosity, GL_READ_WRITE);
+    image(residual_, emission, kResidual, GL_READ_WRITE);
+    image(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident, GL_READ_WRITE);
+
+    const size_t np = atlas_.patches.size();
+    std::vector<GpuPatch> patches(np);
+    std::vector<uint32_t> pending(np, 0);
+    std::vector<glm::ivec4> tiles;
+    for (size_t i = 0; i < np; ++i) {
+      const Patch& p = atlas_.patches[i];
+      patches[i].rect = {p.x, p.y, p.w, p.h};
+      for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+          const size_t t = size_t(p.y + y) * w + p.x + x;
+          if (atlas_.patch[t] == int(i) && atlas_.emission[t] != glm::vec3(0.0f)) pending[i] = 1;
+        }
+      for (int y = 0; y < p.h; y += kTile)
+        for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+    }
+    tileCount_ = tiles.size();
+    auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes, const void* data) {
+      b = gl::makeBuffer(bytes, data);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
+    };
+    ssbo(patches_, kPatches, np * sizeof(GpuPatch), patches.data());
+    ssbo(stats_, kStats, np * sizeof(GpuStats), nullptr);
+    ssbo(visible_, kVisible, np * 4, nullptr);
+    ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
+    ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
+    ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
+    ssbo(blocks_, kBlocks, (kMaxRegions * kMaxRegions + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
+    ssbo(pending_, kPending, np * 4, pending.data());
+    ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
+    const GLuint zero = 0;
+    glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  }
+
+  void uploadGeometry() {
+    // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
+    std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
+    for (size_t i = 0; i < atlas_.patches.size(); ++i)
+      for (int32_t t : atlas_.patches[i].triangles)
+        if (t >= 0) patchOf[t] = int32_t(i);
+    std::vector<glm::vec3> positions;
+    std::vector<int32_t> ids;
+    for (size_t t = 0; t < scene_.triangles.size(); ++t) {
+      const Triangle& tri = scene_.triangles[t];
+      if (!(tri.area() > 0.0f)) continue;
+      for (const glm::vec3& q : tri.p) positions.push_back(q), ids.push_back(patchOf[t]);
+    }
+    vertexCount_ = GLsizei(positions.size());
+    positionBuffer_ = gl::makeBuffer(positions.size() * sizeof(glm::vec3), positions.data(), 0);
+    idBuffer_ = gl::makeBuffer(ids.size() * 4, ids.data(), 0);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    vao_ = gl::VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, positionBuffer_.get(), 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayVertexBuffer(vao, 1, idBuffer_.get(), 0, 4);
+    glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, 0);
+    glVertexArrayAttribBinding(vao, 1, 1);
+    glEnableVertexArrayAttrib(vao, 1);
+
+    const Bounds b = scene_.bounds();
+    const float diagonal = std::max(glm::length(b.size()), 1e-3f);
+    far_ = 2.0f * diagonal;
+    near_ = 1e-3f * diagonal;
+    eyeOffset_ = 1e-4f * diagonal;
+  }
+
+  void makeItemBuffer() {
+    int w, h;
+    if (params_.visibility == Visibility::Hemisphere) {
+      itemSize_ = params_.itemBuffer;
+      w = h = itemSize_;
+    } else {
+      itemSize_ = params_.itemBuffer / 2 + (params_.itemBuffer / 2) % 2;  // face edge, even
+      w = itemSize_;
+      h = itemSize_ * 3;  // top face, then four half-height side faces
+    }
+    // One layer per shooter region.
+    GLuint items = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &items);
+    items_ = gl::Texture(items);
+    glTextureStorage3D(items, 1, GL_R32I, w, h, params_.maxRegions * params_.maxRegions);
+    glTextureParameteri(items, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // else incomplete for texelFetch
+    glTextureParameteri(items, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    depth_ = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    fbo_ = gl::Framebuffer(fbo);
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, items, 0, 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw SystemError("OpenGL: the item-buffer framebuffer (R32I + depth) is incomplete");
+    glBindTextureUnit(0, items_.get());
+  }
+
+  void setConstantUniforms() {
+    set(itemProgram_, "uFar", far_);
+    set(itemProgram_, "uNear", near_);
+    set(receiveProgram_, "uItemSize", itemSize_);
+    set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
+    set(receiveProgram_, "uFarField", params_.farField);
+    setU(compactProgram_, "uTiles", GLuint(tileCount_));
+    setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
+    set(selectProgram_, "uPatches", int(atlas_.patches.size()));
+  }
+
+  const Scene& scene_;
+  const LightmapAtlas& atlas_;
+  SolverParams params_;
+  gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
+      statsProgram_, selectProgram_;
+  gl::Texture posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, items_, depth_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
+  gl::Buffer positionBuffer_, idBuffer_;
+  gl::VertexArray vao_;
+  gl::Framebuffer fbo_;
+  PassClock clock_;
+  GLsizei vertexCount_ = 0;
+  size_t tileCount_ = 0;
+  int itemSize_ = 0;
+  float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
+};
+
+double channelSum(const glm::vec4& v) { return double(v.r) + double(v.g) + double(v.b); }
+
+std::string formatStatus(int shots, double fraction, double eta) {
+  char buf[96];
+  if (eta >= 0.0)
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%, ETA %.0f s", shots, 100.0 * fraction, eta);
+  else
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace
+
+const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
+
+Visibility parseVisibility(const std::string& name) {
+  if (name == "hemisphere") return Visibility::Hemisphere;
+  if (name == "hemicube") return Visibility::Hemicube;
+  throw InputError("--visibility", "must be hemisphere or hemicube, not '" + name + "'");
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& context, Context& ctx) {
+  checkParams(params, atlas, context.maxTextureSize());
+  SolveResult result;
+  result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
+  if (atlas.patches.empty()) return result;
+
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  Solver solver(scene, atlas, params);
+  result.setupSeconds = since(start);
+  ctx.addTiming("solve: setup", result.setupSeconds);
+
+  const auto shootStart = std::chrono::steady_clock::now();
+  GpuSelection sel = solver.start();
+  EnergyTotals e;
+  e.emitted = channelSum(sel.unshot);
+  auto record = [&](const GpuSelection& s) {
+    e.unshot = channelSum(s.unshot);
+    e.received = channelSum(s.incident);
+    e.absorbed = channelSum(s.absorbed);
+    result.history.push_back(e);
+  };
+  record(sel);
+  double lastReport = -1.0;
+  double firstLog = 0.0;  // log of the unshot fraction after the first reflector shot, for the ETA
+  int firstShot = -1;
+  while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
+    const double fraction = e.unshot / e.emitted;
+    if (fraction <= params.unshotFraction) break;
+    e.shot += channelSum(sel.winnerUnshot);
+    sel = solver.shoot(sel.winner);
+    ++result.shots;
+    record(sel);
+
+    const double elapsed = since(shootStart), now = e.unshot / e.emitted;
+    if (elapsed - lastReport > 0.25) {
+      // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
+      double eta = -1.0;
+      if (firstShot < 0 && !sel.winnerPending) firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
+      if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
+        const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
+        if (rate < 0.0) eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+      }
+      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
+      lastReport = elapsed;
+    }
+  }
+  result.energy = e;
+  result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
+  ctx.addTiming("solve: shots", since(shootStart));
+  solver.reportPasses(ctx);
+  {
+    auto t = ctx.time("solve: read back");
+    result.radiosity = solver.readRadiosity();
+  }
+  for (size_t i = 0; i < result.radiosity.size(); ++i)
+    if (atlas.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
+  ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
+  result.seconds = since(start);
+  return result;
+}
+
+}  // namespace cpgi

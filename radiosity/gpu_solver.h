@@ -1,0 +1,86 @@
+// GPU progressive radiosity (thesis ch. 6, after Coombe, Harris & Lastra 2004) over a lightmap atlas:
+// every atlas texel is a sub-patch with radiosity and residual (unshot) textures on the GPU. One shot:
+// select the patch with the largest unshot power (emitters first), split it into texel blocks, render
+// an item buffer of patch IDs from its centre, and let every visible receiver texel gather
+// ρ ΔB F(dA → A_s) with the disk approximation. Stops when the unshot power falls under a fraction of
+// the emitted power.
+//
+// Requires a current OpenGL 4.5 context (EglContext) on the calling thread.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/context.h"
+#include "core/scene.h"
+#include "radiosity/atlas.h"
+#include "radiosity/egl_context.h"
+
+namespace cpgi {
+
+enum class Visibility {
+  Hemisphere,  ///< the thesis's one-pass hemispherical item buffer (curved-edge error on coarse meshes)
+  Hemicube,    ///< five perspective faces: straight edges stay straight
+};
+
+const char* visibilityName(Visibility v);
+/// Parses "hemisphere" / "hemicube"; throws InputError("--visibility", ...) otherwise.
+Visibility parseVisibility(const std::string& name);
+
+struct SolverParams {
+  Visibility visibility = Visibility::Hemicube;
+  /// Hemisphere: the buffer's edge in pixels. Hemicube: twice a face's edge (faces of N/2, so both modes
+  /// hold about N² pixels). In [16, GL_MAX_TEXTURE_SIZE], even.
+  int itemBuffer = 512;
+  /// Item-buffer neighbourhood radius for the visibility test (1 → the thesis's 3×3; 0 → one pixel).
+  int neighbourhood = 1;
+  /// Stop when the unshot power is at most this fraction of the emitted power, in (0, 1).
+  double unshotFraction = 0.01;
+  /// Stop after this many shots whatever the unshot fraction (>= 1).
+  int maxShots = 100000;
+  /// A shooter piece (whole patch, then texel block) counts as one disk for receivers farther than this
+  /// many times its bounding radius; nearer receivers use its parts. >= 1.
+  float farField = 2.0f;
+  /// Texel blocks per chart edge of the shooter (sub-shooters), 1..8.
+  int maxBlocks = 8;
+  /// A shooter is split into visibility regions about this long (m), each with its own item buffer
+  /// drawn from its centre, so a lamp just under a ceiling's centre does not hide the whole ceiling.
+  float regionSize = 1.0f;
+  /// At most this many regions per chart edge, 1..4 (so at most 16 item buffers per shot).
+  int maxRegions = 2;
+  /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
+  /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
+  bool profilePasses = false;
+};
+
+/// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,
+/// where escaped is the part of the shot power no receiver caught (open scenes, form-factor error).
+struct EnergyTotals {
+  double emitted = 0.0;
+  double shot = 0.0;      ///< power that left shooters so far
+  double received = 0.0;  ///< Σ irradiance × area over all texels
+  double absorbed = 0.0;  ///< Σ (1 − ρ) irradiance × area
+  double unshot = 0.0;    ///< Σ residual × area
+  double escaped() const { return shot - received; }
+};
+
+struct SolveResult {
+  std::vector<glm::vec3> radiosity;  ///< per atlas texel (W/m²), padding 0, not dilated
+  int shots = 0;
+  double unshotFraction = 0.0;       ///< unshot / emitted at the end (0 when nothing emits)
+  EnergyTotals energy;
+  std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
+  double seconds = 0.0;              ///< solve time (upload, shots, read back)
+  double setupSeconds = 0.0;         ///< programs and textures
+};
+
+/// Solves the atlas. `scene` supplies occluders: every scene triangle is drawn in the item buffer, those
+/// outside the atlas with no patch (they block light but receive none).
+/// Throws InputError for bad params, SystemError for GL failures.
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& gl, Context& ctx);
+
+}  // namespace cpgi

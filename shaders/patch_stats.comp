@@ -1,0 +1,57 @@
+// Per listed patch: Σ residual × area, Σ irradiance × area and Σ (1 − ρ) irradiance × area, summed in
+// a fixed order (strided loop, then a tree) so that runs agree to the bit. The shooter's residual is
+// zeroed here first: its energy has just been shot.
+#include "common.glsl"
+layout(local_size_x = 64) in;
+layout(binding = 0, rgba32f) readonly uniform image2D uPosArea;
+layout(binding = 1, rgba32f) readonly uniform image2D uNormalPatch;
+layout(binding = 2, rgba32f) readonly uniform image2D uAlbedo;
+layout(binding = 4, rgba32f) uniform image2D uResidual;
+layout(binding = 5, rgba32f) readonly uniform image2D uIncident;
+layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
+layout(std430, binding = 1) buffer Stats { PatchStats stats[]; };
+layout(std430, binding = 5) readonly buffer PatchList { uint patchCount; uint patchArgs[3]; uint patchList[]; };
+layout(std430, binding = 7) buffer Pending { uint pending[]; };
+uniform int uShooter;
+
+shared vec4 sUnshot[64], sIncident[64], sAbsorbed[64];
+
+void main() {
+  uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
+  if (entry >= patchCount) return;  // uniform across the group
+  int p = int(patchList[entry]);
+  ivec4 r = patches[p].rect;
+  uint k = gl_LocalInvocationID.x;
+  vec3 unshot = vec3(0.0), incident = vec3(0.0), absorbed = vec3(0.0);
+  for (int i = int(k); i < r.z * r.w; i += 64) {
+    ivec2 t = r.xy + ivec2(i % r.z, i / r.z);
+    if (int(imageLoad(uNormalPatch, t).w) != p) continue;
+    float a = imageLoad(uPosArea, t).w;
+    vec3 e = imageLoad(uIncident, t).rgb;
+    if (p == uShooter)
+      imageStore(uResidual, t, vec4(0.0));
+    else
+      unshot += imageLoad(uResidual, t).rgb * a;
+    incident += e * a;
+    absorbed += (vec3(1.0) - imageLoad(uAlbedo, t).rgb) * e * a;
+  }
+  sUnshot[k] = vec4(unshot, 0.0);
+  sIncident[k] = vec4(incident, 0.0);
+  sAbsorbed[k] = vec4(absorbed, 0.0);
+  barrier();
+  for (uint s = 32u; s > 0u; s >>= 1) {
+    if (k < s) {
+      sUnshot[k] += sUnshot[k + s];
+      sIncident[k] += sIncident[k + s];
+      sAbsorbed[k] += sAbsorbed[k + s];
+    }
+    barrier();
+  }
+  if (k == 0u) {
+    vec3 u = sUnshot[0].rgb;
+    stats[p].unshot = vec4(u, u.r + u.g + u.b);
+    stats[p].incident = sIncident[0];
+    stats[p].absorbed = sAbsorbed[0];
+    if (p == uShooter) pending[p] = 0u;
+  }
+}

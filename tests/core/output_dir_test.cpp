@@ -1,0 +1,75 @@
+// OutputDir: results appear whole on commit(), temporaries vanish on failure, the user's files survive.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/output_dir.h"
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+TEST(OutputDir, CommitRenamesStagedFiles) {
+  test::TempDir dir;
+  const fs::path out = dir.path() / "nested" / "out";
+  {
+    OutputDir o(out);
+    const fs::path a = o.file("a.txt");
+    const fs::path skipped = o.file("never-written.txt");
+    EXPECT_EQ(a.parent_path(), out);
+    EXPECT_NE(a.filename(), "a.txt");
+    std::ofstream(a) << "alpha";
+    EXPECT_FALSE(fs::exists(out / "a.txt"));
+    o.commit();
+    (void)skipped;
+  }
+  EXPECT_EQ(slurp(out / "a.txt"), "alpha");
+  EXPECT_FALSE(fs::exists(out / "never-written.txt"));
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
+}
+
+TEST(OutputDir, FailureRemovesTemporariesAndKeepsTheUsersFiles) {
+  test::TempDir dir;
+  std::ofstream(dir.path() / "lightmap.exr") << "the user's earlier result";
+  try {
+    OutputDir o(dir.path());
+    std::ofstream(o.file("lightmap.exr")) << "half written";
+    throw std::runtime_error("the solver failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(slurp(dir.path() / "lightmap.exr"), "the user's earlier result");
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir.path())) entries += 1, (void)e;
+  EXPECT_EQ(entries, 1u);
+}
+
+TEST(OutputDir, UncreatableFolderIsAnInputError) {
+  test::TempDir dir;
+  std::ofstream(dir.path() / "file") << "x";
+  EXPECT_THROW(OutputDir(dir.path() / "file" / "sub"), InputError);
+}
+
+TEST(OutputDir, WriteFileAtomicallyReplacesWholeAndLeavesNoTemporary) {
+  test::TempDir dir;
+  const fs::path p = dir.path() / "report.json";
+  std::ofstream(p) << "old";
+  writeFileAtomically(p, "new contents");
+  EXPECT_EQ(slurp(p), "new contents");
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir.path())) entries += 1, (void)e;
+  EXPECT_EQ(entries, 1u);
+  EXPECT_THROW(writeFileAtomically(dir.path() / "no" / "such" / "folder.json", "x"), SystemError);
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -1,0 +1,219 @@
+#include "radiosity/reference_tracer.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "core/error.h"
+#include "radiosity/form_factors.h"
+#include "path_test_scenes.h"
+
+namespace cpgi {
+namespace {
+
+using namespace cpgi::testing;
+using namespace cpgi::pathtest;
+
+/// |estimate − exact| within `sigmas` standard errors (plus a float-rounding floor), per channel.
+void expectWithinError(const glm::vec3& estimate, const glm::vec3& error, const glm::vec3& exact,
+                       float sigmas, const std::string& what) {
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(estimate[c], exact[c], sigmas * error[c] + 1e-5f * std::abs(exact[c]))
+        << what << " channel " << c << " (standard error " << error[c] << ")";
+}
+
+TEST(ReferenceTracer, WhiteFurnaceConvergesToEOverOneMinusRho) {
+  // A closed box, every face with the same albedo and emission: B = E / (1 − ρ) per channel.
+  const glm::vec3 albedo(0.2f, 0.5f, 0.8f), emission(1.0f, 2.0f, 0.5f);
+  Scene scene;
+  const uint32_t m = addMaterial(scene, albedo, emission);
+  const auto faces = boxFaces(2.0f, {m, m, m, m, m, m});
+  addFaces(scene, faces);
+  const auto points = facePoints(scene, faces, 3);
+
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 4096;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const glm::vec3 exact = emission / (1.0f - albedo);
+  for (size_t i = 0; i < points.size(); ++i) {
+    expectWithinError(r.radiosity[i], r.standardError[i], exact, 5.0f, "point " + std::to_string(i));
+    EXPECT_LT(r.standardError[i].z / exact.z, 0.03f);  // the test would prove little with a huge error
+    EXPECT_GT(r.standardError[i].z, 0.0f);
+  }
+  EXPECT_GT(r.rays, points.size() * params.spp);
+}
+
+/// An a × a emitter centred above the origin at height h, facing down; nothing else in the scene.
+Scene emitterScene(float a, float h, glm::vec3 emission) {
+  Scene scene;
+  const uint32_t m = addMaterial(scene, glm::vec3(0.0f), emission);
+  addRect(scene, {-a / 2, -a / 2, h}, {0, a, 0}, {a, 0, 0}, m);
+  return scene;
+}
+
+std::vector<glm::dvec3> emitterPolygon(float a, float h) {
+  return {{-a / 2, -a / 2, h}, {-a / 2, a / 2, h}, {a / 2, a / 2, h}, {a / 2, -a / 2, h}};
+}
+
+TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
+  const glm::vec3 emission(10.0f, 5.0f, 2.0f), albedo(0.5f, 0.7f, 0.9f);
+  struct Case {
+    float a, h;
+    glm::vec3 position, normal;
+  };
+  const std::vector<Case> cases = {
+      {1.0f, 1.0f, {0, 0, 0}, {0, 0, 1}},                                      // centred, far
+      {1.0f, 1.0f, {0.8f, -0.3f, 0.2f}, glm::normalize(glm::vec3(0.6f, 0, 1))},  // off-axis, tilted
+      {1.0f, 0.5f, {0.0f, 0.1f, 0.3f}, glm::normalize(glm::vec3(1, 0.2f, 0))},  // emitter partly behind the plane
+      {2.0f, 0.05f, {0.1f, 0.2f, 0}, {0, 0, 1}},  // large and close: BSDF hits dominate, MIS must not double count
+  };
+  for (const Case& c : cases) {
+    const Scene scene = emitterScene(c.a, c.h, emission);
+    const std::vector<SamplePoint> points = {{c.position, c.normal, albedo, glm::vec3(0.0f)}};
+    Context ctx;
+    ReferenceParams params;
+    params.spp = 4096;
+    const ReferenceResult r = traceReference(scene, points, params, ctx);
+    const double f = pointToPolygonFormFactor(glm::dvec3(c.position), glm::dvec3(c.normal), emitterPolygon(c.a, c.h));
+    const glm::vec3 exact = albedo * emission * float(f);
+    expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "h " + std::to_string(c.h));
+    EXPECT_LT(r.standardError[0].x, 0.02f * exact.x) << "h " << c.h << " B " << r.radiosity[0].x << " exact " << exact.x;
+  }
+}
+
+TEST(ReferenceTracer, SeveralEmittersAddUp) {
+  // Three lamps of different colours: one near above, one far and tilted, one facing away from the
+  // point (contributes nothing). Direct light only: B = ρ Σ_k E_k F_k.
+  Scene scene;
+  const glm::vec3 e1(10.0f, 1.0f, 1.0f), e2(1.0f, 30.0f, 1.0f), e3(1.0f, 1.0f, 50.0f);
+  addRect(scene, {-0.3f, -0.3f, 1.0f}, {0, 0.6f, 0}, {0.6f, 0, 0}, addMaterial(scene, glm::vec3(0.0f), e1));
+  addRect(scene, {3.0f, -1.0f, 0.5f}, {0, 0, 2.0f}, {0, 2.0f, 0}, addMaterial(scene, glm::vec3(0.0f), e2));
+  addRect(scene, {-1.0f, -1.0f, 2.0f}, {2.0f, 0, 0}, {0, 2.0f, 0}, addMaterial(scene, glm::vec3(0.0f), e3));
+  const glm::vec3 albedo(0.6f);
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f));
+  const std::vector<SamplePoint> points = {{{0, 0, 0}, n, albedo, glm::vec3(0.0f)}};
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 8192;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const glm::dvec3 nd(n);
+  const double f1 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
+  const double f2 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
+  const glm::vec3 exact = albedo * (e1 * float(f1) + e2 * float(f2));
+  expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "three lamps");
+  for (int c = 0; c < 3; ++c) EXPECT_LT(r.standardError[0][c], 0.02f * exact[c]);
+}
+
+TEST(ReferenceTracer, ManyEmittersFallBackToPowerSelection) {
+  // A 1 m² lamp cut into 12 × 12 quads (288 triangles, more than the per-vertex selection handles).
+  Scene scene;
+  const uint32_t m = addMaterial(scene, glm::vec3(0.0f), glm::vec3(8.0f));
+  const int cells = 12;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      addRect(scene, {-0.5f + float(i) / cells, -0.5f + float(j) / cells, 0.8f}, {0, 1.0f / cells, 0},
+              {1.0f / cells, 0, 0}, m);
+  const std::vector<SamplePoint> points = {{{0.2f, 0.1f, 0}, {0, 0, 1}, glm::vec3(0.5f), glm::vec3(0.0f)}};
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 4096;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const double f = pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
+  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f, "split lamp");
+  EXPECT_LT(r.standardError[0].x, 0.02f * 4.0f * float(f));
+}
+
+TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
+  Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
+  const uint32_t black = addMaterial(scene, glm::vec3(0.0f));
+  addRect(scene, {-1.0f, -1.0f, 0.5f}, {2.0f, 0, 0}, {0, 2.0f, 0}, black);  // a blocker facing the point
+  const std::vector<SamplePoint> points = {
+      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},    // under the blocker
+      {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // above the emitter's back
+  };
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 64;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  EXPECT_EQ(r.radiosity[0], glm::vec3(0.0f));
+  EXPECT_EQ(r.radiosity[1], glm::vec3(0.0f));
+}
+
+TEST(ReferenceTracer, OwnEmissionPassesThroughWithoutNoise) {
+  const Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
+  const std::vector<SamplePoint> points = {{{0, 0, 0}, {0, 0, 1}, glm::vec3(0.0f), glm::vec3(3.0f, 2.0f, 1.0f)}};
+  Context ctx;
+  const ReferenceResult r = traceReference(scene, points, {}, ctx);
+  EXPECT_EQ(r.radiosity[0], glm::vec3(3.0f, 2.0f, 1.0f));
+  EXPECT_EQ(r.standardError[0], glm::vec3(0.0f));
+}
+
+TEST(ReferenceTracer, ClosedBoxConservesEnergy) {
+  // In an enclosure with uniform albedo every watt leaving a surface arrives at another, so
+  // Σ A·B = Σ A·E / (1 − ρ) even though only the ceiling emits.
+  const float rho = 0.6f, size = 1.5f;
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(rho));
+  const uint32_t light = addMaterial(scene, glm::vec3(rho), glm::vec3(4.0f));
+  const auto faces = boxFaces(size, {wall, light, wall, wall, wall, wall});
+  addFaces(scene, faces);
+  const int k = 8;
+  const auto points = facePoints(scene, faces, k);
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 128;
+  const ReferenceResult r = traceReference(scene, points, params, ctx);
+  const float texelArea = size * size / (k * k);
+  double power = 0.0;
+  for (const glm::vec3& b : r.radiosity) power += texelArea * b.x;
+  const double expected = size * size * 4.0 / (1.0 - rho);
+  EXPECT_NEAR(power / expected, 1.0, 0.01);
+  // The floor, facing the light, is brighter than the walls beside it.
+  EXPECT_GT(r.radiosity[k * k / 2].x, r.radiosity[2 * k * k + k * k / 2].x);
+}
+
+TEST(ReferenceTracer, DeterministicWhateverTheThreadCount) {
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(0.7f));
+  const uint32_t light = addMaterial(scene, glm::vec3(0.7f), glm::vec3(4.0f));
+  const auto faces = boxFaces(1.0f, {wall, light, wall, wall, wall, wall});
+  addFaces(scene, faces);
+  const auto points = facePoints(scene, faces, 6);
+  ReferenceParams params;
+  params.spp = 16;
+  Context ctx;
+  const ReferenceResult a = traceReference(scene, points, params, ctx);
+  ReferenceResult b;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    b = traceReference(scene, points, params, ctx);
+  }
+  EXPECT_EQ(a.radiosity, b.radiosity);
+  EXPECT_EQ(a.standardError, b.standardError);
+  params.seed += 1;
+  const ReferenceResult c = traceReference(scene, points, params, ctx);
+  EXPECT_NE(a.radiosity, c.radiosity);
+}
+
+TEST(ReferenceTracer, RejectsTooFewSamples) {
+  const Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(1.0f));
+  const std::vector<SamplePoint> points = {{{0, 0, 0}, {0, 0, 1}, glm::vec3(0.5f), glm::vec3(0.0f)}};
+  ReferenceParams params;
+  params.spp = 1;
+  Context ctx;
+  EXPECT_THROW(traceReference(scene, points, params, ctx), InputError);
+}
+
+TEST(ReferenceTracer, RelativeStandardErrorIsAreaWeighted) {
+  ReferenceResult r;
+  r.radiosity = {glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(5.0f)};
+  r.standardError = {glm::vec3(0.1f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 0.2f), glm::vec3(1.0f)};
+  const std::vector<float> area = {1.0f, 2.0f, 0.0f};  // the last is padding
+  // noise = 1·0.01 + 2·0.04 = 0.09; signal = 1·1 + 2·4 = 9
+  EXPECT_NEAR(relativeStandardError(r, area), 0.1, 1e-7);
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -78,7 +78,7 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
       "decompose",
       "Automatic cells and portals: voxelize, watershed of the distance to the geometry, merge basins that "
       "meet at no real constriction, fit one quad per opening");
-  cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
   cmd->add_option("--voxel", o->params.voxelSize,
                   "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))")

@@ -152,7 +152,7 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
       "Compare two cell decompositions of SCENE over its empty voxels (adjusted Rand index, best-match IoU, "
       "portal matches). A and B: `auto`, a scene with cell:/portal: nodes, or a decompose output folder; B is "
       "the reference");
-  cmd->add_option("scene", o->scene, "The scene both decompositions are of")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", o->scene, "The scene both decompositions are of")->required();
   cmd->add_option("a", o->a, "Candidate decomposition")->required();
   cmd->add_option("b", o->b, "Reference decomposition")->required();
   cmd->add_option("--voxel", o->voxel, "Voxel edge, metres; 0 = as decompose chooses")->capture_default_str();

@@ -1,6 +1,7 @@
 // cpgi decompose SCENE -o DIR: automatic cells and portals (decomposition/decompose.h), written as
 // DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json and DIR/decomposition.png.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -40,7 +41,12 @@ int runDecompose(DecomposeOptions o) {
 
   GltfWriteOptions gltf;
   gltf.cells = &d.graph;
-  writeGltf(dir.file("cells.glb").string(), d.scene, gltf);
+  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
+  const std::filesystem::path staged = dir.file("cells.glb");
+  std::filesystem::path withExtension = staged;
+  withExtension += ".glb";
+  writeGltf(withExtension.string(), d.scene, gltf);
+  std::filesystem::rename(withExtension, staged);
   {
     auto timer = ctx.time("picture");
     writePng(dir.file("decomposition.png").string(), decomp::drawDecomposition(d));
@@ -58,8 +64,8 @@ int runDecompose(DecomposeOptions o) {
               d.graph.portals.size(), d.basins, d.frame.voxel, d.voxelChoice.c_str());
   std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
-  for (const auto& [stage, seconds] : report["timings_s"].items())
-    std::printf("  %-10s %8.3f s\n", stage.c_str(), seconds.get<double>());
+  for (const Context::Timing& t : ctx.timings()) std::printf("  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
+  std::printf("  %-20s %8.3f s\n", "total", report["timings_s"]["total"].get<double>());
   std::printf("wrote %s/{cells.glb, cells.json, decomposition.png}\n", o.out.c_str());
   return 0;
 }
@@ -72,7 +78,7 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
       "decompose",
       "Automatic cells and portals: voxelize, watershed of the distance to the geometry, merge basins that "
       "meet at no real constriction, fit one quad per opening");
-  cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
   cmd->add_option("--voxel", o->params.voxelSize,
                   "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))")

@@ -3,25 +3,35 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <climits>
 #include <map>
 
 namespace cpgi::decomp {
 namespace {
 
 // Per voxel, the nearest labelled voxel's cell (breadth-first over face neighbours), for triangles that
-// see no cell from either side.
+// see no cell from either side and have none nearby. The grid's border layer is left out (it is padding),
+// so the search runs on linear indices without bounds checks.
 std::vector<int32_t> nearestCells(const GridFrame& f, const std::vector<int32_t>& cell) {
   std::vector<int32_t> near = cell;
+  std::vector<char> border(f.count(), 0);
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y) {
+      const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
+      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1))) border[f.index(x, y, z)] = 1;
+    }
+  const ptrdiff_t sy = f.dims.x, sz = ptrdiff_t(f.dims.x) * f.dims.y;
+  const ptrdiff_t offsets[6] = {-1, 1, -sy, sy, -sz, sz};
   std::vector<size_t> queue;
   for (size_t i = 0; i < near.size(); ++i)
-    if (near[i] >= 0) queue.push_back(i);
+    if (near[i] >= 0 && !border[i]) queue.push_back(i);
   for (size_t head = 0; head < queue.size(); ++head) {
-    const glm::ivec3 c = f.coord(queue[head]);
-    for (const auto& d : kFaceNeighbours) {
-      const glm::ivec3 n(c.x + d[0], c.y + d[1], c.z + d[2]);
-      if (!f.contains(n)) continue;
-      const size_t j = f.index(n);
-      if (near[j] < 0) near[j] = near[queue[head]], queue.push_back(j);
+    const size_t i = queue[head];
+    for (ptrdiff_t o : offsets) {
+      const size_t j = size_t(ptrdiff_t(i) + o);
+      if (near[j] >= 0 || border[j]) continue;
+      near[j] = near[i];
+      queue.push_back(j);
     }
   }
   return near;
@@ -74,7 +84,9 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
   out.scene.materials = scene.materials;
   out.scene.nodePaths = scene.nodePaths;
   out.scene.cameras = scene.cameras;
-  const std::vector<int32_t> near = nearestCells(f, cell);
+  // The nearest-cell grid costs a pass over every voxel; most scenes never need it.
+  std::vector<int32_t> near;
+  int farSearches = 0;
   const float h = float(f.voxel);
 
   auto labelAt = [&](const glm::vec3& p) -> int {
@@ -83,12 +95,47 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
   };
   auto nearestAt = [&](const glm::vec3& p) -> int {
     const glm::ivec3 v = glm::clamp(f.voxelOf(p), glm::ivec3(0), f.dims - 1);
-    return near[f.index(v)];
+    // First shell by shell (cubes of growing radius), the nearest of the first shell that holds a
+    // labelled voxel (approximately the nearest overall): up to 40 voxels for the first 64 such
+    // searches, after which the grid of nearest cells pays off.
+    int best = -1, bestD = INT32_MAX;
+    const int radius = near.empty() && farSearches < 64 ? 40 : 12;
+    for (int r = 0; r <= radius && best < 0; ++r) {
+      if (r == 13) ++farSearches;
+      for (int dz = -r; dz <= r; ++dz)
+        for (int dy = -r; dy <= r; ++dy)
+          for (int dx = -r; dx <= r; ++dx) {
+            if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
+            const glm::ivec3 q = v + glm::ivec3(dx, dy, dz);
+            const int d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 >= bestD || !f.contains(q)) continue;
+            const int l = cell[f.index(q)];
+            if (l >= 0) best = l, bestD = d2;
+          }
+    }
+    if (best >= 0) return best;
+    const glm::ivec3 inner = glm::clamp(v, glm::ivec3(1), glm::max(f.dims - 2, glm::ivec3(1)));
+    if (near.empty()) {
+      auto t = ctx.time("assign.nearest");
+      near = nearestCells(f, cell);
+    }
+    return near[f.index(inner)];
   };
   // The first labelled voxel stepping from p along dir.
   auto faced = [&](const glm::vec3& p, const glm::vec3& dir) -> int {
     for (float step : {1.0f, 1.5f, 2.0f, 3.0f}) {
       const int l = labelAt(p + step * h * dir);
+      if (l >= 0) return l;
+    }
+    return -1;
+  };
+
+  // Behind a face that sees no cell (an outside wall, the underside of the ground floor): through the
+  // wall to the room it bounds, up to backSearch metres.
+  const int backSteps = std::max(3, int(std::ceil(params.backSearch / h)));
+  auto throughWall = [&](const glm::vec3& p, const glm::vec3& dir) -> int {
+    for (int step = 1; step <= backSteps; ++step) {
+      const int l = labelAt(p + float(step) * h * dir);
       if (l >= 0) return l;
     }
     return -1;
@@ -122,10 +169,10 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
             int front = faced(p, n);
             const int back = labelAt(p - h * n);
             if (front >= 0 && back >= 0 && back != front) out.thinWallArea += pieceArea;
-            if (front < 0) front = faced(p, -n);
-            if (front < 0) front = nearestAt(p), fellBack = true;
-            votes[front] += 1.0;
+            if (front < 0) front = throughWall(p, -n);
+            if (front >= 0) votes[front] += 1.0;  // a sample that sees no cell does not vote
           }
+      if (votes.empty()) votes[nearestAt(tri.centroid())] = 1.0, fellBack = true;
     }
     // Two cells seen: split on the plane of a portal between them that the triangle crosses.
     int best = -1;
@@ -153,7 +200,7 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
         }
       }
     }
-    out.fallbackTriangles += fellBack && votes.size() == 1;
+    out.fallbackTriangles += fellBack;
     out.scene.triangles.push_back(tri);
     out.cellOfTriangle.push_back(best);
     out.sourceTriangle.push_back(piece.source);

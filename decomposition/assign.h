@@ -20,6 +20,8 @@ struct AssignParams {
   int maxSamplesPerEdge = 8;
   /// How often a piece may be split again (a triangle crossing several portal planes).
   int maxSplitDepth = 4;
+  /// How far behind a face that sees no cell to look for one, metres (the thickest wall expected).
+  double backSearch = 0.6;
 };
 
 struct Assignment {
@@ -34,8 +36,8 @@ struct Assignment {
 };
 
 /// For each triangle, samples step along its normal (1 to 3 voxels) to the first labelled voxel; the
-/// back side is tried when the front finds none (wrong winding, outside walls), and the nearest
-/// labelled voxel when neither does. Run after fitPortals, with its relabelled cells.
+/// back side is tried when the front finds none (wrong winding, outside walls: up to backSearch deep),
+/// and the nearest labelled voxel when neither does. Run after fitPortals, with its relabelled cells.
 Assignment assignTriangles(const Scene& scene, const GridFrame& frame, const std::vector<int32_t>& cell,
                            const std::vector<PortalQuad>& portals, const AssignParams& params, Context& ctx);
 

@@ -77,14 +77,8 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
   tbb::parallel_for(size_t(0), components.size(), [&](size_t k) {
     const std::vector<size_t>& comp = components[k];
     if (double(comp.size()) < minVoxels) return;
-    // Inside a closed outward-facing solid (a thick wall built as a box, a cupboard): void. The median of
-    // three voxels spread through the component guards against one unlucky sample.
-    double w[3];
-    for (int s = 0; s < 3; ++s) w[s] = windingNumber(scene, glm::dvec3(f.centre(comp[comp.size() * size_t(s) / 3])));
-    std::sort(w, w + 3);
-    if (w[1] > 0.5) return;
-    // Otherwise by the winding of the nearest triangles: in front of them is a room, behind them the
-    // inside of an open-backed shell.
+    // By the winding of the nearest triangles: in front of them is a room, behind them the inside of an
+    // open-backed shell.
     double front = 0.0, back = 0.0;
     for (size_t v : comp) {
       const int t = solid.nearestTriangle[v];
@@ -94,7 +88,14 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
       if (side > 0.0f) front += 1.0;
       else if (side < 0.0f) back += 1.0;
     }
-    isInside[k] = front > back;
+    if (front <= back) return;
+    // In front of its nearest faces yet inside a closed outward-facing solid (a box's inside seen through
+    // a coincident floor face): void too. The median of three voxels spread through the component guards
+    // against one unlucky sample; only components that passed the vote pay for the winding number.
+    double w[3];
+    for (int s = 0; s < 3; ++s) w[s] = windingNumber(scene, glm::dvec3(f.centre(comp[comp.size() * size_t(s) / 3])));
+    std::sort(w, w + 3);
+    isInside[k] = w[1] <= 0.5;
   });
   for (size_t k = 0; k < components.size(); ++k) {
     const Space s = isInside[k] ? Space::Inside : Space::Void;

@@ -7,7 +7,7 @@
 namespace cpgi::decomp {
 namespace {
 
-const glm::vec3 kWall(0.08f), kOutside(1.0f), kVoid(0.3f), kPortalEdge(0.0f), kPortalCore(1.0f);
+const glm::vec3 kWall(0.08f), kOutside(1.0f), kVoid(0.3f), kPortalEdge(0.0f), kPortalCore(1.0f, 0.02f, 0.02f);
 
 // One view: `across` and `up` are the grid axes shown left→right and top→bottom; `depth` is summed over.
 struct View {

@@ -56,10 +56,12 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
   const auto xform = openvdb::math::Transform::createLinearTransform(h);
   openvdb::Int32Grid indexGrid(-1);
   openvdb::FloatGrid::Ptr udf = openvdb::tools::meshToVolume<openvdb::FloatGrid>(
-      TriangleAdapter(scene, f), *xform, 2.0f, 2.0f, openvdb::tools::UNSIGNED_DISTANCE_FIELD, &indexGrid);
+      TriangleAdapter(scene, f), *xform, 1.0f, 1.0f, openvdb::tools::UNSIGNED_DISTANCE_FIELD | openvdb::tools::DISABLE_RENORMALIZATION, &indexGrid);
 
   // Solid where the centre is within half a voxel: then two face neighbours on opposite sides of any
   // plane differ by at most one voxel in distance and cannot both be outside the band.
+  const double udfSeconds = timer.elapsed();
+  ctx.addTiming("voxelize.udf", udfSeconds);
   const float halfVoxel = float(0.5 * h) * (1.0f + 1e-4f);
   openvdb::MaskGrid solidMask;
   auto maskAcc = solidMask.getAccessor();
@@ -76,6 +78,7 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
     out.sealedVoxels = size_t(solidMask.activeVoxelCount() - std::min(before, solidMask.activeVoxelCount()));
   }
 
+  ctx.addTiming("voxelize.mask_seal", timer.elapsed() - udfSeconds);
   out.solid.assign(f.count(), 0);
   out.nearestTriangle.assign(f.count(), -1);
   for (auto it = solidMask.cbeginValueOn(); it; ++it) {

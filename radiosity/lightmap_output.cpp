@@ -21,6 +21,8 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   result.exposure = viewParams.exposure > 0.0f ? viewParams.exposure : viewExposure(atlas, radiosity);
   GltfWriteOptions gltf;
   gltf.lightmapUVs = &atlas.triangleUV;
+  // Keep the cells and portals, so the baked file still loads with its graph.
+  gltf.cells = cells.empty() ? nullptr : &cells;
   gltf.lightmapPng = encodePng(image, result.exposure / std::numbers::pi_v<float>);
   // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
   const std::filesystem::path staged = out.file("baked.glb");

@@ -118,7 +118,8 @@ SeedScene makeSeedScene(int level) {
   const float y = 1.6f;
   out.scene.cameras.push_back(lookAt("A", {3.7f, y, 3.7f}, {0.2f, 1.0f, 0.5f}));
   out.scene.cameras.push_back(lookAt("B", {roomX0(1) + 2.0f, 2.2f, 3.8f}, {roomX0(1) + 2.0f, 0.8f, 0.0f}));
-  out.scene.cameras.push_back(lookAt("C", {roomX0(2) + 0.3f, y, 3.7f}, {roomX0(2) + 3.8f, 1.0f, 0.5f}));
+  // Between seed3's columns (x 0.55..1.15) and north of their last row (z > 3.75).
+  out.scene.cameras.push_back(lookAt("C", {roomX0(2) + 0.85f, y, 3.9f}, {roomX0(2) + 3.8f, 1.0f, 0.5f}));
   return out;
 }
 

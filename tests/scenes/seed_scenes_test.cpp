@@ -100,6 +100,37 @@ TEST(SeedScenes, RoomsAndWallsHaveTheDesignDimensions) {
   EXPECT_EQ(s.scene.cameras.size(), 3u);
 }
 
+// A camera inside an occluder sees only back faces: from every camera, the first surface hit along each
+// axis direction must face the camera.
+TEST(SeedScenes, CamerasStandInEmptySpace) {
+  const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int level = 1; level <= 3; ++level) {
+    const SeedScene s = makeSeedScene(level);
+    for (const Camera& cam : s.scene.cameras) {
+      for (const glm::vec3& d : dirs) {
+        float nearest = 1e9f;
+        glm::vec3 normal(0.0f);
+        for (const Triangle& t : s.scene.triangles) {  // Möller–Trumbore
+          const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+          const glm::vec3 pv = glm::cross(d, e2);
+          const float det = glm::dot(e1, pv);
+          if (std::abs(det) < 1e-12f) continue;
+          const glm::vec3 tv = cam.position - t.p[0];
+          const float u = glm::dot(tv, pv) / det;
+          const glm::vec3 qv = glm::cross(tv, e1);
+          const float v = glm::dot(d, qv) / det, dist = glm::dot(e2, qv) / det;
+          if (u < 0 || v < 0 || u + v > 1 || dist <= 0 || dist >= nearest) continue;
+          nearest = dist;
+          normal = t.geometricNormal();
+        }
+        EXPECT_LT(nearest, 1e8f) << "seed" << level << " camera " << cam.name << " sees out of the scene";
+        EXPECT_LT(glm::dot(normal, d), 0.0f)
+            << "seed" << level << " camera " << cam.name << " is inside something";
+      }
+    }
+  }
+}
+
 TEST(SeedScenes, RejectsUnknownLevels) {
   EXPECT_THROW(makeSeedScene(0), std::invalid_argument);
   EXPECT_THROW(makeSeedScene(4), std::invalid_argument);

@@ -136,6 +136,8 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
   out.graph.portals = std::move(quads);
 
+  for (const std::string& w : validateCells(out.scene, out.graph).warnings)
+    ctx.warn("decompose: " + params.sourceName + ": " + w);
   if (out.thinWallArea > 0.1)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.thinWallArea) +
              " m2 of wall between two cells is thinner than one voxel (" + metres(h) +

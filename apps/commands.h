@@ -13,6 +13,7 @@ using CommandFn = std::function<int()>;
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
 void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);
+void addBakeCommand(CLI::App& app, CommandFn& selected);
 void addReferenceCommand(CLI::App& app, CommandFn& selected);
 void addCompareLightCommand(CLI::App& app, CommandFn& selected);
 void addDecomposeCommand(CLI::App& app, CommandFn& selected);

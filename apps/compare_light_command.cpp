@@ -34,13 +34,16 @@ struct Lightmap {
 
 Lightmap readLightmap(const std::string& dir) {
   const fs::path path = fs::path(dir) / "lightmap.exr";
-  if (!fs::exists(path)) throw InputError(path.string(), "no such file (not a bake or reference output folder?)");
+  if (!fs::exists(path))
+    throw InputError(path.string(), "no such file (not a bake or reference output folder?)");
   Lightmap map;
   std::vector<ExrChannel> extra;
   map.rgb = readExr(path.string(), &extra);
   for (ExrChannel& c : extra)
-    if (c.name == "area") map.area = std::move(c.values);
-    else if (c.name == "emissive") map.emissive = std::move(c.values);
+    if (c.name == "area")
+      map.area = std::move(c.values);
+    else if (c.name == "emissive")
+      map.emissive = std::move(c.values);
   if (map.area.size() != map.rgb.pixels.size())
     throw InputError(path.string(), "no per-texel \"area\" channel (not written by cpgi bake or reference)");
   return map;
@@ -65,7 +68,8 @@ int runCompareLight(const CompareLightOptions& o) {
                               std::to_string(a.rgb.height) + "; bake both with the same atlas options");
   for (size_t i = 0; i < a.area.size(); ++i)
     if (std::abs(a.area[i] - b.area[i]) > 1e-4f * std::max(a.area[i], b.area[i]))
-      throw InputError(o.b, "texel areas differ from " + o.a + "'s: not the same atlas (same scene and atlas options?)");
+      throw InputError(
+          o.b, "texel areas differ from " + o.a + "'s: not the same atlas (same scene and atlas options?)");
 
   const LightmapError e = compareLightmaps(a.rgb.pixels, b.rgb.pixels, b.area);
   const std::optional<double> noise = referenceNoise(o.b, "noise");
@@ -80,13 +84,19 @@ int runCompareLight(const CompareLightOptions& o) {
   }
   const std::optional<double> noiseReflectors = referenceNoise(o.b, "noise_nonemissive");
 
-  auto orNull = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  auto orNull = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+  };
   if (o.json) {
-    nlohmann::json j = {{"a", o.a},           {"b", o.b},
-                        {"rel_rmse", e.relRmse}, {"rel_mean_error", e.relMeanError},
-                        {"max_abs", e.maxAbs},   {"texels", e.texels}};
+    nlohmann::json j = {{"a", o.a},
+                        {"b", o.b},
+                        {"rel_rmse", e.relRmse},
+                        {"rel_mean_error", e.relMeanError},
+                        {"max_abs", e.maxAbs},
+                        {"texels", e.texels}};
     j["reference_noise"] = orNull(noise);
-    j["rel_rmse_nonemissive"] = orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
+    j["rel_rmse_nonemissive"] =
+        orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
     j["rel_mean_error_nonemissive"] =
         orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
     j["reference_noise_nonemissive"] = orNull(noiseReflectors);
@@ -99,7 +109,8 @@ int runCompareLight(const CompareLightOptions& o) {
   std::printf("max_abs                    %.6g W/m2\n", e.maxAbs);
   if (noise) std::printf("reference noise            %.4f%%\n", 100.0 * *noise);
   if (reflectors) {
-    std::printf("rel_rmse without lamps     %.4f%% (%zu texels)\n", 100.0 * reflectors->relRmse, reflectors->texels);
+    std::printf("rel_rmse without lamps     %.4f%% (%zu texels)\n", 100.0 * reflectors->relRmse,
+                reflectors->texels);
     std::printf("rel_mean_error w/o lamps   %+.4f%%\n", 100.0 * reflectors->relMeanError);
   }
   if (noiseReflectors) std::printf("reference noise w/o lamps  %.4f%%\n", 100.0 * *noiseReflectors);
@@ -113,10 +124,13 @@ int runCompareLight(const CompareLightOptions& o) {
 void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
   auto opts = std::make_shared<CompareLightOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "compare-light", "Relative RMSE (area-weighted, RGB) of lightmap A against reference B on the same atlas");
-  cmd->add_option("A_DIR", opts->a, "Output folder of the lightmap under test (bake or reference)")->required();
+      "compare-light",
+      "Relative RMSE (area-weighted, RGB) of lightmap A against reference B on the same atlas");
+  cmd->add_option("A_DIR", opts->a, "Output folder of the lightmap under test (bake or reference)")
+      ->required();
   cmd->add_option("B_DIR", opts->b, "Output folder of the reference lightmap")->required();
-  cmd->add_flag("--json", opts->json, "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise)");
+  cmd->add_flag("--json", opts->json,
+                "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise)");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   cpgi::cli::CommandFn selected;
   cpgi::cli::addInfoCommand(app, selected);
   cpgi::cli::addGenerateCommand(app, selected);
+  cpgi::cli::addBakeCommand(app, selected);
   cpgi::cli::addReferenceCommand(app, selected);
   cpgi::cli::addCompareLightCommand(app, selected);
   cpgi::cli::addDecomposeCommand(app, selected);

@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,13 +12,12 @@
 
 #include "apps/commands.h"
 #include "core/error.h"
-#include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/atlas.h"
+#include "radiosity/lightmap_output.h"
 #include "radiosity/reference_tracer.h"
-#include "radiosity/views.h"
 
 namespace cpgi::cli {
 
@@ -38,7 +36,8 @@ struct ReferenceOptions {
 
 int runReference(const ReferenceOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  if (o.spp < 2) throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
+  if (o.spp < 2)
+    throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
   if (o.texelsPerQuad < 0) throw InputError("--texels-per-quad", "must be positive");
   if (!(o.density > 0.0f)) throw InputError("--density", "must be positive");
 
@@ -68,7 +67,8 @@ int runReference(const ReferenceOptions& o) {
   params.seed = o.seed;
   const auto solveStart = std::chrono::steady_clock::now();
   const ReferenceResult result = traceReference(scene, atlas, params, ctx);
-  const double solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  const double solveSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
   const double noise = relativeStandardError(result, atlas.area);
   // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
   // given over the texels that do not emit, where the solvers actually differ.
@@ -79,29 +79,10 @@ int runReference(const ReferenceOptions& o) {
       emissive.values[i] = 1.0f, reflectorArea[i] = 0.0f;
   const double noiseNonEmissive = relativeStandardError(result, reflectorArea);
 
-  std::vector<glm::vec3> lightmap = result.radiosity;
-  dilate(atlas, lightmap);
-  ImageRGB image{atlas.width, atlas.height, lightmap};
-  ExrChannel area{"area", atlas.area};
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
-  writeExr(out.file("lightmap.exr").string(), image, {area, sigma, emissive});
-
-  const float exposure = viewExposure(atlas, lightmap);
-  GltfWriteOptions gltf;
-  gltf.lightmapUVs = &atlas.triangleUV;
-  // The unlit texture shows radiance B/π at the views' exposure.
-  gltf.lightmapPng = encodePng(image, exposure / 3.14159265f);
-  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
-  const std::filesystem::path stagedGlb = out.file("baked.glb");
-  std::filesystem::path withExtension = stagedGlb;
-  withExtension += ".glb";
-  writeGltf(withExtension.string(), scene, gltf);
-  std::filesystem::rename(withExtension, stagedGlb);
-
-  ViewParams viewParams;
-  viewParams.exposure = exposure;
-  const std::vector<std::string> views = renderViews(scene, loaded.cells, atlas, lightmap, out, ctx, viewParams);
+  const LightmapOutputs written =
+      writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json report = {
@@ -124,19 +105,21 @@ int runReference(const ReferenceOptions& o) {
       {"portals", 0},
       {"shots", 0},
       {"unshot_fraction", 0.0},
-      {"views", views},
+      {"views", written.views},
       {"warnings", ctx.warnings()},
   };
   nlohmann::json timings = nlohmann::json::array();
-  for (const Context::Timing& t : ctx.timings()) timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
+  for (const Context::Timing& t : ctx.timings())
+    timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
   report["timings"] = timings;
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();
 
   if (!o.quiet)
-    std::printf("reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
-                atlas.validTexels(), result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
-                o.outDir.c_str());
+    std::printf(
+        "reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
+        atlas.validTexels(), result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
+        o.outDir.c_str());
   return 0;
 }
 
@@ -145,7 +128,8 @@ int runReference(const ReferenceOptions& o) {
 void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   auto opts = std::make_shared<ReferenceOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "reference", "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
+      "reference",
+      "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
   cmd->add_option("SCENE", opts->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--output", opts->outDir, "Output folder (lightmap.exr, report.json, baked.glb, view-*)")
       ->required();

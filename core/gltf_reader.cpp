@@ -338,6 +338,12 @@ class GltfReader {
     return glm::vec3(sum / double(texels));
   }
 
+  // tinygltf::Value::Get asserts on a value of the wrong type; a file may hold anything there.
+  static const tinygltf::Value& member(const tinygltf::Value& object, const std::string& key) {
+    static const tinygltf::Value none;
+    return object.IsObject() && object.Has(key) ? object.Get(key) : none;
+  }
+
   static bool readNumbers(const tinygltf::Value& v, glm::vec3& out) {
     if (!v.IsArray() || v.ArrayLen() != 3) return false;
     for (int i = 0; i < 3; ++i) {
@@ -373,15 +379,15 @@ class GltfReader {
     if (gm.emissiveTexture.index >= 0) emissive *= textureMean(gm.emissiveTexture.index, what);
     float strength = 1.0f;
     if (auto it = gm.extensions.find("KHR_materials_emissive_strength"); it != gm.extensions.end()) {
-      const tinygltf::Value& s = it->second.Get("emissiveStrength");
+      const tinygltf::Value& s = member(it->second, "emissiveStrength");
       if (s.IsNumber()) strength = static_cast<float>(s.GetNumberAsDouble());
     }
     mat.emission = emissive * strength;
     // A baked file (writeGltf with a lightmap) shows light through an unlit texture; the material it
     // was baked with is kept in extras.
     glm::vec3 v;
-    if (readNumbers(gm.extras.Get("cpgi_albedo"), v)) mat.albedo = v;
-    if (readNumbers(gm.extras.Get("cpgi_emission"), v)) mat.emission = v;
+    if (readNumbers(member(gm.extras, "cpgi_albedo"), v)) mat.albedo = v;
+    if (readNumbers(member(gm.extras, "cpgi_emission"), v)) mat.emission = v;
     for (int i = 0; i < 3; ++i) {
       if (!std::isfinite(mat.albedo[i]) || mat.albedo[i] < 0.0f)
         fail(what + ": base colour is negative or not finite");

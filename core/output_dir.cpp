@@ -11,11 +11,13 @@ namespace fs = std::filesystem;
 
 namespace cpgi {
 namespace {
-// ".NAME.partial-PID": hidden, and never mistaken for a finished result.
+// ".STEM.partial-PID.EXT": hidden, never mistaken for a finished result, and with the final extension
+// kept, because writers choose the format by it (writeGltf: .glb or .gltf).
 fs::path temporaryName(const fs::path& dir, const std::string& name) {
+  const fs::path file(name);
   // (An ostringstream rather than string operator+: GCC 12 warns falsely on the latter, PR 105329.)
   std::ostringstream temp;
-  temp << '.' << name << ".partial-" << ::getpid();
+  temp << '.' << file.stem().string() << ".partial-" << ::getpid() << file.extension().string();
   return dir / temp.str();
 }
 }  // namespace

@@ -11,7 +11,8 @@ namespace {
 /// Sutherland–Hodgman against one plane: keeps the part of the polygon with n·(x − p) ≥ 0.
 /// A clip of a simple polygon by one plane may leave zero-width "bridges" along the plane when the
 /// polygon is not convex; their two edges cancel in the contour integral, so they do no harm.
-std::vector<glm::dvec3> clipToFront(const glm::dvec3& p, const glm::dvec3& n, std::span<const glm::dvec3> poly) {
+std::vector<glm::dvec3> clipToFront(const glm::dvec3& p, const glm::dvec3& n,
+                                    std::span<const glm::dvec3> poly) {
   std::vector<glm::dvec3> out;
   out.reserve(poly.size() + 2);
   const size_t count = poly.size();
@@ -71,7 +72,8 @@ double perpendicularRectanglesFormFactor(double l, double w, double h) {
   const double logTerm = std::log((1.0 + w2) * (1.0 + h2) / (1.0 + s2)) +
                          w2 * std::log(w2 * (1.0 + s2) / ((1.0 + w2) * s2)) +
                          h2 * std::log(h2 * (1.0 + s2) / ((1.0 + h2) * s2));
-  const double bracket = W * std::atan(1.0 / W) + H * std::atan(1.0 / H) - s * std::atan(1.0 / s) + 0.25 * logTerm;
+  const double bracket =
+      W * std::atan(1.0 / W) + H * std::atan(1.0 / H) - s * std::atan(1.0 / s) + 0.25 * logTerm;
   return bracket / (std::numbers::pi * W);
 }
 

@@ -36,10 +36,10 @@ constexpr int kMaxRegions = 4;   // per chart edge; receive.comp's MAX_REGIONS i
 constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 
 // Shader-storage binding points (shaders/*.comp).
+// The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
-                     kBlocks = 6, kPending = 7, kSelection = 8 };
-// Image units.
-enum Image : GLuint { kPosArea = 0, kNormalPatch = 1, kAlbedo = 2, kRadiosity = 3, kResidual = 4, kIncident = 5 };
+                     kBlocks = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
+                     kRadiosity = 12, kResidual = 13, kIncident = 14 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -227,7 +227,7 @@ class Solver {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(finishProgram_.get());
     glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     clock_.mark("visible lists");
 
     // Gather.
@@ -243,7 +243,7 @@ class Solver {
     glUseProgram(receiveProgram_.get());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     clock_.mark("receive");
 
     runStats(shooter);
@@ -264,7 +264,7 @@ class Solver {
     glUseProgram(statsProgram_.get());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, patchList_.get());
     glDispatchComputeIndirect(4);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 
   GpuSelection select() {
@@ -309,9 +309,9 @@ class Solver {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
-  std::vector<glm::vec3> readImage(const gl::Texture& t) const {
+  std::vector<glm::vec3> readImage(const gl::Buffer& b) const {
     std::vector<glm::vec4> v(atlas_.texelCount());
-    glGetTextureImage(t.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(v.size() * sizeof(glm::vec4)), v.data());
+    glGetNamedBufferSubData(b.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
     gl::check("read back");
     std::vector<glm::vec3> out(v.size());
     for (size_t i = 0; i < v.size(); ++i) out[i] = glm::vec3(v[i]);
@@ -319,7 +319,7 @@ class Solver {
   }
 
   void uploadAtlas() {
-    const int w = atlas_.width, h = atlas_.height;
+    const int w = atlas_.width;
     const size_t n = atlas_.texelCount();
     std::vector<glm::vec4> posArea(n), normalPatch(n), albedo(n), emission(n, glm::vec4(0.0f));
     for (size_t i = 0; i < n; ++i) {
@@ -330,17 +330,16 @@ class Solver {
     }
     // Patch IDs travel as floats in uNormalPatch.w.
     if (atlas_.patches.size() >= (1u << 24)) throw InputError("atlas", "more than 2^24 patches");
-    auto image = [&](gl::Texture& t, const std::vector<glm::vec4>& data, Image unit, GLenum access) {
-      t = gl::makeTexture2D(GL_RGBA32F, w, h);
-      glTextureSubImage2D(t.get(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, data.data());
-      glBindImageTexture(unit, t.get(), 0, GL_FALSE, 0, access, GL_RGBA32F);
+    auto texels = [&](gl::Buffer& b, const std::vector<glm::vec4>& data, Ssbo binding) {
+      b = gl::makeBuffer(n * sizeof(glm::vec4), data.data());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
     };
-    image(posArea_, posArea, kPosArea, GL_READ_ONLY);
-    image(normalPatch_, normalPatch, kNormalPatch, GL_READ_ONLY);
-    image(albedo_, albedo, kAlbedo, GL_READ_ONLY);
-    image(radiosity_, emission, kRadiosity, GL_READ_WRITE);
-    image(residual_, emission, kResidual, GL_READ_WRITE);
-    image(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident, GL_READ_WRITE);
+    texels(posArea_, posArea, kPosArea);
+    texels(normalPatch_, normalPatch, kNormalPatch);
+    texels(albedo_, albedo, kAlbedo);
+    texels(radiosity_, emission, kRadiosity);
+    texels(residual_, emission, kResidual);
+    texels(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident);
 
     const size_t np = atlas_.patches.size();
     std::vector<GpuPatch> patches(np);
@@ -441,6 +440,8 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
+    for (const gl::Program* p : {&receiveProgram_, &statsProgram_, &blocksProgram_})
+      set(*p, "uAtlasWidth", atlas_.width);
     set(receiveProgram_, "uItemSize", itemSize_);
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
     set(receiveProgram_, "uFarField", params_.farField);
@@ -454,7 +455,8 @@ class Solver {
   SolverParams params_;
   gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
       statsProgram_, selectProgram_;
-  gl::Texture posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, items_, depth_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_;
+  gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;

@@ -24,8 +24,8 @@ class RayScene {
   RayScene& operator=(const RayScene&) = delete;
 
   struct Hit {
-    int32_t triangle = -1;  ///< index into Scene::triangles, -1 for a miss
-    float t = 0.0f;         ///< distance along the (unit) direction
+    int32_t triangle = -1;     ///< index into Scene::triangles, -1 for a miss
+    float t = 0.0f;            ///< distance along the (unit) direction
     float u = 0.0f, v = 0.0f;  ///< barycentrics: p = (1−u−v)·p0 + u·p1 + v·p2
     explicit operator bool() const { return triangle >= 0; }
   };

@@ -52,7 +52,9 @@ uint64_t splitmix64(uint64_t x) {
   return x ^ (x >> 31);
 }
 
-float maxComponent(const glm::vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+float maxComponent(const glm::vec3& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 
 /// A direction about `n` with density cosθ/π (Malley's method on Duff et al.'s branchless frame).
 glm::vec3 sampleCosine(const glm::vec3& n, float r1, float r2) {
@@ -77,7 +79,9 @@ struct FirstVertexSamples {
 /// 2018): frac(i·α) with α from the generalised golden ratio. Any count of points is well spread, so spp
 /// need not be a square. Shifted by a random vector per batch (Cranley–Patterson), each point is still
 /// uniform, the estimate unbiased, and the spread of batch means an honest error.
-double fraction(double x) { return x - std::floor(x); }
+double fraction(double x) {
+  return x - std::floor(x);
+}
 void r2Point(uint64_t i, const float shift[2], float out[2]) {
   constexpr double g = 1.32471795724474602596;  // plastic number, x³ = x + 1
   out[0] = float(fraction(shift[0] + double(i) / g));
@@ -97,7 +101,7 @@ float powerHeuristic(float a, float b) {
 
 /// What the tracer needs per scene triangle, flattened once.
 struct SurfaceTable {
-  std::vector<glm::vec3> normal;     ///< geometric, by winding; zero for degenerate triangles
+  std::vector<glm::vec3> normal;  ///< geometric, by winding; zero for degenerate triangles
   std::vector<glm::vec3> albedo;
   std::vector<glm::vec3> emission;
   std::vector<int32_t> emitterIndex;  ///< position in `emitters`, -1 for a triangle that does not emit
@@ -137,7 +141,6 @@ struct SurfaceTable {
     }
     if (!emitterCdf.empty()) emitterCdf.back() = 1.0f;
   }
-
 };
 
 /// F(dA → triangle), unoccluded, by Lambert's contour formula after clipping to the front half-space
@@ -172,7 +175,8 @@ struct LightSelection {
   float cdf[kMaxAdaptive];
   float total = 0.0f;
 
-  LightSelection(const SurfaceTable& s, const Scene& scene, const glm::vec3& x, const glm::vec3& n, bool exact) {
+  LightSelection(const SurfaceTable& s, const Scene& scene, const glm::vec3& x, const glm::vec3& n,
+                 bool exact) {
     if (s.emitters.size() > kMaxAdaptive) return;
     adaptive = true;
     for (size_t k = 0; k < s.emitters.size(); ++k) {
@@ -187,7 +191,8 @@ struct LightSelection {
                    glm::dot(n, tri.p[2] - x) > 0.0f) {
           const glm::vec3 d = tri.centroid() - x;
           const float r2 = glm::dot(d, d), r = std::sqrt(r2), area = tri.area();
-          const float cosX = std::max(glm::dot(n, d) / r, 0.05f), cosY = std::max(-glm::dot(s.normal[t], d) / r, 0.05f);
+          const float cosX = std::max(glm::dot(n, d) / r, 0.05f),
+                      cosY = std::max(-glm::dot(s.normal[t], d) / r, 0.05f);
           w = (e.x + e.y + e.z) * area * cosX * cosY / (r2 + area);
         }
       }
@@ -225,11 +230,10 @@ class PathTracer {
 
   /// One path's estimate of ρ·H at the point (B minus the point's own emission). `first` holds the
   /// uniforms for the first vertex (stratified by the caller); deeper vertices draw from `rng`.
-  glm::vec3 reflected(const SamplePoint& point, const LightSelection& firstLights, const FirstVertexSamples& first, Pcg32& rng,
-                      uint64_t& rayCount) const {
+  glm::vec3 reflected(const SamplePoint& point, const LightSelection& firstLights,
+                      const FirstVertexSamples& first, Pcg32& rng, uint64_t& rayCount) const {
     glm::vec3 throughput = glm::clamp(point.albedo, 0.0f, 1.0f);
-    const float startAlbedo = maxComponent(throughput);
-    if (startAlbedo <= 0.0f) return glm::vec3(0.0f);
+    if (maxComponent(throughput) <= 0.0f) return glm::vec3(0.0f);
     glm::vec3 sum(0.0f);
     glm::vec3 x = point.position;
     glm::vec3 n = point.normal;
@@ -259,9 +263,10 @@ class PathTracer {
       }
       throughput *= surfaces_.albedo[t];
       if (bounce + 1 >= params_.rouletteAfter) {
-        // Relative to the point's own albedo, which scales the whole estimate: what matters is how much
-        // of the point's reflected light this path can still carry.
-        const float survive = std::min(0.95f, maxComponent(throughput) / startAlbedo);
+        // Survival by the albedo just met, weight 1/albedo: the throughput stays at the point's own
+        // albedo instead of growing on the few long paths that cumulative-throughput roulette lets live,
+        // which in rooms of albedo 0.5–0.8 was most of the noise.
+        const float survive = std::min(0.95f, maxComponent(surfaces_.albedo[t]));
         if (survive <= 0.0f || rng.uniform() >= survive) break;
         throughput /= survive;
       } else if (maxComponent(throughput) <= 0.0f) {
@@ -320,7 +325,8 @@ class PathTracer {
 
 ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> points,
                                const ReferenceParams& params, Context& ctx) {
-  if (params.spp < 2) throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
+  if (params.spp < 2)
+    throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
   auto timer = ctx.time("reference");
   const PathTracer tracer(scene, params);
 
@@ -337,36 +343,37 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
   const size_t chunks = std::clamp<size_t>(points.size() / 256, 1, 100);
   for (size_t c = 0; c < chunks; ++c) {
     const size_t begin = points.size() * c / chunks, end = points.size() * (c + 1) / chunks;
-    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 4), [&](const tbb::blocked_range<size_t>& range) {
-      uint64_t localRays = 0;
-      for (size_t i = range.begin(); i < range.end(); ++i) {
-        const SamplePoint& point = points[i];
-        Pcg32 rng(splitmix64(params.seed ^ splitmix64(i)));
-        const LightSelection firstLights = tracer.lightsAt(point.position, point.normal);
-        glm::dvec3 sum(0.0), sumSquares(0.0);
-        for (int b = 0; b < batches; ++b) {
-          const float lightShift[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
-          const float directionShift[2] = {rng.uniform(), rng.uniform()};
-          glm::dvec3 batchSum(0.0);
-          for (int s = 0; s < perBatch; ++s) {
-            FirstVertexSamples first;
-            r3Point(uint64_t(s), lightShift, first.light);
-            r2Point(uint64_t(s), directionShift, first.direction);
-            batchSum += glm::dvec3(tracer.reflected(point, firstLights, first, rng, localRays));
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(begin, end, 4), [&](const tbb::blocked_range<size_t>& range) {
+          uint64_t localRays = 0;
+          for (size_t i = range.begin(); i < range.end(); ++i) {
+            const SamplePoint& point = points[i];
+            Pcg32 rng(splitmix64(params.seed ^ splitmix64(i)));
+            const LightSelection firstLights = tracer.lightsAt(point.position, point.normal);
+            glm::dvec3 sum(0.0), sumSquares(0.0);
+            for (int b = 0; b < batches; ++b) {
+              const float lightShift[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
+              const float directionShift[2] = {rng.uniform(), rng.uniform()};
+              glm::dvec3 batchSum(0.0);
+              for (int s = 0; s < perBatch; ++s) {
+                FirstVertexSamples first;
+                r3Point(uint64_t(s), lightShift, first.light);
+                r2Point(uint64_t(s), directionShift, first.direction);
+                batchSum += glm::dvec3(tracer.reflected(point, firstLights, first, rng, localRays));
+              }
+              const glm::dvec3 batchMean = batchSum / double(perBatch);
+              sum += batchMean;
+              sumSquares += batchMean * batchMean;
+            }
+            const double k = batches;
+            const glm::dvec3 mean = sum / k;
+            // The batch means are independent and identically distributed: their spread is the error.
+            const glm::dvec3 variance = glm::max((sumSquares - k * mean * mean) / (k - 1.0), 0.0);
+            result.radiosity[i] = glm::vec3(glm::dvec3(point.emission) + mean);
+            result.standardError[i] = glm::vec3(glm::sqrt(variance / k));
           }
-          const glm::dvec3 batchMean = batchSum / double(perBatch);
-          sum += batchMean;
-          sumSquares += batchMean * batchMean;
-        }
-        const double k = batches;
-        const glm::dvec3 mean = sum / k;
-        // The batch means are independent and identically distributed: their spread is the error.
-        const glm::dvec3 variance = glm::max((sumSquares - k * mean * mean) / (k - 1.0), 0.0);
-        result.radiosity[i] = glm::vec3(glm::dvec3(point.emission) + mean);
-        result.standardError[i] = glm::vec3(glm::sqrt(variance / k));
-      }
-      rays += localRays;
-    });
+          rays += localRays;
+        });
     ctx.progress("reference", double(c + 1) / double(chunks),
                  std::to_string(end) + " of " + std::to_string(points.size()) + " texels");
   }

@@ -32,7 +32,7 @@ struct ReferenceParams {
   /// randomly shifted low-discrepancy set for the first vertex (randomised quasi-Monte Carlo), so spp is
   /// rounded up to a multiple of the batch count; the standard error comes from the batch means.
   int spp = 256;
-  int rouletteAfter = 3;    ///< bounces that always continue before Russian roulette may stop a path
+  int rouletteAfter = 5;    ///< bounces that always continue before Russian roulette may stop a path
   int maxBounces = 1000;    ///< safety cap; only albedo ≈ 1 gets near it
   uint64_t seed = 0x5eedu;  ///< with the point's index, fixes each point's random sequence
   /// Ray origins are pushed this far off surfaces (metres); ≤ 0 → 1e-5 × scene diagonal.

@@ -39,7 +39,8 @@ glm::vec3 sampleBilinear(const LightmapAtlas& atlas, std::span<const glm::vec3> 
     return lightmap[size_t(j) * atlas.width + i];
   };
   const int i = int(fx), j = int(fy);
-  return (1.0f - ty) * ((1.0f - tx) * at(i, j) + tx * at(i + 1, j)) + ty * ((1.0f - tx) * at(i, j + 1) + tx * at(i + 1, j + 1));
+  return (1.0f - ty) * ((1.0f - tx) * at(i, j) + tx * at(i + 1, j)) +
+         ty * ((1.0f - tx) * at(i, j + 1) + tx * at(i + 1, j + 1));
 }
 
 }  // namespace

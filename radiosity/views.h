@@ -22,8 +22,8 @@ namespace cpgi {
 class RayScene;
 
 struct ViewParams {
-  int width = 640;        ///< pixels; the height follows the camera's aspect ratio. In [16, 8192].
-  int supersample = 2;    ///< n × n rays per pixel, box-filtered. In [1, 8].
+  int width = 640;      ///< pixels; the height follows the camera's aspect ratio. In [16, 8192].
+  int supersample = 2;  ///< n × n rays per pixel, box-filtered. In [1, 8].
   /// Scale applied before the PNG's clamp and sRGB curve; ≤ 0 → viewExposure(atlas, lightmap).
   float exposure = 0.0f;
 };

@@ -2,12 +2,8 @@
 // a fixed order (strided loop, then a tree) so that runs agree to the bit. The shooter's residual is
 // zeroed here first: its energy has just been shot.
 #include "common.glsl"
+#include "atlas_buffers.glsl"
 layout(local_size_x = 64) in;
-layout(binding = 0, rgba32f) readonly uniform image2D uPosArea;
-layout(binding = 1, rgba32f) readonly uniform image2D uNormalPatch;
-layout(binding = 2, rgba32f) readonly uniform image2D uAlbedo;
-layout(binding = 4, rgba32f) uniform image2D uResidual;
-layout(binding = 5, rgba32f) readonly uniform image2D uIncident;
 layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 1) buffer Stats { PatchStats stats[]; };
 layout(std430, binding = 5) readonly buffer PatchList { uint patchCount; uint patchArgs[3]; uint patchList[]; };
@@ -22,22 +18,22 @@ void main() {
   int p = int(patchList[entry]);
   ivec4 r = patches[p].rect;
   uint k = gl_LocalInvocationID.x;
-  vec3 unshot = vec3(0.0), incident = vec3(0.0), absorbed = vec3(0.0);
+  vec3 unshotSum = vec3(0.0), incidentSum = vec3(0.0), absorbedSum = vec3(0.0);
   for (int i = int(k); i < r.z * r.w; i += 64) {
     ivec2 t = r.xy + ivec2(i % r.z, i / r.z);
-    if (int(imageLoad(uNormalPatch, t).w) != p) continue;
-    float a = imageLoad(uPosArea, t).w;
-    vec3 e = imageLoad(uIncident, t).rgb;
+    if (int(normalPatch[texel(t)].w) != p) continue;
+    float a = posArea[texel(t)].w;
+    vec3 e = incident[texel(t)].rgb;
     if (p == uShooter)
-      imageStore(uResidual, t, vec4(0.0));
+      residual[texel(t)] = vec4(0.0);
     else
-      unshot += imageLoad(uResidual, t).rgb * a;
-    incident += e * a;
-    absorbed += (vec3(1.0) - imageLoad(uAlbedo, t).rgb) * e * a;
+      unshotSum += residual[texel(t)].rgb * a;
+    incidentSum += e * a;
+    absorbedSum += (vec3(1.0) - albedo[texel(t)].rgb) * e * a;
   }
-  sUnshot[k] = vec4(unshot, 0.0);
-  sIncident[k] = vec4(incident, 0.0);
-  sAbsorbed[k] = vec4(absorbed, 0.0);
+  sUnshot[k] = vec4(unshotSum, 0.0);
+  sIncident[k] = vec4(incidentSum, 0.0);
+  sAbsorbed[k] = vec4(absorbedSum, 0.0);
   barrier();
   for (uint s = 32u; s > 0u; s >>= 1) {
     if (k < s) {

@@ -4,14 +4,9 @@
 // each level used when the receiver is farther than uFarField × the piece's radius. Each region has its
 // own item buffer, seen from its centre, so a large shooter is not one point for visibility either.
 #include "common.glsl"
+#include "atlas_buffers.glsl"
 #include "visibility.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) readonly uniform image2D uPosArea;
-layout(binding = 1, rgba32f) readonly uniform image2D uNormalPatch;
-layout(binding = 2, rgba32f) readonly uniform image2D uAlbedo;
-layout(binding = 3, rgba32f) uniform image2D uRadiosity;
-layout(binding = 4, rgba32f) uniform image2D uResidual;
-layout(binding = 5, rgba32f) uniform image2D uIncident;
 layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
 layout(std430, binding = 6) readonly buffer Blocks { Block blocks[]; };
@@ -28,23 +23,23 @@ uniform float uTexelRadius;
 uniform float uFarField;
 
 // ΔB F(dA_x → disk): the receiver at x with normal n, a disk of `area` at c facing uShooterNormal.
-vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 radiosity) {
+vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return radiosity * (area * ci * cs / (r2 * (PI * r2 + area)));
+  return unshot * (area * ci * cs / (r2 * (PI * r2 + area)));
 }
 
 // The same piece seen from afar (r > uFarField × its radius): the "+ A" of the disk formula only keeps
 // F finite as r → 0, and off the axis it biases F low by about A / (π r²) (3 % for a 0.4 m lamp 1.2 m
 // away), so coarse pieces use the point form.
-vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 radiosity) {
+vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return radiosity * (area * ci * cs / (PI * r2 * r2));
+  return unshot * (area * ci * cs / (PI * r2 * r2));
 }
 
 // A far piece (texel rectangle `rect`, uniform mean radiosity) by 2×2 Gauss points: the point form's
@@ -66,8 +61,8 @@ bool far(vec3 x, vec3 c, float radius) {
 }
 
 vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
-  vec4 pa = imageLoad(uPosArea, t);
-  vec3 b = imageLoad(uResidual, t).rgb;
+  vec4 pa = posArea[texel(t)];
+  vec3 b = residual[texel(t)].rgb;
   if (far(x, pa.xyz, uTexelRadius)) return disk(x, n, pa.xyz, pa.w, b);
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j)
@@ -94,7 +89,7 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
     for (int ty = b.rect.y; ty < b.rect.w; ++ty)
       for (int tx = b.rect.x; tx < b.rect.z; ++tx) {
         ivec2 t = ivec2(tx, ty);
-        if (int(imageLoad(uNormalPatch, t).w) == uShooter) sum += fromTexel(x, n, t);
+        if (int(normalPatch[texel(t)].w) == uShooter) sum += fromTexel(x, n, t);
       }
   }
   return sum;
@@ -105,11 +100,11 @@ void main() {
   if (entry >= tileCount) return;
   ivec4 tile = tiles[tileList[entry]];
   ivec2 t = tile.xy + ivec2(gl_LocalInvocationID.xy);
-  vec4 np = imageLoad(uNormalPatch, t);
+  vec4 np = normalPatch[texel(t)];
   int id = int(np.w);
   // Tiles are 8×8 from the chart corner and may overhang into a neighbour: keep only this tile's patch.
   if (id != tile.z || id == uShooter) return;
-  vec3 x = imageLoad(uPosArea, t).xyz;
+  vec3 x = posArea[texel(t)].xyz;
   vec3 e = vec3(0.0);
   for (int r = 0; r < uRegions; ++r) {
     if (blocks[r].centreArea.w <= 0.0) continue;
@@ -119,8 +114,8 @@ void main() {
     e += fromRegion(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;
-  vec3 gained = imageLoad(uAlbedo, t).rgb * e;
-  imageStore(uIncident, t, imageLoad(uIncident, t) + vec4(e, 0.0));
-  imageStore(uRadiosity, t, imageLoad(uRadiosity, t) + vec4(gained, 0.0));
-  imageStore(uResidual, t, imageLoad(uResidual, t) + vec4(gained, 0.0));
+  vec3 gained = albedo[texel(t)].rgb * e;
+  incident[texel(t)] = incident[texel(t)] + vec4(e, 0.0);
+  radiosity[texel(t)] = radiosity[texel(t)] + vec4(gained, 0.0);
+  residual[texel(t)] = residual[texel(t)] + vec4(gained, 0.0);
 }

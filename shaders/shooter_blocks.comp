@@ -2,10 +2,8 @@
 // area, the area-weighted centre, the mean unshot radiosity and a bounding radius. Receivers far from a
 // region take it as one disk; nearer ones use its blocks, then texels (receive.comp).
 #include "common.glsl"
+#include "atlas_buffers.glsl"
 layout(local_size_x = 64) in;
-layout(binding = 0, rgba32f) readonly uniform image2D uPosArea;
-layout(binding = 1, rgba32f) readonly uniform image2D uNormalPatch;
-layout(binding = 4, rgba32f) readonly uniform image2D uResidual;
 layout(std430, binding = 6) buffer Blocks { Block blocks[]; };
 uniform int uShooter;
 uniform ivec4 uRect;         // shooter chart x, y, w, h
@@ -33,9 +31,9 @@ void main() {
     for (int y = lo.y; y < hi.y; ++y)
       for (int x = lo.x; x < hi.x; ++x) {
         ivec2 t = ivec2(x, y);
-        if (int(imageLoad(uNormalPatch, t).w) != uShooter) continue;
-        vec4 pa = imageLoad(uPosArea, t);
-        power += imageLoad(uResidual, t).rgb * pa.w;
+        if (int(normalPatch[texel(t)].w) != uShooter) continue;
+        vec4 pa = posArea[texel(t)];
+        power += residual[texel(t)].rgb * pa.w;
         moment += pa.xyz * pa.w;
         area += pa.w;
       }
@@ -44,8 +42,8 @@ void main() {
     for (int y = lo.y; y < hi.y; ++y)
       for (int x = lo.x; x < hi.x; ++x) {
         ivec2 t = ivec2(x, y);
-        if (int(imageLoad(uNormalPatch, t).w) != uShooter) continue;
-        radius = max(radius, distance(imageLoad(uPosArea, t).xyz, centre));
+        if (int(normalPatch[texel(t)].w) != uShooter) continue;
+        radius = max(radius, distance(posArea[texel(t)].xyz, centre));
       }
     ca = vec4(centre, area);
     rr = vec4(area > 0.0 ? power / area : vec3(0.0), radius + uTexelRadius);

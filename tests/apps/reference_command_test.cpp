@@ -30,7 +30,8 @@ struct RunResult {
 
 RunResult runCpgi(const std::string& args, const fs::path& dir) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string(CPGI_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const std::string command =
+      std::string(CPGI_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(command.c_str());
   RunResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -80,9 +81,11 @@ class ReferenceCommand : public ::testing::Test {
 TEST_F(ReferenceCommand, FurnaceEndToEnd) {
   const fs::path scene = writeFurnace(0.5f, 1.0f);
   const fs::path out = dir_ / "ref";
-  const RunResult r = runCpgi("reference " + scene.string() + " -o " + out.string() + " --texels-per-quad 4 --spp 256", dir_);
+  const RunResult r =
+      runCpgi("reference " + scene.string() + " -o " + out.string() + " --texels-per-quad 4 --spp 256", dir_);
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* name : {"lightmap.exr", "report.json", "baked.glb", "view-overview.png", "view-overview.exr"})
+  for (const char* name :
+       {"lightmap.exr", "report.json", "baked.glb", "view-overview.png", "view-overview.exr"})
     EXPECT_TRUE(fs::exists(out / name)) << name;
 
   std::vector<ExrChannel> extra;
@@ -128,8 +131,10 @@ TEST_F(ReferenceCommand, CompareLightAgainstItselfAndAnotherSeed) {
   const fs::path scene = writeFurnace(0.6f, 2.0f);
   const fs::path a = dir_ / "a", b = dir_ / "b";
   const std::string common = " --texels-per-quad 4 --spp 64 -q";
-  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + a.string() + common + " --seed 1", dir_).status, 0);
-  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + b.string() + common + " --seed 2", dir_).status, 0);
+  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + a.string() + common + " --seed 1", dir_).status,
+            0);
+  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + b.string() + common + " --seed 2", dir_).status,
+            0);
 
   RunResult r = runCpgi("compare-light " + a.string() + " " + a.string() + " --json", dir_);
   ASSERT_EQ(r.status, 0) << r.err;
@@ -152,8 +157,14 @@ TEST_F(ReferenceCommand, CompareLightAgainstItselfAndAnotherSeed) {
 TEST_F(ReferenceCommand, UserErrorsExitOne) {
   const fs::path scene = writeFurnace(0.5f, 1.0f);
   const fs::path a = dir_ / "a", b = dir_ / "b";
-  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + a.string() + " --texels-per-quad 2 --spp 16 -q", dir_).status, 0);
-  ASSERT_EQ(runCpgi("reference " + scene.string() + " -o " + b.string() + " --texels-per-quad 3 --spp 16 -q", dir_).status, 0);
+  ASSERT_EQ(
+      runCpgi("reference " + scene.string() + " -o " + a.string() + " --texels-per-quad 2 --spp 16 -q", dir_)
+          .status,
+      0);
+  ASSERT_EQ(
+      runCpgi("reference " + scene.string() + " -o " + b.string() + " --texels-per-quad 3 --spp 16 -q", dir_)
+          .status,
+      0);
 
   RunResult r = runCpgi("compare-light " + a.string() + " " + b.string(), dir_);
   EXPECT_EQ(r.status, 1);

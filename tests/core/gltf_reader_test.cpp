@@ -174,6 +174,16 @@ TEST(GltfReader, MaterialsFactorTextureMeanEmissiveStrengthAndDefault) {
   expectNear(scene.emittedPower(), glm::vec3(40, 20, 10) * 0.5f, 1e-4f);
 }
 
+TEST(GltfReader, ExtrasAndExtensionsOfTheWrongTypeAreIgnored) {
+  test::GlbBuilder g;
+  const int m = g.addMaterial({{"emissiveFactor", {1.0, 1.0, 1.0}},
+                               {"extras", 5},
+                               {"extensions", {{"KHR_materials_emissive_strength", 3}}}});
+  g.addNode({{"mesh", g.addMesh(kTriangle, {}, m)}});
+  const Scene scene = load(g).scene;
+  expectNear(scene.materials[scene.triangles[0].material].emission, {1, 1, 1});
+}
+
 TEST(GltfReader, PerspectiveCameraFromNode) {
   test::GlbBuilder g;
   g.addNode({{"mesh", g.addMesh(kTriangle)}});

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/output_dir.h"
 #include "core/scene_io.h"
 #include "tests/support/temp_dir.h"
 
@@ -197,6 +198,19 @@ TEST(GltfWriter, BakedFileIsUnlitWithLightmapAndKeepsMaterialsInExtras) {
     EXPECT_LE(glm::length(m.albedo - it->albedo), 1e-6f);
     EXPECT_LE(glm::length(m.emission - it->emission), 1e-4f);
   }
+}
+
+TEST(GltfWriter, WritesThroughAnOutputDir) {
+  const TwoRooms rooms;
+  test::TempDir dir;
+  {
+    OutputDir out(dir.path());
+    writeGltf(out.file("cells.glb").string(), rooms.scene);
+    writeGltf(out.file("cells.gltf").string(), rooms.scene);
+    out.commit();
+  }
+  EXPECT_EQ(loadScene(dir / "cells.glb").scene.triangles.size(), rooms.scene.triangles.size());
+  EXPECT_EQ(loadScene(dir / "cells.gltf").scene.triangles.size(), rooms.scene.triangles.size());
 }
 
 TEST(GltfWriter, RejectsOtherExtensionsAndLeavesNoTemporary) {

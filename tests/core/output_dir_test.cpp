@@ -38,6 +38,19 @@ TEST(OutputDir, CommitRenamesStagedFiles) {
   EXPECT_EQ(files, 1u);
 }
 
+// Writers choose the format by the extension (writeGltf: .glb or .gltf), so staged names keep it.
+TEST(OutputDir, StagedFilesKeepTheirExtensionSoWritersPickTheFormat) {
+  test::TempDir dir;
+  OutputDir o(dir.path());
+  const fs::path staged = o.file("cells.glb");
+  EXPECT_EQ(staged.extension(), ".glb");
+  EXPECT_EQ(staged.filename().string().front(), '.');
+  EXPECT_NE(staged.filename(), "cells.glb");
+  std::ofstream(staged) << "x";
+  o.commit();
+  EXPECT_TRUE(fs::exists(dir.path() / "cells.glb"));
+}
+
 TEST(OutputDir, FailureRemovesTemporariesAndKeepsTheUsersFiles) {
   test::TempDir dir;
   std::ofstream(dir.path() / "lightmap.exr") << "the user's earlier result";

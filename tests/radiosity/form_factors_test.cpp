@@ -58,13 +58,15 @@ TEST(FormFactors, PerpendicularUnitSquaresWithSharedEdge) {
 }
 
 TEST(FormFactors, ClosedFormsScaleFree) {
-  EXPECT_NEAR(parallelRectanglesFormFactor(2.0, 3.0, 1.5), parallelRectanglesFormFactor(4.0, 6.0, 3.0), 1e-12);
+  EXPECT_NEAR(parallelRectanglesFormFactor(2.0, 3.0, 1.5), parallelRectanglesFormFactor(4.0, 6.0, 3.0),
+              1e-12);
   EXPECT_NEAR(perpendicularRectanglesFormFactor(2.0, 1.0, 0.5),
               perpendicularRectanglesFormFactor(4.0, 2.0, 1.0), 1e-12);
 }
 
 TEST(FormFactors, PerpendicularReciprocity) {
-  for (const auto& [l, w, h] : std::vector<std::array<double, 3>>{{1.0, 2.0, 0.5}, {3.0, 0.2, 1.7}, {0.5, 4.0, 4.5}}) {
+  for (const auto& [l, w, h] :
+       std::vector<std::array<double, 3>>{{1.0, 2.0, 0.5}, {3.0, 0.2, 1.7}, {0.5, 4.0, 4.5}}) {
     const double f12 = perpendicularRectanglesFormFactor(l, w, h);
     const double f21 = perpendicularRectanglesFormFactor(l, h, w);
     EXPECT_NEAR(w * l * f12, h * l * f21, 1e-12 * w * l) << l << " " << w << " " << h;
@@ -87,7 +89,8 @@ TEST(FormFactors, LambertMatchesBruteForceIntegration) {
   const dvec3 origin(-0.3, 0.4, 1.2), u(1.0, 0.2, 0.0), v(0.1, 0.3, 0.9);
   const std::vector<dvec3> poly = rectangle(origin, u, v);
   const dvec3 p(0.1, -0.2, 0.0);
-  for (const dvec3& n : {dvec3(0, 0, 1), glm::normalize(dvec3(0.3, 0.5, 1.0)), glm::normalize(dvec3(1, -0.4, 0.2))}) {
+  for (const dvec3& n :
+       {dvec3(0, 0, 1), glm::normalize(dvec3(0.3, 0.5, 1.0)), glm::normalize(dvec3(1, -0.4, 0.2))}) {
     const double exact = pointToPolygonFormFactor(p, n, poly);
     EXPECT_NEAR(exact, bruteForceFormFactor(p, n, origin, u, v, 800), 2e-5 * std::max(1.0, exact * 10.0));
     EXPECT_GT(exact, 0.0);
@@ -116,7 +119,8 @@ TEST(FormFactors, LambertIndependentOfWinding) {
 
 TEST(FormFactors, LambertInfinitePlaneIsOne) {
   const double big = 1e5;
-  const std::vector<dvec3> plane = rectangle(dvec3(-big, -big, 1.0), dvec3(2 * big, 0, 0), dvec3(0, 2 * big, 0));
+  const std::vector<dvec3> plane =
+      rectangle(dvec3(-big, -big, 1.0), dvec3(2 * big, 0, 0), dvec3(0, 2 * big, 0));
   EXPECT_NEAR(pointToPolygonFormFactor(dvec3(0), dvec3(0, 0, 1), plane), 1.0, 1e-4);
 }
 
@@ -133,7 +137,8 @@ TEST(FormFactors, LambertDiskOnAxisClosedForm) {
   const double polygonArea = 0.5 * sides * radius * radius * std::sin(2.0 * std::numbers::pi / sides);
   const double diskArea = std::numbers::pi * radius * radius;
   const double expected = radius * radius / (radius * radius + h * h);
-  EXPECT_NEAR(pointToPolygonFormFactor(dvec3(0), dvec3(0, 0, 1), poly), expected, expected * (1 - polygonArea / diskArea) * 1.5 + 1e-9);
+  EXPECT_NEAR(pointToPolygonFormFactor(dvec3(0), dvec3(0, 0, 1), poly), expected,
+              expected * (1 - polygonArea / diskArea) * 1.5 + 1e-9);
 }
 
 TEST(FormFactors, LambertFarAwayTendsToPointFormula) {
@@ -145,7 +150,8 @@ TEST(FormFactors, LambertFarAwayTendsToPointFormula) {
   const std::vector<dvec3> poly = rectangle(centre - 0.5 * u - 0.5 * v, u, v);
   const dvec3 d = centre - p;
   const double r2 = glm::dot(d, d);
-  const double approx = glm::dot(u, u) * glm::dot(n, d) * std::abs(glm::dot(nj, d)) / (r2 * r2 * std::numbers::pi);
+  const double approx =
+      glm::dot(u, u) * glm::dot(n, d) * std::abs(glm::dot(nj, d)) / (r2 * r2 * std::numbers::pi);
   EXPECT_NEAR(pointToPolygonFormFactor(p, n, poly) / approx, 1.0, 1e-6);
 }
 

@@ -6,8 +6,8 @@
 #include <tbb/global_control.h>
 
 #include "core/error.h"
-#include "radiosity/form_factors.h"
 #include "path_test_scenes.h"
+#include "radiosity/form_factors.h"
 
 namespace cpgi {
 namespace {
@@ -64,10 +64,16 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
     glm::vec3 position, normal;
   };
   const std::vector<Case> cases = {
-      {1.0f, 1.0f, {0, 0, 0}, {0, 0, 1}},                                      // centred, far
+      {1.0f, 1.0f, {0, 0, 0}, {0, 0, 1}},                                        // centred, far
       {1.0f, 1.0f, {0.8f, -0.3f, 0.2f}, glm::normalize(glm::vec3(0.6f, 0, 1))},  // off-axis, tilted
-      {1.0f, 0.5f, {0.0f, 0.1f, 0.3f}, glm::normalize(glm::vec3(1, 0.2f, 0))},  // emitter partly behind the plane
-      {2.0f, 0.05f, {0.1f, 0.2f, 0}, {0, 0, 1}},  // large and close: BSDF hits dominate, MIS must not double count
+      {1.0f,
+       0.5f,
+       {0.0f, 0.1f, 0.3f},
+       glm::normalize(glm::vec3(1, 0.2f, 0))},  // emitter partly behind the plane
+      {2.0f,
+       0.05f,
+       {0.1f, 0.2f, 0},
+       {0, 0, 1}},  // large and close: BSDF hits dominate, MIS must not double count
   };
   for (const Case& c : cases) {
     const Scene scene = emitterScene(c.a, c.h, emission);
@@ -76,10 +82,12 @@ TEST(ReferenceTracer, DirectLightMatchesLambertFormFactor) {
     ReferenceParams params;
     params.spp = 4096;
     const ReferenceResult r = traceReference(scene, points, params, ctx);
-    const double f = pointToPolygonFormFactor(glm::dvec3(c.position), glm::dvec3(c.normal), emitterPolygon(c.a, c.h));
+    const double f =
+        pointToPolygonFormFactor(glm::dvec3(c.position), glm::dvec3(c.normal), emitterPolygon(c.a, c.h));
     const glm::vec3 exact = albedo * emission * float(f);
     expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "h " + std::to_string(c.h));
-    EXPECT_LT(r.standardError[0].x, 0.02f * exact.x) << "h " << c.h << " B " << r.radiosity[0].x << " exact " << exact.x;
+    EXPECT_LT(r.standardError[0].x, 0.02f * exact.x)
+        << "h " << c.h << " B " << r.radiosity[0].x << " exact " << exact.x;
   }
 }
 
@@ -99,8 +107,10 @@ TEST(ReferenceTracer, SeveralEmittersAddUp) {
   params.spp = 8192;
   const ReferenceResult r = traceReference(scene, points, params, ctx);
   const glm::dvec3 nd(n);
-  const double f1 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
-  const double f2 = pointToPolygonFormFactor(glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
+  const double f1 = pointToPolygonFormFactor(
+      glm::dvec3(0), nd, {{{-0.3, -0.3, 1.0}, {-0.3, 0.3, 1.0}, {0.3, 0.3, 1.0}, {0.3, -0.3, 1.0}}});
+  const double f2 = pointToPolygonFormFactor(
+      glm::dvec3(0), nd, {{{3.0, -1.0, 0.5}, {3.0, -1.0, 2.5}, {3.0, 1.0, 2.5}, {3.0, 1.0, 0.5}}});
   const glm::vec3 exact = albedo * (e1 * float(f1) + e2 * float(f2));
   expectWithinError(r.radiosity[0], r.standardError[0], exact, 5.0f, "three lamps");
   for (int c = 0; c < 3; ++c) EXPECT_LT(r.standardError[0][c], 0.02f * exact[c]);
@@ -120,8 +130,10 @@ TEST(ReferenceTracer, ManyEmittersFallBackToPowerSelection) {
   ReferenceParams params;
   params.spp = 4096;
   const ReferenceResult r = traceReference(scene, points, params, ctx);
-  const double f = pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
-  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f, "split lamp");
+  const double f =
+      pointToPolygonFormFactor(glm::dvec3(0.2, 0.1, 0), glm::dvec3(0, 0, 1), emitterPolygon(1.0f, 0.8f));
+  expectWithinError(r.radiosity[0], r.standardError[0], glm::vec3(0.5f * 8.0f * float(f)), 5.0f,
+                    "split lamp");
   EXPECT_LT(r.standardError[0].x, 0.02f * 4.0f * float(f));
 }
 
@@ -130,8 +142,8 @@ TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   const uint32_t black = addMaterial(scene, glm::vec3(0.0f));
   addRect(scene, {-1.0f, -1.0f, 0.5f}, {2.0f, 0, 0}, {0, 2.0f, 0}, black);  // a blocker facing the point
   const std::vector<SamplePoint> points = {
-      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},    // under the blocker
-      {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // above the emitter's back
+      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.8f), glm::vec3(0.0f)},   // under the blocker
+      {{0, 0, 2}, {0, 0, -1}, glm::vec3(0.8f), glm::vec3(0.0f)},  // above the emitter's back
   };
   Context ctx;
   ReferenceParams params;
@@ -141,9 +153,32 @@ TEST(ReferenceTracer, ShadowAndBackFaceAreExactlyDark) {
   EXPECT_EQ(r.radiosity[1], glm::vec3(0.0f));
 }
 
+TEST(ReferenceTracer, NoLeakThroughCoincidentBackToBackWalls) {
+  // Two closed boxes sharing the plane x = 1 with zero thickness between them: only A has a lamp, so
+  // every point in B must stay exactly black however close its ray origins sit to the shared plane.
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(0.8f));
+  const uint32_t lamp = addMaterial(scene, glm::vec3(0.8f), glm::vec3(50.0f));
+  auto a = boxFaces(1.0f, {wall, lamp, wall, wall, wall, wall});
+  auto b = boxFaces(1.0f, {wall, wall, wall, wall, wall, wall});
+  for (Face& f : b) f.origin.x += 1.0f;
+  addFaces(scene, a);
+  addFaces(scene, b);
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 64;
+  const auto inB = facePoints(scene, b, 8);
+  const ReferenceResult dark = traceReference(scene, inB, params, ctx);
+  for (size_t i = 0; i < inB.size(); ++i) EXPECT_EQ(dark.radiosity[i], glm::vec3(0.0f)) << i;
+  const auto inA = facePoints(scene, a, 4);
+  const ReferenceResult lit = traceReference(scene, inA, params, ctx);
+  for (size_t i = 0; i < inA.size(); ++i) EXPECT_GT(lit.radiosity[i].x, 1.0f) << i;
+}
+
 TEST(ReferenceTracer, OwnEmissionPassesThroughWithoutNoise) {
   const Scene scene = emitterScene(1.0f, 1.0f, glm::vec3(10.0f));
-  const std::vector<SamplePoint> points = {{{0, 0, 0}, {0, 0, 1}, glm::vec3(0.0f), glm::vec3(3.0f, 2.0f, 1.0f)}};
+  const std::vector<SamplePoint> points = {
+      {{0, 0, 0}, {0, 0, 1}, glm::vec3(0.0f), glm::vec3(3.0f, 2.0f, 1.0f)}};
   Context ctx;
   const ReferenceResult r = traceReference(scene, points, {}, ctx);
   EXPECT_EQ(r.radiosity[0], glm::vec3(3.0f, 2.0f, 1.0f));
@@ -172,6 +207,62 @@ TEST(ReferenceTracer, ClosedBoxConservesEnergy) {
   EXPECT_NEAR(power / expected, 1.0, 0.01);
   // The floor, facing the light, is brighter than the walls beside it.
   EXPECT_GT(r.radiosity[k * k / 2].x, r.radiosity[2 * k * k + k * k / 2].x);
+}
+
+TEST(ReferenceTracer, AgreesWithCollocationRadiosityInABox) {
+  // An independent answer for interreflection with non-uniform light: point-collocation radiosity with
+  // exact (Lambert) form factors from each patch centre to every other patch, solved by Jacobi
+  // iteration. In a convex box nothing is occluded, so this is exact up to the piecewise-constant
+  // discretisation (12 × 12 patches per face).
+  const float size = 1.0f, rho = 0.6f;
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(rho));
+  const uint32_t light = addMaterial(scene, glm::vec3(rho), glm::vec3(5.0f));
+  const auto faces = boxFaces(size, {wall, light, wall, wall, wall, wall});
+  addFaces(scene, faces);
+  const int k = 12;
+  const auto points = facePoints(scene, faces, k);
+  const size_t count = points.size();
+  std::vector<std::vector<glm::dvec3>> polygons;
+  for (const Face& f : faces)
+    for (int i = 0; i < k; ++i)
+      for (int j = 0; j < k; ++j) {
+        const glm::dvec3 o =
+            glm::dvec3(f.origin) + double(i) / k * glm::dvec3(f.u) + double(j) / k * glm::dvec3(f.v);
+        const glm::dvec3 du = glm::dvec3(f.u) / double(k), dv = glm::dvec3(f.v) / double(k);
+        polygons.push_back({o, o + du, o + du + dv, o + dv});
+      }
+  std::vector<double> formFactors(count * count, 0.0);
+  for (size_t a = 0; a < count; ++a)
+    for (size_t b = 0; b < count; ++b)
+      if (a / (k * k) != b / (k * k))  // coplanar patches do not see each other
+        formFactors[a * count + b] = pointToPolygonFormFactor(glm::dvec3(points[a].position),
+                                                              glm::dvec3(points[a].normal), polygons[b]);
+  std::vector<double> radiosity(count), next(count);
+  for (size_t a = 0; a < count; ++a) radiosity[a] = points[a].emission.x;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    for (size_t a = 0; a < count; ++a) {
+      double gathered = 0.0;
+      for (size_t b = 0; b < count; ++b) gathered += formFactors[a * count + b] * radiosity[b];
+      next[a] = points[a].emission.x + rho * gathered;
+    }
+    radiosity.swap(next);
+  }
+
+  // Trace a handful of patch centres: floor centre and corner, a wall's middle and its top edge, the lamp.
+  const std::vector<size_t> probes = {k * k / 2 + k / 2, 0, 2 * k * k + k * k / 2,
+                                      2 * k * k + k * (k / 2) + k - 1, k * k + k * k / 2};
+  std::vector<SamplePoint> probePoints;
+  for (size_t p : probes) probePoints.push_back(points[p]);
+  Context ctx;
+  ReferenceParams params;
+  params.spp = 8192;
+  const ReferenceResult r = traceReference(scene, probePoints, params, ctx);
+  for (size_t q = 0; q < probes.size(); ++q) {
+    const double exact = radiosity[probes[q]];
+    EXPECT_NEAR(r.radiosity[q].x, exact, 5.0 * r.standardError[q].x + 0.01 * exact) << "probe " << q;
+    EXPECT_LT(r.standardError[q].x, 0.01 * exact);
+  }
 }
 
 TEST(ReferenceTracer, DeterministicWhateverTheThreadCount) {

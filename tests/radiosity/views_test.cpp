@@ -33,7 +33,9 @@ struct FloorFixture {
       if (atlas.patch[i] >= 0) lightmap[i] = kPi * radiance(atlas.position[i]);
     dilate(atlas, lightmap);
   }
-  static glm::vec3 radiance(glm::vec3 p) { return glm::vec3(1.0f + 0.5f * p.x + 0.25f * p.y, 2.0f, 0.1f * p.x); }
+  static glm::vec3 radiance(glm::vec3 p) {
+    return glm::vec3(1.0f + 0.5f * p.x + 0.25f * p.y, 2.0f, 0.1f * p.x);
+  }
 };
 
 Camera downCamera(glm::vec3 eye) {
@@ -97,7 +99,8 @@ TEST(Views, ExposureFromAreaWeightedPercentile) {
   for (size_t i = 0; i < f.atlas.texelCount(); ++i)
     if (f.atlas.patch[i] >= 0) valid.push_back(i);
   ASSERT_EQ(valid.size(), 64u);
-  for (size_t k = 0; k < valid.size(); ++k) lightmap[valid[(k * 37) % 64]] = kPi * glm::vec3(0.0f, float(k + 1), 0.5f);
+  for (size_t k = 0; k < valid.size(); ++k)
+    lightmap[valid[(k * 37) % 64]] = kPi * glm::vec3(0.0f, float(k + 1), 0.5f);
   // 90% of 64 texels = 57.6 → the 58th smallest radiance, 58.
   EXPECT_NEAR(viewExposure(f.atlas, lightmap), 0.8f / 58.0f, 1e-6f);
   EXPECT_EQ(viewExposure(f.atlas, std::vector<glm::vec3>(f.atlas.texelCount(), glm::vec3(0.0f))), 1.0f);

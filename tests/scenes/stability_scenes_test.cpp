@@ -18,7 +18,9 @@ TEST(StabilityScenes, SpotThroughDoorHasTwoCellsOnePortalAndA50WattLamp) {
   EXPECT_NEAR(s.cells.portals[0].normal.x, 1.0f, 1e-6f);
   // The emitter faces the door.
   for (const Triangle& t : s.scene.triangles)
-    if (s.scene.materials[t.material].isEmitter()) EXPECT_NEAR(t.geometricNormal().x, 1.0f, 1e-6f);
+    if (s.scene.materials[t.material].isEmitter()) {
+      EXPECT_NEAR(t.geometricNormal().x, 1.0f, 1e-6f);
+    }
   EXPECT_EQ(findQuads(s.scene).looseTriangles(), 0u);
 }
 

@@ -1,0 +1,106 @@
+// End to end: `cpgi bake` on a generated seed scene writes every output with the documented keys, the
+// lightmap's area channel adds up to the scene's surface, and bad options fail with one line.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/image_io.h"
+#include "scenes/seed_scenes.h"
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+struct BakeRun {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+BakeRun cpgi(const test::TempDir& dir, const std::string& args) {
+  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = std::string("'") + CPGI_BINARY + "' " + args + " > '" + out + "' 2> '" + err + "'";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), slurp(out), slurp(err)};
+}
+
+TEST(Bake, SeedSceneWritesAllOutputs) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
+  const BakeRun r = cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" +
+                              "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"lightmap.exr", "lightmap.png", "baked.glb", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
+
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  for (const char* key : {"method", "seconds", "solve_seconds", "texels", "shots", "unshot_fraction", "cells",
+                          "portals", "visibility", "item_buffer", "atlas", "renderer", "timings", "energy"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["method"], "global");
+  EXPECT_EQ(report["cells"], 1);
+  EXPECT_EQ(report["portals"], 0);
+  EXPECT_LE(report["unshot_fraction"].get<double>(), 0.05);
+  EXPECT_GT(report["shots"].get<int>(), 2);  // two lamps, then reflectors
+  const auto& e = report["energy"];
+  EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
+              e["emitted_w"].get<double>(), 1e-3 * e["emitted_w"].get<double>());
+
+  std::vector<ExrChannel> extra;
+  const ImageRGB lightmap = readExr(dir / "out/lightmap.exr", &extra);
+  EXPECT_EQ(lightmap.width, report["atlas"]["width"].get<int>());
+  ASSERT_EQ(extra.size(), 2u);
+  const auto& areas = extra[0].name == "area" ? extra[0] : extra[1];
+  const auto& emissive = extra[0].name == "emissive" ? extra[0] : extra[1];
+  EXPECT_EQ(areas.name, "area");
+  EXPECT_EQ(emissive.name, "emissive");
+  double area = 0.0, lit = 0.0, lampArea = 0.0;
+  for (size_t i = 0; i < areas.values.size(); ++i) {
+    area += areas.values[i];
+    lit += areas.values[i] * lightmap.pixels[i].r;
+    lampArea += areas.values[i] * emissive.values[i];
+  }
+  EXPECT_NEAR(lampArea, 2.0, 1e-3);  // two 1 m × 1 m lamps
+  EXPECT_FALSE(report["views"].empty());
+  for (const auto& v : report["views"])
+    EXPECT_TRUE(std::filesystem::exists(dir / ("out/view-" + v.get<std::string>() + ".png"))) << v;
+  double sceneArea = 0.0;
+  for (const Triangle& t : makeSeedScene(1).scene.triangles) sceneArea += t.area();
+  EXPECT_NEAR(area, sceneArea, 1e-3 * sceneArea);
+  EXPECT_GT(lit, 0.0);
+}
+
+TEST(Bake, BadOptionsFailWithOneLine) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
+  // Checked by the solver: exactly one line naming the option.
+  const BakeRun bad = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --item-buffer 7");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_EQ(bad.err.rfind("cpgi: --item-buffer: ", 0), 0u) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json"));
+  // Checked by the parser (CLI11 adds its "Run with --help" line): the first line names the option.
+  for (const std::string& args : {std::string("--visibility cube"), std::string("--texels-per-quad 8 --density 4"),
+                                  std::string("--unshot 2")}) {
+    const BakeRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' " + args);
+    EXPECT_EQ(r.status, 1) << args;
+    const std::string option = args.substr(0, args.find(' '));
+    EXPECT_NE(r.err.substr(0, r.err.find('\n')).find(option), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json")) << args;
+  }
+  const BakeRun missing = cpgi(dir, "bake '" + dir / "none.glb" + "' -o '" + dir / "out" + "'");
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.err.find("none.glb"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace cpgi

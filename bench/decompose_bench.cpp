@@ -1,6 +1,6 @@
 // Seconds and peak memory of the decomposition against voxel count, on the procedural house
 // (bench/house.h). One configuration per process, so that the peak resident size is this run's:
-//   decompose_bench --voxel 0.05 [--rooms 3] [--furniture 30] [--wall-cell 0.25]
+//   decompose_bench --voxel 0.05 [--rooms 3] [--furniture 30] [--wall-cell 0.3] [--png PICTURE.png]
 // prints one JSON object; bench/decompose_bench.sh sweeps voxel sizes under /usr/bin/time -v.
 #include <sys/resource.h>
 
@@ -13,15 +13,19 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/house.h"
+#include "core/image_io.h"
 #include "decomposition/decompose.h"
+#include "decomposition/picture.h"
 
 int main(int argc, char** argv) {
   cpgi::bench::HouseParams house;
   double voxel = 0.05;
+  std::string png;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i];
     const double v = std::atof(argv[i + 1]);
     if (k == "--voxel") voxel = v;
+    else if (k == "--png") png = argv[i + 1];
     else if (k == "--rooms") house.roomsPerSide = int(v);
     else if (k == "--furniture") house.furniturePerRoom = int(v);
     else if (k == "--wall-cell") house.wallCell = float(v);
@@ -64,5 +68,6 @@ int main(int argc, char** argv) {
   j["peak_rss_mb"] = double(usage.ru_maxrss) / 1024.0;
   j["warnings"] = ctx.warnings();
   std::printf("%s\n", j.dump().c_str());
+  if (!png.empty()) cpgi::writePng(png, cpgi::decomp::drawDecomposition(d));
   return 0;
 }

@@ -35,7 +35,8 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
   for (size_t i = 0; i < cls.size(); ++i)
     if (solid.solid[i]) cls[i] = uint8_t(Space::Solid);
 
-  // Breadth-first fill of unset voxels from `seeds`, calling visit(i) on each; returns the voxel list.
+  // Breadth-first fill from the voxels in `queue`: every unset face neighbour gets `value` and joins the
+  // queue, which ends up holding the whole component.
   std::vector<size_t> queue;
   auto fill = [&](uint8_t value) {
     for (size_t head = 0; head < queue.size(); ++head) {

@@ -66,34 +66,42 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
 
   std::vector<PortalQuad> quads;
   std::vector<float> peaks;
-  if (space.insideVoxels == 0) {
-    // Nothing enclosed: the scene is open (outdoors, or a building with a hole larger than the seal).
+  // Nothing enclosed (outdoors, or a building with a hole larger than the seal), or every enclosed region
+  // too small to be a cell: the outside is the one cell.
+  auto oneOutsideCell = [&](const std::string& why) {
     out.enclosed = false;
     out.voxelCell.assign(out.frame.count(), -1);
     for (size_t i = 0; i < space.space.size(); ++i)
       if (space.space[i] == Space::Outside) out.voxelCell[i] = 0;
-    peaks.push_back(0.0f);
-    ctx.warn("decompose: " + params.sourceName + ": no enclosed empty space at " + metres(h) +
+    peaks.assign(1, 0.0f);
+    quads.clear();
+    out.portals.clear();
+    ctx.warn("decompose: " + params.sourceName + ": " + why + " at " + metres(h) +
              " voxels; the whole scene is one outside cell");
+  };
+  if (space.insideVoxels == 0) {
+    oneOutsideCell("no enclosed empty space");
   } else {
     const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
     const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
     out.basins = basins.basinCount();
     const CellLabels cells = mergeBasins(basins, params.merge, ctx);
-    PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
-    out.voxelCell = std::move(portals.cell);
-    out.leakingFaces = portals.leakingFaces;
-    peaks = cells.peak;
-    for (FittedPortal& fp : portals.portals) {
-      fp.quad.name = "portal:c" + std::to_string(fp.quad.cellA) + ":c" + std::to_string(fp.quad.cellB);
-      quads.push_back(fp.quad);
+    if (cells.cellCount() == 0) {
+      oneOutsideCell("no enclosed empty space larger than --min-cell-volume");
+    } else {
+      PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
+      out.voxelCell = std::move(portals.cell);
+      out.leakingFaces = portals.leakingFaces;
+      peaks = cells.peak;
+      for (FittedPortal& fp : portals.portals) {
+        fp.quad.name = "portal:c" + std::to_string(fp.quad.cellA) + ":c" + std::to_string(fp.quad.cellB);
+        quads.push_back(fp.quad);
+      }
+      out.portals = std::move(portals.portals);
+      if (out.leakingFaces > 0)
+        ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
+                 " voxel faces join two cells outside any portal");
     }
-    out.portals = std::move(portals.portals);
-    if (out.leakingFaces > 0)
-      ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
-               " voxel faces join two cells outside any portal");
-    if (cells.cellCount() == 0)
-      ctx.warn("decompose: " + params.sourceName + ": every enclosed region is smaller than --min-cell-volume");
   }
   out.space = std::move(space.space);
 
@@ -128,6 +136,8 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
   out.graph.portals = std::move(quads);
 
+  for (const std::string& w : validateCells(out.scene, out.graph).warnings)
+    ctx.warn("decompose: " + params.sourceName + ": " + w);
   if (out.thinWallArea > 0.1)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.thinWallArea) +
              " m2 of wall between two cells is thinner than one voxel (" + metres(h) +

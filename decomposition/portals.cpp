@@ -205,25 +205,33 @@ size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell, c
   return leaks;
 }
 
-PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx) {
-  auto timer = ctx.time("portals");
-  const GridFrame& f = cells.frame;
-  PortalSet out;
-  out.cell = cells.cell;
+namespace {
 
-  // 1. Every face between two cells.
+// Every face between two cells whose segment crosses no portal of those two cells (all of them when
+// `portals` is empty), sorted by cell pair.
+std::vector<Face> uncoveredFaces(const GridFrame& f, const std::vector<int32_t>& cell, const DistanceGrid& distance,
+                                 const std::vector<FittedPortal>& portals) {
+  std::map<std::pair<int, int>, std::vector<const PortalQuad*>> byPair;
+  for (const FittedPortal& p : portals) byPair[{p.quad.cellA, p.quad.cellB}].push_back(&p.quad);
+  const float tolerance = 0.5f * float(f.voxel);
   std::vector<Face> faces;
   const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
   for (int z = 0; z + 1 < f.dims.z; ++z)
     for (int y = 0; y + 1 < f.dims.y; ++y)
       for (int x = 0; x + 1 < f.dims.x; ++x) {
         const size_t i = f.index(x, y, z);
-        const int a = cells.cell[i];
+        const int a = cell[i];
         if (a < 0) continue;
         for (int k = 0; k < 3; ++k) {
           const size_t j = size_t(ptrdiff_t(i) + strides[k]);
-          const int b = cells.cell[j];
+          const int b = cell[j];
           if (b < 0 || b == a) continue;
+          const auto it = byPair.find({std::min(a, b), std::max(a, b)});
+          bool covered = false;
+          if (it != byPair.end())
+            for (const PortalQuad* q : it->second)
+              if ((covered = segmentCrossesPortal(*q, f.centre(i), f.centre(j), tolerance))) break;
+          if (covered) continue;
           const float s = float(std::min(distance.metres(i), distance.metres(j)));
           faces.push_back({std::min(a, b), std::max(a, b), i, k, a < b ? 1 : -1, s});
         }
@@ -231,8 +239,13 @@ PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, cons
   std::sort(faces.begin(), faces.end(), [](const Face& p, const Face& q) {
     return p.a != q.a ? p.a < q.a : p.b != q.b ? p.b < q.b : p.lower < q.lower;
   });
+  return faces;
+}
 
-  // 2. Per pair of cells, openings = faces connected within one voxel (half-coordinates within 2).
+// Per pair of cells, openings = faces connected within one voxel (half-coordinates within 2); one
+// fitted portal per opening.
+std::vector<FittedPortal> fitOpenings(const GridFrame& f, const std::vector<Face>& faces, double margin) {
+  std::vector<FittedPortal> out;
   for (size_t lo = 0; lo < faces.size();) {
     size_t hi = lo;
     while (hi < faces.size() && faces[hi].a == faces[lo].a && faces[hi].b == faces[lo].b) ++hi;
@@ -257,37 +270,59 @@ PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, cons
           }
     std::map<int, std::vector<const Face*>> openings;
     for (int q = 0; q < n; ++q) openings[findRoot(parent, q)].push_back(&faces[lo + size_t(q)]);
-    for (const auto& [root, members] : openings) out.portals.push_back(fitOpening(f, members, params.marginVoxels));
+    for (const auto& [root, members] : openings) out.push_back(fitOpening(f, members, margin));
     lo = hi;
   }
+  return out;
+}
 
-  // 3. Each portal to the middle of its constriction.
-  for (FittedPortal& fp : out.portals) centreInConstriction(fp, f, cells.cell, params.searchRange);
+// Relabels the slab around a portal (its quad, ± depth along the normal) by the side of its plane.
+void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t>& cell) {
+  const PortalQuad& q = fp.quad;
+  Bounds box;
+  for (const glm::vec3& c : q.corners) box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
+  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
+  const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+  const glm::vec3 c = q.centre();
+  const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
+  const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
+  if (hu <= 0.0f || hv <= 0.0f) return;
+  const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        const int l = cell[i];
+        if (l != q.cellA && l != q.cellB) continue;
+        const glm::vec3 p = f.centre(i) - c;
+        const float s = glm::dot(p, q.normal);
+        if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
+        cell[i] = s < 0.0f ? q.cellA : q.cellB;
+      }
+}
 
-  // 4. Relabel a slab around each portal by the side of its plane, so the cells meet at the quad.
-  for (const FittedPortal& fp : out.portals) {
-    const PortalQuad& q = fp.quad;
-    Bounds box;
-    for (const glm::vec3& c : q.corners) box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
-    const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
-    const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
-    const glm::vec3 c = q.centre();
-    const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
-    const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
-    const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
-    for (int z = lo.z; z <= hi.z; ++z)
-      for (int y = lo.y; y <= hi.y; ++y)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const size_t i = f.index(x, y, z);
-          const int l = out.cell[i];
-          if (l != q.cellA && l != q.cellB) continue;
-          const glm::vec3 p = f.centre(i) - c;
-          const float s = glm::dot(p, q.normal);
-          if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
-          out.cell[i] = s < 0.0f ? q.cellA : q.cellB;
-        }
+}  // namespace
+
+PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx) {
+  auto timer = ctx.time("portals");
+  const GridFrame& f = cells.frame;
+  PortalSet out;
+  out.cell = cells.cell;
+  // Round 0 fits every opening; later rounds fit what the earlier portals left uncovered (an interface
+  // that bends out of its portal's slab, the fringe of a wide arch), up to params.extraRounds times.
+  for (int round = 0; round <= params.extraRounds; ++round) {
+    const std::vector<Face> faces = uncoveredFaces(f, out.cell, distance, out.portals);
+    if (faces.empty()) break;
+    std::vector<FittedPortal> fresh = fitOpenings(f, faces, params.marginVoxels);
+    // Each to the middle of its constriction, then the cells made to meet exactly at its quad.
+    // Later rounds leave the labels alone: relabelling around a fringe portal moves the interface
+    // somewhere else instead of covering it.
+    if (round == 0) {
+      for (FittedPortal& fp : fresh) centreInConstriction(fp, f, out.cell, params.searchRange);
+      for (const FittedPortal& fp : fresh) relabelSlab(f, fp, out.cell);
+    }
+    out.portals.insert(out.portals.end(), fresh.begin(), fresh.end());
   }
-
   std::vector<PortalQuad> quads;
   for (const FittedPortal& fp : out.portals) quads.push_back(fp.quad);
   out.leakingFaces = countLeakingFaces(f, out.cell, quads);

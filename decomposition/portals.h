@@ -21,6 +21,8 @@ struct PortalParams {
   /// How far along its normal a portal may move to reach the middle of its constriction, metres (the
   /// deepest door reveal expected; the watershed puts the interface anywhere along a door's depth).
   float searchRange = 0.6f;
+  /// Rounds of extra portals for interface faces the earlier portals left uncovered.
+  int extraRounds = 2;
 };
 
 struct FittedPortal {

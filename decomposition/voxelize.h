@@ -17,8 +17,9 @@ struct VoxelizeParams {
   /// closing (dilate r, erode r, face neighbours) fills every gap at most 2r voxels across, i.e. cracks up
   /// to about (2r + 1) voxels wide once the half-voxel thickening of each face is counted.
   double sealRadius = 0.0;
-  /// Refuse grids larger than this (each voxel costs ~16 bytes through the pipeline).
-  size_t maxVoxels = size_t(400) * 1000 * 1000;
+  /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (the distance transform's
+  /// 64-bit working grid, labels, classes), so 250 M voxels is ~10 GB.
+  size_t maxVoxels = size_t(250) * 1000 * 1000;
 };
 
 struct SolidGrid {

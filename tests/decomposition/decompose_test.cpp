@@ -1,6 +1,8 @@
 // End-to-end decomposition of scenes built in code, against their known rooms and doors.
 #include "decomposition/decompose.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -100,6 +102,35 @@ TEST(Decompose, AgreesWithHandMadeCells) {
     EXPECT_LT(pm.normalAngle, 1.0f);
     EXPECT_NEAR(pm.areaRatio, 1.0f, 0.15f);
   }
+}
+
+TEST(Compare, CellVolumesLabelTheVoxelsTheyEnclose) {
+  // Hand-made cells given as `cellvolume:` boxes over the three rooms, split at the door mid-planes:
+  // labels equal the rooms by position wherever a volume covers the voxel.
+  ThreeRoomsOptions o;
+  o.slabsPerRoom = true;
+  const Scene scene = makeThreeRooms(o);
+  Context ctx;
+  const Decomposition d = run(scene, 0.1, ctx);
+  // Only the volumes: no triangles to grow from, no portals to stop at.
+  CellGraph manual;
+  manual.cells.resize(3);
+  const float cuts[4] = {0.0f, ThreeRooms::doorCentre(1).x, ThreeRooms::doorCentre(2).x, 20.0f};
+  for (int c = 0; c < 3; ++c) {
+    SceneBuilder box;
+    box.box({cuts[c], -0.1f, -0.1f}, {cuts[c + 1], 3.1f, 4.5f});
+    manual.cells[size_t(c)].volume = box.scene().triangles;
+  }
+  const std::vector<int32_t> labels = labelsFromCells(scene, manual, d.frame, d.space);
+  const std::vector<int32_t> rooms = roomsByPosition(d);
+  size_t labelled = 0, agree = 0;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (rooms[i] < 0) continue;
+    labelled += labels[i] >= 0;
+    agree += labels[i] == rooms[i];
+  }
+  EXPECT_EQ(labelled, agree);
+  EXPECT_GT(double(labelled), 0.99 * double(d.space.size() > 0 ? std::count(d.space.begin(), d.space.end(), Space::Inside) : 0));
 }
 
 TEST(Decompose, FurnishedRoomIsOneCell) {

@@ -74,14 +74,14 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
     throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
                                           std::to_string(maxTexture) + ")");
-  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("--neighbourhood", "must be in 0..4");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("solver", "item-buffer neighbourhood must be in 0..4");
   if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
     throw InputError("--unshot", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
-  if (!(p.farField >= 1.0f)) throw InputError("far field", "ratio must be at least 1");
-  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("sub-shooters", "blocks per edge must be in 1..8");
-  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("--regions", "must be in 1..4");
-  if (!(p.regionSize > 0.0f)) throw InputError("--region-size", "must be positive");
+  if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
+  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("solver", "sub-shooter blocks per edge must be in 1..8");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
+  if (!(p.regionSize > 0.0f)) throw InputError("solver", "region size must be positive");
   if (atlas.width > maxTexture || atlas.height > maxTexture)
     throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
                                   std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +

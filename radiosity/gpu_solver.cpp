@@ -172,6 +172,8 @@ class Solver {
     clock_.mark("item buffers");
 
     // The item-buffer fragments flag the patches they show (item.frag); list those patches' tiles.
+    // Shader writes (the fragments' flags, last shot's list counters) must land before these updates.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const GLuint one = 1;
     glNamedBufferSubData(visible_.get(), GLintptr(shooter) * 4, 4, &one);  // its residual is zeroed below
     const uint32_t header[4] = {0, 0, 1, 1};

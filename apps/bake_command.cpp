@@ -194,7 +194,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
                               "N×N texels per quad whatever its size (the thesis's mode)")
                   ->check(CLI::Range(1, 4096));
   auto* density = sub->add_option("--density", o->density, "Texels per metre along each patch edge")
-                      ->check(CLI::PositiveNumber)
+                      ->check(kPositive)
                       ->capture_default_str();
   tpq->excludes(density);
   sub->add_option("--unshot", o->unshot, "Stop when this fraction of the emitted power is still unshot")

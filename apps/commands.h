@@ -2,13 +2,25 @@
 // that runs it. Commands only parse, call the libraries and report (DEVELOPERS.md: apps/ is thin).
 #pragma once
 
+#include <cmath>
 #include <functional>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 namespace cpgi::cli {
 
 using CommandFn = std::function<int()>;
+
+/// CLI11's PositiveNumber prints the largest double in its message; this one says what it means.
+inline const CLI::Validator kPositive(
+    [](std::string& value) -> std::string {
+      double v = 0.0;
+      if (!CLI::detail::lexical_cast(value, v) || !(v > 0.0) || !std::isfinite(v))
+        return "must be a positive number, got " + value;
+      return {};
+    },
+    "POSITIVE");
 
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
 void addInfoCommand(CLI::App& app, CommandFn& selected);

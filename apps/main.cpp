@@ -21,7 +21,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
+    // --help and --version are "errors" that succeed; a real one is a single line naming the option.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << "cpgi: " << e.what() << " (see --help)\n";
+    return 1;
   }
   try {
     return selected ? selected() : 1;

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/support/glb_builder.h"
+#include "tests/support/run_cpgi.h"
 #include "tests/support/temp_dir.h"
 
 namespace cpgi {
@@ -17,38 +18,9 @@ namespace {
 
 using nlohmann::json;
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-  std::vector<std::string> errLines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(err);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-  }
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-CommandRun cpgi(const test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = quote(CPGI_BINARY) + " " + args + " > " + quote(out) + " 2> " + quote(err);
-  const int raw = std::system(command.c_str());
-  CommandRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+using test::CommandRun;
+using test::cpgi;
+using test::quote;
 
 // Asserts the contract for a bad file: exit 1, one line "cpgi: FILE: ...PROBLEM...", nothing on stdout.
 void expectOneLineError(const test::TempDir& dir, const std::string& file, const std::string& problem,

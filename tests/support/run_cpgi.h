@@ -1,0 +1,52 @@
+// Runs the `cpgi` binary under test (CPGI_BINARY) in a shell and captures what a user would see.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/support/temp_dir.h"
+
+namespace cpgi::test {
+
+struct CommandRun {
+  int status = -1;  ///< exit status; 128 + signal when the process was killed (a crash)
+  std::string out, err;
+  std::vector<std::string> errLines() const {
+    std::vector<std::string> lines;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// Single-quotes `s` for the shell.
+inline std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// `cpgi ARGS` with stdout and stderr captured through files in `dir`. ARGS is shell text: quote paths.
+inline CommandRun cpgi(const TempDir& dir, const std::string& args) {
+  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = quote(CPGI_BINARY) + " " + args + " > " + quote(out) + " 2> " + quote(err);
+  const int raw = std::system(command.c_str());
+  CommandRun r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace cpgi::test

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "radiosity/gl.h"
 #include "radiosity/shader_library.h"
+#include "radiosity/shooter_layout.h"
 
 namespace cpgi {
 namespace {
@@ -73,64 +74,18 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
     throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
                                           std::to_string(maxTexture) + ")");
-  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("--neighbourhood", "must be in 0..4");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("solver", "item-buffer neighbourhood must be in 0..4");
   if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
     throw InputError("--unshot", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
-  if (!(p.farField >= 1.0f)) throw InputError("far field", "ratio must be at least 1");
-  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("sub-shooters", "blocks per edge must be in 1..8");
-  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("--regions", "must be in 1..4");
-  if (!(p.regionSize > 0.0f)) throw InputError("--region-size", "must be positive");
+  if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
+  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("solver", "sub-shooter blocks per edge must be in 1..8");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
+  if (!(p.regionSize > 0.0f)) throw InputError("solver", "region size must be positive");
   if (atlas.width > maxTexture || atlas.height > maxTexture)
     throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
                                   std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
                                   std::to_string(maxTexture) + "; lower the resolution");
-}
-
-// How a shooter is cut up: texel blocks (sub-shooters for the form factor) grouped into regions (one
-// item buffer each), and where each region's eye sits.
-struct ShooterLayout {
-  glm::vec3 tangent, bitangent, normal;
-  glm::ivec2 blocks{1}, regions{1};
-  std::vector<glm::vec3> eyes;  ///< region centres (mean of their texel sample points), row-major
-  float texelRadius = 0.0f;
-};
-
-ShooterLayout layoutOf(const LightmapAtlas& atlas, int patchIndex, const SolverParams& params) {
-  const Patch& p = atlas.patches[patchIndex];
-  ShooterLayout l;
-  l.normal = p.normal;
-  const glm::vec3 u = p.texelU - glm::dot(p.texelU, p.normal) * p.normal;
-  l.tangent = glm::normalize(glm::length(u) > 0.0f ? u : glm::cross(glm::vec3(0.6f, 0.8f, 0.0f), p.normal));
-  l.bitangent = glm::cross(l.normal, l.tangent);
-  l.texelRadius = 0.5f * glm::length(p.texelU + p.texelV);
-  l.texelRadius = std::max(l.texelRadius, 0.5f * glm::length(p.texelU - p.texelV));
-  auto regionsAlong = [&](float length, int texels) {
-    const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
-    return std::clamp(n, 1, std::min({params.maxRegions, texels, params.maxBlocks}));
-  };
-  l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w), regionsAlong(glm::length(p.texelV) * p.h, p.h)};
-  // Blocks: as many as allowed, a multiple of the regions so every block lies in one region.
-  for (int a = 0; a < 2; ++a) {
-    const int texels = a == 0 ? p.w : p.h;
-    const int per = std::max(1, std::min(params.maxBlocks, texels) / l.regions[a]);
-    l.blocks[a] = per * l.regions[a];
-  }
-  for (int ry = 0; ry < l.regions.y; ++ry)
-    for (int rx = 0; rx < l.regions.x; ++rx) {
-      const int x0 = p.w * rx / l.regions.x, x1 = p.w * (rx + 1) / l.regions.x;
-      const int y0 = p.h * ry / l.regions.y, y1 = p.h * (ry + 1) / l.regions.y;
-      glm::dvec3 sum(0.0);
-      int n = 0;
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-          const size_t t = size_t(p.y + y) * atlas.width + p.x + x;
-          if (atlas.patch[t] == patchIndex) sum += glm::dvec3(atlas.position[t]), ++n;
-        }
-      // A region of a loose triangle may hold no valid texel; its eye is never used (zero area).
-      l.eyes.push_back(n > 0 ? glm::vec3(sum / double(n)) : p.origin);
-    }
-  return l;
 }
 
 // Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
@@ -171,6 +126,7 @@ class Solver {
     receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
     statsProgram_ = buildProgram({"patch_stats.comp"});
     selectProgram_ = buildProgram({"select_shooter.comp"});
+    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions, params.maxBlocks});
     uploadAtlas();
     uploadGeometry();
     makeItemBuffer();
@@ -192,7 +148,7 @@ class Solver {
   }
 
   GpuSelection shoot(int shooter) {
-    const ShooterLayout l = layoutOf(atlas_, shooter, params_);
+    const ShooterLayout& l = layouts_[shooter];
     const Patch& p = atlas_.patches[shooter];
     const int regions = l.regions.x * l.regions.y;
     std::vector<glm::vec3> eyes;
@@ -216,6 +172,8 @@ class Solver {
     clock_.mark("item buffers");
 
     // The item-buffer fragments flag the patches they show (item.frag); list those patches' tiles.
+    // Shader writes (the fragments' flags, last shot's list counters) must land before these updates.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const GLuint one = 1;
     glNamedBufferSubData(visible_.get(), GLintptr(shooter) * 4, 4, &one);  // its residual is zeroed below
     const uint32_t header[4] = {0, 0, 1, 1};
@@ -461,6 +419,7 @@ class Solver {
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
+  std::vector<ShooterLayout> layouts_;
   PassClock clock_;
   GLsizei vertexCount_ = 0;
   size_t tileCount_ = 0;
@@ -522,6 +481,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
     const double fraction = e.unshot / e.emitted;
     if (fraction <= params.unshotFraction) break;
     e.shot += channelSum(sel.winnerUnshot);
+    result.shooters.push_back(sel.winner);
     sel = solver.shoot(sel.winner);
     ++result.shots;
     record(sel);

@@ -73,6 +73,7 @@ struct SolveResult {
   double unshotFraction = 0.0;       ///< unshot / emitted at the end (0 when nothing emits)
   EnergyTotals energy;
   std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
+  std::vector<int> shooters;         ///< the patch of every shot, in order
   double seconds = 0.0;              ///< solve time (upload, shots, read back)
   double setupSeconds = 0.0;         ///< programs and textures
 };

@@ -77,7 +77,7 @@ CellGraph resolveCells(const BakeOptions& o, LoadedScene& loaded, Context& ctx) 
     loaded.scene = std::move(d.scene);
     return std::move(d.graph);
   }
-  if (!std::filesystem::exists(o.cells)) throw InputError(o.cells, "no such file");
+  if (!std::filesystem::exists(o.cells)) throw InputError("--cells", o.cells + ": no such file");
   if (std::filesystem::equivalent(o.cells, o.scene)) {
     if (loaded.cells.empty()) throw InputError(o.cells, "has no cell:/portal: nodes");
     return loaded.cells;
@@ -125,9 +125,9 @@ int runBake(const BakeOptions& o) {
     loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
   }
   for (const std::string& w : loaded.warnings) ctx.warn(w);
-  OutputDir out(o.output);
   CellGraph graph;
   if (o.method == "cells") graph = resolveCells(o, loaded, ctx);
+  OutputDir out(o.output);
 
   QuadSet quads;
   LightmapAtlas atlas;

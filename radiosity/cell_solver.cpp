@@ -213,6 +213,13 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   double unshot = result.emitted;
   while (result.emitted > 0.0 && unshot > target && result.rounds < params.maxRounds) {
     ++result.rounds;
+    // Half the scene's budget is for what the solves leave unshot (the other half for what the portals
+    // collect): a solve stops at that fraction of the round's input, or as soon as no patch holds more
+    // than its share of it (half the budget over the scene's patches). A cell lit only through a door
+    // must not be solved to the scene's fraction of its own small input: a room of many small patches
+    // would then take more shots than the whole scene.
+    solverParams.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
+    solverParams.minShotPower = 0.5 * target / double(std::max<size_t>(global.patches.size(), 1));
     std::vector<std::vector<glm::vec3>> nextPending(nc), nextCarried(nc);
     for (size_t c = 0; c < nc; ++c) nextPending[c].assign(cells[c].pending.size(), glm::vec3(0.0f));
     for (size_t c = 0; c < nc; ++c) {

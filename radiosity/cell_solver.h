@@ -26,7 +26,8 @@ namespace cpgi {
 struct CellSolveParams {
   /// Per-cell solver settings. Its unshotFraction is the whole scene's target: rounds go on until the
   /// unshot power everywhere, plus the power held on portals and not yet re-emitted, is at most this
-  /// fraction of the emitted power.
+  /// fraction of the emitted power. Each round's solves stop at half that budget (of the scene's
+  /// emitted power, not of their own input).
   SolverParams solver;
   /// The per-cell atlases use these too (the same charts as the global atlas built with them).
   AtlasParams atlas;

@@ -481,6 +481,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
     const double fraction = e.unshot / e.emitted;
     if (fraction <= params.unshotFraction) break;
+    if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
     e.shot += channelSum(sel.winnerUnshot);
     result.shooters.push_back(sel.winner);
     sel = solver.shoot(sel.winner);

@@ -57,6 +57,10 @@ struct SolverParams {
   /// Also read back every texel's received irradiance and unshot residual (SolveResult::incident,
   /// ::residual): what a cell solve hands on through its portals (radiosity/cell_solver.h).
   bool readTransfer = false;
+  /// Also stop when the next shooter's unshot power (W, summed over R, G, B) is below this: a bound per
+  /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
+  /// the whole scene would leave such small patches unshot (radiosity/cell_solver.h). 0: off.
+  double minShotPower = 0.0;
 };
 
 /// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,

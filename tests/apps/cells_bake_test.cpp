@@ -84,6 +84,25 @@ TEST(CellsBake, Seed1AgainstGlobalAndReference) {
   EXPECT_LT(cellsError, globalError + 0.03);
 }
 
+// --cells auto runs the automatic decomposition: seed1's three rooms and two doors.
+TEST(CellsBake, AutomaticCells) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
+                                 "' --method cells --cells auto --texels-per-quad 4 --unshot 0.02 --item-buffer 256 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  EXPECT_EQ(report["method"], "cells");
+  EXPECT_EQ(report["cells"], 3);
+  EXPECT_EQ(report["portals"], 2);
+  EXPECT_LE(report["unshot_fraction"].get<double>(), 0.02);
+  const auto& e = report["energy"];
+  EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
+              e["emitted_w"].get<double>(), 1e-3 * e["emitted_w"].get<double>());
+  for (const auto& p : report["portal_energy"]) EXPECT_GT(p["a_to_b_w"].get<double>() + p["b_to_a_w"].get<double>(), 1.0);
+}
+
 TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

@@ -1,6 +1,8 @@
-// `cpgi bake SCENE -o DIR [--method global] [--texels-per-quad N | --density T] [--unshot F] [--max-shots N]
-//  [--visibility hemisphere|hemicube] [--item-buffer N] [--repair]`: GPU progressive radiosity over a
-// lightmap atlas (design.md §1, §3). Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
+// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse] [--max-rounds N]
+//  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
+//  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
+// the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
+// atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
 // baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
 // camera (radiosity/views.h) and report.json, all or nothing.
 #include <unistd.h>

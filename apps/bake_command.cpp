@@ -1,6 +1,8 @@
-// `cpgi bake SCENE -o DIR [--method global] [--texels-per-quad N | --density T] [--unshot F] [--max-shots N]
-//  [--visibility hemisphere|hemicube] [--item-buffer N] [--repair]`: GPU progressive radiosity over a
-// lightmap atlas (design.md §1, §3). Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
+// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse] [--max-rounds N]
+//  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
+//  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
+// the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
+// atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
 // baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
 // camera (radiosity/views.h) and report.json, all or nothing.
 #include <unistd.h>
@@ -11,6 +13,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <tuple>
 #include <memory>
 #include <string>
 
@@ -22,7 +25,9 @@
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
+#include "decomposition/decompose.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_solver.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/gpu_solver.h"
 #include "radiosity/views.h"
@@ -34,6 +39,9 @@ struct BakeOptions {
   std::string scene;
   std::string output;
   std::string method = "global";
+  std::string cells = "none";  ///< with --method cells: a glTF with cell:/portal: nodes, or "auto"
+  std::string portals = "diffuse";
+  int maxRounds = CellSolveParams{}.maxRounds;
   int texelsPerQuad = 0;
   float density = AtlasParams{}.density;
   double unshot = SolverParams{}.unshotFraction;
@@ -56,6 +64,49 @@ Context::ProgressFn progressPrinter(bool quiet) {
   };
 }
 
+// The cell graph for `--method cells`: the scene's own cells, those of another glTF of the same scene
+// (its triangles matched by centroid), or the automatic decomposition (which may split triangles on
+// portal planes, so it replaces the scene).
+CellGraph resolveCells(const BakeOptions& o, LoadedScene& loaded, Context& ctx) {
+  if (o.cells == "none")
+    throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
+  if (o.cells == "auto") {
+    auto t = ctx.time("decompose");
+    decomp::DecomposeParams params;
+    params.sourceName = o.scene;
+    decomp::Decomposition d = decomp::decompose(loaded.scene, params, ctx);
+    if (d.graph.cells.size() < 2) ctx.warn(o.scene + ": the automatic decomposition found one cell");
+    loaded.scene = std::move(d.scene);
+    return std::move(d.graph);
+  }
+  if (!std::filesystem::exists(o.cells)) throw InputError("--cells", o.cells + ": no such file");
+  if (std::filesystem::equivalent(o.cells, o.scene)) {
+    if (loaded.cells.empty()) throw InputError(o.cells, "has no cell:/portal: nodes");
+    return loaded.cells;
+  }
+  LoadedScene other = loadScene(o.cells, LoadOptions{.repair = o.repair});
+  if (other.cells.empty()) throw InputError(o.cells, "has no cell:/portal: nodes");
+  // Same scene, maybe another file order: match triangles by their centroid to the millimetre.
+  auto key = [](const Triangle& t) {
+    const glm::ivec3 k = glm::ivec3(glm::round(t.centroid() * 1000.0f));
+    return std::tuple{k.x, k.y, k.z};
+  };
+  std::map<std::tuple<int, int, int>, int> cellAt;
+  const std::vector<int> otherCell = other.cells.cellOfTriangle(other.scene.triangles.size());
+  for (size_t t = 0; t < other.scene.triangles.size(); ++t) cellAt[key(other.scene.triangles[t])] = otherCell[t];
+  CellGraph graph = other.cells;
+  for (Cell& c : graph.cells) c.triangles.clear();
+  size_t unmatched = 0;
+  for (size_t t = 0; t < loaded.scene.triangles.size(); ++t) {
+    const auto it = cellAt.find(key(loaded.scene.triangles[t]));
+    if (it == cellAt.end()) ++unmatched;
+    else if (it->second >= 0) graph.cells[it->second].triangles.push_back(uint32_t(t));
+  }
+  if (unmatched > 0)
+    ctx.warn(o.cells + ": " + std::to_string(unmatched) + " triangles of the scene are not in the cells file");
+  return graph;
+}
+
 int runBake(const BakeOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   Context ctx;
@@ -76,6 +127,8 @@ int runBake(const BakeOptions& o) {
     loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
   }
   for (const std::string& w : loaded.warnings) ctx.warn(w);
+  CellGraph graph;
+  if (o.method == "cells") graph = resolveCells(o, loaded, ctx);
   OutputDir out(o.output);
 
   QuadSet quads;
@@ -95,7 +148,25 @@ int runBake(const BakeOptions& o) {
     gl = std::make_unique<EglContext>(ctx);
   }
   SolveResult solved;
-  {
+  CellSolveResult cellSolved;
+  if (o.method == "cells") {
+    auto t = ctx.time("solve");
+    CellSolveParams params;
+    params.solver = solverParams;
+    params.atlas = atlasParams;
+    params.maxRounds = o.maxRounds;
+    cellSolved = solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
+    solved.radiosity = cellSolved.radiosity;
+    solved.shots = cellSolved.shots;
+    solved.unshotFraction = cellSolved.unshotFraction;
+    solved.seconds = cellSolved.seconds;
+    solved.energy.emitted = cellSolved.emitted;
+    solved.energy.absorbed = cellSolved.absorbed;
+    solved.energy.unshot = cellSolved.unshot;
+    // Σ over cells of (shot − received): shot and received are not kept separately across cells.
+    solved.energy.shot = cellSolved.escaped;
+    solved.energy.received = 0.0;
+  } else {
     auto t = ctx.time("solve");
     solved = solveProgressive(loaded.scene, atlas, solverParams, *gl, ctx);
   }
@@ -137,7 +208,7 @@ int runBake(const BakeOptions& o) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const EnergyTotals& e = solved.energy;
   nlohmann::json report = {
-      {"method", "global"},
+      {"method", o.method},
       {"scene", o.scene},
       {"seconds", seconds},
       {"solve_seconds", solved.seconds},
@@ -145,8 +216,8 @@ int runBake(const BakeOptions& o) {
       {"shots", solved.shots},
       {"unshot_fraction", solved.unshotFraction},
       {"unshot_target", solverParams.unshotFraction},
-      {"cells", 1},
-      {"portals", 0},
+      {"cells", o.method == "cells" ? graph.cells.size() : size_t(1)},
+      {"portals", o.method == "cells" ? graph.portals.size() : size_t(0)},
       {"visibility", visibilityName(solverParams.visibility)},
       {"item_buffer", solverParams.itemBuffer},
       {"atlas",
@@ -170,6 +241,34 @@ int runBake(const BakeOptions& o) {
         {"escaped_w", e.escaped()}}},
       {"views", views},
       {"warnings", ctx.warnings()}};
+  if (o.method == "cells") {
+    report["energy"].erase("shot_w");
+    report["energy"].erase("received_w");
+    report["rounds"] = cellSolved.rounds;
+    report["portal_mode"] = o.portals;
+    report["max_cell_texels"] = cellSolved.maxCellTexels;
+    nlohmann::json cells = nlohmann::json::array(), portals = nlohmann::json::array();
+    for (const CellEnergy& c : cellSolved.cells)
+      cells.push_back({{"name", c.name},
+                       {"emitted_w", c.emitted},
+                       {"received_w", c.received},
+                       {"absorbed_w", c.absorbed},
+                       {"sent_w", c.sent},
+                       {"unshot_w", c.unshot},
+                       {"escaped_w", c.escaped},
+                       {"solves", c.solves},
+                       {"shots", c.shots},
+                       {"texels", c.texels},
+                       {"solve_seconds", c.seconds}});
+    for (size_t p = 0; p < cellSolved.portals.size(); ++p)
+      portals.push_back({{"name", cellSolved.portals[p].name},
+                         {"cell_a", graph.cells[graph.portals[p].cellA].name},
+                         {"cell_b", graph.cells[graph.portals[p].cellB].name},
+                         {"a_to_b_w", cellSolved.portals[p].aToB},
+                         {"b_to_a_w", cellSolved.portals[p].bToA}});
+    report["cell_energy"] = cells;
+    report["portal_energy"] = portals;
+  }
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();
   if (!o.quiet) {
@@ -187,8 +286,20 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   CLI::App* sub = app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
   sub->add_option("scene", o->scene, "Scene (.glb, .gltf, .obj)")->required();
   sub->add_option("-o,--output", o->output, "Output folder")->required();
-  sub->add_option("--method", o->method, "global: one progressive radiosity solve over the whole scene")
-      ->check(CLI::IsMember({"global"}))
+  sub->add_option("--method", o->method,
+                  "global: one progressive radiosity solve over the whole scene; cells: cell by cell, light "
+                  "handed on through portals (needs --cells)")
+      ->check(CLI::IsMember({"global", "cells"}))
+      ->capture_default_str();
+  sub->add_option("--cells", o->cells,
+                  "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
+                  "or auto (the automatic decomposition)")
+      ->capture_default_str();
+  sub->add_option("--portals", o->portals, "Portal light with --method cells: diffuse (re-emits irradiance)")
+      ->check(CLI::IsMember({"diffuse"}))
+      ->capture_default_str();
+  sub->add_option("--max-rounds", o->maxRounds, "With --method cells: solve rounds (syncs) at most")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   auto* tpq = sub->add_option("--texels-per-quad", o->texelsPerQuad,
                               "N×N texels per quad whatever its size (the thesis's mode)")

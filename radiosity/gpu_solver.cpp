@@ -215,6 +215,7 @@ class Solver {
 
   std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
   std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
+  std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
 
  private:
   void runStats(int shooter) {
@@ -480,6 +481,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
     const double fraction = e.unshot / e.emitted;
     if (fraction <= params.unshotFraction) break;
+    if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
     e.shot += channelSum(sel.winnerUnshot);
     result.shooters.push_back(sel.winner);
     sel = solver.shoot(sel.winner);
@@ -507,9 +509,13 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   {
     auto t = ctx.time("solve: read back");
     result.radiosity = solver.readRadiosity();
+    if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
   }
   for (size_t i = 0; i < result.radiosity.size(); ++i)
-    if (atlas.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
+    if (atlas.patch[i] < 0) {
+      result.radiosity[i] = glm::vec3(0.0f);
+      if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
+    }
   ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
   result.seconds = since(start);
   return result;

@@ -54,6 +54,13 @@ struct SolverParams {
   /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
   /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
   bool profilePasses = false;
+  /// Also read back every texel's received irradiance and unshot residual (SolveResult::incident,
+  /// ::residual): what a cell solve hands on through its portals (radiosity/cell_solver.h).
+  bool readTransfer = false;
+  /// Also stop when the next shooter's unshot power (W, summed over R, G, B) is below this: a bound per
+  /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
+  /// the whole scene would leave such small patches unshot (radiosity/cell_solver.h). 0: off.
+  double minShotPower = 0.0;
 };
 
 /// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,
@@ -69,6 +76,9 @@ struct EnergyTotals {
 
 struct SolveResult {
   std::vector<glm::vec3> radiosity;  ///< per atlas texel (W/m²), padding 0, not dilated
+  /// With SolverParams::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;
+  /// a texel of albedo 0 keeps all of it, e.g. a portal) and the residual still unshot at the end.
+  std::vector<glm::vec3> incident, residual;
   int shots = 0;
   double unshotFraction = 0.0;       ///< unshot / emitted at the end (0 when nothing emits)
   EnergyTotals energy;

@@ -1,0 +1,89 @@
+// Radiosity with cells and portals (thesis ch. 8, Algorithm 3). Every cell is solved alone, with only its
+// own triangles and one patch per portal (the portal quad facing into the cell) in its own atlas, so a
+// solve's memory follows the cell. A portal patch has albedo 0: it never reflects nor re-shoots inside its
+// cell, it only keeps, per texel, the irradiance that reaches the opening. At each sync that irradiance
+// becomes the exitance of the same quad on the other side (a diffuse area emitter: the power through the
+// opening is conserved), and the cells that received light are solved again. Radiosity is linear, so each
+// round is a fresh solve of the newly injected light (plus what the previous solve left unshot) and the
+// rounds add up. Results land in one global atlas (the same layout as a global bake), patch by patch.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/quads.h"
+#include "core/scene.h"
+#include "radiosity/atlas.h"
+#include "radiosity/egl_context.h"
+#include "radiosity/gpu_solver.h"
+
+namespace cpgi {
+
+struct CellSolveParams {
+  /// Per-cell solver settings. Its unshotFraction is the whole scene's target: rounds go on until the
+  /// unshot power everywhere, plus the power held on portals and not yet re-emitted, is at most this
+  /// fraction of the emitted power. Each round's solves stop at half that budget (of the scene's
+  /// emitted power, not of their own input).
+  SolverParams solver;
+  /// The per-cell atlases use these too (the same charts as the global atlas built with them).
+  AtlasParams atlas;
+  int maxRounds = 64;  ///< syncs at most (>= 1)
+};
+
+/// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.
+struct CellEnergy {
+  std::string name;
+  double emitted = 0.0;   ///< by its own emitters
+  double received = 0.0;  ///< injected by neighbours through its portals
+  double absorbed = 0.0;  ///< by its surfaces (portals excluded)
+  double sent = 0.0;      ///< collected on its portals and handed to the neighbours
+  double unshot = 0.0;    ///< left at the end: residual plus received light not yet solved
+  double escaped = 0.0;   ///< shot but caught by no receiver (form-factor error)
+  int solves = 0, shots = 0;
+  size_t texels = 0;      ///< valid texels of its atlas, portals included
+  double seconds = 0.0;   ///< its solves
+};
+
+struct PortalEnergy {
+  std::string name;
+  double aToB = 0.0, bToA = 0.0;  ///< W through the opening each way
+};
+
+struct CellSolveResult {
+  std::vector<glm::vec3> radiosity;  ///< per texel of the global atlas (W/m²), padding 0, not dilated
+  std::vector<CellEnergy> cells;
+  std::vector<PortalEnergy> portals;
+  int rounds = 0;  ///< solve rounds (1 = the direct step only)
+  int shots = 0;
+  double emitted = 0.0, absorbed = 0.0, unshot = 0.0, escaped = 0.0;
+  double unshotFraction = 0.0;
+  double seconds = 0.0;  ///< all solves, atlases and syncs
+  size_t maxCellTexels = 0;
+};
+
+/// The scene one cell is solved in: its triangles (in graph order) then two triangles per portal, facing
+/// into the cell, with a material of albedo 0 and no emission appended.
+struct CellScene {
+  Scene scene;
+  std::vector<uint32_t> globalTriangle;  ///< per cell-scene triangle: the scene triangle, or -1 for a portal
+  std::vector<int> portals;              ///< graph portal per portal pair, in triangle order
+  size_t ownTriangles = 0;               ///< the first ownTriangles triangles are the cell's
+};
+CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell);
+
+/// For every valid texel of `to`'s patch `toPatch`, the texel of `from`'s patch `fromPatch` covering the same
+/// point (by `from`'s chart parametrisation; the nearest valid texel where it falls outside). -1 elsewhere
+/// in `to`'s chart. Both patches must be the same surface (possibly seen from the other side).
+void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
+                    std::vector<int32_t>& sourceOfTexel);
+
+/// Solves the scene cell by cell into `global` (an atlas of the whole scene). Throws InputError when the
+/// graph is unusable (validateCells errors); triangles in no cell stay black (a warning in ctx).
+CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
+                           const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+}  // namespace cpgi

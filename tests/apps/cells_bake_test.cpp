@@ -1,0 +1,120 @@
+// End to end: `cpgi bake --method cells` on seed1 writes the global atlas's layout (so compare-light works
+// against the reference), its report keeps the energy per cell and portal, and its error against the
+// reference stays near the global solve's.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+struct CliRun {
+  int status = -1;
+  std::string out, err;
+};
+
+CliRun cpgi(const test::TempDir& dir, const std::string& args) {
+  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string command = std::string("'") + CPGI_BINARY + "' " + args + " > '" + out + "' 2> '" + err + "'";
+  const int raw = std::system(command.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), slurp(out), slurp(err)};
+}
+
+TEST(CellsBake, Seed1AgainstGlobalAndReference) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const std::string atlas = " --texels-per-quad 8 -q";
+  CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene + "'" +
+                        atlas + " --unshot 0.01 --item-buffer 256");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "global" + "'" + atlas + " --unshot 0.01 --item-buffer 256");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = cpgi(dir, "reference '" + scene + "' -o '" + dir / "ref" + "'" + atlas + " --spp 256");
+  ASSERT_EQ(r.status, 0) << r.err;
+
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "cells/report.json"));
+  for (const char* key : {"method", "seconds", "solve_seconds", "texels", "shots", "unshot_fraction", "cells",
+                          "portals", "rounds", "cell_energy", "portal_energy", "energy"})
+    EXPECT_TRUE(report.contains(key)) << key;
+  EXPECT_EQ(report["method"], "cells");
+  EXPECT_EQ(report["cells"], 3);
+  EXPECT_EQ(report["portals"], 2);
+  EXPECT_LE(report["unshot_fraction"].get<double>(), 0.01);
+  EXPECT_GE(report["rounds"].get<int>(), 2);  // light must go A → B → back at least once
+  const nlohmann::json global = nlohmann::json::parse(slurp(dir / "global/report.json"));
+  EXPECT_EQ(report["atlas"], global["atlas"]);
+  EXPECT_EQ(report["texels"], global["texels"]);
+  double emitted = 0.0;
+  for (const auto& c : report["cell_energy"]) {
+    const double in = c["emitted_w"].get<double>() + c["received_w"].get<double>();
+    const double out = c["absorbed_w"].get<double>() + c["sent_w"].get<double>() + c["unshot_w"].get<double>() +
+                       c["escaped_w"].get<double>();
+    EXPECT_NEAR(out, in, 1e-3 * in) << c["name"];
+    emitted += c["emitted_w"].get<double>();
+  }
+  EXPECT_NEAR(emitted, 600.0, 0.01);  // two 1 m² lamps of 100 W/m² × 3 channels
+  // Room B has no lamp: all its light came through the two doors.
+  for (const auto& c : report["cell_energy"]) {
+    if (c["name"] == "B") {
+      EXPECT_GT(c["received_w"].get<double>(), 0.02 * emitted);
+    }
+  }
+
+  r = cpgi(dir, "compare-light '" + dir / "cells" + "' '" + dir / "ref" + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double cellsError = nlohmann::json::parse(r.out)["rel_rmse_nonemissive"].template get<double>();
+  r = cpgi(dir, "compare-light '" + dir / "global" + "' '" + dir / "ref" + "' --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double globalError = nlohmann::json::parse(r.out)["rel_rmse_nonemissive"].template get<double>();
+  std::printf("seed1 8x8: relative RMSE (non-emissive) cells %.4f, global %.4f\n", cellsError, globalError);
+  EXPECT_LT(cellsError, 0.10);
+  EXPECT_LT(cellsError, globalError + 0.03);
+}
+
+// --cells auto runs the automatic decomposition: seed1's three rooms and two doors.
+TEST(CellsBake, AutomaticCells) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
+                                 "' --method cells --cells auto --texels-per-quad 4 --unshot 0.02 --item-buffer 256 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  EXPECT_EQ(report["method"], "cells");
+  EXPECT_EQ(report["cells"], 3);
+  EXPECT_EQ(report["portals"], 2);
+  EXPECT_LE(report["unshot_fraction"].get<double>(), 0.02);
+  const auto& e = report["energy"];
+  EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
+              e["emitted_w"].get<double>(), 1e-3 * e["emitted_w"].get<double>());
+  for (const auto& p : report["portal_energy"]) EXPECT_GT(p["a_to_b_w"].get<double>() + p["b_to_a_w"].get<double>(), 1.0);
+}
+
+TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  for (const std::string& cells : {std::string(" --cells none"), " --cells '" + dir / "missing.glb" + "'"}) {
+    const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --texels-per-quad 4 -q" + cells);
+    EXPECT_EQ(r.status, 1) << cells;
+    EXPECT_NE(r.err.find("--cells"), std::string::npos);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

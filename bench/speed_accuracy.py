@@ -24,7 +24,7 @@ METHODS = {
     "global-hemicube": ["--method", "global", "--visibility", "hemicube"],
     "global-hemisphere": ["--method", "global", "--visibility", "hemisphere"],
     "cells-diffuse": ["--method", "cells", "--cells", "{scene}", "--portals", "diffuse"],
-    "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],
+    "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],  # not yet
 }
 
 
@@ -48,7 +48,8 @@ def main():
     ap.add_argument("--scenes", default="seed1,seed2,seed3")
     ap.add_argument("--resolutions", default="16,32,64,128,density",
                     help="texels per quad, or 'density' / 'densityT' for T texels per metre")
-    ap.add_argument("--methods", default=",".join(METHODS))
+    ap.add_argument("--methods", default="global-hemicube,global-hemisphere,cells-diffuse",
+                    help="comma-separated, from: " + ", ".join(METHODS))
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--spp", type=int, default=256, help="reference samples per texel")
     ap.add_argument("--plot", action="store_true")

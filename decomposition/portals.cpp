@@ -21,8 +21,8 @@ struct Face {
   int a, b;
   size_t lower;
   int axis;
-  int sign;         // +1 when the +axis side is cell b
-  float saddle;     // min of the two voxels' distances, metres
+  int sign;      // +1 when the +axis side is cell b
+  float saddle;  // min of the two voxels' distances, metres
 };
 
 uint64_t halfKey(const glm::ivec3& h) {
@@ -77,7 +77,8 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
   const glm::vec3 c(float(centroid.x()), float(centroid.y()), float(centroid.z()));
   // In-plane basis (u, v, n) right-handed, u from the world axis least aligned with n.
   glm::vec3 ref(0.0f);
-  ref[std::abs(n.x) < std::abs(n.y) ? (std::abs(n.x) < std::abs(n.z) ? 0 : 2) : (std::abs(n.y) < std::abs(n.z) ? 1 : 2)] = 1.0f;
+  ref[std::abs(n.x) < std::abs(n.y) ? (std::abs(n.x) < std::abs(n.z) ? 0 : 2)
+                                    : (std::abs(n.y) < std::abs(n.z) ? 1 : 2)] = 1.0f;
   const glm::vec3 u = glm::normalize(glm::cross(ref, n));
   const glm::vec3 v = glm::cross(n, u);
 
@@ -108,7 +109,9 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
   out.quad.cellA = faces.front()->a;
   out.quad.cellB = faces.front()->b;
   float depth = 0.0f;
-  for (const auto& p : mids) depth = std::max(depth, std::abs(glm::dot(glm::vec3(float(p.x()), float(p.y()), float(p.z())) - centre, n)));
+  for (const auto& p : mids)
+    depth =
+        std::max(depth, std::abs(glm::dot(glm::vec3(float(p.x()), float(p.y()), float(p.z())) - centre, n)));
   out.depth = depth + h;
   return out;
 }
@@ -117,7 +120,8 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
 // interface lies anywhere along a door's depth (its width is the same all through the wall); the cross-
 // section of empty voxels within the quad's footprint, slice by slice along the normal, is smallest
 // across the whole depth of the wall, and the middle of that run is the wall's mid-plane.
-void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vector<int32_t>& cell, float searchRange) {
+void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vector<int32_t>& cell,
+                          float searchRange) {
   PortalQuad& q = fp.quad;
   const float h = float(f.voxel);
   const glm::vec3 c = q.centre();
@@ -131,8 +135,10 @@ void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vecto
   const glm::vec3 ref = f.centre(f.voxelOf(c));
   std::vector<size_t> count(size_t(bins), 0);
   Bounds box;
-  for (const glm::vec3& k : q.corners) box.extend(k - searchRange * q.normal), box.extend(k + searchRange * q.normal);
-  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0)), hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+  for (const glm::vec3& k : q.corners)
+    box.extend(k - searchRange * q.normal), box.extend(k + searchRange * q.normal);
+  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0)),
+                   hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
   for (int z = lo.z; z <= hi.z; ++z)
     for (int y = lo.y; y <= hi.y; ++y)
       for (int x = lo.x; x <= hi.x; ++x) {
@@ -175,47 +181,22 @@ bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const gl
   return pu >= -tolerance && pu <= lu + tolerance && pv >= -tolerance && pv <= lv + tolerance;
 }
 
-size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell, const std::vector<PortalQuad>& portals) {
-  std::map<std::pair<int, int>, std::vector<const PortalQuad*>> byPair;
-  for (const PortalQuad& p : portals) byPair[{std::min(p.cellA, p.cellB), std::max(p.cellA, p.cellB)}].push_back(&p);
-  const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
-  const float tolerance = 0.5f * float(f.voxel);
-  size_t leaks = 0;
-  for (int z = 0; z + 1 < f.dims.z; ++z)
-    for (int y = 0; y + 1 < f.dims.y; ++y)
-      for (int x = 0; x + 1 < f.dims.x; ++x) {
-        const size_t i = f.index(x, y, z);
-        const int a = cell[i];
-        if (a < 0) continue;
-        for (int k = 0; k < 3; ++k) {
-          const size_t j = size_t(ptrdiff_t(i) + strides[k]);
-          const int b = cell[j];
-          if (b < 0 || b == a) continue;
-          const auto it = byPair.find({std::min(a, b), std::max(a, b)});
-          bool crossed = false;
-          if (it != byPair.end())
-            for (const PortalQuad* p : it->second)
-              if (segmentCrossesPortal(*p, f.centre(i), f.centre(j), tolerance)) {
-                crossed = true;
-                break;
-              }
-          leaks += !crossed;
-        }
-      }
-  return leaks;
-}
-
 namespace {
 
-// Every face between two cells whose segment crosses no portal of those two cells (all of them when
-// `portals` is empty), sorted by cell pair.
-std::vector<Face> uncoveredFaces(const GridFrame& f, const std::vector<int32_t>& cell, const DistanceGrid& distance,
-                                 const std::vector<FittedPortal>& portals) {
-  std::map<std::pair<int, int>, std::vector<const PortalQuad*>> byPair;
-  for (const FittedPortal& p : portals) byPair[{p.quad.cellA, p.quad.cellB}].push_back(&p.quad);
-  const float tolerance = 0.5f * float(f.voxel);
-  std::vector<Face> faces;
+using PortalsByPair = std::map<std::pair<int, int>, std::vector<const PortalQuad*>>;
+
+void addPortal(PortalsByPair& byPair, const PortalQuad& p) {
+  byPair[{std::min(p.cellA, p.cellB), std::max(p.cellA, p.cellB)}].push_back(&p);
+}
+
+// Calls visit(i, j, a, b, axis) for every face between voxel i (cell a) and its +axis neighbour j (cell b
+// != a) whose centre-to-centre segment crosses no portal of those two cells: the faces where light or a
+// walker could pass from one cell to the other without a portal.
+template <class Visit>
+void forEachUncoveredFace(const GridFrame& f, const std::vector<int32_t>& cell, const PortalsByPair& byPair,
+                          Visit&& visit) {
   const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+  const float tolerance = 0.5f * float(f.voxel);
   for (int z = 0; z + 1 < f.dims.z; ++z)
     for (int y = 0; y + 1 < f.dims.y; ++y)
       for (int x = 0; x + 1 < f.dims.x; ++x) {
@@ -231,11 +212,35 @@ std::vector<Face> uncoveredFaces(const GridFrame& f, const std::vector<int32_t>&
           if (it != byPair.end())
             for (const PortalQuad* q : it->second)
               if ((covered = segmentCrossesPortal(*q, f.centre(i), f.centre(j), tolerance))) break;
-          if (covered) continue;
-          const float s = float(std::min(distance.metres(i), distance.metres(j)));
-          faces.push_back({std::min(a, b), std::max(a, b), i, k, a < b ? 1 : -1, s});
+          if (!covered) visit(i, j, a, b, k);
         }
       }
+}
+
+}  // namespace
+
+size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell,
+                         const std::vector<PortalQuad>& portals) {
+  PortalsByPair byPair;
+  for (const PortalQuad& p : portals) addPortal(byPair, p);
+  size_t leaks = 0;
+  forEachUncoveredFace(f, cell, byPair, [&](size_t, size_t, int, int, int) { ++leaks; });
+  return leaks;
+}
+
+namespace {
+
+// Every face between two cells whose segment crosses no portal of those two cells (all of them when
+// `portals` is empty), sorted by cell pair.
+std::vector<Face> uncoveredFaces(const GridFrame& f, const std::vector<int32_t>& cell,
+                                 const DistanceGrid& distance, const std::vector<FittedPortal>& portals) {
+  PortalsByPair byPair;
+  for (const FittedPortal& p : portals) addPortal(byPair, p.quad);
+  std::vector<Face> faces;
+  forEachUncoveredFace(f, cell, byPair, [&](size_t i, size_t j, int a, int b, int k) {
+    const float s = float(std::min(distance.metres(i), distance.metres(j)));
+    faces.push_back({std::min(a, b), std::max(a, b), i, k, a < b ? 1 : -1, s});
+  });
   std::sort(faces.begin(), faces.end(), [](const Face& p, const Face& q) {
     return p.a != q.a ? p.a < q.a : p.b != q.b ? p.b < q.b : p.lower < q.lower;
   });
@@ -280,7 +285,8 @@ std::vector<FittedPortal> fitOpenings(const GridFrame& f, const std::vector<Face
 void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t>& cell) {
   const PortalQuad& q = fp.quad;
   Bounds box;
-  for (const glm::vec3& c : q.corners) box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
+  for (const glm::vec3& c : q.corners)
+    box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
   const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
   const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
   const glm::vec3 c = q.centre();
@@ -296,14 +302,16 @@ void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t
         if (l != q.cellA && l != q.cellB) continue;
         const glm::vec3 p = f.centre(i) - c;
         const float s = glm::dot(p, q.normal);
-        if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv) continue;
+        if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv)
+          continue;
         cell[i] = s < 0.0f ? q.cellA : q.cellB;
       }
 }
 
 }  // namespace
 
-PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx) {
+PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params,
+                     Context& ctx) {
   auto timer = ctx.time("portals");
   const GridFrame& f = cells.frame;
   PortalSet out;

@@ -11,33 +11,20 @@
 
 #include "core/image_io.h"
 #include "scenes/seed_scenes.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/run_cpgi.h"
 
 namespace cpgi {
 namespace {
 
-struct BakeRun {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-BakeRun cpgi(const test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + CPGI_BINARY + "' " + args + " > '" + out + "' 2> '" + err + "'";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), slurp(out), slurp(err)};
-}
+using BakeRun = test::CommandRun;
+using test::cpgi;
+using test::slurp;
 
 TEST(Bake, SeedSceneWritesAllOutputs) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
   const BakeRun r = cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" +
-                              "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
+                                  "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* f : {"lightmap.exr", "lightmap.png", "baked.glb", "report.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
@@ -89,8 +76,9 @@ TEST(Bake, BadOptionsFailWithOneLine) {
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json"));
   // Checked by the parser (CLI11 adds its "Run with --help" line): the first line names the option.
-  for (const std::string& args : {std::string("--visibility cube"), std::string("--texels-per-quad 8 --density 4"),
-                                  std::string("--unshot 2")}) {
+  for (const std::string& args :
+       {std::string("--visibility cube"), std::string("--texels-per-quad 8 --density 4"),
+        std::string("--unshot 2")}) {
     const BakeRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' " + args);
     EXPECT_EQ(r.status, 1) << args;
     const std::string option = args.substr(0, args.find(' '));

@@ -10,37 +10,25 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/support/temp_dir.h"
+#include "tests/support/run_cpgi.h"
 
 namespace cpgi {
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-struct CliRun {
-  int status = -1;
-  std::string out, err;
-};
-
-CliRun cpgi(const test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = std::string("'") + CPGI_BINARY + "' " + args + " > '" + out + "' 2> '" + err + "'";
-  const int raw = std::system(command.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw), slurp(out), slurp(err)};
-}
+using CliRun = test::CommandRun;
+using test::cpgi;
+using test::slurp;
 
 TEST(CellsBake, Seed1AgainstGlobalAndReference) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   const std::string atlas = " --texels-per-quad 8 -q";
-  CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene + "'" +
-                        atlas + " --unshot 0.01 --item-buffer 256");
+  CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene +
+                           "'" + atlas + " --unshot 0.01 --item-buffer 256");
   ASSERT_EQ(r.status, 0) << r.err;
-  r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "global" + "'" + atlas + " --unshot 0.01 --item-buffer 256");
+  r = cpgi(dir,
+           "bake '" + scene + "' -o '" + dir / "global" + "'" + atlas + " --unshot 0.01 --item-buffer 256");
   ASSERT_EQ(r.status, 0) << r.err;
   r = cpgi(dir, "reference '" + scene + "' -o '" + dir / "ref" + "'" + atlas + " --spp 256");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -60,8 +48,8 @@ TEST(CellsBake, Seed1AgainstGlobalAndReference) {
   double emitted = 0.0;
   for (const auto& c : report["cell_energy"]) {
     const double in = c["emitted_w"].get<double>() + c["received_w"].get<double>();
-    const double out = c["absorbed_w"].get<double>() + c["sent_w"].get<double>() + c["unshot_w"].get<double>() +
-                       c["escaped_w"].get<double>();
+    const double out = c["absorbed_w"].get<double>() + c["sent_w"].get<double>() +
+                       c["unshot_w"].get<double>() + c["escaped_w"].get<double>();
     EXPECT_NEAR(out, in, 1e-3 * in) << c["name"];
     emitted += c["emitted_w"].get<double>();
   }
@@ -89,8 +77,9 @@ TEST(CellsBake, AutomaticCells) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
-                                 "' --method cells --cells auto --texels-per-quad 4 --unshot 0.02 --item-buffer 256 -q");
+  const CliRun r =
+      cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
+                    "' --method cells --cells auto --texels-per-quad 4 --unshot 0.02 --item-buffer 256 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
   EXPECT_EQ(report["method"], "cells");
@@ -100,7 +89,8 @@ TEST(CellsBake, AutomaticCells) {
   const auto& e = report["energy"];
   EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
               e["emitted_w"].get<double>(), 1e-3 * e["emitted_w"].get<double>());
-  for (const auto& p : report["portal_energy"]) EXPECT_GT(p["a_to_b_w"].get<double>() + p["b_to_a_w"].get<double>(), 1.0);
+  for (const auto& p : report["portal_energy"])
+    EXPECT_GT(p["a_to_b_w"].get<double>() + p["b_to_a_w"].get<double>(), 1.0);
 }
 
 TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
@@ -108,7 +98,8 @@ TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   for (const std::string& cells : {std::string(" --cells none"), " --cells '" + dir / "missing.glb" + "'"}) {
-    const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --texels-per-quad 4 -q" + cells);
+    const CliRun r = cpgi(
+        dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --texels-per-quad 4 -q" + cells);
     EXPECT_EQ(r.status, 1) << cells;
     EXPECT_NE(r.err.find("--cells"), std::string::npos);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -56,7 +56,8 @@ TEST(DecomposeCommand, SeedSceneRoundTripsThroughInfoAndCompareCells) {
   EXPECT_EQ(described["cells"].size(), 3u);
   EXPECT_EQ(described["portals"].size(), 2u);
 
-  const CommandResult cmp = cpgi(dir, "compare-cells '" + scene + "' '" + out + "' '" + scene + "' --json --voxel 0.05");
+  const CommandResult cmp =
+      cpgi(dir, "compare-cells '" + scene + "' '" + out + "' '" + scene + "' --json --voxel 0.05");
   ASSERT_EQ(cmp.status, 0) << cmp.err;
   const json m = json::parse(cmp.out);
   EXPECT_GE(m["adjusted_rand_index"].get<double>(), 0.95);
@@ -64,7 +65,8 @@ TEST(DecomposeCommand, SeedSceneRoundTripsThroughInfoAndCompareCells) {
   EXPECT_LT(m["portal_centre_error_m"].get<double>(), 0.05);
   EXPECT_EQ(m["portal_matches"].size(), 2u);
 
-  const CommandResult autoCmp = cpgi(dir, "compare-cells '" + scene + "' auto '" + scene + "' --json --voxel 0.05");
+  const CommandResult autoCmp =
+      cpgi(dir, "compare-cells '" + scene + "' auto '" + scene + "' --json --voxel 0.05");
   ASSERT_EQ(autoCmp.status, 0) << autoCmp.err;
   EXPECT_GE(json::parse(autoCmp.out)["adjusted_rand_index"].get<double>(), 0.95);
 }
@@ -73,7 +75,8 @@ TEST(DecomposeCommand, OpenSceneIsOneCellWithAMessage) {
   test::TempDir dir;
   std::ofstream(dir / "ground.obj") << "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 3 2\nf 1 4 3\n"
                                     << "v -1 0 -1\nv 1 0 -1\nv 1 2 -1\nv -1 2 -1\nf 5 6 7\nf 5 7 8\n";
-  const CommandResult r = cpgi(dir, "decompose '" + (dir / "ground.obj") + "' -o '" + (dir / "out") + "' --voxel 0.1");
+  const CommandResult r =
+      cpgi(dir, "decompose '" + (dir / "ground.obj") + "' -o '" + (dir / "out") + "' --voxel 0.1");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("no enclosed empty space"), std::string::npos) << r.err;
   const json report = json::parse(slurp(dir / "out/cells.json"));
@@ -92,11 +95,13 @@ TEST(DecomposeCommand, BadInputExitsOneWithOneLine) {
     EXPECT_FALSE(std::filesystem::exists(dir / "out/cells.json"));
   }
   std::ofstream(dir / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  const CommandResult badVoxel = cpgi(dir, "decompose '" + (dir / "tri.obj") + "' -o '" + (dir / "out") + "' --voxel -1");
+  const CommandResult badVoxel =
+      cpgi(dir, "decompose '" + (dir / "tri.obj") + "' -o '" + (dir / "out") + "' --voxel -1");
   EXPECT_EQ(badVoxel.status, 1);
   EXPECT_EQ(lineCount(badVoxel.err), 1u) << badVoxel.err;
   EXPECT_NE(badVoxel.err.find("--voxel"), std::string::npos) << badVoxel.err;
-  const CommandResult noCells = cpgi(dir, "compare-cells '" + (dir / "tri.obj") + "' auto '" + (dir / "tri.obj") + "'");
+  const CommandResult noCells =
+      cpgi(dir, "compare-cells '" + (dir / "tri.obj") + "' auto '" + (dir / "tri.obj") + "'");
   EXPECT_EQ(noCells.status, 1);
   EXPECT_NE(noCells.err.find("no cell"), std::string::npos) << noCells.err;
 }

@@ -10,23 +10,16 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "scenes/seed_scenes.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/run_cpgi.h"
 
 namespace cpgi {
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 int runCpgi(const test::TempDir& dir, const std::string& args, std::string& out, std::string& err) {
-  const std::string command =
-      std::string(CPGI_BINARY) + " " + args + " > '" + (dir / "out.txt") + "' 2> '" + (dir / "err.txt") + "'";
-  const int raw = std::system(command.c_str());
-  out = slurp(dir / "out.txt");
-  err = slurp(dir / "err.txt");
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  const test::CommandRun r = test::cpgi(dir, args);
+  out = r.out;
+  err = r.err;
+  return r.status;
 }
 
 TEST(InfoCommand, SeedScenesJsonMatchesTheScene) {

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -37,9 +38,9 @@ inline std::string quote(const std::string& s) {
   return q + "'";
 }
 
-/// `cpgi ARGS` with stdout and stderr captured through files in `dir`. ARGS is shell text: quote paths.
-inline CommandRun cpgi(const TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
+/// `cpgi ARGS` with stdout and stderr captured through files in `folder`. ARGS is shell text: quote paths.
+inline CommandRun cpgi(const std::filesystem::path& folder, const std::string& args) {
+  const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
   const std::string command = quote(CPGI_BINARY) + " " + args + " > " + quote(out) + " 2> " + quote(err);
   const int raw = std::system(command.c_str());
   CommandRun r;
@@ -47,6 +48,10 @@ inline CommandRun cpgi(const TempDir& dir, const std::string& args) {
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+inline CommandRun cpgi(const TempDir& dir, const std::string& args) {
+  return cpgi(dir.path(), args);
 }
 
 }  // namespace cpgi::test

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "scenes/stability_scenes.h"
+#include "tests/radiosity/furnace_check.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -138,14 +139,7 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
   EXPECT_GT(r.result.portals[0].aToB, 0.0);
   EXPECT_NEAR(r.result.portals[0].aToB, r.result.portals[0].bToA, 0.02 * r.result.portals[0].aToB);  // symmetric
   const double expect = e / (1.0 - rho);
-  double sum = 0.0, area = 0.0;
-  for (size_t t = 0; t < r.atlas.texelCount(); ++t) {
-    if (r.atlas.patch[t] < 0) continue;
-    sum += r.result.radiosity[t].g * r.atlas.area[t];
-    area += r.atlas.area[t];
-    EXPECT_NEAR(r.result.radiosity[t].g, expect, 0.05 * expect) << "texel " << t;
-  }
-  EXPECT_NEAR(sum / area, expect, 0.015 * expect);
+  testing::expectFurnace(r.atlas, r.result.radiosity, expect, 0.05, 0.015);
 }
 
 // Two rooms sharing a wall with no opening: without a portal no light can reach B, whatever the solver's

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/quads.h"
+#include "tests/radiosity/furnace_check.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -146,14 +147,7 @@ TEST(Solver, WhiteFurnace) {
   params.unshotFraction = 1e-3;
   const Solved r = solve(s, AtlasParams{.texelsPerQuad = 8}, params);
   const double expect = e / (1.0 - rho);
-  double sum = 0.0, area = 0.0;
-  for (size_t t = 0; t < r.atlas.texelCount(); ++t) {
-    if (r.atlas.patch[t] < 0) continue;
-    sum += r.result.radiosity[t].g * r.atlas.area[t];
-    area += r.atlas.area[t];
-    EXPECT_NEAR(r.result.radiosity[t].g, expect, 0.03 * expect) << "texel " << t;
-  }
-  EXPECT_NEAR(sum / area, expect, 0.01 * expect);
+  testing::expectFurnace(r.atlas, r.result.radiosity, expect, 0.03, 0.01);
   EXPECT_LE(r.result.unshotFraction, 1e-3);
 }
 

@@ -24,12 +24,13 @@ struct GpuStats {
 struct GpuBlock {
   glm::vec4 centreArea, radiosityRadius;
   glm::ivec4 rect, region;
+  glm::vec4 lobe;
 };
 struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuBlock) == 64 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuBlock) == 80 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
 constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
@@ -40,7 +41,7 @@ constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
                      kBlocks = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
-                     kRadiosity = 12, kResidual = 13, kIncident = 14 };
+                     kRadiosity = 12, kResidual = 13, kIncident = 14, kEmissionLobes = 15, kArrivals = 16 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -115,19 +116,23 @@ class PassClock {
 
 class Solver {
  public:
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+         const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
     const std::vector<std::string> visDefine =
         params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
+    std::vector<std::string> receiveDefines = visDefine, blocksDefines;
+    if (params.directionalEmission) receiveDefines.push_back("DIRECTIONAL"), blocksDefines.push_back("DIRECTIONAL");
     itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
     compactProgram_ = buildProgram({"compact.comp"});
     finishProgram_ = buildProgram({"finish_lists.comp"});
-    blocksProgram_ = buildProgram({"shooter_blocks.comp"});
-    receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
+    blocksProgram_ = buildProgram({"shooter_blocks.comp"}, blocksDefines);
+    receiveProgram_ = buildProgram({"receive.comp"}, receiveDefines);
     statsProgram_ = buildProgram({"patch_stats.comp"});
     selectProgram_ = buildProgram({"select_shooter.comp"});
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions, params.maxBlocks});
     uploadAtlas();
+    if (params.directionalEmission) uploadDirectional(emissionLobes);
     uploadGeometry();
     makeItemBuffer();
     setConstantUniforms();
@@ -162,6 +167,7 @@ class Solver {
     set(blocksProgram_, "uBlocks", l.blocks);
     set(blocksProgram_, "uRegions", l.regions);
     set(blocksProgram_, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission) set(blocksProgram_, "uShooterNormal", l.normal);
     glUseProgram(blocksProgram_.get());
     glDispatchCompute(1, 1, 1);
     clock_.mark("shooter blocks");
@@ -216,6 +222,12 @@ class Solver {
   std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
   std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
   std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
+  std::vector<glm::vec4> readArrivals() const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetNamedBufferSubData(arrivals_.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    return v;
+  }
 
  private:
   void runStats(int shooter) {
@@ -333,6 +345,19 @@ class Solver {
     glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
 
+  // Per-texel emission lobes (Lambertian when none are given) and zeroed arrival moments.
+  void uploadDirectional(const std::vector<glm::vec4>* lobes) {
+    const size_t n = atlas_.texelCount();
+    if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
+    const std::vector<glm::vec4> lambertian(lobes ? 0 : n, glm::vec4(0.0f));
+    emissionLobes_ = gl::makeBuffer(n * sizeof(glm::vec4), lobes ? lobes->data() : lambertian.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEmissionLobes, emissionLobes_.get());
+    arrivals_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
+    const float zero = 0.0f;
+    glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
+  }
+
   void uploadGeometry() {
     // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
     std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
@@ -414,7 +439,7 @@ class Solver {
   SolverParams params_;
   gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
       statsProgram_, selectProgram_;
-  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_;
   gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
   gl::Buffer positionBuffer_, idBuffer_;
@@ -441,6 +466,11 @@ std::string formatStatus(int shots, double fraction, double eta) {
 
 }  // namespace
 
+namespace {
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx);
+}  // namespace
+
 const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
 
 Visibility parseVisibility(const std::string& name) {
@@ -451,6 +481,19 @@ Visibility parseVisibility(const std::string& name) {
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& context, Context& ctx) {
+  return solveWithLobes(scene, atlas, params, nullptr, context, ctx);
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx) {
+  if (!params.directionalEmission) throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
+  return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx);
+}
+
+namespace {
+
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx) {
   checkParams(params, atlas, context.maxTextureSize());
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -460,7 +503,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params);
+  Solver solver(scene, atlas, params, emissionLobes);
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 
@@ -510,15 +553,19 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
     auto t = ctx.time("solve: read back");
     result.radiosity = solver.readRadiosity();
     if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
+    if (params.directionalEmission) result.arrivals = solver.readArrivals();
   }
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (atlas.patch[i] < 0) {
       result.radiosity[i] = glm::vec3(0.0f);
       if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
+      if (params.directionalEmission) result.arrivals[i] = glm::vec4(0.0f);
     }
   ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
   result.seconds = since(start);
   return result;
 }
+
+}  // namespace
 
 }  // namespace cpgi

@@ -19,6 +19,7 @@ struct Block {
   vec4 radiosityRadius; // mean unshot radiosity (rgb, W/m²), bounding radius around the centre (m)
   ivec4 rect;           // texel rectangle x0, y0, x1, y1 (exclusive)
   ivec4 region;         // x: the region a block lies in (regions: their own index)
+  vec4 lobe;            // directional emission of the piece (directional.glsl), 0 = Lambertian
 };
 
 // A work list filled by atomic appends: `count` entries, then the indirect dispatch arguments.

@@ -22,24 +22,49 @@ uniform vec3 uTexelU, uTexelV;  // the shooter's texel edges (m)
 uniform float uTexelRadius;
 uniform float uFarField;
 
+#ifdef DIRECTIONAL
+#include "directional.glsl"
+vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), stored by main()
+#endif
+
+// The directional hook of the kernels below: the contribution f of a shooter piece at receiver + v,
+// scaled by the piece's emission lobe towards the receiver, and its direction noted. Without
+// DIRECTIONAL, f itself.
+vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
+#ifdef DIRECTIONAL
+  f *= lobeFactor(lobe, uShooterNormal, -normalize(v));
+  noteArrival(gArrival, v, n, f);
+#endif
+  return f;
+}
+
+// A shooter texel's lobe (DIRECTIONAL only; else Lambertian).
+vec4 texelLobe(ivec2 t) {
+#ifdef DIRECTIONAL
+  return emissionLobe[texel(t)];
+#else
+  return vec4(0.0);
+#endif
+}
+
 // ΔB F(dA_x → disk): the receiver at x with normal n, a disk of `area` at c facing uShooterNormal.
-vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
+vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return unshot * (area * ci * cs / (r2 * (PI * r2 + area)));
+  return emitted(unshot * (area * ci * cs / (r2 * (PI * r2 + area))), lobe, v, n);
 }
 
 // The same piece seen from afar (r > uFarField × its radius): the "+ A" of the disk formula only keeps
 // F finite as r → 0, and off the axis it biases F low by about A / (π r²) (3 % for a 0.4 m lamp 1.2 m
 // away), so coarse pieces use the point form.
-vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
+vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return unshot * (area * ci * cs / (PI * r2 * r2));
+  return emitted(unshot * (area * ci * cs / (PI * r2 * r2)), lobe, v, n);
 }
 
 // A far piece (texel rectangle `rect`, uniform mean radiosity) by 2×2 Gauss points: the point form's
@@ -50,48 +75,53 @@ vec3 piece(vec3 x, vec3 n, Block b) {
   vec3 c = b.centreArea.xyz;
   float a = 0.25 * b.centreArea.w;
   vec3 rad = b.radiosityRadius.rgb;
-  return point(x, n, c - g * hu - g * hv, a, rad) + point(x, n, c + g * hu - g * hv, a, rad) +
-         point(x, n, c - g * hu + g * hv, a, rad) + point(x, n, c + g * hu + g * hv, a, rad);
+  vec4 l = b.lobe;
+  return point(x, n, c - g * hu - g * hv, a, rad, l) + point(x, n, c + g * hu - g * hv, a, rad, l) +
+         point(x, n, c - g * hu + g * hv, a, rad, l) + point(x, n, c + g * hu + g * hv, a, rad, l);
 }
 
-bool far(vec3 x, vec3 c, float radius) {
+bool far(vec3 x, vec3 c, float radius, vec4 lobe) {
   vec3 d = c - x;
   float f = uFarField * radius;
+#ifdef DIRECTIONAL
+  if (!lobeResolvesPiece(lobe, uShooterNormal, dot(d, d), radius)) return false;
+#endif
   return dot(d, d) > f * f;
 }
 
 vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
   vec4 pa = posArea[texel(t)];
   vec3 b = residual[texel(t)].rgb;
-  if (far(x, pa.xyz, uTexelRadius)) {
+  vec4 l = texelLobe(t);
+  if (far(x, pa.xyz, uTexelRadius, l)) {
     // 2×2 Gauss points, as for larger pieces: the disk form's "+ A" would bias a texel 2 radii away
     // by up to 1/(2π) ≈ 16 % low.
     const float g = 0.5773502692;
     vec3 hu = 0.5 * g * uTexelU, hv = 0.5 * g * uTexelV;
     float a = 0.25 * pa.w;
-    return point(x, n, pa.xyz - hu - hv, a, b) + point(x, n, pa.xyz + hu - hv, a, b) +
-           point(x, n, pa.xyz - hu + hv, a, b) + point(x, n, pa.xyz + hu + hv, a, b);
+    return point(x, n, pa.xyz - hu - hv, a, b, l) + point(x, n, pa.xyz + hu - hv, a, b, l) +
+           point(x, n, pa.xyz - hu + hv, a, b, l) + point(x, n, pa.xyz + hu + hv, a, b, l);
   }
   // Near: 4×4 sub-disks, where the disk form keeps F finite as r → 0.
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       vec3 c = pa.xyz + (float(i) - 1.5) * 0.25 * uTexelU + (float(j) - 1.5) * 0.25 * uTexelV;
-      sum += disk(x, n, c, pa.w / 16.0, b);
+      sum += disk(x, n, c, pa.w / 16.0, b, l);
     }
   return sum;
 }
 
 vec3 fromRegion(vec3 x, vec3 n, int r) {
   Block g = blocks[r];
-  if (far(x, g.centreArea.xyz, g.radiosityRadius.w))
+  if (far(x, g.centreArea.xyz, g.radiosityRadius.w, g.lobe))
     return piece(x, n, g);
   vec3 sum = vec3(0.0);
   int per = uBlockCount / uRegions;  // blocks are stored region by region (shooter_blocks.comp)
   for (int k = uRegions + r * per; k < uRegions + (r + 1) * per; ++k) {
     Block b = blocks[k];
     if (b.centreArea.w <= 0.0) continue;
-    if (far(x, b.centreArea.xyz, b.radiosityRadius.w)) {
+    if (far(x, b.centreArea.xyz, b.radiosityRadius.w, b.lobe)) {
       sum += piece(x, n, b);
       continue;
     }
@@ -123,6 +153,9 @@ void main() {
     e += fromRegion(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;
+#ifdef DIRECTIONAL
+  arrivals[texel(t)] += gArrival;
+#endif
   vec3 gained = albedo[texel(t)].rgb * e;
   incident[texel(t)] = incident[texel(t)] + vec4(e, 0.0);
   radiosity[texel(t)] = radiosity[texel(t)] + vec4(gained, 0.0);

@@ -4,6 +4,11 @@
 #include "common.glsl"
 #include "atlas_buffers.glsl"
 layout(local_size_x = 64) in;
+#ifdef DIRECTIONAL
+#include "directional.glsl"
+shared LobeMix sLobe[64];
+uniform vec3 uShooterNormal;
+#endif
 layout(std430, binding = 6) buffer Blocks { Block blocks[]; };
 uniform int uShooter;
 uniform ivec4 uRect;         // shooter chart x, y, w, h
@@ -28,6 +33,9 @@ void main() {
     ivec2 hi = uRect.xy + (uRect.zw * (b + 1)) / uBlocks;
     vec3 power = vec3(0.0), moment = vec3(0.0);
     float area = 0.0;
+#ifdef DIRECTIONAL
+    LobeMix lobes = LobeMix(vec4(0.0), vec4(0.0));
+#endif
     for (int y = lo.y; y < hi.y; ++y)
       for (int x = lo.x; x < hi.x; ++x) {
         ivec2 t = ivec2(x, y);
@@ -36,6 +44,10 @@ void main() {
         power += residual[texel(t)].rgb * pa.w;
         moment += pa.xyz * pa.w;
         area += pa.w;
+#ifdef DIRECTIONAL
+        vec3 r = residual[texel(t)].rgb;
+        lobes = addLobe(lobes, emissionLobe[texel(t)], uShooterNormal, (r.r + r.g + r.b) * pa.w);
+#endif
       }
     vec3 centre = area > 0.0 ? moment / area : vec3(0.0);
     float radius = 0.0;
@@ -54,6 +66,14 @@ void main() {
     blocks[slot].radiosityRadius = rr;
     blocks[slot].rect = ivec4(lo, hi);
     blocks[slot].region = ivec4(region, 0, 0, 0);
+#ifdef DIRECTIONAL
+    blocks[slot].lobe = mixedLobe(lobes, uShooterNormal);
+    sLobe[k] = lobes;
+  } else {
+    sLobe[k] = LobeMix(vec4(0.0), vec4(0.0));
+#else
+    blocks[slot].lobe = vec4(0.0);
+#endif
   }
   sCentreArea[k] = ca;
   sRadiosityRadius[k] = rr;
@@ -63,8 +83,15 @@ void main() {
   // Region k from its blocks, summed in block order so the result does not depend on scheduling.
   vec3 power = vec3(0.0), moment = vec3(0.0);
   float area = 0.0;
+#ifdef DIRECTIONAL
+  LobeMix regionMix = LobeMix(vec4(0.0), vec4(0.0));
+#endif
   for (int i = 0; i < count; ++i) {
     if (sRegion[i] != int(k)) continue;
+#ifdef DIRECTIONAL
+    regionMix.sum += sLobe[i].sum;
+    regionMix.second += sLobe[i].second;
+#endif
     power += sRadiosityRadius[i].rgb * sCentreArea[i].w;
     moment += sCentreArea[i].xyz * sCentreArea[i].w;
     area += sCentreArea[i].w;
@@ -85,4 +112,9 @@ void main() {
   blocks[k].radiosityRadius = vec4(area > 0.0 ? power / area : vec3(0.0), radius);
   blocks[k].rect = rect;
   blocks[k].region = ivec4(int(k), 0, 0, 0);
+#ifdef DIRECTIONAL
+  blocks[k].lobe = mixedLobe(regionMix, uShooterNormal);
+#else
+  blocks[k].lobe = vec4(0.0);
+#endif
 }

@@ -41,7 +41,7 @@ glm::vec4 fitEmissionLobe(const glm::vec4& moments, const glm::vec3& n, float mi
   return glm::vec4(s0 + float(a) * n, sigma2);
 }
 
-float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::vec3& omega) {
+float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::vec3& omega, float blur2) {
   const float c = glm::dot(omega, n);
   if (c <= 0.0f) return 0.0f;
   const float a = glm::dot(glm::vec3(lobe), n);
@@ -49,8 +49,8 @@ float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::v
   const glm::vec3 s0 = glm::vec3(lobe) - a * n;
   const glm::vec3 s = omega / c - n;
   const glm::vec3 d = s - s0;
-  const float c2 = c * c;
-  return (1.0f - a) + a * std::exp(-glm::dot(d, d) / (2.0f * lobe.w)) / (2.0f * lobe.w * c2 * c2);
+  const float c2 = c * c, sigma2 = lobe.w + blur2;
+  return (1.0f - a) + a * std::exp(-glm::dot(d, d) / (2.0f * sigma2)) / (2.0f * sigma2 * c2 * c2);
 }
 
 std::vector<glm::vec4> fitEmissionLobes(const std::vector<glm::vec4>& moments, const LightmapAtlas& atlas,

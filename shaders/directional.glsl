@@ -8,15 +8,27 @@ layout(std430, binding = 15) readonly buffer EmissionLobes { vec4 emissionLobe[]
 layout(std430, binding = 16) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
 
 // f(ω) for unit ω leaving a surface of normal n: (1 − a) + a exp(−|s − s0|² / 2σ²) / (2σ² cos⁴θ),
-// s = ω_t / cos θ; lobe = (s0 + a n, σ²).
-float lobeFactor(vec4 lobe, vec3 n, vec3 omega) {
+// s = ω_t / cos θ; lobe = (s0 + a n, σ²). `blur2` widens σ² (still normalised): the receiver's footprint.
+float lobeFactor(vec4 lobe, vec3 n, vec3 omega, float blur2) {
   float c = dot(omega, n);
   if (c <= 0.0) return 0.0;
   float a = dot(lobe.xyz, n);
   if (!(a > 0.0) || !(lobe.w > 0.0)) return 1.0;
   vec3 d = omega / c - n - (lobe.xyz - a * n);
-  float c2 = c * c;
-  return (1.0 - a) + a * exp(-dot(d, d) / (2.0 * lobe.w)) / (2.0 * lobe.w * c2 * c2);
+  float c2 = c * c, sigma2 = lobe.w + blur2;
+  return (1.0 - a) + a * exp(-dot(d, d) / (2.0 * sigma2)) / (2.0 * sigma2 * c2 * c2);
+}
+
+// The lobe seen by a receiver texel of area `area` (m²) at v from the shooter point (receiver normal n,
+// shooter normal ns) is averaged over the texel, not sampled at its centre: a beam narrower than the texel
+// would otherwise light it fully or not at all (hot and black texels near a portal). The texel's angular
+// variance per axis, A cos θr / 12 r², in gnomonic units (stretched by about 1 / cos³θs), at most 0.1: a
+// per-receiver width keeps each receiver's share right only while the lobe stays well inside the
+// hemisphere, where the 1 / cos⁴θ of the gnomonic map is small.
+float receiverBlur(vec3 v, vec3 n, vec3 ns, float area) {
+  float r2 = dot(v, v);
+  float cr = abs(dot(n, v)) * inversesqrt(r2), cs = max(abs(dot(ns, v)) * inversesqrt(r2), 0.1);
+  return min(area * cr / (12.0 * r2 * cs * cs * cs), 0.1);
 }
 
 // Can a piece of this radius (m) at squared distance r2 stand for its texels as one disk or a few points?

@@ -25,6 +25,7 @@ uniform float uFarField;
 #ifdef DIRECTIONAL
 #include "directional.glsl"
 vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), stored by main()
+float gReceiverArea = 0.0;  // this receiver texel's area (m²), set by main()
 #endif
 
 // The directional hook of the kernels below: the contribution f of a shooter piece at receiver + v,
@@ -32,7 +33,7 @@ vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), st
 // DIRECTIONAL, f itself.
 vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
 #ifdef DIRECTIONAL
-  f *= lobeFactor(lobe, uShooterNormal, -normalize(v));
+  f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
   noteArrival(gArrival, v, n, f);
 #endif
   return f;
@@ -145,6 +146,9 @@ void main() {
   if (id != tile.z || id == uShooter) return;
   vec3 x = posArea[texel(t)].xyz;
   vec3 e = vec3(0.0);
+#ifdef DIRECTIONAL
+  gReceiverArea = posArea[texel(t)].w;
+#endif
   for (int r = 0; r < uRegions; ++r) {
     if (blocks[r].centreArea.w <= 0.0) continue;
     vec3 local = uToShooter * (x - uEyes[r]);

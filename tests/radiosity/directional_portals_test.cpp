@@ -44,11 +44,6 @@ struct SpotDoor {
   }
 };
 
-SpotDoor& scene() {
-  static SpotDoor d;  // one global solve for all tests of this file
-  return d;
-}
-
 // Room B's far wall (x = 8.2 m, facing −x), where the beam lands.
 bool farWall(const LightmapAtlas& a, size_t i) {
   return a.patch[i] >= 0 && a.position[i].x > 8.0f && a.normal[i].x < -0.99f;
@@ -90,7 +85,7 @@ void expectConserved(const CellSolveResult& r) {
 }
 
 TEST(DirectionalPortals, BeamLandsWhereTheWholeSceneSolvePutsIt) {
-  SpotDoor& d = scene();
+  SpotDoor d;
   const CellSolveResult diffuse = d.cells(PortalLight::Diffuse);
   const CellSolveResult directional = d.cells(PortalLight::Directional);
   const Pool g = pool(d.atlas, d.global, d.global);
@@ -136,12 +131,17 @@ TEST(DirectionalPortals, NoHotTexelsBesideTheDoor) {
 }
 
 TEST(DirectionalPortals, RejectsABadLobeWidth) {
-  SpotDoor& d = scene();
+  const SeedScene s = makeSpotThroughDoor();
+  Context ctx;
+  EglContext gl(ctx);
   CellSolveParams p;
-  p.atlas.texelsPerQuad = kTexels;
+  p.atlas.texelsPerQuad = 4;
   p.portals = PortalLight::Directional;
-  p.lobeMinWidth = 0.0f;
-  EXPECT_THROW(solveCells(d.s.scene, d.s.cells, d.atlas, p, d.gl, d.ctx), InputError);
+  const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), p.atlas, ctx);
+  for (float width : {0.0f, -0.1f, 0.5f}) {
+    p.lobeMinWidth = width;
+    EXPECT_THROW(solveCells(s.scene, s.cells, atlas, p, gl, ctx), InputError) << width;
+  }
   EXPECT_THROW(parsePortalLight("spot"), InputError);
   EXPECT_EQ(parsePortalLight(portalLightName(PortalLight::Directional)), PortalLight::Directional);
 }

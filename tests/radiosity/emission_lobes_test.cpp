@@ -183,8 +183,9 @@ TEST(EmissionLobes, AimedEmitterOnTheGpu) {
   EXPECT_GT(px, 2.0 * lpx);
   EXPECT_LT(mx, 0.1 * lmx);
   EXPECT_NEAR(lpx, lmx, 1e-3 * emitted);  // the Lambertian is symmetric
-  // Energy: what the walls caught against what left the lamp, directional against Lambertian.
-  EXPECT_NEAR(aimed.energy.received, emitted, 1e-2 * emitted);
+  // Energy: what the walls caught against what left the lamp (measured: +1.1e-3, the Lambertian +0.4e-3),
+  // directional against Lambertian (+0.6e-3).
+  EXPECT_NEAR(aimed.energy.received, emitted, 2e-3 * emitted);
   EXPECT_NEAR(aimed.energy.received, lambert.energy.received, 1e-3 * emitted);
   // The arrival moments hold the same power as the irradiance.
   double arrived = 0.0;

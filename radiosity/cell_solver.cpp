@@ -111,9 +111,12 @@ CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell) {
 
 void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
                     std::vector<int32_t>& sourceOfTexel) {
-  sourceOfTexel.assign(to.texelCount(), -1);
   const Patch& q = from.patches[fromPatch];
   const Patch& p = to.patches[toPatch];
+  if (sourceOfTexel.size() != to.texelCount())
+    sourceOfTexel.assign(to.texelCount(), -1);
+  else
+    for (int j = 0; j < p.h; ++j) std::fill_n(sourceOfTexel.begin() + (p.y + j) * to.width + p.x, p.w, -1);
   std::vector<int32_t> valid;
   for (int j = 0; j < q.h; ++j)
     for (int i = 0; i < q.w; ++i) {
@@ -161,6 +164,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
   std::vector<int32_t> localIndex(scene.triangles.size(), -1);
   std::vector<CellState> cells(nc);
+  std::vector<std::vector<int>> cellPatchOf(nc);  // per cell, per cell-scene triangle: its patch
   std::vector<int32_t> source;
   {
     auto t = ctx.time("cells: atlases");
@@ -171,33 +175,42 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), params.atlas, ctx);
       const std::vector<int> patchOf = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
       for (size_t k = 0; k < s.cs.portals.size(); ++k) s.portalPatch.push_back(patchOf[s.cs.ownTriangles + 2 * k]);
+      cellPatchOf[c] = patchOf;
       s.pending.assign(s.atlas.texelCount(), glm::vec3(0.0f));
       for (size_t i = 0; i < s.atlas.texelCount(); ++i)
         if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
       s.carried.assign(s.atlas.texelCount(), glm::vec3(0.0f));
       if (directional) s.pendingArrivals.assign(s.atlas.texelCount(), glm::vec4(0.0f));
     }
-    // Global charts → cell charts, patch by patch (the same triangles make the same patch).
+    // Global charts → cell charts. A global chart may be a grid of quads (radiosity/quad_grids.h) that
+    // the cells cut apart, so each texel goes by the triangle under it to that triangle's cell patch.
     size_t differing = 0;
     for (size_t gp = 0; gp < global.patches.size(); ++gp) {
       const Patch& P = global.patches[gp];
-      const int c = cellOf[P.triangles[0]];
-      if (c < 0) continue;
-      CellState& s = cells[c];
-      const int local = localIndex[P.triangles[0]];
-      int q = -1;
-      for (size_t k = 0; k < s.atlas.patches.size() && q < 0; ++k)
-        for (int32_t t : s.atlas.patches[k].triangles)
-          if (t == local) q = int(k);
-      if (q < 0) continue;
-      const Patch& Q = s.atlas.patches[q];
-      if (Q.w != P.w || Q.h != P.h || (P.triangles[1] >= 0) != (Q.triangles[1] >= 0)) ++differing;
-      mapPatchTexels(s.atlas, q, global, int(gp), source);
-      for (int j = 0; j < P.h; ++j)
-        for (int i = 0; i < P.w; ++i) {
-          const int32_t g = (P.y + j) * global.width + P.x + i;
-          if (source[g] >= 0) s.toGlobal.push_back({g, source[g]});
-        }
+      std::vector<std::pair<int, int>> target(P.quads.empty() ? 1 : P.quads.size(), {-1, -1});  // (cell, patch)
+      for (size_t m = 0; m < target.size(); ++m) {
+        const int32_t tri = P.triangles[P.quads.empty() ? 0 : 2 * m];
+        const int c = cellOf[tri];
+        if (c < 0) continue;
+        target[m] = {c, cellPatchOf[c][localIndex[tri]]};
+      }
+      std::vector<std::pair<int, int>> distinct = target;
+      std::sort(distinct.begin(), distinct.end());
+      distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+      for (const auto& [c, q] : distinct) {
+        if (c < 0 || q < 0) continue;
+        CellState& s = cells[c];
+        const Patch& Q = s.atlas.patches[q];
+        if (distinct.size() == 1 && (Q.w != P.w || Q.h != P.h || (P.quad >= 0) != (Q.quad >= 0))) ++differing;
+        mapPatchTexels(s.atlas, q, global, int(gp), source);
+        const int tw = P.w / P.grid.x, th = P.h / P.grid.y;
+        for (int j = 0; j < P.h; ++j)
+          for (int i = 0; i < P.w; ++i) {
+            const int32_t g = (P.y + j) * global.width + P.x + i;
+            const size_t m = P.quads.empty() ? 0 : size_t(j / th) * P.grid.x + size_t(i / tw);
+            if (source[g] >= 0 && target[m] == std::pair{c, q}) s.toGlobal.push_back({g, source[g]});
+          }
+      }
     }
     if (differing > 0)
       ctx.warn(std::to_string(differing) + " patches are charted differently in their cell than in the whole scene");

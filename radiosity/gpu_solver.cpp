@@ -1,6 +1,7 @@
 #include "radiosity/gpu_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,27 +22,30 @@ struct GpuPatch {
 struct GpuStats {
   glm::vec4 unshot, incident, absorbed;
 };
-struct GpuBlock {
-  glm::vec4 centreArea, radiosityRadius;
-  glm::ivec4 rect, region;
-  glm::vec4 lobe;
+struct GpuNode {
+  glm::vec4 centreArea, radiosityRadius, lobe;
+};
+constexpr int kMaxLevels = 14;  // MAX_LEVELS: pyramids of charts up to 2^14 texels on an edge
+struct GpuRegion {
+  glm::ivec4 rect, top;
+  int32_t levelOffset[kMaxLevels + 2];
 };
 struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuBlock) == 80 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuNode) == 48 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
-constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
-constexpr int kMaxRegions = 4;   // per chart edge; receive.comp's MAX_REGIONS is its square
+constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
 constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 
 // Shader-storage binding points (shaders/*.comp).
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
-                     kBlocks = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
-                     kRadiosity = 12, kResidual = 13, kIncident = 14, kEmissionLobes = 15, kArrivals = 16 };
+                     kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
+                     kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
+                     kEmissionLobes = 16, kArrivals = 17 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -60,10 +64,6 @@ void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(
 void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
 void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
 void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
-void set(const gl::Program& p, const char* n, glm::ivec2 v) { glProgramUniform2i(p.get(), loc(p, n), v.x, v.y); }
-void set(const gl::Program& p, const char* n, glm::ivec4 v) {
-  glProgramUniform4i(p.get(), loc(p, n), v.x, v.y, v.z, v.w);
-}
 void set(const gl::Program& p, const char* n, const glm::mat3& m) {
   glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
 }
@@ -80,7 +80,6 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
     throw InputError("--unshot", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
-  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("solver", "sub-shooter blocks per edge must be in 1..8");
   if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
   if (!(p.regionSize > 0.0f)) throw InputError("solver", "region size must be positive");
   if (atlas.width > maxTexture || atlas.height > maxTexture)
@@ -121,16 +120,16 @@ class Solver {
       : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
     const std::vector<std::string> visDefine =
         params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
-    std::vector<std::string> receiveDefines = visDefine, blocksDefines;
-    if (params.directionalEmission) receiveDefines.push_back("DIRECTIONAL"), blocksDefines.push_back("DIRECTIONAL");
+    std::vector<std::string> receiveDefines = visDefine, pyramidDefines;
+    if (params.directionalEmission) receiveDefines.push_back("DIRECTIONAL"), pyramidDefines.push_back("DIRECTIONAL");
     itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
     compactProgram_ = buildProgram({"compact.comp"});
     finishProgram_ = buildProgram({"finish_lists.comp"});
-    blocksProgram_ = buildProgram({"shooter_blocks.comp"}, blocksDefines);
+    pyramidProgram_ = buildProgram({"shooter_pyramid.comp"}, pyramidDefines);
     receiveProgram_ = buildProgram({"receive.comp"}, receiveDefines);
     statsProgram_ = buildProgram({"patch_stats.comp"});
     selectProgram_ = buildProgram({"select_shooter.comp"});
-    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions, params.maxBlocks});
+    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     uploadAtlas();
     if (params.directionalEmission) uploadDirectional(emissionLobes);
     uploadGeometry();
@@ -161,16 +160,19 @@ class Solver {
     const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
     clock_.restart();
 
-    // Sub-shooters from the residual before it is zeroed.
-    set(blocksProgram_, "uShooter", shooter);
-    set(blocksProgram_, "uRect", glm::ivec4(p.x, p.y, p.w, p.h));
-    set(blocksProgram_, "uBlocks", l.blocks);
-    set(blocksProgram_, "uRegions", l.regions);
-    set(blocksProgram_, "uTexelRadius", l.texelRadius);
-    if (params_.directionalEmission) set(blocksProgram_, "uShooterNormal", l.normal);
-    glUseProgram(blocksProgram_.get());
-    glDispatchCompute(1, 1, 1);
-    clock_.mark("shooter blocks");
+    // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
+    const int levels = uploadRegions(l, p);
+    set(pyramidProgram_, "uShooter", shooter);
+    set(pyramidProgram_, "uRegionCount", regions);
+    set(pyramidProgram_, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission) set(pyramidProgram_, "uShooterNormal", l.normal);
+    glUseProgram(pyramidProgram_.get());
+    for (int k = 1; k <= levels; ++k) {
+      set(pyramidProgram_, "uLevel", k);
+      glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    clock_.mark("shooter pyramid");
 
     const GLuint zero = 0;
     glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -196,8 +198,7 @@ class Solver {
 
     // Gather.
     set(receiveProgram_, "uShooter", shooter);
-    set(receiveProgram_, "uRegions", regions);
-    set(receiveProgram_, "uBlockCount", l.blocks.x * l.blocks.y);
+    set(receiveProgram_, "uRegionCount", regions);
     glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram_, "uToShooter", toShooter);
     set(receiveProgram_, "uShooterNormal", l.normal);
@@ -230,6 +231,52 @@ class Solver {
   }
 
  private:
+  // The region table (common.glsl, Region) of one shooter; fills levelNodes_ (nodes per level over all
+  // regions) and returns the highest level.
+  int uploadRegions(const ShooterLayout& l, const Patch& p) {
+    std::vector<GpuRegion> table(l.rects.size());
+    int levels = 1;
+    for (size_t r = 0; r < table.size(); ++r) {
+      const glm::ivec4 c = l.rects[r];
+      table[r].rect = glm::ivec4(p.x + c.x, p.y + c.y, p.x + c.z, p.y + c.w);
+      table[r].top.x = topLevel(glm::ivec2(c.z - c.x, c.w - c.y));
+      levels = std::max(levels, table[r].top.x);
+    }
+    int32_t offset = 0;
+    std::fill(levelNodes_.begin(), levelNodes_.end(), 0);
+    for (int k = 1; k <= levels; ++k)
+      for (GpuRegion& g : table) {
+        if (k > g.top.x) continue;
+        const glm::ivec2 d = levelDims(glm::ivec2(g.rect.z - g.rect.x, g.rect.w - g.rect.y), k);
+        g.levelOffset[k] = offset;
+        offset += d.x * d.y;
+        levelNodes_[k] += size_t(d.x) * d.y;
+      }
+    glNamedBufferSubData(regions_.get(), 0, GLsizeiptr(table.size() * sizeof(GpuRegion)), table.data());
+    return levels;
+  }
+
+  static glm::ivec2 levelDims(glm::ivec2 size, int k) { return (size + ((1 << k) - 1)) >> k; }
+  static int topLevel(glm::ivec2 size) {
+    int k = 1;
+    while (glm::any(glm::greaterThan(levelDims(size, k), glm::ivec2(1)))) ++k;
+    return k;
+  }
+
+  // Nodes the largest shooter's pyramids need (levels 1 and up, all regions).
+  size_t maxPyramidNodes() const {
+    size_t most = 0;
+    for (const ShooterLayout& l : layouts_) {
+      size_t n = 0;
+      for (const glm::ivec4& c : l.rects) {
+        const glm::ivec2 size(c.z - c.x, c.w - c.y);
+        for (int k = 1, top = topLevel(size); k <= top; ++k) n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
+      }
+      most = std::max(most, n);
+    }
+    return std::max<size_t>(most, 1);
+  }
+
   void runStats(int shooter) {
     set(statsProgram_, "uShooter", shooter);
     glUseProgram(statsProgram_.get());
@@ -338,7 +385,12 @@ class Solver {
     ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
     ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
     ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
-    ssbo(blocks_, kBlocks, (kMaxRegions * kMaxRegions + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
+    ssbo(regions_, kRegions, kMaxRegions * kMaxRegions * sizeof(GpuRegion), nullptr);
+    ssbo(nodes_, kNodes, maxPyramidNodes() * sizeof(GpuNode), nullptr);
+    for (const ShooterLayout& l : layouts_)
+      for (const glm::ivec4& c : l.rects)
+        if (topLevel(glm::ivec2(c.z - c.x, c.w - c.y)) > kMaxLevels)
+          throw InputError("atlas", "a chart wider than 2^14 texels");
     ssbo(pending_, kPending, np * 4, pending.data());
     ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
     const GLuint zero = 0;
@@ -424,7 +476,7 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
-    for (const gl::Program* p : {&receiveProgram_, &statsProgram_, &blocksProgram_})
+    for (const gl::Program* p : {&receiveProgram_, &statsProgram_, &pyramidProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
     set(receiveProgram_, "uItemSize", itemSize_);
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
@@ -437,11 +489,12 @@ class Solver {
   const Scene& scene_;
   const LightmapAtlas& atlas_;
   SolverParams params_;
-  gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
+  gl::Program itemProgram_, compactProgram_, finishProgram_, pyramidProgram_, receiveProgram_,
       statsProgram_, selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_;
   gl::Texture items_, depth_;
-  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
+  std::array<size_t, kMaxLevels + 2> levelNodes_{};
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;

@@ -1,11 +1,11 @@
 // Directional emission (SolverParams::directionalEmission; radiosity/emission_lobes.h has the maths and
-// the CPU twins of these functions). Included by receive.comp and shooter_blocks.comp only when the
+// the CPU twins of these functions). Included by receive.comp and shooter_pyramid.comp only when the
 // program is built with DIRECTIONAL, so the default solve is unchanged. Three pieces, each self-contained:
-//  - the lobe of a shooter texel (per-texel buffer) and of a piece of texels (Block::lobe);
+//  - the lobe of a shooter texel (per-texel buffer) and of a pyramid node (Node::lobe);
 //  - lobeFactor: f(ω) that multiplies a Lambertian form factor, ∫ f cos θ dω = π;
 //  - noteArrival: the direction moments a receiver texel accumulates, read back for the next sync.
-layout(std430, binding = 15) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
-layout(std430, binding = 16) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
+layout(std430, binding = 16) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
+layout(std430, binding = 17) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
 
 // f(ω) for unit ω leaving a surface of normal n: (1 − a) + a exp(−|s − s0|² / 2σ²) / (2σ² cos⁴θ),
 // s = ω_t / cos θ; lobe = (s0 + a n, σ²). `blur2` widens σ² (still normalised): the receiver's footprint.
@@ -40,7 +40,7 @@ bool lobeResolvesPiece(vec4 lobe, vec3 n, float r2, float radius) {
 
 // A power-weighted mixture of lobes of one planar shooter (normal n), replaced by the lobe with the same
 // weight, mean and variance: still normalised. `sum` = (Σ P a s0, Σ P a), `second` = (Σ P a σ², Σ P a |s0|²,
-// Σ P, 0). Sums of LobeMix are LobeMix of the union (regions from blocks).
+// Σ P, 0). Mixing the mixed lobes of groups (pyramid children) gives the same lobe as mixing all texels.
 struct LobeMix {
   vec4 sum;
   vec4 second;

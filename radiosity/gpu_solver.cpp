@@ -23,7 +23,7 @@ struct GpuStats {
   glm::vec4 unshot, incident, absorbed;
 };
 struct GpuNode {
-  glm::vec4 centreArea, radiosityRadius, lobe;
+  glm::vec4 centreArea, radiosityRadius;
 };
 constexpr int kMaxLevels = 14;  // MAX_LEVELS: pyramids of charts up to 2^14 texels on an edge
 struct GpuRegion {
@@ -34,7 +34,7 @@ struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuNode) == 48 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
 constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
@@ -45,7 +45,7 @@ constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
                      kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
                      kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
-                     kEmissionLobes = 16, kArrivals = 17 };
+                     kEmissionLobes = 16, kArrivals = 17, kNodeLobes = 18 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -202,6 +202,7 @@ class Solver {
     glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram_, "uToShooter", toShooter);
     set(receiveProgram_, "uShooterNormal", l.normal);
+    if (params_.directionalEmission) set(receiveProgram_, "uShooterLobes", int(hasLobes_[shooter]));
     set(receiveProgram_, "uTexelU", p.texelU);
     set(receiveProgram_, "uTexelV", p.texelV);
     set(receiveProgram_, "uTexelRadius", l.texelRadius);
@@ -402,12 +403,18 @@ class Solver {
     const size_t n = atlas_.texelCount();
     if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
     const std::vector<glm::vec4> lambertian(lobes ? 0 : n, glm::vec4(0.0f));
+    hasLobes_.assign(atlas_.patches.size(), 0);
+    if (lobes)
+      for (size_t i = 0; i < n; ++i)
+        if (atlas_.patch[i] >= 0 && (*lobes)[i] != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
     emissionLobes_ = gl::makeBuffer(n * sizeof(glm::vec4), lobes ? lobes->data() : lambertian.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEmissionLobes, emissionLobes_.get());
     arrivals_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
     const float zero = 0.0f;
     glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
+    nodeLobes_ = gl::makeBuffer(maxPyramidNodes() * sizeof(glm::vec4), nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodeLobes, nodeLobes_.get());
   }
 
   void uploadGeometry() {
@@ -491,7 +498,8 @@ class Solver {
   SolverParams params_;
   gl::Program itemProgram_, compactProgram_, finishProgram_, pyramidProgram_, receiveProgram_,
       statsProgram_, selectProgram_;
-  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
+  std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
   std::array<size_t, kMaxLevels + 2> levelNodes_{};

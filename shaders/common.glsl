@@ -17,7 +17,6 @@ struct PatchStats {
 struct Node {
   vec4 centreArea;      // area-weighted centre (m), area (m²; 0: no texel of the shooter)
   vec4 radiosityRadius; // mean unshot radiosity (rgb, W/m²), bounding radius around the centre (m)
-  vec4 lobe;            // directional emission of the node (directional.glsl), 0 = Lambertian
 };
 
 #define MAX_REGIONS 16

@@ -1,11 +1,12 @@
 // Directional emission (SolverParams::directionalEmission; radiosity/emission_lobes.h has the maths and
 // the CPU twins of these functions). Included by receive.comp and shooter_pyramid.comp only when the
 // program is built with DIRECTIONAL, so the default solve is unchanged. Three pieces, each self-contained:
-//  - the lobe of a shooter texel (per-texel buffer) and of a pyramid node (Node::lobe);
+//  - the lobe of a shooter texel (per-texel buffer) and of a pyramid node (nodeLobe, beside nodes[]);
 //  - lobeFactor: f(ω) that multiplies a Lambertian form factor, ∫ f cos θ dω = π;
 //  - noteArrival: the direction moments a receiver texel accumulates, read back for the next sync.
 layout(std430, binding = 16) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
 layout(std430, binding = 17) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
+layout(std430, binding = 18) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
 
 // f(ω) for unit ω leaving a surface of normal n: (1 − a) + a exp(−|s − s0|² / 2σ²) / (2σ² cos⁴θ),
 // s = ω_t / cos θ; lobe = (s0 + a n, σ²). `blur2` widens σ² (still normalised): the receiver's footprint.

@@ -25,6 +25,7 @@ uniform float uFarField;
 #include "directional.glsl"
 vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), stored by main()
 float gReceiverArea = 0.0;  // this receiver texel's area (m²), set by main()
+uniform bool uShooterLobes;  // false: every texel of this shooter is Lambertian, skip the lobes
 #endif
 
 // The directional hook of the kernels below: the contribution f of a shooter piece at receiver + v,
@@ -32,16 +33,24 @@ float gReceiverArea = 0.0;  // this receiver texel's area (m²), set by main()
 // DIRECTIONAL, f itself.
 vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
 #ifdef DIRECTIONAL
-  f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
+  if (uShooterLobes)
+    f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
   noteArrival(gArrival, v, n, f);
 #endif
   return f;
 }
 
-// A shooter texel's lobe (DIRECTIONAL only; else Lambertian).
+// A shooter texel's and a pyramid node's lobe (DIRECTIONAL only; else Lambertian).
 vec4 texelLobe(ivec2 t) {
 #ifdef DIRECTIONAL
   return emissionLobe[texel(t)];
+#else
+  return vec4(0.0);
+#endif
+}
+vec4 nodeLobeAt(int i) {
+#ifdef DIRECTIONAL
+  return nodeLobe[i];
 #else
   return vec4(0.0);
 #endif
@@ -69,13 +78,12 @@ vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
 
 // A far piece (`size` texels, uniform mean radiosity) by 2×2 Gauss points: the point form's error falls
 // from O((R/r)²) to O((R/r)⁴), which is what lets uFarField be as small as 2.
-vec3 piece(vec3 x, vec3 n, Node p, ivec2 size) {
+vec3 piece(vec3 x, vec3 n, Node p, ivec2 size, vec4 l) {
   const float g = 0.5773502692;  // 1/√3
   vec3 hu = 0.5 * g * float(size.x) * uTexelU, hv = 0.5 * g * float(size.y) * uTexelV;
   vec3 c = p.centreArea.xyz;
   float a = 0.25 * p.centreArea.w;
   vec3 rad = p.radiosityRadius.rgb;
-  vec4 l = p.lobe;
   return point(x, n, c - hu - hv, a, rad, l) + point(x, n, c + hu - hv, a, rad, l) +
          point(x, n, c - hu + hv, a, rad, l) + point(x, n, c + hu + hv, a, rad, l);
 }
@@ -131,11 +139,13 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
       continue;
     }
     ivec2 dims = levelDims(rect, k);
-    Node p = nodes[regions[r].levelOffset[k] + at.y * dims.x + at.x];
+    int index = regions[r].levelOffset[k] + at.y * dims.x + at.x;
+    Node p = nodes[index];
     if (p.centreArea.w <= 0.0) continue;
-    if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w, p.lobe)) {
+    vec4 lobe = nodeLobeAt(index);
+    if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w, lobe)) {
       ivec2 lo = rect.xy + (at << k);
-      sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo);
+      sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo, lobe);
       continue;
     }
     ivec2 below = k == 1 ? rect.zw - rect.xy : levelDims(rect, k - 1);
@@ -163,13 +173,15 @@ void main() {
   gReceiverArea = posArea[texel(t)].w;
 #endif
   for (int r = 0; r < uRegionCount; ++r) {
-    Node root = nodes[regions[r].levelOffset[regions[r].top.x]];
+    int rootIndex = regions[r].levelOffset[regions[r].top.x];
+    Node root = nodes[rootIndex];
+    vec4 rootLobe = nodeLobeAt(rootIndex);
     if (root.centreArea.w <= 0.0) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
     if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
     if (!visibleFromShooter(local, id, r)) continue;
-    e += far(x, root.centreArea.xyz, root.radiosityRadius.w, root.lobe)
-             ? piece(x, np.xyz, root, regions[r].rect.zw - regions[r].rect.xy)
+    e += far(x, root.centreArea.xyz, root.radiosityRadius.w, rootLobe)
+             ? piece(x, np.xyz, root, regions[r].rect.zw - regions[r].rect.xy, rootLobe)
              : fromRegion(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;

@@ -68,7 +68,7 @@ void main() {
         area += c.centreArea.w;
 #ifdef DIRECTIONAL
         vec3 b = c.radiosityRadius.rgb;
-        lobes = addLobe(lobes, c.lobe, uShooterNormal, (b.r + b.g + b.b) * c.centreArea.w);
+        lobes = addLobe(lobes, nodeLobe[base + y * below.x + x], uShooterNormal, (b.r + b.g + b.b) * c.centreArea.w);
 #endif
       }
     vec3 centre = area > 0.0 ? moment / area : vec3(0.0);
@@ -81,10 +81,8 @@ void main() {
   Node n;
   n.centreArea = vec4(area > 0.0 ? moment / area : vec3(0.0), area);
   n.radiosityRadius = vec4(area > 0.0 ? power / area : vec3(0.0), radius);
-#ifdef DIRECTIONAL
-  n.lobe = mixedLobe(lobes, uShooterNormal);
-#else
-  n.lobe = vec4(0.0);
-#endif
   nodes[regions[r].levelOffset[uLevel] + g] = n;
+#ifdef DIRECTIONAL
+  nodeLobe[regions[r].levelOffset[uLevel] + g] = mixedLobe(lobes, uShooterNormal);
+#endif
 }

@@ -17,7 +17,8 @@ namespace {
 
 // Mirrors of the std430 structs in shaders/common.glsl and select_shooter.comp.
 struct GpuPatch {
-  glm::ivec4 rect;
+  glm::ivec4 rect, tiles;
+  glm::vec4 origin, texelU, texelV, normal;
 };
 struct GpuStats {
   glm::vec4 unshot, incident, absorbed;
@@ -34,7 +35,7 @@ struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
 constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
@@ -45,7 +46,7 @@ constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
                      kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
                      kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
-                     kEmissionLobes = 16, kArrivals = 17, kNodeLobes = 18 };
+                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -128,6 +129,7 @@ class Solver {
     pyramidProgram_ = buildProgram({"shooter_pyramid.comp"}, pyramidDefines);
     receiveProgram_ = buildProgram({"receive.comp"}, receiveDefines);
     statsProgram_ = buildProgram({"patch_stats.comp"});
+    tileStatsProgram_ = buildProgram({"tile_stats.comp"});
     selectProgram_ = buildProgram({"select_shooter.comp"});
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     uploadAtlas();
@@ -147,6 +149,7 @@ class Solver {
     glUseProgram(finishProgram_.get());
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    runTileStats(0, tileCount_, -1, false);
     runStats(-1);
     return select();
   }
@@ -212,6 +215,7 @@ class Solver {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     clock_.mark("receive");
 
+    runTileStats(0, tileCount_, shooter, true);
     runStats(shooter);
     clock_.mark("patch statistics");
     GpuSelection s = select();
@@ -276,6 +280,19 @@ class Solver {
       most = std::max(most, n);
     }
     return std::max<size_t>(most, 1);
+  }
+
+  // Tile sums of tiles [first, end) (of the visible patches only when `onlyVisible`); the shooter's
+  // residual is zeroed on the way.
+  void runTileStats(size_t first, size_t end, int shooter, bool onlyVisible) {
+    if (end <= first) return;
+    setU(tileStatsProgram_, "uFirstTile", GLuint(first));
+    setU(tileStatsProgram_, "uEndTile", GLuint(end));
+    set(tileStatsProgram_, "uShooter", shooter);
+    set(tileStatsProgram_, "uOnlyVisible", onlyVisible ? 1 : 0);
+    glUseProgram(tileStatsProgram_.get());
+    glDispatchCompute(groups(end - first, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
 
   void runStats(int shooter) {
@@ -364,9 +381,10 @@ class Solver {
     std::vector<GpuPatch> patches(np);
     std::vector<uint32_t> pending(np, 0);
     std::vector<glm::ivec4> tiles;
+    firstTile_.assign(np + 1, 0);
     for (size_t i = 0; i < np; ++i) {
       const Patch& p = atlas_.patches[i];
-      patches[i].rect = {p.x, p.y, p.w, p.h};
+      firstTile_[i] = tiles.size();
       for (int y = 0; y < p.h; ++y)
         for (int x = 0; x < p.w; ++x) {
           const size_t t = size_t(p.y + y) * w + p.x + x;
@@ -374,7 +392,14 @@ class Solver {
         }
       for (int y = 0; y < p.h; y += kTile)
         for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+      patches[i].rect = {p.x, p.y, p.w, p.h};
+      patches[i].tiles = {int(firstTile_[i]), int(tiles.size() - firstTile_[i]), 0, 0};
+      patches[i].origin = glm::vec4(p.origin, 0.0f);
+      patches[i].texelU = glm::vec4(p.texelU, 0.0f);
+      patches[i].texelV = glm::vec4(p.texelV, 0.0f);
+      patches[i].normal = glm::vec4(p.normal, 0.0f);
     }
+    firstTile_[np] = tiles.size();
     tileCount_ = tiles.size();
     auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes, const void* data) {
       b = gl::makeBuffer(bytes, data);
@@ -384,6 +409,7 @@ class Solver {
     ssbo(stats_, kStats, np * sizeof(GpuStats), nullptr);
     ssbo(visible_, kVisible, np * 4, nullptr);
     ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
+    ssbo(tileStats_, kTileStats, tiles.size() * sizeof(GpuStats), nullptr);
     ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
     ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
     ssbo(regions_, kRegions, kMaxRegions * kMaxRegions * sizeof(GpuRegion), nullptr);
@@ -483,7 +509,7 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
-    for (const gl::Program* p : {&receiveProgram_, &statsProgram_, &pyramidProgram_})
+    for (const gl::Program* p : {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
     set(receiveProgram_, "uItemSize", itemSize_);
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
@@ -497,12 +523,14 @@ class Solver {
   const LightmapAtlas& atlas_;
   SolverParams params_;
   gl::Program itemProgram_, compactProgram_, finishProgram_, pyramidProgram_, receiveProgram_,
-      statsProgram_, selectProgram_;
+      statsProgram_, tileStatsProgram_, selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
   std::array<size_t, kMaxLevels + 2> levelNodes_{};
+  gl::Buffer tileStats_;
+  std::vector<size_t> firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;

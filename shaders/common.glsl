@@ -4,6 +4,10 @@
 
 struct PatchInfo {
   ivec4 rect;      // chart x, y, w, h in atlas texels
+  ivec4 tiles;     // x: its first 8×8 tile, y: how many
+  vec4 origin;     // texel (i, j) of the chart samples origin + (i + ½) texelU + (j + ½) texelV (m)
+  vec4 texelU, texelV;
+  vec4 normal;
 };
 
 struct PatchStats {

@@ -4,9 +4,9 @@
 //  - the lobe of a shooter texel (per-texel buffer) and of a pyramid node (nodeLobe, beside nodes[]);
 //  - lobeFactor: f(ω) that multiplies a Lambertian form factor, ∫ f cos θ dω = π;
 //  - noteArrival: the direction moments a receiver texel accumulates, read back for the next sync.
-layout(std430, binding = 16) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
-layout(std430, binding = 17) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
-layout(std430, binding = 18) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
+layout(std430, binding = 17) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
+layout(std430, binding = 18) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
+layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
 
 // f(ω) for unit ω leaving a surface of normal n: (1 − a) + a exp(−|s − s0|² / 2σ²) / (2σ² cos⁴θ),
 // s = ω_t / cos θ; lobe = (s0 + a n, σ²). `blur2` widens σ² (still normalised): the receiver's footprint.

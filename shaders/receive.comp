@@ -4,10 +4,14 @@
 // from its top node down, a node being used whole when the receiver is farther than uFarField × its
 // radius, down to texels and 4×4 points per texel. Each region has its own item buffer, seen from its
 // centre, so a large shooter is not one point for visibility either.
+//
+// No shared memory and no barrier here: on llvmpipe a barrier turns every invocation into a coroutine,
+// which measured twice as slow for this pass (seed3, 64² per quad).
 #include "common.glsl"
 #include "atlas_buffers.glsl"
 #include "visibility.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
 layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
@@ -122,6 +126,9 @@ vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
 
 // Depth-first walk of region r's pyramid; a stack entry packs (level, node x, node y).
 #define STACK 48
+// Whether region r shoots anything (a loose triangle's region may have no texel).
+bool blocksOf(int r) { return nodes[regions[r].levelOffset[regions[r].top.x]].centreArea.w > 0.0; }
+
 vec3 fromRegion(vec3 x, vec3 n, int r) {
   ivec4 rect = regions[r].rect;
   int stack[STACK];
@@ -158,38 +165,47 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
   return sum;
 }
 
+// ΔB F from region r, unoccluded, at x with normal n.
+vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
+  int rootIndex = regions[r].levelOffset[regions[r].top.x];
+  Node root = nodes[rootIndex];
+  vec4 lobe = nodeLobeAt(rootIndex);
+  return far(x, root.centreArea.xyz, root.radiosityRadius.w, lobe)
+             ? piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy, lobe)
+             : fromRegion(x, n, r);
+}
+
 void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
-  if (entry >= tileCount) return;
+  if (entry >= tileCount) return;  // uniform across the group
   ivec4 tile = tiles[tileList[entry]];
+  // The shooter's own tiles: nothing to gather; tile_stats.comp zeroes them after the shot.
+  if (tile.z == uShooter) return;
+  ivec4 chart = patches[tile.z].rect;
   ivec2 t = tile.xy + ivec2(gl_LocalInvocationID.xy);
-  vec4 np = normalPatch[texel(t)];
-  int id = int(np.w);
-  // Tiles are 8×8 from the chart corner and may overhang into a neighbour: keep only this tile's patch.
-  if (id != tile.z || id == uShooter) return;
-  vec3 x = posArea[texel(t)].xyz;
+  // Tiles are 8×8 from the chart corner and may overhang the chart: keep only this chart's texels.
+  if (any(greaterThanEqual(t, chart.xy + chart.zw))) return;
+  int tx = texel(t);
+  vec4 np = normalPatch[tx];
+  if (int(np.w) != tile.z) return;
+  vec3 x = posArea[tx].xyz;
   vec3 e = vec3(0.0);
 #ifdef DIRECTIONAL
-  gReceiverArea = posArea[texel(t)].w;
+  gReceiverArea = posArea[tx].w;
 #endif
   for (int r = 0; r < uRegionCount; ++r) {
-    int rootIndex = regions[r].levelOffset[regions[r].top.x];
-    Node root = nodes[rootIndex];
-    vec4 rootLobe = nodeLobeAt(rootIndex);
-    if (root.centreArea.w <= 0.0) continue;
+    if (!blocksOf(r)) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
     if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
-    if (!visibleFromShooter(local, id, r)) continue;
-    e += far(x, root.centreArea.xyz, root.radiosityRadius.w, rootLobe)
-             ? piece(x, np.xyz, root, regions[r].rect.zw - regions[r].rect.xy, rootLobe)
-             : fromRegion(x, np.xyz, r);
+    if (!visibleFromShooter(local, tile.z, r)) continue;
+    e += fromRegionWhole(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;
 #ifdef DIRECTIONAL
-  arrivals[texel(t)] += gArrival;
+  arrivals[tx] += gArrival;
 #endif
-  vec3 gained = albedo[texel(t)].rgb * e;
-  incident[texel(t)] = incident[texel(t)] + vec4(e, 0.0);
-  radiosity[texel(t)] = radiosity[texel(t)] + vec4(gained, 0.0);
-  residual[texel(t)] = residual[texel(t)] + vec4(gained, 0.0);
+  vec3 gained = albedo[tx].rgb * e;
+  incident[tx] = incident[tx] + vec4(e, 0.0);
+  radiosity[tx] = radiosity[tx] + vec4(gained, 0.0);
+  residual[tx] = residual[tx] + vec4(gained, 0.0);
 }

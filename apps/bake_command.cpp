@@ -1,4 +1,4 @@
-// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse] [--max-rounds N]
+// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional] [--max-rounds N]
 //  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
 //  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
 // the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
@@ -112,6 +112,7 @@ int runBake(const BakeOptions& o) {
     params.solver = solverParams;
     params.atlas = atlasParams;
     params.maxRounds = o.maxRounds;
+    params.portals = parsePortalLight(o.portals);
     cellSolved = solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
     solved.radiosity = cellSolved.radiosity;
     solved.shots = cellSolved.shots;
@@ -252,8 +253,10 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
                   "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
                   "a decompose output folder, or auto (the automatic decomposition)")
       ->capture_default_str();
-  sub->add_option("--portals", o->portals, "Portal light with --method cells: diffuse (re-emits irradiance)")
-      ->check(CLI::IsMember({"diffuse"}))
+  sub->add_option("--portals", o->portals,
+                  "Portal light with --method cells: diffuse (re-emits the irradiance as a Lambertian area "
+                  "light) or directional (keeps the directions the light arrived with)")
+      ->check(CLI::IsMember({"diffuse", "directional"}))
       ->capture_default_str();
   sub->add_option("--max-rounds", o->maxRounds, "With --method cells: solve rounds (syncs) at most")
       ->check(CLI::Range(1, 100000))

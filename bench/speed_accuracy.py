@@ -25,7 +25,7 @@ METHODS = {
     "global-hemicube": ["--method", "global", "--visibility", "hemicube"],
     "global-hemisphere": ["--method", "global", "--visibility", "hemisphere"],
     "cells-diffuse": ["--method", "cells", "--cells", "{scene}", "--portals", "diffuse"],
-    "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],  # not yet
+    "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],
 }
 
 
@@ -49,7 +49,7 @@ def main():
     ap.add_argument("--scenes", default="seed1,seed2,seed3")
     ap.add_argument("--resolutions", default="16,32,64,128,density",
                     help="texels per quad, or 'density' / 'densityT' for T texels per metre")
-    ap.add_argument("--methods", default="global-hemicube,global-hemisphere,cells-diffuse",
+    ap.add_argument("--methods", default="global-hemicube,global-hemisphere,cells-diffuse,cells-directional",
                     help="comma-separated, from: " + ", ".join(METHODS))
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--spp", type=int, default=256, help="reference samples per texel")

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "radiosity/emission_lobes.h"
 
 namespace cpgi {
 namespace {
@@ -28,6 +29,8 @@ struct CellState {
   std::vector<int> portalPatch;                       ///< per CellScene::portals entry
   std::vector<glm::vec3> pending;  ///< exitance to shoot at the next solve (W/m²)
   std::vector<glm::vec3> carried;  ///< the part of `pending` already counted in the radiosity
+  /// Directional portals: arrival moments of `pending` per texel (emission_lobes.h); empty otherwise.
+  std::vector<glm::vec4> pendingArrivals;
 };
 
 // Per portal and direction: (texel in the receiving cell, texel in the sending cell).
@@ -46,7 +49,36 @@ std::vector<int> patchOfTriangle(const LightmapAtlas& atlas, size_t triangles) {
   return of;
 }
 
+// Directional portals. One cell solve, emitting `pending` with the lobes fitted to its arrival moments.
+SolveResult solveDirectional(const CellState& s, const SolverParams& solverParams, float lobeMinWidth,
+                             const EglContext& gl, Context& ctx) {
+  SolverParams p = solverParams;
+  p.directionalEmission = true;
+  return solveProgressive(s.cs.scene, s.atlas, p, fitEmissionLobes(s.pendingArrivals, s.atlas, lobeMinWidth), gl,
+                          ctx);
+}
+
+// Directional portals: the moments of what a solve left unshot. A texel's residual is the part of its
+// pending exitance it did not shoot (portal texels have albedo 0 and gain none), so its moments are the
+// pending ones scaled by the same share.
+void carryArrivals(const CellState& s, const std::vector<glm::vec3>& residual, std::vector<glm::vec4>& next) {
+  for (size_t i = 0; i < s.pendingArrivals.size(); ++i) {
+    const float pending = s.pending[i].r + s.pending[i].g + s.pending[i].b;
+    const float left = residual[i].r + residual[i].g + residual[i].b;
+    if (s.pendingArrivals[i].w > 0.0f && pending > 0.0f && left > 0.0f)
+      next[i] += s.pendingArrivals[i] * std::min(left / pending, 1.0f);
+  }
+}
+
 }  // namespace
+
+const char* portalLightName(PortalLight p) { return p == PortalLight::Directional ? "directional" : "diffuse"; }
+
+PortalLight parsePortalLight(const std::string& name) {
+  if (name == "diffuse") return PortalLight::Diffuse;
+  if (name == "directional") return PortalLight::Directional;
+  throw InputError("--portals", "must be diffuse or directional, not '" + name + "'");
+}
 
 CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell) {
   CellScene out;
@@ -124,6 +156,9 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   if (!validation.errors.empty()) throw InputError("--cells", validation.errors.front());
   for (const std::string& w : validation.warnings) ctx.warn(w);
   if (params.maxRounds < 1) throw InputError("solver", "cell rounds must be at least 1");
+  const bool directional = params.portals == PortalLight::Directional;
+  if (directional && !(params.lobeMinWidth > 0.0f && params.lobeMinWidth <= 0.45f))
+    throw InputError("solver", "the narrowest portal lobe must be in (0, 0.45]");
 
   const size_t nc = graph.cells.size();
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
@@ -145,6 +180,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       for (size_t i = 0; i < s.atlas.texelCount(); ++i)
         if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
       s.carried.assign(s.atlas.texelCount(), glm::vec3(0.0f));
+      if (directional) s.pendingArrivals.assign(s.atlas.texelCount(), glm::vec4(0.0f));
     }
     // Global charts → cell charts. A global chart may be a grid of quads (radiosity/quad_grids.h) that
     // the cells cut apart, so each texel goes by the triangle under it to that triangle's cell patch.
@@ -234,7 +270,10 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     solverParams.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
     solverParams.minShotPower = 0.5 * target / double(std::max<size_t>(global.patches.size(), 1));
     std::vector<std::vector<glm::vec3>> nextPending(nc), nextCarried(nc);
+    std::vector<std::vector<glm::vec4>> nextArrivals(nc);  // directional portals only
     for (size_t c = 0; c < nc; ++c) nextPending[c].assign(cells[c].pending.size(), glm::vec3(0.0f));
+    if (directional)
+      for (size_t c = 0; c < nc; ++c) nextArrivals[c].assign(cells[c].pending.size(), glm::vec4(0.0f));
     for (size_t c = 0; c < nc; ++c) {
       CellState& s = cells[c];
       CellEnergy& ce = result.cells[c];
@@ -242,6 +281,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       // A cell holding a negligible share waits (its light stays pending, counted as unshot).
       if (!(injected > 1e-6 * target)) {
         for (size_t i = 0; i < s.pending.size(); ++i) nextPending[c][i] += s.pending[i];
+        for (size_t i = 0; i < s.pendingArrivals.size(); ++i) nextArrivals[c][i] += s.pendingArrivals[i];
         nextCarried[c] = s.carried;
         continue;
       }
@@ -249,7 +289,8 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       SolveResult solved;
       {
         auto t = ctx.time("cells: solve");
-        solved = solveProgressive(s.cs.scene, s.atlas, solverParams, gl, ctx);
+        solved = directional ? solveDirectional(s, solverParams, params.lobeMinWidth, gl, ctx)
+                             : solveProgressive(s.cs.scene, s.atlas, solverParams, gl, ctx);
       }
       ++ce.solves;
       ce.shots += solved.shots;
@@ -260,6 +301,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       // What the solve left unshot is shot at the next one; it is in the radiosity already.
       nextCarried[c] = solved.residual;
       for (size_t i = 0; i < s.pending.size(); ++i) nextPending[c][i] += solved.residual[i];
+      if (directional) carryArrivals(s, solved.residual, nextArrivals[c]);
       double collected = 0.0;
       for (const PortalLink& link : links) {
         if (link.from != int(c)) continue;
@@ -277,6 +319,11 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
         glm::vec3 scale(0.0f);
         for (int k = 0; k < 3; ++k) scale[k] = arrived[k] > 0.0 ? float(sent[k] / arrived[k]) : 0.0f;
         for (const auto& [tt, ft] : link.texels) nextPending[link.to][tt] += solved.incident[ft] * scale;
+        // Directional: the moments go along, in world coordinates (the far side's normal is this side's
+        // negated, as the moments assume), weighted like the exitance they describe.
+        if (directional)
+          for (const auto& [tt, ft] : link.texels)
+            nextArrivals[link.to][tt] += solved.arrivals[ft] * ((scale.r + scale.g + scale.b) / 3.0f);
         const double w = sent.r + sent.g + sent.b;
         collected += w;
         ce.sent += w;
@@ -290,6 +337,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     unshot = 0.0;
     for (size_t c = 0; c < nc; ++c) {
       cells[c].pending = std::move(nextPending[c]);
+      if (directional) cells[c].pendingArrivals = std::move(nextArrivals[c]);
       cells[c].carried = nextCarried[c].empty() ? std::vector<glm::vec3>(cells[c].pending.size(), glm::vec3(0.0f))
                                                 : std::move(nextCarried[c]);
       unshot += power(cells[c].pending, cells[c].atlas);

@@ -23,6 +23,13 @@
 
 namespace cpgi {
 
+/// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
+/// directional (the light keeps the directions it arrived with; radiosity/emission_lobes.h).
+enum class PortalLight { Diffuse, Directional };
+const char* portalLightName(PortalLight p);
+/// Parses "diffuse" / "directional"; throws InputError("--portals", ...) otherwise.
+PortalLight parsePortalLight(const std::string& name);
+
 struct CellSolveParams {
   /// Per-cell solver settings. Its unshotFraction is the whole scene's target: rounds go on until the
   /// unshot power everywhere, plus the power held on portals and not yet re-emitted, is at most this
@@ -32,6 +39,11 @@ struct CellSolveParams {
   /// The per-cell atlases use these too (the same charts as the global atlas built with them).
   AtlasParams atlas;
   int maxRounds = 64;  ///< syncs at most (>= 1)
+  PortalLight portals = PortalLight::Diffuse;
+  /// Directional portals: the narrowest lobe, as the standard deviation per axis of sin θ (≈ radians when
+  /// narrow), in (0, 0.45]. A collimated beam gets this width, so that receivers, sampled at texel
+  /// centres, do not alias it; a wider arrival keeps its own width.
+  float lobeMinWidth = 0.05f;
 };
 
 /// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.

@@ -46,7 +46,7 @@ constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
                      kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
                      kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
-                     kTileStats = 16 };
+                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -116,20 +116,24 @@ class PassClock {
 
 class Solver {
  public:
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+         const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
     const std::vector<std::string> visDefine =
         params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
+    std::vector<std::string> receiveDefines = visDefine, pyramidDefines;
+    if (params.directionalEmission) receiveDefines.push_back("DIRECTIONAL"), pyramidDefines.push_back("DIRECTIONAL");
     itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
     compactProgram_ = buildProgram({"compact.comp"});
     finishProgram_ = buildProgram({"finish_lists.comp"});
-    pyramidProgram_ = buildProgram({"shooter_pyramid.comp"});
-    receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
+    pyramidProgram_ = buildProgram({"shooter_pyramid.comp"}, pyramidDefines);
+    receiveProgram_ = buildProgram({"receive.comp"}, receiveDefines);
     statsProgram_ = buildProgram({"patch_stats.comp"});
     tileStatsProgram_ = buildProgram({"tile_stats.comp"});
     selectProgram_ = buildProgram({"select_shooter.comp"});
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     uploadAtlas();
+    if (params.directionalEmission) uploadDirectional(emissionLobes);
     uploadGeometry();
     makeItemBuffer();
     setConstantUniforms();
@@ -164,6 +168,7 @@ class Solver {
     set(pyramidProgram_, "uShooter", shooter);
     set(pyramidProgram_, "uRegionCount", regions);
     set(pyramidProgram_, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission) set(pyramidProgram_, "uShooterNormal", l.normal);
     glUseProgram(pyramidProgram_.get());
     for (int k = 1; k <= levels; ++k) {
       set(pyramidProgram_, "uLevel", k);
@@ -200,6 +205,7 @@ class Solver {
     glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram_, "uToShooter", toShooter);
     set(receiveProgram_, "uShooterNormal", l.normal);
+    if (params_.directionalEmission) set(receiveProgram_, "uShooterLobes", int(hasLobes_[shooter]));
     set(receiveProgram_, "uTexelU", p.texelU);
     set(receiveProgram_, "uTexelV", p.texelV);
     set(receiveProgram_, "uTexelRadius", l.texelRadius);
@@ -222,6 +228,12 @@ class Solver {
   std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
   std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
   std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
+  std::vector<glm::vec4> readArrivals() const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetNamedBufferSubData(arrivals_.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    return v;
+  }
 
  private:
   // The region table (common.glsl, Region) of one shooter; fills levelNodes_ (nodes per level over all
@@ -412,6 +424,25 @@ class Solver {
     glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
 
+  // Per-texel emission lobes (Lambertian when none are given) and zeroed arrival moments.
+  void uploadDirectional(const std::vector<glm::vec4>* lobes) {
+    const size_t n = atlas_.texelCount();
+    if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
+    const std::vector<glm::vec4> lambertian(lobes ? 0 : n, glm::vec4(0.0f));
+    hasLobes_.assign(atlas_.patches.size(), 0);
+    if (lobes)
+      for (size_t i = 0; i < n; ++i)
+        if (atlas_.patch[i] >= 0 && (*lobes)[i] != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
+    emissionLobes_ = gl::makeBuffer(n * sizeof(glm::vec4), lobes ? lobes->data() : lambertian.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEmissionLobes, emissionLobes_.get());
+    arrivals_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
+    const float zero = 0.0f;
+    glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
+    nodeLobes_ = gl::makeBuffer(maxPyramidNodes() * sizeof(glm::vec4), nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodeLobes, nodeLobes_.get());
+  }
+
   void uploadGeometry() {
     // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
     std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
@@ -493,7 +524,8 @@ class Solver {
   SolverParams params_;
   gl::Program itemProgram_, compactProgram_, finishProgram_, pyramidProgram_, receiveProgram_,
       statsProgram_, tileStatsProgram_, selectProgram_;
-  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
+  std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
   std::array<size_t, kMaxLevels + 2> levelNodes_{};
@@ -523,6 +555,11 @@ std::string formatStatus(int shots, double fraction, double eta) {
 
 }  // namespace
 
+namespace {
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx);
+}  // namespace
+
 const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
 
 Visibility parseVisibility(const std::string& name) {
@@ -533,6 +570,19 @@ Visibility parseVisibility(const std::string& name) {
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& context, Context& ctx) {
+  return solveWithLobes(scene, atlas, params, nullptr, context, ctx);
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx) {
+  if (!params.directionalEmission) throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
+  return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx);
+}
+
+namespace {
+
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx) {
   checkParams(params, atlas, context.maxTextureSize());
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -542,7 +592,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params);
+  Solver solver(scene, atlas, params, emissionLobes);
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 
@@ -592,15 +642,19 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
     auto t = ctx.time("solve: read back");
     result.radiosity = solver.readRadiosity();
     if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
+    if (params.directionalEmission) result.arrivals = solver.readArrivals();
   }
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (atlas.patch[i] < 0) {
       result.radiosity[i] = glm::vec3(0.0f);
       if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
+      if (params.directionalEmission) result.arrivals[i] = glm::vec4(0.0f);
     }
   ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
   result.seconds = since(start);
   return result;
 }
+
+}  // namespace
 
 }  // namespace cpgi

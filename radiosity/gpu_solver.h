@@ -60,6 +60,11 @@ struct SolverParams {
   /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
   /// the whole scene would leave such small patches unshot (radiosity/cell_solver.h). 0: off.
   double minShotPower = 0.0;
+  /// Directional emission (radiosity/emission_lobes.h): shooters emit with per-texel lobes (the
+  /// emissionLobes argument of solveProgressive; Lambertian where zero), and every texel accumulates the
+  /// direction moments of what it receives (SolveResult::arrivals). Off: the passes are built without it
+  /// and cost and results are those of the plain solver.
+  bool directionalEmission = false;
 };
 
 /// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,
@@ -78,6 +83,9 @@ struct SolveResult {
   /// With SolverParams::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;
   /// a texel of albedo 0 keeps all of it, e.g. a portal) and the residual still unshot at the end.
   std::vector<glm::vec3> incident, residual;
+  /// With SolverParams::directionalEmission, per atlas texel: the arrival moments of everything it received
+  /// (emission_lobes.h, arrivalMoment), to be fitted into a lobe on the far side of a portal.
+  std::vector<glm::vec4> arrivals;
   int shots = 0;
   double unshotFraction = 0.0;       ///< unshot / emitted at the end (0 when nothing emits)
   EnergyTotals energy;
@@ -92,5 +100,10 @@ struct SolveResult {
 /// Throws InputError for bad params, SystemError for GL failures.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& gl, Context& ctx);
+
+/// The same with SolverParams::directionalEmission on: `emissionLobes` holds one packed lobe per atlas
+/// texel (emission_lobes.h; zero = Lambertian) for the emission and whatever residual the texel shoots.
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& gl, Context& ctx);
 
 }  // namespace cpgi

@@ -25,62 +25,101 @@ uniform vec3 uTexelU, uTexelV;  // the shooter's texel edges (m)
 uniform float uTexelRadius;
 uniform float uFarField;
 
+#ifdef DIRECTIONAL
+#include "directional.glsl"
+vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), stored by main()
+float gReceiverArea = 0.0;  // this receiver texel's area (m²), set by main()
+uniform bool uShooterLobes;  // false: every texel of this shooter is Lambertian, skip the lobes
+#endif
+
+// The directional hook of the kernels below: the contribution f of a shooter piece at receiver + v,
+// scaled by the piece's emission lobe towards the receiver, and its direction noted. Without
+// DIRECTIONAL, f itself.
+vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
+#ifdef DIRECTIONAL
+  if (uShooterLobes)
+    f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
+  noteArrival(gArrival, v, n, f);
+#endif
+  return f;
+}
+
+// A shooter texel's and a pyramid node's lobe (DIRECTIONAL only; else Lambertian).
+vec4 texelLobe(ivec2 t) {
+#ifdef DIRECTIONAL
+  return emissionLobe[texel(t)];
+#else
+  return vec4(0.0);
+#endif
+}
+vec4 nodeLobeAt(int i) {
+#ifdef DIRECTIONAL
+  return nodeLobe[i];
+#else
+  return vec4(0.0);
+#endif
+}
+
 // ΔB F(dA_x → disk): the receiver at x with normal n, a disk of `area` at c facing uShooterNormal.
-vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
+vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return unshot * (area * ci * cs / (r2 * (PI * r2 + area)));
+  return emitted(unshot * (area * ci * cs / (r2 * (PI * r2 + area))), lobe, v, n);
 }
 
 // The same piece seen from afar (r > uFarField × its radius): the "+ A" of the disk formula only keeps
 // F finite as r → 0, and off the axis it biases F low by about A / (π r²) (3 % for a 0.4 m lamp 1.2 m
 // away), so coarse pieces use the point form.
-vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
+vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   vec3 v = c - x;
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return unshot * (area * ci * cs / (PI * r2 * r2));
+  return emitted(unshot * (area * ci * cs / (PI * r2 * r2)), lobe, v, n);
 }
 
 // A far piece (`size` texels, uniform mean radiosity) by 2×2 Gauss points: the point form's error falls
 // from O((R/r)²) to O((R/r)⁴), which is what lets uFarField be as small as 2.
-vec3 piece(vec3 x, vec3 n, Node p, ivec2 size) {
+vec3 piece(vec3 x, vec3 n, Node p, ivec2 size, vec4 l) {
   const float g = 0.5773502692;  // 1/√3
   vec3 hu = 0.5 * g * float(size.x) * uTexelU, hv = 0.5 * g * float(size.y) * uTexelV;
   vec3 c = p.centreArea.xyz;
   float a = 0.25 * p.centreArea.w;
   vec3 rad = p.radiosityRadius.rgb;
-  return point(x, n, c - hu - hv, a, rad) + point(x, n, c + hu - hv, a, rad) +
-         point(x, n, c - hu + hv, a, rad) + point(x, n, c + hu + hv, a, rad);
+  return point(x, n, c - hu - hv, a, rad, l) + point(x, n, c + hu - hv, a, rad, l) +
+         point(x, n, c - hu + hv, a, rad, l) + point(x, n, c + hu + hv, a, rad, l);
 }
 
-bool far(vec3 x, vec3 c, float radius) {
+bool far(vec3 x, vec3 c, float radius, vec4 lobe) {
   vec3 d = c - x;
   float f = uFarField * radius;
+#ifdef DIRECTIONAL
+  if (!lobeResolvesPiece(lobe, uShooterNormal, dot(d, d), radius)) return false;
+#endif
   return dot(d, d) > f * f;
 }
 
 vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
   vec4 pa = posArea[texel(t)];
   vec3 b = residual[texel(t)].rgb;
-  if (far(x, pa.xyz, uTexelRadius)) {
+  vec4 l = texelLobe(t);
+  if (far(x, pa.xyz, uTexelRadius, l)) {
     // 2×2 Gauss points, as for larger pieces: the disk form's "+ A" would bias a texel 2 radii away
     // by up to 1/(2π) ≈ 16 % low.
     const float g = 0.5773502692;
     vec3 hu = 0.5 * g * uTexelU, hv = 0.5 * g * uTexelV;
     float a = 0.25 * pa.w;
-    return point(x, n, pa.xyz - hu - hv, a, b) + point(x, n, pa.xyz + hu - hv, a, b) +
-           point(x, n, pa.xyz - hu + hv, a, b) + point(x, n, pa.xyz + hu + hv, a, b);
+    return point(x, n, pa.xyz - hu - hv, a, b, l) + point(x, n, pa.xyz + hu - hv, a, b, l) +
+           point(x, n, pa.xyz - hu + hv, a, b, l) + point(x, n, pa.xyz + hu + hv, a, b, l);
   }
   // Near: 4×4 sub-disks, where the disk form keeps F finite as r → 0.
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       vec3 c = pa.xyz + (float(i) - 1.5) * 0.25 * uTexelU + (float(j) - 1.5) * 0.25 * uTexelV;
-      sum += disk(x, n, c, pa.w / 16.0, b);
+      sum += disk(x, n, c, pa.w / 16.0, b, l);
     }
   return sum;
 }
@@ -107,11 +146,13 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
       continue;
     }
     ivec2 dims = levelDims(rect, k);
-    Node p = nodes[regions[r].levelOffset[k] + at.y * dims.x + at.x];
+    int index = regions[r].levelOffset[k] + at.y * dims.x + at.x;
+    Node p = nodes[index];
     if (p.centreArea.w <= 0.0) continue;
-    if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w)) {
+    vec4 lobe = nodeLobeAt(index);
+    if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w, lobe)) {
       ivec2 lo = rect.xy + (at << k);
-      sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo);
+      sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo, lobe);
       continue;
     }
     ivec2 below = k == 1 ? rect.zw - rect.xy : levelDims(rect, k - 1);
@@ -126,9 +167,12 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
 
 // ΔB F from region r, unoccluded, at x with normal n.
 vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
-  Node root = nodes[regions[r].levelOffset[regions[r].top.x]];
-  return far(x, root.centreArea.xyz, root.radiosityRadius.w) ? piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy)
-                                                             : fromRegion(x, n, r);
+  int rootIndex = regions[r].levelOffset[regions[r].top.x];
+  Node root = nodes[rootIndex];
+  vec4 lobe = nodeLobeAt(rootIndex);
+  return far(x, root.centreArea.xyz, root.radiosityRadius.w, lobe)
+             ? piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy, lobe)
+             : fromRegion(x, n, r);
 }
 
 void main() {
@@ -146,6 +190,9 @@ void main() {
   if (int(np.w) != tile.z) return;
   vec3 x = posArea[tx].xyz;
   vec3 e = vec3(0.0);
+#ifdef DIRECTIONAL
+  gReceiverArea = posArea[tx].w;
+#endif
   for (int r = 0; r < uRegionCount; ++r) {
     if (!blocksOf(r)) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
@@ -154,6 +201,9 @@ void main() {
     e += fromRegionWhole(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;
+#ifdef DIRECTIONAL
+  arrivals[tx] += gArrival;
+#endif
   vec3 gained = albedo[tx].rgb * e;
   incident[tx] = incident[tx] + vec4(e, 0.0);
   radiosity[tx] = radiosity[tx] + vec4(gained, 0.0);

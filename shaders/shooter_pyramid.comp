@@ -6,6 +6,10 @@
 #include "atlas_buffers.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = 15) buffer Nodes { Node nodes[]; };
+#ifdef DIRECTIONAL
+#include "directional.glsl"
+uniform vec3 uShooterNormal;
+#endif
 uniform int uShooter;
 uniform int uLevel;          // >= 1
 uniform int uRegionCount;
@@ -26,6 +30,10 @@ void main() {
   ivec2 node = ivec2(g % dims.x, g / dims.x);
   vec3 power = vec3(0.0), moment = vec3(0.0);
   float area = 0.0, radius = 0.0;
+#ifdef DIRECTIONAL
+  // The node's lobe: the moment-matched mixture of its texels' (or children's, which gives the same).
+  LobeMix lobes = LobeMix(vec4(0.0), vec4(0.0));
+#endif
   if (uLevel == 1) {
     ivec2 lo = rect.xy + 2 * node, hi = min(lo + 2, rect.zw);
     for (int y = lo.y; y < hi.y; ++y)
@@ -36,6 +44,10 @@ void main() {
         power += residual[t].rgb * pa.w;
         moment += pa.xyz * pa.w;
         area += pa.w;
+#ifdef DIRECTIONAL
+        vec3 b = residual[t].rgb;
+        lobes = addLobe(lobes, emissionLobe[t], uShooterNormal, (b.r + b.g + b.b) * pa.w);
+#endif
       }
     vec3 centre = area > 0.0 ? moment / area : vec3(0.0);
     for (int y = lo.y; y < hi.y; ++y)
@@ -54,6 +66,10 @@ void main() {
         power += c.radiosityRadius.rgb * c.centreArea.w;
         moment += c.centreArea.xyz * c.centreArea.w;
         area += c.centreArea.w;
+#ifdef DIRECTIONAL
+        vec3 b = c.radiosityRadius.rgb;
+        lobes = addLobe(lobes, nodeLobe[base + y * below.x + x], uShooterNormal, (b.r + b.g + b.b) * c.centreArea.w);
+#endif
       }
     vec3 centre = area > 0.0 ? moment / area : vec3(0.0);
     for (int y = lo.y; y < hi.y; ++y)
@@ -66,4 +82,7 @@ void main() {
   n.centreArea = vec4(area > 0.0 ? moment / area : vec3(0.0), area);
   n.radiosityRadius = vec4(area > 0.0 ? power / area : vec3(0.0), radius);
   nodes[regions[r].levelOffset[uLevel] + g] = n;
+#ifdef DIRECTIONAL
+  nodeLobe[regions[r].levelOffset[uLevel] + g] = mixedLobe(lobes, uShooterNormal);
+#endif
 }

@@ -119,13 +119,16 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   if (graph.empty()) throw InputError("--cells", "the cell graph has no cells");
   const CellValidation validation = validateCells(scene, graph);
   if (!validation.errors.empty()) throw InputError("--cells", validation.errors.front());
-  for (const std::string& w : validation.warnings) ctx.warn(w);
+  if (!params.partOfGraph)
+    for (const std::string& w : validation.warnings) ctx.warn(w);
   if (params.maxRounds < 1) throw InputError("solver", "cell rounds must be at least 1");
 
   const size_t nc = graph.cells.size();
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
   std::vector<int32_t> localIndex(scene.triangles.size(), -1);
   std::vector<CellState> cells(nc);
+  std::vector<char> boundary(nc, 0);
+  for (int c : params.boundaryCells) boundary.at(size_t(c)) = 1;
   std::vector<int32_t> source;
   {
     auto t = ctx.time("cells: atlases");
@@ -133,7 +136,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       CellState& s = cells[c];
       s.cs = makeCellScene(scene, graph, int(c));
       for (size_t i = 0; i < s.cs.ownTriangles; ++i) localIndex[s.cs.globalTriangle[i]] = int32_t(i);
-      s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), params.atlas, ctx);
+      s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), boundary[c] ? params.boundaryAtlas : params.atlas, ctx);
       const std::vector<int> patchOf = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
       for (size_t k = 0; k < s.cs.portals.size(); ++k) s.portalPatch.push_back(patchOf[s.cs.ownTriangles + 2 * k]);
       s.pending.assign(s.atlas.texelCount(), glm::vec3(0.0f));
@@ -146,7 +149,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     for (size_t gp = 0; gp < global.patches.size(); ++gp) {
       const Patch& P = global.patches[gp];
       const int c = cellOf[P.triangles[0]];
-      if (c < 0) continue;
+      if (c < 0 || boundary[c]) continue;
       CellState& s = cells[c];
       const int local = localIndex[P.triangles[0]];
       int q = -1;
@@ -168,7 +171,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   }
   size_t unassigned = 0;
   for (int c : cellOf) unassigned += c < 0;
-  if (unassigned > 0) ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
+  if (unassigned > 0 && !params.partOfGraph) ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
 
   // Portal links both ways.
   std::vector<PortalLink> links;
@@ -202,6 +205,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     result.cells[c].name = graph.cells[c].name;
     result.cells[c].emitted = power(cells[c].pending, cells[c].atlas);
     result.cells[c].texels = cells[c].atlas.validTexels();
+    result.cells[c].written = !boundary[c];
     result.emitted += result.cells[c].emitted;
     result.maxCellTexels = std::max(result.maxCellTexels, result.cells[c].texels);
   }
@@ -297,6 +301,48 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     if (global.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
+  AtlasParams coarse = atlas;
+  if (atlas.texelsPerQuad > 0)
+    coarse.texelsPerQuad = std::max(2, atlas.texelsPerQuad / 4);
+  else
+    coarse.density = atlas.density / 4.0f;
+  return coarse;
+}
+
+CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+                                   BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
+                                   const EglContext& gl, Context& ctx) {
+  if (selection.baked.empty()) throw InputError("cells", "an on-demand bake needs at least one cell");
+  const CellValidation validation = validateCells(scene, graph);
+  if (!validation.errors.empty()) throw InputError("--cells", validation.errors.front());
+  for (const std::string& w : validation.warnings) ctx.warn(w);
+
+  // The solved part of the graph: baked cells, boundary cells in Coarse mode, the portals between them.
+  std::vector<int> solved = selection.baked;
+  if (mode == BoundaryMode::Coarse) solved.insert(solved.end(), selection.boundary.begin(), selection.boundary.end());
+  std::sort(solved.begin(), solved.end());
+  std::vector<int> subIndex(graph.cells.size(), -1);
+  CellGraph sub;
+  CellSolveParams subParams = params;
+  subParams.partOfGraph = true;
+  subParams.boundaryAtlas = coarseAtlasParams(params.atlas);
+  subParams.boundaryCells.clear();
+  for (int c : solved) {
+    subIndex[c] = int(sub.cells.size());
+    if (!std::binary_search(selection.baked.begin(), selection.baked.end(), c))
+      subParams.boundaryCells.push_back(int(sub.cells.size()));
+    sub.cells.push_back(graph.cells[c]);
+  }
+  for (const PortalQuad& q : graph.portals) {
+    if (q.cellA < 0 || q.cellB < 0 || subIndex[q.cellA] < 0 || subIndex[q.cellB] < 0) continue;
+    PortalQuad p = q;
+    p.cellA = subIndex[q.cellA], p.cellB = subIndex[q.cellB];
+    sub.portals.push_back(p);
+  }
+  return solveCells(scene, sub, global, subParams, gl, ctx);
 }
 
 }  // namespace cpgi

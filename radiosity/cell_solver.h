@@ -18,6 +18,7 @@
 #include "core/quads.h"
 #include "core/scene.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_selection.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/gpu_solver.h"
 
@@ -32,6 +33,13 @@ struct CellSolveParams {
   /// The per-cell atlases use these too (the same charts as the global atlas built with them).
   AtlasParams atlas;
   int maxRounds = 64;  ///< syncs at most (>= 1)
+  /// On-demand bakes (solveCellsOnDemand): cells of the graph solved on `boundaryAtlas` only to light
+  /// their neighbours through the portals; their texels are not written.
+  std::vector<int> boundaryCells;
+  AtlasParams boundaryAtlas;
+  /// Set by solveCellsOnDemand: the graph is part of the scene's, so triangles in no cell and a
+  /// disconnected graph are expected (the whole graph was validated and warned about).
+  bool partOfGraph = false;
 };
 
 /// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.
@@ -46,6 +54,7 @@ struct CellEnergy {
   int solves = 0, shots = 0;
   size_t texels = 0;      ///< valid texels of its atlas, portals included
   double seconds = 0.0;   ///< its solves
+  bool written = true;    ///< false for an on-demand bake's boundary cell (solved, texels left black)
 };
 
 struct PortalEnergy {
@@ -85,5 +94,17 @@ void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtla
 /// graph is unusable (validateCells errors); triangles in no cell stay black (a warning in ctx).
 CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
                            const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+/// An on-demand bake (radiosity/cell_selection.h): solveCells over the selection's baked cells and, in
+/// Coarse mode, its boundary cells on a coarse atlas (a quarter of `params.atlas`'s texels per edge);
+/// only the baked cells' texels are written. Portals to cells left out are open (light leaving through
+/// them counts as escaped). `result.cells` lists the solved cells in graph order (boundary ones with
+/// written = false); `result.portals` the portals between them.
+CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+                                   BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
+                                   const EglContext& gl, Context& ctx);
+
+/// The boundary cells' atlas: a quarter of the texels per edge of `atlas` (at least 2 per quad edge).
+AtlasParams coarseAtlasParams(const AtlasParams& atlas);
 
 }  // namespace cpgi

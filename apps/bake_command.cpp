@@ -1,5 +1,5 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse] [--max-rounds N]
-//  [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark]
+//  [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 //  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
 //  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
 // the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
@@ -48,6 +48,7 @@ struct BakeOptions {
   std::string around;     ///< on demand: "X,Y,Z"
   int depth = 0;          ///< with `around`: portals away from the point's cell
   std::string boundary = boundaryModeName(BoundaryMode::Coarse);
+  int jobs = CellSolveParams{}.jobs;
   int texelsPerQuad = 0;
   float density = AtlasParams{}.density;
   double unshot = SolverParams{}.unshotFraction;
@@ -226,6 +227,7 @@ int runBake(const BakeOptions& o) {
     params.solver = solverParams;
     params.atlas = atlasParams;
     params.maxRounds = o.maxRounds;
+    params.jobs = o.jobs;
     cellSolved = onDemand.active ? solveCellsOnDemand(loaded.scene, graph, onDemand.selection, onDemand.mode,
                                                       atlas, params, *gl, ctx)
                                  : solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
@@ -318,6 +320,7 @@ int runBake(const BakeOptions& o) {
     report["energy"].erase("shot_w");
     report["energy"].erase("received_w");
     report["rounds"] = cellSolved.rounds;
+    report["jobs"] = o.jobs;
     report["portal_mode"] = o.portals;
     report["max_cell_texels"] = cellSolved.maxCellTexels;
     nlohmann::json cells = nlohmann::json::array(), portals = nlohmann::json::array();
@@ -395,6 +398,11 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
                   "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their "
                   "lamps and bounces light the baked cells through the portals; not written) or dark")
       ->check(CLI::IsMember({"coarse", "dark"}))
+      ->capture_default_str();
+  sub->add_option("--jobs", o->jobs,
+                  "With --method cells: cells solved at once in a round, each on its own thread and OpenGL "
+                  "context (same result as 1)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   auto* tpq = sub->add_option("--texels-per-quad", o->texelsPerQuad,
                               "N×N texels per quad whatever its size (the thesis's mode)")

@@ -33,6 +33,9 @@ struct CellSolveParams {
   /// The per-cell atlases use these too (the same charts as the global atlas built with them).
   AtlasParams atlas;
   int maxRounds = 64;  ///< syncs at most (>= 1)
+  /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
+  /// (radiosity/cell_workers.h). Any value gives the same result as 1.
+  int jobs = 1;
   /// On-demand bakes (solveCellsOnDemand): cells of the graph solved on `boundaryAtlas` only to light
   /// their neighbours through the portals; their texels are not written.
   std::vector<int> boundaryCells;

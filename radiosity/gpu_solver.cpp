@@ -113,19 +113,42 @@ class PassClock {
   std::map<std::string, double> seconds_;
 };
 
+}  // namespace
+
+struct SolverPrograms::Set {
+  explicit Set(Visibility v) {
+    const std::vector<std::string> visDefine =
+        v == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
+    item = buildProgram({"item.vert", "item.frag"}, visDefine);
+    compact = buildProgram({"compact.comp"});
+    finish = buildProgram({"finish_lists.comp"});
+    blocks = buildProgram({"shooter_blocks.comp"});
+    receive = buildProgram({"receive.comp"}, visDefine);
+    stats = buildProgram({"patch_stats.comp"});
+    select = buildProgram({"select_shooter.comp"});
+  }
+  gl::Program item, compact, finish, blocks, receive, stats, select;
+};
+
+SolverPrograms::SolverPrograms() = default;
+SolverPrograms::~SolverPrograms() = default;
+
+const SolverPrograms::Set& SolverPrograms::get(Visibility v) {
+  std::unique_ptr<Set>& set = sets_[v == Visibility::Hemisphere ? 0 : 1];
+  if (!set) set = std::make_unique<Set>(v);
+  return *set;
+}
+
+namespace {
+
 class Solver {
  public:
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params)
-      : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
-    const std::vector<std::string> visDefine =
-        params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
-    itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
-    compactProgram_ = buildProgram({"compact.comp"});
-    finishProgram_ = buildProgram({"finish_lists.comp"});
-    blocksProgram_ = buildProgram({"shooter_blocks.comp"});
-    receiveProgram_ = buildProgram({"receive.comp"}, visDefine);
-    statsProgram_ = buildProgram({"patch_stats.comp"});
-    selectProgram_ = buildProgram({"select_shooter.comp"});
+  // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params, const SolverPrograms::Set& programs)
+      : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
+        compactProgram_(programs.compact), finishProgram_(programs.finish), blocksProgram_(programs.blocks),
+        receiveProgram_(programs.receive), statsProgram_(programs.stats), selectProgram_(programs.select),
+        clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions, params.maxBlocks});
     uploadAtlas();
     uploadGeometry();
@@ -412,8 +435,8 @@ class Solver {
   const Scene& scene_;
   const LightmapAtlas& atlas_;
   SolverParams params_;
-  gl::Program itemProgram_, compactProgram_, finishProgram_, blocksProgram_, receiveProgram_,
-      statsProgram_, selectProgram_;
+  const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &blocksProgram_, &receiveProgram_,
+      &statsProgram_, &selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_;
   gl::Texture items_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
@@ -451,6 +474,12 @@ Visibility parseVisibility(const std::string& name) {
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& context, Context& ctx) {
+  SolverPrograms programs;
+  return solveProgressive(scene, atlas, params, context, ctx, programs);
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& context, Context& ctx, SolverPrograms& programs) {
   checkParams(params, atlas, context.maxTextureSize());
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -460,7 +489,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params);
+  Solver solver(scene, atlas, params, programs.get(params.visibility));
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,10 +89,31 @@ struct SolveResult {
   double setupSeconds = 0.0;         ///< programs and textures
 };
 
+/// The solver's GLSL programs, compiled once and reused by every solve given the same object (a cell
+/// solve runs once per cell and round). llvmpipe translates a program to machine code at its first draw
+/// or dispatch, so a fresh set per solve costs setup time and slower first shots. Belongs to the
+/// context (and thread) current when the first solve used it.
+class SolverPrograms {
+ public:
+  SolverPrograms();
+  ~SolverPrograms();
+  SolverPrograms(const SolverPrograms&) = delete;
+  SolverPrograms& operator=(const SolverPrograms&) = delete;
+  struct Set;  // gpu_solver.cpp
+  /// The programs for one visibility mode, compiled at first use.
+  const Set& get(Visibility v);
+
+ private:
+  std::unique_ptr<Set> sets_[2];
+};
+
 /// Solves the atlas. `scene` supplies occluders: every scene triangle is drawn in the item buffer, those
 /// outside the atlas with no patch (they block light but receive none).
 /// Throws InputError for bad params, SystemError for GL failures.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& gl, Context& ctx);
+/// The same, with programs compiled by an earlier solve on this context (identical results).
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& gl, Context& ctx, SolverPrograms& programs);
 
 }  // namespace cpgi

@@ -352,9 +352,9 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
 AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
   AtlasParams coarse = atlas;
   if (atlas.texelsPerQuad > 0)
-    coarse.texelsPerQuad = std::max(2, atlas.texelsPerQuad / 4);
+    coarse.texelsPerQuad = std::max(2, atlas.texelsPerQuad / 2);
   else
-    coarse.density = atlas.density / 4.0f;
+    coarse.density = atlas.density / 2.0f;
   return coarse;
 }
 

@@ -95,7 +95,7 @@ TEST_F(OnDemandBake, OneRoomIsLitThroughItsDoorsAndTheRestIsBlack) {
     den += one.area[i] * glm::dot(glm::dvec3(whole.rgb.pixels[i]), glm::dvec3(whole.rgb.pixels[i]));
   }
   EXPECT_EQ(lit, bakedTexels);
-  EXPECT_LT(std::sqrt(num / den), 0.10);
+  EXPECT_LT(std::sqrt(num / den), 0.07);  // measured 0.046 (boundary rooms at 2² texels per quad)
 
   // Dark boundary: B has no lamp, so nothing at all.
   const test::CommandRun d = bake("only-b-dark", "--only-cells B --boundary dark");

@@ -144,7 +144,7 @@ TEST_F(OnDemandSolve, OneRoomWithCoarseNeighbours) {
   EXPECT_TRUE(blackOutside(r, {1}));
   const double error = errorIn(r, 1);
   std::printf("room B on demand (coarse A, C) against the whole cells solve: relative RMSE %.4f\n", error);
-  EXPECT_LT(error, 0.10);
+  EXPECT_LT(error, 0.07);  // measured 0.046
   ASSERT_EQ(r.cells.size(), 3u);
   EXPECT_FALSE(r.cells[0].written);
   EXPECT_TRUE(r.cells[1].written);

@@ -13,13 +13,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <tuple>
 #include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "apps/cell_source.h"
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -71,49 +70,6 @@ Context::ProgressFn progressPrinter(bool quiet) {
   };
 }
 
-// The cell graph for `--method cells`: the scene's own cells, those of another glTF of the same scene
-// (its triangles matched by centroid), or the automatic decomposition (which may split triangles on
-// portal planes, so it replaces the scene).
-CellGraph resolveCells(const BakeOptions& o, LoadedScene& loaded, Context& ctx) {
-  if (o.cells == "none")
-    throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
-  if (o.cells == "auto") {
-    auto t = ctx.time("decompose");
-    decomp::DecomposeParams params;
-    params.sourceName = o.scene;
-    decomp::Decomposition d = decomp::decompose(loaded.scene, params, ctx);
-    if (d.graph.cells.size() < 2) ctx.warn(o.scene + ": the automatic decomposition found one cell");
-    loaded.scene = std::move(d.scene);
-    return std::move(d.graph);
-  }
-  if (!std::filesystem::exists(o.cells)) throw InputError("--cells", o.cells + ": no such file");
-  if (std::filesystem::equivalent(o.cells, o.scene)) {
-    if (loaded.cells.empty()) throw InputError(o.cells, "has no cell:/portal: nodes");
-    return loaded.cells;
-  }
-  LoadedScene other = loadScene(o.cells, LoadOptions{.repair = o.repair});
-  if (other.cells.empty()) throw InputError(o.cells, "has no cell:/portal: nodes");
-  // Same scene, maybe another file order: match triangles by their centroid to the millimetre.
-  auto key = [](const Triangle& t) {
-    const glm::ivec3 k = glm::ivec3(glm::round(t.centroid() * 1000.0f));
-    return std::tuple{k.x, k.y, k.z};
-  };
-  std::map<std::tuple<int, int, int>, int> cellAt;
-  const std::vector<int> otherCell = other.cells.cellOfTriangle(other.scene.triangles.size());
-  for (size_t t = 0; t < other.scene.triangles.size(); ++t) cellAt[key(other.scene.triangles[t])] = otherCell[t];
-  CellGraph graph = other.cells;
-  for (Cell& c : graph.cells) c.triangles.clear();
-  size_t unmatched = 0;
-  for (size_t t = 0; t < loaded.scene.triangles.size(); ++t) {
-    const auto it = cellAt.find(key(loaded.scene.triangles[t]));
-    if (it == cellAt.end()) ++unmatched;
-    else if (it->second >= 0) graph.cells[it->second].triangles.push_back(uint32_t(t));
-  }
-  if (unmatched > 0)
-    ctx.warn(o.cells + ": " + std::to_string(unmatched) + " triangles of the scene are not in the cells file");
-  return graph;
-}
-
 // On-demand bakes (radiosity/cell_selection.h): the cells to bake, or nothing for a whole bake.
 struct OnDemand {
   bool active = false;
@@ -154,13 +110,8 @@ nlohmann::json onDemandReport(const BakeOptions& o, const OnDemand& d, const Cel
   // Texels of the atlas that belong to baked cells: the only ones with light.
   std::vector<char> baked(graph.cells.size(), 0);
   for (int c : d.selection.baked) baked[c] = 1;
-  const std::vector<int> cellOf = graph.cellOfTriangle(atlas.triangleUV.size());
   size_t texels = 0;
-  for (size_t i = 0; i < atlas.texelCount(); ++i) {
-    if (atlas.patch[i] < 0) continue;
-    const int c = cellOf[atlas.patches[atlas.patch[i]].triangles[0]];
-    texels += c >= 0 && baked[c];
-  }
+  for (int c : cellOfTexels(atlas, graph, atlas.triangleUV.size())) texels += c >= 0 && baked[c];
   nlohmann::json j = {{"baked", names(d.selection.baked)},
                       {"boundary", names(d.selection.boundary)},
                       {"dark", names(d.selection.dark)},
@@ -199,7 +150,8 @@ int runBake(const BakeOptions& o) {
   }
   for (const std::string& w : loaded.warnings) ctx.warn(w);
   CellGraph graph;
-  if (o.method == "cells") graph = resolveCells(o, loaded, ctx);
+  if (o.method == "cells")
+    graph = resolveCells(o.cells, o.scene, loaded, decomp::DecomposeParams{}, o.repair, ctx);
   const OnDemand onDemand = resolveOnDemand(o, loaded.scene, graph);
   OutputDir out(o.output);
 
@@ -375,7 +327,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   sub->add_option("--cells", o->cells,
                   "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
-                  "or auto (the automatic decomposition)")
+                  "a decompose output folder, or auto (the automatic decomposition)")
       ->capture_default_str();
   sub->add_option("--portals", o->portals, "Portal light with --method cells: diffuse (re-emits irradiance)")
       ->check(CLI::IsMember({"diffuse"}))

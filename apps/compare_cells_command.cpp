@@ -1,7 +1,9 @@
 // cpgi compare-cells SCENE A B: two cell decompositions of one scene, as labels of the same empty voxels.
 // A and B are each `auto` (decompose SCENE now and use its voxel labels), a scene file with cells
 // (cell:/portal:/cellvolume: nodes, e.g. a decompose output's cells.glb or the hand-made scene itself), or
-// a decompose output folder. B is the reference.
+// a decompose output folder. B is the reference. With --bake, SCENE is also baked with each (`bake --method
+// cells`) and both bakes are measured against a path-traced reference (apps/compare_cells_bake.h).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/cell_source.h"
 #include "apps/commands.h"
+#include "apps/compare_cells_bake.h"
 #include "core/error.h"
 #include "core/scene_io.h"
 #include "decomposition/compare.h"
@@ -23,25 +27,40 @@ struct CompareOptions {
   std::string scene, a, b;
   double voxel = 0.0;
   bool json = false;
+  bool bake = false;
+  int texelsPerQuad = 0;
+  float density = AtlasParams{}.density;
+  double unshot = SolverParams{}.unshotFraction;
+  int itemBuffer = SolverParams{}.itemBuffer;
+  int spp = 64;
 };
 
 struct Labelled {
   std::string source;
   CellGraph graph;
   std::vector<int32_t> labels;
+  double decomposeSeconds = 0.0;  ///< auto only
+  CellsToBake bake;               ///< with --bake: the scene and graph `bake --method cells` would use
 };
 
-Labelled labelsFor(const std::string& what, const Scene& scene, const std::string& scenePath,
-                   const decomp::VoxelSpace& space, Context& ctx) {
+Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std::string& scenePath,
+                   const decomp::VoxelSpace& space, bool forBake, Context& ctx) {
   Labelled out;
   out.source = what;
+  out.bake.source = what;
   if (what == "auto") {
     decomp::DecomposeParams p;
     p.voxelSize = space.frame.voxel;
     p.sourceName = scenePath;
-    decomp::Decomposition d = decomp::decompose(scene, p, ctx);
+    const auto start = std::chrono::steady_clock::now();
+    decomp::Decomposition d = decomp::decompose(scene.scene, p, ctx);
+    out.decomposeSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (d.frame.dims != space.frame.dims)
       throw SystemError("compare-cells: the automatic decomposition's grid differs from the scene's");
+    if (forBake) {  // the very decomposition compared, split triangles and all
+      out.bake.scene = std::move(d.scene);
+      out.bake.graph = d.graph;
+    }
     out.graph = std::move(d.graph);
     out.labels = std::move(d.voxelCell);
     return out;
@@ -54,6 +73,12 @@ Labelled labelsFor(const std::string& what, const Scene& scene, const std::strin
   out.source = path;
   out.graph = std::move(loaded.cells);
   out.labels = decomp::labelsFromCells(loaded.scene, out.graph, space.frame, space.space);
+  if (forBake) {
+    LoadedScene copy = scene;
+    out.bake.source = path;
+    out.bake.graph = resolveCells(path, scenePath, copy, decomp::DecomposeParams{}, true, ctx);
+    out.bake.scene = std::move(copy.scene);
+  }
   return out;
 }
 
@@ -65,8 +90,8 @@ int runCompare(const CompareOptions& o) {
   Context ctx;
   const double h = decomp::chooseVoxelSize(loaded.scene, params);
   const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx);
-  const Labelled a = labelsFor(o.a, loaded.scene, o.scene, space, ctx);
-  const Labelled b = labelsFor(o.b, loaded.scene, o.scene, space, ctx);
+  const Labelled a = labelsFor(o.a, loaded, o.scene, space, o.bake, ctx);
+  const Labelled b = labelsFor(o.b, loaded, o.scene, space, o.bake, ctx);
 
   size_t both = 0, inside = 0;
   for (size_t i = 0; i < space.space.size(); ++i) {
@@ -121,6 +146,18 @@ int runCompare(const CompareOptions& o) {
   if (unmatched) j["portal_centre_error_m"] = nullptr;
   else j["portal_centre_error_m"] = worst;
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
+  if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
+  if (o.b == "auto") j["decompose_seconds_b"] = b.decomposeSeconds;
+  if (o.bake) {
+    CellBakeComparison params;
+    params.atlas.texelsPerQuad = o.texelsPerQuad;
+    params.atlas.density = o.density;
+    params.solver.unshotFraction = o.unshot;
+    params.solver.itemBuffer = o.itemBuffer;
+    params.reference.spp = o.spp;
+    j["bake"] = compareCellBakes(a.bake, b.bake, params, ctx);
+  }
+  j["warnings"] = ctx.warnings();
 
   if (o.json) {
     std::cout << j.dump(2) << "\n";
@@ -140,6 +177,8 @@ int runCompare(const CompareOptions& o) {
                 b.graph.portals[size_t(m.reference)].name.c_str(), a.graph.portals[size_t(m.candidate)].name.c_str(),
                 m.centreDistance, m.normalAngle, m.areaRatio);
   }
+  if (o.bake) printCellBakes(j["bake"]);
+  for (const std::string& w : ctx.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return 0;
 }
 
@@ -156,7 +195,34 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("a", o->a, "Candidate decomposition")->required();
   cmd->add_option("b", o->b, "Reference decomposition")->required();
   cmd->add_option("--voxel", o->voxel, "Voxel edge, metres; 0 = as decompose chooses")->capture_default_str();
-  cmd->add_flag("--json", o->json, "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m)");
+  cmd->add_flag("--json", o->json,
+                "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m; with "
+                "--bake, a bake object: a, b, references, difference_points)");
+  CLI::Option* bake = cmd->add_flag(
+      "--bake", o->bake,
+      "Also bake SCENE with A's and with B's cells (bake --method cells) and give each bake's seconds, shots, "
+      "rounds and relative RMSE against a path-traced reference on the same atlas");
+  auto* tpq = cmd->add_option("--texels-per-quad", o->texelsPerQuad,
+                              "With --bake: N x N texels per quad whatever its size")
+                  ->check(CLI::Range(1, 4096))
+                  ->needs(bake);
+  auto* density = cmd->add_option("--density", o->density, "With --bake: texels per metre along each patch edge")
+                      ->check(kPositive)
+                      ->capture_default_str()
+                      ->needs(bake);
+  tpq->excludes(density);
+  cmd->add_option("--unshot", o->unshot, "With --bake: stop when this fraction of the emitted power is unshot")
+      ->check(CLI::Range(1e-9, 0.999999))
+      ->capture_default_str()
+      ->needs(bake);
+  cmd->add_option("--item-buffer", o->itemBuffer, "With --bake: item-buffer edge in pixels")
+      ->check(CLI::Range(16, 8192))
+      ->capture_default_str()
+      ->needs(bake);
+  cmd->add_option("--spp", o->spp, "With --bake: reference paths per texel (noise falls as 1/sqrt(spp))")
+      ->check(CLI::Range(2, 1 << 20))
+      ->capture_default_str()
+      ->needs(bake);
   cmd->callback([o, &selected] { selected = [o] { return runCompare(*o); }; });
 }
 

@@ -72,10 +72,7 @@ int main(int argc, char** argv) {
   if (!onDemand) return 0;
 
   // Cell of every global texel, for the errors.
-  std::vector<int> cellOfTexel(atlas.texelCount(), -1);
-  const std::vector<int> cellOf = seed.cells.cellOfTriangle(seed.scene.triangles.size());
-  for (size_t i = 0; i < atlas.texelCount(); ++i)
-    if (atlas.patch[i] >= 0) cellOfTexel[i] = cellOf[atlas.patches[atlas.patch[i]].triangles[0]];
+  const std::vector<int> cellOfTexel = cpgi::cellOfTexels(atlas, seed.cells, seed.scene.triangles.size());
 
   std::printf("baked    boundary  mode    seconds  shots  solved_texels  rel_rmse_baked\n");
   auto run = [&](const std::vector<int>& baked, cpgi::BoundaryMode mode) {

@@ -3,7 +3,8 @@
 method, bake the reference on the same atlas, and put seconds beside the relative RMSE against it.
 
 Writes OUT/results.json, OUT/results.csv and OUT/table.md (the thesis's Table 9.1 layout with our figures),
-and with --plot one error-against-seconds plot per scene (PNG and SVG; the Pareto front named).
+and with --plot one error-against-seconds plot per scene (PNG and SVG) by bench/plot_speed_accuracy.py, which
+also plots an existing results.csv on its own. Plotting needs matplotlib (`apt-get install python3-matplotlib`).
 
   bench/speed_accuracy.py --cpgi build/apps/cpgi --out out/bench --scenes seed1,seed3 --reps 3 --plot
 
@@ -98,6 +99,10 @@ def main():
                     "unshot_fraction": report.get("unshot_fraction"),
                     "rel_rmse": err["rel_rmse"], "rel_mean_error": err["rel_mean_error"],
                     "reference_noise": ref_report.get("noise_rel_rmse", ref_report.get("noise")),
+                    # Without the lamp texels, which dominate the all-texel figure (bench/RESULTS.md).
+                    "rel_rmse_nonemissive": err.get("rel_rmse_nonemissive"),
+                    "rel_mean_error_nonemissive": err.get("rel_mean_error_nonemissive"),
+                    "reference_noise_nonemissive": ref_report.get("noise_nonemissive"),
                     "reference_seconds": ref_report.get("seconds"),
                 }
                 rows.append(row)
@@ -110,8 +115,8 @@ def main():
             w.writeheader()
             w.writerows(rows)
     write_table(rows, os.path.join(args.out, "table.md"))
-    if args.plot:
-        plot(rows, args.out)
+    if args.plot and rows:
+        plot(args.out)
 
 
 def write_table(rows, path):
@@ -129,43 +134,12 @@ def write_table(rows, path):
     open(path, "w").write("\n".join(lines) + "\n")
 
 
-def pareto(points):
-    """Indices of the points no other point beats in both seconds and error."""
-    front = []
-    for i, (t, e) in enumerate(points):
-        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for j, (t2, e2) in enumerate(points) if j != i):
-            front.append(i)
-    return front
-
-
-def plot(rows, out):
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        sys.exit("speed_accuracy: --plot needs matplotlib (apt-get install python3-matplotlib; run with /usr/bin/python3)")
-    for scene in dict.fromkeys(r["scene"] for r in rows):
-        mine = [r for r in rows if r["scene"] == scene]
-        fig, ax = plt.subplots(figsize=(7, 5))
-        for method in dict.fromkeys(r["method"] for r in mine):
-            pts = [r for r in mine if r["method"] == method]
-            ax.plot([r["seconds"] for r in pts], [100 * r["rel_rmse"] for r in pts], "o-", label=method)
-        front = pareto([(r["seconds"], r["rel_rmse"]) for r in mine])
-        for i in front:
-            r = mine[i]
-            ax.annotate(f"{r['method']} {r['resolution']}", (r["seconds"], 100 * r["rel_rmse"]),
-                        textcoords="offset points", xytext=(5, 5), fontsize=7)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("seconds (whole bake, median)")
-        ax.set_ylabel("relative RMSE against the reference (%)")
-        ax.set_title(f"{scene}: error against time (Pareto front named)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        for ext in ("png", "svg"):
-            fig.savefig(os.path.join(out, f"{scene}-pareto.{ext}"), dpi=120, bbox_inches="tight")
-        plt.close(fig)
+def plot(out):
+    """bench/plot_speed_accuracy.py on the results just written (its own interpreter: Debian's matplotlib)."""
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "plot_speed_accuracy.py")
+    proc = subprocess.run([script, os.path.join(out, "results.csv")])
+    if proc.returncode:
+        sys.exit("speed_accuracy: plotting failed")
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "radiosity/quad_grids.h"
 
 namespace cpgi {
 namespace {
@@ -95,35 +96,32 @@ glm::vec2 atlasUV(const LightmapAtlas& atlas, float x, float y) {
   return {x / float(atlas.width), y / float(atlas.height)};
 }
 
-void fillQuad(LightmapAtlas& atlas, int patchIndex, const Quad& q, const Scene& scene) {
-  const Patch& p = atlas.patches[patchIndex];
+void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 4>& corners, const Scene& scene) {
+  Patch& p = atlas.patches[patchIndex];
   const Material& m = scene.materials[p.material];
-  const glm::vec3 u = q.corners[1] - q.corners[0], v = q.corners[3] - q.corners[0];
+  const glm::vec3 u = corners[1] - corners[0], v = corners[3] - corners[0];
   const float texelArea = p.area / float(p.w * p.h);
-  Patch& chart = atlas.patches[patchIndex];
-  chart.origin = q.corners[0], chart.texelU = u / float(p.w), chart.texelV = v / float(p.h);
+  p.origin = corners[0], p.texelU = u / float(p.w), p.texelV = v / float(p.h);
   for (int j = 0; j < p.h; ++j)
     for (int i = 0; i < p.w; ++i) {
       const size_t t = size_t(p.y + j) * atlas.width + (p.x + i);
       atlas.patch[t] = patchIndex;
-      atlas.position[t] = q.corners[0] + (float(i) + 0.5f) / float(p.w) * u + (float(j) + 0.5f) / float(p.h) * v;
+      atlas.position[t] = corners[0] + (float(i) + 0.5f) / float(p.w) * u + (float(j) + 0.5f) / float(p.h) * v;
       atlas.normal[t] = p.normal;
       atlas.albedo[t] = m.albedo;
       atlas.emission[t] = m.emission;
       atlas.area[t] = texelArea;
     }
-  // Each triangle corner is one of the quad's corners; corner k sits at this chart corner.
-  const glm::vec2 chartCorner[4] = {{p.x, p.y}, {p.x + p.w, p.y}, {p.x + p.w, p.y + p.h}, {p.x, p.y + p.h}};
-  for (uint32_t tri : q.triangles) {
+  // Every triangle corner is a tile corner, so its chart coordinates are whole multiples of a tile's
+  // texels: project on the rectangle's edges and round.
+  const float uu = glm::dot(u, u), vv = glm::dot(v, v);
+  const glm::vec2 tile(float(p.w) / float(p.grid.x), float(p.h) / float(p.grid.y));
+  for (int32_t tri : p.triangles) {
     const Triangle& t = scene.triangles[tri];
     for (int k = 0; k < 3; ++k) {
-      int nearest = 0;
-      float best = INFINITY;
-      for (int c = 0; c < 4; ++c) {
-        const float d = glm::length(t.p[k] - q.corners[c]);
-        if (d < best) best = d, nearest = c;
-      }
-      atlas.triangleUV[tri][k] = atlasUV(atlas, chartCorner[nearest].x, chartCorner[nearest].y);
+      const glm::vec3 d = t.p[k] - corners[0];
+      const glm::vec2 at = glm::round(glm::vec2(glm::dot(d, u) / uu * float(p.grid.x), glm::dot(d, v) / vv * float(p.grid.y)));
+      atlas.triangleUV[tri][k] = atlasUV(atlas, float(p.x) + at.x * tile.x, float(p.y) + at.y * tile.y);
     }
   }
 }
@@ -155,6 +153,35 @@ void fillTriangle(LightmapAtlas& atlas, int patchIndex, uint32_t tri, const Scen
   atlas.triangleUV[tri][(o + 2) % 3] = atlasUV(atlas, float(p.x), float(p.y + s));
 }
 
+// Texels of one tile of a grid along its u and v edges.
+glm::ivec2 tileTexels(const QuadGrid& g, const AtlasParams& params) {
+  if (params.texelsPerQuad > 0) return glm::ivec2(params.texelsPerQuad);
+  return {texelsAlong(glm::length(g.corners[1] - g.corners[0]) / float(g.size.x), params),
+          texelsAlong(glm::length(g.corners[3] - g.corners[0]) / float(g.size.y), params)};
+}
+
+// Cuts a grid into sub-grids of at most params.mergeTexels texels along each edge.
+std::vector<QuadGrid> splitToFit(const QuadGrid& g, const AtlasParams& params) {
+  const glm::ivec2 tile = tileTexels(g, params);
+  const glm::ivec2 most = params.mergeTexels > 0 ? glm::max(glm::ivec2(1), glm::ivec2(params.mergeTexels) / tile)
+                                                 : glm::ivec2(1);
+  if (g.size.x <= most.x && g.size.y <= most.y) return {g};
+  const glm::vec3 u = (g.corners[1] - g.corners[0]) / float(g.size.x), v = (g.corners[3] - g.corners[0]) / float(g.size.y);
+  std::vector<QuadGrid> parts;
+  for (int j0 = 0; j0 < g.size.y; j0 += most.y)
+    for (int i0 = 0; i0 < g.size.x; i0 += most.x) {
+      QuadGrid part;
+      part.size = {std::min(most.x, g.size.x - i0), std::min(most.y, g.size.y - j0)};
+      for (int j = j0; j < j0 + part.size.y; ++j)
+        for (int i = i0; i < i0 + part.size.x; ++i) part.quads.push_back(g.quads[size_t(j) * g.size.x + i]);
+      const glm::vec3 o = g.corners[0] + float(i0) * u + float(j0) * v;
+      const glm::vec3 pu = float(part.size.x) * u, pv = float(part.size.y) * v;
+      part.corners = {o, o + pu, o + pu + pv, o + pv};
+      parts.push_back(std::move(part));
+    }
+  return parts;
+}
+
 }  // namespace
 
 size_t LightmapAtlas::validTexels() const {
@@ -180,37 +207,58 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
 
   LightmapAtlas atlas;
   std::vector<ChartSize> charts;
+  std::vector<std::array<glm::vec3, 4>> chartCorners;  // per patch (unused for loose triangles)
+  // Whole quads first become grids; a grid's chart is placed where its first quad's triangle comes.
+  std::vector<char> wholeQuad(quads.quads.size(), 0);
+  for (size_t qi = 0; qi < quads.quads.size(); ++qi)
+    wholeQuad[qi] = inSubset[quads.quads[qi].triangles[0]] && inSubset[quads.quads[qi].triangles[1]];
+  int maxQuads = 1;
+  if (params.mergeTexels > 0)
+    maxQuads = std::max(1, params.mergeTexels / (params.texelsPerQuad > 0 ? params.texelsPerQuad : params.minTexels));
+  const std::vector<QuadGrid> grids = findQuadGrids(quads, wholeQuad, scene, maxQuads);
+  std::vector<int> gridOfQuad(quads.quads.size(), -1);
+  for (size_t g = 0; g < grids.size(); ++g) gridOfQuad[grids[g].quads.front()] = int(g);
   std::vector<char> quadDone(quads.quads.size(), 0);
   size_t degenerate = 0;
   for (uint32_t tri : chosen) {
     const Triangle& t = scene.triangles[tri];
     if (t.material >= scene.materials.size()) throw InputError("atlas", "triangle refers to a missing material");
     const int32_t qi = tri < quads.quadOfTriangle.size() ? quads.quadOfTriangle[tri] : -1;
-    const bool wholeQuad = qi >= 0 && inSubset[quads.quads[qi].triangles[0]] && inSubset[quads.quads[qi].triangles[1]];
     Patch p;
     p.material = t.material;
-    if (wholeQuad) {
+    if (qi >= 0 && wholeQuad[qi]) {
       if (quadDone[qi]) continue;
       quadDone[qi] = 1;
-      const Quad& q = quads.quads[qi];
-      p.quad = qi;
-      p.triangles = {int32_t(q.triangles[0]), int32_t(q.triangles[1])};
-      p.normal = q.normal;
-      p.area = q.area();
-      const int w = params.texelsPerQuad > 0 ? params.texelsPerQuad : texelsAlong(q.width(), params);
-      const int h = params.texelsPerQuad > 0 ? params.texelsPerQuad : texelsAlong(q.height(), params);
-      charts.push_back({int(atlas.patches.size()), w, h});
-    } else {
-      if (!(t.area() > 0.0f)) {
-        ++degenerate;
-        continue;
+      if (gridOfQuad[qi] < 0) continue;  // charted when the grid's first quad comes
+      for (const QuadGrid& g : splitToFit(grids[gridOfQuad[qi]], params)) {
+        Patch gp = p;
+        gp.quad = int(g.quads.front());
+        gp.grid = g.size;
+        for (uint32_t q : g.quads) {
+          gp.quads.push_back(int32_t(q));
+          for (uint32_t qt : quads.quads[q].triangles) gp.triangles.push_back(int32_t(qt));
+          quadDone[q] = 1;
+        }
+        const Quad& first = quads.quads[g.quads.front()];
+        gp.normal = first.normal;
+        gp.area = first.area() * float(g.quads.size());
+        const glm::ivec2 tile = tileTexels(g, params);
+        charts.push_back({int(atlas.patches.size()), tile.x * g.size.x, tile.y * g.size.y});
+        chartCorners.push_back(g.corners);
+        atlas.patches.push_back(std::move(gp));
       }
-      p.triangles = {int32_t(tri), -1};
-      p.normal = t.geometricNormal();
-      p.area = t.area();
-      const int s = triangleChartSide(t, params);
-      charts.push_back({int(atlas.patches.size()), s, s});
+      continue;
     }
+    if (!(t.area() > 0.0f)) {
+      ++degenerate;
+      continue;
+    }
+    p.triangles = {int32_t(tri)};
+    p.normal = t.geometricNormal();
+    p.area = t.area();
+    const int s = triangleChartSide(t, params);
+    charts.push_back({int(atlas.patches.size()), s, s});
+    chartCorners.push_back({});
     atlas.patches.push_back(p);
   }
   if (degenerate > 0)
@@ -235,7 +283,7 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   for (size_t i = 0; i < atlas.patches.size(); ++i) {
     const Patch& p = atlas.patches[i];
     if (p.quad >= 0)
-      fillQuad(atlas, int(i), quads.quads[p.quad], scene);
+      fillQuad(atlas, int(i), chartCorners[i], scene);
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
   }

@@ -6,7 +6,9 @@
 //  - a valid texel (patch >= 0) stands for the part of its patch whose parameter square it covers;
 //    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
 //    texels = the patch's area);
-//  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0);
+//  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
+//    of equal coplanar quads is one chart over the merged rectangle (radiosity/quad_grids.h), each quad
+//    keeping the texels it would have alone;
 //  - loose triangles: a right-triangle layout in a square chart; texels whose centre lies inside the
 //    triangle are valid, each with area = triangle area / valid texel count;
 //  - padding texels (patch == -1) get no light of their own: dilation copies their nearest valid
@@ -34,11 +36,16 @@ struct AtlasParams {
   int maxTexels = 256;  ///< per chart edge, so a huge floor does not take the whole atlas
   int padding = 1;      ///< texels of gutter around each chart, filled by dilation
   int maxSize = 8192;   ///< atlas edge limit in texels; exceeded → InputError naming the option
+  /// Merge grids of equal coplanar quads into one chart (one shooter) up to this many texels along an
+  /// edge; 0: a chart per quad, as the thesis does.
+  int mergeTexels = 1024;
 };
 
 struct Patch {
-  int quad = -1;                             ///< index into the QuadSet, or -1 for a loose triangle
-  std::array<int32_t, 2> triangles{-1, -1};  ///< scene triangles (the second is -1 for a loose one)
+  int quad = -1;                  ///< the (first) quad in the QuadSet, or -1 for a loose triangle
+  std::vector<int32_t> quads;     ///< a merged grid's quads, row-major (grid.y rows of grid.x); one quad: itself
+  glm::ivec2 grid{1, 1};          ///< quads along the chart's x and y; each covers (w/grid.x) × (h/grid.y) texels
+  std::vector<int32_t> triangles;  ///< scene triangles: two per quad in `quads` order, or the loose one
   uint32_t material = 0;
   glm::vec3 normal{0.0f};
   float area = 0.0f;               ///< m²

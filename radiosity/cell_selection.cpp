@@ -111,6 +111,24 @@ CellSelection selectCells(const CellGraph& graph, const std::vector<int>& baked)
   return s;
 }
 
+std::vector<int> cellOfTexels(const LightmapAtlas& atlas, const CellGraph& graph, size_t triangleCount) {
+  const std::vector<int> cellOf = graph.cellOfTriangle(triangleCount);
+  std::vector<int> out(atlas.texelCount(), -1);
+  for (size_t p = 0; p < atlas.patches.size(); ++p) {
+    const Patch& P = atlas.patches[p];
+    const int tw = std::max(1, P.w / P.grid.x), th = std::max(1, P.h / P.grid.y);
+    for (int j = 0; j < P.h; ++j)
+      for (int i = 0; i < P.w; ++i) {
+        const size_t t = size_t(P.y + j) * atlas.width + P.x + i;
+        if (atlas.patch[t] != int(p)) continue;
+        const size_t m = P.quads.empty() ? 0 : size_t(j / th) * P.grid.x + size_t(i / tw);
+        const size_t k = P.quads.empty() ? 0 : 2 * m;
+        if (k < P.triangles.size() && size_t(P.triangles[k]) < triangleCount) out[t] = cellOf[P.triangles[k]];
+      }
+  }
+  return out;
+}
+
 glm::vec3 parsePoint(const std::string& text, const std::string& option) {
   std::stringstream in(text);
   std::string part;

@@ -22,6 +22,7 @@
 
 #include "core/cell_graph.h"
 #include "core/scene.h"
+#include "radiosity/atlas.h"
 
 namespace cpgi {
 
@@ -58,6 +59,11 @@ std::vector<int> cellsWithin(const CellGraph& graph, int start, int depth);
 
 /// Splits the graph's cells into baked (the given ones), boundary and dark.
 CellSelection selectCells(const CellGraph& graph, const std::vector<int>& baked);
+
+/// The cell of every texel of `atlas` (an atlas of the whole scene with `triangleCount` triangles): -1
+/// for padding and for triangles in no cell. A merged grid chart may span cells, so each texel goes by
+/// the quad under it.
+std::vector<int> cellOfTexels(const LightmapAtlas& atlas, const CellGraph& graph, size_t triangleCount);
 
 /// Parses "X,Y,Z" (metres) for `option`; throws InputError unless it is three finite numbers.
 glm::vec3 parsePoint(const std::string& text, const std::string& option);

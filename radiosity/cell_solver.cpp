@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 
@@ -81,22 +80,21 @@ CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell) {
   return out;
 }
 
-namespace {
-
-// (texel of `to`'s patch, texel of `from`'s patch covering the same point), row by row over `to`'s chart:
-// mapPatchTexels without a whole-atlas array (a global atlas of millions of texels has thousands of patches).
-std::vector<std::pair<int32_t, int32_t>> texelPairs(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to,
-                                                    int toPatch) {
-  std::vector<std::pair<int32_t, int32_t>> pairs;
+void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
+                    std::vector<int32_t>& sourceOfTexel) {
   const Patch& q = from.patches[fromPatch];
   const Patch& p = to.patches[toPatch];
+  if (sourceOfTexel.size() != to.texelCount())
+    sourceOfTexel.assign(to.texelCount(), -1);
+  else
+    for (int j = 0; j < p.h; ++j) std::fill_n(sourceOfTexel.begin() + (p.y + j) * to.width + p.x, p.w, -1);
   std::vector<int32_t> valid;
   for (int j = 0; j < q.h; ++j)
     for (int i = 0; i < q.w; ++i) {
       const int32_t s = (q.y + j) * from.width + q.x + i;
       if (from.patch[s] == fromPatch) valid.push_back(s);
     }
-  if (valid.empty()) return pairs;
+  if (valid.empty()) return;
   const glm::vec3 u = q.texelU, v = q.texelV;
   const double uu = glm::dot(u, u), uv = glm::dot(u, v), vv = glm::dot(v, v), det = uu * vv - uv * uv;
   for (int j = 0; j < p.h; ++j)
@@ -109,81 +107,16 @@ std::vector<std::pair<int32_t, int32_t>> texelPairs(const LightmapAtlas& from, i
       const int ii = std::clamp(int(std::floor(a)), 0, q.w - 1), jj = std::clamp(int(std::floor(b)), 0, q.h - 1);
       const int32_t s = (q.y + jj) * from.width + q.x + ii;
       if (from.patch[s] == fromPatch) {
-        pairs.push_back({t, s});
+        sourceOfTexel[t] = s;
         continue;
       }
       // Outside the valid part (a loose triangle's edge): the nearest valid texel.
       float best = std::numeric_limits<float>::max();
-      int32_t nearest = valid.front();
       for (int32_t c : valid) {
         const glm::vec3 e = from.position[c] - to.position[t];
-        if (glm::dot(e, e) < best) best = glm::dot(e, e), nearest = c;
+        if (glm::dot(e, e) < best) best = glm::dot(e, e), sourceOfTexel[t] = c;
       }
-      pairs.push_back({t, nearest});
     }
-  return pairs;
-}
-
-// Every cell's scene, atlas and portal patches, built side by side (TBB); each cell's warnings and
-// timings go to `ctx` in cell order.
-void buildCellStates(const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                     const std::vector<char>& boundary, std::vector<CellState>& cells, Context& ctx) {
-  std::vector<Context> cellCtx(cells.size());
-  tbb::parallel_for(size_t(0), cells.size(), [&](size_t c) {
-    CellState& s = cells[c];
-    s.cs = makeCellScene(scene, graph, int(c));
-    s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), boundary[c] ? params.boundaryAtlas : params.atlas,
-                         cellCtx[c]);
-    const std::vector<int> patchOf = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
-    for (size_t k = 0; k < s.cs.portals.size(); ++k) s.portalPatch.push_back(patchOf[s.cs.ownTriangles + 2 * k]);
-    s.pending.assign(s.atlas.texelCount(), glm::vec3(0.0f));
-    for (size_t i = 0; i < s.atlas.texelCount(); ++i)
-      if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
-    s.carried.assign(s.atlas.texelCount(), glm::vec3(0.0f));
-  });
-  for (const Context& c : cellCtx) {
-    for (const Context::Timing& t : c.timings()) ctx.addTiming(t.stage, t.seconds);
-    for (const std::string& w : c.warnings()) ctx.warn(w);
-  }
-}
-
-// Global charts → cell charts, patch by patch (the same triangles make the same patch), one cell per
-// TBB task. Returns the number of patches charted differently in their cell.
-size_t mapCellsToGlobal(const LightmapAtlas& global, const std::vector<int>& cellOf, const std::vector<char>& boundary,
-                        std::vector<CellState>& cells) {
-  std::vector<std::vector<int>> patchesOfCell(cells.size());
-  for (size_t gp = 0; gp < global.patches.size(); ++gp) {
-    const int c = cellOf[global.patches[gp].triangles[0]];
-    if (c >= 0 && !boundary[c]) patchesOfCell[c].push_back(int(gp));
-  }
-  std::vector<size_t> differing(cells.size(), 0);
-  tbb::parallel_for(size_t(0), cells.size(), [&](size_t c) {
-    CellState& s = cells[c];
-    // The cell's patch of every global triangle in it.
-    std::vector<int> patchOfLocal = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
-    std::unordered_map<uint32_t, int> patchOfGlobal;
-    for (size_t i = 0; i < s.cs.ownTriangles; ++i) patchOfGlobal[s.cs.globalTriangle[i]] = patchOfLocal[i];
-    for (int gp : patchesOfCell[c]) {
-      const Patch& P = global.patches[gp];
-      const auto it = patchOfGlobal.find(uint32_t(P.triangles[0]));
-      if (it == patchOfGlobal.end() || it->second < 0) continue;
-      const int q = it->second;
-      const Patch& Q = s.atlas.patches[q];
-      if (Q.w != P.w || Q.h != P.h || (P.triangles[1] >= 0) != (Q.triangles[1] >= 0)) ++differing[c];
-      for (const auto& [g, t] : texelPairs(s.atlas, q, global, gp)) s.toGlobal.push_back({g, t});
-    }
-  });
-  size_t total = 0;
-  for (size_t d : differing) total += d;
-  return total;
-}
-
-}  // namespace
-
-void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
-                    std::vector<int32_t>& sourceOfTexel) {
-  sourceOfTexel.assign(to.texelCount(), -1);
-  for (const auto& [t, s] : texelPairs(from, fromPatch, to, toPatch)) sourceOfTexel[t] = s;
 }
 
 CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
@@ -198,13 +131,65 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
 
   const size_t nc = graph.cells.size();
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
+  std::vector<int32_t> localIndex(scene.triangles.size(), -1);
   std::vector<CellState> cells(nc);
-  std::vector<char> boundary(nc, 0);
+  std::vector<std::vector<int>> cellPatchOf(nc);  // per cell, per cell-scene triangle: its patch
+  std::vector<char> boundary(nc, 0);                // on-demand boundary cells: coarse atlas, not written
   for (int c : params.boundaryCells) boundary.at(size_t(c)) = 1;
+  std::vector<int32_t> source;
   {
     auto t = ctx.time("cells: atlases");
-    buildCellStates(scene, graph, params, boundary, cells, ctx);
-    const size_t differing = mapCellsToGlobal(global, cellOf, boundary, cells);
+    // Cells side by side (TBB): a cell's triangles are its own, so the localIndex writes never meet;
+    // each cell's warnings and timings go to ctx in cell order afterwards.
+    std::vector<Context> cellCtx(nc);
+    tbb::parallel_for(size_t(0), nc, [&](size_t c) {
+      CellState& s = cells[c];
+      s.cs = makeCellScene(scene, graph, int(c));
+      for (size_t i = 0; i < s.cs.ownTriangles; ++i) localIndex[s.cs.globalTriangle[i]] = int32_t(i);
+      s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), boundary[c] ? params.boundaryAtlas : params.atlas,
+                           cellCtx[c]);
+      const std::vector<int> patchOf = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
+      for (size_t k = 0; k < s.cs.portals.size(); ++k) s.portalPatch.push_back(patchOf[s.cs.ownTriangles + 2 * k]);
+      cellPatchOf[c] = patchOf;
+      s.pending.assign(s.atlas.texelCount(), glm::vec3(0.0f));
+      for (size_t i = 0; i < s.atlas.texelCount(); ++i)
+        if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
+      s.carried.assign(s.atlas.texelCount(), glm::vec3(0.0f));
+    });
+    for (const Context& c : cellCtx) {
+      for (const Context::Timing& timing : c.timings()) ctx.addTiming(timing.stage, timing.seconds);
+      for (const std::string& w : c.warnings()) ctx.warn(w);
+    }
+    // Global charts → cell charts. A global chart may be a grid of quads (radiosity/quad_grids.h) that
+    // the cells cut apart, so each texel goes by the triangle under it to that triangle's cell patch.
+    size_t differing = 0;
+    for (size_t gp = 0; gp < global.patches.size(); ++gp) {
+      const Patch& P = global.patches[gp];
+      std::vector<std::pair<int, int>> target(P.quads.empty() ? 1 : P.quads.size(), {-1, -1});  // (cell, patch)
+      for (size_t m = 0; m < target.size(); ++m) {
+        const int32_t tri = P.triangles[P.quads.empty() ? 0 : 2 * m];
+        const int c = cellOf[tri];
+        if (c < 0 || boundary[c]) continue;
+        target[m] = {c, cellPatchOf[c][localIndex[tri]]};
+      }
+      std::vector<std::pair<int, int>> distinct = target;
+      std::sort(distinct.begin(), distinct.end());
+      distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+      for (const auto& [c, q] : distinct) {
+        if (c < 0 || q < 0) continue;
+        CellState& s = cells[c];
+        const Patch& Q = s.atlas.patches[q];
+        if (distinct.size() == 1 && (Q.w != P.w || Q.h != P.h || (P.quad >= 0) != (Q.quad >= 0))) ++differing;
+        mapPatchTexels(s.atlas, q, global, int(gp), source);
+        const int tw = P.w / P.grid.x, th = P.h / P.grid.y;
+        for (int j = 0; j < P.h; ++j)
+          for (int i = 0; i < P.w; ++i) {
+            const int32_t g = (P.y + j) * global.width + P.x + i;
+            const size_t m = P.quads.empty() ? 0 : size_t(j / th) * P.grid.x + size_t(i / tw);
+            if (source[g] >= 0 && target[m] == std::pair{c, q}) s.toGlobal.push_back({g, source[g]});
+          }
+      }
+    }
     if (differing > 0)
       ctx.warn(std::to_string(differing) + " patches are charted differently in their cell than in the whole scene");
   }
@@ -225,7 +210,13 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     for (auto [from, to] : {std::pair{q.cellA, q.cellB}, std::pair{q.cellB, q.cellA}}) {
       PortalLink link{int(p), from, to, patchIn(from), patchIn(to), {}};
       if (link.fromPatch < 0 || link.toPatch < 0) throw InputError(q.name, "portal has no patch (degenerate quad?)");
-      link.texels = texelPairs(cells[from].atlas, link.fromPatch, cells[to].atlas, link.toPatch);
+      mapPatchTexels(cells[from].atlas, link.fromPatch, cells[to].atlas, link.toPatch, source);
+      const Patch& P = cells[to].atlas.patches[link.toPatch];
+      for (int j = 0; j < P.h; ++j)
+        for (int i = 0; i < P.w; ++i) {
+          const int32_t t = (P.y + j) * cells[to].atlas.width + P.x + i;
+          if (source[t] >= 0) link.texels.push_back({t, source[t]});
+        }
       links.push_back(std::move(link));
     }
   }

@@ -89,7 +89,8 @@ CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell);
 
 /// For every valid texel of `to`'s patch `toPatch`, the texel of `from`'s patch `fromPatch` covering the same
 /// point (by `from`'s chart parametrisation; the nearest valid texel where it falls outside). -1 elsewhere
-/// in `to`'s chart. Both patches must be the same surface (possibly seen from the other side).
+/// in `to`'s chart; outside that chart, entries are left as they were when the vector already has one
+/// entry per texel of `to` (so a caller mapping patch after patch does not pay for the whole atlas each time). Both patches must be the same surface (possibly seen from the other side).
 void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
                     std::vector<int32_t>& sourceOfTexel);
 

@@ -1,6 +1,7 @@
 #include "radiosity/gpu_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,31 +17,36 @@ namespace {
 
 // Mirrors of the std430 structs in shaders/common.glsl and select_shooter.comp.
 struct GpuPatch {
-  glm::ivec4 rect;
+  glm::ivec4 rect, tiles;
+  glm::vec4 origin, texelU, texelV, normal;
 };
 struct GpuStats {
   glm::vec4 unshot, incident, absorbed;
 };
-struct GpuBlock {
+struct GpuNode {
   glm::vec4 centreArea, radiosityRadius;
-  glm::ivec4 rect, region;
+};
+constexpr int kMaxLevels = 14;  // MAX_LEVELS: pyramids of charts up to 2^14 texels on an edge
+struct GpuRegion {
+  glm::ivec4 rect, top;
+  int32_t levelOffset[kMaxLevels + 2];
 };
 struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuBlock) == 64 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
-constexpr int kMaxBlocks = 8;    // per chart edge; shooter_blocks.comp runs one invocation per block
-constexpr int kMaxRegions = 4;   // per chart edge; receive.comp's MAX_REGIONS is its square
+constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
 constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 
 // Shader-storage binding points (shaders/*.comp).
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
-                     kBlocks = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
-                     kRadiosity = 12, kResidual = 13, kIncident = 14 };
+                     kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
+                     kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
+                     kTileStats = 16 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -59,10 +65,6 @@ void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(
 void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
 void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
 void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
-void set(const gl::Program& p, const char* n, glm::ivec2 v) { glProgramUniform2i(p.get(), loc(p, n), v.x, v.y); }
-void set(const gl::Program& p, const char* n, glm::ivec4 v) {
-  glProgramUniform4i(p.get(), loc(p, n), v.x, v.y, v.z, v.w);
-}
 void set(const gl::Program& p, const char* n, const glm::mat3& m) {
   glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
 }
@@ -79,7 +81,6 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
     throw InputError("--unshot", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
-  if (p.maxBlocks < 1 || p.maxBlocks > kMaxBlocks) throw InputError("solver", "sub-shooter blocks per edge must be in 1..8");
   if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
   if (!(p.regionSize > 0.0f)) throw InputError("solver", "region size must be positive");
   if (atlas.width > maxTexture || atlas.height > maxTexture)
@@ -122,12 +123,13 @@ struct SolverPrograms::Set {
     item = buildProgram({"item.vert", "item.frag"}, visDefine);
     compact = buildProgram({"compact.comp"});
     finish = buildProgram({"finish_lists.comp"});
-    blocks = buildProgram({"shooter_blocks.comp"});
+    pyramid = buildProgram({"shooter_pyramid.comp"});
     receive = buildProgram({"receive.comp"}, visDefine);
     stats = buildProgram({"patch_stats.comp"});
+    tileStats = buildProgram({"tile_stats.comp"});
     select = buildProgram({"select_shooter.comp"});
   }
-  gl::Program item, compact, finish, blocks, receive, stats, select;
+  gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select;
 };
 
 SolverPrograms::SolverPrograms() = default;
@@ -146,10 +148,10 @@ class Solver {
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params, const SolverPrograms::Set& programs)
       : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
-        compactProgram_(programs.compact), finishProgram_(programs.finish), blocksProgram_(programs.blocks),
-        receiveProgram_(programs.receive), statsProgram_(programs.stats), selectProgram_(programs.select),
-        clock_(params.profilePasses) {
-    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions, params.maxBlocks});
+        compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
+        receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
+        selectProgram_(programs.select), clock_(params.profilePasses) {
+    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     uploadAtlas();
     uploadGeometry();
     makeItemBuffer();
@@ -166,6 +168,7 @@ class Solver {
     glUseProgram(finishProgram_.get());
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    runTileStats(0, tileCount_, -1, false);
     runStats(-1);
     return select();
   }
@@ -179,15 +182,18 @@ class Solver {
     const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
     clock_.restart();
 
-    // Sub-shooters from the residual before it is zeroed.
-    set(blocksProgram_, "uShooter", shooter);
-    set(blocksProgram_, "uRect", glm::ivec4(p.x, p.y, p.w, p.h));
-    set(blocksProgram_, "uBlocks", l.blocks);
-    set(blocksProgram_, "uRegions", l.regions);
-    set(blocksProgram_, "uTexelRadius", l.texelRadius);
-    glUseProgram(blocksProgram_.get());
-    glDispatchCompute(1, 1, 1);
-    clock_.mark("shooter blocks");
+    // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
+    const int levels = uploadRegions(l, p);
+    set(pyramidProgram_, "uShooter", shooter);
+    set(pyramidProgram_, "uRegionCount", regions);
+    set(pyramidProgram_, "uTexelRadius", l.texelRadius);
+    glUseProgram(pyramidProgram_.get());
+    for (int k = 1; k <= levels; ++k) {
+      set(pyramidProgram_, "uLevel", k);
+      glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    clock_.mark("shooter pyramid");
 
     const GLuint zero = 0;
     glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -213,8 +219,7 @@ class Solver {
 
     // Gather.
     set(receiveProgram_, "uShooter", shooter);
-    set(receiveProgram_, "uRegions", regions);
-    set(receiveProgram_, "uBlockCount", l.blocks.x * l.blocks.y);
+    set(receiveProgram_, "uRegionCount", regions);
     glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram_, "uToShooter", toShooter);
     set(receiveProgram_, "uShooterNormal", l.normal);
@@ -227,6 +232,7 @@ class Solver {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     clock_.mark("receive");
 
+    runTileStats(0, tileCount_, shooter, true);
     runStats(shooter);
     clock_.mark("patch statistics");
     GpuSelection s = select();
@@ -241,6 +247,65 @@ class Solver {
   std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
 
  private:
+  // The region table (common.glsl, Region) of one shooter; fills levelNodes_ (nodes per level over all
+  // regions) and returns the highest level.
+  int uploadRegions(const ShooterLayout& l, const Patch& p) {
+    std::vector<GpuRegion> table(l.rects.size());
+    int levels = 1;
+    for (size_t r = 0; r < table.size(); ++r) {
+      const glm::ivec4 c = l.rects[r];
+      table[r].rect = glm::ivec4(p.x + c.x, p.y + c.y, p.x + c.z, p.y + c.w);
+      table[r].top.x = topLevel(glm::ivec2(c.z - c.x, c.w - c.y));
+      levels = std::max(levels, table[r].top.x);
+    }
+    int32_t offset = 0;
+    std::fill(levelNodes_.begin(), levelNodes_.end(), 0);
+    for (int k = 1; k <= levels; ++k)
+      for (GpuRegion& g : table) {
+        if (k > g.top.x) continue;
+        const glm::ivec2 d = levelDims(glm::ivec2(g.rect.z - g.rect.x, g.rect.w - g.rect.y), k);
+        g.levelOffset[k] = offset;
+        offset += d.x * d.y;
+        levelNodes_[k] += size_t(d.x) * d.y;
+      }
+    glNamedBufferSubData(regions_.get(), 0, GLsizeiptr(table.size() * sizeof(GpuRegion)), table.data());
+    return levels;
+  }
+
+  static glm::ivec2 levelDims(glm::ivec2 size, int k) { return (size + ((1 << k) - 1)) >> k; }
+  static int topLevel(glm::ivec2 size) {
+    int k = 1;
+    while (glm::any(glm::greaterThan(levelDims(size, k), glm::ivec2(1)))) ++k;
+    return k;
+  }
+
+  // Nodes the largest shooter's pyramids need (levels 1 and up, all regions).
+  size_t maxPyramidNodes() const {
+    size_t most = 0;
+    for (const ShooterLayout& l : layouts_) {
+      size_t n = 0;
+      for (const glm::ivec4& c : l.rects) {
+        const glm::ivec2 size(c.z - c.x, c.w - c.y);
+        for (int k = 1, top = topLevel(size); k <= top; ++k) n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
+      }
+      most = std::max(most, n);
+    }
+    return std::max<size_t>(most, 1);
+  }
+
+  // Tile sums of tiles [first, end) (of the visible patches only when `onlyVisible`); the shooter's
+  // residual is zeroed on the way.
+  void runTileStats(size_t first, size_t end, int shooter, bool onlyVisible) {
+    if (end <= first) return;
+    setU(tileStatsProgram_, "uFirstTile", GLuint(first));
+    setU(tileStatsProgram_, "uEndTile", GLuint(end));
+    set(tileStatsProgram_, "uShooter", shooter);
+    set(tileStatsProgram_, "uOnlyVisible", onlyVisible ? 1 : 0);
+    glUseProgram(tileStatsProgram_.get());
+    glDispatchCompute(groups(end - first, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
   void runStats(int shooter) {
     set(statsProgram_, "uShooter", shooter);
     glUseProgram(statsProgram_.get());
@@ -327,9 +392,10 @@ class Solver {
     std::vector<GpuPatch> patches(np);
     std::vector<uint32_t> pending(np, 0);
     std::vector<glm::ivec4> tiles;
+    firstTile_.assign(np + 1, 0);
     for (size_t i = 0; i < np; ++i) {
       const Patch& p = atlas_.patches[i];
-      patches[i].rect = {p.x, p.y, p.w, p.h};
+      firstTile_[i] = tiles.size();
       for (int y = 0; y < p.h; ++y)
         for (int x = 0; x < p.w; ++x) {
           const size_t t = size_t(p.y + y) * w + p.x + x;
@@ -337,7 +403,14 @@ class Solver {
         }
       for (int y = 0; y < p.h; y += kTile)
         for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+      patches[i].rect = {p.x, p.y, p.w, p.h};
+      patches[i].tiles = {int(firstTile_[i]), int(tiles.size() - firstTile_[i]), 0, 0};
+      patches[i].origin = glm::vec4(p.origin, 0.0f);
+      patches[i].texelU = glm::vec4(p.texelU, 0.0f);
+      patches[i].texelV = glm::vec4(p.texelV, 0.0f);
+      patches[i].normal = glm::vec4(p.normal, 0.0f);
     }
+    firstTile_[np] = tiles.size();
     tileCount_ = tiles.size();
     auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes, const void* data) {
       b = gl::makeBuffer(bytes, data);
@@ -347,9 +420,15 @@ class Solver {
     ssbo(stats_, kStats, np * sizeof(GpuStats), nullptr);
     ssbo(visible_, kVisible, np * 4, nullptr);
     ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
+    ssbo(tileStats_, kTileStats, tiles.size() * sizeof(GpuStats), nullptr);
     ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
     ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
-    ssbo(blocks_, kBlocks, (kMaxRegions * kMaxRegions + kMaxBlocks * kMaxBlocks) * sizeof(GpuBlock), nullptr);
+    ssbo(regions_, kRegions, kMaxRegions * kMaxRegions * sizeof(GpuRegion), nullptr);
+    ssbo(nodes_, kNodes, maxPyramidNodes() * sizeof(GpuNode), nullptr);
+    for (const ShooterLayout& l : layouts_)
+      for (const glm::ivec4& c : l.rects)
+        if (topLevel(glm::ivec2(c.z - c.x, c.w - c.y)) > kMaxLevels)
+          throw InputError("atlas", "a chart wider than 2^14 texels");
     ssbo(pending_, kPending, np * 4, pending.data());
     ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
     const GLuint zero = 0;
@@ -422,7 +501,7 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
-    for (const gl::Program* p : {&receiveProgram_, &statsProgram_, &blocksProgram_})
+    for (const gl::Program* p : {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
     set(receiveProgram_, "uItemSize", itemSize_);
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
@@ -435,11 +514,14 @@ class Solver {
   const Scene& scene_;
   const LightmapAtlas& atlas_;
   SolverParams params_;
-  const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &blocksProgram_, &receiveProgram_,
-      &statsProgram_, &selectProgram_;
+  const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
+      &statsProgram_, &tileStatsProgram_, &selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_;
   gl::Texture items_, depth_;
-  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, blocks_, pending_, selection_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
+  std::array<size_t, kMaxLevels + 2> levelNodes_{};
+  gl::Buffer tileStats_;
+  std::vector<size_t> firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;

@@ -1,6 +1,6 @@
 // GPU progressive radiosity (thesis ch. 6, after Coombe, Harris & Lastra 2004) over a lightmap atlas:
 // every atlas texel is a sub-patch with radiosity and residual (unshot) textures on the GPU. One shot:
-// select the patch with the largest unshot power (emitters first), split it into texel blocks, render
+// select the patch with the largest unshot power (emitters first), build a residual pyramid over it (sub-shooters), render
 // an item buffer of patch IDs from its centre, and let every visible receiver texel gather
 // ρ ΔB F(dA → A_s) with the disk approximation. Stops when the unshot power falls under a fraction of
 // the emitted power.
@@ -42,11 +42,10 @@ struct SolverParams {
   double unshotFraction = 0.01;
   /// Stop after this many shots whatever the unshot fraction (>= 1).
   int maxShots = 100000;
-  /// A shooter piece (whole patch, then texel block) counts as one disk for receivers farther than this
-  /// many times its bounding radius; nearer receivers use its parts. >= 1.
+  /// A shooter piece (a region, then a node of its residual pyramid, then a texel) counts as one piece
+  /// for receivers farther than this many times its bounding radius; nearer receivers use its four
+  /// children. >= 1.
   float farField = 2.0f;
-  /// Texel blocks per chart edge of the shooter (sub-shooters), 1..8.
-  int maxBlocks = 8;
   /// A shooter is split into visibility regions about this long (m), each with its own item buffer
   /// drawn from its centre, so a lamp just under a ceiling's centre does not hide the whole ceiling.
   float regionSize = 1.0f;

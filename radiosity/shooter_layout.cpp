@@ -41,6 +41,8 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
   layouts.reserve(atlas.patches.size());
   for (size_t pi = 0; pi < atlas.patches.size(); ++pi) {
     const Patch& p = atlas.patches[pi];
+    std::vector<int32_t> own = p.triangles;  // the patch's own triangles never block its probes
+    std::sort(own.begin(), own.end());
     ShooterLayout l;
     l.normal = p.normal;
     const glm::vec3 u = p.texelU - glm::dot(p.texelU, p.normal) * p.normal;
@@ -49,13 +51,9 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
     l.texelRadius = 0.5f * std::max(glm::length(p.texelU + p.texelV), glm::length(p.texelU - p.texelV));
     auto regionsAlong = [&](float length, int texels) {
       const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
-      return std::clamp(n, 1, std::min({params.maxRegions, texels, params.maxBlocks}));
+      return std::clamp(n, 1, std::min(params.maxRegions, texels));
     };
     l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w), regionsAlong(glm::length(p.texelV) * p.h, p.h)};
-    for (int a = 0; a < 2; ++a) {
-      const int texels = a == 0 ? p.w : p.h;
-      l.blocks[a] = std::max(1, std::min(params.maxBlocks, texels) / l.regions[a]) * l.regions[a];
-    }
     // Probe directions: the normal and four 60° tilts.
     const float c = 0.5f, s = 0.8660254f;
     const glm::vec3 rays[5] = {l.normal, c * l.normal + s * l.tangent, c * l.normal - s * l.tangent,
@@ -64,6 +62,7 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
       for (int rx = 0; rx < l.regions.x; ++rx) {
         const int x0 = p.w * rx / l.regions.x, x1 = p.w * (rx + 1) / l.regions.x;
         const int y0 = p.h * ry / l.regions.y, y1 = p.h * (ry + 1) / l.regions.y;
+        l.rects.push_back({x0, y0, x1, y1});
         auto texelAt = [&](int x, int y) { return size_t(p.y + y) * atlas.width + p.x + x; };
         // Candidates: the centre texel first, then a 3×3 grid; only valid texels of this patch.
         std::vector<glm::vec3> candidates;
@@ -85,7 +84,7 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
         region.lo -= glm::vec3(reach), region.hi += glm::vec3(reach);
         std::vector<uint32_t> near;
         for (size_t t = 0; t < scene.triangles.size(); ++t)
-          if (triangleBoxes[t].overlaps(region) && p.triangles[0] != int32_t(t) && p.triangles[1] != int32_t(t))
+          if (triangleBoxes[t].overlaps(region) && !std::binary_search(own.begin(), own.end(), int32_t(t)))
             near.push_back(uint32_t(t));
         float bestScore = -1.0f;
         glm::vec3 best = candidates.front();

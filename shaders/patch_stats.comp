@@ -1,13 +1,13 @@
-// Per listed patch: Σ residual × area, Σ irradiance × area and Σ (1 − ρ) irradiance × area, summed in
-// a fixed order (strided loop, then a tree) so that runs agree to the bit. The shooter's residual is
-// zeroed here first: its energy has just been shot.
+// Per listed patch: Σ residual × area, Σ irradiance × area and Σ (1 − ρ) irradiance × area, added up
+// from its tiles' sums (tile_sums.glsl) in a fixed order (strided loop, then a tree) so that runs agree
+// to the bit.
 #include "common.glsl"
-#include "atlas_buffers.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 1) buffer Stats { PatchStats stats[]; };
 layout(std430, binding = 5) readonly buffer PatchList { uint patchCount; uint patchArgs[3]; uint patchList[]; };
 layout(std430, binding = 7) buffer Pending { uint pending[]; };
+layout(std430, binding = 16) readonly buffer TileStats { PatchStats tileStats[]; };
 uniform int uShooter;
 
 shared vec4 sUnshot[64], sIncident[64], sAbsorbed[64];
@@ -16,20 +16,14 @@ void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
   if (entry >= patchCount) return;  // uniform across the group
   int p = int(patchList[entry]);
-  ivec4 r = patches[p].rect;
+  ivec4 range = patches[p].tiles;
   uint k = gl_LocalInvocationID.x;
   vec3 unshotSum = vec3(0.0), incidentSum = vec3(0.0), absorbedSum = vec3(0.0);
-  for (int i = int(k); i < r.z * r.w; i += 64) {
-    ivec2 t = r.xy + ivec2(i % r.z, i / r.z);
-    if (int(normalPatch[texel(t)].w) != p) continue;
-    float a = posArea[texel(t)].w;
-    vec3 e = incident[texel(t)].rgb;
-    if (p == uShooter)
-      residual[texel(t)] = vec4(0.0);
-    else
-      unshotSum += residual[texel(t)].rgb * a;
-    incidentSum += e * a;
-    absorbedSum += (vec3(1.0) - albedo[texel(t)].rgb) * e * a;
+  for (int i = int(k); i < range.y; i += 64) {
+    PatchStats t = tileStats[range.x + i];
+    unshotSum += t.unshot.rgb;
+    incidentSum += t.incident.rgb;
+    absorbedSum += t.absorbed.rgb;
   }
   sUnshot[k] = vec4(unshotSum, 0.0);
   sIncident[k] = vec4(incidentSum, 0.0);

@@ -1,20 +1,23 @@
 // One shot (thesis ch. 6, step 3): every texel of a visible patch gathers ΔB_i = ρ_i Σ_k ΔB_k F(dA_i → A_k)
 // with the disk approximation F ≈ A_k cosθ_i cosθ_k / (π r² + A_k) over pieces of the shooter, refined
-// where the receiver is near: a region (one disk) → its texel blocks → texels → 4×4 points per texel,
-// each level used when the receiver is farther than uFarField × the piece's radius. Each region has its
-// own item buffer, seen from its centre, so a large shooter is not one point for visibility either.
+// where the receiver is near: each visibility region's residual pyramid (shooter_pyramid.comp) is walked
+// from its top node down, a node being used whole when the receiver is farther than uFarField × its
+// radius, down to texels and 4×4 points per texel. Each region has its own item buffer, seen from its
+// centre, so a large shooter is not one point for visibility either.
+//
+// No shared memory and no barrier here: on llvmpipe a barrier turns every invocation into a coroutine,
+// which measured twice as slow for this pass (seed3, 64² per quad).
 #include "common.glsl"
 #include "atlas_buffers.glsl"
 #include "visibility.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
-layout(std430, binding = 6) readonly buffer Blocks { Block blocks[]; };
+layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
 
-#define MAX_REGIONS 16
 uniform int uShooter;
-uniform int uRegions;      // blocks[0 .. uRegions) are regions
-uniform int uBlockCount;   // blocks[uRegions .. uRegions + uBlockCount) are texel blocks
+uniform int uRegionCount;
 uniform vec3 uEyes[MAX_REGIONS];
 uniform mat3 uToShooter;
 uniform vec3 uShooterNormal;
@@ -42,16 +45,16 @@ vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot) {
   return unshot * (area * ci * cs / (PI * r2 * r2));
 }
 
-// A far piece (texel rectangle `rect`, uniform mean radiosity) by 2×2 Gauss points: the point form's
-// error falls from O((R/r)²) to O((R/r)⁴), which is what lets uFarField be as small as 2.
-vec3 piece(vec3 x, vec3 n, Block b) {
+// A far piece (`size` texels, uniform mean radiosity) by 2×2 Gauss points: the point form's error falls
+// from O((R/r)²) to O((R/r)⁴), which is what lets uFarField be as small as 2.
+vec3 piece(vec3 x, vec3 n, Node p, ivec2 size) {
   const float g = 0.5773502692;  // 1/√3
-  vec3 hu = 0.5 * float(b.rect.z - b.rect.x) * uTexelU, hv = 0.5 * float(b.rect.w - b.rect.y) * uTexelV;
-  vec3 c = b.centreArea.xyz;
-  float a = 0.25 * b.centreArea.w;
-  vec3 rad = b.radiosityRadius.rgb;
-  return point(x, n, c - g * hu - g * hv, a, rad) + point(x, n, c + g * hu - g * hv, a, rad) +
-         point(x, n, c - g * hu + g * hv, a, rad) + point(x, n, c + g * hu + g * hv, a, rad);
+  vec3 hu = 0.5 * g * float(size.x) * uTexelU, hv = 0.5 * g * float(size.y) * uTexelV;
+  vec3 c = p.centreArea.xyz;
+  float a = 0.25 * p.centreArea.w;
+  vec3 rad = p.radiosityRadius.rgb;
+  return point(x, n, c - hu - hv, a, rad) + point(x, n, c + hu - hv, a, rad) +
+         point(x, n, c - hu + hv, a, rad) + point(x, n, c + hu + hv, a, rad);
 }
 
 bool far(vec3 x, vec3 c, float radius) {
@@ -82,49 +85,77 @@ vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
   return sum;
 }
 
+// Depth-first walk of region r's pyramid; a stack entry packs (level, node x, node y).
+#define STACK 48
+// Whether region r shoots anything (a loose triangle's region may have no texel).
+bool blocksOf(int r) { return nodes[regions[r].levelOffset[regions[r].top.x]].centreArea.w > 0.0; }
+
 vec3 fromRegion(vec3 x, vec3 n, int r) {
-  Block g = blocks[r];
-  if (far(x, g.centreArea.xyz, g.radiosityRadius.w))
-    return piece(x, n, g);
+  ivec4 rect = regions[r].rect;
+  int stack[STACK];
+  int top = regions[r].top.x;
+  stack[0] = top << 26;
+  int sp = 1;
   vec3 sum = vec3(0.0);
-  int per = uBlockCount / uRegions;  // blocks are stored region by region (shooter_blocks.comp)
-  for (int k = uRegions + r * per; k < uRegions + (r + 1) * per; ++k) {
-    Block b = blocks[k];
-    if (b.centreArea.w <= 0.0) continue;
-    if (far(x, b.centreArea.xyz, b.radiosityRadius.w)) {
-      sum += piece(x, n, b);
+  while (sp > 0) {
+    int e = stack[--sp];
+    int k = e >> 26;
+    ivec2 at = ivec2(e & 0x1FFF, (e >> 13) & 0x1FFF);
+    if (k == 0) {
+      ivec2 t = rect.xy + at;
+      if (int(normalPatch[texel(t)].w) == uShooter) sum += fromTexel(x, n, t);
       continue;
     }
-    for (int ty = b.rect.y; ty < b.rect.w; ++ty)
-      for (int tx = b.rect.x; tx < b.rect.z; ++tx) {
-        ivec2 t = ivec2(tx, ty);
-        if (int(normalPatch[texel(t)].w) == uShooter) sum += fromTexel(x, n, t);
+    ivec2 dims = levelDims(rect, k);
+    Node p = nodes[regions[r].levelOffset[k] + at.y * dims.x + at.x];
+    if (p.centreArea.w <= 0.0) continue;
+    if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w)) {
+      ivec2 lo = rect.xy + (at << k);
+      sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo);
+      continue;
+    }
+    ivec2 below = k == 1 ? rect.zw - rect.xy : levelDims(rect, k - 1);
+    for (int dy = 1; dy >= 0; --dy)
+      for (int dx = 1; dx >= 0; --dx) {
+        ivec2 c = 2 * at + ivec2(dx, dy);
+        if (c.x < below.x && c.y < below.y) stack[sp++] = ((k - 1) << 26) | (c.y << 13) | c.x;
       }
   }
   return sum;
 }
 
+// ΔB F from region r, unoccluded, at x with normal n.
+vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
+  Node root = nodes[regions[r].levelOffset[regions[r].top.x]];
+  return far(x, root.centreArea.xyz, root.radiosityRadius.w) ? piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy)
+                                                             : fromRegion(x, n, r);
+}
+
 void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
-  if (entry >= tileCount) return;
+  if (entry >= tileCount) return;  // uniform across the group
   ivec4 tile = tiles[tileList[entry]];
+  // The shooter's own tiles: nothing to gather; tile_stats.comp zeroes them after the shot.
+  if (tile.z == uShooter) return;
+  ivec4 chart = patches[tile.z].rect;
   ivec2 t = tile.xy + ivec2(gl_LocalInvocationID.xy);
-  vec4 np = normalPatch[texel(t)];
-  int id = int(np.w);
-  // Tiles are 8×8 from the chart corner and may overhang into a neighbour: keep only this tile's patch.
-  if (id != tile.z || id == uShooter) return;
-  vec3 x = posArea[texel(t)].xyz;
+  // Tiles are 8×8 from the chart corner and may overhang the chart: keep only this chart's texels.
+  if (any(greaterThanEqual(t, chart.xy + chart.zw))) return;
+  int tx = texel(t);
+  vec4 np = normalPatch[tx];
+  if (int(np.w) != tile.z) return;
+  vec3 x = posArea[tx].xyz;
   vec3 e = vec3(0.0);
-  for (int r = 0; r < uRegions; ++r) {
-    if (blocks[r].centreArea.w <= 0.0) continue;
+  for (int r = 0; r < uRegionCount; ++r) {
+    if (!blocksOf(r)) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
     if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
-    if (!visibleFromShooter(local, id, r)) continue;
-    e += fromRegion(x, np.xyz, r);
+    if (!visibleFromShooter(local, tile.z, r)) continue;
+    e += fromRegionWhole(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;
-  vec3 gained = albedo[texel(t)].rgb * e;
-  incident[texel(t)] = incident[texel(t)] + vec4(e, 0.0);
-  radiosity[texel(t)] = radiosity[texel(t)] + vec4(gained, 0.0);
-  residual[texel(t)] = residual[texel(t)] + vec4(gained, 0.0);
+  vec3 gained = albedo[tx].rgb * e;
+  incident[tx] = incident[tx] + vec4(e, 0.0);
+  radiosity[tx] = radiosity[tx] + vec4(gained, 0.0);
+  residual[tx] = residual[tx] + vec4(gained, 0.0);
 }

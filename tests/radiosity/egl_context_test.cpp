@@ -54,7 +54,7 @@ TEST(EglContext, RunsAComputeShaderAndReadsBack) {
 TEST(EglContext, EmbeddedShadersCompile) {
   Context ctx;
   EglContext context(ctx);
-  for (const char* name : {"compact.comp", "finish_lists.comp", "shooter_blocks.comp",
+  for (const char* name : {"compact.comp", "finish_lists.comp", "shooter_pyramid.comp", "tile_stats.comp",
                            "patch_stats.comp", "select_shooter.comp", "receive.comp"})
     EXPECT_NO_THROW(buildProgram({name})) << name;
   EXPECT_NO_THROW(buildProgram({"receive.comp"}, {"HEMISPHERE"}));

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/quads.h"
 #include "radiosity/cell_selection.h"
 #include "radiosity/cell_solver.h"
 #include "scenes/seed_scenes.h"
@@ -67,6 +68,26 @@ TEST(CellSelection, DepthAndRoles) {
   EXPECT_EQ(sel.dark, (std::vector<int>{2}));
 }
 
+// The global atlas merges grids of coplanar quads into one chart, which may run across a portal plane
+// (a door reveal's floor): every texel still gets the cell of the quad under it.
+TEST(CellSelection, CellOfEveryTexelFollowsItsPosition) {
+  const SeedScene s = makeSeedScene(1);
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), AtlasParams{.texelsPerQuad = 4}, ctx);
+  const std::vector<int> cell = cellOfTexels(atlas, s.cells, s.scene.triangles.size());
+  size_t valid = 0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) {
+      EXPECT_EQ(cell[i], -1);
+      continue;
+    }
+    ++valid;
+    const float x = atlas.position[i].x;
+    EXPECT_EQ(cell[i], x < 4.1f ? 0 : x < 8.3f ? 1 : 2) << "texel at x = " << x;
+  }
+  EXPECT_GT(valid, 0u);
+}
+
 TEST(CellSelection, ParsePoint) {
   EXPECT_EQ(parsePoint("1,-2.5, 3e1", "--around"), glm::vec3(1.0f, -2.5f, 30.0f));
   for (const char* bad : {"", "1,2", "1,2,3,4", "1,x,3", "1,2,3m", "1,nan,3", "1,,3"})
@@ -85,10 +106,7 @@ class OnDemandSolve : public ::testing::Test {
     params_->solver.itemBuffer = 256;
     atlas_ = new LightmapAtlas(buildAtlas(seed_->scene, findQuads(seed_->scene), params_->atlas, *ctx_));
     whole_ = new CellSolveResult(solveCells(seed_->scene, seed_->cells, *atlas_, *params_, *gl_, *ctx_));
-    cellOfTexel_ = new std::vector<int>(atlas_->texelCount(), -1);
-    const std::vector<int> cellOf = seed_->cells.cellOfTriangle(seed_->scene.triangles.size());
-    for (size_t i = 0; i < atlas_->texelCount(); ++i)
-      if (atlas_->patch[i] >= 0) (*cellOfTexel_)[i] = cellOf[atlas_->patches[atlas_->patch[i]].triangles[0]];
+    cellOfTexel_ = new std::vector<int>(cellOfTexels(*atlas_, seed_->cells, seed_->scene.triangles.size()));
   }
   static void TearDownTestSuite() {
     delete cellOfTexel_, delete whole_, delete atlas_, delete params_, delete gl_, delete ctx_, delete seed_;

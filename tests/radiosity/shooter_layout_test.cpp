@@ -25,8 +25,9 @@ TEST(ShooterLayout, EyesLeaveCoveredSpots) {
   ASSERT_EQ(layouts.size(), 1u);
   const ShooterLayout& l = layouts[0];
   ASSERT_EQ(l.regions, glm::ivec2(2, 2));
-  EXPECT_EQ(l.blocks.x % l.regions.x, 0);
-  EXPECT_EQ(l.blocks.y % l.regions.y, 0);
+  ASSERT_EQ(l.rects.size(), 4u);
+  EXPECT_EQ(l.rects[0], glm::ivec4(0, 0, 8, 8));
+  EXPECT_EQ(l.rects[3], glm::ivec4(8, 8, 16, 16));
   ASSERT_EQ(l.eyes.size(), 4u);
   for (const glm::vec3& e : l.eyes) EXPECT_NEAR(e.z, 0.0f, 1e-5f);
   // Uncovered regions keep the texel next to their centre (texels are 0.125 m).

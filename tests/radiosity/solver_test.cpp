@@ -2,6 +2,8 @@
 // perpendicular unit squares, the white furnace, energy bookkeeping and determinism.
 #include "radiosity/gpu_solver.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,7 +40,9 @@ double patchMean(const Solved& s, int tri) {
   double sum = 0.0, area = 0.0;
   for (size_t t = 0; t < s.atlas.texelCount(); ++t) {
     const int p = s.atlas.patch[t];
-    if (p < 0 || (s.atlas.patches[p].triangles[0] != tri && s.atlas.patches[p].triangles[1] != tri)) continue;
+    if (p < 0) continue;
+    const std::vector<int32_t>& own = s.atlas.patches[p].triangles;
+    if (std::find(own.begin(), own.end(), tri) == own.end()) continue;
     sum += double(s.result.radiosity[t].r) * s.atlas.area[t];
     area += s.atlas.area[t];
   }

@@ -1,0 +1,59 @@
+#include "apps/cell_source.h"
+
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#include "core/error.h"
+
+namespace cpgi::cli {
+
+CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
+                            Context& ctx) {
+  if (cellsFile.cells.empty()) throw InputError(name, "has no cell:/portal: nodes");
+  auto key = [](const Triangle& t) {
+    const glm::ivec3 k = glm::ivec3(glm::round(t.centroid() * 1000.0f));
+    return std::tuple{k.x, k.y, k.z};
+  };
+  std::map<std::tuple<int, int, int>, int> cellAt;
+  const std::vector<int> otherCell = cellsFile.cells.cellOfTriangle(cellsFile.scene.triangles.size());
+  for (size_t t = 0; t < cellsFile.scene.triangles.size(); ++t)
+    cellAt[key(cellsFile.scene.triangles[t])] = otherCell[t];
+  CellGraph graph = cellsFile.cells;
+  for (Cell& c : graph.cells) c.triangles.clear();
+  size_t unmatched = 0;
+  for (size_t t = 0; t < scene.triangles.size(); ++t) {
+    const auto it = cellAt.find(key(scene.triangles[t]));
+    if (it == cellAt.end()) ++unmatched;
+    else if (it->second >= 0) graph.cells[it->second].triangles.push_back(uint32_t(t));
+  }
+  if (unmatched > 0)
+    ctx.warn(name + ": " + std::to_string(unmatched) + " triangles of the scene are not in the cells file");
+  return graph;
+}
+
+CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
+                       const decomp::DecomposeParams& params, bool repair, Context& ctx) {
+  if (source == "none" || source.empty())
+    throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
+  if (source == "auto") {
+    auto t = ctx.time("decompose");
+    decomp::DecomposeParams p = params;
+    p.sourceName = scenePath;
+    decomp::Decomposition d = decomp::decompose(loaded.scene, p, ctx);
+    if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
+    loaded.scene = std::move(d.scene);
+    return std::move(d.graph);
+  }
+  std::filesystem::path path = source;
+  if (std::filesystem::is_directory(path)) path /= "cells.glb";
+  if (!std::filesystem::exists(path)) throw InputError("--cells", path.string() + ": no such file");
+  if (std::filesystem::equivalent(path, scenePath)) {
+    if (loaded.cells.empty()) throw InputError(path.string(), "has no cell:/portal: nodes");
+    return loaded.cells;
+  }
+  const LoadedScene other = loadScene(path.string(), LoadOptions{.repair = repair});
+  return matchCellsToScene(loaded.scene, other, path.string(), ctx);
+}
+
+}  // namespace cpgi::cli

@@ -1,0 +1,32 @@
+// Where the cells of a `--method cells` bake come from, shared by `cpgi bake --cells` and
+// `cpgi compare-cells --bake`, so that both bake with exactly the same graph for the same source.
+#pragma once
+
+#include <string>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/scene.h"
+#include "core/scene_io.h"
+#include "decomposition/decompose.h"
+
+namespace cpgi::cli {
+
+/// The cells of `cellsFile` (another file of the same scene, e.g. a decompose output's cells.glb or the
+/// hand-made scene) over `scene`'s triangles, matched by centroid to the millimetre, so a different
+/// triangle order does not matter. Triangles of `scene` found in no cell of the file stay in none (a
+/// warning in ctx naming `name`). Throws InputError when the file has no cells.
+CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
+                            Context& ctx);
+
+/// bake's `--cells SOURCE` for the scene loaded from `scenePath`:
+///  - "auto": the automatic decomposition with `params`; it may split triangles on portal planes, so it
+///    replaces loaded.scene by the split scene;
+///  - a folder: its cells.glb (a `cpgi decompose` output);
+///  - the scene file itself: its own cell:/portal: nodes;
+///  - another glTF of the same scene: matchCellsToScene.
+/// Throws InputError("--cells", ...) for "none" or a missing file.
+CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
+                       const decomp::DecomposeParams& params, bool repair, Context& ctx);
+
+}  // namespace cpgi::cli

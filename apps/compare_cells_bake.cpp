@@ -1,0 +1,167 @@
+#include "apps/compare_cells_bake.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "core/error.h"
+#include "core/quads.h"
+#include "radiosity/cell_solver.h"
+#include "radiosity/egl_context.h"
+#include "radiosity/metrics.h"
+
+namespace cpgi::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+LightmapAtlas atlasOf(const CellsToBake& cells, const AtlasParams& params, Context& ctx) {
+  const QuadSet quads = findQuads(cells.scene);
+  LightmapAtlas atlas = buildAtlas(cells.scene, quads, params, ctx);
+  if (atlas.patches.empty()) throw InputError(cells.source, "no surface to bake");
+  return atlas;
+}
+
+// Texel for texel the same layout: then one reference serves both bakes.
+bool sameAtlas(const LightmapAtlas& x, const LightmapAtlas& y) {
+  return x.width == y.width && x.height == y.height && x.patch == y.patch && x.position == y.position &&
+         x.area == y.area;
+}
+
+// The texel areas without the lamps: their B (≈ E, e.g. 100 W/m²) would otherwise dominate Σ a|R|², and
+// the decompositions differ in how light reaches the other surfaces (as `cpgi reference` does).
+std::vector<float> nonEmissiveArea(const LightmapAtlas& atlas) {
+  std::vector<float> area = atlas.area;
+  for (size_t i = 0; i < area.size(); ++i)
+    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f)))) area[i] = 0.0f;
+  return area;
+}
+
+struct Reference {
+  ReferenceResult result;
+  std::vector<float> nonEmissive;
+  nlohmann::json report;
+};
+
+Reference trace(const CellsToBake& cells, const LightmapAtlas& atlas, const ReferenceParams& params,
+                Context& ctx) {
+  const Clock::time_point start = Clock::now();
+  Reference r;
+  r.result = traceReference(cells.scene, atlas, params, ctx);
+  r.nonEmissive = nonEmissiveArea(atlas);
+  r.report = {{"scene_of", cells.source},
+              {"texels", atlas.validTexels()},
+              {"seconds", secondsSince(start)},
+              {"spp", r.result.spp},
+              {"noise", relativeStandardError(r.result, atlas.area)},
+              {"noise_nonemissive", relativeStandardError(r.result, r.nonEmissive)}};
+  return r;
+}
+
+nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const CellBakeComparison& params,
+                    const EglContext& gl, Context& ctx, std::vector<glm::vec3>& radiosity) {
+  CellSolveParams solve;
+  solve.solver = params.solver;
+  solve.atlas = params.atlas;
+  solve.maxRounds = params.maxRounds;
+  const Clock::time_point start = Clock::now();
+  CellSolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
+  const double seconds = secondsSince(start);
+  radiosity = std::move(solved.radiosity);
+  return {{"source", cells.source},
+          {"cells", cells.graph.cells.size()},
+          {"portals", cells.graph.portals.size()},
+          {"texels", atlas.validTexels()},
+          {"seconds", seconds},
+          {"solve_seconds", solved.seconds},
+          {"shots", solved.shots},
+          {"rounds", solved.rounds},
+          {"unshot_fraction", solved.unshotFraction},
+          {"max_cell_texels", solved.maxCellTexels}};
+}
+
+void addErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, const LightmapAtlas& atlas,
+               const Reference& ref, int refIndex) {
+  const LightmapError all = compareLightmaps(radiosity, ref.result.radiosity, atlas.area);
+  const LightmapError reflectors = compareLightmaps(radiosity, ref.result.radiosity, ref.nonEmissive);
+  side["rel_rmse"] = all.relRmse;
+  side["rel_mean_error"] = all.relMeanError;
+  side["rel_rmse_nonemissive"] = reflectors.relRmse;
+  side["rel_mean_error_nonemissive"] = reflectors.relMeanError;
+  side["reference"] = refIndex;
+  side["reference_noise"] = ref.report["noise"];
+  side["reference_noise_nonemissive"] = ref.report["noise_nonemissive"];
+}
+
+}  // namespace
+
+nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, const CellBakeComparison& params,
+                                Context& ctx) {
+  const LightmapAtlas atlasA = atlasOf(a, params.atlas, ctx), atlasB = atlasOf(b, params.atlas, ctx);
+  const bool shared = sameAtlas(atlasA, atlasB);
+  const auto gl = std::make_unique<EglContext>(ctx);
+
+  std::vector<glm::vec3> radiosityA, radiosityB;
+  nlohmann::json sideA = bake(a, atlasA, params, *gl, ctx, radiosityA);
+  nlohmann::json sideB = bake(b, atlasB, params, *gl, ctx, radiosityB);
+
+  const Reference refA = trace(a, atlasA, params.reference, ctx);
+  nlohmann::json references = nlohmann::json::array({refA.report});
+  addErrors(sideA, radiosityA, atlasA, refA, 0);
+  if (shared) {
+    addErrors(sideB, radiosityB, atlasB, refA, 0);
+  } else {
+    const Reference refB = trace(b, atlasB, params.reference, ctx);
+    references.push_back(refB.report);
+    addErrors(sideB, radiosityB, atlasB, refB, 1);
+  }
+
+  nlohmann::json out = {
+      {"texels_per_quad", params.atlas.texelsPerQuad},
+      {"density", params.atlas.texelsPerQuad > 0 ? 0.0f : params.atlas.density},
+      {"unshot_target", params.solver.unshotFraction},
+      {"item_buffer", params.solver.itemBuffer},
+      {"visibility", visibilityName(params.solver.visibility)},
+      {"renderer", gl->renderer()},
+      {"same_atlas", shared},
+      {"references", references},
+      {"a", sideA},
+      {"b", sideB}};
+  out["difference_points"] = {
+      {"rel_rmse", 100.0 * (sideA["rel_rmse"].get<double>() - sideB["rel_rmse"].get<double>())},
+      {"rel_rmse_nonemissive",
+       100.0 * (sideA["rel_rmse_nonemissive"].get<double>() - sideB["rel_rmse_nonemissive"].get<double>())}};
+  return out;
+}
+
+void printCellBakes(const nlohmann::json& bake) {
+  const int tpq = bake["texels_per_quad"].get<int>();
+  if (tpq > 0) std::printf("bake: %dx%d texels per quad", tpq, tpq);
+  else std::printf("bake: %g texels per metre", bake["density"].get<double>());
+  std::printf(", unshot %g, --method cells, %s\n", bake["unshot_target"].get<double>(),
+              bake["renderer"].get<std::string>().c_str());
+  for (const auto& r : bake["references"])
+    std::printf("reference on %s's atlas: %zu texels, %d spp, %.1f s, noise %.3f%% (%.3f%% without lamps)\n",
+                r["scene_of"].get<std::string>().c_str(), r["texels"].get<size_t>(), r["spp"].get<int>(),
+                r["seconds"].get<double>(), 100.0 * r["noise"].get<double>(),
+                100.0 * r["noise_nonemissive"].get<double>());
+  if (!bake["same_atlas"].get<bool>())
+    std::printf("(the scenes differ, e.g. triangles split on portal planes: each bake has its own reference)\n");
+  for (const char* key : {"a", "b"}) {
+    const auto& s = bake[key];
+    std::printf("  %s %-24s %d cells  %7.2f s  %6d shots  %2d rounds  rel RMSE %.3f%% (%.3f%% without lamps)\n",
+                key[0] == 'a' ? "A" : "B", s["source"].get<std::string>().c_str(), s["cells"].get<int>(),
+                s["seconds"].get<double>(), s["shots"].get<int>(), s["rounds"].get<int>(),
+                100.0 * s["rel_rmse"].get<double>(), 100.0 * s["rel_rmse_nonemissive"].get<double>());
+  }
+  const auto& d = bake["difference_points"];
+  std::printf("  A - B: %+.3f points of rel RMSE (%+.3f without lamps)\n", d["rel_rmse"].get<double>(),
+              d["rel_rmse_nonemissive"].get<double>());
+}
+
+}  // namespace cpgi::cli

@@ -33,13 +33,20 @@ int main(int argc, char** argv) {
   bool profile = false, onDemand = true;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
-    if (key == "--scene") level = std::atoi(value.c_str());
-    else if (key == "--res") res = std::atoi(value.c_str());
-    else if (key == "--unshot") unshot = std::atof(value.c_str());
-    else if (key == "--item-buffer") itemBuffer = std::atoi(value.c_str());
-    else if (key == "--jobs") jobs = std::atoi(value.c_str());
-    else if (key == "--profile") profile = value == "1";
-    else if (key == "--on-demand") onDemand = value == "1";
+    if (key == "--scene")
+      level = std::atoi(value.c_str());
+    else if (key == "--res")
+      res = std::atoi(value.c_str());
+    else if (key == "--unshot")
+      unshot = std::atof(value.c_str());
+    else if (key == "--item-buffer")
+      itemBuffer = std::atoi(value.c_str());
+    else if (key == "--jobs")
+      jobs = std::atoi(value.c_str());
+    else if (key == "--profile")
+      profile = value == "1";
+    else if (key == "--on-demand")
+      onDemand = value == "1";
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 1;
@@ -54,7 +61,8 @@ int main(int argc, char** argv) {
   params.solver.itemBuffer = itemBuffer;
   params.solver.profilePasses = profile;
   params.jobs = jobs;
-  const cpgi::LightmapAtlas atlas = cpgi::buildAtlas(seed.scene, cpgi::findQuads(seed.scene), params.atlas, ctx);
+  const cpgi::LightmapAtlas atlas =
+      cpgi::buildAtlas(seed.scene, cpgi::findQuads(seed.scene), params.atlas, ctx);
   std::printf("# seed%d, %d^2 texels per quad, unshot %g, item buffer %d, jobs %d, renderer %s\n", level, res,
               unshot, itemBuffer, jobs, gl.renderer().c_str());
 
@@ -67,8 +75,8 @@ int main(int argc, char** argv) {
   for (const auto& t : wholeCtx.timings()) stages[t.stage] += t.seconds;
   for (const auto& [stage, s] : stages) std::printf("#   %-26s %8.3f s\n", stage.c_str(), s);
   for (const cpgi::CellEnergy& c : whole.cells)
-    std::printf("#   cell %-4s %2d solves %5d shots %8zu texels %7.2f s (%.1f ms/shot)\n", c.name.c_str(), c.solves,
-                c.shots, c.texels, c.seconds, c.shots ? 1000.0 * c.seconds / c.shots : 0.0);
+    std::printf("#   cell %-4s %2d solves %5d shots %8zu texels %7.2f s (%.1f ms/shot)\n", c.name.c_str(),
+                c.solves, c.shots, c.texels, c.seconds, c.shots ? 1000.0 * c.seconds / c.shots : 0.0);
   if (!onDemand) return 0;
 
   // Cell of every global texel, for the errors.
@@ -79,7 +87,8 @@ int main(int argc, char** argv) {
     const cpgi::CellSelection sel = cpgi::selectCells(seed.cells, baked);
     cpgi::Context c;
     const auto t0 = std::chrono::steady_clock::now();
-    const cpgi::CellSolveResult r = cpgi::solveCellsOnDemand(seed.scene, seed.cells, sel, mode, atlas, params, gl, c);
+    const cpgi::CellSolveResult r =
+        cpgi::solveCellsOnDemand(seed.scene, seed.cells, sel, mode, atlas, params, gl, c);
     const double s = seconds(t0);
     double num = 0.0, den = 0.0;
     for (size_t i = 0; i < atlas.texelCount(); ++i) {
@@ -96,8 +105,9 @@ int main(int argc, char** argv) {
       for (int k : cells) out += (out.empty() ? "" : ",") + seed.cells.cells[k].name;
       return out.empty() ? std::string("-") : out;
     };
-    std::printf("%-8s %-9s %-6s %8.2f %6d %14zu %15.4f\n", names(sel.baked).c_str(), names(sel.boundary).c_str(),
-                cpgi::boundaryModeName(mode), s, r.shots, texels, den > 0.0 ? std::sqrt(num / den) : 0.0);
+    std::printf("%-8s %-9s %-6s %8.2f %6d %14zu %15.4f\n", names(sel.baked).c_str(),
+                names(sel.boundary).c_str(), cpgi::boundaryModeName(mode), s, r.shots, texels,
+                den > 0.0 ? std::sqrt(num / den) : 0.0);
     std::fflush(stdout);
   };
   for (size_t c = 0; c < seed.cells.cells.size(); ++c) {

@@ -11,7 +11,9 @@
 
 namespace cpgi {
 
-const char* boundaryModeName(BoundaryMode m) { return m == BoundaryMode::Coarse ? "coarse" : "dark"; }
+const char* boundaryModeName(BoundaryMode m) {
+  return m == BoundaryMode::Coarse ? "coarse" : "dark";
+}
 
 BoundaryMode parseBoundaryMode(const std::string& name) {
   if (name == "coarse") return BoundaryMode::Coarse;

@@ -3,14 +3,14 @@
 //
 // What the rest of the graph does. A bake of one room must still show the lamp of the room next door
 // through the open door, and the light that lamp bounces off that room's walls, otherwise a room lit
-// through its doors is black or much too dark and "bake only what I look at" is useless. So by default the *boundary* cells (one portal away from a
-// chosen cell, not chosen themselves) are solved fully but on a coarse atlas (half the texels per edge,
-// a quarter of the texels): their lamps and bounces reach the chosen cells through the boundary
-// portals, light the chosen cells send out comes back through them, and their texels are not written.
-// Cells farther away are dark: their portals towards the boundary cells are left open, so light going
-// there is lost (counted as escaped). Measured on seed1 at 8² texels per quad (bench/RESULTS.md): room B,
-// lit only through its doors, is 3.6 % (relative RMSE) from the whole cells bake with coarse neighbours
-// and black with dark ones; rooms with their own lamp are within 0.3 % either way.
+// through its doors is black or much too dark and "bake only what I look at" is useless. So by default the
+// *boundary* cells (one portal away from a chosen cell, not chosen themselves) are solved fully but on a
+// coarse atlas (half the texels per edge, a quarter of the texels): their lamps and bounces reach the chosen
+// cells through the boundary portals, light the chosen cells send out comes back through them, and their
+// texels are not written. Cells farther away are dark: their portals towards the boundary cells are left
+// open, so light going there is lost (counted as escaped). Measured on seed1 at 8² texels per quad
+// (bench/RESULTS.md): room B, lit only through its doors, is 3.6 % (relative RMSE) from the whole cells bake
+// with coarse neighbours and black with dark ones; rooms with their own lamp are within 0.3 % either way.
 // `BoundaryMode::Dark` makes the boundary cells dark too (the chosen cells then see only their own
 // lamps: useful to isolate a room, and cheapest).
 #pragma once

@@ -195,7 +195,8 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   }
   size_t unassigned = 0;
   for (int c : cellOf) unassigned += c < 0;
-  if (unassigned > 0 && !params.partOfGraph) ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
+  if (unassigned > 0 && !params.partOfGraph)
+    ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
 
   // Portal links both ways.
   std::vector<PortalLink> links;
@@ -268,11 +269,11 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     std::vector<SolveResult> solvedOf(nc);
     {
       auto t = ctx.time("cells: solve");
-      workers.run(active.size(), ctx,
-                  [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
-                    const CellState& s = cells[active[k]];
-                    solvedOf[active[k]] = solveProgressive(s.cs.scene, s.atlas, solverParams, context, taskCtx, programs);
-                  });
+      auto solve = [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
+        const CellState& s = cells[active[k]];
+        solvedOf[active[k]] = solveProgressive(s.cs.scene, s.atlas, solverParams, context, taskCtx, programs);
+      };
+      workers.run(active.size(), ctx, solve);
     }
     // Syncs in cell order, so the numbers do not depend on which solve finished first.
     for (size_t c : active) {
@@ -359,7 +360,8 @@ CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, c
 
   // The solved part of the graph: baked cells, boundary cells in Coarse mode, the portals between them.
   std::vector<int> solved = selection.baked;
-  if (mode == BoundaryMode::Coarse) solved.insert(solved.end(), selection.boundary.begin(), selection.boundary.end());
+  if (mode == BoundaryMode::Coarse)
+    solved.insert(solved.end(), selection.boundary.begin(), selection.boundary.end());
   std::sort(solved.begin(), solved.end());
   std::vector<int> subIndex(graph.cells.size(), -1);
   CellGraph sub;

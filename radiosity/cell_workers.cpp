@@ -19,7 +19,9 @@ CellWorkers::CellWorkers(int jobs, const EglContext& gl) : gl_(gl) {
   }
 }
 
-CellWorkers::~CellWorkers() { stopAll(); }
+CellWorkers::~CellWorkers() {
+  stopAll();
+}
 
 void CellWorkers::stopAll() {
   {

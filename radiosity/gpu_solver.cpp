@@ -146,7 +146,8 @@ namespace {
 class Solver {
  public:
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params, const SolverPrograms::Set& programs)
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+         const SolverPrograms::Set& programs)
       : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
         compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
         receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),

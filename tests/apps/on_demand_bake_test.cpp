@@ -122,7 +122,8 @@ TEST_F(OnDemandBake, BadNamesAndPointsFailWithOneLine) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(*dir_ / "bad")) << args;
   }
-  const test::CommandRun r = cpgi(*dir_, "bake '" + scene_ + "' -o '" + *dir_ / "bad" + "' --only-cells A -q");
+  const test::CommandRun r =
+      cpgi(*dir_, "bake '" + scene_ + "' -o '" + *dir_ / "bad" + "' --only-cells A -q");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--method cells"), std::string::npos) << r.err;
 }

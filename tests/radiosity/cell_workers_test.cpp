@@ -25,18 +25,19 @@ TEST(CellWorkers, EveryTaskOnceOnSeveralContexts) {
     std::vector<int> runs(20, 0);
     std::mutex m;
     std::set<const EglContext*> contexts;
-    workers.run(runs.size(), ctx, [&](size_t i, const EglContext& context, SolverPrograms&, Context& taskCtx) {
-      // Real GL work on this thread's context: a buffer written and read back.
-      const uint32_t value = uint32_t(i) * 7u + 1u;
-      gl::Buffer b = gl::makeBuffer(sizeof value, &value);
-      uint32_t back = 0;
-      glGetNamedBufferSubData(b.get(), 0, sizeof back, &back);
-      if (back != value) throw std::runtime_error("read back another context's data");
-      taskCtx.warn("task " + std::to_string(i));
-      std::lock_guard lock(m);
-      ++runs[i];
-      contexts.insert(&context);
-    });
+    workers.run(runs.size(), ctx,
+                [&](size_t i, const EglContext& context, SolverPrograms&, Context& taskCtx) {
+                  // Real GL work on this thread's context: a buffer written and read back.
+                  const uint32_t value = uint32_t(i) * 7u + 1u;
+                  gl::Buffer b = gl::makeBuffer(sizeof value, &value);
+                  uint32_t back = 0;
+                  glGetNamedBufferSubData(b.get(), 0, sizeof back, &back);
+                  if (back != value) throw std::runtime_error("read back another context's data");
+                  taskCtx.warn("task " + std::to_string(i));
+                  std::lock_guard lock(m);
+                  ++runs[i];
+                  contexts.insert(&context);
+                });
     for (int r : runs) EXPECT_EQ(r, 1);
     EXPECT_GE(contexts.size(), 1u);
   }
@@ -78,7 +79,8 @@ TEST(CellWorkers, ParallelCellsSolveEqualsSerial) {
   const CellSolveResult parallel = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
   ASSERT_EQ(parallel.radiosity.size(), serial.radiosity.size());
   size_t differing = 0;
-  for (size_t i = 0; i < serial.radiosity.size(); ++i) differing += parallel.radiosity[i] != serial.radiosity[i];
+  for (size_t i = 0; i < serial.radiosity.size(); ++i)
+    differing += parallel.radiosity[i] != serial.radiosity[i];
   EXPECT_EQ(differing, 0u);
   EXPECT_EQ(parallel.shots, serial.shots);
   EXPECT_EQ(parallel.rounds, serial.rounds);

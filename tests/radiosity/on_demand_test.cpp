@@ -50,7 +50,7 @@ TEST(CellSelection, PointsInsideSolidsAreInNoCell) {
   EXPECT_EQ(cellContaining(s2.scene, s2.cells, {1.0f, 0.9f, 1.0f}), -1);  // in A's 1 m cube
   EXPECT_EQ(cellContaining(s2.scene, s2.cells, {1.0f, 1.1f, 1.0f}), 0);   // just above it
   const SeedScene s3 = makeSeedScene(3);
-  EXPECT_EQ(cellContaining(s3.scene, s3.cells, {8.4f + 0.4f, 1.5f, 0.4f}), -1);  // in one of C's columns
+  EXPECT_EQ(cellContaining(s3.scene, s3.cells, {8.4f + 0.4f, 1.5f, 0.4f}), -1);   // in one of C's columns
   EXPECT_EQ(cellContaining(s3.scene, s3.cells, {8.4f + 0.85f, 1.5f, 0.85f}), 2);  // between them
 }
 
@@ -129,7 +129,8 @@ class OnDemandSolve : public ::testing::Test {
   static bool blackOutside(const CellSolveResult& r, const std::vector<int>& baked) {
     for (size_t i = 0; i < atlas_->texelCount(); ++i) {
       const int c = (*cellOfTexel_)[i];
-      if (std::find(baked.begin(), baked.end(), c) == baked.end() && r.radiosity[i] != glm::vec3(0.0f)) return false;
+      if (std::find(baked.begin(), baked.end(), c) == baked.end() && r.radiosity[i] != glm::vec3(0.0f))
+        return false;
     }
     return true;
   }

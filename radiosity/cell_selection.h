@@ -9,7 +9,7 @@
 // cells through the boundary portals, light the chosen cells send out comes back through them, and their
 // texels are not written. Cells farther away are dark: their portals towards the boundary cells are left
 // open, so light going there is lost (counted as escaped). Measured on seed1 at 8² texels per quad
-// (bench/RESULTS.md): room B, lit only through its doors, is 3.6 % (relative RMSE) from the whole cells bake
+// (bench/RESULTS.md): room B, lit only through its doors, is 3.9 % (relative RMSE) from the whole cells bake
 // with coarse neighbours and black with dark ones; rooms with their own lamp are within 0.3 % either way.
 // `BoundaryMode::Dark` makes the boundary cells dark too (the chosen cells then see only their own
 // lamps: useful to isolate a room, and cheapest).

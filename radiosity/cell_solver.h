@@ -110,8 +110,8 @@ CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, c
 
 /// The boundary cells' atlas: half the texels per edge of `atlas` (at least 2 per quad edge). Most of a
 /// shot's time is the item buffer, which the atlas does not change; the receive pass and memory scale
-/// with the texels. A quarter per edge put room B of seed1 (8²/quad) 8.6 % off the whole bake, half 3.6 % (before
-/// the merged charts; 3.9 % after).
+/// with the texels. A quarter per edge put room B of seed1 (8²/quad) 8.6 % off the whole bake, half
+/// 3.6 % (3.9 % with merged charts).
 AtlasParams coarseAtlasParams(const AtlasParams& atlas);
 
 }  // namespace cpgi

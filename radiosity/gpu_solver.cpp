@@ -114,17 +114,35 @@ class PassClock {
   std::map<std::string, double> seconds_;
 };
 
+// The #defines each program is compiled with for `params`. Every SolverParams field that changes a
+// program's text goes here, and so into the cache key.
+struct ProgramDefines {
+  std::vector<std::string> item, receive, pyramid;
+  std::string key() const {
+    std::string k;
+    for (const auto* list : {&item, &receive, &pyramid}) {
+      for (const std::string& d : *list) k += d + ",";
+      k += ";";
+    }
+    return k;
+  }
+};
+
+ProgramDefines programDefines(const SolverParams& params) {
+  ProgramDefines d;
+  if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
+  return d;
+}
+
 }  // namespace
 
 struct SolverPrograms::Set {
-  explicit Set(Visibility v) {
-    const std::vector<std::string> visDefine =
-        v == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
-    item = buildProgram({"item.vert", "item.frag"}, visDefine);
+  explicit Set(const ProgramDefines& d) {
+    item = buildProgram({"item.vert", "item.frag"}, d.item);
     compact = buildProgram({"compact.comp"});
     finish = buildProgram({"finish_lists.comp"});
-    pyramid = buildProgram({"shooter_pyramid.comp"});
-    receive = buildProgram({"receive.comp"}, visDefine);
+    pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
+    receive = buildProgram({"receive.comp"}, d.receive);
     stats = buildProgram({"patch_stats.comp"});
     tileStats = buildProgram({"tile_stats.comp"});
     select = buildProgram({"select_shooter.comp"});
@@ -135,9 +153,10 @@ struct SolverPrograms::Set {
 SolverPrograms::SolverPrograms() = default;
 SolverPrograms::~SolverPrograms() = default;
 
-const SolverPrograms::Set& SolverPrograms::get(Visibility v) {
-  std::unique_ptr<Set>& set = sets_[v == Visibility::Hemisphere ? 0 : 1];
-  if (!set) set = std::make_unique<Set>(v);
+const SolverPrograms::Set& SolverPrograms::get(const SolverParams& params) {
+  const ProgramDefines defines = programDefines(params);
+  std::unique_ptr<Set>& set = sets_[defines.key()];
+  if (!set) set = std::make_unique<Set>(defines);
   return *set;
 }
 
@@ -572,7 +591,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params, programs.get(params.visibility));
+  Solver solver(scene, atlas, params, programs.get(params));
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,11 +100,11 @@ class SolverPrograms {
   SolverPrograms(const SolverPrograms&) = delete;
   SolverPrograms& operator=(const SolverPrograms&) = delete;
   struct Set;  // gpu_solver.cpp
-  /// The programs for one visibility mode, compiled at first use.
-  const Set& get(Visibility v);
+  /// The programs for `params` (their #defines: visibility mode, ...), compiled at first use.
+  const Set& get(const SolverParams& params);
 
  private:
-  std::unique_ptr<Set> sets_[2];
+  std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines
 };
 
 /// Solves the atlas. `scene` supplies occluders: every scene triangle is drawn in the item buffer, those

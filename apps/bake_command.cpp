@@ -1,4 +1,5 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional] [--max-rounds N]
+//  [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 //  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
 //  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
 // the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
@@ -26,6 +27,7 @@
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_selection.h"
 #include "radiosity/cell_solver.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/gpu_solver.h"
@@ -41,6 +43,11 @@ struct BakeOptions {
   std::string cells = "none";  ///< with --method cells: a glTF with cell:/portal: nodes, or "auto"
   std::string portals = "diffuse";
   int maxRounds = CellSolveParams{}.maxRounds;
+  std::string onlyCells;  ///< on demand: "A,B"
+  std::string around;     ///< on demand: "X,Y,Z"
+  int depth = 0;          ///< with `around`: portals away from the point's cell
+  std::string boundary = boundaryModeName(BoundaryMode::Coarse);
+  int jobs = CellSolveParams{}.jobs;
   int texelsPerQuad = 0;
   float density = AtlasParams{}.density;
   double unshot = SolverParams{}.unshotFraction;
@@ -61,6 +68,65 @@ Context::ProgressFn progressPrinter(bool quiet) {
     if (fraction >= 1.0) std::fputc('\n', stderr);
     std::fflush(stderr);
   };
+}
+
+// On-demand bakes (radiosity/cell_selection.h): the cells to bake, or nothing for a whole bake.
+struct OnDemand {
+  bool active = false;
+  CellSelection selection;
+  BoundaryMode mode = BoundaryMode::Coarse;
+  int aroundCell = -1;
+};
+
+OnDemand resolveOnDemand(const BakeOptions& o, const Scene& scene, const CellGraph& graph) {
+  OnDemand d;
+  if (o.onlyCells.empty() && o.around.empty()) return d;
+  const std::string option = o.onlyCells.empty() ? "--around" : "--only-cells";
+  if (o.method != "cells") throw InputError(option, "needs --method cells");
+  d.active = true;
+  d.mode = parseBoundaryMode(o.boundary);
+  std::vector<int> baked;
+  if (!o.onlyCells.empty()) {
+    baked = cellsByName(graph, o.onlyCells, "--only-cells");
+  } else {
+    const glm::vec3 p = parsePoint(o.around, "--around");
+    d.aroundCell = cellContaining(scene, graph, p);
+    if (d.aroundCell < 0) throw InputError("--around", "the point " + o.around + " is in no cell");
+    baked = cellsWithin(graph, d.aroundCell, o.depth);
+  }
+  d.selection = selectCells(graph, baked);
+  return d;
+}
+
+// report.json's "on_demand": which cells were baked and what the others did (null for a whole bake).
+nlohmann::json onDemandReport(const BakeOptions& o, const OnDemand& d, const CellGraph& graph,
+                              const LightmapAtlas& atlas) {
+  if (!d.active) return nullptr;
+  auto names = [&](const std::vector<int>& cells) {
+    nlohmann::json out = nlohmann::json::array();
+    for (int c : cells) out.push_back(graph.cells[c].name);
+    return out;
+  };
+  // Texels of the atlas that belong to baked cells: the only ones with light.
+  std::vector<char> baked(graph.cells.size(), 0);
+  for (int c : d.selection.baked) baked[c] = 1;
+  size_t texels = 0;
+  for (int c : cellOfTexels(atlas, graph, atlas.triangleUV.size())) texels += c >= 0 && baked[c];
+  nlohmann::json j = {{"baked", names(d.selection.baked)},
+                      {"boundary", names(d.selection.boundary)},
+                      {"dark", names(d.selection.dark)},
+                      {"boundary_mode", boundaryModeName(d.mode)},
+                      {"baked_texels", texels}};
+  j["boundary_role"] = d.mode == BoundaryMode::Coarse
+                           ? "solved on a coarse atlas, lighting the baked cells through their portals; not written"
+                           : "dark";
+  if (!o.onlyCells.empty()) j["only_cells"] = o.onlyCells;
+  if (d.aroundCell >= 0) {
+    j["around"] = o.around;
+    j["around_cell"] = graph.cells[d.aroundCell].name;
+    j["depth"] = o.depth;
+  }
+  return j;
 }
 
 int runBake(const BakeOptions& o) {
@@ -86,6 +152,7 @@ int runBake(const BakeOptions& o) {
   CellGraph graph;
   if (o.method == "cells")
     graph = resolveCells(o.cells, o.scene, loaded, decomp::DecomposeParams{}, o.repair, ctx);
+  const OnDemand onDemand = resolveOnDemand(o, loaded.scene, graph);
   OutputDir out(o.output);
 
   QuadSet quads;
@@ -113,7 +180,10 @@ int runBake(const BakeOptions& o) {
     params.atlas = atlasParams;
     params.maxRounds = o.maxRounds;
     params.portals = parsePortalLight(o.portals);
-    cellSolved = solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
+    params.jobs = o.jobs;
+    cellSolved = onDemand.active ? solveCellsOnDemand(loaded.scene, graph, onDemand.selection, onDemand.mode,
+                                                      atlas, params, *gl, ctx)
+                                 : solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
     solved.radiosity = cellSolved.radiosity;
     solved.shots = cellSolved.shots;
     solved.unshotFraction = cellSolved.unshotFraction;
@@ -203,6 +273,7 @@ int runBake(const BakeOptions& o) {
     report["energy"].erase("shot_w");
     report["energy"].erase("received_w");
     report["rounds"] = cellSolved.rounds;
+    report["jobs"] = o.jobs;
     report["portal_mode"] = o.portals;
     report["max_cell_texels"] = cellSolved.maxCellTexels;
     nlohmann::json cells = nlohmann::json::array(), portals = nlohmann::json::array();
@@ -215,17 +286,23 @@ int runBake(const BakeOptions& o) {
                        {"unshot_w", c.unshot},
                        {"escaped_w", c.escaped},
                        {"solves", c.solves},
+                       {"written", c.written},
                        {"shots", c.shots},
                        {"texels", c.texels},
                        {"solve_seconds", c.seconds}});
-    for (size_t p = 0; p < cellSolved.portals.size(); ++p)
-      portals.push_back({{"name", cellSolved.portals[p].name},
-                         {"cell_a", graph.cells[graph.portals[p].cellA].name},
-                         {"cell_b", graph.cells[graph.portals[p].cellB].name},
-                         {"a_to_b_w", cellSolved.portals[p].aToB},
-                         {"b_to_a_w", cellSolved.portals[p].bToA}});
+    for (const PortalEnergy& pe : cellSolved.portals) {
+      // By name: an on-demand bake solves only some of the graph's portals.
+      const auto q = std::find_if(graph.portals.begin(), graph.portals.end(),
+                                  [&](const PortalQuad& g) { return g.name == pe.name; });
+      portals.push_back({{"name", pe.name},
+                         {"cell_a", graph.cells[q->cellA].name},
+                         {"cell_b", graph.cells[q->cellB].name},
+                         {"a_to_b_w", pe.aToB},
+                         {"b_to_a_w", pe.bToA}});
+    }
     report["cell_energy"] = cells;
     report["portal_energy"] = portals;
+    report["on_demand"] = onDemandReport(o, onDemand, graph, atlas);
   }
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();
@@ -260,6 +337,27 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   sub->add_option("--max-rounds", o->maxRounds, "With --method cells: solve rounds (syncs) at most")
       ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  auto* only = sub->add_option("--only-cells", o->onlyCells,
+                               "With --method cells: bake only these cells (comma-separated names); the others "
+                               "act through their portals (see --boundary)");
+  auto* around = sub->add_option("--around", o->around,
+                                 "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
+                                 "within --depth portals of it");
+  only->excludes(around);
+  sub->add_option("--depth", o->depth, "With --around: portals away from the point's cell")
+      ->check(CLI::Range(0, 1000000))
+      ->needs(around)
+      ->capture_default_str();
+  sub->add_option("--boundary", o->boundary,
+                  "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their "
+                  "lamps and bounces light the baked cells through the portals; not written) or dark")
+      ->check(CLI::IsMember({"coarse", "dark"}))
+      ->capture_default_str();
+  sub->add_option("--jobs", o->jobs,
+                  "With --method cells: cells solved at once in a round, each on its own thread and OpenGL "
+                  "context (same result as 1)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   auto* tpq = sub->add_option("--texels-per-quad", o->texelsPerQuad,
                               "N×N texels per quad whatever its size (the thesis's mode)")

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
+#include "radiosity/cell_workers.h"
 #include "radiosity/emission_lobes.h"
 
 namespace cpgi {
@@ -51,11 +54,11 @@ std::vector<int> patchOfTriangle(const LightmapAtlas& atlas, size_t triangles) {
 
 // Directional portals. One cell solve, emitting `pending` with the lobes fitted to its arrival moments.
 SolveResult solveDirectional(const CellState& s, const SolverParams& solverParams, float lobeMinWidth,
-                             const EglContext& gl, Context& ctx) {
+                             const EglContext& gl, Context& ctx, SolverPrograms& programs) {
   SolverParams p = solverParams;
   p.directionalEmission = true;
   return solveProgressive(s.cs.scene, s.atlas, p, fitEmissionLobes(s.pendingArrivals, s.atlas, lobeMinWidth), gl,
-                          ctx);
+                          ctx, programs);
 }
 
 // Directional portals: the moments of what a solve left unshot. A texel's residual is the part of its
@@ -154,7 +157,8 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   if (graph.empty()) throw InputError("--cells", "the cell graph has no cells");
   const CellValidation validation = validateCells(scene, graph);
   if (!validation.errors.empty()) throw InputError("--cells", validation.errors.front());
-  for (const std::string& w : validation.warnings) ctx.warn(w);
+  if (!params.partOfGraph)
+    for (const std::string& w : validation.warnings) ctx.warn(w);
   if (params.maxRounds < 1) throw InputError("solver", "cell rounds must be at least 1");
   const bool directional = params.portals == PortalLight::Directional;
   if (directional && !(params.lobeMinWidth > 0.0f && params.lobeMinWidth <= 0.45f))
@@ -165,14 +169,20 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   std::vector<int32_t> localIndex(scene.triangles.size(), -1);
   std::vector<CellState> cells(nc);
   std::vector<std::vector<int>> cellPatchOf(nc);  // per cell, per cell-scene triangle: its patch
+  std::vector<char> boundary(nc, 0);                // on-demand boundary cells: coarse atlas, not written
+  for (int c : params.boundaryCells) boundary.at(size_t(c)) = 1;
   std::vector<int32_t> source;
   {
     auto t = ctx.time("cells: atlases");
-    for (size_t c = 0; c < nc; ++c) {
+    // Cells side by side (TBB): a cell's triangles are its own, so the localIndex writes never meet;
+    // each cell's warnings and timings go to ctx in cell order afterwards.
+    std::vector<Context> cellCtx(nc);
+    tbb::parallel_for(size_t(0), nc, [&](size_t c) {
       CellState& s = cells[c];
       s.cs = makeCellScene(scene, graph, int(c));
       for (size_t i = 0; i < s.cs.ownTriangles; ++i) localIndex[s.cs.globalTriangle[i]] = int32_t(i);
-      s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), params.atlas, ctx);
+      s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), boundary[c] ? params.boundaryAtlas : params.atlas,
+                           cellCtx[c]);
       const std::vector<int> patchOf = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
       for (size_t k = 0; k < s.cs.portals.size(); ++k) s.portalPatch.push_back(patchOf[s.cs.ownTriangles + 2 * k]);
       cellPatchOf[c] = patchOf;
@@ -181,6 +191,10 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
         if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
       s.carried.assign(s.atlas.texelCount(), glm::vec3(0.0f));
       if (directional) s.pendingArrivals.assign(s.atlas.texelCount(), glm::vec4(0.0f));
+    });
+    for (const Context& c : cellCtx) {
+      for (const Context::Timing& timing : c.timings()) ctx.addTiming(timing.stage, timing.seconds);
+      for (const std::string& w : c.warnings()) ctx.warn(w);
     }
     // Global charts → cell charts. A global chart may be a grid of quads (radiosity/quad_grids.h) that
     // the cells cut apart, so each texel goes by the triangle under it to that triangle's cell patch.
@@ -191,7 +205,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
       for (size_t m = 0; m < target.size(); ++m) {
         const int32_t tri = P.triangles[P.quads.empty() ? 0 : 2 * m];
         const int c = cellOf[tri];
-        if (c < 0) continue;
+        if (c < 0 || boundary[c]) continue;
         target[m] = {c, cellPatchOf[c][localIndex[tri]]};
       }
       std::vector<std::pair<int, int>> distinct = target;
@@ -217,7 +231,8 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
   }
   size_t unassigned = 0;
   for (int c : cellOf) unassigned += c < 0;
-  if (unassigned > 0) ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
+  if (unassigned > 0 && !params.partOfGraph)
+    ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
 
   // Portal links both ways.
   std::vector<PortalLink> links;
@@ -251,6 +266,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     result.cells[c].name = graph.cells[c].name;
     result.cells[c].emitted = power(cells[c].pending, cells[c].atlas);
     result.cells[c].texels = cells[c].atlas.validTexels();
+    result.cells[c].written = !boundary[c];
     result.emitted += result.cells[c].emitted;
     result.maxCellTexels = std::max(result.maxCellTexels, result.cells[c].texels);
   }
@@ -258,6 +274,7 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
 
   SolverParams solverParams = params.solver;
   solverParams.readTransfer = true;
+  CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
   const double target = params.solver.unshotFraction * result.emitted;
   double unshot = result.emitted;
   while (result.emitted > 0.0 && unshot > target && result.rounds < params.maxRounds) {
@@ -274,9 +291,9 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     for (size_t c = 0; c < nc; ++c) nextPending[c].assign(cells[c].pending.size(), glm::vec3(0.0f));
     if (directional)
       for (size_t c = 0; c < nc; ++c) nextArrivals[c].assign(cells[c].pending.size(), glm::vec4(0.0f));
+    std::vector<size_t> active;  // the cells solved this round
     for (size_t c = 0; c < nc; ++c) {
       CellState& s = cells[c];
-      CellEnergy& ce = result.cells[c];
       const double injected = power(s.pending, s.atlas);
       // A cell holding a negligible share waits (its light stays pending, counted as unshot).
       if (!(injected > 1e-6 * target)) {
@@ -286,12 +303,25 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
         continue;
       }
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
-      SolveResult solved;
-      {
-        auto t = ctx.time("cells: solve");
-        solved = directional ? solveDirectional(s, solverParams, params.lobeMinWidth, gl, ctx)
-                             : solveProgressive(s.cs.scene, s.atlas, solverParams, gl, ctx);
-      }
+      active.push_back(c);
+    }
+    // The round's solves are independent (each reads only its own cell): side by side with --jobs.
+    std::vector<SolveResult> solvedOf(nc);
+    {
+      auto t = ctx.time("cells: solve");
+      auto solve = [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
+        const CellState& s = cells[active[k]];
+        solvedOf[active[k]] =
+            directional ? solveDirectional(s, solverParams, params.lobeMinWidth, context, taskCtx, programs)
+                        : solveProgressive(s.cs.scene, s.atlas, solverParams, context, taskCtx, programs);
+      };
+      workers.run(active.size(), ctx, solve);
+    }
+    // Syncs in cell order, so the numbers do not depend on which solve finished first.
+    for (size_t c : active) {
+      CellState& s = cells[c];
+      CellEnergy& ce = result.cells[c];
+      const SolveResult solved = std::move(solvedOf[c]);
       ++ce.solves;
       ce.shots += solved.shots;
       result.shots += solved.shots;
@@ -358,6 +388,49 @@ CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lig
     if (global.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
+  AtlasParams coarse = atlas;
+  if (atlas.texelsPerQuad > 0)
+    coarse.texelsPerQuad = std::max(2, atlas.texelsPerQuad / 2);
+  else
+    coarse.density = atlas.density / 2.0f;
+  return coarse;
+}
+
+CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+                                   BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
+                                   const EglContext& gl, Context& ctx) {
+  if (selection.baked.empty()) throw InputError("cells", "an on-demand bake needs at least one cell");
+  const CellValidation validation = validateCells(scene, graph);
+  if (!validation.errors.empty()) throw InputError("--cells", validation.errors.front());
+  for (const std::string& w : validation.warnings) ctx.warn(w);
+
+  // The solved part of the graph: baked cells, boundary cells in Coarse mode, the portals between them.
+  std::vector<int> solved = selection.baked;
+  if (mode == BoundaryMode::Coarse)
+    solved.insert(solved.end(), selection.boundary.begin(), selection.boundary.end());
+  std::sort(solved.begin(), solved.end());
+  std::vector<int> subIndex(graph.cells.size(), -1);
+  CellGraph sub;
+  CellSolveParams subParams = params;
+  subParams.partOfGraph = true;
+  subParams.boundaryAtlas = coarseAtlasParams(params.atlas);
+  subParams.boundaryCells.clear();
+  for (int c : solved) {
+    subIndex[c] = int(sub.cells.size());
+    if (!std::binary_search(selection.baked.begin(), selection.baked.end(), c))
+      subParams.boundaryCells.push_back(int(sub.cells.size()));
+    sub.cells.push_back(graph.cells[c]);
+  }
+  for (const PortalQuad& q : graph.portals) {
+    if (q.cellA < 0 || q.cellB < 0 || subIndex[q.cellA] < 0 || subIndex[q.cellB] < 0) continue;
+    PortalQuad p = q;
+    p.cellA = subIndex[q.cellA], p.cellB = subIndex[q.cellB];
+    sub.portals.push_back(p);
+  }
+  return solveCells(scene, sub, global, subParams, gl, ctx);
 }
 
 }  // namespace cpgi

@@ -18,6 +18,7 @@
 #include "core/quads.h"
 #include "core/scene.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_selection.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/gpu_solver.h"
 
@@ -44,6 +45,16 @@ struct CellSolveParams {
   /// narrow), in (0, 0.45]. A collimated beam gets this width, so that receivers, sampled at texel
   /// centres, do not alias it; a wider arrival keeps its own width.
   float lobeMinWidth = 0.05f;
+  /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
+  /// (radiosity/cell_workers.h). Any value gives the same result as 1.
+  int jobs = 1;
+  /// On-demand bakes (solveCellsOnDemand): cells of the graph solved on `boundaryAtlas` only to light
+  /// their neighbours through the portals; their texels are not written.
+  std::vector<int> boundaryCells;
+  AtlasParams boundaryAtlas;
+  /// Set by solveCellsOnDemand: the graph is part of the scene's, so triangles in no cell and a
+  /// disconnected graph are expected (the whole graph was validated and warned about).
+  bool partOfGraph = false;
 };
 
 /// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.
@@ -58,6 +69,7 @@ struct CellEnergy {
   int solves = 0, shots = 0;
   size_t texels = 0;      ///< valid texels of its atlas, portals included
   double seconds = 0.0;   ///< its solves
+  bool written = true;    ///< false for an on-demand bake's boundary cell (solved, texels left black)
 };
 
 struct PortalEnergy {
@@ -98,5 +110,20 @@ void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtla
 /// graph is unusable (validateCells errors); triangles in no cell stay black (a warning in ctx).
 CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
                            const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+/// An on-demand bake (radiosity/cell_selection.h): solveCells over the selection's baked cells and, in
+/// Coarse mode, its boundary cells on a coarse atlas (coarseAtlasParams);
+/// only the baked cells' texels are written. Portals to cells left out are open (light leaving through
+/// them counts as escaped). `result.cells` lists the solved cells in graph order (boundary ones with
+/// written = false); `result.portals` the portals between them.
+CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+                                   BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
+                                   const EglContext& gl, Context& ctx);
+
+/// The boundary cells' atlas: half the texels per edge of `atlas` (at least 2 per quad edge). Most of a
+/// shot's time is the item buffer, which the atlas does not change; the receive pass and memory scale
+/// with the texels. A quarter per edge put room B of seed1 (8²/quad) 8.6 % off the whole bake, half
+/// 3.6 % (3.9 % with merged charts).
+AtlasParams coarseAtlasParams(const AtlasParams& atlas);
 
 }  // namespace cpgi

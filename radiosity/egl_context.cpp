@@ -73,7 +73,26 @@ std::vector<Candidate> candidates(const EglExtensions& e) {
 }
 
 // Tries one display; returns the context or EGL_NO_CONTEXT with `why` filled in.
-EGLContext tryDisplay(EGLDisplay d, std::string& why) {
+EGLContext makeContext(EGLDisplay d, EGLConfig config, std::string& why) {
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_NONE};
+  EGLContext c = eglCreateContext(d, config, EGL_NO_CONTEXT, contextAttribs);
+  if (c == EGL_NO_CONTEXT) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", unsigned(eglGetError()));
+    why = std::string("no OpenGL 4.5 core context (EGL error ") + code + ")";
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+    eglDestroyContext(d, c);
+    why = "eglMakeCurrent without a surface failed";
+    return EGL_NO_CONTEXT;
+  }
+  return c;
+}
+
+EGLContext tryDisplay(EGLDisplay d, EGLConfig& chosen, std::string& why) {
   EGLint major = 0, minor = 0;
   if (!eglInitialize(d, &major, &minor)) {
     why = "eglInitialize failed";
@@ -95,22 +114,8 @@ EGLContext tryDisplay(EGLDisplay d, std::string& why) {
     why = "no OpenGL-renderable EGL config";
     return EGL_NO_CONTEXT;
   }
-  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                   EGL_NONE};
-  EGLContext c = eglCreateContext(d, n > 0 ? config : EGLConfig(nullptr), EGL_NO_CONTEXT, contextAttribs);
-  if (c == EGL_NO_CONTEXT) {
-    char code[16];
-    std::snprintf(code, sizeof code, "0x%04x", unsigned(eglGetError()));
-    why = std::string("no OpenGL 4.5 core context (EGL error ") + code + ")";
-    return EGL_NO_CONTEXT;
-  }
-  if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
-    eglDestroyContext(d, c);
-    why = "eglMakeCurrent without a surface failed";
-    return EGL_NO_CONTEXT;
-  }
-  return c;
+  chosen = n > 0 ? config : EGLConfig(nullptr);
+  return makeContext(d, chosen, why);
 }
 
 }  // namespace
@@ -120,10 +125,12 @@ EglContext::EglContext(Context& ctx) {
   std::string failures;
   for (const Candidate& cand : candidates(ext)) {
     std::string why;
-    EGLContext c = tryDisplay(cand.display, why);
+    EGLConfig config = nullptr;
+    EGLContext c = tryDisplay(cand.display, config, why);
     if (c != EGL_NO_CONTEXT) {
       display_ = cand.display;
       context_ = c;
+      config_ = config;
       platform_ = cand.platform;
       break;
     }
@@ -134,6 +141,26 @@ EglContext::EglContext(Context& ctx) {
     throw SystemError("EGL: no headless OpenGL 4.5 context (" +
                       (failures.empty() ? std::string("no EGL device or surfaceless platform") : failures) +
                       "); install Mesa (libegl-mesa0, libgl1-mesa-dri) or a GPU driver");
+  describe();
+  ctx.progress("egl", 1.0, platform_ + ": " + renderer_ + ", OpenGL " + version_);
+}
+
+std::unique_ptr<EglContext> EglContext::sibling(const EglContext& first) {
+  std::unique_ptr<EglContext> c(new EglContext());
+  c->display_ = first.display_;
+  c->config_ = first.config_;
+  c->platform_ = first.platform_;
+  c->ownsDisplay_ = false;
+  // The API binding is per thread.
+  if (!eglBindAPI(EGL_OPENGL_API)) throw SystemError("EGL: no desktop OpenGL API on a worker thread");
+  std::string why;
+  c->context_ = makeContext(first.display_, first.config_, why);
+  if (!c->context_) throw SystemError("EGL: a further context for a worker thread: " + why);
+  c->describe();
+  return c;
+}
+
+void EglContext::describe() {
   auto str = [](GLenum name) {
     const GLubyte* s = glGetString(name);
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
@@ -148,7 +175,6 @@ EglContext::EglContext(Context& ctx) {
     release();
     throw SystemError("EGL: the context is OpenGL " + version_ + ", 4.5 core is needed");
   }
-  ctx.progress("egl", 1.0, platform_ + ": " + renderer_ + ", OpenGL " + version_);
 }
 
 EglContext::~EglContext() { release(); }
@@ -157,7 +183,7 @@ void EglContext::release() {
   if (!display_) return;
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (context_) eglDestroyContext(display_, context_);
-  eglTerminate(display_);
+  if (ownsDisplay_) eglTerminate(display_);
   display_ = context_ = nullptr;
 }
 

@@ -4,6 +4,7 @@
 // object's lifetime.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "core/context.h"
@@ -17,6 +18,10 @@ class EglContext {
   /// ctx.progress("egl", 1, ...).
   explicit EglContext(Context& ctx);
   ~EglContext();
+  /// A further context on `first`'s display, made current on the calling thread: one per worker thread
+  /// (a context is current on one thread at a time). Not shared with `first` (its own programs and
+  /// buffers); `first` must outlive it. Throws SystemError when the driver refuses.
+  static std::unique_ptr<EglContext> sibling(const EglContext& first);
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
@@ -29,9 +34,13 @@ class EglContext {
   int maxTextureSize() const { return maxTextureSize_; }
 
  private:
+  EglContext() = default;
+  void describe();
   void release();
   void* display_ = nullptr;  // EGLDisplay
   void* context_ = nullptr;  // EGLContext
+  void* config_ = nullptr;   // EGLConfig, null with EGL_KHR_no_config_context
+  bool ownsDisplay_ = true;  // false for a sibling: the first context terminates the display
   std::string renderer_, version_, platform_;
   int maxTextureSize_ = 0;
 };

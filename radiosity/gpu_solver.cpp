@@ -114,23 +114,64 @@ class PassClock {
   std::map<std::string, double> seconds_;
 };
 
+// The #defines each program is compiled with for `params`. Every SolverParams field that changes a
+// program's text goes here, and so into the cache key.
+struct ProgramDefines {
+  std::vector<std::string> item, receive, pyramid;
+  std::string key() const {
+    std::string k;
+    for (const auto* list : {&item, &receive, &pyramid}) {
+      for (const std::string& d : *list) k += d + ",";
+      k += ";";
+    }
+    return k;
+  }
+};
+
+ProgramDefines programDefines(const SolverParams& params) {
+  ProgramDefines d;
+  if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
+  if (params.directionalEmission) d.receive.push_back("DIRECTIONAL"), d.pyramid.push_back("DIRECTIONAL");
+  return d;
+}
+
+}  // namespace
+
+struct SolverPrograms::Set {
+  explicit Set(const ProgramDefines& d) {
+    item = buildProgram({"item.vert", "item.frag"}, d.item);
+    compact = buildProgram({"compact.comp"});
+    finish = buildProgram({"finish_lists.comp"});
+    pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
+    receive = buildProgram({"receive.comp"}, d.receive);
+    stats = buildProgram({"patch_stats.comp"});
+    tileStats = buildProgram({"tile_stats.comp"});
+    select = buildProgram({"select_shooter.comp"});
+  }
+  gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select;
+};
+
+SolverPrograms::SolverPrograms() = default;
+SolverPrograms::~SolverPrograms() = default;
+
+const SolverPrograms::Set& SolverPrograms::get(const SolverParams& params) {
+  const ProgramDefines defines = programDefines(params);
+  std::unique_ptr<Set>& set = sets_[defines.key()];
+  if (!set) set = std::make_unique<Set>(defines);
+  return *set;
+}
+
+namespace {
+
 class Solver {
  public:
+  // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-         const std::vector<glm::vec4>* emissionLobes)
-      : scene_(scene), atlas_(atlas), params_(params), clock_(params.profilePasses) {
-    const std::vector<std::string> visDefine =
-        params.visibility == Visibility::Hemisphere ? std::vector<std::string>{"HEMISPHERE"} : std::vector<std::string>{};
-    std::vector<std::string> receiveDefines = visDefine, pyramidDefines;
-    if (params.directionalEmission) receiveDefines.push_back("DIRECTIONAL"), pyramidDefines.push_back("DIRECTIONAL");
-    itemProgram_ = buildProgram({"item.vert", "item.frag"}, visDefine);
-    compactProgram_ = buildProgram({"compact.comp"});
-    finishProgram_ = buildProgram({"finish_lists.comp"});
-    pyramidProgram_ = buildProgram({"shooter_pyramid.comp"}, pyramidDefines);
-    receiveProgram_ = buildProgram({"receive.comp"}, receiveDefines);
-    statsProgram_ = buildProgram({"patch_stats.comp"});
-    tileStatsProgram_ = buildProgram({"tile_stats.comp"});
-    selectProgram_ = buildProgram({"select_shooter.comp"});
+         const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
+      : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
+        compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
+        receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
+        selectProgram_(programs.select), clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     uploadAtlas();
     if (params.directionalEmission) uploadDirectional(emissionLobes);
@@ -522,8 +563,8 @@ class Solver {
   const Scene& scene_;
   const LightmapAtlas& atlas_;
   SolverParams params_;
-  gl::Program itemProgram_, compactProgram_, finishProgram_, pyramidProgram_, receiveProgram_,
-      statsProgram_, tileStatsProgram_, selectProgram_;
+  const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
+      &statsProgram_, &tileStatsProgram_, &selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, depth_;
@@ -557,7 +598,8 @@ std::string formatStatus(int shots, double fraction, double eta) {
 
 namespace {
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx);
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs);
 }  // namespace
 
 const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
@@ -570,19 +612,33 @@ Visibility parseVisibility(const std::string& name) {
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& context, Context& ctx) {
-  return solveWithLobes(scene, atlas, params, nullptr, context, ctx);
+  SolverPrograms programs;
+  return solveWithLobes(scene, atlas, params, nullptr, context, ctx, programs);
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& context, Context& ctx, SolverPrograms& programs) {
+  return solveWithLobes(scene, atlas, params, nullptr, context, ctx, programs);
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx) {
+  SolverPrograms programs;
+  return solveProgressive(scene, atlas, params, emissionLobes, context, ctx, programs);
+}
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx,
+                             SolverPrograms& programs) {
   if (!params.directionalEmission) throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
-  return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx);
+  return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx, programs);
 }
 
 namespace {
 
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx) {
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs) {
   checkParams(params, atlas, context.maxTextureSize());
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -592,7 +648,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params, emissionLobes);
+  Solver solver(scene, atlas, params, programs.get(params), emissionLobes);
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -95,15 +97,39 @@ struct SolveResult {
   double setupSeconds = 0.0;         ///< programs and textures
 };
 
+/// The solver's GLSL programs, compiled once and reused by every solve given the same object (a cell
+/// solve runs once per cell and round). llvmpipe translates a program to machine code at its first draw
+/// or dispatch, so a fresh set per solve costs setup time and slower first shots. Belongs to the
+/// context (and thread) current when the first solve used it.
+class SolverPrograms {
+ public:
+  SolverPrograms();
+  ~SolverPrograms();
+  SolverPrograms(const SolverPrograms&) = delete;
+  SolverPrograms& operator=(const SolverPrograms&) = delete;
+  struct Set;  // gpu_solver.cpp
+  /// The programs for `params` (their #defines: visibility mode, ...), compiled at first use.
+  const Set& get(const SolverParams& params);
+
+ private:
+  std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines
+};
+
 /// Solves the atlas. `scene` supplies occluders: every scene triangle is drawn in the item buffer, those
 /// outside the atlas with no patch (they block light but receive none).
 /// Throws InputError for bad params, SystemError for GL failures.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const EglContext& gl, Context& ctx);
+/// The same, with programs compiled by an earlier solve on this context (identical results).
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const EglContext& gl, Context& ctx, SolverPrograms& programs);
 
 /// The same with SolverParams::directionalEmission on: `emissionLobes` holds one packed lobe per atlas
 /// texel (emission_lobes.h; zero = Lambertian) for the emission and whatever residual the texel shoots.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
                              const std::vector<glm::vec4>& emissionLobes, const EglContext& gl, Context& ctx);
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& gl, Context& ctx,
+                             SolverPrograms& programs);
 
 }  // namespace cpgi

@@ -1,11 +1,12 @@
 // `cpgi compare-light A_DIR B_DIR`: the accuracy of lightmap A against lightmap B (the reference) on the
 // same atlas, in the metric of design.md §5.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "radiosity/metrics.h"
+#include "radiosity/texel_sample.h"
 
 namespace cpgi::cli {
 
@@ -29,7 +31,9 @@ struct CompareLightOptions {
 struct Lightmap {
   ImageRGB rgb;
   std::vector<float> area;
-  std::vector<float> emissive;  ///< 1 for lamp texels; only in `cpgi reference` output, else empty
+  std::vector<float> emissive;      ///< 1 for lamp texels; only in `cpgi reference` output, else empty
+  std::vector<float> sigma;         ///< per-texel standard error; only in `cpgi reference` output
+  std::vector<float> sampleWeight;  ///< only in a sparse reference (`--texels`): > 0 on traced texels
 };
 
 Lightmap readLightmap(const std::string& dir) {
@@ -44,24 +48,35 @@ Lightmap readLightmap(const std::string& dir) {
       map.area = std::move(c.values);
     else if (c.name == "emissive")
       map.emissive = std::move(c.values);
+    else if (c.name == "stderr")
+      map.sigma = std::move(c.values);
+    else if (c.name == "sample_weight")
+      map.sampleWeight = std::move(c.values);
   if (map.area.size() != map.rgb.pixels.size())
     throw InputError(path.string(), "no per-texel \"area\" channel (not written by cpgi bake or reference)");
   return map;
 }
 
-/// The reference's own noise (`key` of B's report.json), when it has one (a `cpgi reference` output).
-std::optional<double> referenceNoise(const std::string& dir, const std::string& key) {
-  const fs::path path = fs::path(dir) / "report.json";
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  const nlohmann::json report = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (report.is_discarded()) throw InputError(path.string(), "not valid JSON");
-  if (report.contains(key) && report[key].is_number()) return report[key].get<double>();
-  return std::nullopt;
+/// The reference's own noise over the texels compared, with their weights: sqrt(Σ w σ² / Σ w |R|²) (the
+/// metric of reference_tracer.h's relativeStandardError), when B carries its per-texel error.
+std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> weight) {
+  if (b.sigma.size() != weight.size()) return std::nullopt;
+  double noise = 0.0, signal = 0.0;
+  for (size_t i = 0; i < weight.size(); ++i) {
+    if (!(weight[i] > 0.0f)) continue;
+    const glm::dvec3 r(b.rgb.pixels[i]);
+    noise += weight[i] * double(b.sigma[i]) * b.sigma[i];
+    signal += weight[i] * glm::dot(r, r);
+  }
+  return signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
 }
 
 int runCompareLight(const CompareLightOptions& o) {
   const Lightmap a = readLightmap(o.a), b = readLightmap(o.b);
+  if (!a.sampleWeight.empty())
+    throw InputError(o.a,
+                     "is a sparse reference (cpgi reference --texels traces a sample of texels), not a "
+                     "lightmap to test; give it as B, the reference");
   if (a.rgb.width != b.rgb.width || a.rgb.height != b.rgb.height)
     throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" + std::to_string(b.rgb.height) +
                               " but " + o.a + "'s is " + std::to_string(a.rgb.width) + "x" +
@@ -71,18 +86,32 @@ int runCompareLight(const CompareLightOptions& o) {
       throw InputError(
           o.b, "texel areas differ from " + o.a + "'s: not the same atlas (same scene and atlas options?)");
 
-  const LightmapError e = compareLightmaps(a.rgb.pixels, b.rgb.pixels, b.area);
-  const std::optional<double> noise = referenceNoise(o.b, "noise");
+  // Against a sparse reference, the metric's sums run over its traced texels, each weighted by the number
+  // of texels it stands for (texel_sample.h): unbiased estimates of the sums over every texel.
+  const bool sparse = !b.sampleWeight.empty();
+  const size_t valid = size_t(std::count_if(b.area.begin(), b.area.end(), [](float x) { return x > 0.0f; }));
+  std::vector<float> area = b.area;
+  if (sparse)
+    for (size_t i = 0; i < area.size(); ++i) area[i] *= b.sampleWeight[i];
+  const LightmapError e = compareLightmaps(a.rgb.pixels, b.rgb.pixels, area);
+  const std::optional<double> noise = referenceNoise(b, area);
+  double samplingError = 0.0, samplingErrorReflectors = 0.0;
+  if (sparse) samplingError = sampledRelRmseError(a.rgb.pixels, b.rgb.pixels, b.area, b.sampleWeight, valid);
+
   // Without the lamps, whose large B would otherwise dominate Σ a|R|² (when either side marks them).
   const std::vector<float>& emissive = !b.emissive.empty() ? b.emissive : a.emissive;
   std::optional<LightmapError> reflectors;
+  std::optional<double> noiseReflectors;
   if (emissive.size() == b.area.size()) {
-    std::vector<float> area = b.area;
+    std::vector<float> reflectorArea = area, unweighted = b.area;
     for (size_t i = 0; i < area.size(); ++i)
-      if (emissive[i] > 0.5f) area[i] = 0.0f;
-    reflectors = compareLightmaps(a.rgb.pixels, b.rgb.pixels, area);
+      if (emissive[i] > 0.5f) reflectorArea[i] = 0.0f, unweighted[i] = 0.0f;
+    reflectors = compareLightmaps(a.rgb.pixels, b.rgb.pixels, reflectorArea);
+    noiseReflectors = referenceNoise(b, reflectorArea);
+    if (sparse)
+      samplingErrorReflectors =
+          sampledRelRmseError(a.rgb.pixels, b.rgb.pixels, unweighted, b.sampleWeight, valid);
   }
-  const std::optional<double> noiseReflectors = referenceNoise(o.b, "noise_nonemissive");
 
   auto orNull = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
@@ -93,24 +122,38 @@ int runCompareLight(const CompareLightOptions& o) {
                         {"rel_rmse", e.relRmse},
                         {"rel_mean_error", e.relMeanError},
                         {"max_abs", e.maxAbs},
-                        {"texels", e.texels}};
+                        {"texels", e.texels},
+                        {"texels_valid", valid},
+                        {"sparse_reference", sparse},
+                        {"rel_rmse_sampling_error", samplingError}};
     j["reference_noise"] = orNull(noise);
     j["rel_rmse_nonemissive"] =
         orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
     j["rel_mean_error_nonemissive"] =
         orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
+    j["rel_rmse_nonemissive_sampling_error"] =
+        reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
     j["reference_noise_nonemissive"] = orNull(noiseReflectors);
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
-  std::printf("texels compared            %zu\n", e.texels);
-  std::printf("rel_rmse                   %.4f%%\n", 100.0 * e.relRmse);
+  if (sparse)
+    std::printf("texels compared            %zu of %zu (the sparse reference's sample)\n", e.texels, valid);
+  else
+    std::printf("texels compared            %zu\n", e.texels);
+  if (sparse)
+    std::printf("rel_rmse                   %.4f%% +- %.4f%% (texel sampling)\n", 100.0 * e.relRmse,
+                100.0 * samplingError);
+  else
+    std::printf("rel_rmse                   %.4f%%\n", 100.0 * e.relRmse);
   std::printf("rel_mean_error             %+.4f%%\n", 100.0 * e.relMeanError);
   std::printf("max_abs                    %.6g W/m2\n", e.maxAbs);
   if (noise) std::printf("reference noise            %.4f%%\n", 100.0 * *noise);
   if (reflectors) {
-    std::printf("rel_rmse without lamps     %.4f%% (%zu texels)\n", 100.0 * reflectors->relRmse,
+    std::printf("rel_rmse without lamps     %.4f%% (%zu texels)", 100.0 * reflectors->relRmse,
                 reflectors->texels);
+    if (sparse) std::printf(" +- %.4f%% (texel sampling)", 100.0 * samplingErrorReflectors);
+    std::printf("\n");
     std::printf("rel_mean_error w/o lamps   %+.4f%%\n", 100.0 * reflectors->relMeanError);
   }
   if (noiseReflectors) std::printf("reference noise w/o lamps  %.4f%%\n", 100.0 * *noiseReflectors);
@@ -128,9 +171,10 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
       "Relative RMSE (area-weighted, RGB) of lightmap A against reference B on the same atlas");
   cmd->add_option("A_DIR", opts->a, "Output folder of the lightmap under test (bake or reference)")
       ->required();
-  cmd->add_option("B_DIR", opts->b, "Output folder of the reference lightmap")->required();
+  cmd->add_option("B_DIR", opts->b, "Output folder of the reference lightmap (full, or a --texels sample)")
+      ->required();
   cmd->add_flag("--json", opts->json,
-                "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise)");
+                "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

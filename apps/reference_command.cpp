@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -12,12 +13,14 @@
 
 #include "apps/commands.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/atlas.h"
 #include "radiosity/lightmap_output.h"
 #include "radiosity/reference_tracer.h"
+#include "radiosity/texel_sample.h"
 
 namespace cpgi::cli {
 
@@ -29,10 +32,28 @@ struct ReferenceOptions {
   int texelsPerQuad = 0;
   float density = AtlasParams{}.density;
   int spp = 1024;
+  long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
+  bool texelsGiven = false;
   uint64_t seed = ReferenceParams{}.seed;
   bool repair = false;
   bool quiet = false;
 };
+
+/// A sample's lightmap.exr, alone: R, G, B = B on the traced texels and NaN on the other valid texels, so
+/// that nothing can read them as light; 0 on padding (not dilated: nothing displays this lightmap);
+/// channels "area", then `extra`, whose "sample_weight" (> 0 exactly on traced texels) is what
+/// compare-light weights by. No baked.glb or views: pictures of a lightmap that is mostly holes would
+/// look like a broken bake.
+void writeSparseLightmap(OutputDir& out, const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
+                         const std::vector<ExrChannel>& extra) {
+  const std::vector<float>& weight = extra.back().values;
+  ImageRGB image{atlas.width, atlas.height, radiosity};
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (atlas.patch[i] >= 0 && !(weight[i] > 0.0f)) image.pixels[i] = glm::vec3(std::nanf(""));
+  std::vector<ExrChannel> channels{{"area", atlas.area}};
+  channels.insert(channels.end(), extra.begin(), extra.end());
+  writeExr(out.file("lightmap.exr").string(), image, channels);
+}
 
 int runReference(const ReferenceOptions& o) {
   const auto start = std::chrono::steady_clock::now();
@@ -40,6 +61,9 @@ int runReference(const ReferenceOptions& o) {
     throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
   if (o.texelsPerQuad < 0) throw InputError("--texels-per-quad", "must be positive");
   if (!(o.density > 0.0f)) throw InputError("--density", "must be positive");
+  if (o.texels < 0 || (o.texels == 0 && o.texelsGiven))
+    throw InputError("--texels", "must be at least 1 (leave it out to trace every texel), got " +
+                                     std::to_string(o.texels));
 
   Context ctx;
   const bool showProgress = !o.quiet && ::isatty(STDERR_FILENO);
@@ -62,18 +86,42 @@ int runReference(const ReferenceOptions& o) {
   const QuadSet quads = findQuads(scene);
   const LightmapAtlas atlas = buildAtlas(scene, quads, atlasParams, ctx);
 
+  // A sample as large as the atlas is the full reference: traced, written and reported as one.
+  const size_t valid = atlas.validTexels();
+  const bool sparse = o.texelsGiven && size_t(o.texels) < valid;
+  if (o.texelsGiven && !sparse) {
+    ctx.warn("--texels " + std::to_string(o.texels) + " is not below the atlas's " + std::to_string(valid) +
+             " valid texels: all are traced");
+    if (!o.quiet) std::cerr << "cpgi: warning: " << ctx.warnings().back() << "\n";
+  }
+  TexelSample sample;
+  if (sparse) sample = sampleTexels(valid, size_t(o.texels), o.seed);
+
   ReferenceParams params;
   params.spp = o.spp;
   params.seed = o.seed;
   const auto solveStart = std::chrono::steady_clock::now();
-  const ReferenceResult result = traceReference(scene, atlas, params, ctx);
+  const ReferenceResult result = traceReference(scene, atlas, params, ctx, sample.ranks);
   const double solveSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
-  const double noise = relativeStandardError(result, atlas.area);
+
+  // The texels' weights in the metric: their area, times, on a sample, the number of texels each one
+  // stands for (0 where not traced), so that the noise below estimates the full reference's.
+  std::vector<float> weightedArea = atlas.area;
+  ExrChannel sampleWeight{"sample_weight", std::vector<float>(atlas.texelCount(), 0.0f)};
+  if (sparse) {
+    std::vector<size_t> texelOfRank;
+    for (size_t i = 0; i < atlas.texelCount(); ++i)
+      if (atlas.patch[i] >= 0) texelOfRank.push_back(i);
+    for (size_t k = 0; k < sample.ranks.size(); ++k)
+      sampleWeight.values[texelOfRank[sample.ranks[k]]] = sample.weights[k];
+    for (size_t i = 0; i < atlas.texelCount(); ++i) weightedArea[i] *= sampleWeight.values[i];
+  }
+  const double noise = relativeStandardError(result, weightedArea);
   // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
   // given over the texels that do not emit, where the solvers actually differ.
   ExrChannel emissive{"emissive", std::vector<float>(atlas.texelCount(), 0.0f)};
-  std::vector<float> reflectorArea = atlas.area;
+  std::vector<float> reflectorArea = weightedArea;
   for (size_t i = 0; i < atlas.texelCount(); ++i)
     if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f))))
       emissive.values[i] = 1.0f, reflectorArea[i] = 0.0f;
@@ -81,8 +129,12 @@ int runReference(const ReferenceOptions& o) {
 
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
-  const LightmapOutputs written =
-      writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
+  LightmapOutputs written;
+  if (sparse)
+    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, sampleWeight});
+  else
+    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
+  const size_t traced = sparse ? sample.ranks.size() : valid;
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   nlohmann::json report = {
@@ -90,7 +142,8 @@ int runReference(const ReferenceOptions& o) {
       {"scene", o.scene},
       {"seconds", seconds},
       {"solve_seconds", solveSeconds},
-      {"texels", atlas.validTexels()},
+      {"texels", valid},
+      {"texels_traced", traced},
       {"atlas_width", atlas.width},
       {"atlas_height", atlas.height},
       {"patches", atlas.patches.size()},
@@ -115,11 +168,16 @@ int runReference(const ReferenceOptions& o) {
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
   out.commit();
 
-  if (!o.quiet)
+  if (!o.quiet && sparse)
+    std::printf(
+        "reference: %zu of %zu texels traced (a sample, marked in lightmap.exr; no baked.glb or views), %d "
+        "spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
+        traced, valid, result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
+        o.outDir.c_str());
+  else if (!o.quiet)
     std::printf(
         "reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
-        atlas.validTexels(), result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
-        o.outDir.c_str());
+        valid, result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds, o.outDir.c_str());
   return 0;
 }
 
@@ -140,9 +198,16 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   tpq->excludes(density);
   cmd->add_option("--spp", opts->spp, "Paths per texel (noise falls as 1/sqrt(spp))")->capture_default_str();
   cmd->add_option("--seed", opts->seed, "Random seed (same seed, same result)")->capture_default_str();
+  auto* texels =
+      cmd->add_option("--texels", opts->texels,
+                      "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
+                      "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
   cmd->add_flag("--repair", opts->repair, "Drop zero-area and duplicate triangles instead of failing");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
-  cmd->callback([opts, &selected] { selected = [opts] { return runReference(*opts); }; });
+  cmd->callback([opts, texels, &selected] {
+    opts->texelsGiven = texels->count() > 0;
+    selected = [opts] { return runReference(*opts); };
+  });
 }
 
 }  // namespace cpgi::cli

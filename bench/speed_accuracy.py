@@ -8,6 +8,10 @@ also plots an existing results.csv on its own. Plotting needs matplotlib (`apt-g
 
   bench/speed_accuracy.py --cpgi build/apps/cpgi --out out/bench --scenes seed1,seed3 --reps 3 --plot
 
+At large atlases (seed3 at 64² has 4.9 M texels) a full reference takes hours: --ref-texels N traces a
+stratified sample of N texels (`cpgi reference --texels`), and compare-light estimates the RMSE on it, with the
+sampling error in `rel_rmse_sampling_error` (bench/RESULTS.md, "Sparse reference").
+
 Timing: every bake is run --reps times in one run of this script and the median kept (2 noisy cores);
 compare methods as ratios within one run, never across runs or machines.
 """
@@ -53,8 +57,13 @@ def main():
                     help="comma-separated, from: " + ", ".join(METHODS))
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--spp", type=int, default=256, help="reference samples per texel")
+    ap.add_argument("--ref-texels", type=int, default=0,
+                    help="trace the reference on a sample of this many texels (0 = all)")
     ap.add_argument("--plot", action="store_true")
     args = ap.parse_args()
+    if args.ref_texels < 0:
+        sys.exit("speed_accuracy: --ref-texels must be 0 (all texels) or positive")
+    ref_sample = ["--texels", str(args.ref_texels)] if args.ref_texels > 0 else []
 
     os.makedirs(args.out, exist_ok=True)
     log = os.path.join(args.out, "commands.log")
@@ -67,7 +76,8 @@ def main():
                 sys.exit(f"speed_accuracy: cannot generate {scene}: {proc.stderr.strip()}")
         for res in args.resolutions.split(","):
             ref_dir = os.path.join(args.out, f"{scene}-{res}-reference")
-            proc, _ = run([args.cpgi, "reference", glb, "-o", ref_dir, "--spp", str(args.spp)] + atlas_args(res), log)
+            proc, _ = run([args.cpgi, "reference", glb, "-o", ref_dir, "--spp", str(args.spp)] + atlas_args(res)
+                          + ref_sample, log)
             if proc.returncode:
                 print(f"{scene} {res}: reference failed: {proc.stderr.strip()}", file=sys.stderr)
                 continue
@@ -104,6 +114,12 @@ def main():
                     "rel_mean_error_nonemissive": err.get("rel_mean_error_nonemissive"),
                     "reference_noise_nonemissive": ref_report.get("noise_nonemissive"),
                     "reference_seconds": ref_report.get("seconds"),
+                    # The reference's texel sample (--ref-texels; texels_traced = texels when it traced all)
+                    # and the error that sampling adds to rel_rmse (0 for a full reference).
+                    "ref_texels": args.ref_texels,
+                    "reference_texels_traced": ref_report.get("texels_traced", ref_report.get("texels")),
+                    "rel_rmse_sampling_error": err.get("rel_rmse_sampling_error", 0.0),
+                    "rel_rmse_nonemissive_sampling_error": err.get("rel_rmse_nonemissive_sampling_error"),
                 }
                 rows.append(row)
                 print(f"{scene:6} {res:>9} {method:18} {row['seconds']:8.3f} s  rel_rmse {row['rel_rmse']:.4f}", flush=True)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -324,7 +325,10 @@ class PathTracer {
 }  // namespace
 
 ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> points,
-                               const ReferenceParams& params, Context& ctx) {
+                               const ReferenceParams& params, Context& ctx,
+                               std::span<const uint64_t> streams) {
+  if (!streams.empty() && streams.size() != points.size())
+    throw std::invalid_argument("traceReference: one stream per point, or none");
   if (params.spp < 2)
     throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
   auto timer = ctx.time("reference");
@@ -348,7 +352,8 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
           uint64_t localRays = 0;
           for (size_t i = range.begin(); i < range.end(); ++i) {
             const SamplePoint& point = points[i];
-            Pcg32 rng(splitmix64(params.seed ^ splitmix64(i)));
+            const uint64_t stream = streams.empty() ? uint64_t(i) : streams[i];
+            Pcg32 rng(splitmix64(params.seed ^ splitmix64(stream)));
             const LightSelection firstLights = tracer.lightsAt(point.position, point.normal);
             glm::dvec3 sum(0.0), sumSquares(0.0);
             for (int b = 0; b < batches; ++b) {
@@ -382,15 +387,25 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
 }
 
 ReferenceResult traceReference(const Scene& scene, const LightmapAtlas& atlas, const ReferenceParams& params,
-                               Context& ctx) {
+                               Context& ctx, std::span<const size_t> ranks) {
   std::vector<SamplePoint> points;
   std::vector<size_t> texels;
+  std::vector<uint64_t> streams;
+  size_t rank = 0, next = 0;  // next: the first of `ranks` not yet reached
   for (size_t i = 0; i < atlas.texelCount(); ++i) {
     if (atlas.patch[i] < 0) continue;
-    points.push_back({atlas.position[i], atlas.normal[i], atlas.albedo[i], atlas.emission[i]});
-    texels.push_back(i);
+    const bool chosen = ranks.empty() || (next < ranks.size() && ranks[next] == rank);
+    if (chosen) {
+      points.push_back({atlas.position[i], atlas.normal[i], atlas.albedo[i], atlas.emission[i]});
+      texels.push_back(i);
+      streams.push_back(rank);
+      if (!ranks.empty()) ++next;
+    }
+    ++rank;
   }
-  ReferenceResult compact = traceReference(scene, points, params, ctx);
+  if (next < ranks.size())
+    throw std::invalid_argument("traceReference: texel ranks not increasing or beyond the valid texels");
+  ReferenceResult compact = traceReference(scene, points, params, ctx, streams);
   ReferenceResult result;
   result.spp = compact.spp;
   result.rays = compact.rays;

@@ -47,15 +47,20 @@ struct ReferenceResult {
 };
 
 /// Estimates B at every point. Deterministic: the same scene, points and params give bit-identical
-/// results whatever the thread count, since point i draws only from its own seeded generator.
+/// results whatever the thread count, since point i draws only from its own generator, seeded by
+/// params.seed and its stream number: streams[i], or i when `streams` is empty (else it has one per point).
 /// Throws InputError("--spp", ...) for spp < 2.
 ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> points,
-                               const ReferenceParams& params, Context& ctx);
+                               const ReferenceParams& params, Context& ctx,
+                               std::span<const uint64_t> streams = {});
 
 /// The same over the valid texels of an atlas (texel sample point, normal, albedo, emission); results
-/// are indexed like the atlas texels, padding texels left at 0.
+/// are indexed like the atlas texels, padding texels left at 0. `ranks` (increasing, as
+/// TexelSample::ranks) traces only those valid texels and leaves the others at 0; empty traces all. A
+/// texel draws from the stream of its rank either way, so it gets the same value whichever others are
+/// traced.
 ReferenceResult traceReference(const Scene& scene, const LightmapAtlas& atlas, const ReferenceParams& params,
-                               Context& ctx);
+                               Context& ctx, std::span<const size_t> ranks = {});
 
 /// The reference's own noise in the metric of design.md §5: sqrt(Σ a_i |σ_i|² / Σ a_i |B_i|²), σ_i the
 /// per-texel standard error (RGB norm). A comparison against this reference cannot resolve relative RMSE

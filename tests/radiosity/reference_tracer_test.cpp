@@ -1,11 +1,14 @@
 #include "radiosity/reference_tracer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include "core/error.h"
+#include "core/quads.h"
 #include "path_test_scenes.h"
 #include "radiosity/form_factors.h"
 
@@ -286,6 +289,41 @@ TEST(ReferenceTracer, DeterministicWhateverTheThreadCount) {
   params.seed += 1;
   const ReferenceResult c = traceReference(scene, points, params, ctx);
   EXPECT_NE(a.radiosity, c.radiosity);
+}
+
+TEST(ReferenceTracer, SampledTexelsGetTheFullTracesValues) {
+  // Each texel draws from the stream of its rank among the valid texels, so tracing a sample must give
+  // those texels exactly what tracing the whole atlas gives them, and leave the others at 0.
+  Scene scene;
+  const uint32_t wall = addMaterial(scene, glm::vec3(0.6f));
+  const uint32_t light = addMaterial(scene, glm::vec3(0.6f), glm::vec3(3.0f));
+  addFaces(scene, boxFaces(1.0f, {wall, light, wall, wall, wall, wall}));
+  Context ctx;
+  AtlasParams atlasParams;
+  atlasParams.texelsPerQuad = 4;
+  const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), atlasParams, ctx);
+  ASSERT_EQ(atlas.validTexels(), 6u * 16u);
+  ReferenceParams params;
+  params.spp = 16;
+  const ReferenceResult full = traceReference(scene, atlas, params, ctx);
+  const std::vector<size_t> ranks = {0, 5, 17, 40, 95};
+  const ReferenceResult sparse = traceReference(scene, atlas, params, ctx, ranks);
+  EXPECT_EQ(sparse.spp, full.spp);
+  size_t rank = 0, traced = 0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) continue;
+    if (std::find(ranks.begin(), ranks.end(), rank++) != ranks.end()) {
+      ++traced;
+      EXPECT_EQ(sparse.radiosity[i], full.radiosity[i]) << "texel " << i;
+      EXPECT_EQ(sparse.standardError[i], full.standardError[i]) << "texel " << i;
+      EXPECT_GT(sparse.radiosity[i].x, 0.0f);
+    } else {
+      EXPECT_EQ(sparse.radiosity[i], glm::vec3(0.0f)) << "texel " << i;
+    }
+  }
+  EXPECT_EQ(traced, ranks.size());
+  const std::vector<size_t> beyond = {3, 96};
+  EXPECT_THROW(traceReference(scene, atlas, params, ctx, beyond), std::invalid_argument);
 }
 
 TEST(ReferenceTracer, RejectsTooFewSamples) {

@@ -1,7 +1,9 @@
-// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional] [--max-rounds N]
+// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
+// [--max-rounds N]
 //  [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 //  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
-//  [--item-buffer N] [--repair]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3), over
+//  [--item-buffer N] [--regions N] [--region-size M] [--repair]`: GPU progressive radiosity over a lightmap
+//  atlas (design.md §1, §3), over
 // the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
 // atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
 // baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
@@ -54,6 +56,8 @@ struct BakeOptions {
   int maxShots = SolverParams{}.maxShots;
   std::string visibility = visibilityName(SolverParams{}.visibility);
   int itemBuffer = SolverParams{}.itemBuffer;
+  int regions = SolverParams{}.maxRegions;
+  float regionSize = SolverParams{}.regionSize;
   bool repair = false;
   bool quiet = false;
 };
@@ -117,9 +121,10 @@ nlohmann::json onDemandReport(const BakeOptions& o, const OnDemand& d, const Cel
                       {"dark", names(d.selection.dark)},
                       {"boundary_mode", boundaryModeName(d.mode)},
                       {"baked_texels", texels}};
-  j["boundary_role"] = d.mode == BoundaryMode::Coarse
-                           ? "solved on a coarse atlas, lighting the baked cells through their portals; not written"
-                           : "dark";
+  j["boundary_role"] =
+      d.mode == BoundaryMode::Coarse
+          ? "solved on a coarse atlas, lighting the baked cells through their portals; not written"
+          : "dark";
   if (!o.onlyCells.empty()) j["only_cells"] = o.onlyCells;
   if (d.aroundCell >= 0) {
     j["around"] = o.around;
@@ -140,6 +145,8 @@ int runBake(const BakeOptions& o) {
   SolverParams solverParams;
   solverParams.visibility = parseVisibility(o.visibility);
   solverParams.itemBuffer = o.itemBuffer;
+  solverParams.maxRegions = o.regions;
+  solverParams.regionSize = o.regionSize;
   solverParams.unshotFraction = o.unshot;
   solverParams.maxShots = o.maxShots;
 
@@ -231,44 +238,44 @@ int runBake(const BakeOptions& o) {
   }
 
   nlohmann::json timings = nlohmann::json::object();
-  for (const Context::Timing& t : ctx.timings())
-    timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
+  for (const Context::Timing& t : ctx.timings()) timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const EnergyTotals& e = solved.energy;
-  nlohmann::json report = {
-      {"method", o.method},
-      {"scene", o.scene},
-      {"seconds", seconds},
-      {"solve_seconds", solved.seconds},
-      {"texels", atlas.validTexels()},
-      {"shots", solved.shots},
-      {"unshot_fraction", solved.unshotFraction},
-      {"unshot_target", solverParams.unshotFraction},
-      {"cells", o.method == "cells" ? graph.cells.size() : size_t(1)},
-      {"portals", o.method == "cells" ? graph.portals.size() : size_t(0)},
-      {"visibility", visibilityName(solverParams.visibility)},
-      {"item_buffer", solverParams.itemBuffer},
-      {"atlas",
-       {{"width", atlas.width},
-        {"height", atlas.height},
-        {"patches", atlas.patches.size()},
-        {"texels_per_quad", atlasParams.texelsPerQuad},
-        {"density", atlasParams.texelsPerQuad > 0 ? 0.0f : atlasParams.density}}},
-      {"triangles", loaded.scene.triangles.size()},
-      {"quads", quads.quads.size()},
-      {"renderer", gl->renderer()},
-      {"gl_version", gl->version()},
-      {"egl_platform", gl->platform()},
-      {"timings", timings},
-      {"energy",
-       {{"emitted_w", e.emitted},
-        {"shot_w", e.shot},
-        {"received_w", e.received},
-        {"absorbed_w", e.absorbed},
-        {"unshot_w", e.unshot},
-        {"escaped_w", e.escaped()}}},
-      {"views", views},
-      {"warnings", ctx.warnings()}};
+  nlohmann::json report = {{"method", o.method},
+                           {"scene", o.scene},
+                           {"seconds", seconds},
+                           {"solve_seconds", solved.seconds},
+                           {"texels", atlas.validTexels()},
+                           {"shots", solved.shots},
+                           {"unshot_fraction", solved.unshotFraction},
+                           {"unshot_target", solverParams.unshotFraction},
+                           {"cells", o.method == "cells" ? graph.cells.size() : size_t(1)},
+                           {"portals", o.method == "cells" ? graph.portals.size() : size_t(0)},
+                           {"visibility", visibilityName(solverParams.visibility)},
+                           {"item_buffer", solverParams.itemBuffer},
+                           {"regions", solverParams.maxRegions},
+                           {"region_size", solverParams.regionSize},
+                           {"atlas",
+                            {{"width", atlas.width},
+                             {"height", atlas.height},
+                             {"patches", atlas.patches.size()},
+                             {"texels_per_quad", atlasParams.texelsPerQuad},
+                             {"density", atlasParams.texelsPerQuad > 0 ? 0.0f : atlasParams.density}}},
+                           {"triangles", loaded.scene.triangles.size()},
+                           {"quads", quads.quads.size()},
+                           {"renderer", gl->renderer()},
+                           {"gl_version", gl->version()},
+                           {"egl_platform", gl->platform()},
+                           {"timings", timings},
+                           {"energy",
+                            {{"emitted_w", e.emitted},
+                             {"shot_w", e.shot},
+                             {"received_w", e.received},
+                             {"absorbed_w", e.absorbed},
+                             {"unshot_w", e.unshot},
+                             {"escaped_w", e.escaped()}}},
+                           {"views", views},
+                           {"warnings", ctx.warnings()}};
   if (o.method == "cells") {
     report["energy"].erase("shot_w");
     report["energy"].erase("received_w");
@@ -318,7 +325,8 @@ int runBake(const BakeOptions& o) {
 
 void addBakeCommand(CLI::App& app, CommandFn& selected) {
   auto o = std::make_shared<BakeOptions>();
-  CLI::App* sub = app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
+  CLI::App* sub =
+      app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
   sub->add_option("scene", o->scene, "Scene (.glb, .gltf, .obj)")->required();
   sub->add_option("-o,--output", o->output, "Output folder")->required();
   sub->add_option("--method", o->method,
@@ -338,12 +346,14 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("--max-rounds", o->maxRounds, "With --method cells: solve rounds (syncs) at most")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  auto* only = sub->add_option("--only-cells", o->onlyCells,
-                               "With --method cells: bake only these cells (comma-separated names); the others "
-                               "act through their portals (see --boundary)");
-  auto* around = sub->add_option("--around", o->around,
-                                 "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
-                                 "within --depth portals of it");
+  auto* only =
+      sub->add_option("--only-cells", o->onlyCells,
+                      "With --method cells: bake only these cells (comma-separated names); the others "
+                      "act through their portals (see --boundary)");
+  auto* around =
+      sub->add_option("--around", o->around,
+                      "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
+                      "within --depth portals of it");
   only->excludes(around);
   sub->add_option("--depth", o->depth, "With --around: portals away from the point's cell")
       ->check(CLI::Range(0, 1000000))
@@ -378,6 +388,14 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   sub->add_option("--item-buffer", o->itemBuffer,
                   "Item-buffer edge in pixels (hemicube: faces of half this edge)")
+      ->capture_default_str();
+  sub->add_option("--regions", o->regions,
+                  "Visibility regions per edge of a large shooter, each with its own item buffer: soft light "
+                  "through doors from large shooters, at up to N² item buffers per shot")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
+      ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");

@@ -19,6 +19,7 @@ import argparse
 import csv
 import json
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -33,10 +34,18 @@ METHODS = {
 }
 
 
+def cpu_of_children():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run(cmd, log):
-    started = time.monotonic()
+    """Runs cmd; returns (process, wall seconds). run.cpu holds the CPU seconds it used (all its threads):
+    steadier than wall time on a shared machine."""
+    started, cpu = time.monotonic(), cpu_of_children()
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     elapsed = time.monotonic() - started
+    run.cpu = cpu_of_children() - cpu
     with open(log, "a") as f:
         f.write("$ " + " ".join(cmd) + f"\n# exit {proc.returncode}, {elapsed:.2f} s\n{proc.stdout}{proc.stderr}\n")
     return proc, elapsed
@@ -60,6 +69,8 @@ def main():
     ap.add_argument("--ref-texels", type=int, default=0,
                     help="trace the reference on a sample of this many texels (0 = all)")
     ap.add_argument("--plot", action="store_true")
+    ap.add_argument("--resume", action="store_true",
+                    help="keep OUT/results.json's rows and skip what they cover; reuse finished references")
     args = ap.parse_args()
     if args.ref_texels < 0:
         sys.exit("speed_accuracy: --ref-texels must be 0 (all texels) or positive")
@@ -67,7 +78,9 @@ def main():
 
     os.makedirs(args.out, exist_ok=True)
     log = os.path.join(args.out, "commands.log")
-    rows = []
+    results = os.path.join(args.out, "results.json")
+    rows = json.load(open(results)) if args.resume and os.path.exists(results) else []
+    done = {(r["scene"], r["resolution"], r["method"]) for r in rows}
     for scene in args.scenes.split(","):
         glb = os.path.join(args.out, scene + ".glb")
         if not os.path.exists(glb):
@@ -75,17 +88,23 @@ def main():
             if proc.returncode:
                 sys.exit(f"speed_accuracy: cannot generate {scene}: {proc.stderr.strip()}")
         for res in args.resolutions.split(","):
-            ref_dir = os.path.join(args.out, f"{scene}-{res}-reference")
-            proc, _ = run([args.cpgi, "reference", glb, "-o", ref_dir, "--spp", str(args.spp)] + atlas_args(res)
-                          + ref_sample, log)
-            if proc.returncode:
-                print(f"{scene} {res}: reference failed: {proc.stderr.strip()}", file=sys.stderr)
+            methods = [m for m in args.methods.split(",") if (scene, res, m) not in done]
+            if not methods:
                 continue
-            ref_report = json.load(open(os.path.join(ref_dir, "report.json")))
-            for method in args.methods.split(","):
+            ref_dir = os.path.join(args.out, f"{scene}-{res}-reference")
+            ref_json = os.path.join(ref_dir, "report.json")
+            reusable = args.resume and os.path.exists(ref_json) and same_reference(json.load(open(ref_json)), args)
+            if not reusable:
+                proc, _ = run([args.cpgi, "reference", glb, "-o", ref_dir, "--spp", str(args.spp)] + atlas_args(res)
+                              + ref_sample, log)
+                if proc.returncode:
+                    print(f"{scene} {res}: reference failed: {proc.stderr.strip()}", file=sys.stderr)
+                    continue
+            ref_report = json.load(open(ref_json))
+            for method in methods:
                 extra = [a.replace("{scene}", glb) for a in METHODS[method]]
                 out_dir = os.path.join(args.out, f"{scene}-{res}-{method}")
-                times, solves, report = [], [], None
+                times, solves, cpus, report = [], [], [], None
                 for _ in range(args.reps):
                     proc, wall = run([args.cpgi, "bake", glb, "-o", out_dir, "--quiet"] + atlas_args(res) + extra, log)
                     if proc.returncode:
@@ -93,6 +112,7 @@ def main():
                         break
                     report = json.load(open(os.path.join(out_dir, "report.json")))
                     times.append(report["seconds"])
+                    cpus.append(run.cpu)
                     solves.append(report["solve_seconds"])
                 if report is None or len(times) < args.reps:
                     continue
@@ -104,7 +124,8 @@ def main():
                 row = {
                     "scene": scene, "resolution": res, "method": method,
                     "seconds": statistics.median(times), "seconds_min": min(times), "seconds_max": max(times),
-                    "solve_seconds": statistics.median(solves), "reps": args.reps,
+                    "solve_seconds": statistics.median(solves), "cpu_seconds": statistics.median(cpus),
+                    "reps": args.reps,
                     "shots": report.get("shots"), "texels": report.get("texels"),
                     "unshot_fraction": report.get("unshot_fraction"),
                     "rel_rmse": err["rel_rmse"], "rel_mean_error": err["rel_mean_error"],
@@ -123,20 +144,33 @@ def main():
                 }
                 rows.append(row)
                 print(f"{scene:6} {res:>9} {method:18} {row['seconds']:8.3f} s  rel_rmse {row['rel_rmse']:.4f}", flush=True)
+                save(rows, args.out)  # after every row: a long run stopped half-way keeps what it measured
 
-    json.dump(rows, open(os.path.join(args.out, "results.json"), "w"), indent=1)
-    if rows:
-        with open(os.path.join(args.out, "results.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
-    write_table(rows, os.path.join(args.out, "table.md"))
+    save(rows, args.out)
     if args.plot and rows:
         plot(args.out)
 
 
+def save(rows, out):
+    json.dump(rows, open(os.path.join(out, "results.json"), "w"), indent=1)
+    if rows:
+        fields = list(dict.fromkeys(k for r in rows for k in r))
+        with open(os.path.join(out, "results.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields)
+            w.writeheader()
+            w.writerows(rows)
+    write_table(rows, os.path.join(out, "table.md"))
+
+
+def same_reference(report, args):
+    """Whether a finished reference was traced with this run's --spp and --ref-texels."""
+    texels, traced = report.get("texels"), report.get("texels_traced", report.get("texels"))
+    wanted = texels if args.ref_texels == 0 or texels is None else min(args.ref_texels, texels)
+    return report.get("spp") == args.spp and traced == wanted
+
+
 def write_table(rows, path):
-    """Rows: scene × method; columns: resolutions; cells: 'seconds s / rel RMSE %'."""
+    """Rows: scene × method; columns: resolutions; cells: 'seconds s / rel RMSE % (without lamps %)'."""
     resolutions = list(dict.fromkeys(r["resolution"] for r in rows))
     lines = ["| scene | method | " + " | ".join(f"{r}²" if r.isdigit() else r for r in resolutions) + " |",
              "|---|---|" + "---|" * len(resolutions)]
@@ -145,7 +179,12 @@ def write_table(rows, path):
             cells = []
             for res in resolutions:
                 hit = [r for r in rows if (r["scene"], r["method"], r["resolution"]) == (scene, method, res)]
-                cells.append(f"{hit[0]['seconds']:.2f} s / {100 * hit[0]['rel_rmse']:.2f}%" if hit else "–")
+                if not hit:
+                    cells.append("–")
+                    continue
+                ne = hit[0].get("rel_rmse_nonemissive")
+                cells.append(f"{hit[0]['seconds']:.2f} s / {100 * hit[0]['rel_rmse']:.2f}%" +
+                             (f" ({100 * ne:.1f}%)" if ne is not None else ""))
             lines.append(f"| {scene} | {method} | " + " | ".join(cells) + " |")
     open(path, "w").write("\n".join(lines) + "\n")
 

@@ -57,6 +57,8 @@ struct BakeOptions {
   std::string visibility = visibilityName(SolverParams{}.visibility);
   int itemBuffer = SolverParams{}.itemBuffer;
   int regions = SolverParams{}.maxRegions;
+  int strongRegions = SolverParams{}.strongShotRegions;
+  double strongFraction = SolverParams{}.strongShotFraction;
   float regionSize = SolverParams{}.regionSize;
   bool repair = false;
   bool quiet = false;
@@ -146,6 +148,8 @@ int runBake(const BakeOptions& o) {
   solverParams.visibility = parseVisibility(o.visibility);
   solverParams.itemBuffer = o.itemBuffer;
   solverParams.maxRegions = o.regions;
+  solverParams.strongShotRegions = o.strongRegions;
+  solverParams.strongShotFraction = o.strongFraction;
   solverParams.regionSize = o.regionSize;
   solverParams.unshotFraction = o.unshot;
   solverParams.maxShots = o.maxShots;
@@ -254,6 +258,8 @@ int runBake(const BakeOptions& o) {
                            {"visibility", visibilityName(solverParams.visibility)},
                            {"item_buffer", solverParams.itemBuffer},
                            {"regions", solverParams.maxRegions},
+                           {"strong_shot_regions", solverParams.strongShotRegions},
+                           {"strong_shot_fraction", solverParams.strongShotFraction},
                            {"region_size", solverParams.regionSize},
                            {"atlas",
                             {{"width", atlas.width},
@@ -393,6 +399,15 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
                   "Visibility regions per edge of a large shooter, each with its own item buffer: soft light "
                   "through doors from large shooters, at up to N² item buffers per shot")
       ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  sub->add_option("--strong-regions", o->strongRegions,
+                  "Visibility regions per edge for the strong shots, those carrying at least "
+                  "--strong-fraction of the emitted power (0: as --regions)")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  sub->add_option("--strong-fraction", o->strongFraction,
+                  "Share of the emitted power that makes a shot strong")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
       ->check(CLI::Range(0.01f, 1000.0f))

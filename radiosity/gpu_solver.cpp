@@ -35,89 +35,53 @@ struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 &&
-              sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
 
-constexpr int kTile = 8;            // receiver work groups are kTile × kTile texels
-constexpr int kMaxRegions = 4;      // per chart edge; common.glsl's MAX_REGIONS is its square
+constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
+constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
 constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 
 // Shader-storage binding points (shaders/*.comp).
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
-enum Ssbo : GLuint {
-  kPatches = 0,
-  kStats = 1,
-  kVisible = 2,
-  kTiles = 3,
-  kTileList = 4,
-  kPatchList = 5,
-  kRegions = 6,
-  kPending = 7,
-  kSelection = 8,
-  kPosArea = 9,
-  kNormalPatch = 10,
-  kAlbedo = 11,
-  kRadiosity = 12,
-  kResidual = 13,
-  kIncident = 14,
-  kNodes = 15,
-  kTileStats = 16,
-  kEmissionLobes = 17,
-  kArrivals = 18,
-  kNodeLobes = 19
-};
+enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
+                     kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
+                     kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
+                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19 };
 
 struct Face {
   glm::vec3 right, up, forward;
 };
 // The hemicube in shooter coordinates (z = shooter normal); must match visibility.glsl.
 constexpr Face kFaces[5] = {
-    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},   {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
-    {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}},
+    {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
 };
 
 // glm matrices are column-major; these are uploaded so that `M * v` in GLSL gives dot(row_i, v).
-glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-  return glm::transpose(glm::mat3(a, b, c));
-}
+glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return glm::transpose(glm::mat3(a, b, c)); }
 
-GLint loc(const gl::Program& p, const char* name) {
-  return glGetUniformLocation(p.get(), name);
-}
-void set(const gl::Program& p, const char* n, int v) {
-  glProgramUniform1i(p.get(), loc(p, n), v);
-}
-void setU(const gl::Program& p, const char* n, GLuint v) {
-  glProgramUniform1ui(p.get(), loc(p, n), v);
-}
-void set(const gl::Program& p, const char* n, float v) {
-  glProgramUniform1f(p.get(), loc(p, n), v);
-}
-void set(const gl::Program& p, const char* n, glm::vec3 v) {
-  glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z);
-}
+GLint loc(const gl::Program& p, const char* name) { return glGetUniformLocation(p.get(), name); }
+void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(), loc(p, n), v); }
+void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
 void set(const gl::Program& p, const char* n, const glm::mat3& m) {
   glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
 }
 
-GLuint groups(size_t n, size_t size) {
-  return static_cast<GLuint>((n + size - 1) / size);
-}
+GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
 
 void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
   if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
     throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
                                           std::to_string(maxTexture) + ")");
-  if (p.neighbourhood < 0 || p.neighbourhood > 4)
-    throw InputError("solver", "item-buffer neighbourhood must be in 0..4");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("solver", "item-buffer neighbourhood must be in 0..4");
   if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
     throw InputError("--unshot", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
-  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions)
-    throw InputError("solver", "visibility regions per edge must be in 1..4");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
   if (p.strongShotRegions < 0 || p.strongShotRegions > kMaxRegions)
     throw InputError("solver", "visibility regions per edge of a strong shot must be in 0..4");
   if (!(p.strongShotFraction >= 0.0 && p.strongShotFraction <= 1.0))
@@ -208,18 +172,10 @@ class Solver {
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
          const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
-      : scene_(scene),
-        atlas_(atlas),
-        params_(params),
-        itemProgram_(programs.item),
-        compactProgram_(programs.compact),
-        finishProgram_(programs.finish),
-        pyramidProgram_(programs.pyramid),
-        receiveProgram_(programs.receive),
-        statsProgram_(programs.stats),
-        tileStatsProgram_(programs.tileStats),
-        selectProgram_(programs.select),
-        clock_(params.profilePasses) {
+      : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
+        compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
+        receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
+        selectProgram_(programs.select), clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
       strongLayouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, strongRegions()});
@@ -367,8 +323,7 @@ class Solver {
       size_t n = 0;
       for (const glm::ivec4& c : l.rects) {
         const glm::ivec2 size(c.z - c.x, c.w - c.y);
-        for (int k = 1, top = topLevel(size); k <= top; ++k)
-          n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
+        for (int k = 1, top = topLevel(size); k <= top; ++k) n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
       }
       most = std::max(most, n);
     }
@@ -618,23 +573,18 @@ class Solver {
   SolverParams params_;
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
       &statsProgram_, &tileStatsProgram_, &selectProgram_;
-  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_,
-      nodeLobes_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, depth_;
-  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_,
-      selection_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_;
   std::array<size_t, kMaxLevels + 2> levelNodes_{};
   gl::Buffer tileStats_;
-  std::vector<size_t>
-      firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
+  std::vector<size_t> firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
   gl::Buffer positionBuffer_, idBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
   std::vector<ShooterLayout> layouts_, strongLayouts_;  // strongLayouts_ empty when it would be layouts_
-  int strongRegions() const {
-    return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions;
-  }
+  int strongRegions() const { return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions; }
   std::vector<ShooterLayout> allLayouts() const {
     std::vector<ShooterLayout> all = layouts_;
     all.insert(all.end(), strongLayouts_.begin(), strongLayouts_.end());
@@ -647,9 +597,7 @@ class Solver {
   float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
 };
 
-double channelSum(const glm::vec4& v) {
-  return double(v.r) + double(v.g) + double(v.b);
-}
+double channelSum(const glm::vec4& v) { return double(v.r) + double(v.g) + double(v.b); }
 
 std::string formatStatus(int shots, double fraction, double eta) {
   char buf[96];
@@ -664,13 +612,11 @@ std::string formatStatus(int shots, double fraction, double eta) {
 
 namespace {
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
-                           Context& ctx, SolverPrograms& programs);
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs);
 }  // namespace
 
-const char* visibilityName(Visibility v) {
-  return v == Visibility::Hemisphere ? "hemisphere" : "hemicube";
-}
+const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
 
 Visibility parseVisibility(const std::string& name) {
   if (name == "hemisphere") return Visibility::Hemisphere;
@@ -690,25 +636,23 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context,
-                             Context& ctx) {
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx) {
   SolverPrograms programs;
   return solveProgressive(scene, atlas, params, emissionLobes, context, ctx, programs);
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context,
-                             Context& ctx, SolverPrograms& programs) {
-  if (!params.directionalEmission)
-    throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
+                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx,
+                             SolverPrograms& programs) {
+  if (!params.directionalEmission) throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
   return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx, programs);
 }
 
 namespace {
 
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
-                           Context& ctx, SolverPrograms& programs) {
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs) {
   checkParams(params, atlas, context.maxTextureSize());
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -750,15 +694,12 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     if (elapsed - lastReport > 0.25) {
       // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
       double eta = -1.0;
-      if (firstShot < 0 && !sel.winnerPending)
-        firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
+      if (firstShot < 0 && !sel.winnerPending) firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
       if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
         const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
-        if (rate < 0.0)
-          eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+        if (rate < 0.0) eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
       }
-      const double progress =
-          std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
       ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
       lastReport = elapsed;
     }

@@ -160,6 +160,7 @@ def save(rows, out):
             w.writeheader()
             w.writerows(rows)
     write_table(rows, os.path.join(out, "table.md"))
+    write_table91(rows, os.path.join(out, "table91.md"))
 
 
 def same_reference(report, args):
@@ -186,6 +187,49 @@ def write_table(rows, path):
                 cells.append(f"{hit[0]['seconds']:.2f} s / {100 * hit[0]['rel_rmse']:.2f}%" +
                              (f" ({100 * ne:.1f}%)" if ne is not None else ""))
             lines.append(f"| {scene} | {method} | " + " | ".join(cells) + " |")
+    open(path, "w").write("\n".join(lines) + "\n")
+
+
+# The thesis's Table 9.1 (seconds on a 2008 GeForce 6200, fixed iterations, its own scenes 1–3):
+# (with cells and portals, without). Scene 3 at 128² was not run there either.
+THESIS_91 = {
+    ("seed1", "16"): (0.879, 1.127), ("seed1", "32"): (0.958, 1.341), ("seed1", "64"): (1.497, 2.662),
+    ("seed1", "128"): (5.366, 11.871), ("seed2", "16"): (1.570, 2.362), ("seed2", "32"): (1.964, 2.735),
+    ("seed2", "64"): (3.281, 5.834), ("seed2", "128"): (11.239, 26.875), ("seed3", "16"): (27.858, 31.189),
+    ("seed3", "32"): (31.196, 36.272), ("seed3", "64"): (51.092, 77.298),
+}
+
+
+def write_table91(rows, path):
+    """The thesis's Table 9.1 layout: one row per scene and resolution, the thesis's seconds with and
+    without cells, then ours per method as 'seconds s (CPU s) / rel RMSE % / without lamps %', with the
+    sampling error of the RMSE when the reference was a texel sample."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    lines = ["| scene | texels per quad | thesis with cells (s) | thesis without (s) | texels | " +
+             " | ".join(methods) + " |", "|---|---|---|---|---|" + "---|" * len(methods)]
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        for res in dict.fromkeys(r["resolution"] for r in rows if r["scene"] == scene):
+            mine = {r["method"]: r for r in rows if (r["scene"], r["resolution"]) == (scene, res)}
+            thesis = THESIS_91.get((scene, res))
+            texels = next(iter(mine.values())).get("texels")
+            cells = []
+            for m in methods:
+                r = mine.get(m)
+                if r is None:
+                    cells.append("–")
+                    continue
+                text = f"{r['seconds']:.1f} s"
+                if r.get("cpu_seconds") is not None:
+                    text += f" ({r['cpu_seconds']:.1f})"
+                text += f" / {100 * r['rel_rmse']:.2f}%"
+                if r.get("rel_rmse_sampling_error"):
+                    text += f" ±{100 * r['rel_rmse_sampling_error']:.2f}"
+                if r.get("rel_rmse_nonemissive") is not None:
+                    text += f" / {100 * r['rel_rmse_nonemissive']:.1f}%"
+                cells.append(text)
+            label = f"{res}²" if res.isdigit() else res
+            lines.append(f"| {scene} | {label} | " + (f"{thesis[0]:.3f} | {thesis[1]:.3f}" if thesis else "– | –") +
+                         f" | {texels} | " + " | ".join(cells) + " |")
     open(path, "w").write("\n".join(lines) + "\n")
 
 

@@ -10,6 +10,7 @@ bool findIn(ivec2 p, ivec2 lo, ivec2 hi, int id, int layer) {
   if (texelFetch(uItems, ivec3(clamp(p, lo, hi), layer), 0).r == id) return true;  // the usual case first
   for (int dy = -uNeighbourhood; dy <= uNeighbourhood; ++dy)
     for (int dx = -uNeighbourhood; dx <= uNeighbourhood; ++dx) {
+      if (dx == 0 && dy == 0) continue;  // tried first
       ivec2 q = clamp(p + ivec2(dx, dy), lo, hi);
       if (texelFetch(uItems, ivec3(q, layer), 0).r == id) return true;
     }

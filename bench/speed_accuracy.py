@@ -207,8 +207,9 @@ def write_table91(rows, path):
     methods = list(dict.fromkeys(r["method"] for r in rows))
     lines = ["| scene | texels per quad | thesis with cells (s) | thesis without (s) | texels | " +
              " | ".join(methods) + " |", "|---|---|---|---|---|" + "---|" * len(methods)]
-    for scene in dict.fromkeys(r["scene"] for r in rows):
-        for res in dict.fromkeys(r["resolution"] for r in rows if r["scene"] == scene):
+    order = lambda res: (0, int(res)) if res.isdigit() else (1, 0)  # 16², 32², …, then density
+    for scene in sorted(dict.fromkeys(r["scene"] for r in rows)):
+        for res in sorted(dict.fromkeys(r["resolution"] for r in rows if r["scene"] == scene), key=order):
             mine = {r["method"]: r for r in rows if (r["scene"], r["resolution"]) == (scene, res)}
             thesis = THESIS_91.get((scene, res))
             texels = next(iter(mine.values())).get("texels")

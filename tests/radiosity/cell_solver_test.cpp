@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "scenes/stability_scenes.h"
+#include "tests/radiosity/cell_energy_check.h"
 #include "tests/radiosity/furnace_check.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -38,20 +39,7 @@ CellRun runCells(const Scene& scene, const CellGraph& graph, int texelsPerQuad, 
   return r;
 }
 
-// emitted + received = absorbed + sent + unshot + escaped in every cell; what one cell sends another receives.
-void expectConserved(const CellSolveResult& r) {
-  double sent = 0.0, received = 0.0, through = 0.0;
-  for (const CellEnergy& c : r.cells) {
-    const double in = c.emitted + c.received;
-    EXPECT_NEAR(c.absorbed + c.sent + c.unshot + c.escaped, in, 1e-3 * std::max(in, 1e-3 * r.emitted)) << c.name;
-    sent += c.sent, received += c.received;
-  }
-  for (const PortalEnergy& p : r.portals) through += p.aToB + p.bToA;
-  EXPECT_NEAR(sent, received, 1e-9 * r.emitted);
-  EXPECT_NEAR(through, sent, 1e-9 * r.emitted);
-  EXPECT_NEAR(r.absorbed + r.unshot + r.escaped, r.emitted, 1e-3 * r.emitted);
-  EXPECT_NEAR(r.unshotFraction, r.unshot / r.emitted, 1e-12);
-}
+using testing::expectConserved;
 
 TEST(CellScene, PortalPatchesFaceIntoTheCell) {
   const SeedScene s = makeSpotThroughDoor();

@@ -12,6 +12,7 @@
 #include "radiosity/emission_lobes.h"
 #include "scenes/seed_scenes.h"
 #include "scenes/stability_scenes.h"
+#include "tests/radiosity/cell_energy_check.h"
 
 namespace cpgi {
 namespace {
@@ -71,18 +72,7 @@ Pool pool(const LightmapAtlas& a, const std::vector<glm::vec3>& b, const std::ve
   return p;
 }
 
-void expectConserved(const CellSolveResult& r) {
-  double sent = 0.0, received = 0.0, through = 0.0;
-  for (const CellEnergy& c : r.cells) {
-    const double in = c.emitted + c.received;
-    EXPECT_NEAR(c.absorbed + c.sent + c.unshot + c.escaped, in, 1e-3 * std::max(in, 1e-3 * r.emitted)) << c.name;
-    sent += c.sent, received += c.received;
-  }
-  for (const PortalEnergy& p : r.portals) through += p.aToB + p.bToA;
-  EXPECT_NEAR(sent, received, 1e-9 * r.emitted);
-  EXPECT_NEAR(through, sent, 1e-9 * r.emitted);
-  EXPECT_NEAR(r.absorbed + r.unshot + r.escaped, r.emitted, 1e-3 * r.emitted);
-}
+using testing::expectConserved;
 
 TEST(DirectionalPortals, BeamLandsWhereTheWholeSceneSolvePutsIt) {
   SpotDoor d;

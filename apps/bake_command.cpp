@@ -4,10 +4,10 @@
 //  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
 //  [--item-buffer N] [--regions N] [--region-size M] [--repair]`: GPU progressive radiosity over a lightmap
 //  atlas (design.md §1, §3), over
-// the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
+// the whole scene at once or cell by cell through portals (radiosity/cells/cell_solver.h); both write the same
 // atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
 // baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
-// camera (radiosity/views.h) and report.json, all or nothing.
+// camera (radiosity/lightmap/views.h) and report.json, all or nothing.
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,12 +28,12 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
-#include "radiosity/atlas.h"
-#include "radiosity/cell_selection.h"
-#include "radiosity/cell_solver.h"
-#include "radiosity/egl_context.h"
-#include "radiosity/gpu_solver.h"
-#include "radiosity/views.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/lightmap/views.h"
 
 namespace cpgi::cli {
 namespace {
@@ -76,7 +76,7 @@ Context::ProgressFn progressPrinter(bool quiet) {
   };
 }
 
-// On-demand bakes (radiosity/cell_selection.h): the cells to bake, or nothing for a whole bake.
+// On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
 struct OnDemand {
   bool active = false;
   CellSelection selection;

@@ -7,9 +7,9 @@
 
 #include "core/error.h"
 #include "core/quads.h"
-#include "radiosity/cell_solver.h"
-#include "radiosity/egl_context.h"
-#include "radiosity/metrics.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/metrics/metrics.h"
 
 namespace cpgi::cli {
 namespace {

@@ -14,8 +14,8 @@
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "radiosity/metrics.h"
-#include "radiosity/texel_sample.h"
+#include "radiosity/metrics/metrics.h"
+#include "radiosity/metrics/texel_sample.h"
 
 namespace cpgi::cli {
 

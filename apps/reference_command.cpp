@@ -17,10 +17,10 @@
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
-#include "radiosity/atlas.h"
-#include "radiosity/lightmap_output.h"
-#include "radiosity/reference_tracer.h"
-#include "radiosity/texel_sample.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/lightmap_output.h"
+#include "radiosity/reference/reference_tracer.h"
+#include "radiosity/metrics/texel_sample.h"
 
 namespace cpgi::cli {
 

@@ -14,9 +14,9 @@
 #include <string>
 
 #include "core/quads.h"
-#include "radiosity/atlas.h"
-#include "radiosity/cell_selection.h"
-#include "radiosity/cell_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/cells/cell_solver.h"
 #include "scenes/seed_scenes.h"
 
 namespace {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/quads.h"
-#include "radiosity/atlas.h"
-#include "radiosity/gpu_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/gpu/gpu_solver.h"
 #include "scenes/seed_scenes.h"
 
 namespace {

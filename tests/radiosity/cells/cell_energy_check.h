@@ -1,0 +1,29 @@
+// The energy bookkeeping check shared by the cell solver tests (diffuse and directional portals).
+#pragma once
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "radiosity/cells/cell_solver.h"
+
+namespace cpgi::testing {
+
+// emitted + received = absorbed + sent + unshot + escaped in every cell; what one cell sends another
+// receives.
+inline void expectConserved(const CellSolveResult& r) {
+  double sent = 0.0, received = 0.0, through = 0.0;
+  for (const CellEnergy& c : r.cells) {
+    const double in = c.emitted + c.received;
+    EXPECT_NEAR(c.absorbed + c.sent + c.unshot + c.escaped, in, 1e-3 * std::max(in, 1e-3 * r.emitted))
+        << c.name;
+    sent += c.sent, received += c.received;
+  }
+  for (const PortalEnergy& p : r.portals) through += p.aToB + p.bToA;
+  EXPECT_NEAR(sent, received, 1e-9 * r.emitted);
+  EXPECT_NEAR(through, sent, 1e-9 * r.emitted);
+  EXPECT_NEAR(r.absorbed + r.unshot + r.escaped, r.emitted, 1e-3 * r.emitted);
+  EXPECT_NEAR(r.unshotFraction, r.unshot / r.emitted, 1e-12);
+}
+
+}  // namespace cpgi::testing

@@ -37,8 +37,9 @@ bool sameAtlas(const LightmapAtlas& x, const LightmapAtlas& y) {
 // the decompositions differ in how light reaches the other surfaces (as `cpgi reference` does).
 std::vector<float> nonEmissiveArea(const LightmapAtlas& atlas) {
   std::vector<float> area = atlas.area;
+  const std::vector<float> lamp = emissiveMask(atlas);
   for (size_t i = 0; i < area.size(); ++i)
-    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f)))) area[i] = 0.0f;
+    if (lamp[i] > 0.0f) area[i] = 0.0f;
   return area;
 }
 
@@ -70,7 +71,7 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
   solve.atlas = params.atlas;
   solve.maxRounds = params.maxRounds;
   const Clock::time_point start = Clock::now();
-  CellSolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
+  SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
   const double seconds = secondsSince(start);
   radiosity = std::move(solved.radiosity);
   return {{"source", cells.source},
@@ -80,9 +81,9 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
           {"seconds", seconds},
           {"solve_seconds", solved.seconds},
           {"shots", solved.shots},
-          {"rounds", solved.rounds},
+          {"rounds", solved.perCell->rounds},
           {"unshot_fraction", solved.unshotFraction},
-          {"max_cell_texels", solved.maxCellTexels}};
+          {"max_cell_texels", solved.perCell->maxCellTexels}};
 }
 
 void addErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, const LightmapAtlas& atlas,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/cell_json.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
@@ -114,7 +115,7 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
       app.add_subcommand("info", "Describe a scene: triangles, quads, materials, emitters, cameras, cells");
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
-  sub->add_flag("--repair", options->repair, "Drop zero-area and duplicate triangles instead of failing");
+  addRepairOption(*sub, options->repair);
   sub->callback([options, &selected] {
     selected = [options] {
       LoadOptions load;

@@ -220,11 +220,11 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       throw InputError(path, std::to_string(degenerate) + " zero-area triangle" +
                                  (degenerate > 1 ? "s" : "") + " (first in node '" +
                                  nodeOf(scene, scene.triangles[firstDegenerate]) +
-                                 "'); run with --repair to drop them");
+                                 "'); run with `repair` to drop them");
     if (duplicate)
       throw InputError(path, std::to_string(duplicate) + " duplicate triangle" + (duplicate > 1 ? "s" : "") +
                                  " (first in node '" + nodeOf(scene, scene.triangles[firstDuplicate]) +
-                                 "'); run with --repair to drop them");
+                                 "'); run with `repair` to drop them");
   }
   if (degenerate) out.warnings.push_back("dropped " + std::to_string(degenerate) + " zero-area triangles");
   if (duplicate) out.warnings.push_back("dropped " + std::to_string(duplicate) + " duplicate triangles");
@@ -240,7 +240,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
   }
   if (scene.triangles.empty())
     throw InputError(
-        path, degenerate + duplicate > 0 ? "no triangles left after --repair" : "the scene has no triangles");
+        path, degenerate + duplicate > 0 ? "no triangles left after `repair`" : "the scene has no triangles");
   for (Triangle& t : scene.triangles)
     for (glm::vec3& n : t.n) {
       const float len = glm::length(n);

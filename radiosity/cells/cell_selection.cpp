@@ -15,13 +15,7 @@ const char* boundaryModeName(BoundaryMode m) {
   return m == BoundaryMode::Coarse ? "coarse" : "dark";
 }
 
-BoundaryMode parseBoundaryMode(const std::string& name) {
-  if (name == "coarse") return BoundaryMode::Coarse;
-  if (name == "dark") return BoundaryMode::Dark;
-  throw InputError("--boundary", "must be coarse or dark, not '" + name + "'");
-}
-
-std::vector<int> cellsByName(const CellGraph& graph, const std::string& list, const std::string& option) {
+std::vector<int> cellsByName(const CellGraph& graph, const std::string& list, const std::string& parameter) {
   std::vector<int> out;
   std::stringstream in(list);
   std::string name;
@@ -33,11 +27,11 @@ std::vector<int> cellsByName(const CellGraph& graph, const std::string& list, co
     if (c < 0) {
       std::string names;
       for (const Cell& cell : graph.cells) names += (names.empty() ? "" : ", ") + cell.name;
-      throw InputError(option, "no cell named '" + name + "' (cells: " + names + ")");
+      throw InputError(parameter, "no cell named '" + name + "' (cells: " + names + ")");
     }
     out.push_back(c);
   }
-  if (out.empty()) throw InputError(option, "names no cell");
+  if (out.empty()) throw InputError(parameter, "names no cell");
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
@@ -129,26 +123,6 @@ std::vector<int> cellOfTexels(const LightmapAtlas& atlas, const CellGraph& graph
       }
   }
   return out;
-}
-
-glm::vec3 parsePoint(const std::string& text, const std::string& option) {
-  std::stringstream in(text);
-  std::string part;
-  std::vector<float> values;
-  while (std::getline(in, part, ',')) {
-    size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
-      throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
-    values.push_back(v);
-  }
-  if (values.size() != 3) throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
-  return {values[0], values[1], values[2]};
 }
 
 }  // namespace cpgi

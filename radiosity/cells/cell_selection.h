@@ -32,8 +32,6 @@ enum class BoundaryMode {
 };
 
 const char* boundaryModeName(BoundaryMode m);
-/// Parses "coarse" / "dark"; throws InputError("--boundary", ...) otherwise.
-BoundaryMode parseBoundaryMode(const std::string& name);
 
 /// The part each cell of a graph plays in an on-demand bake (indices into CellGraph::cells, ascending).
 struct CellSelection {
@@ -43,8 +41,9 @@ struct CellSelection {
 };
 
 /// The cells named in a comma-separated list ("A,B"; spaces around names ignored), ascending, each once.
-/// Throws InputError(option, ...) for an empty list or a name that is not a cell (listing the names).
-std::vector<int> cellsByName(const CellGraph& graph, const std::string& list, const std::string& option);
+/// Throws InputError(parameter, ...) for an empty list or a name that is not a cell (listing the names);
+/// `parameter` is what the caller calls the list.
+std::vector<int> cellsByName(const CellGraph& graph, const std::string& list, const std::string& parameter);
 
 /// The cell whose empty space holds `point`, or -1. Decided by rays in 64 directions spread over the
 /// sphere against the scene's triangles and the portal quads: a ray that first meets the front face of a
@@ -65,7 +64,5 @@ CellSelection selectCells(const CellGraph& graph, const std::vector<int>& baked)
 /// the quad under it.
 std::vector<int> cellOfTexels(const LightmapAtlas& atlas, const CellGraph& graph, size_t triangleCount);
 
-/// Parses "X,Y,Z" (metres) for `option`; throws InputError unless it is three finite numbers.
-glm::vec3 parsePoint(const std::string& text, const std::string& option);
 
 }  // namespace cpgi

@@ -25,11 +25,10 @@
 namespace cpgi {
 
 /// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
-/// directional (the light keeps the directions it arrived with; radiosity/gpu/emission_lobes.h).
+/// directional (the light keeps the directions it arrived with; radiosity/gpu/emission_lobes.h). One
+/// PortalTransfer class per model (radiosity/cells/portal_transfer.h).
 enum class PortalLight { Diffuse, Directional };
 const char* portalLightName(PortalLight p);
-/// Parses "diffuse" / "directional"; throws InputError("--portals", ...) otherwise.
-PortalLight parsePortalLight(const std::string& name);
 
 struct CellSolveParams {
   /// Per-cell solver settings. Its unshotFraction is the whole scene's target: rounds go on until the
@@ -57,66 +56,18 @@ struct CellSolveParams {
   bool partOfGraph = false;
 };
 
-/// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.
-struct CellEnergy {
-  std::string name;
-  double emitted = 0.0;   ///< by its own emitters
-  double received = 0.0;  ///< injected by neighbours through its portals
-  double absorbed = 0.0;  ///< by its surfaces (portals excluded)
-  double sent = 0.0;      ///< collected on its portals and handed to the neighbours
-  double unshot = 0.0;    ///< left at the end: residual plus received light not yet solved
-  double escaped = 0.0;   ///< shot but caught by no receiver (form-factor error)
-  int solves = 0, shots = 0;
-  size_t texels = 0;      ///< valid texels of its atlas, portals included
-  double seconds = 0.0;   ///< its solves
-  bool written = true;    ///< false for an on-demand bake's boundary cell (solved, texels left black)
-};
-
-struct PortalEnergy {
-  std::string name;
-  double aToB = 0.0, bToA = 0.0;  ///< W through the opening each way
-};
-
-struct CellSolveResult {
-  std::vector<glm::vec3> radiosity;  ///< per texel of the global atlas (W/m²), padding 0, not dilated
-  std::vector<CellEnergy> cells;
-  std::vector<PortalEnergy> portals;
-  int rounds = 0;  ///< solve rounds (1 = the direct step only)
-  int shots = 0;
-  double emitted = 0.0, absorbed = 0.0, unshot = 0.0, escaped = 0.0;
-  double unshotFraction = 0.0;
-  double seconds = 0.0;  ///< all solves, atlases and syncs
-  size_t maxCellTexels = 0;
-};
-
-/// The scene one cell is solved in: its triangles (in graph order) then two triangles per portal, facing
-/// into the cell, with a material of albedo 0 and no emission appended.
-struct CellScene {
-  Scene scene;
-  std::vector<uint32_t> globalTriangle;  ///< per cell-scene triangle: the scene triangle, or -1 for a portal
-  std::vector<int> portals;              ///< graph portal per portal pair, in triangle order
-  size_t ownTriangles = 0;               ///< the first ownTriangles triangles are the cell's
-};
-CellScene makeCellScene(const Scene& scene, const CellGraph& graph, int cell);
-
-/// For every valid texel of `to`'s patch `toPatch`, the texel of `from`'s patch `fromPatch` covering the same
-/// point (by `from`'s chart parametrisation; the nearest valid texel where it falls outside). -1 elsewhere
-/// in `to`'s chart; outside that chart, entries are left as they were when the vector already has one
-/// entry per texel of `to` (so a caller mapping patch after patch does not pay for the whole atlas each time). Both patches must be the same surface (possibly seen from the other side).
-void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtlas& to, int toPatch,
-                    std::vector<int32_t>& sourceOfTexel);
-
-/// Solves the scene cell by cell into `global` (an atlas of the whole scene). Throws InputError when the
-/// graph is unusable (validateCells errors); triangles in no cell stay black (a warning in ctx).
-CellSolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
+/// Solves the scene cell by cell into `global` (an atlas of the whole scene); the result's perCell holds
+/// the rounds and the energy per cell and portal. Throws InputError when the graph is unusable
+/// (validateCells errors); triangles in no cell stay black (a warning in ctx).
+SolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
                            const CellSolveParams& params, const EglContext& gl, Context& ctx);
 
 /// An on-demand bake (radiosity/cells/cell_selection.h): solveCells over the selection's baked cells and, in
 /// Coarse mode, its boundary cells on a coarse atlas (coarseAtlasParams);
 /// only the baked cells' texels are written. Portals to cells left out are open (light leaving through
-/// them counts as escaped). `result.cells` lists the solved cells in graph order (boundary ones with
-/// written = false); `result.portals` the portals between them.
-CellSolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+/// them counts as escaped). `result.perCell->cells` lists the solved cells in graph order (boundary ones with
+/// written = false); `result.perCell->portals` the portals between them.
+SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
                                    BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
                                    const EglContext& gl, Context& ctx);
 

@@ -5,7 +5,7 @@
 namespace cpgi {
 
 CellWorkers::CellWorkers(int jobs, const EglContext& gl) : gl_(gl) {
-  if (jobs < 1) throw InputError("--jobs", "must be at least 1");
+  if (jobs < 1) throw InputError("jobs", "must be at least 1");
   for (int w = 1; w < jobs; ++w) threads_.emplace_back(&CellWorkers::workerLoop, this, size_t(w));
   std::exception_ptr failure;
   {

@@ -74,12 +74,12 @@ GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1)
 void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
   if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
-    throw InputError("--item-buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
+    throw InputError("item buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
                                           std::to_string(maxTexture) + ")");
   if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("solver", "item-buffer neighbourhood must be in 0..4");
   if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
-    throw InputError("--unshot", "must be a fraction in (0, 1)");
-  if (p.maxShots < 1) throw InputError("--max-shots", "must be at least 1");
+    throw InputError("unshot fraction", "must be a fraction in (0, 1)");
+  if (p.maxShots < 1) throw InputError("maximum shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("solver", "far-field ratio must be at least 1");
   if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
   if (p.strongShotRegions < 0 || p.strongShotRegions > kMaxRegions)
@@ -132,7 +132,14 @@ struct ProgramDefines {
   }
 };
 
-ProgramDefines programDefines(const SolverParams& params) {
+// The user's settings and the caller's controls together, as the passes read them.
+struct SolveConfig : SolverParams {
+  bool readTransfer = false;
+  double minShotPower = 0.0;
+  bool directionalEmission = false;
+};
+
+ProgramDefines programDefines(const SolveConfig& params) {
   ProgramDefines d;
   if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
   if (params.directionalEmission) d.receive.push_back("DIRECTIONAL"), d.pyramid.push_back("DIRECTIONAL");
@@ -158,8 +165,10 @@ struct SolverPrograms::Set {
 SolverPrograms::SolverPrograms() = default;
 SolverPrograms::~SolverPrograms() = default;
 
-const SolverPrograms::Set& SolverPrograms::get(const SolverParams& params) {
-  const ProgramDefines defines = programDefines(params);
+const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, bool directionalEmission) {
+  SolveConfig config{settings};
+  config.directionalEmission = directionalEmission;
+  const ProgramDefines defines = programDefines(config);
   std::unique_ptr<Set>& set = sets_[defines.key()];
   if (!set) set = std::make_unique<Set>(defines);
   return *set;
@@ -170,7 +179,7 @@ namespace {
 class Solver {
  public:
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
          const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
         compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
@@ -570,7 +579,7 @@ class Solver {
 
   const Scene& scene_;
   const LightmapAtlas& atlas_;
-  SolverParams params_;
+  SolveConfig params_;
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
       &statsProgram_, &tileStatsProgram_, &selectProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
@@ -611,46 +620,30 @@ std::string formatStatus(int shots, double fraction, double eta) {
 }  // namespace
 
 namespace {
-SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
                            const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
                            SolverPrograms& programs);
 }  // namespace
 
 const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
 
-Visibility parseVisibility(const std::string& name) {
-  if (name == "hemisphere") return Visibility::Hemisphere;
-  if (name == "hemicube") return Visibility::Hemicube;
-  throw InputError("--visibility", "must be hemisphere or hemicube, not '" + name + "'");
-}
-
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const EglContext& context, Context& ctx) {
-  SolverPrograms programs;
-  return solveWithLobes(scene, atlas, params, nullptr, context, ctx, programs);
-}
-
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const EglContext& context, Context& ctx, SolverPrograms& programs) {
-  return solveWithLobes(scene, atlas, params, nullptr, context, ctx, programs);
-}
-
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx) {
-  SolverPrograms programs;
-  return solveProgressive(scene, atlas, params, emissionLobes, context, ctx, programs);
-}
-
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& context, Context& ctx,
-                             SolverPrograms& programs) {
-  if (!params.directionalEmission) throw InputError("solver", "emission lobes need SolverParams::directionalEmission");
-  return solveWithLobes(scene, atlas, params, &emissionLobes, context, ctx, programs);
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             const EglContext& context, Context& ctx, const SolveControls& controls) {
+  if (!controls.directionalEmission && !controls.emissionLobes.empty())
+    throw InputError("solver", "emission lobes need SolveControls::directionalEmission");
+  SolveConfig config{settings};
+  config.readTransfer = controls.readTransfer;
+  config.minShotPower = controls.minShotPower;
+  config.directionalEmission = controls.directionalEmission;
+  const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
+  SolverPrograms own;
+  return solveWithLobes(scene, atlas, config, controls.emissionLobes.empty() ? nullptr : &lobes, context, ctx,
+                        controls.programs ? *controls.programs : own);
 }
 
 namespace {
 
-SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
                            const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
                            SolverPrograms& programs) {
   checkParams(params, atlas, context.maxTextureSize());
@@ -662,7 +655,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params, programs.get(params), emissionLobes);
+  Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission), emissionLobes);
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 

@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/solve_result.h"
 
 namespace cpgi {
 
@@ -29,9 +31,8 @@ enum class Visibility {
 };
 
 const char* visibilityName(Visibility v);
-/// Parses "hemisphere" / "hemicube"; throws InputError("--visibility", ...) otherwise.
-Visibility parseVisibility(const std::string& name);
 
+/// The user's settings of a solve (the CLI binds them to flags, apps/options.cpp).
 struct SolverParams {
   Visibility visibility = Visibility::Hemicube;
   /// Hemisphere: the buffer's edge in pixels. Hemicube: twice a face's edge (faces of N/2, so both modes
@@ -64,6 +65,13 @@ struct SolverParams {
   /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
   /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
   bool profilePasses = false;
+};
+
+class SolverPrograms;
+
+/// What a caller driving the solver sets, apart from the user's settings: the cell solver
+/// (radiosity/cells/) reads what crosses its portals, stops on a per-patch bound and emits with lobes.
+struct SolveControls {
   /// Also read back every texel's received irradiance and unshot residual (SolveResult::incident,
   /// ::residual): what a cell solve hands on through its portals (radiosity/cells/cell_solver.h).
   bool readTransfer = false;
@@ -71,39 +79,14 @@ struct SolverParams {
   /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
   /// the whole scene would leave such small patches unshot (radiosity/cells/cell_solver.h). 0: off.
   double minShotPower = 0.0;
-  /// Directional emission (radiosity/gpu/emission_lobes.h): shooters emit with per-texel lobes (the
-  /// emissionLobes argument of solveProgressive; Lambertian where zero), and every texel accumulates the
+  /// Directional emission (radiosity/gpu/emission_lobes.h): shooters emit with the per-texel lobes of
+  /// `emissionLobes` (one per atlas texel; zero or none = Lambertian), and every texel accumulates the
   /// direction moments of what it receives (SolveResult::arrivals). Off: the passes are built without it
-  /// and cost and results are those of the plain solver.
+  /// and cost and results are those of the plain solver. Lobes without it are an error.
   bool directionalEmission = false;
-};
-
-/// Energy bookkeeping, W summed over R, G, B. At every step emitted = absorbed + unshot + escaped,
-/// where escaped is the part of the shot power no receiver caught (open scenes, form-factor error).
-struct EnergyTotals {
-  double emitted = 0.0;
-  double shot = 0.0;      ///< power that left shooters so far
-  double received = 0.0;  ///< Σ irradiance × area over all texels
-  double absorbed = 0.0;  ///< Σ (1 − ρ) irradiance × area
-  double unshot = 0.0;    ///< Σ residual × area
-  double escaped() const { return shot - received; }
-};
-
-struct SolveResult {
-  std::vector<glm::vec3> radiosity;  ///< per atlas texel (W/m²), padding 0, not dilated
-  /// With SolverParams::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;
-  /// a texel of albedo 0 keeps all of it, e.g. a portal) and the residual still unshot at the end.
-  std::vector<glm::vec3> incident, residual;
-  /// With SolverParams::directionalEmission, per atlas texel: the arrival moments of everything it received
-  /// (emission_lobes.h, arrivalMoment), to be fitted into a lobe on the far side of a portal.
-  std::vector<glm::vec4> arrivals;
-  int shots = 0;
-  double unshotFraction = 0.0;  ///< unshot / emitted at the end (0 when nothing emits)
-  EnergyTotals energy;
-  std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
-  std::vector<int> shooters;          ///< the patch of every shot, in order
-  double seconds = 0.0;               ///< solve time (upload, shots, read back)
-  double setupSeconds = 0.0;          ///< programs and textures
+  std::span<const glm::vec4> emissionLobes = {};
+  /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
+  SolverPrograms* programs = nullptr;
 };
 
 /// The solver's GLSL programs, compiled once and reused by every solve given the same object (a cell
@@ -117,28 +100,18 @@ class SolverPrograms {
   SolverPrograms(const SolverPrograms&) = delete;
   SolverPrograms& operator=(const SolverPrograms&) = delete;
   struct Set;  // gpu_solver.cpp
-  /// The programs for `params` (their #defines: visibility mode, ...), compiled at first use.
-  const Set& get(const SolverParams& params);
+  /// The programs for `settings` with or without directional emission (their #defines: visibility mode,
+  /// ...), compiled at first use.
+  const Set& get(const SolverParams& settings, bool directionalEmission);
 
  private:
   std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines
 };
 
-/// Solves the atlas. `scene` supplies occluders: every scene triangle is drawn in the item buffer, those
-/// outside the atlas with no patch (they block light but receive none).
-/// Throws InputError for bad params, SystemError for GL failures.
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const EglContext& gl, Context& ctx);
-/// The same, with programs compiled by an earlier solve on this context (identical results).
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const EglContext& gl, Context& ctx, SolverPrograms& programs);
-
-/// The same with SolverParams::directionalEmission on: `emissionLobes` holds one packed lobe per atlas
-/// texel (emission_lobes.h; zero = Lambertian) for the emission and whatever residual the texel shoots.
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& gl, Context& ctx);
-SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                             const std::vector<glm::vec4>& emissionLobes, const EglContext& gl, Context& ctx,
-                             SolverPrograms& programs);
+/// Solves the atlas with the user's `settings` and the caller's `controls`. `scene` supplies occluders:
+/// every scene triangle is drawn in the item buffer, those outside the atlas with no patch (they block
+/// light but receive none). Throws InputError for bad settings, SystemError for GL failures.
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             const EglContext& gl, Context& ctx, const SolveControls& controls = {});
 
 }  // namespace cpgi

@@ -24,13 +24,13 @@ int texelsAlong(float length, const AtlasParams& params) {
 }
 
 std::string sizeOption(const AtlasParams& params) {
-  return params.texelsPerQuad > 0 ? "--texels-per-quad" : "--density";
+  return params.texelsPerQuad > 0 ? "texels per quad" : "texel density";
 }
 
 void checkParams(const AtlasParams& params) {
-  if (params.texelsPerQuad < 0) throw InputError("--texels-per-quad", "must be positive");
+  if (params.texelsPerQuad < 0) throw InputError("texels per quad", "must be positive");
   if (params.texelsPerQuad == 0 && !(params.density > 0.0f && std::isfinite(params.density)))
-    throw InputError("--density", "must be a positive number of texels per metre");
+    throw InputError("texel density", "must be a positive number of texels per metre");
   if (params.minTexels < 1 || params.maxTexels < params.minTexels)
     throw InputError("atlas", "texel limits need 1 <= min <= max");
   if (params.padding < 0) throw InputError("atlas", "padding must not be negative");
@@ -288,6 +288,13 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
   }
   return atlas;
+}
+
+std::vector<float> emissiveMask(const LightmapAtlas& atlas) {
+  std::vector<float> mask(atlas.texelCount(), 0.0f);
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f)))) mask[i] = 1.0f;
+  return mask;
 }
 
 void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius) {

@@ -84,4 +84,9 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
 /// bilinear lookups at chart edges don't pull in black.
 void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius = 2);
 
+/// Per texel, 1 where its patch emits (in any channel) and 0 elsewhere, padding included: the lamps, which
+/// lightmap.exr marks as "emissive" and the error figures without lamps leave out (their B ≈ E outweighs
+/// every lit wall in Σ a|R|²).
+std::vector<float> emissiveMask(const LightmapAtlas& atlas);
+
 }  // namespace cpgi

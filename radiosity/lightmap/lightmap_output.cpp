@@ -24,6 +24,7 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   // Keep the cells and portals, so the baked file still loads with its graph.
   gltf.cells = cells.empty() ? nullptr : &cells;
   gltf.lightmapPng = encodePng(image, result.exposure / std::numbers::pi_v<float>);
+  writeFileAtomically(out.file("lightmap.png"), gltf.lightmapPng);
   // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
   const std::filesystem::path staged = out.file("baked.glb");
   std::filesystem::path withExtension = staged;

@@ -1,5 +1,6 @@
 // The files every lightmap producer writes (design.md §3), in one place so that `cpgi bake` and
-// `cpgi reference` stay comparable file for file: lightmap.exr, baked.glb and the view pictures.
+// `cpgi reference` stay comparable file for file: lightmap.exr, lightmap.png, baked.glb and the view
+// pictures.
 #pragma once
 
 #include <string>
@@ -24,6 +25,7 @@ struct LightmapOutputs {
 
 /// Dilates `radiosity` (per atlas texel, W/m², padding ignored) and stages through `out`:
 ///  - lightmap.exr: R, G, B = radiosity B; channel "area" (m² per texel, 0 on padding) and any `extra`;
+///  - lightmap.png: the lightmap as radiance B/π at `exposure`, as the glb shows it;
 ///  - baked.glb: the scene (with `cells` and their portals, when there are any) with the atlas as
 ///    TEXCOORD_0 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
 ///    baked light;

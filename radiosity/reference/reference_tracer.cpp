@@ -330,7 +330,7 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
   if (!streams.empty() && streams.size() != points.size())
     throw std::invalid_argument("traceReference: one stream per point, or none");
   if (params.spp < 2)
-    throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
+    throw InputError("samples per texel", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
   auto timer = ctx.time("reference");
   const PathTracer tracer(scene, params);
 

@@ -49,7 +49,7 @@ struct ReferenceResult {
 /// Estimates B at every point. Deterministic: the same scene, points and params give bit-identical
 /// results whatever the thread count, since point i draws only from its own generator, seeded by
 /// params.seed and its stream number: streams[i], or i when `streams` is empty (else it has one per point).
-/// Throws InputError("--spp", ...) for spp < 2.
+/// Throws InputError("samples per texel", ...) for spp < 2.
 ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> points,
                                const ReferenceParams& params, Context& ctx,
                                std::span<const uint64_t> streams = {});

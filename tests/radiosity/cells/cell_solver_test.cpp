@@ -1,6 +1,7 @@
 // Radiosity with cells and portals: the cell scene and its portal patches, texel maps across a portal,
 // energy bookkeeping per cell and portal, a closed two-cell furnace (B = E/(1−ρ) through the portal), and
 // a thin wall with no opening (the second room must stay exactly black).
+#include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_solver.h"
 
 #include <set>
@@ -21,7 +22,7 @@ using testing::addRect;
 
 struct CellRun {
   LightmapAtlas atlas;
-  CellSolveResult result;
+  SolveResult result;
   std::vector<std::string> warnings;
 };
 
@@ -123,9 +124,10 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
   const CellRun r = runCells(s, g, 8, 1e-3);
   expectConserved(r.result);
   EXPECT_LE(r.result.unshotFraction, 1e-3);
-  EXPECT_GT(r.result.rounds, 2);
-  EXPECT_GT(r.result.portals[0].aToB, 0.0);
-  EXPECT_NEAR(r.result.portals[0].aToB, r.result.portals[0].bToA, 0.02 * r.result.portals[0].aToB);  // symmetric
+  EXPECT_GT(r.result.perCell->rounds, 2);
+  const PortalEnergy& door = r.result.perCell->portals[0];
+  EXPECT_GT(door.aToB, 0.0);
+  EXPECT_NEAR(door.aToB, door.bToA, 0.02 * door.aToB);  // symmetric
   const double expect = e / (1.0 - rho);
   testing::expectFurnace(r.atlas, r.result.radiosity, expect, 0.05, 0.015);
 }
@@ -153,8 +155,8 @@ TEST(CellSolver, ThinWallLeavesTheOtherRoomBlack) {
   }
   EXPECT_GT(bTexels, 0u);
   EXPECT_GT(aSum, 0.0);
-  EXPECT_EQ(r.result.cells[b].received, 0.0);
-  EXPECT_EQ(r.result.cells[b].solves, 0);
+  EXPECT_EQ(r.result.perCell->cells[b].received, 0.0);
+  EXPECT_EQ(r.result.perCell->cells[b].solves, 0);
 
   // The global solve of the same scene, for the record.
   Context ctx;

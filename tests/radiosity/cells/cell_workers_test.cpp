@@ -74,23 +74,23 @@ TEST(CellWorkers, ParallelCellsSolveEqualsSerial) {
   params.solver.unshotFraction = 0.02;
   params.solver.itemBuffer = 256;
   const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), params.atlas, ctx);
-  const CellSolveResult serial = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
+  const SolveResult serial = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
   params.jobs = 3;
-  const CellSolveResult parallel = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
+  const SolveResult parallel = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
   ASSERT_EQ(parallel.radiosity.size(), serial.radiosity.size());
   size_t differing = 0;
   for (size_t i = 0; i < serial.radiosity.size(); ++i)
     differing += parallel.radiosity[i] != serial.radiosity[i];
   EXPECT_EQ(differing, 0u);
   EXPECT_EQ(parallel.shots, serial.shots);
-  EXPECT_EQ(parallel.rounds, serial.rounds);
-  ASSERT_EQ(parallel.cells.size(), serial.cells.size());
-  for (size_t c = 0; c < serial.cells.size(); ++c) {
-    EXPECT_EQ(parallel.cells[c].sent, serial.cells[c].sent);
-    EXPECT_EQ(parallel.cells[c].absorbed, serial.cells[c].absorbed);
-    EXPECT_EQ(parallel.cells[c].shots, serial.cells[c].shots);
+  EXPECT_EQ(parallel.perCell->rounds, serial.perCell->rounds);
+  ASSERT_EQ(parallel.perCell->cells.size(), serial.perCell->cells.size());
+  for (size_t c = 0; c < serial.perCell->cells.size(); ++c) {
+    EXPECT_EQ(parallel.perCell->cells[c].sent, serial.perCell->cells[c].sent);
+    EXPECT_EQ(parallel.perCell->cells[c].absorbed, serial.perCell->cells[c].absorbed);
+    EXPECT_EQ(parallel.perCell->cells[c].shots, serial.perCell->cells[c].shots);
   }
-  EXPECT_GE(serial.rounds, 2);
+  EXPECT_GE(serial.perCell->rounds, 2);
 }
 
 }  // namespace

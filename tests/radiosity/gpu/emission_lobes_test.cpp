@@ -161,14 +161,16 @@ TEST(EmissionLobes, AimedEmitterOnTheGpu) {
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), ap, ctx);
   SolverParams sp;
   sp.itemBuffer = 256;
-  sp.directionalEmission = true;
   const glm::vec3 up(0, 1, 0), aim = glm::normalize(glm::vec3(1, 1, 0));
   std::vector<glm::vec4> lobes(atlas.texelCount(), glm::vec4(0.0f));
   for (size_t i = 0; i < lobes.size(); ++i)
     if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f))
       lobes[i] = fitEmissionLobe(arrivalMoment(aim, up, 1.0f), up, 0.15f);
-  const SolveResult lambert = solveProgressive(scene, atlas, sp, std::vector<glm::vec4>(lobes.size()), gl, ctx);
-  const SolveResult aimed = solveProgressive(scene, atlas, sp, lobes, gl, ctx);
+  const std::vector<glm::vec4> lambertian(lobes.size(), glm::vec4(0.0f));
+  const SolveResult lambert = solveProgressive(
+      scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = lambertian});
+  const SolveResult aimed =
+      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = lobes});
   ASSERT_EQ(aimed.shots, 1);
   auto wall = [&](const SolveResult& r, glm::vec3 normal) {
     double sum = 0.0;
@@ -201,10 +203,12 @@ TEST(EmissionLobes, LobesNeedTheDirectionalSolver) {
   Context ctx;
   EglContext gl(ctx);
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.texelsPerQuad = 4}, ctx);
-  SolverParams sp;
-  EXPECT_THROW(solveProgressive(scene, atlas, sp, std::vector<glm::vec4>(atlas.texelCount()), gl, ctx), InputError);
-  sp.directionalEmission = true;
-  EXPECT_THROW(solveProgressive(scene, atlas, sp, std::vector<glm::vec4>(3), gl, ctx), InputError);
+  const SolverParams sp;
+  const std::vector<glm::vec4> perTexel(atlas.texelCount()), tooFew(3);
+  EXPECT_THROW(solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.emissionLobes = perTexel}), InputError);
+  EXPECT_THROW(
+      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = tooFew}),
+      InputError);
 }
 
 }  // namespace

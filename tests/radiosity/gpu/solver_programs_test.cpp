@@ -35,7 +35,7 @@ TEST(SolverPrograms, ReusedProgramsGiveTheFreshResult) {
   for (int pass = 0; pass < 2; ++pass)
     for (size_t i = 0; i < std::size(cases); ++i) {
       const SolveResult r =
-          solveProgressive(*cases[i].scene, *cases[i].atlas, *cases[i].params, gl, ctx, programs);
+          solveProgressive(*cases[i].scene, *cases[i].atlas, *cases[i].params, gl, ctx, {.programs = &programs});
       EXPECT_EQ(r.shots, fresh[i].shots) << i;
       EXPECT_EQ(r.shooters, fresh[i].shooters) << i;
       EXPECT_TRUE(r.radiosity == fresh[i].radiosity) << "case " << i << ", pass " << pass;

@@ -204,7 +204,6 @@ TEST(Solver, RejectsBadParameters) {
   p = SolverParams{};
   p.unshotFraction = 0.0;
   EXPECT_THROW(solve(s, AtlasParams{.texelsPerQuad = 4}, p), InputError);
-  EXPECT_THROW(parseVisibility("cube"), InputError);
 }
 
 }  // namespace

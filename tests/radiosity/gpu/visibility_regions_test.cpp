@@ -70,8 +70,7 @@ double floorError(int regions, int strongRegions) {
   SolverParams params;
   params.maxRegions = regions;
   params.strongShotRegions = strongRegions;
-  params.readTransfer = true;
-  const SolveResult r = solveProgressive(scene, atlas, params, gl, ctx);
+  const SolveResult r = solveProgressive(scene, atlas, params, gl, ctx, SolveControls{.readTransfer = true});
   const int floorTriangle = int(scene.triangles.size()) - 1;
   double err = 0.0, ref = 0.0;
   size_t texels = 0;

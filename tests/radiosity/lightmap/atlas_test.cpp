@@ -228,7 +228,7 @@ TEST(Atlas, TooLargeNamesTheOption) {
     build(s, AtlasParams{.texelsPerQuad = 512, .maxSize = 1024});
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), "--texels-per-quad");
+    EXPECT_EQ(e.where(), "texels per quad");
   }
 }
 

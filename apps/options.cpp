@@ -1,0 +1,267 @@
+#include "apps/options.h"
+
+#include <cmath>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "apps/commands.h"
+
+namespace cpgi::cli {
+namespace {
+
+// Every parameter the libraries name in their errors, with the flag that sets it.
+struct ParameterFlag {
+  std::string_view parameter, flag;
+};
+constexpr ParameterFlag kFlags[] = {
+    // Loading (core/scene_io.h)
+    {"repair", "--repair"},
+    // Atlas (radiosity/lightmap/atlas.h)
+    {"texels per quad", "--texels-per-quad"},
+    {"texel density", "--density"},
+    // GPU solver (radiosity/gpu/gpu_solver.h)
+    {"unshot fraction", "--unshot"},
+    {"maximum shots", "--max-shots"},
+    {"visibility", "--visibility"},
+    {"item buffer", "--item-buffer"},
+    {"visibility regions", "--regions"},
+    {"strong-shot regions", "--strong-regions"},
+    {"strong-shot fraction", "--strong-fraction"},
+    {"region size", "--region-size"},
+    // Cells (radiosity/cells/)
+    {"cell graph", "--cells"},
+    {"portal light", "--portals"},
+    {"maximum rounds", "--max-rounds"},
+    {"jobs", "--jobs"},
+    {"boundary", "--boundary"},
+    // Reference (radiosity/reference/reference_tracer.h)
+    {"samples per texel", "--spp"},
+    // Decomposition (decomposition/decompose.h)
+    {"voxel size", "--voxel"},
+    {"seal radius", "--seal"},
+    {"saddle ratio", "--saddle-ratio"},
+    {"minimum depth", "--min-depth"},
+    {"opening ratio", "--opening-ratio"},
+    {"minimum cell volume", "--min-cell-volume"},
+};
+
+std::string flag(std::string_view parameter) {
+  for (const ParameterFlag& f : kFlags)
+    if (f.parameter == parameter) return std::string(f.flag);
+  throw std::logic_error("apps/options.cpp: no flag for parameter '" + std::string(parameter) + "'");
+}
+
+// "With --bake: " before the help of options that need another.
+std::string help(const OptionScope& scope, const std::string& text) {
+  return scope.needs ? "With " + scope.needs->get_name() + ": " + text : text;
+}
+
+CLI::Option* scoped(CLI::Option* option, const OptionScope& scope) {
+  if (scope.needs) option->needs(scope.needs);
+  return option;
+}
+
+// A flag taking one of `choices` by name, setting `field` to the value named (help: "TEXT:{a,b}=a").
+template <class Enum>
+CLI::Option* addChoice(CLI::App& cmd, const std::string& name, Enum& field,
+                       const std::vector<std::pair<std::string, Enum>>& choices, const std::string& text) {
+  std::vector<std::string> names;
+  std::string current;
+  for (const auto& [n, value] : choices) {
+    names.push_back(n);
+    if (value == field) current = n;
+  }
+  return cmd
+      .add_option_function<std::string>(
+          name,
+          [&field, choices](const std::string& given) {
+            for (const auto& [n, value] : choices)
+              if (n == given) field = value;
+          },
+          text)
+      ->check(CLI::IsMember(names))
+      ->default_str(current);
+}
+
+}  // namespace
+
+std::string flagOf(const std::string& parameter) {
+  for (const ParameterFlag& f : kFlags)
+    if (f.parameter == parameter) return std::string(f.flag);
+  return parameter;
+}
+
+std::string userMessage(const InputError& e) {
+  std::string problem = e.problem();
+  for (size_t open = problem.find('`'); open != std::string::npos; open = problem.find('`', open + 1)) {
+    const size_t close = problem.find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string name = problem.substr(open + 1, close - open - 1), flag = flagOf(name);
+    if (flag == name) continue;
+    problem.replace(open, close - open + 1, flag);
+  }
+  return flagOf(e.where()) + ": " + problem;
+}
+
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
+  auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
+                                    help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
+                         ->check(CLI::Range(1, 4096)),
+                     scope);
+  auto* density = scoped(cmd.add_option(flag("texel density"), atlas.density,
+                                        help(scope, "Texels per metre along each patch edge"))
+                             ->check(kPositive)
+                             ->capture_default_str(),
+                         scope);
+  tpq->excludes(density);
+}
+
+void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
+  scoped(cmd.add_option(flag("unshot fraction"), solver.unshotFraction,
+                        help(scope, "Stop when this fraction of the emitted power is still unshot"))
+             ->check(CLI::Range(1e-9, 0.999999))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("maximum shots"), solver.maxShots, help(scope, "Stop after this many shots"))
+             ->check(CLI::Range(1, 100000000))
+             ->capture_default_str(),
+         scope);
+  scoped(addChoice(cmd, flag("visibility"), solver.visibility,
+                   {{"hemisphere", Visibility::Hemisphere}, {"hemicube", Visibility::Hemicube}},
+                   help(scope,
+                        "hemisphere: the thesis's one-pass item buffer; hemicube: five faces, exact "
+                        "straight edges")),
+         scope);
+  // The solver checks it against the GL limits and says why.
+  scoped(cmd.add_option(flag("item buffer"), solver.itemBuffer,
+                        help(scope, "Item-buffer edge in pixels (hemicube: faces of half this edge)"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("visibility regions"), solver.maxRegions,
+                        help(scope,
+                             "Visibility regions per edge of a large shooter, each with its own item "
+                             "buffer: soft light through doors from large shooters, at up to N² item "
+                             "buffers per shot"))
+             ->check(CLI::Range(1, 4))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("strong-shot regions"), solver.strongShotRegions,
+                        help(scope,
+                             "Visibility regions per edge for the strong shots, those carrying at least "
+                             "--strong-fraction of the emitted power (0: as --regions)"))
+             ->check(CLI::Range(0, 4))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("strong-shot fraction"), solver.strongShotFraction,
+                        help(scope, "Share of the emitted power that makes a shot strong"))
+             ->check(CLI::Range(0.0, 1.0))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("region size"), solver.regionSize,
+                        help(scope, "Metres per visibility region along a shooter's edge"))
+             ->check(CLI::Range(0.01f, 1000.0f))
+             ->capture_default_str(),
+         scope);
+}
+
+void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
+  scoped(addChoice(cmd, flag("portal light"), cells.portals,
+                   {{"diffuse", PortalLight::Diffuse}, {"directional", PortalLight::Directional}},
+                   help(scope,
+                        "Portal light with --method cells: diffuse (re-emits the irradiance as a "
+                        "Lambertian area light) or directional (keeps the directions the light arrived "
+                        "with)")),
+         scope);
+  scoped(cmd.add_option(flag("maximum rounds"), cells.maxRounds,
+                        help(scope, "With --method cells: solve rounds (syncs) at most"))
+             ->check(CLI::Range(1, 100000))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("jobs"), cells.jobs,
+                        help(scope,
+                             "With --method cells: cells solved at once in a round, each on its own "
+                             "thread and OpenGL context (same result as 1)"))
+             ->check(CLI::Range(1, 64))
+             ->capture_default_str(),
+         scope);
+}
+
+void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
+  scoped(cmd.add_option(flag("voxel size"), params.voxelSize,
+                        help(scope,
+                             "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds "
+                             "volume / 4e6))"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("seal radius"), params.sealRadius,
+                        help(scope,
+                             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel "
+                             "wide"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("saddle ratio"), params.merge.saddleRatio,
+                        help(scope,
+                             "Merge two basins when saddle / smaller peak exceeds this (higher keeps "
+                             "more portals)"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("minimum depth"), params.merge.minDepth,
+                        help(scope,
+                             "Merge when smaller peak - saddle is below this, metres (furniture, "
+                             "pillars)"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("opening ratio"), params.merge.openingRatio,
+                        help(scope,
+                             "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 "
+                             "disables"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("minimum cell volume"), params.merge.minCellVolume,
+                        help(scope, "Cells smaller than this, m3, join a neighbour"))
+             ->capture_default_str(),
+         scope);
+}
+
+void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
+  scoped(cmd.add_option(flag("samples per texel"), spp,
+                        help(scope, "Reference paths per texel (noise falls as 1/sqrt(spp))"))
+             ->check(CLI::Range(2, 1 << 20))
+             ->capture_default_str(),
+         scope);
+}
+
+void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {
+  addChoice(
+      cmd, flag("boundary"), mode, {{"coarse", BoundaryMode::Coarse}, {"dark", BoundaryMode::Dark}},
+      "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their lamps and "
+      "bounces light the baked cells through the portals; not written) or dark");
+}
+
+glm::vec3 parsePoint(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  std::string part;
+  std::vector<float> values;
+  while (std::getline(in, part, ',')) {
+    size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
+      throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+    values.push_back(v);
+  }
+  if (values.size() != 3) throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+  return {values[0], values[1], values[2]};
+}
+
+void addRepairOption(CLI::App& cmd, bool& repair) {
+  cmd.add_flag(flag("repair"), repair, "Drop zero-area and duplicate triangles instead of failing");
+}
+
+}  // namespace cpgi::cli

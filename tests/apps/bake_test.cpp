@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
+#include "core/scene_io.h"
 #include "scenes/seed_scenes.h"
 #include "tests/support/run_cpgi.h"
 
@@ -64,6 +65,17 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   for (const Triangle& t : makeSeedScene(1).scene.triangles) sceneArea += t.area();
   EXPECT_NEAR(area, sceneArea, 1e-3 * sceneArea);
   EXPECT_GT(lit, 0.0);
+}
+
+TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
+  ASSERT_EQ(cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" + "' --texels-per-quad 2 --unshot 0.2 -q")
+                .status,
+            0);
+  const LoadedScene baked = loadScene(dir / "out/baked.glb", LoadOptions{});
+  EXPECT_EQ(baked.cells.cells.size(), 3u);
+  EXPECT_EQ(baked.cells.portals.size(), 2u);
 }
 
 TEST(Bake, BadOptionsFailWithOneLine) {

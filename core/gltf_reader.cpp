@@ -253,14 +253,18 @@ class GltfReader {
     if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m_.buffers.size()))
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " refers to a buffer that does not exist");
     const std::vector<unsigned char>& data = m_.buffers[bv.buffer].data;
-    if (uint64_t(bv.byteOffset) + bv.byteLength > data.size())
+    // Every bound is compared against what remains, never added up first: a file may hold offsets and
+    // lengths near 2^64 whose sum wraps around to a small number.
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of its buffer");
     v.stride = bv.byteStride ? bv.byteStride : elemSize;
     if (v.stride < elemSize)
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " has a stride smaller than its elements");
-    if (v.count > 0 && (v.count > (uint64_t(1) << 40) ||
-                        uint64_t(a.byteOffset) + v.stride * (v.count - 1) + elemSize > bv.byteLength))
-      fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
+    if (v.count > 0) {
+      const bool fits = a.byteOffset <= bv.byteLength && elemSize <= bv.byteLength - a.byteOffset &&
+                        v.count - 1 <= (bv.byteLength - a.byteOffset - elemSize) / v.stride;
+      if (!fits) fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
+    }
     v.data = data.data() + bv.byteOffset + a.byteOffset;
     return v;
   }

@@ -51,8 +51,36 @@ std::string checkGlbContainer(const std::string& path, const std::string& b) {
   return b.substr(20, jsonLength);
 }
 
+// glTF itself nests about 6 levels deep (asset → meshes → primitive → attributes …); extras and
+// extensions may add some. tinygltf converts the JSON recursively, so a file of 16,000 nested arrays
+// would overflow the stack there: the depth is counted first, in one pass without recursion.
+constexpr int kMaxJsonDepth = 64;
+
+void checkJsonDepth(const std::string& path, const std::string& text, const char* what) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;  // skips the escaped character, which may be a quote
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(path, std::string("invalid JSON ") + what + ": nested deeper than " +
+                                   std::to_string(kMaxJsonDepth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 // nlohmann's messages start with "[json.exception.parse_error.101] "; the user needs the rest.
 void checkJson(const std::string& path, const std::string& text, const char* what) {
+  checkJsonDepth(path, text, what);
   try {
     const nlohmann::json parsed = nlohmann::json::parse(text);
     (void)parsed;
@@ -155,14 +183,26 @@ class GltfReader {
     return t * r * s;
   }
 
+  // The recursion is bounded by kMaxNodeDepth (a fuzzed file may nest 100,000 nodes), and every node
+  // path by kMaxNodePath: each mesh node keeps its whole path, so deep nesting would otherwise cost
+  // memory quadratic in the depth.
+  static constexpr int kMaxNodeDepth = 256;
+  static constexpr size_t kMaxNodePath = 4096;
+
   void visit(int index, const glm::dmat4& parent, const std::string& parentPath, int cell,
-             RawScene::TaggedMesh* tagged) {
+             RawScene::TaggedMesh* tagged, int depth = 0) {
     if (index < 0 || index >= static_cast<int>(m_.nodes.size()))
       fail("a scene or node refers to node " + std::to_string(index) + ", which does not exist");
     if (visited_[index]) fail("node '" + nodeName(index) + "' appears twice in the node hierarchy");
+    if (depth >= kMaxNodeDepth)
+      fail("node '" + nodeName(index) + "': the node hierarchy is deeper than " +
+           std::to_string(kMaxNodeDepth) + " levels");
     visited_[index] = 1;
     const tinygltf::Node& node = m_.nodes[index];
     const std::string name = nodeName(index);
+    if (parentPath.size() + 1 + name.size() > kMaxNodePath)
+      fail("node '" + name + "': its path from the scene root is longer than " +
+           std::to_string(kMaxNodePath) + " characters");
     const std::string path = parentPath.empty() ? name : parentPath + "/" + name;
     const glm::dmat4 world = parent * localMatrix(node, name);
 
@@ -198,7 +238,7 @@ class GltfReader {
       addMesh(m_.meshes[node.mesh], world, path, cell, tagged);
     }
     // Nothing below a tagged node can add another tagged node, so `tagged` stays valid.
-    for (int child : node.children) visit(child, world, path, cell, tagged);
+    for (int child : node.children) visit(child, world, path, cell, tagged, depth + 1);
   }
 
   void addCamera(int index, const glm::dmat4& world, const std::string& nodeName) {

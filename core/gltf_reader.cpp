@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <set>
 
 #include <tiny_gltf.h>
@@ -13,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace cpgi::detail {
@@ -120,6 +123,47 @@ glm::vec3 srgbToLinear(glm::vec3 c) {
     c[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
   return c;
 }
+
+// tinygltf's file callbacks, so that every buffer and image it loads goes through the scene's reference
+// policy (scene_files.h). tinygltf joins the scene's folder and the decoded URI, asks whether that
+// exists, then reads it; it also retries relative to the working directory, which is never allowed.
+class ReferencedFiles {
+ public:
+  explicit ReferencedFiles(ReferencePolicy policy) : policy_(std::move(policy)), folder_(policy_.folder.string()) {
+    prefix_ = folder_.back() == '/' ? folder_ : folder_ + "/";
+  }
+  const std::string& folder() const { return folder_; }
+
+  static bool exists(const std::string& path, void* self) {
+    auto& files = *static_cast<ReferencedFiles*>(self);
+    if (path.compare(0, files.prefix_.size(), files.prefix_) != 0) return false;
+    std::optional<std::string> bytes = readReferencedFile(files.policy_, path.substr(files.prefix_.size()));
+    if (!bytes) return false;
+    files.read_[path] = std::move(*bytes);
+    return true;
+  }
+  static std::string expand(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+  static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* self) {
+    auto& files = *static_cast<ReferencedFiles*>(self);
+    auto it = files.read_.find(path);
+    if (it == files.read_.end()) {
+      if (err) *err += "not checked before reading";
+      return false;
+    }
+    out->assign(it->second.begin(), it->second.end());
+    files.read_.erase(it);
+    return true;
+  }
+  static bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "the reader never writes";
+    return false;
+  }
+
+ private:
+  ReferencePolicy policy_;
+  std::string folder_, prefix_;
+  std::map<std::string, std::string> read_;  // checked and read by exists(), handed over by read()
+};
 
 class GltfReader {
  public:
@@ -519,8 +563,8 @@ class GltfReader {
 
 }  // namespace
 
-RawScene readGltf(const std::string& path) {
-  const std::string bytes = readFileBytes(path);
+RawScene readGltf(const std::string& path, const LoadOptions& options) {
+  const std::string bytes = readSceneFile(path, options.maxFileBytes);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const bool glbName =
       std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
@@ -530,23 +574,27 @@ RawScene readGltf(const std::string& path) {
     checkJson(path, bytes, "document");
   if (bytes.size() > 0xFFFFFFFFu) throw InputError(path, "larger than 4 GiB");
 
+  ReferencedFiles files(referencePolicy(path, options));
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&ReferencedFiles::exists, &ReferencedFiles::expand, &ReferencedFiles::read,
+                         &ReferencedFiles::refuseWrite, &files});
   tinygltf::Model model;
   std::string err, warn;
-  const std::string baseDir = std::filesystem::path(path).parent_path().string();
   bool ok = false;
   try {
     ok = glbName || binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
                                                          reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                         static_cast<unsigned>(bytes.size()), baseDir)
+                                                         static_cast<unsigned>(bytes.size()), files.folder())
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                                        static_cast<unsigned>(bytes.size()), baseDir);
+                                                        static_cast<unsigned>(bytes.size()), files.folder());
+  } catch (const InputError&) {
+    throw;  // a referenced file refused by the policy, already named
   } catch (const std::exception& e) {
-    throw InputError(path, std::string("invalid glTF: ") + firstLine(e.what()));
+    throw InputError(path, std::string("invalid glTF: ") + printable(firstLine(e.what()), 200));
   }
   if (!ok)
-    throw InputError(
-        path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser") : firstLine(err)));
+    throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser")
+                                                           : printable(firstLine(err), 200)));
   return GltfReader(path, model).read();
 }
 

@@ -1,36 +1,69 @@
 // Wavefront OBJ + MTL → RawScene via tinyobjloader: Kd is the albedo, Ke the emission (W/m²); objects
 // and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME` follow the glTF convention.
-#include <filesystem>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
 
 #include <tiny_obj_loader.h>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace cpgi::detail {
 
-RawScene readObj(const std::string& path) {
-  readFileBytes(path);  // missing / directory / unreadable get their own message
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  config.mtl_search_path = std::filesystem::path(path).parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config) || !reader.Valid()) {
-    std::string err = reader.Error();
-    if (const size_t nl = err.find('\n'); nl != std::string::npos) err.resize(nl);
-    throw InputError(path, "invalid OBJ: " + (err.empty() ? std::string("rejected by the parser") : err));
-  }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  RawScene raw;
-  if (!reader.Warning().empty()) {
-    std::string warning = reader.Warning();
-    if (const size_t nl = warning.find('\n'); nl != std::string::npos) warning.resize(nl);
-    if (warning.find("Material") != std::string::npos || warning.find("material") != std::string::npos)
-      raw.warnings.push_back(warning);
+namespace {
+
+// tinyobjloader's own reader opens any path an mtllib line names; this one goes through the scene's
+// reference policy (scene_files.h).
+class PolicyMaterialReader : public tinyobj::MaterialReader {
+ public:
+  explicit PolicyMaterialReader(const ReferencePolicy& policy) : policy_(policy) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* byName, std::string* warn, std::string* err) override {
+    const std::optional<std::string> bytes = readReferencedFile(policy_, name);
+    if (!bytes) {
+      if (warn) *warn += "Material file '" + printable(name) + "' not found\n";
+      return false;
+    }
+    std::istringstream in(*bytes);
+    tinyobj::LoadMtl(byName, materials, &in, warn, err);
+    return true;
   }
 
-  for (const tinyobj::material_t& m : reader.GetMaterials()) {
+ private:
+  const ReferencePolicy& policy_;
+};
+
+std::string firstLineOf(std::string text) {
+  if (const size_t nl = text.find('\n'); nl != std::string::npos) text.resize(nl);
+  return text;
+}
+
+}  // namespace
+
+RawScene readObj(const std::string& path, const LoadOptions& options) {
+  const ReferencePolicy policy = referencePolicy(path, options);
+  std::istringstream text(readSceneFile(path, options.maxFileBytes));
+  PolicyMaterialReader materialReader(policy);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &text, &materialReader,
+                        /*triangulate=*/true, /*default_vcols_fallback=*/false)) {
+    error = firstLineOf(error);
+    throw InputError(path, "invalid OBJ: " + (error.empty() ? std::string("rejected by the parser") : error));
+  }
+  RawScene raw;
+  if (!warning.empty()) {
+    warning = firstLineOf(warning);
+    if (warning.find("Material") != std::string::npos || warning.find("material") != std::string::npos)
+      raw.warnings.push_back(printable(warning, 200));
+  }
+
+  for (const tinyobj::material_t& m : materials) {
     Material mat;
     mat.name = m.name;
     mat.albedo = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
@@ -56,7 +89,7 @@ RawScene readObj(const std::string& path) {
     return glm::vec3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
   };
 
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const std::string name = shape.name.empty() ? "object" : shape.name;
     const CellTag tag = parseCellTag(path, name);
     RawScene::TaggedMesh* tagged = nullptr;

@@ -2,14 +2,11 @@
 #include "core/scene_io.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace fs = std::filesystem;
@@ -93,7 +90,7 @@ void reverseCorners(PortalQuad& portal) {
 CellTag parseCellTag(const std::string& file, const std::string& name) {
   CellTag tag;
   auto requireName = [&](const std::string& cell) {
-    if (cell.empty()) throw InputError(file, name + ": empty cell name");
+    if (cell.empty()) throw InputError(file, printable(name) + ": empty cell name");
     return cell;
   };
   if (startsWith(name, "cellvolume:")) {
@@ -107,7 +104,7 @@ CellTag parseCellTag(const std::string& file, const std::string& name) {
     const std::string rest = name.substr(7);
     const size_t colon = rest.find(':');
     if (colon == std::string::npos || rest.find(':', colon + 1) != std::string::npos)
-      throw InputError(file, name + ": a portal is named portal:CELL_A:CELL_B");
+      throw InputError(file, printable(name) + ": a portal is named portal:CELL_A:CELL_B");
     tag.a = requireName(rest.substr(0, colon));
     tag.b = requireName(stripBlenderSuffix(rest.substr(colon + 1)));
   }
@@ -125,19 +122,6 @@ uint32_t RawScene::nodeIndex(const std::string& path) {
   const auto [it, fresh] = nodeIndex_.emplace(path, static_cast<uint32_t>(scene.nodePaths.size()));
   if (fresh) scene.nodePaths.push_back(path);
   return it->second;
-}
-
-std::string readFileBytes(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) throw InputError(path, "no such file");
-  if (fs::is_directory(status)) throw InputError(path, "is a directory, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw InputError(path, "read error");
-  return bytes.str();
 }
 
 std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::string& node,
@@ -293,10 +277,10 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
 LoadedScene loadScene(const std::string& path, const LoadOptions& options) {
   const std::string ext = detail::lowerExtension(path);
   if (ext != ".glb" && ext != ".gltf" && ext != ".obj") {
-    detail::readFileBytes(path);  // a missing file is the clearer message
-    throw InputError(path, "unknown scene format '" + ext + "' (expected .glb, .gltf or .obj)");
+    detail::readSceneFile(path, options.maxFileBytes);  // a missing file is the clearer message
+    throw InputError(path, "unknown scene format '" + printable(ext) + "' (expected .glb, .gltf or .obj)");
   }
-  detail::RawScene raw = ext == ".obj" ? detail::readObj(path) : detail::readGltf(path);
+  detail::RawScene raw = ext == ".obj" ? detail::readObj(path, options) : detail::readGltf(path, options);
   return detail::finishScene(path, std::move(raw), options);
 }
 

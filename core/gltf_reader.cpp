@@ -1,13 +1,16 @@
 // glTF 2.0 (.glb, .gltf) → RawScene. tinygltf parses; everything it hands back is bounds-checked here
 // before use, because a fuzzed file must end in an InputError, never in a crash.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 
+#include <stb_image.h>
 #include <tiny_gltf.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -81,12 +84,50 @@ void checkJsonDepth(const std::string& path, const std::string& text, const char
   }
 }
 
+// tinygltf hands an image's bufferView to the image loader without checking that it lies inside its
+// buffer (a heap over-read). A buffer's data has exactly its declared byteLength once tinygltf accepts
+// it, so the declared numbers are checked here, before tinygltf runs.
+void checkImageViews(const std::string& path, const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("images") || !doc["images"].is_array()) return;
+  auto unsignedAt = [](const nlohmann::json& object, const char* key,
+                       uint64_t fallback) -> std::optional<uint64_t> {
+    if (!object.is_object() || !object.contains(key)) return fallback;
+    const nlohmann::json& v = object[key];
+    if (v.is_number_unsigned()) return v.get<uint64_t>();
+    if (v.is_number_integer() && v.get<int64_t>() >= 0) return uint64_t(v.get<int64_t>());
+    return std::nullopt;
+  };
+  const nlohmann::json none;
+  auto element = [&](const char* array, uint64_t i) -> const nlohmann::json& {
+    if (!doc.contains(array) || !doc[array].is_array() || i >= doc[array].size()) return none;
+    return doc[array][i];
+  };
+  for (size_t i = 0; i < doc["images"].size(); ++i) {
+    const nlohmann::json& image = doc["images"][i];
+    if (!image.is_object() || !image.contains("bufferView")) continue;
+    const std::string what = "image " + std::to_string(i) + ": ";
+    const auto viewIndex = unsignedAt(image, "bufferView", 0);
+    if (!viewIndex) throw InputError(path, what + "bufferView is not an index");
+    const nlohmann::json& view = element("bufferViews", *viewIndex);
+    const auto bufferIndex = unsignedAt(view, "buffer", uint64_t(-1));
+    const auto offset = unsignedAt(view, "byteOffset", 0),
+               length = unsignedAt(view, "byteLength", uint64_t(-1));
+    if (!view.is_object() || !bufferIndex || !offset || !length)
+      throw InputError(path, what + "its bufferView does not exist or is malformed");
+    const auto bufferLength = unsignedAt(element("buffers", *bufferIndex), "byteLength", uint64_t(-1));
+    if (!bufferLength || *bufferLength == uint64_t(-1) || *length == uint64_t(-1) ||
+        *offset > *bufferLength || *length > *bufferLength - *offset || *length > uint64_t(INT32_MAX))
+      throw InputError(
+          path, what + "bufferView " + std::to_string(*viewIndex) + " runs past the end of its buffer");
+  }
+}
+
 // nlohmann's messages start with "[json.exception.parse_error.101] "; the user needs the rest.
 void checkJson(const std::string& path, const std::string& text, const char* what) {
   checkJsonDepth(path, text, what);
   try {
     const nlohmann::json parsed = nlohmann::json::parse(text);
-    (void)parsed;
+    checkImageViews(path, parsed);
   } catch (const nlohmann::json::exception& e) {
     std::string msg = e.what();
     const size_t close = msg.find("] ");
@@ -129,7 +170,8 @@ glm::vec3 srgbToLinear(glm::vec3 c) {
 // exists, then reads it; it also retries relative to the working directory, which is never allowed.
 class ReferencedFiles {
  public:
-  explicit ReferencedFiles(ReferencePolicy policy) : policy_(std::move(policy)), folder_(policy_.folder.string()) {
+  explicit ReferencedFiles(ReferencePolicy policy)
+      : policy_(std::move(policy)), folder_(policy_.folder.string()) {
     prefix_ = folder_.back() == '/' ? folder_ : folder_ + "/";
   }
   const std::string& folder() const { return folder_; }
@@ -164,6 +206,19 @@ class ReferencedFiles {
   std::string folder_, prefix_;
   std::map<std::string, std::string> read_;  // checked and read by exists(), handed over by read()
 };
+
+// Images stay encoded until a material uses them (textureMean): an unused 16k² PNG costs its file
+// size, not gigabytes. width < 0 marks the bytes as encoded.
+bool keepImageEncoded(tinygltf::Image* image, const int, std::string* err, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (size <= 0) {
+    if (err) *err += "an image has no bytes";
+    return false;
+  }
+  image->image.assign(bytes, bytes + size);
+  image->width = image->height = image->component = -1;
+  return true;
+}
 
 class GltfReader {
  public:
@@ -317,6 +372,8 @@ class GltfReader {
     int componentType = 0, components = 0;
   };
 
+  static constexpr uint64_t kMaxZeroElements = 65536;
+
   View view(int index, const std::string& what) const {
     if (index < 0 || index >= static_cast<int>(m_.accessors.size()))
       fail(what + ": accessor " + std::to_string(index) + " does not exist");
@@ -330,7 +387,14 @@ class GltfReader {
     if (componentSize <= 0 || v.components <= 0)
       fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
     const uint64_t elemSize = uint64_t(componentSize) * v.components;
-    if (a.bufferView < 0) return v;
+    if (a.bufferView < 0) {
+      // All zeros, with no bytes in the file to back them: a 1 KB file could ask for gigabytes.
+      if (v.count > kMaxZeroElements)
+        fail(what + ": accessor " + std::to_string(index) + " has no bufferView and " +
+             std::to_string(v.count) + " elements (all zeros); at most " + std::to_string(kMaxZeroElements) +
+             " are accepted");
+      return v;
+    }
     if (a.bufferView >= static_cast<int>(m_.bufferViews.size()))
       fail(what + ": accessor " + std::to_string(index) + " refers to a bufferView that does not exist");
     const tinygltf::BufferView& bv = m_.bufferViews[a.bufferView];
@@ -390,37 +454,47 @@ class GltfReader {
     return out;
   }
 
-  // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one.
+  // Texture images are decoded only up to this size (8-bit RGB: 200 MB), checked from the header first.
+  static constexpr uint64_t kMaxTexels = uint64_t(8192) * 8192;
+
+  // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one. The image
+  // is still encoded (keepImageEncoded); it is decoded here, once its header says its size is sane.
   glm::vec3 textureMean(int textureIndex, const std::string& what) {
     if (textureIndex < 0) return glm::vec3(1.0f);
     if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
     const int source = m_.textures[textureIndex].source;
     if (source < 0 || source >= static_cast<int>(m_.images.size()))
       fail(what + ": texture has no valid image");
-    const tinygltf::Image& img = m_.images[source];
-    const size_t texels = size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0));
-    const int bytes = img.bits == 16 ? 2 : 1;
-    if (texels == 0 || img.component < 1 || (img.bits != 8 && img.bits != 16) ||
-        img.image.size() < texels * img.component * bytes) {
+    const std::vector<unsigned char>& encoded = m_.images[source].image;
+    int width = 0, height = 0, channels = 0;
+    if (encoded.empty() || encoded.size() > size_t(INT32_MAX) ||
+        !stbi_info_from_memory(encoded.data(), int(encoded.size()), &width, &height, &channels) ||
+        width <= 0 || height <= 0) {
       raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
       return glm::vec3(1.0f);
     }
+    if (uint64_t(width) * uint64_t(height) > kMaxTexels)
+      fail(what + ": texture image " + std::to_string(source) + " is " + std::to_string(width) + "x" +
+           std::to_string(height) + ", more than the 8192x8192 texels cpgi decodes");
+    const bool sixteen = stbi_is_16_bit_from_memory(encoded.data(), int(encoded.size()));
+    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(encoded.data(), int(encoded.size()),
+                                                                         &width, &height, &channels, 3))
+                           : static_cast<void*>(stbi_load_from_memory(encoded.data(), int(encoded.size()),
+                                                                      &width, &height, &channels, 3));
+    if (!pixels) {
+      raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
+      return glm::vec3(1.0f);
+    }
+    std::unique_ptr<void, void (*)(void*)> owned(pixels, stbi_image_free);
+    const size_t texels = size_t(width) * size_t(height);
     std::array<float, 256> lut8{};
     for (int i = 0; i < 256; ++i) lut8[i] = srgbToLinear(glm::vec3(i / 255.0f)).r;
     glm::dvec3 sum(0.0);
-    for (size_t t = 0; t < texels; ++t) {
+    for (size_t t = 0; t < texels * 3; t += 3) {
       glm::vec3 c;
-      for (int ch = 0; ch < 3; ++ch) {
-        const int src = img.component >= 3 ? ch : 0;  // grey (+alpha) images
-        const size_t at = (t * img.component + src) * bytes;
-        if (bytes == 1) {
-          c[ch] = lut8[img.image[at]];
-        } else {
-          uint16_t s;
-          std::memcpy(&s, &img.image[at], 2);
-          c[ch] = srgbToLinear(glm::vec3(s / 65535.0f)).r;
-        }
-      }
+      for (int ch = 0; ch < 3; ++ch)
+        c[ch] = sixteen ? srgbToLinear(glm::vec3(static_cast<const uint16_t*>(pixels)[t + ch] / 65535.0f)).r
+                        : lut8[static_cast<const unsigned char*>(pixels)[t + ch]];
       sum += glm::dvec3(c);
     }
     return glm::vec3(sum / double(texels));
@@ -578,6 +652,7 @@ RawScene readGltf(const std::string& path, const LoadOptions& options) {
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&ReferencedFiles::exists, &ReferencedFiles::expand, &ReferencedFiles::read,
                          &ReferencedFiles::refuseWrite, &files});
+  loader.SetImageLoader(&keepImageEncoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;

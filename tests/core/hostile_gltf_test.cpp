@@ -106,5 +106,54 @@ TEST(HostileGltf, BracketsInsideStringsDoNotCountAsNesting) {
   EXPECT_EQ(loadError(g), "no error");
 }
 
+TEST(HostileGltf, AccessorWithoutBufferViewCannotAskForBillionsOfZeros) {
+  test::GlbBuilder g = oneTriangle();
+  g.doc["accessors"][0].erase("bufferView");
+  g.doc["accessors"][0]["count"] = 1000000000;  // 12 GB of zeros from a file of a few hundred bytes
+  EXPECT_NE(loadError(g).find("has no bufferView and 1000000000 elements"), std::string::npos)
+      << loadError(g);
+}
+
+// The start of a PNG: signature and header chunk, saying width × height 8-bit RGB; no pixel data.
+std::string pngHeader(uint32_t width, uint32_t height) {
+  auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+  std::string chunk = "IHDR" + be32(width) + be32(height) + std::string{8, 2, 0, 0, 0};
+  uint32_t crc = 0xFFFFFFFFu;  // CRC-32 of type and data, as PNG wants it
+  for (unsigned char c : chunk) {
+    crc ^= c;
+    for (int k = 0; k < 8; ++k) crc = crc & 1 ? (crc >> 1) ^ 0xEDB88320u : crc >> 1;
+  }
+  return "\x89PNG\r\n\x1a\n" + be32(13) + chunk + be32(~crc);
+}
+
+// A triangle; image 0 is `png`, embedded through a bufferView; the material uses it when `used`.
+test::GlbBuilder withEmbeddedImage(const std::string& png, bool used) {
+  test::GlbBuilder g;
+  const int view = g.addView(png.data(), png.size());
+  g.doc["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}}});
+  g.doc["textures"] = json::array({{{"source", 0}}});
+  const int m = used ? g.addMaterial({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}})
+                     : g.addMaterial({{"name", "plain"}});
+  g.addNode({{"mesh", g.addMesh(kTriangle, {}, m)}});
+  return g;
+}
+
+TEST(HostileGltf, UnusedImagesAreNeverDecoded) {
+  // A header promising 16384² texels and no data: decoding would allocate gigabytes or fail.
+  EXPECT_EQ(loadError(withEmbeddedImage(pngHeader(16384, 16384), false)), "no error");
+}
+
+TEST(HostileGltf, HugeTextureIsRefusedFromItsHeaderBeforeDecoding) {
+  const std::string problem = loadError(withEmbeddedImage(pngHeader(16384, 16384), true));
+  EXPECT_NE(problem.find("16384x16384, more than the 8192x8192"), std::string::npos) << problem;
+}
+
+TEST(HostileGltf, ImageBufferViewPastItsBufferIsRefused) {
+  test::GlbBuilder g = withEmbeddedImage(pngHeader(1, 1), true);
+  g.doc["bufferViews"][0]["byteLength"] = 1 << 20;  // tinygltf would hand 1 MB past the buffer to a decoder
+  EXPECT_NE(loadError(g).find("image 0: bufferView 0 runs past the end of its buffer"), std::string::npos)
+      << loadError(g);
+}
+
 }  // namespace
 }  // namespace cpgi

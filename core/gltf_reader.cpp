@@ -357,11 +357,18 @@ class GltfReader {
         !std::isfinite(glm::length(cam.position)))
       fail("node '" + nodeName + "': camera transform is degenerate");
     cam.forward = glm::normalize(forward);
-    cam.up = glm::normalize(up - glm::dot(up, cam.forward) * cam.forward);
+    // A scale of 0 along y (or a shear onto the view axis) leaves no up direction: the camera's rays
+    // would be NaN, which the renderers (Embree) assert on. Refused here with the node named.
+    const glm::vec3 upAcross = up - glm::dot(up, cam.forward) * cam.forward;
+    if (!(glm::length(upAcross) > 1e-6f * glm::length(forward)) || !std::isfinite(glm::length(upAcross)))
+      fail("node '" + nodeName + "': camera transform is degenerate (its up axis is null or along the view)");
+    cam.up = glm::normalize(upAcross);
     cam.yfov = static_cast<float>(c.perspective.yfov);
     cam.aspect =
         c.perspective.aspectRatio > 0.0 ? static_cast<float>(c.perspective.aspectRatio) : 4.0f / 3.0f;
     if (!(cam.yfov > 0.0f && cam.yfov < 3.14159f)) fail("camera '" + cam.name + "': yfov must be in (0, pi)");
+    if (!(cam.aspect >= 1e-3f && cam.aspect <= 1e3f))
+      fail("camera '" + cam.name + "': aspectRatio must be within [0.001, 1000]");
     raw_.scene.cameras.push_back(cam);
   }
 
@@ -556,8 +563,6 @@ class GltfReader {
       if (!std::isfinite(mat.emission[i]) || mat.emission[i] < 0.0f)
         fail(what + ": emission is negative or not finite");
     }
-    if (glm::any(glm::greaterThan(mat.albedo, glm::vec3(1.0f))))
-      raw_.warnings.push_back(what + ": albedo above 1 (energy is not conserved)");
     materialIndex_[index] = static_cast<int>(raw_.scene.materials.size());
     raw_.scene.materials.push_back(mat);
     return static_cast<uint32_t>(materialIndex_[index]);

@@ -1,9 +1,13 @@
 // Wavefront OBJ + MTL → RawScene via tinyobjloader: Kd is the albedo, Ke the emission (W/m²); objects
 // and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME` follow the glTF convention.
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
@@ -14,6 +18,61 @@
 namespace cpgi::detail {
 
 namespace {
+
+// tinyobjloader reads "v abc", "Kd inf", "Kd nan" and "Kd 0.5" (for 0.5 0 0) as numbers without a word,
+// so the lines whose numbers cpgi uses are checked first: each number finite as a float, and as many as
+// the keyword takes.
+struct NumberedKeyword {
+  std::string_view name;
+  int minCount, maxCount;
+};
+const std::vector<NumberedKeyword> kObjNumbers = {{"v", 3, 7}, {"vn", 3, 3}};
+const std::vector<NumberedKeyword> kMtlNumbers = {{"Kd", 3, 3}, {"Ke", 3, 3}};
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+// Throws InputError(where, "<file> line N: ...") for the first bad line.
+void checkNumbers(const std::string& where, const std::string& file, std::string_view text,
+                  const std::vector<NumberedKeyword>& keywords) {
+  size_t lineNumber = 0;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    ++lineNumber;
+    size_t at = 0;
+    auto nextToken = [&]() -> std::string_view {
+      while (at < line.size() && isBlank(line[at])) ++at;
+      const size_t from = at;
+      while (at < line.size() && !isBlank(line[at])) ++at;
+      return line.substr(from, at - from);
+    };
+    const std::string_view keyword = nextToken();
+    const auto rule = std::find_if(keywords.begin(), keywords.end(),
+                                   [&](const NumberedKeyword& k) { return k.name == keyword; });
+    if (rule == keywords.end()) continue;
+    auto bad = [&](const std::string& problem) {
+      return InputError(where, file + "line " + std::to_string(lineNumber) + " '" +
+                                   printable(std::string(line), 60) + "': " + problem);
+    };
+    int count = 0;
+    for (std::string_view token = nextToken(); !token.empty() && token[0] != '#'; token = nextToken()) {
+      if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);
+      float value = 0.0f;
+      const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+      if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value))
+        throw bad("'" + printable(std::string(token), 40) + "' is not a finite number");
+      ++count;
+    }
+    if (count < rule->minCount || count > rule->maxCount)
+      throw bad(std::string(rule->name) + " takes " + std::to_string(rule->minCount) +
+                (rule->maxCount > rule->minCount ? " to " + std::to_string(rule->maxCount) : std::string()) +
+                " numbers, found " + std::to_string(count));
+  }
+}
 
 // tinyobjloader's own reader opens any path an mtllib line names; this one goes through the scene's
 // reference policy (scene_files.h).
@@ -27,6 +86,7 @@ class PolicyMaterialReader : public tinyobj::MaterialReader {
       if (warn) *warn += "Material file '" + printable(name) + "' not found\n";
       return false;
     }
+    checkNumbers(policy_.sceneFile, "material file '" + printable(name) + "' ", *bytes, kMtlNumbers);
     std::istringstream in(*bytes);
     tinyobj::LoadMtl(byName, materials, &in, warn, err);
     return true;
@@ -45,7 +105,9 @@ std::string firstLineOf(std::string text) {
 
 RawScene readObj(const std::string& path, const LoadOptions& options) {
   const ReferencePolicy policy = referencePolicy(path, options);
-  std::istringstream text(readSceneFile(path, options.maxFileBytes));
+  const std::string bytes = readSceneFile(path, options.maxFileBytes);
+  checkNumbers(path, "", bytes, kObjNumbers);
+  std::istringstream text(bytes);
   PolicyMaterialReader materialReader(policy);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/scene_files.h"
@@ -34,6 +35,9 @@ std::string lowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
+
+// Far above any room's lamps (a 100 W bulb), far below float's 3.4e38 once the solver sums and scales.
+constexpr double kMaxEmittedPower = 1e20;
 
 bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -161,6 +165,37 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
   return {t0.p[own0], t0.p[(own0 + 1) % 3], own1, t0.p[(own0 + 2) % 3]};
 }
 
+// One rule for every format (README, "Numbers"): an albedo outside [0, 1] or a non-finite emission is
+// refused, not clamped: either means a broken export, and the solver would run away (albedo 2 never
+// converges) or overflow (float power → inf report energies, NaN lightmap).
+void checkMaterials(const std::string& path, const Scene& scene) {
+  auto text = [](const glm::vec3& v) {
+    std::ostringstream s;
+    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return s.str();
+  };
+  for (const Material& m : scene.materials) {
+    for (int i = 0; i < 3; ++i) {
+      if (!(m.albedo[i] >= 0.0f && m.albedo[i] <= 1.0f))
+        throw InputError(
+            path, "material '" + printable(m.name) + "': albedo " + text(m.albedo) + " is not within [0, 1]");
+      if (!(m.emission[i] >= 0.0f) || !std::isfinite(m.emission[i]))
+        throw InputError(path, "material '" + printable(m.name) + "': emission " + text(m.emission) +
+                                   " is negative or not finite");
+    }
+  }
+  glm::dvec3 power(0.0);
+  for (const Triangle& t : scene.triangles)
+    if (t.material < scene.materials.size())
+      power += glm::dvec3(scene.materials[t.material].emission) * double(t.area());
+  if (!(std::max({power.x, power.y, power.z}) <= kMaxEmittedPower)) {
+    std::ostringstream s;
+    s << "the scene emits " << std::max({power.x, power.y, power.z}) << " W, more than " << kMaxEmittedPower
+      << " W (emission x area would overflow the solver's float arithmetic)";
+    throw InputError(path, s.str());
+  }
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
@@ -176,6 +211,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
           if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
+  checkMaterials(path, scene);
 
   // Degenerate and duplicate triangles: errors, or dropped with --repair.
   std::vector<char> drop(scene.triangles.size(), 0);

@@ -61,6 +61,7 @@ struct BakeOptions {
   double strongFraction = SolverParams{}.strongShotFraction;
   float regionSize = SolverParams{}.regionSize;
   bool repair = false;
+  bool allowOutsideFiles = false;
   bool quiet = false;
 };
 
@@ -157,7 +158,7 @@ int runBake(const BakeOptions& o) {
   LoadedScene loaded;
   {
     auto t = ctx.time("load");
-    loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
+    loaded = loadScene(o.scene, LoadOptions{.repair = o.repair, .allowOutsideFiles = o.allowOutsideFiles});
   }
   for (const std::string& w : loaded.warnings) ctx.warn(w);
   CellGraph graph;
@@ -413,6 +414,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
+  sub->add_flag("--allow-outside-files", o->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
 }

@@ -21,6 +21,7 @@ struct DecomposeOptions {
   std::string scene;
   std::string out;
   bool repair = false;
+  bool allowOutsideFiles = false;
   bool json = false;
   decomp::DecomposeParams params;
 };
@@ -28,6 +29,7 @@ struct DecomposeOptions {
 int runDecompose(DecomposeOptions o) {
   LoadOptions load;
   load.repair = o.repair;
+  load.allowOutsideFiles = o.allowOutsideFiles;
   LoadedScene loaded = loadScene(o.scene, load);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
   if (!loaded.cells.empty())
@@ -99,6 +101,7 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
                   "Cells smaller than this, m3, join a neighbour")
       ->capture_default_str();
   cmd->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd->add_flag("--allow-outside-files", o->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }

@@ -16,6 +16,7 @@ struct InfoOptions {
   std::string scene;
   bool json = false;
   bool repair = false;
+  bool allowOutsideFiles = false;
 };
 
 std::string fmt(const char* format, double a, double b = 0, double c = 0) {
@@ -115,10 +116,12 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->add_flag("--repair", options->repair, "Drop zero-area and duplicate triangles instead of failing");
+  sub->add_flag("--allow-outside-files", options->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   sub->callback([options, &selected] {
     selected = [options] {
       LoadOptions load;
       load.repair = options->repair;
+      load.allowOutsideFiles = options->allowOutsideFiles;
       const LoadedScene loaded = loadScene(options->scene, load);
       const nlohmann::json info = summarise(loaded);
       if (options->json) {

@@ -36,6 +36,7 @@ struct ReferenceOptions {
   bool texelsGiven = false;
   uint64_t seed = ReferenceParams{}.seed;
   bool repair = false;
+  bool allowOutsideFiles = false;
   bool quiet = false;
 };
 
@@ -75,6 +76,7 @@ int runReference(const ReferenceOptions& o) {
 
   LoadOptions loadOptions;
   loadOptions.repair = o.repair;
+  loadOptions.allowOutsideFiles = o.allowOutsideFiles;
   const LoadedScene loaded = loadScene(o.scene, loadOptions);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
@@ -202,6 +204,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
   cmd->add_flag("--repair", opts->repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd->add_flag("--allow-outside-files", opts->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

@@ -414,7 +414,8 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
-  sub->add_flag("--allow-outside-files", o->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+  sub->add_flag("--allow-outside-files", o->allowOutsideFiles,
+                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
 }

@@ -101,7 +101,8 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
                   "Cells smaller than this, m3, join a neighbour")
       ->capture_default_str();
   cmd->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
-  cmd->add_flag("--allow-outside-files", o->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+  cmd->add_flag("--allow-outside-files", o->allowOutsideFiles,
+                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }

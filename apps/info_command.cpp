@@ -116,7 +116,8 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->add_flag("--repair", options->repair, "Drop zero-area and duplicate triangles instead of failing");
-  sub->add_flag("--allow-outside-files", options->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+  sub->add_flag("--allow-outside-files", options->allowOutsideFiles,
+                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   sub->callback([options, &selected] {
     selected = [options] {
       LoadOptions load;

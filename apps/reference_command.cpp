@@ -204,7 +204,8 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
   cmd->add_flag("--repair", opts->repair, "Drop zero-area and duplicate triangles instead of failing");
-  cmd->add_flag("--allow-outside-files", opts->allowOutsideFiles, "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+  cmd->add_flag("--allow-outside-files", opts->allowOutsideFiles,
+                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

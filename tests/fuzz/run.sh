@@ -14,7 +14,7 @@ targets=("$@")
 ((${#targets[@]})) || targets=(gltf glb obj scene_checks)
 build="${BUILD_DIR:-$root/build-fuzz}"
 
-command -v clang++ >/dev/null || { echo "run.sh: clang++ is needed (apt install clang)" >&2; exit 1; }
+command -v clang++ >/dev/null || { echo "run.sh: clang++ and libFuzzer are needed (apt install clang libclang-rt-14-dev)" >&2; exit 1; }
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCPGI_FUZZ=ON \
   >/dev/null || exit 1
 nice cmake --build "$build" -j2 -t $(printf 'fuzz_%s ' "${targets[@]}") >/dev/null || exit 1

@@ -1,6 +1,6 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
-// [atlas options] [solver options] [decomposition options for --cells auto] [--repair]`: GPU progressive
+// [atlas options] [solver options] [decomposition options for --cells auto] [loading options]`: GPU progressive
 // radiosity over a lightmap atlas (design.md §1, §3), over the whole scene at once or cell by cell through
 // portals (radiosity/cells/cell_solver.h); both write the same atlas layout. Writes the lightmap files
 // (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area" and "emissive", lightmap.png, baked.glb
@@ -45,7 +45,7 @@ struct BakeOptions {
   SolverParams solver;
   CellSolveParams cellParams;         ///< portals, maxRounds, jobs; its atlas and solver are the two above
   decomp::DecomposeParams decompose;  ///< for --cells auto
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
   bool quiet = false;
 };
 
@@ -122,10 +122,10 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
   BakeInput in;
   {
     auto t = ctx.time("load");
-    in.loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
+    in.loaded = loadScene(o.scene, o.load);
   }
   for (const std::string& w : in.loaded.warnings) ctx.warn(w);
-  if (o.method == "cells") in.graph = resolveCells(o.cells, o.scene, in.loaded, o.decompose, o.repair, ctx);
+  if (o.method == "cells") in.graph = resolveCells(o.cells, o.scene, in.loaded, o.decompose, o.load, ctx);
   in.onDemand = resolveOnDemand(o, in.loaded.scene, in.graph);
   return in;
 }
@@ -302,7 +302,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);
-  addRepairOption(*sub, o->repair);
+  addLoadOptions(*sub, o->load);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
 }

@@ -78,7 +78,7 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   if (forBake) {
     LoadedScene copy = scene;
     out.bake.source = path;
-    out.bake.graph = resolveCells(path, scenePath, copy, params, true, ctx);
+    out.bake.graph = resolveCells(path, scenePath, copy, params, LoadOptions{.repair = true}, ctx);
     out.bake.scene = std::move(copy.scene);
   }
   return out;

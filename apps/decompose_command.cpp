@@ -21,15 +21,13 @@ namespace {
 struct DecomposeOptions {
   std::string scene;
   std::string out;
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
   bool json = false;
   decomp::DecomposeParams params;
 };
 
 int runDecompose(DecomposeOptions o) {
-  LoadOptions load;
-  load.repair = o.repair;
-  LoadedScene loaded = loadScene(o.scene, load);
+  LoadedScene loaded = loadScene(o.scene, o.load);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
   if (!loaded.cells.empty())
     std::cerr << "cpgi: " << o.scene << ": ignoring its " << loaded.cells.cells.size()
@@ -82,7 +80,7 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
   addDecomposeOptions(*cmd, o->params);
-  addRepairOption(*cmd, o->repair);
+  addLoadOptions(*cmd, o->load);
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }

@@ -18,6 +18,7 @@ struct ParameterFlag {
 constexpr ParameterFlag kFlags[] = {
     // Loading (core/scene_io.h)
     {"repair", "--repair"},
+    {"outside files", "--allow-outside-files"},
     // Atlas (radiosity/lightmap/atlas.h)
     {"texels per quad", "--texels-per-quad"},
     {"texel density", "--density"},
@@ -260,8 +261,10 @@ glm::vec3 parsePoint(const std::string& text, const std::string& option) {
   return {values[0], values[1], values[2]};
 }
 
-void addRepairOption(CLI::App& cmd, bool& repair) {
-  cmd.add_flag(flag("repair"), repair, "Drop zero-area and duplicate triangles instead of failing");
+void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
+  cmd.add_flag(flag("repair"), load.repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd.add_flag(flag("outside files"), load.allowOutsideFiles,
+               "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
 }
 
 }  // namespace cpgi::cli

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "core/error.h"
+#include "core/scene_io.h"
 #include "decomposition/decompose.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
@@ -43,8 +44,8 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
 /// --spp (paths per texel of the reference).
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
-/// --repair.
-void addRepairOption(CLI::App& cmd, bool& repair);
+/// --repair, --allow-outside-files.
+void addLoadOptions(CLI::App& cmd, LoadOptions& load);
 /// --boundary coarse|dark (on-demand bakes).
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode);
 

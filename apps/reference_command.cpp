@@ -33,7 +33,7 @@ struct ReferenceOptions {
   ReferenceParams trace{.spp = 1024};
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
   bool quiet = false;
 };
 
@@ -143,7 +143,7 @@ int runReference(const ReferenceOptions& o) {
                                      std::to_string(o.texels));
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
-  const LoadedScene loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
+  const LoadedScene loaded = loadScene(o.scene, o.load);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
 
@@ -198,7 +198,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       cmd->add_option("--texels", opts->texels,
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
-  addRepairOption(*cmd, opts->repair);
+  addLoadOptions(*cmd, opts->load);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

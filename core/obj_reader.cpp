@@ -78,7 +78,7 @@ void checkNumbers(const std::string& where, const std::string& file, std::string
 // reference policy (scene_files.h).
 class PolicyMaterialReader : public tinyobj::MaterialReader {
  public:
-  explicit PolicyMaterialReader(const ReferencePolicy& policy) : policy_(policy) {}
+  explicit PolicyMaterialReader(ReferencePolicy& policy) : policy_(policy) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* byName, std::string* warn, std::string* err) override {
     const std::optional<std::string> bytes = readReferencedFile(policy_, name);
@@ -93,7 +93,7 @@ class PolicyMaterialReader : public tinyobj::MaterialReader {
   }
 
  private:
-  const ReferencePolicy& policy_;
+  ReferencePolicy& policy_;
 };
 
 std::string firstLineOf(std::string text) {
@@ -104,7 +104,7 @@ std::string firstLineOf(std::string text) {
 }  // namespace
 
 RawScene readObj(const std::string& path, const LoadOptions& options) {
-  const ReferencePolicy policy = referencePolicy(path, options);
+  ReferencePolicy policy = referencePolicy(path, options);
   const std::string bytes = readSceneFile(path, options.maxFileBytes);
   checkNumbers(path, "", bytes, kObjNumbers);
   std::istringstream text(bytes);

@@ -105,7 +105,7 @@ ReferencePolicy referencePolicy(const std::string& sceneFile, const LoadOptions&
   return policy;
 }
 
-std::optional<std::string> readReferencedFile(const ReferencePolicy& policy, const std::string& reference) {
+std::optional<std::string> readReferencedFile(ReferencePolicy& policy, const std::string& reference) {
   const std::string what = "referenced file '" + printable(reference) + "': ";
   const std::string hint = " (--allow-outside-files reads it anyway)";
   if (reference.empty()) throw InputError(policy.sceneFile, "a referenced file name is empty");
@@ -130,6 +130,10 @@ std::optional<std::string> readReferencedFile(const ReferencePolicy& policy, con
   if (uint64_t(st.st_size) > policy.maxFileBytes)
     throw InputError(policy.sceneFile, what + "is " + sizeText(st.st_size) + ", more than the " +
                                            sizeText(policy.maxFileBytes) + " a scene file may have");
+  if (uint64_t(st.st_size) > policy.maxFileBytes - policy.bytesRead)
+    throw InputError(policy.sceneFile, what + "with the files read before it, more than the " +
+                                           sizeText(policy.maxFileBytes) + " a scene may refer to");
+  policy.bytesRead += uint64_t(st.st_size);
   return readAll(file.fd, uint64_t(st.st_size), policy.sceneFile, what);
 }
 

@@ -1,5 +1,5 @@
-// Directional emission for portals (`bake --method cells --portals directional`): light that crosses a door
-// keeps the direction it travelled in. A portal texel records where its irradiance came from (arrival
+// Directional emission, for the cell solver's directional portals: light that crosses a door keeps the
+// direction it travelled in. A portal texel records where its irradiance came from (arrival
 // moments, accumulated by the GPU receiver pass, shaders/directional.glsl) and, on the other side of the
 // opening, re-emits its exitance M with a lobe f instead of a Lambertian: radiance L(ω) = M f(ω) / π.
 //

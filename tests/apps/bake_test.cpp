@@ -70,9 +70,8 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
 TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
-  ASSERT_EQ(cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" + "' --texels-per-quad 2 --unshot 0.2 -q")
-                .status,
-            0);
+  const std::string args = "' --texels-per-quad 2 --unshot 0.2 -q";
+  ASSERT_EQ(cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" + args).status, 0);
   const LoadedScene baked = loadScene(dir / "out/baked.glb", LoadOptions{});
   EXPECT_EQ(baked.cells.cells.size(), 3u);
   EXPECT_EQ(baked.cells.portals.size(), 2u);

@@ -150,6 +150,21 @@ TEST(SceneFiles, ReferencedFileLargerThanTheCapIsRefusedBeforeReading) {
   expectOneLineNaming(e, f.scene("a.gltf"), "'data.bin': is 5000 bytes, more than the 1000 bytes");
 }
 
+TEST(SceneFiles, OneFileNamedManyTimesCountsAgainstTheCapEveryTime) {
+  SceneFolder f;
+  test::GlbBuilder g;
+  g.addNode({{"mesh", g.addMesh(kTriangle)}});
+  json doc = g.doc;
+  doc["buffers"] = json::array();
+  for (int i = 0; i < 5; ++i) doc["buffers"].push_back({{"byteLength", 1000}, {"uri", "data.bin"}});
+  write(f.scene("a.gltf"), doc.dump());
+  write(f.scene("data.bin"), g.bin + std::string(1000 - g.bin.size(), '\0'));
+  // 5 × 1000 bytes > 3000, though each read alone is well below the cap.
+  expectOneLineNaming(loadFailure(f.scene("a.gltf"), LoadOptions{.maxFileBytes = 3000}), f.scene("a.gltf"),
+                      "with the files read before it, more than the 3000 bytes a scene may refer to");
+  EXPECT_EQ(loadScene(f.scene("a.gltf"), LoadOptions{.maxFileBytes = 5000}).scene.triangles.size(), 1u);
+}
+
 TEST(SceneFiles, SceneFileThatIsAFifoIsRefused) {
   SceneFolder f;
   for (const std::string name : {"fifo.glb", "fifo.obj"}) {

@@ -107,7 +107,7 @@ ReferencePolicy referencePolicy(const std::string& sceneFile, const LoadOptions&
 
 std::optional<std::string> readReferencedFile(ReferencePolicy& policy, const std::string& reference) {
   const std::string what = "referenced file '" + printable(reference) + "': ";
-  const std::string hint = " (--allow-outside-files reads it anyway)";
+  const std::string hint = " (`outside files` reads it anyway)";
   if (reference.empty()) throw InputError(policy.sceneFile, "a referenced file name is empty");
   if (reference.find('\0') != std::string::npos)
     throw InputError(policy.sceneFile, what + "the name holds a NUL character");

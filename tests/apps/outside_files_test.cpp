@@ -37,6 +37,8 @@ TEST(OutsideFiles, RefusedByDefaultReadWithTheFlag) {
         r.errLines()[0].rfind("cpgi: " + scene + ": referenced file '../secret.bin': resolves outside", 0),
         0u)
         << r.errLines()[0];
+    EXPECT_NE(r.errLines()[0].find("(--allow-outside-files reads it anyway)"), std::string::npos)
+        << r.errLines()[0];
   }
   const CommandRun allowed = cpgi(dir, "info " + quote(scene) + " --allow-outside-files");
   EXPECT_EQ(allowed.status, 0) << allowed.err;

@@ -29,6 +29,7 @@
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_metrics.h"
 #include "radiosity/cell_selection.h"
 #include "radiosity/cell_solver.h"
 #include "radiosity/egl_context.h"
@@ -56,6 +57,8 @@ struct BakeOptions {
   int maxShots = SolverParams{}.maxShots;
   std::string visibility = visibilityName(SolverParams{}.visibility);
   int itemBuffer = SolverParams{}.itemBuffer;
+  int neighbourhood = SolverParams{}.neighbourhood;
+  float farField = SolverParams{}.farField;
   int regions = SolverParams{}.maxRegions;
   int strongRegions = SolverParams{}.strongShotRegions;
   double strongFraction = SolverParams{}.strongShotFraction;
@@ -147,6 +150,8 @@ int runBake(const BakeOptions& o) {
   SolverParams solverParams;
   solverParams.visibility = parseVisibility(o.visibility);
   solverParams.itemBuffer = o.itemBuffer;
+  solverParams.neighbourhood = o.neighbourhood;
+  solverParams.farField = o.farField;
   solverParams.maxRegions = o.regions;
   solverParams.strongShotRegions = o.strongRegions;
   solverParams.strongShotFraction = o.strongFraction;
@@ -211,6 +216,7 @@ int runBake(const BakeOptions& o) {
   }
 
   std::vector<std::string> views;
+  const CellGraph& texelGraph = graph.empty() ? loaded.cells : graph;
   {
     auto t = ctx.time("write");
     std::vector<glm::vec3> lit = solved.radiosity;
@@ -220,7 +226,9 @@ int runBake(const BakeOptions& o) {
     ExrChannel emissive{"emissive", std::vector<float>(atlas.texelCount(), 0.0f)};
     for (size_t i = 0; i < atlas.texelCount(); ++i)
       if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
-    writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}, emissive});
+    // "cell" gives each texel its cell (the bake's, else the scene's own), for compare-light's per-cell figures.
+    writeExr(out.file("lightmap.exr").string(), image,
+             {ExrChannel{"area", atlas.area}, emissive, cellChannel(atlas, loaded.scene, texelGraph)});
 
     // The PNG (alone and inside baked.glb) shows radiance B/π at the views' exposure, like the reference's.
     const float exposure = viewExposure(atlas, lit);
@@ -279,12 +287,17 @@ int runBake(const BakeOptions& o) {
                              {"received_w", e.received},
                              {"absorbed_w", e.absorbed},
                              {"unshot_w", e.unshot},
-                             {"escaped_w", e.escaped()}}},
+                             {"escaped_w", e.escaped()},
+                             {"created_w", e.created},
+                             {"worst_shot_gain", e.worstShotGain}}},
                            {"views", views},
+                           {"cell_names", cellNames(texelGraph)},
                            {"warnings", ctx.warnings()}};
   if (o.method == "cells") {
     report["energy"].erase("shot_w");
     report["energy"].erase("received_w");
+    report["energy"].erase("created_w");  // per cell solve, in the warnings
+    report["energy"].erase("worst_shot_gain");
     report["rounds"] = cellSolved.rounds;
     report["jobs"] = o.jobs;
     report["portal_mode"] = o.portals;
@@ -394,6 +407,14 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   sub->add_option("--item-buffer", o->itemBuffer,
                   "Item-buffer edge in pixels (hemicube: faces of half this edge)")
+      ->capture_default_str();
+  sub->add_option("--item-neighbourhood", o->neighbourhood,
+                  "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; 0: its pixel)")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
+  sub->add_option("--far-field", o->farField,
+                  "A shooter piece counts as one for receivers farther than this many times its radius")
+      ->check(CLI::Range(1.0f, 1000.0f))
       ->capture_default_str();
   sub->add_option("--regions", o->regions,
                   "Visibility regions per edge of a large shooter, each with its own item buffer: soft light "

@@ -18,6 +18,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/atlas.h"
+#include "radiosity/cell_metrics.h"
 #include "radiosity/lightmap_output.h"
 #include "radiosity/reference_tracer.h"
 #include "radiosity/texel_sample.h"
@@ -128,11 +129,14 @@ int runReference(const ReferenceOptions& o) {
 
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
+  // "cell": each texel's cell of the scene's own graph, for compare-light's per-cell figures.
+  const ExrChannel cells = cellChannel(atlas, scene, loaded.cells);
   LightmapOutputs written;
   if (sparse)
-    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive}, sampleWeight);
+    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, sampleWeight);
   else
-    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
+    written =
+        writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive, cells}, ctx);
   const size_t traced = sparse ? sample.ranks.size() : valid;
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -158,6 +162,7 @@ int runReference(const ReferenceOptions& o) {
       {"shots", 0},
       {"unshot_fraction", 0.0},
       {"views", written.views},
+      {"cell_names", cellNames(loaded.cells)},
       {"warnings", ctx.warnings()},
   };
   nlohmann::json timings = nlohmann::json::array();

@@ -197,7 +197,7 @@ void main() {
     if (!blocksOf(r)) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
     if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
-    if (!visibleFromShooter(local, tile.z, r)) continue;
+    if (!visibleFromShooter(local, uToShooter * np.xyz, tile.z, r)) continue;
     e += fromRegionWhole(x, np.xyz, r);
   }
   if (e == vec3(0.0)) return;

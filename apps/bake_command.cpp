@@ -28,6 +28,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
+#include "radiosity/ambient.h"
 #include "radiosity/atlas.h"
 #include "radiosity/cell_metrics.h"
 #include "radiosity/cell_selection.h"
@@ -59,6 +60,7 @@ struct BakeOptions {
   int itemBuffer = SolverParams{}.itemBuffer;
   int neighbourhood = SolverParams{}.neighbourhood;
   float farField = SolverParams{}.farField;
+  bool noAmbient = false;
   int regions = SolverParams{}.maxRegions;
   int strongRegions = SolverParams{}.strongShotRegions;
   double strongFraction = SolverParams{}.strongShotFraction;
@@ -152,6 +154,7 @@ int runBake(const BakeOptions& o) {
   solverParams.itemBuffer = o.itemBuffer;
   solverParams.neighbourhood = o.neighbourhood;
   solverParams.farField = o.farField;
+  solverParams.readTransfer = !o.noAmbient;  // the residual, for the ambient term
   solverParams.maxRegions = o.regions;
   solverParams.strongShotRegions = o.strongRegions;
   solverParams.strongShotFraction = o.strongFraction;
@@ -215,8 +218,15 @@ int runBake(const BakeOptions& o) {
     solved = solveProgressive(loaded.scene, atlas, solverParams, *gl, ctx);
   }
 
-  std::vector<std::string> views;
+  // What the stop left unshot, as an ambient term that follows the cells (radiosity/ambient.h).
   const CellGraph& texelGraph = graph.empty() ? loaded.cells : graph;
+  const ExrChannel texelCells = cellChannel(atlas, loaded.scene, texelGraph);
+  glm::dvec3 ambient(0.0);
+  if (!o.noAmbient)
+    ambient = addAmbient(atlas, solved.residual, glm::dvec3(solved.energy.unshot / 3.0), texelCells.values,
+                         texelGraph, solved.radiosity);
+
+  std::vector<std::string> views;
   {
     auto t = ctx.time("write");
     std::vector<glm::vec3> lit = solved.radiosity;
@@ -228,7 +238,7 @@ int runBake(const BakeOptions& o) {
       if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
     // "cell" gives each texel its cell (the bake's, else the scene's own), for compare-light's per-cell figures.
     writeExr(out.file("lightmap.exr").string(), image,
-             {ExrChannel{"area", atlas.area}, emissive, cellChannel(atlas, loaded.scene, texelGraph)});
+             {ExrChannel{"area", atlas.area}, emissive, texelCells});
 
     // The PNG (alone and inside baked.glb) shows radiance B/π at the views' exposure, like the reference's.
     const float exposure = viewExposure(atlas, lit);
@@ -292,6 +302,7 @@ int runBake(const BakeOptions& o) {
                              {"worst_shot_gain", e.worstShotGain}}},
                            {"views", views},
                            {"cell_names", cellNames(texelGraph)},
+                           {"ambient_w_m2", {ambient.r, ambient.g, ambient.b}},
                            {"warnings", ctx.warnings()}};
   if (o.method == "cells") {
     report["energy"].erase("shot_w");
@@ -433,6 +444,8 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
       ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
+  sub->add_flag("--no-ambient", o->noAmbient,
+                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });

@@ -46,7 +46,7 @@ constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
 enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
                      kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
                      kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
-                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19, kEyes = 20 };
+                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19, kEyes = 20, kShotGain = 21 };
 
 struct Face {
   glm::vec3 right, up, forward;
@@ -152,8 +152,9 @@ struct SolverPrograms::Set {
     tileStats = buildProgram({"tile_stats.comp"});
     select = buildProgram({"select_shooter.comp"});
     pickEyes = buildProgram({"pick_eyes.comp"});
+    rescale = buildProgram({"rescale_shot.comp"});
   }
-  gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select, pickEyes;
+  gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select, pickEyes, rescale;
 };
 
 SolverPrograms::SolverPrograms() = default;
@@ -176,7 +177,8 @@ class Solver {
       : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
         compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
         receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
-        selectProgram_(programs.select), pickEyesProgram_(programs.pickEyes), clock_(params.profilePasses) {
+        selectProgram_(programs.select), pickEyesProgram_(programs.pickEyes),
+        rescaleProgram_(programs.rescale), clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
       // Regions a quarter as long for the strong shots: a lamp smaller than regionSize still gets several
@@ -287,6 +289,20 @@ class Solver {
     GpuSelection s = select();
     clock_.mark("select");
     return s;
+  }
+
+  /// Scales what the last shot (of `shooter`) gave every receiver by `scale` < 1 (rescale_shot.comp),
+  /// then the statistics and the selection again.
+  GpuSelection rescaleLastShot(int shooter, float scale) {
+    set(rescaleProgram_, "uShooter", shooter);
+    set(rescaleProgram_, "uScale", scale);
+    glUseProgram(rescaleProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    runTileStats(0, tileCount_, shooter, true);
+    runStats(shooter);
+    return select();
   }
 
   void reportPasses(Context& ctx) const { clock_.report(ctx); }
@@ -444,6 +460,8 @@ class Solver {
     texels(radiosity_, emission, kRadiosity);
     texels(residual_, emission, kResidual);
     texels(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident);
+    shotGain_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShotGain, shotGain_.get());
 
     const size_t np = atlas_.patches.size();
     std::vector<GpuPatch> patches(np);
@@ -590,7 +608,8 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
-    for (const gl::Program* p : {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_})
+    for (const gl::Program* p :
+         {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_, &rescaleProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
     set(receiveProgram_, "uItemSize", itemSize_);
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
@@ -605,8 +624,9 @@ class Solver {
   const LightmapAtlas& atlas_;
   SolverParams params_;
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
-      &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_;
+      &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_;
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
+  gl::Buffer shotGain_;  ///< per texel, what the last shot gave it (rescale_shot.comp)
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, distances_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_, eyes_;
@@ -724,9 +744,17 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     sel = solver.shoot(sel.winner, shotPower >= params.strongShotFraction * e.emitted);
     ++result.shots;
     record(sel);
-    // Received ≤ shot on every shot (design.md §5): the excess, beyond float rounding, is made-up light.
-    const double gained = e.received - receivedBefore;
+    // Received ≤ shot on every shot (design.md §5). A shot that delivered more (a drawn eye that sees
+    // more than its region does, receivers point-sampled next to the shooter) is scaled back to its
+    // power; worstShotGain keeps the gain before that, `created` whatever is left beyond float rounding.
+    double gained = e.received - receivedBefore;
     if (shotPower > 0.0) e.worstShotGain = std::max(e.worstShotGain, gained / shotPower);
+    if (gained > shotPower) {
+      sel = solver.rescaleLastShot(result.shooters.back(), float(shotPower / gained));
+      result.history.pop_back();
+      record(sel);
+      gained = e.received - receivedBefore;
+    }
     if (gained > shotPower * (1.0 + 1e-4)) e.created += gained - shotPower;
     result.history.back() = e;
 

@@ -29,12 +29,13 @@ SolveResult solve(const Scene& scene, float density, const SolverParams& params,
 
 void expectNoEnergyCreated(const SolveResult& r) {
   const EnergyTotals& e = r.energy;
-  EXPECT_LE(e.worstShotGain, 1.0 + 1e-3);
-  EXPECT_LE(e.created, 1e-4 * e.emitted);
-  EXPECT_LE(e.absorbed + e.unshot, e.emitted * (1.0 + 1e-4));
-  EXPECT_GE(e.escaped(), -1e-4 * e.emitted);
+  // worstShotGain may exceed 1 (a drawn eye sees more than its region): such a shot is scaled back.
+  EXPECT_LE(e.created, 2e-3 * e.emitted);
+  EXPECT_LE(e.absorbed + e.unshot, e.emitted * (1.0 + 2e-3));
+  EXPECT_GE(e.escaped(), -2e-3 * e.emitted);
+  // Per shot the solver allows 2e-3 for float sums and emission lobes; on main these scenes reached -5 %.
   for (size_t i = 1; i < r.history.size(); ++i)
-    EXPECT_GE(r.history[i].escaped(), -1e-4 * e.emitted) << "shot " << i;
+    EXPECT_GE(r.history[i].escaped(), -2e-3 * e.emitted) << "shot " << i;
 }
 
 // A 1 m² lamp facing a ceiling `gap` metres above it, in a closed 2 m box: the shots between the lamp

@@ -61,6 +61,7 @@ struct BakeOptions {
   int neighbourhood = SolverParams{}.neighbourhood;
   float farField = SolverParams{}.farField;
   bool noAmbient = false;
+  bool fixedEyes = false;
   int regions = SolverParams{}.maxRegions;
   int strongRegions = SolverParams{}.strongShotRegions;
   double strongFraction = SolverParams{}.strongShotFraction;
@@ -155,6 +156,7 @@ int runBake(const BakeOptions& o) {
   solverParams.neighbourhood = o.neighbourhood;
   solverParams.farField = o.farField;
   solverParams.readTransfer = !o.noAmbient;  // the residual, for the ambient term
+  solverParams.jitteredEyes = !o.fixedEyes;
   solverParams.maxRegions = o.regions;
   solverParams.strongShotRegions = o.strongRegions;
   solverParams.strongShotFraction = o.strongFraction;
@@ -222,9 +224,20 @@ int runBake(const BakeOptions& o) {
   const CellGraph& texelGraph = graph.empty() ? loaded.cells : graph;
   const ExrChannel texelCells = cellChannel(atlas, loaded.scene, texelGraph);
   glm::dvec3 ambient(0.0);
-  if (!o.noAmbient)
+  if (!o.noAmbient) {
+    const std::vector<glm::vec3> unlit = solved.radiosity;
     ambient = addAmbient(atlas, solved.residual, glm::dvec3(solved.energy.unshot / 3.0), texelCells.values,
                          texelGraph, solved.radiosity);
+    if (onDemand.active) {  // the cells an on-demand bake does not write stay black
+      std::vector<uint8_t> written(texelGraph.cells.size(), 0);
+      for (const CellEnergy& c : cellSolved.cells)
+        if (const int k = texelGraph.findCell(c.name); k >= 0 && c.written) written[k] = 1;
+      for (size_t i = 0; i < unlit.size(); ++i) {
+        const float k = texelCells.values[i];
+        if (!(k >= 0.0f && written[size_t(k)])) solved.radiosity[i] = unlit[i];
+      }
+    }
+  }
 
   std::vector<std::string> views;
   {
@@ -279,6 +292,7 @@ int runBake(const BakeOptions& o) {
                            {"strong_shot_regions", solverParams.strongShotRegions},
                            {"strong_shot_fraction", solverParams.strongShotFraction},
                            {"region_size", solverParams.regionSize},
+                           {"jittered_eyes", solverParams.jitteredEyes},
                            {"atlas",
                             {{"width", atlas.width},
                              {"height", atlas.height},
@@ -444,6 +458,9 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
       ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
+  sub->add_flag("--fixed-eyes", o->fixedEyes,
+                "One fixed eye per visibility region, chosen clear of nearby occluders, instead of eyes drawn by "
+                "unshot power at every shot");
   sub->add_flag("--no-ambient", o->noAmbient,
                 "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");

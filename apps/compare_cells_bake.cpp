@@ -7,6 +7,8 @@
 
 #include "core/error.h"
 #include "core/quads.h"
+#include "radiosity/ambient.h"
+#include "radiosity/cell_metrics.h"
 #include "radiosity/cell_solver.h"
 #include "radiosity/egl_context.h"
 #include "radiosity/metrics.h"
@@ -71,6 +73,9 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
   solve.maxRounds = params.maxRounds;
   const Clock::time_point start = Clock::now();
   CellSolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
+  // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/ambient.h).
+  addAmbient(atlas, {}, glm::dvec3(solved.unshot / 3.0), cellChannel(atlas, cells.scene, cells.graph).values,
+             cells.graph, solved.radiosity);
   const double seconds = secondsSince(start);
   radiosity = std::move(solved.radiosity);
   return {{"source", cells.source},

@@ -561,7 +561,10 @@ class Solver {
     const Bounds b = scene_.bounds();
     const float diagonal = std::max(glm::length(b.size()), 1e-3f);
     far_ = 2.0f * diagonal;
-    near_ = 1e-3f * diagonal;
+    // Drawn eyes (pick_eyes.comp) may sit a few millimetres from a wall (a lamp's edge texel in its
+    // housing): a near plane of 1e-3 × diagonal (9 mm in spot-door) cut such walls open and let the lamp
+    // light the room through them (global rel. RMSE 128 %).
+    near_ = 1e-4f * diagonal;
     eyeOffset_ = 1e-4f * diagonal;
   }
 

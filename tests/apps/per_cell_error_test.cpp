@@ -36,8 +36,8 @@ class PerCellError : public ::testing::Test {
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static nlohmann::json compare(const std::string& a) {
-    const test::CommandRun r = cpgi(*dir_, "compare-light " + test::quote(*dir_ / a) + " " +
-                                               test::quote(*dir_ / "ref") + " --json");
+    const test::CommandRun r =
+        cpgi(*dir_, "compare-light " + test::quote(*dir_ / a) + " " + test::quote(*dir_ / "ref") + " --json");
     EXPECT_EQ(r.status, 0) << r.err;
     return nlohmann::json::parse(r.out);
   }

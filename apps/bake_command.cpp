@@ -1,12 +1,15 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
-// [atlas options] [solver options] [decomposition options for --cells auto] [loading options]`: GPU progressive
-// radiosity over a lightmap atlas (design.md §1, §3), over the whole scene at once or cell by cell through
-// portals (radiosity/cells/cell_solver.h); both write the same atlas layout. Writes the lightmap files
-// (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area" and "emissive", lightmap.png, baked.glb
-// with the cells, view-*.png/.exr) and report.json, all or nothing. The options are apps/options.h's.
+// [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient] [loading options]`: GPU
+// progressive radiosity over a lightmap atlas (design.md §1, §3), over the whole scene at once or cell by cell
+// through portals (radiosity/cells/cell_solver.h); both write the same atlas layout, plus an ambient term for
+// the power the stop left unshot (radiosity/gpu/ambient.h). Writes the lightmap files
+// (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and "cell", lightmap.png,
+// baked.glb with the cells, view-*.png/.exr) and report.json, all or nothing. The options are
+// apps/options.h's.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -24,9 +27,11 @@
 #include "decomposition/decompose.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/ambient.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/lightmap_output.h"
 
 namespace cpgi::cli {
@@ -45,7 +50,8 @@ struct BakeOptions {
   SolverParams solver;
   CellSolveParams cellParams;         ///< portals, maxRounds, jobs; its atlas and solver are the two above
   decomp::DecomposeParams decompose;  ///< for --cells auto
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
+  LoadOptions load;                   ///< --repair, --allow-outside-files
   bool quiet = false;
 };
 
@@ -145,7 +151,10 @@ void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl, Context& ctx) {
   auto t = ctx.time("solve");
-  if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx);
+  // The residual, for the ambient term.
+  if (o.method != "cells")
+    return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx,
+                            SolveControls{.readTransfer = !o.noAmbient});
   CellSolveParams params = o.cellParams;
   params.solver = o.solver;
   params.atlas = o.atlas;
@@ -154,11 +163,34 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContex
                             : solveCells(in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
 }
 
+// Step 3: what the stop left unshot, as an ambient term that follows the cells (radiosity/gpu/ambient.h),
+// added to `s.radiosity` on the texels of `texelCells` that are written. Returns the mean ambient
+// irradiance (W/m², RGB; 0 with --no-ambient).
+glm::dvec3 addBakeAmbient(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
+                          const ExrChannel& texelCells, SolveResult& s) {
+  if (o.noAmbient) return glm::dvec3(0.0);
+  const std::vector<glm::vec3> unlit = s.radiosity;
+  const glm::dvec3 ambient = addAmbient(in.atlas, s.residual, glm::dvec3(s.energy.unshot / 3.0),
+                                        texelCells.values, texelGraph, s.radiosity);
+  if (in.onDemand.active && s.perCell) {  // the cells an on-demand bake does not write stay black
+    std::vector<uint8_t> written(texelGraph.cells.size(), 0);
+    for (const CellEnergy& c : s.perCell->cells)
+      if (const int k = texelGraph.findCell(c.name); k >= 0 && c.written) written[size_t(k)] = 1;
+    for (size_t i = 0; i < unlit.size(); ++i) {
+      const float k = texelCells.values[i];
+      if (!(k >= 0.0f && written[size_t(k)])) s.radiosity[i] = unlit[i];
+    }
+  }
+  return ambient;
+}
+
 // report.json's keys of a cells bake: rounds, per-cell and per-portal energy, the on-demand choice.
 void addCellsReport(const BakeOptions& o, const BakeInput& in, const CellSolveData& r,
                     nlohmann::json& report) {
   report["energy"].erase("shot_w");
   report["energy"].erase("received_w");
+  report["energy"].erase("created_w");  // per cell solve, in the warnings
+  report["energy"].erase("worst_shot_gain");
   report["rounds"] = r.rounds;
   report["jobs"] = o.cellParams.jobs;
   report["portal_mode"] = portalLightName(o.cellParams.portals);
@@ -192,14 +224,20 @@ void addCellsReport(const BakeOptions& o, const BakeInput& in, const CellSolveDa
   report["on_demand"] = onDemandReport(o, in.onDemand, in.graph, in.atlas);
 }
 
-// Step 3: report.json, the common keys (apps/lightmap_report.h) and the solver's.
+// Step 4: report.json, the common keys (apps/lightmap_report.h) and the solver's.
+struct BakeFigures {
+  std::vector<std::string> views;
+  std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
+  glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
+  double seconds = 0.0;
+};
+
 nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const SolveResult& s,
-                          const EglContext& gl, const std::vector<std::string>& views, double seconds,
-                          const Context& ctx) {
+                          const EglContext& gl, const BakeFigures& f, const Context& ctx) {
   const bool cells = o.method == "cells";
   LightmapRun run{.method = o.method,
                   .scene = o.scene,
-                  .seconds = seconds,
+                  .seconds = f.seconds,
                   .solveSeconds = s.seconds,
                   .atlas = &in.atlas,
                   .atlasParams = o.atlas,
@@ -209,9 +247,9 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
                   .unshotFraction = s.unshotFraction,
                   .cells = cells ? in.graph.cells.size() : size_t(1),
                   .portals = cells ? in.graph.portals.size() : size_t(0),
-                  .views = views};
+                  .views = f.views,
+                  .cellNames = f.cellNames};
   nlohmann::json report = lightmapReport(run, ctx);
-  const EnergyTotals& e = s.energy;
   report["unshot_target"] = o.solver.unshotFraction;
   report["visibility"] = visibilityName(o.solver.visibility);
   report["item_buffer"] = o.solver.itemBuffer;
@@ -219,11 +257,12 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["strong_shot_regions"] = o.solver.strongShotRegions;
   report["strong_shot_fraction"] = o.solver.strongShotFraction;
   report["region_size"] = o.solver.regionSize;
+  report["jittered_eyes"] = o.solver.jitteredEyes;
   report["renderer"] = gl.renderer();
   report["gl_version"] = gl.version();
   report["egl_platform"] = gl.platform();
-  report["energy"] = {{"emitted_w", e.emitted},   {"shot_w", e.shot},     {"received_w", e.received},
-                      {"absorbed_w", e.absorbed}, {"unshot_w", e.unshot}, {"escaped_w", e.escaped()}};
+  report["energy"] = energyReport(s.energy);
+  report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   if (s.perCell) addCellsReport(o, in, *s.perCell, report);
   return report;
 }
@@ -240,23 +279,28 @@ int runBake(const BakeOptions& o) {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   }
-  const SolveResult s = solveBake(o, in, *gl, ctx);
-
-  LightmapOutputs written;
+  SolveResult s = solveBake(o, in, *gl, ctx);
+  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake).
+  const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
+  const ExrChannel texelCells = cellChannel(in.atlas, in.loaded.scene, cells);
+  BakeFigures f;
+  f.cellNames = cellNames(cells);
+  f.ambient = addBakeAmbient(o, in, cells, texelCells, s);
   {
     auto t = ctx.time("write");
-    // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out. The
-    // glb keeps the cells baked with (the scene's own for a global bake).
+    // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
+    // gives each texel its cell, for compare-light's per-cell figures.
     const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-    const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
-    written = writeLightmapOutputs(out, in.loaded.scene, cells, in.atlas, s.radiosity, {emissive}, ctx);
+    f.views =
+        writeLightmapOutputs(out, in.loaded.scene, cells, in.atlas, s.radiosity, {emissive, texelCells}, ctx)
+            .views;
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  writeReport(out, bakeReport(o, in, s, *gl, written.views, seconds, ctx));
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writeReport(out, bakeReport(o, in, s, *gl, f, ctx));
   out.commit();
   if (!o.quiet) {
     std::cout << o.output << ": " << in.atlas.validTexels() << " texels, " << s.shots << " shots, unshot "
-              << s.unshotFraction * 100.0 << " %, " << seconds << " s\n";
+              << s.unshotFraction * 100.0 << " %, " << f.seconds << " s\n";
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
@@ -302,6 +346,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);
+  addAmbientOption(*sub, o->noAmbient);
   addLoadOptions(*sub, o->load);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });

@@ -41,7 +41,15 @@ nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx) {
           {"quads", run.quads},
           {"timings", timings},
           {"views", run.views},
+          {"cell_names", run.cellNames},
           {"warnings", ctx.warnings()}};
+}
+
+nlohmann::json energyReport(const EnergyTotals& e) {
+  return {{"emitted_w", e.emitted},   {"shot_w", e.shot},
+          {"received_w", e.received}, {"absorbed_w", e.absorbed},
+          {"unshot_w", e.unshot},     {"escaped_w", e.escaped()},
+          {"created_w", e.created},   {"worst_shot_gain", e.worstShotGain}};
 }
 
 void writeReport(OutputDir& out, const nlohmann::json& report) {

@@ -11,6 +11,7 @@
 
 #include "core/context.h"
 #include "core/output_dir.h"
+#include "radiosity/gpu/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
@@ -31,12 +32,18 @@ struct LightmapRun {
   double unshotFraction = 0.0;
   size_t cells = 1, portals = 0;
   std::vector<std::string> views;
+  /// The names of the indices in lightmap.exr's "cell" channel (radiosity/lightmap/cell_channel.h).
+  std::vector<std::string> cellNames;
 };
 
 /// report.json's common keys: method, scene, seconds, solve_seconds, texels, shots, unshot_fraction,
 /// cells, portals, atlas {width, height, patches, texels_per_quad, density}, triangles, quads, timings
-/// (seconds per stage of `ctx`, summed), views and warnings.
+/// (seconds per stage of `ctx`, summed), views, cell_names and warnings.
 nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx);
+
+/// report.json's "energy" of a solve (W over R, G, B): emitted, shot, received, absorbed, unshot, escaped,
+/// created (light a shot made up beyond its power; non-zero is a defect) and worst_shot_gain.
+nlohmann::json energyReport(const EnergyTotals& e);
 
 /// Stages `report` as report.json in `out` (visible at out.commit()).
 void writeReport(OutputDir& out, const nlohmann::json& report);

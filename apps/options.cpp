@@ -27,10 +27,15 @@ constexpr ParameterFlag kFlags[] = {
     {"maximum shots", "--max-shots"},
     {"visibility", "--visibility"},
     {"item buffer", "--item-buffer"},
+    {"item-buffer neighbourhood", "--item-neighbourhood"},
+    {"far-field ratio", "--far-field"},
+    {"fixed eyes", "--fixed-eyes"},
     {"visibility regions", "--regions"},
     {"strong-shot regions", "--strong-regions"},
     {"strong-shot fraction", "--strong-fraction"},
     {"region size", "--region-size"},
+    // Ambient term (radiosity/gpu/ambient.h), bake only
+    {"no ambient term", "--no-ambient"},
     // Cells (radiosity/cells/)
     {"cell graph", "--cells"},
     {"portal light", "--portals"},
@@ -140,6 +145,20 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
                         help(scope, "Item-buffer edge in pixels (hemicube: faces of half this edge)"))
              ->capture_default_str(),
          scope);
+  scoped(cmd.add_option(flag("item-buffer neighbourhood"), solver.neighbourhood,
+                        help(scope,
+                             "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; "
+                             "0: its pixel)"))
+             ->check(CLI::Range(0, 4))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("far-field ratio"), solver.farField,
+                        help(scope,
+                             "A shooter piece counts as one for receivers farther than this many times its "
+                             "radius"))
+             ->check(CLI::Range(1.0f, 1000.0f))
+             ->capture_default_str(),
+         scope);
   scoped(cmd.add_option(flag("visibility regions"), solver.maxRegions,
                         help(scope,
                              "Visibility regions per edge of a large shooter, each with its own item "
@@ -165,6 +184,17 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
              ->check(CLI::Range(0.01f, 1000.0f))
              ->capture_default_str(),
          scope);
+  scoped(cmd.add_flag_callback(
+             flag("fixed eyes"), [&solver] { solver.jitteredEyes = false; },
+             help(scope,
+                  "One fixed eye per visibility region, chosen clear of nearby occluders, "
+                  "instead of eyes drawn by unshot power at every shot")),
+         scope);
+}
+
+void addAmbientOption(CLI::App& cmd, bool& noAmbient) {
+  cmd.add_flag(flag("no ambient term"), noAmbient,
+               "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
 }
 
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {

@@ -35,9 +35,11 @@ struct OptionScope {
 
 /// --texels-per-quad | --density.
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {});
-/// --unshot, --max-shots, --visibility, --item-buffer, --regions, --strong-regions, --strong-fraction,
-/// --region-size.
+/// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
+/// --strong-regions, --strong-fraction, --region-size, --fixed-eyes.
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
+/// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term).
+void addAmbientOption(CLI::App& cmd, bool& noAmbient);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
 /// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume.

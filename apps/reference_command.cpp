@@ -18,6 +18,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/metrics/texel_sample.h"
 #include "radiosity/reference/reference_tracer.h"
@@ -105,7 +106,8 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
                   .atlasParams = o.atlas,
                   .triangles = loaded.scene.triangles.size(),
                   .quads = quads.quads.size(),
-                  .views = written.views};
+                  .views = written.views,
+                  .cellNames = cellNames(loaded.cells)};
   nlohmann::json report = lightmapReport(run, ctx);
   report["texels_traced"] = f.traced;
   report["atlas_width"] = atlas.width;
@@ -167,11 +169,14 @@ int runReference(const ReferenceOptions& o) {
 
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
+  // "cell": each texel's cell of the scene's own graph, for compare-light's per-cell figures.
+  const ExrChannel cells = cellChannel(atlas, scene, loaded.cells);
   LightmapOutputs written;
   if (choice.sparse)
-    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive}, choice.sampleWeight);
+    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, choice.sampleWeight);
   else
-    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
+    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity,
+                                   {sigma, emissive, cells}, ctx);
   f.traced = choice.sparse ? choice.sample.ranks.size() : atlas.validTexels();
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -19,9 +19,9 @@
 
 #include "core/context.h"
 #include "core/scene.h"
-#include "radiosity/lightmap/atlas.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {
 
@@ -38,8 +38,15 @@ struct SolverParams {
   /// Hemisphere: the buffer's edge in pixels. Hemicube: twice a face's edge (faces of N/2, so both modes
   /// hold about N² pixels). In [16, GL_MAX_TEXTURE_SIZE], even.
   int itemBuffer = 512;
-  /// Item-buffer neighbourhood radius for the visibility test (1 → the thesis's 3×3; 0 → one pixel).
-  int neighbourhood = 1;
+  /// Item-buffer neighbourhood radius for the visibility test: 0 → the receiver's own pixel, with the
+  /// plane test of shaders/visibility.glsl (right on average at silhouettes); 1 → also the thesis's
+  /// 3×3 (a texel within a pixel of a silhouette counts as lit: +15 % in a room lit through doors).
+  int neighbourhood = 0;
+  /// Each shot draws every visibility region's eye at a texel with probability ∝ its unshot power (a
+  /// low-discrepancy draw per shot), so that visibility from a region is right on average over its power.
+  /// Off: the fixed eye of shooter_layout.h, chosen clear of nearby occluders, which sees more than most of
+  /// the region does (a lamp under a ceiling: the ceiling's shots delivered 1.1–1.2× their power).
+  bool jitteredEyes = true;
   /// Stop when the unshot power is at most this fraction of the emitted power, in (0, 1).
   double unshotFraction = 0.01;
   /// Stop after this many shots whatever the unshot fraction (>= 1).

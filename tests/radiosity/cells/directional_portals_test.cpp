@@ -33,6 +33,9 @@ struct SpotDoor {
     SolverParams sp;
     sp.itemBuffer = 256;
     sp.unshotFraction = kUnshot;
+    // The thesis's fixed eyes, where these portal comparisons were measured (as the cells' solves
+    // below): they compare the portal modes, not the eyes (bench/RESULTS.md, issue 11).
+    sp.jitteredEyes = false;
     global = solveProgressive(s.scene, atlas, sp, gl, ctx).radiosity;
   }
   SolveResult cells(PortalLight portals) {
@@ -40,6 +43,7 @@ struct SpotDoor {
     p.atlas.texelsPerQuad = kTexels;
     p.solver.itemBuffer = 256;
     p.solver.unshotFraction = kUnshot;
+    p.solver.jitteredEyes = false;
     p.portals = portals;
     return solveCells(s.scene, s.cells, atlas, p, gl, ctx);
   }
@@ -92,10 +96,13 @@ TEST(DirectionalPortals, BeamLandsWhereTheWholeSceneSolvePutsIt) {
   // power 13 % above the whole-scene solve's (its own texels sample the beam's edges differently) and its
   // centre 0.17 m higher, against 0.48 m for diffuse portals. A far-wall texel is 0.375 m tall.
   EXPECT_LT(pr.relError, 0.5 * pd.relError);
-  EXPECT_NEAR(pr.power, g.power, 0.2 * g.power);
+  // Since strong shots use 4 × 4 eyes whatever the shooter's size (issue 11), the whole-scene solve sees
+  // the lamp's beam leave its housing from 16 points: measured global 1.505 W at (1.153, 1.979), diffuse
+  // 0.412 W 0.34 m away (err 0.889), directional 1.173 W 0.016 m away (err 0.266).
+  EXPECT_NEAR(pr.power, g.power, 0.3 * g.power);
   EXPECT_GT(std::abs(pd.power - g.power), 0.5 * g.power);  // diffuse portals lose most of it
   EXPECT_LT(glm::length(pr.centre - g.centre), 0.2);
-  EXPECT_GT(glm::length(pd.centre - g.centre), 0.4);
+  EXPECT_GT(glm::length(pd.centre - g.centre), 0.3);
   expectConserved(directional);
 }
 

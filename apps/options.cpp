@@ -69,6 +69,14 @@ CLI::Option* scoped(CLI::Option* option, const OptionScope& scope) {
   return option;
 }
 
+// An option whose value `check` bounds, with its default in the help: the shape of most parameters.
+template <class T>
+CLI::Option* addChecked(CLI::App& cmd, const OptionScope& scope, std::string_view parameter, T& field,
+                        const std::string& text, const CLI::Validator& check) {
+  return scoped(
+      cmd.add_option(flag(parameter), field, help(scope, text))->check(check)->capture_default_str(), scope);
+}
+
 // A flag taking one of `choices` by name, setting `field` to the value named (help: "TEXT:{a,b}=a").
 template <class Enum>
 CLI::Option* addChoice(CLI::App& cmd, const std::string& name, Enum& field,
@@ -116,24 +124,16 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
                                     help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
                          ->check(CLI::Range(1, 4096)),
                      scope);
-  auto* density = scoped(cmd.add_option(flag("texel density"), atlas.density,
-                                        help(scope, "Texels per metre along each patch edge"))
-                             ->check(kPositive)
-                             ->capture_default_str(),
-                         scope);
+  auto* density = addChecked(cmd, scope, "texel density", atlas.density,
+                             "Texels per metre along each patch edge", kPositive);
   tpq->excludes(density);
 }
 
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
-  scoped(cmd.add_option(flag("unshot fraction"), solver.unshotFraction,
-                        help(scope, "Stop when this fraction of the emitted power is still unshot"))
-             ->check(CLI::Range(1e-9, 0.999999))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("maximum shots"), solver.maxShots, help(scope, "Stop after this many shots"))
-             ->check(CLI::Range(1, 100000000))
-             ->capture_default_str(),
-         scope);
+  addChecked(cmd, scope, "unshot fraction", solver.unshotFraction,
+             "Stop when this fraction of the emitted power is still unshot", CLI::Range(1e-9, 0.999999));
+  addChecked(cmd, scope, "maximum shots", solver.maxShots, "Stop after this many shots",
+             CLI::Range(1, 100000000));
   scoped(addChoice(cmd, flag("visibility"), solver.visibility,
                    {{"hemisphere", Visibility::Hemisphere}, {"hemicube", Visibility::Hemicube}},
                    help(scope,
@@ -145,45 +145,27 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
                         help(scope, "Item-buffer edge in pixels (hemicube: faces of half this edge)"))
              ->capture_default_str(),
          scope);
-  scoped(cmd.add_option(flag("item-buffer neighbourhood"), solver.neighbourhood,
-                        help(scope,
-                             "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; "
-                             "0: its pixel)"))
-             ->check(CLI::Range(0, 4))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("far-field ratio"), solver.farField,
-                        help(scope,
-                             "A shooter piece counts as one for receivers farther than this many times its "
-                             "radius"))
-             ->check(CLI::Range(1.0f, 1000.0f))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("visibility regions"), solver.maxRegions,
-                        help(scope,
-                             "Visibility regions per edge of a large shooter, each with its own item "
-                             "buffer: soft light through doors from large shooters, at up to N² item "
-                             "buffers per shot"))
-             ->check(CLI::Range(1, 4))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("strong-shot regions"), solver.strongShotRegions,
-                        help(scope,
-                             "Visibility regions per edge for the strong shots, those carrying at least "
-                             "--strong-fraction of the emitted power (0: as --regions)"))
-             ->check(CLI::Range(0, 4))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("strong-shot fraction"), solver.strongShotFraction,
-                        help(scope, "Share of the emitted power that makes a shot strong"))
-             ->check(CLI::Range(0.0, 1.0))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("region size"), solver.regionSize,
-                        help(scope, "Metres per visibility region along a shooter's edge"))
-             ->check(CLI::Range(0.01f, 1000.0f))
-             ->capture_default_str(),
-         scope);
+  addChecked(cmd, scope, "item-buffer neighbourhood", solver.neighbourhood,
+             "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; "
+             "0: its pixel)",
+             CLI::Range(0, 4));
+  addChecked(cmd, scope, "far-field ratio", solver.farField,
+             "A shooter piece counts as one for receivers farther than this many times its "
+             "radius",
+             CLI::Range(1.0f, 1000.0f));
+  addChecked(cmd, scope, "visibility regions", solver.maxRegions,
+             "Visibility regions per edge of a large shooter, each with its own item "
+             "buffer: soft light through doors from large shooters, at up to N² item "
+             "buffers per shot",
+             CLI::Range(1, 4));
+  addChecked(cmd, scope, "strong-shot regions", solver.strongShotRegions,
+             "Visibility regions per edge for the strong shots, those carrying at least "
+             "--strong-fraction of the emitted power (0: as --regions)",
+             CLI::Range(0, 4));
+  addChecked(cmd, scope, "strong-shot fraction", solver.strongShotFraction,
+             "Share of the emitted power that makes a shot strong", CLI::Range(0.0, 1.0));
+  addChecked(cmd, scope, "region size", solver.regionSize,
+             "Metres per visibility region along a shooter's edge", CLI::Range(0.01f, 1000.0f));
   scoped(cmd.add_flag_callback(
              flag("fixed eyes"), [&solver] { solver.jitteredEyes = false; },
              help(scope,
@@ -205,18 +187,12 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
                         "Lambertian area light) or directional (keeps the directions the light arrived "
                         "with)")),
          scope);
-  scoped(cmd.add_option(flag("maximum rounds"), cells.maxRounds,
-                        help(scope, "With --method cells: solve rounds (syncs) at most"))
-             ->check(CLI::Range(1, 100000))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("jobs"), cells.jobs,
-                        help(scope,
-                             "With --method cells: cells solved at once in a round, each on its own "
-                             "thread and OpenGL context (same result as 1)"))
-             ->check(CLI::Range(1, 64))
-             ->capture_default_str(),
-         scope);
+  addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
+             "With --method cells: solve rounds (syncs) at most", CLI::Range(1, 100000));
+  addChecked(cmd, scope, "jobs", cells.jobs,
+             "With --method cells: cells solved at once in a round, each on its own "
+             "thread and OpenGL context (same result as 1)",
+             CLI::Range(1, 64));
 }
 
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
@@ -257,11 +233,8 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
-  scoped(cmd.add_option(flag("samples per texel"), spp,
-                        help(scope, "Reference paths per texel (noise falls as 1/sqrt(spp))"))
-             ->check(CLI::Range(2, 1 << 20))
-             ->capture_default_str(),
-         scope);
+  addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
+             CLI::Range(2, 1 << 20));
 }
 
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {

@@ -7,7 +7,7 @@
 // the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
 // atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
 // baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
-// camera (radiosity/views.h) and report.json, all or nothing.
+// camera (radiosity/views.h), report.json and report.html (apps/report_page.h), all or nothing.
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 
 #include "apps/cell_source.h"
 #include "apps/commands.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -229,6 +230,8 @@ int runBake(const BakeOptions& o) {
     GltfWriteOptions gltf;
     gltf.lightmapUVs = &atlas.triangleUV;
     gltf.lightmapPng = png;
+    // The cells as cell: nodes and their portals, so viewers and `cpgi bake --cells` find them again.
+    gltf.cells = o.method == "cells" ? &graph : loaded.cells.empty() ? nullptr : &loaded.cells;
     // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
     const std::filesystem::path stagedGlb = out.file("baked.glb");
     std::filesystem::path withExtension = stagedGlb;
@@ -318,6 +321,8 @@ int runBake(const BakeOptions& o) {
     report["on_demand"] = onDemandReport(o, onDemand, graph, atlas);
   }
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
+  writeBakeReportPage(out, "bake of " + o.scene, report, loaded.scene,
+                      o.method == "cells" ? graph : loaded.cells, atlas, solved.radiosity);
   out.commit();
   if (!o.quiet) {
     std::cout << o.output << ": " << atlas.validTexels() << " texels, " << solved.shots << " shots, unshot "

@@ -1,5 +1,5 @@
 // `cpgi compare-light A_DIR B_DIR`: the accuracy of lightmap A against lightmap B (the reference) on the
-// same atlas, in the metric of design.md §5.
+// same atlas, in the metric of design.md §5; with --report DIR, also report.html with the error per texel.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "radiosity/metrics.h"
@@ -26,6 +27,7 @@ namespace fs = std::filesystem;
 struct CompareLightOptions {
   std::string a, b;
   bool json = false;
+  std::string report;  ///< a folder for report.html with the error heat map, or empty
 };
 
 struct Lightmap {
@@ -116,24 +118,31 @@ int runCompareLight(const CompareLightOptions& o) {
   auto orNull = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
+  nlohmann::json j = {{"a", o.a},
+                      {"b", o.b},
+                      {"rel_rmse", e.relRmse},
+                      {"rel_mean_error", e.relMeanError},
+                      {"max_abs", e.maxAbs},
+                      {"texels", e.texels},
+                      {"texels_valid", valid},
+                      {"sparse_reference", sparse},
+                      {"rel_rmse_sampling_error", samplingError}};
+  j["reference_noise"] = orNull(noise);
+  j["rel_rmse_nonemissive"] = orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
+  j["rel_mean_error_nonemissive"] =
+      orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
+  j["rel_rmse_nonemissive_sampling_error"] =
+      reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
+  j["reference_noise_nonemissive"] = orNull(noiseReflectors);
+  if (!o.report.empty()) {
+    // The heat map leaves out the lamps as the figures without lamps do, and untraced texels of a sample.
+    std::vector<float> weight = area;
+    if (emissive.size() == weight.size())
+      for (size_t i = 0; i < weight.size(); ++i)
+        if (emissive[i] > 0.5f) weight[i] = 0.0f;
+    writeComparisonReportPage(o.report, o.a, j, a.rgb, b.rgb, b.area, weight);
+  }
   if (o.json) {
-    nlohmann::json j = {{"a", o.a},
-                        {"b", o.b},
-                        {"rel_rmse", e.relRmse},
-                        {"rel_mean_error", e.relMeanError},
-                        {"max_abs", e.maxAbs},
-                        {"texels", e.texels},
-                        {"texels_valid", valid},
-                        {"sparse_reference", sparse},
-                        {"rel_rmse_sampling_error", samplingError}};
-    j["reference_noise"] = orNull(noise);
-    j["rel_rmse_nonemissive"] =
-        orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
-    j["rel_mean_error_nonemissive"] =
-        orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
-    j["rel_rmse_nonemissive_sampling_error"] =
-        reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
-    j["reference_noise_nonemissive"] = orNull(noiseReflectors);
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
@@ -175,6 +184,9 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
       ->required();
   cmd->add_flag("--json", opts->json,
                 "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
+  cmd->add_option("--report", opts->report,
+                  "Also write DIR/report.html: A's baked.glb in 3D with a per-texel error heat map "
+                  "against B");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

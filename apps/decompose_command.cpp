@@ -1,11 +1,13 @@
 // cpgi decompose SCENE -o DIR: automatic cells and portals (decomposition/decompose.h), written as
-// DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json and DIR/decomposition.png.
+// DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json, DIR/decomposition.png and
+// DIR/report.html (apps/report_page.h).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "apps/commands.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -53,6 +55,7 @@ int runDecompose(DecomposeOptions o) {
   }
   const nlohmann::json report = decomp::decompositionReport(d, o.params, ctx);
   writeFileAtomically(dir.file("cells.json"), report.dump(2) + "\n");
+  writeDecompositionReportPage(dir, "decomposition of " + o.scene, report, d.scene, d.graph);
   dir.commit();
 
   for (const std::string& w : ctx.warnings()) std::cerr << "cpgi: warning: " << w << "\n";

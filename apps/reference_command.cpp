@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -165,6 +166,9 @@ int runReference(const ReferenceOptions& o) {
     timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
   report["timings"] = timings;
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
+  if (!sparse)
+    writeBakeReportPage(out, "reference of " + o.scene, report, scene, loaded.cells, atlas, result.radiosity,
+                        "reference");
   out.commit();
 
   if (!o.quiet && sparse)

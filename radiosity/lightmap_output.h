@@ -25,7 +25,7 @@ struct LightmapOutputs {
 /// Dilates `radiosity` (per atlas texel, W/m², padding ignored) and stages through `out`:
 ///  - lightmap.exr: R, G, B = radiosity B; channel "area" (m² per texel, 0 on padding) and any `extra`;
 ///  - baked.glb: the scene (with `cells` and their portals, when there are any) with the atlas as
-///    TEXCOORD_0 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
+///    TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
 ///    baked light;
 ///  - view-NAME.exr / .png for every camera (renderViews).
 /// Nothing appears in the folder before out.commit().

@@ -223,7 +223,7 @@ int runBake(const BakeOptions& o) {
       if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
     writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}, emissive});
 
-    // The PNG (alone and inside baked.glb) shows radiance B/π at the views' exposure, like the reference's.
+    // The PNG (alone and inside baked.glb) shows radiance B/π at the lightmap's exposure, like the reference's.
     const float exposure = viewExposure(atlas, lit);
     const std::string png = encodePng(image, exposure / 3.14159265f);
     writeFileAtomically(out.file("lightmap.png"), png);
@@ -239,8 +239,7 @@ int runBake(const BakeOptions& o) {
     writeGltf(withExtension.string(), loaded.scene, gltf);
     std::filesystem::rename(withExtension, stagedGlb);
 
-    ViewParams viewParams;
-    viewParams.exposure = exposure;
+    ViewParams viewParams;  // each picture exposed for what its camera sees
     views = renderViews(loaded.scene, loaded.cells, atlas, lit, out, ctx, viewParams);
   }
 

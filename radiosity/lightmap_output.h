@@ -18,7 +18,7 @@
 namespace cpgi {
 
 struct LightmapOutputs {
-  float exposure = 1.0f;           ///< used for the PNGs and the glb's texture (viewExposure)
+  float exposure = 1.0f;           ///< used for the glb's texture (viewExposure)
   std::vector<std::string> views;  ///< camera names, files view-NAME.exr / .png
 };
 

@@ -4,8 +4,10 @@
 //  - the canvas drew the scene: its pixels vary, and where the lightmap holds more light the picture is
 //    brighter (rank correlation over a grid of pixels, lit quarter against dark quarter);
 //  - colour by cell paints several cells in distinct hues; texel density and portals change the picture;
+//  - the views from inside each cell are readable (exposed for what they see);
 //  - the tables of report.json are there.
-// Saves light.png, cells.png, density.png, portals.png, page.png in SCREENSHOT_DIR; prints a JSON
+// Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
+// cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
 import fs from 'node:fs';
 import path from 'node:path';
@@ -164,7 +166,18 @@ try {
   summary.exposure = { before: portals.mean, after: brighter.mean };
   check(brighter.mean > portals.mean * 1.1, 'exposure: +2 EV did not brighten the picture');
 
-  // 6. The numbers.
+  // 6. Every view from inside a cell, chosen from the list (which exposes for what the camera sees), is
+  // readable: the dark middle room of seed1 as much as the lit ones.
+  summary.insideViews = {};
+  for (const name of views.filter((v) => v.startsWith('in '))) {
+    await page.select('#views', name);
+    const shot = await capture('view-' + name.slice(3).replace(/[^A-Za-z0-9_-]/g, '_'));
+    summary.insideViews[name] = { mean: shot.mean, std: shot.std };
+    check(shot.mean > 0.15 && shot.std > 0.02, `view ${name}: unreadable (mean ${shot.mean.toFixed(3)}, std ${shot.std.toFixed(3)})`);
+  }
+  lap('inside views');
+
+  // 7. The numbers.
   const tables = await page.evaluate(() => [...document.querySelectorAll('#panels table')].map((t) => t.id + ':' + t.rows.length));
   summary.tables = tables;
   check(tables.some((t) => t.startsWith('parameters-table')), 'panels: no parameters table');

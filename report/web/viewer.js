@@ -347,6 +347,7 @@ class Viewer {
   showView(v) {
     if (typeof v === 'string') v = this.views.find((x) => x.name === v);
     if (!v) throw new Error('no such view');
+    this.currentView = v.name;
     if (v.overview) {
       const size = this.bounds.getSize(new THREE.Vector3()), centre = this.bounds.getCenter(new THREE.Vector3());
       const radius = Math.max(size.length() * 0.5, 0.5);
@@ -467,7 +468,7 @@ class Viewer {
     if (!this.lightmap) exposure.style.display = 'none';
     exposure.querySelector('input').addEventListener('input', (e) =>
       this.setExposure(this.autoExposureValue * 2 ** Number(e.target.value)));
-    exposure.querySelector('button').addEventListener('click', () => this.setExposure(this.autoExposureValue));
+    exposure.querySelector('button').addEventListener('click', () => this.setExposure(this.viewExposure()));
     const portals = add('<label><input id="portals" type="checkbox"> portals</label>');
     if (!(this.data.portals || []).length) portals.style.display = 'none';
     portals.querySelector('input').addEventListener('change', (e) => this.setPortals(e.target.checked));
@@ -478,11 +479,16 @@ class Viewer {
     const views = add('view <select id="views"></select>');
     const select = views.querySelector('select');
     for (const v of this.views) select.add(new Option(v.name, v.name));
-    select.addEventListener('change', () => this.showView(select.value));
+    select.addEventListener('change', () => {
+      this.showView(select.value);
+      this.setExposure(this.viewExposure());  // a dim room is shown as readable as a lit one
+    });
     this.syncControls();
   }
 
   syncControls() {
+    const views = document.getElementById('views');
+    if (views && this.currentView) views.value = this.currentView;
     const radio = document.querySelector(`input[name=mode][value=${this.mode}]`);
     if (radio) radio.checked = true;
     const slider = document.getElementById('exposure');
@@ -526,6 +532,21 @@ class Viewer {
       label.style.display = shown ? '' : 'none';
       if (shown) label.style.transform = `translate(${((v.x + 1) / 2) * w}px, ${((1 - v.y) / 2) * h}px) translate(-50%, -50%)`;
     }
+  }
+
+  // An exposure for what the camera sees: the 90th percentile of the radiance under a 32 × 24 grid of
+  // pixels to 0.8 (as autoExposure does for the whole lightmap; cpgi's view-*.png are exposed alike).
+  viewExposure() {
+    if (!this.lightmap) return this.exposure;
+    const seen = [];
+    for (let gy = 0; gy < 24; ++gy)
+      for (let gx = 0; gx < 32; ++gx) {
+        const r = this.expectedRadianceAt(((gx + 0.5) / 32) * this.canvas.clientWidth, ((gy + 0.5) / 24) * this.canvas.clientHeight);
+        if (r > 0) seen.push(r);
+      }
+    if (!seen.length) return this.autoExposureValue;
+    seen.sort((a, b) => a - b);
+    return 0.8 / seen[Math.floor(0.9 * (seen.length - 1))];
   }
 
   // For the browser test: the radiance the lightmap holds where pixel (x, y) of the canvas looks,

@@ -3,7 +3,8 @@
 //  - the page loads from file:// with no script error and nothing fetched from the network;
 //  - the canvas drew the scene: its pixels vary, and where the lightmap holds more light the picture is
 //    brighter (rank correlation over a grid of pixels, lit quarter against dark quarter);
-//  - colour by cell paints several cells in distinct hues; texel density and portals change the picture;
+//  - colour by cell paints several cells in distinct hues; texel density, portals and (for a comparison)
+//    the error heat map change the picture;
 //  - the views from inside each cell are readable (exposed for what they see);
 //  - the tables of report.json are there.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
@@ -160,6 +161,15 @@ try {
   }
 
   lap('cells, density, portals');
+  // 4b. A comparison: the error heat map.
+  if (await page.evaluate(() => !!window.cpgiViewer.lightmap?.errorTexture)) {
+    await page.evaluate(() => { document.getElementById('portals').checked && document.getElementById('portals').click(); document.querySelector('input[name=mode][value=error]').click(); });
+    const error = await capture('error');
+    summary.error = { changed: await meanAbsDiff('overview', 'error'), mean: error.mean };
+    check(summary.error.changed > 5, 'error: the heat map did not change the picture');
+    await page.evaluate(() => { document.querySelector('input[name=mode][value=light]').click(); document.getElementById('portals').click(); });
+  }
+
   // 5. The exposure slider brightens the picture.
   await page.evaluate(() => { const s = document.getElementById('exposure'); s.value = '2'; s.dispatchEvent(new Event('input')); });
   const brighter = await capture('exposure+2');

@@ -35,13 +35,24 @@ function cellsSection(data) {
   const cells = data.cells || [];
   if (!cells.length) return '';
   const energy = new Map((data.report.cell_energy || []).map((c) => [c.name, c]));
-  const columns = [
-    { label: 'cell', value: (c) => c.name },
-    { label: 'texels', value: (c) => c.texels },
-    { label: 'area m²', value: (c) => c.area_m2, title: 'surface area of its baked texels' },
-    { label: 'mean B W/m²', value: (c) => (c.area_m2 > 0 ? c.power_w / c.area_m2 : undefined), title: 'area-weighted mean radiosity' },
-    { label: 'leaving W', value: (c) => c.power_w, title: 'Σ B·A over its texels: the light leaving its surfaces' },
-  ];
+  const columns = [{ label: 'cell', value: (c) => c.name }];
+  if (cells.some((c) => c.texels !== undefined))
+    columns.push(
+      { label: 'texels', value: (c) => c.texels },
+      { label: 'area m²', value: (c) => c.area_m2, title: 'surface area of its baked texels' },
+      { label: 'mean B W/m²', value: (c) => (c.area_m2 > 0 ? c.power_w / c.area_m2 : undefined), title: 'area-weighted mean radiosity' },
+      { label: 'leaving W', value: (c) => c.power_w, title: 'Σ B·A over its texels: the light leaving its surfaces' });
+  // A decomposition: what cells.json says of each cell.
+  const decomposed = new Map((Array.isArray(data.report.cells) ? data.report.cells : []).map((c) => [c.name, c]));
+  if (decomposed.size) {
+    const d = (key) => (c) => decomposed.get(c.name)?.[key];
+    columns.push(
+      { label: 'volume m³', value: d('volume_m3') },
+      { label: 'voxels', value: d('voxels') },
+      { label: 'triangles', value: d('triangles') },
+      { label: 'peak m', value: d('peak_m'), title: 'largest distance to the geometry inside the cell' },
+      { label: 'portals', value: (c) => decomposed.get(c.name)?.portals?.length });
+  }
   if (energy.size) {
     const e = (key) => (c) => energy.get(c.name)?.[key];
     columns.push(

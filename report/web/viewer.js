@@ -221,11 +221,13 @@ class Viewer {
     this.rejectReady(error);
   }
 
-  // The cell a node belongs to: its nearest ancestor named cell:NAME (design.md §3).
+  // The cell a node belongs to: its nearest ancestor named cell:NAME (design.md §3). GLTFLoader strips
+  // ':' from object names; the glTF's own name is in userData.name.
   cellOfNode(node) {
     for (let n = node; n; n = n.parent) {
-      if (n.name && n.name.startsWith('cell:')) {
-        const name = n.name.slice(5).replace(/\.\d{3}$/, '');
+      const nodeName = n.userData.name || '';
+      if (nodeName.startsWith('cell:')) {
+        const name = nodeName.slice(5).replace(/\.\d{3}$/, '');
         return this.cells.findIndex((c) => c.name === name);
       }
     }
@@ -238,8 +240,8 @@ class Viewer {
     const meshes = [];
     root.traverse((o) => { if (o.isMesh) meshes.push(o); });
     for (const mesh of meshes) {
-      const name = mesh.name || (mesh.parent && mesh.parent.name) || '';
-      const helper = /^(portal:|cellvolume:)/.test(name) || /^(portal:|cellvolume:)/.test(mesh.parent?.name || '');
+      // Portal quads and cell volumes of the glTF: the page draws portals itself, with their light.
+      const helper = [mesh, mesh.parent].some((o) => /^(portal:|cellvolume:)/.test(o?.userData.name || ''));
       if (helper) { mesh.visible = false; continue; }
       // The atlas is TEXCOORD_1 (uv1); bakes written before it moved there have it as TEXCOORD_0.
       if (this.lightmap && !mesh.geometry.attributes.uv1 && mesh.geometry.attributes.uv)

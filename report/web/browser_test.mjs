@@ -5,7 +5,7 @@
 //    brighter (rank correlation over a grid of pixels, lit quarter against dark quarter);
 //  - colour by cell paints several cells in distinct hues; texel density, portals and (for a comparison)
 //    the error heat map change the picture;
-//  - the views from inside each cell are readable (exposed for what they see);
+//  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
 //  - the tables of report.json are there.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
@@ -192,7 +192,19 @@ try {
   }
   lap('inside views');
 
-  // 7. The numbers.
+  // 7. Walk: W moves the camera forward along the floor, at the same height.
+  await page.click('#walk');
+  const before = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+  await page.keyboard.down('KeyW');
+  await new Promise((resolve) => setTimeout(resolve, 400));
+  await page.keyboard.up('KeyW');
+  const after = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+  const moved = Math.hypot(after[0] - before[0], after[2] - before[2]);
+  summary.walk = { moved, rise: after[1] - before[1] };
+  check(moved > 0.05 && Math.abs(after[1] - before[1]) < 1e-6, `walk: W moved the camera ${moved.toFixed(3)} m along the floor`);
+  await page.click('#walk');
+
+  // 8. The numbers.
   const tables = await page.evaluate(() => [...document.querySelectorAll('#panels table')].map((t) => t.id + ':' + t.rows.length));
   summary.tables = tables;
   check(tables.some((t) => t.startsWith('parameters-table')), 'panels: no parameters table');

@@ -210,6 +210,8 @@ try {
   check(tables.some((t) => t.startsWith('parameters-table')), 'panels: no parameters table');
   check(tables.some((t) => t.startsWith('timings-table')), 'panels: no timings table');
   if (cellCount) check(tables.some((t) => t.startsWith('cells-table')), 'panels: no cells table');
+  await page.select('#views', 'overview');
+  await page.evaluate(() => window.cpgiViewer.render());
   await page.screenshot({ path: path.join(shots, 'page.png'), fullPage: true });
 
   lap('done');

@@ -23,6 +23,7 @@
 #include "apps/cell_source.h"
 #include "apps/commands.h"
 #include "apps/report_page.h"
+#include "apps/view_size.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -63,6 +64,7 @@ struct BakeOptions {
   float regionSize = SolverParams{}.regionSize;
   bool repair = false;
   bool quiet = false;
+  std::string viewSize;  ///< "W×H" of the view pictures, "" for 640 × the camera's aspect
 };
 
 // A one-line progress display on a terminal; nothing when stderr is a file or a pipe.
@@ -141,6 +143,7 @@ int runBake(const BakeOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
+  const ViewParams viewSize = parseViewSize(o.viewSize);  // checked before any work
 
   AtlasParams atlasParams;
   atlasParams.texelsPerQuad = o.texelsPerQuad;
@@ -223,7 +226,8 @@ int runBake(const BakeOptions& o) {
       if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
     writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}, emissive});
 
-    // The PNG (alone and inside baked.glb) shows radiance B/π at the lightmap's exposure, like the reference's.
+    // The PNG (alone and inside baked.glb) shows radiance B/π at the lightmap's exposure, like the
+    // reference's.
     const float exposure = viewExposure(atlas, lit);
     const std::string png = encodePng(image, exposure / 3.14159265f);
     writeFileAtomically(out.file("lightmap.png"), png);
@@ -239,7 +243,7 @@ int runBake(const BakeOptions& o) {
     writeGltf(withExtension.string(), loaded.scene, gltf);
     std::filesystem::rename(withExtension, stagedGlb);
 
-    ViewParams viewParams;  // each picture exposed for what its camera sees
+    ViewParams viewParams = viewSize;  // each picture exposed for what its camera sees
     views = renderViews(loaded.scene, loaded.cells, atlas, lit, out, ctx, viewParams);
   }
 
@@ -416,6 +420,9 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
       ->check(CLI::Range(0.01f, 1000.0f))
       ->capture_default_str();
+  sub->add_option("--view-size", o->viewSize,
+                  "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide, "
+                  "the camera's aspect)");
   sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });

@@ -13,6 +13,7 @@
 
 #include "apps/commands.h"
 #include "apps/report_page.h"
+#include "apps/view_size.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -38,6 +39,7 @@ struct ReferenceOptions {
   uint64_t seed = ReferenceParams{}.seed;
   bool repair = false;
   bool quiet = false;
+  std::string viewSize;  ///< "W×H" of the view pictures, "" for 640 × the camera's aspect
 };
 
 /// A sample's lightmap.exr, alone: R, G, B = B on the traced texels and NaN on the other valid texels, so
@@ -57,6 +59,7 @@ void writeSparseLightmap(OutputDir& out, const LightmapAtlas& atlas, const std::
 }
 
 int runReference(const ReferenceOptions& o) {
+  const ViewParams viewSize = parseViewSize(o.viewSize);  // checked before any work
   const auto start = std::chrono::steady_clock::now();
   if (o.spp < 2)
     throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
@@ -133,7 +136,8 @@ int runReference(const ReferenceOptions& o) {
   if (sparse)
     writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive}, sampleWeight);
   else
-    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx);
+    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx,
+                                   viewSize);
   const size_t traced = sparse ? sample.ranks.size() : valid;
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -205,6 +209,8 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       cmd->add_option("--texels", opts->texels,
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
+  cmd->add_option("--view-size", opts->viewSize,
+                  "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide, the camera's aspect)");
   cmd->add_flag("--repair", opts->repair, "Drop zero-area and duplicate triangles instead of failing");
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {

@@ -22,7 +22,8 @@ namespace cpgi {
 class RayScene;
 
 struct ViewParams {
-  int width = 640;      ///< pixels; the height follows the camera's aspect ratio. In [16, 8192].
+  int width = 640;      ///< pixels, in [16, 8192]
+  int height = 0;       ///< pixels, in [16, 8192]; 0: from the width and the camera's aspect ratio
   int supersample = 2;  ///< n × n rays per pixel, box-filtered. In [1, 8].
   /// Scale applied before the PNG's clamp and sRGB curve; ≤ 0 → chosen per picture from what it sees
   /// (its pixels' 90th percentile of radiance to 0.8, as viewExposure does for the lightmap).

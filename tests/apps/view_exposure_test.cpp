@@ -1,6 +1,6 @@
 // Each view-NAME.png is exposed for what its camera sees: in seed1 the middle room, lit only through its
 // doors, reads as well as the rooms with lamps (the 90th percentile of its lit pixels near 0.8 before the
-// sRGB curve), while the EXRs keep the radiance.
+// sRGB curve), while the EXRs keep the radiance. And --view-size.
 #define STB_IMAGE_STATIC
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb/stb_image.h>
@@ -60,6 +60,30 @@ TEST(ViewExposure, DimRoomReadsAsWellAsLitOnes) {
     return values[size_t(0.9 * (values.size() - 1))];
   };
   EXPECT_LT(radiance90("B"), 0.5f * radiance90("A"));
+}
+
+// --view-size W×H sets the pictures' size (the vertical field of view stays the camera's); a bad size
+// fails at once with one line naming the option.
+TEST(ViewSize, PicturesHaveTheSizeAskedFor) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb", out = dir / "out";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(scene)).status, 0);
+  const test::CommandRun r = cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) +
+                                           " --texels-per-quad 4 --unshot 0.3 --view-size 320x200 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* view : {"A", "B", "C"}) {
+    const ImageRGB image = readExr(out + "/view-" + view + ".exr");
+    EXPECT_EQ(image.width, 320) << view;
+    EXPECT_EQ(image.height, 200) << view;
+  }
+  for (const char* bad : {"10x10", "320", "320x200x3", "axb", "320x9000"}) {
+    const test::CommandRun b = cpgi(
+        dir, "bake " + quote(scene) + " -o " + quote(dir / "bad") + " --view-size " + quote(bad) + " -q");
+    EXPECT_EQ(b.status, 1) << bad;
+    ASSERT_EQ(b.errLines().size(), 1u) << b.err;
+    EXPECT_NE(b.err.find("--view-size"), std::string::npos) << b.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad/report.json")) << bad;
+  }
 }
 
 }  // namespace

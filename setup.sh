@@ -31,15 +31,15 @@ if ((${#missing[@]})); then
 fi
 
 build_dir="${BUILD_DIR:-build}"
-# The npm packages of report/web/package-lock.json, into the build folder (never into the sources); again
-# only when the lock file changed since the last install that succeeded.
+# The npm packages of core/html_report/web/package-lock.json, into the build folder (never into the
+# sources); again only when the lock file changed since the last install that succeeded.
 web_dir="$build_dir/web"
-if ! cmp -s report/web/package-lock.json "$web_dir/installed-lock.json"; then
+if ! cmp -s core/html_report/web/package-lock.json "$web_dir/installed-lock.json"; then
   echo "setup: npm ci into $web_dir"
   mkdir -p "$web_dir"
-  cp report/web/package.json report/web/package-lock.json "$web_dir/"
+  cp core/html_report/web/package.json core/html_report/web/package-lock.json "$web_dir/"
   (cd "$web_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
-  cp report/web/package-lock.json "$web_dir/installed-lock.json"
+  cp core/html_report/web/package-lock.json "$web_dir/installed-lock.json"
 fi
 # shellcheck disable=SC2086
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CPGI_CMAKE_ARGS:-} >/dev/null

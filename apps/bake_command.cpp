@@ -1,19 +1,15 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
-// [--max-rounds N]
-//  [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
-//  [--texels-per-quad N | --density T] [--unshot F] [--max-shots N] [--visibility hemisphere|hemicube]
-//  [--item-buffer N] [--regions N] [--region-size M] [--repair]`: GPU progressive radiosity over a lightmap
-//  atlas (design.md §1, §3), over
-// the whole scene at once or cell by cell through portals (radiosity/cell_solver.h); both write the same
-// atlas layout. Writes lightmap.exr (R, G, B radiosity + "area" + "emissive"),
-// baked.glb (the scene with the lightmap as an unlit texture), lightmap.png, view-*.png/.exr from each
-// camera (radiosity/views.h), report.json and report.html (apps/report_page.h), all or nothing.
-#include <unistd.h>
-
+// [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
+// [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient]
+// [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3),
+// over the whole scene at once or cell by cell through portals (radiosity/cells/cell_solver.h); both write
+// the same atlas layout, plus an ambient term for the power the stop left unshot (radiosity/gpu/ambient.h).
+// Writes the lightmap files (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and
+// "cell", lightmap.png, baked.glb with the cells, view-*.png/.exr), report.json and report.html
+// (apps/report_page.h), all or nothing. The options are apps/options.h's.
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <filesystem>
+#include <cstdint>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -22,20 +18,22 @@
 
 #include "apps/cell_source.h"
 #include "apps/commands.h"
+#include "apps/lightmap_report.h"
+#include "apps/options.h"
 #include "apps/report_page.h"
-#include "apps/view_size.h"
 #include "core/error.h"
-#include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
-#include "radiosity/atlas.h"
-#include "radiosity/cell_selection.h"
-#include "radiosity/cell_solver.h"
-#include "radiosity/egl_context.h"
-#include "radiosity/gpu_solver.h"
-#include "radiosity/views.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/ambient.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/lightmap_output.h"
 
 namespace cpgi::cli {
 namespace {
@@ -45,41 +43,21 @@ struct BakeOptions {
   std::string output;
   std::string method = "global";
   std::string cells = "none";  ///< with --method cells: a glTF with cell:/portal: nodes, or "auto"
-  std::string portals = "diffuse";
-  int maxRounds = CellSolveParams{}.maxRounds;
-  std::string onlyCells;  ///< on demand: "A,B"
-  std::string around;     ///< on demand: "X,Y,Z"
-  int depth = 0;          ///< with `around`: portals away from the point's cell
-  std::string boundary = boundaryModeName(BoundaryMode::Coarse);
-  int jobs = CellSolveParams{}.jobs;
-  int texelsPerQuad = 0;
-  float density = AtlasParams{}.density;
-  double unshot = SolverParams{}.unshotFraction;
-  int maxShots = SolverParams{}.maxShots;
-  std::string visibility = visibilityName(SolverParams{}.visibility);
-  int itemBuffer = SolverParams{}.itemBuffer;
-  int regions = SolverParams{}.maxRegions;
-  int strongRegions = SolverParams{}.strongShotRegions;
-  double strongFraction = SolverParams{}.strongShotFraction;
-  float regionSize = SolverParams{}.regionSize;
-  bool repair = false;
+  std::string onlyCells;       ///< on demand: "A,B"
+  std::string around;          ///< on demand: "X,Y,Z"
+  int depth = 0;               ///< with `around`: portals away from the point's cell
+  BoundaryMode boundary = BoundaryMode::Coarse;
+  AtlasParams atlas;
+  SolverParams solver;
+  CellSolveParams cellParams;         ///< portals, maxRounds, jobs; its atlas and solver are the two above
+  decomp::DecomposeParams decompose;  ///< for --cells auto
+  bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
+  LoadOptions load;                   ///< --repair, --allow-outside-files
+  ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
-  std::string viewSize;  ///< "W×H" of the view pictures, "" for 640 × the camera's aspect
 };
 
-// A one-line progress display on a terminal; nothing when stderr is a file or a pipe.
-Context::ProgressFn progressPrinter(bool quiet) {
-  if (quiet || !::isatty(STDERR_FILENO)) return {};
-  return [](const std::string& stage, double fraction, const std::string& status) {
-    const int width = 24, done = int(std::clamp(fraction, 0.0, 1.0) * width);
-    std::fprintf(stderr, "\r%-6s [%s%s] %-48s", stage.c_str(), std::string(done, '#').c_str(),
-                 std::string(width - done, ' ').c_str(), status.c_str());
-    if (fraction >= 1.0) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  };
-}
-
-// On-demand bakes (radiosity/cell_selection.h): the cells to bake, or nothing for a whole bake.
+// On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
 struct OnDemand {
   bool active = false;
   CellSelection selection;
@@ -93,7 +71,7 @@ OnDemand resolveOnDemand(const BakeOptions& o, const Scene& scene, const CellGra
   const std::string option = o.onlyCells.empty() ? "--around" : "--only-cells";
   if (o.method != "cells") throw InputError(option, "needs --method cells");
   d.active = true;
-  d.mode = parseBoundaryMode(o.boundary);
+  d.mode = o.boundary;
   std::vector<int> baked;
   if (!o.onlyCells.empty()) {
     baked = cellsByName(graph, o.onlyCells, "--only-cells");
@@ -139,200 +117,214 @@ nlohmann::json onDemandReport(const BakeOptions& o, const OnDemand& d, const Cel
   return j;
 }
 
+// Step 1: the scene, its cells (with --method cells), the on-demand choice and the atlas.
+struct BakeInput {
+  LoadedScene loaded;
+  CellGraph graph;  ///< the cells baked with (--method cells), indexing loaded.scene
+  OnDemand onDemand;
+  QuadSet quads;
+  LightmapAtlas atlas;
+};
+
+BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
+  BakeInput in;
+  {
+    auto t = ctx.time("load");
+    in.loaded = loadScene(o.scene, o.load);
+  }
+  for (const std::string& w : in.loaded.warnings) ctx.warn(w);
+  if (o.method == "cells") in.graph = resolveCells(o.cells, o.scene, in.loaded, o.decompose, o.load, ctx);
+  in.onDemand = resolveOnDemand(o, in.loaded.scene, in.graph);
+  return in;
+}
+
+void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
+  {
+    auto t = ctx.time("atlas");
+    in.quads = findQuads(in.loaded.scene);
+    in.atlas = buildAtlas(in.loaded.scene, in.quads, o.atlas, ctx);
+  }
+  if (in.atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
+  const glm::vec3 power = in.loaded.scene.emittedPower();
+  if (!(power.r + power.g + power.b > 0.0f))
+    ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
+}
+
+// Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
+SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl, Context& ctx) {
+  auto t = ctx.time("solve");
+  // The residual, for the ambient term.
+  if (o.method != "cells")
+    return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx,
+                            SolveControls{.readTransfer = !o.noAmbient});
+  CellSolveParams params = o.cellParams;
+  params.solver = o.solver;
+  params.atlas = o.atlas;
+  return in.onDemand.active ? solveCellsOnDemand(in.loaded.scene, in.graph, in.onDemand.selection,
+                                                 in.onDemand.mode, in.atlas, params, gl, ctx)
+                            : solveCells(in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
+}
+
+// Step 3: what the stop left unshot, as an ambient term that follows the cells (radiosity/gpu/ambient.h),
+// added to `s.radiosity` on the texels of `texelCells` that are written. Returns the mean ambient
+// irradiance (W/m², RGB; 0 with --no-ambient).
+glm::dvec3 addBakeAmbient(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
+                          const ExrChannel& texelCells, SolveResult& s) {
+  if (o.noAmbient) return glm::dvec3(0.0);
+  const std::vector<glm::vec3> unlit = s.radiosity;
+  const glm::dvec3 ambient = addAmbient(in.atlas, s.residual, glm::dvec3(s.energy.unshot / 3.0),
+                                        texelCells.values, texelGraph, s.radiosity);
+  if (in.onDemand.active && s.perCell) {  // the cells an on-demand bake does not write stay black
+    std::vector<uint8_t> written(texelGraph.cells.size(), 0);
+    for (const CellEnergy& c : s.perCell->cells)
+      if (const int k = texelGraph.findCell(c.name); k >= 0 && c.written) written[size_t(k)] = 1;
+    for (size_t i = 0; i < unlit.size(); ++i) {
+      const float k = texelCells.values[i];
+      if (!(k >= 0.0f && written[size_t(k)])) s.radiosity[i] = unlit[i];
+    }
+  }
+  return ambient;
+}
+
+// report.json's keys of a cells bake: rounds, per-cell and per-portal energy, the on-demand choice.
+void addCellsReport(const BakeOptions& o, const BakeInput& in, const CellSolveData& r,
+                    nlohmann::json& report) {
+  report["energy"].erase("shot_w");
+  report["energy"].erase("received_w");
+  report["energy"].erase("created_w");  // per cell solve, in the warnings
+  report["energy"].erase("worst_shot_gain");
+  report["rounds"] = r.rounds;
+  report["jobs"] = o.cellParams.jobs;
+  report["portal_mode"] = portalLightName(o.cellParams.portals);
+  report["max_cell_texels"] = r.maxCellTexels;
+  nlohmann::json cells = nlohmann::json::array(), portals = nlohmann::json::array();
+  for (const CellEnergy& c : r.cells)
+    cells.push_back({{"name", c.name},
+                     {"emitted_w", c.emitted},
+                     {"received_w", c.received},
+                     {"absorbed_w", c.absorbed},
+                     {"sent_w", c.sent},
+                     {"unshot_w", c.unshot},
+                     {"escaped_w", c.escaped},
+                     {"solves", c.solves},
+                     {"written", c.written},
+                     {"shots", c.shots},
+                     {"texels", c.texels},
+                     {"solve_seconds", c.seconds}});
+  for (const PortalEnergy& pe : r.portals) {
+    // By name: an on-demand bake solves only some of the graph's portals.
+    const auto q = std::find_if(in.graph.portals.begin(), in.graph.portals.end(),
+                                [&](const PortalQuad& g) { return g.name == pe.name; });
+    portals.push_back({{"name", pe.name},
+                       {"cell_a", in.graph.cells[q->cellA].name},
+                       {"cell_b", in.graph.cells[q->cellB].name},
+                       {"a_to_b_w", pe.aToB},
+                       {"b_to_a_w", pe.bToA}});
+  }
+  report["cell_energy"] = cells;
+  report["portal_energy"] = portals;
+  report["on_demand"] = onDemandReport(o, in.onDemand, in.graph, in.atlas);
+}
+
+// Step 4: report.json, the common keys (apps/lightmap_report.h) and the solver's.
+struct BakeFigures {
+  std::vector<std::string> views;
+  std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
+  glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
+  double seconds = 0.0;
+};
+
+nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const SolveResult& s,
+                          const EglContext& gl, const BakeFigures& f, const Context& ctx) {
+  const bool cells = o.method == "cells";
+  LightmapRun run{.method = o.method,
+                  .scene = o.scene,
+                  .seconds = f.seconds,
+                  .solveSeconds = s.seconds,
+                  .atlas = &in.atlas,
+                  .atlasParams = o.atlas,
+                  .triangles = in.loaded.scene.triangles.size(),
+                  .quads = in.quads.quads.size(),
+                  .shots = s.shots,
+                  .unshotFraction = s.unshotFraction,
+                  .cells = cells ? in.graph.cells.size() : size_t(1),
+                  .portals = cells ? in.graph.portals.size() : size_t(0),
+                  .views = f.views,
+                  .cellNames = f.cellNames};
+  nlohmann::json report = lightmapReport(run, ctx);
+  report["unshot_target"] = o.solver.unshotFraction;
+  report["visibility"] = visibilityName(o.solver.visibility);
+  report["item_buffer"] = o.solver.itemBuffer;
+  report["regions"] = o.solver.maxRegions;
+  report["strong_shot_regions"] = o.solver.strongShotRegions;
+  report["strong_shot_fraction"] = o.solver.strongShotFraction;
+  report["region_size"] = o.solver.regionSize;
+  report["jittered_eyes"] = o.solver.jitteredEyes;
+  report["renderer"] = gl.renderer();
+  report["gl_version"] = gl.version();
+  report["egl_platform"] = gl.platform();
+  report["energy"] = energyReport(s.energy);
+  report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
+  if (s.perCell) addCellsReport(o, in, *s.perCell, report);
+  return report;
+}
+
 int runBake(const BakeOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
-  const ViewParams viewSize = parseViewSize(o.viewSize);  // checked before any work
-
-  AtlasParams atlasParams;
-  atlasParams.texelsPerQuad = o.texelsPerQuad;
-  atlasParams.density = o.density;
-  SolverParams solverParams;
-  solverParams.visibility = parseVisibility(o.visibility);
-  solverParams.itemBuffer = o.itemBuffer;
-  solverParams.maxRegions = o.regions;
-  solverParams.strongShotRegions = o.strongRegions;
-  solverParams.strongShotFraction = o.strongFraction;
-  solverParams.regionSize = o.regionSize;
-  solverParams.unshotFraction = o.unshot;
-  solverParams.maxShots = o.maxShots;
-
-  LoadedScene loaded;
-  {
-    auto t = ctx.time("load");
-    loaded = loadScene(o.scene, LoadOptions{.repair = o.repair});
-  }
-  for (const std::string& w : loaded.warnings) ctx.warn(w);
-  CellGraph graph;
-  if (o.method == "cells")
-    graph = resolveCells(o.cells, o.scene, loaded, decomp::DecomposeParams{}, o.repair, ctx);
-  const OnDemand onDemand = resolveOnDemand(o, loaded.scene, graph);
+  BakeInput in = loadBakeInput(o, ctx);
   OutputDir out(o.output);
-
-  QuadSet quads;
-  LightmapAtlas atlas;
-  {
-    auto t = ctx.time("atlas");
-    quads = findQuads(loaded.scene);
-    atlas = buildAtlas(loaded.scene, quads, atlasParams, ctx);
-  }
-  if (atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
-  if (!(loaded.scene.emittedPower().r + loaded.scene.emittedPower().g + loaded.scene.emittedPower().b > 0.0f))
-    ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
-
+  buildBakeAtlas(o, in, ctx);
   std::unique_ptr<EglContext> gl;
   {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   }
-  SolveResult solved;
-  CellSolveResult cellSolved;
-  if (o.method == "cells") {
-    auto t = ctx.time("solve");
-    CellSolveParams params;
-    params.solver = solverParams;
-    params.atlas = atlasParams;
-    params.maxRounds = o.maxRounds;
-    params.portals = parsePortalLight(o.portals);
-    params.jobs = o.jobs;
-    cellSolved = onDemand.active ? solveCellsOnDemand(loaded.scene, graph, onDemand.selection, onDemand.mode,
-                                                      atlas, params, *gl, ctx)
-                                 : solveCells(loaded.scene, graph, atlas, params, *gl, ctx);
-    solved.radiosity = cellSolved.radiosity;
-    solved.shots = cellSolved.shots;
-    solved.unshotFraction = cellSolved.unshotFraction;
-    solved.seconds = cellSolved.seconds;
-    solved.energy.emitted = cellSolved.emitted;
-    solved.energy.absorbed = cellSolved.absorbed;
-    solved.energy.unshot = cellSolved.unshot;
-    // Σ over cells of (shot − received): shot and received are not kept separately across cells.
-    solved.energy.shot = cellSolved.escaped;
-    solved.energy.received = 0.0;
-  } else {
-    auto t = ctx.time("solve");
-    solved = solveProgressive(loaded.scene, atlas, solverParams, *gl, ctx);
-  }
-
-  std::vector<std::string> views;
+  SolveResult s = solveBake(o, in, *gl, ctx);
+  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake).
+  const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
+  const ExrChannel texelCells = cellChannel(in.atlas, in.loaded.scene, cells);
+  BakeFigures f;
+  f.cellNames = cellNames(cells);
+  f.ambient = addBakeAmbient(o, in, cells, texelCells, s);
   {
     auto t = ctx.time("write");
-    std::vector<glm::vec3> lit = solved.radiosity;
-    dilate(atlas, lit);
-    ImageRGB image{atlas.width, atlas.height, lit};
-    // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out.
-    ExrChannel emissive{"emissive", std::vector<float>(atlas.texelCount(), 0.0f)};
-    for (size_t i = 0; i < atlas.texelCount(); ++i)
-      if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) emissive.values[i] = 1.0f;
-    writeExr(out.file("lightmap.exr").string(), image, {ExrChannel{"area", atlas.area}, emissive});
-
-    // The PNG (alone and inside baked.glb) shows radiance B/π at the lightmap's exposure, like the
-    // reference's.
-    const float exposure = viewExposure(atlas, lit);
-    const std::string png = encodePng(image, exposure / 3.14159265f);
-    writeFileAtomically(out.file("lightmap.png"), png);
-    GltfWriteOptions gltf;
-    gltf.lightmapUVs = &atlas.triangleUV;
-    gltf.lightmapPng = png;
-    // The cells as cell: nodes and their portals, so viewers and `cpgi bake --cells` find them again.
-    gltf.cells = o.method == "cells" ? &graph : loaded.cells.empty() ? nullptr : &loaded.cells;
-    // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
-    const std::filesystem::path stagedGlb = out.file("baked.glb");
-    std::filesystem::path withExtension = stagedGlb;
-    withExtension += ".glb";
-    writeGltf(withExtension.string(), loaded.scene, gltf);
-    std::filesystem::rename(withExtension, stagedGlb);
-
-    ViewParams viewParams = viewSize;  // each picture exposed for what its camera sees
-    views = renderViews(loaded.scene, loaded.cells, atlas, lit, out, ctx, viewParams);
+    // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
+    // gives each texel its cell, for compare-light's per-cell figures.
+    const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
+    f.views = writeLightmapOutputs(out, in.loaded.scene, cells, in.atlas, s.radiosity, {emissive, texelCells},
+                                   ctx, o.views)
+                  .views;
   }
-
-  nlohmann::json timings = nlohmann::json::object();
-  for (const Context::Timing& t : ctx.timings()) timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const EnergyTotals& e = solved.energy;
-  nlohmann::json report = {{"method", o.method},
-                           {"scene", o.scene},
-                           {"seconds", seconds},
-                           {"solve_seconds", solved.seconds},
-                           {"texels", atlas.validTexels()},
-                           {"shots", solved.shots},
-                           {"unshot_fraction", solved.unshotFraction},
-                           {"unshot_target", solverParams.unshotFraction},
-                           {"cells", o.method == "cells" ? graph.cells.size() : size_t(1)},
-                           {"portals", o.method == "cells" ? graph.portals.size() : size_t(0)},
-                           {"visibility", visibilityName(solverParams.visibility)},
-                           {"item_buffer", solverParams.itemBuffer},
-                           {"regions", solverParams.maxRegions},
-                           {"strong_shot_regions", solverParams.strongShotRegions},
-                           {"strong_shot_fraction", solverParams.strongShotFraction},
-                           {"region_size", solverParams.regionSize},
-                           {"atlas",
-                            {{"width", atlas.width},
-                             {"height", atlas.height},
-                             {"patches", atlas.patches.size()},
-                             {"texels_per_quad", atlasParams.texelsPerQuad},
-                             {"density", atlasParams.texelsPerQuad > 0 ? 0.0f : atlasParams.density}}},
-                           {"triangles", loaded.scene.triangles.size()},
-                           {"quads", quads.quads.size()},
-                           {"renderer", gl->renderer()},
-                           {"gl_version", gl->version()},
-                           {"egl_platform", gl->platform()},
-                           {"timings", timings},
-                           {"energy",
-                            {{"emitted_w", e.emitted},
-                             {"shot_w", e.shot},
-                             {"received_w", e.received},
-                             {"absorbed_w", e.absorbed},
-                             {"unshot_w", e.unshot},
-                             {"escaped_w", e.escaped()}}},
-                           {"views", views},
-                           {"warnings", ctx.warnings()}};
-  if (o.method == "cells") {
-    report["energy"].erase("shot_w");
-    report["energy"].erase("received_w");
-    report["rounds"] = cellSolved.rounds;
-    report["jobs"] = o.jobs;
-    report["portal_mode"] = o.portals;
-    report["max_cell_texels"] = cellSolved.maxCellTexels;
-    nlohmann::json cells = nlohmann::json::array(), portals = nlohmann::json::array();
-    for (const CellEnergy& c : cellSolved.cells)
-      cells.push_back({{"name", c.name},
-                       {"emitted_w", c.emitted},
-                       {"received_w", c.received},
-                       {"absorbed_w", c.absorbed},
-                       {"sent_w", c.sent},
-                       {"unshot_w", c.unshot},
-                       {"escaped_w", c.escaped},
-                       {"solves", c.solves},
-                       {"written", c.written},
-                       {"shots", c.shots},
-                       {"texels", c.texels},
-                       {"solve_seconds", c.seconds}});
-    for (const PortalEnergy& pe : cellSolved.portals) {
-      // By name: an on-demand bake solves only some of the graph's portals.
-      const auto q = std::find_if(graph.portals.begin(), graph.portals.end(),
-                                  [&](const PortalQuad& g) { return g.name == pe.name; });
-      portals.push_back({{"name", pe.name},
-                         {"cell_a", graph.cells[q->cellA].name},
-                         {"cell_b", graph.cells[q->cellB].name},
-                         {"a_to_b_w", pe.aToB},
-                         {"b_to_a_w", pe.bToA}});
-    }
-    report["cell_energy"] = cells;
-    report["portal_energy"] = portals;
-    report["on_demand"] = onDemandReport(o, onDemand, graph, atlas);
-  }
-  writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
-  writeBakeReportPage(out, "bake of " + o.scene, report, loaded.scene,
-                      o.method == "cells" ? graph : loaded.cells, atlas, solved.radiosity);
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::json report = bakeReport(o, in, s, *gl, f, ctx);
+  writeReport(out, report);
+  writeBakeReportPage(out, "bake of " + o.scene, report, in.loaded.scene, cells, in.atlas, s.radiosity);
   out.commit();
   if (!o.quiet) {
-    std::cout << o.output << ": " << atlas.validTexels() << " texels, " << solved.shots << " shots, unshot "
-              << solved.unshotFraction * 100.0 << " %, " << seconds << " s\n";
+    std::cout << o.output << ": " << in.atlas.validTexels() << " texels, " << s.shots << " shots, unshot "
+              << s.unshotFraction * 100.0 << " %, " << f.seconds << " s\n";
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
+}
+
+void addOnDemandOptions(CLI::App& sub, BakeOptions& o) {
+  auto* only =
+      sub.add_option("--only-cells", o.onlyCells,
+                     "With --method cells: bake only these cells (comma-separated names); the others "
+                     "act through their portals (see --boundary)");
+  auto* around =
+      sub.add_option("--around", o.around,
+                     "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
+                     "within --depth portals of it");
+  only->excludes(around);
+  sub.add_option("--depth", o.depth, "With --around: portals away from the point's cell")
+      ->check(CLI::Range(0, 1000000))
+      ->needs(around)
+      ->capture_default_str();
+  addBoundaryOption(sub, o.boundary);
 }
 
 }  // namespace
@@ -350,80 +342,17 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   sub->add_option("--cells", o->cells,
                   "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
-                  "a decompose output folder, or auto (the automatic decomposition)")
+                  "a decompose output folder, or auto (the automatic decomposition, with the decomposition "
+                  "options below)")
       ->capture_default_str();
-  sub->add_option("--portals", o->portals,
-                  "Portal light with --method cells: diffuse (re-emits the irradiance as a Lambertian area "
-                  "light) or directional (keeps the directions the light arrived with)")
-      ->check(CLI::IsMember({"diffuse", "directional"}))
-      ->capture_default_str();
-  sub->add_option("--max-rounds", o->maxRounds, "With --method cells: solve rounds (syncs) at most")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  auto* only =
-      sub->add_option("--only-cells", o->onlyCells,
-                      "With --method cells: bake only these cells (comma-separated names); the others "
-                      "act through their portals (see --boundary)");
-  auto* around =
-      sub->add_option("--around", o->around,
-                      "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
-                      "within --depth portals of it");
-  only->excludes(around);
-  sub->add_option("--depth", o->depth, "With --around: portals away from the point's cell")
-      ->check(CLI::Range(0, 1000000))
-      ->needs(around)
-      ->capture_default_str();
-  sub->add_option("--boundary", o->boundary,
-                  "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their "
-                  "lamps and bounces light the baked cells through the portals; not written) or dark")
-      ->check(CLI::IsMember({"coarse", "dark"}))
-      ->capture_default_str();
-  sub->add_option("--jobs", o->jobs,
-                  "With --method cells: cells solved at once in a round, each on its own thread and OpenGL "
-                  "context (same result as 1)")
-      ->check(CLI::Range(1, 64))
-      ->capture_default_str();
-  auto* tpq = sub->add_option("--texels-per-quad", o->texelsPerQuad,
-                              "N×N texels per quad whatever its size (the thesis's mode)")
-                  ->check(CLI::Range(1, 4096));
-  auto* density = sub->add_option("--density", o->density, "Texels per metre along each patch edge")
-                      ->check(kPositive)
-                      ->capture_default_str();
-  tpq->excludes(density);
-  sub->add_option("--unshot", o->unshot, "Stop when this fraction of the emitted power is still unshot")
-      ->check(CLI::Range(1e-9, 0.999999))
-      ->capture_default_str();
-  sub->add_option("--max-shots", o->maxShots, "Stop after this many shots")
-      ->check(CLI::Range(1, 100000000))
-      ->capture_default_str();
-  sub->add_option("--visibility", o->visibility,
-                  "hemisphere: the thesis's one-pass item buffer; hemicube: five faces, exact straight edges")
-      ->check(CLI::IsMember({"hemisphere", "hemicube"}))
-      ->capture_default_str();
-  sub->add_option("--item-buffer", o->itemBuffer,
-                  "Item-buffer edge in pixels (hemicube: faces of half this edge)")
-      ->capture_default_str();
-  sub->add_option("--regions", o->regions,
-                  "Visibility regions per edge of a large shooter, each with its own item buffer: soft light "
-                  "through doors from large shooters, at up to N² item buffers per shot")
-      ->check(CLI::Range(1, 4))
-      ->capture_default_str();
-  sub->add_option("--strong-regions", o->strongRegions,
-                  "Visibility regions per edge for the strong shots, those carrying at least "
-                  "--strong-fraction of the emitted power (0: as --regions)")
-      ->check(CLI::Range(0, 4))
-      ->capture_default_str();
-  sub->add_option("--strong-fraction", o->strongFraction,
-                  "Share of the emitted power that makes a shot strong")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  sub->add_option("--region-size", o->regionSize, "Metres per visibility region along a shooter's edge")
-      ->check(CLI::Range(0.01f, 1000.0f))
-      ->capture_default_str();
-  sub->add_option("--view-size", o->viewSize,
-                  "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide, "
-                  "the camera's aspect)");
-  sub->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
+  addCellOptions(*sub, o->cellParams);
+  addOnDemandOptions(*sub, *o);
+  addAtlasOptions(*sub, o->atlas);
+  addSolverOptions(*sub, o->solver);
+  addDecomposeOptions(*sub, o->decompose);
+  addAmbientOption(*sub, o->noAmbient);
+  addViewOptions(*sub, o->views);
+  addLoadOptions(*sub, o->load);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
 }

@@ -33,7 +33,7 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 }
 
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
-                       const decomp::DecomposeParams& params, bool repair, Context& ctx) {
+                       const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx) {
   if (source == "none" || source.empty())
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
   if (source == "auto") {
@@ -52,7 +52,7 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     if (loaded.cells.empty()) throw InputError(path.string(), "has no cell:/portal: nodes");
     return loaded.cells;
   }
-  const LoadedScene other = loadScene(path.string(), LoadOptions{.repair = repair});
+  const LoadedScene other = loadScene(path.string(), load);
   return matchCellsToScene(loaded.scene, other, path.string(), ctx);
 }
 

@@ -27,6 +27,6 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 ///  - another glTF of the same scene: matchCellsToScene.
 /// Throws InputError("--cells", ...) for "none" or a missing file.
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
-                       const decomp::DecomposeParams& params, bool repair, Context& ctx);
+                       const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx);
 
 }  // namespace cpgi::cli

@@ -7,9 +7,11 @@
 
 #include "core/error.h"
 #include "core/quads.h"
-#include "radiosity/cell_solver.h"
-#include "radiosity/egl_context.h"
-#include "radiosity/metrics.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/ambient.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/metrics/metrics.h"
 
 namespace cpgi::cli {
 namespace {
@@ -37,8 +39,9 @@ bool sameAtlas(const LightmapAtlas& x, const LightmapAtlas& y) {
 // the decompositions differ in how light reaches the other surfaces (as `cpgi reference` does).
 std::vector<float> nonEmissiveArea(const LightmapAtlas& atlas) {
   std::vector<float> area = atlas.area;
+  const std::vector<float> lamp = emissiveMask(atlas);
   for (size_t i = 0; i < area.size(); ++i)
-    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f)))) area[i] = 0.0f;
+    if (lamp[i] > 0.0f) area[i] = 0.0f;
   return area;
 }
 
@@ -70,7 +73,10 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
   solve.atlas = params.atlas;
   solve.maxRounds = params.maxRounds;
   const Clock::time_point start = Clock::now();
-  CellSolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
+  SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
+  // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/gpu/ambient.h).
+  addAmbient(atlas, {}, glm::dvec3(solved.energy.unshot / 3.0),
+             cellChannel(atlas, cells.scene, cells.graph).values, cells.graph, solved.radiosity);
   const double seconds = secondsSince(start);
   radiosity = std::move(solved.radiosity);
   return {{"source", cells.source},
@@ -80,9 +86,9 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
           {"seconds", seconds},
           {"solve_seconds", solved.seconds},
           {"shots", solved.shots},
-          {"rounds", solved.rounds},
+          {"rounds", solved.perCell->rounds},
           {"unshot_fraction", solved.unshotFraction},
-          {"max_cell_texels", solved.maxCellTexels}};
+          {"max_cell_texels", solved.perCell->maxCellTexels}};
 }
 
 void addErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, const LightmapAtlas& atlas,
@@ -121,17 +127,16 @@ nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, cons
     addErrors(sideB, radiosityB, atlasB, refB, 1);
   }
 
-  nlohmann::json out = {
-      {"texels_per_quad", params.atlas.texelsPerQuad},
-      {"density", params.atlas.texelsPerQuad > 0 ? 0.0f : params.atlas.density},
-      {"unshot_target", params.solver.unshotFraction},
-      {"item_buffer", params.solver.itemBuffer},
-      {"visibility", visibilityName(params.solver.visibility)},
-      {"renderer", gl->renderer()},
-      {"same_atlas", shared},
-      {"references", references},
-      {"a", sideA},
-      {"b", sideB}};
+  nlohmann::json out = {{"texels_per_quad", params.atlas.texelsPerQuad},
+                        {"density", params.atlas.texelsPerQuad > 0 ? 0.0f : params.atlas.density},
+                        {"unshot_target", params.solver.unshotFraction},
+                        {"item_buffer", params.solver.itemBuffer},
+                        {"visibility", visibilityName(params.solver.visibility)},
+                        {"renderer", gl->renderer()},
+                        {"same_atlas", shared},
+                        {"references", references},
+                        {"a", sideA},
+                        {"b", sideB}};
   out["difference_points"] = {
       {"rel_rmse", 100.0 * (sideA["rel_rmse"].get<double>() - sideB["rel_rmse"].get<double>())},
       {"rel_rmse_nonemissive",
@@ -141,8 +146,10 @@ nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, cons
 
 void printCellBakes(const nlohmann::json& bake) {
   const int tpq = bake["texels_per_quad"].get<int>();
-  if (tpq > 0) std::printf("bake: %dx%d texels per quad", tpq, tpq);
-  else std::printf("bake: %g texels per metre", bake["density"].get<double>());
+  if (tpq > 0)
+    std::printf("bake: %dx%d texels per quad", tpq, tpq);
+  else
+    std::printf("bake: %g texels per metre", bake["density"].get<double>());
   std::printf(", unshot %g, --method cells, %s\n", bake["unshot_target"].get<double>(),
               bake["renderer"].get<std::string>().c_str());
   for (const auto& r : bake["references"])
@@ -151,13 +158,15 @@ void printCellBakes(const nlohmann::json& bake) {
                 r["seconds"].get<double>(), 100.0 * r["noise"].get<double>(),
                 100.0 * r["noise_nonemissive"].get<double>());
   if (!bake["same_atlas"].get<bool>())
-    std::printf("(the scenes differ, e.g. triangles split on portal planes: each bake has its own reference)\n");
+    std::printf(
+        "(the scenes differ, e.g. triangles split on portal planes: each bake has its own reference)\n");
   for (const char* key : {"a", "b"}) {
     const auto& s = bake[key];
-    std::printf("  %s %-24s %d cells  %7.2f s  %6d shots  %2d rounds  rel RMSE %.3f%% (%.3f%% without lamps)\n",
-                key[0] == 'a' ? "A" : "B", s["source"].get<std::string>().c_str(), s["cells"].get<int>(),
-                s["seconds"].get<double>(), s["shots"].get<int>(), s["rounds"].get<int>(),
-                100.0 * s["rel_rmse"].get<double>(), 100.0 * s["rel_rmse_nonemissive"].get<double>());
+    std::printf(
+        "  %s %-24s %d cells  %7.2f s  %6d shots  %2d rounds  rel RMSE %.3f%% (%.3f%% without lamps)\n",
+        key[0] == 'a' ? "A" : "B", s["source"].get<std::string>().c_str(), s["cells"].get<int>(),
+        s["seconds"].get<double>(), s["shots"].get<int>(), s["rounds"].get<int>(),
+        100.0 * s["rel_rmse"].get<double>(), 100.0 * s["rel_rmse_nonemissive"].get<double>());
   }
   const auto& d = bake["difference_points"];
   std::printf("  A - B: %+.3f points of rel RMSE (%+.3f without lamps)\n", d["rel_rmse"].get<double>(),

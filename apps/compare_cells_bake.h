@@ -1,5 +1,5 @@
 // `cpgi compare-cells --bake`: what two decompositions of one scene change in the light. Each is baked
-// with `--method cells` (radiosity/cell_solver.h) on the scene's global atlas, and both are measured
+// with `--method cells` (radiosity/cells/cell_solver.h) on the scene's global atlas, and both are measured
 // against one path-traced reference on that atlas (design.md §5).
 #pragma once
 
@@ -10,9 +10,9 @@
 #include "core/cell_graph.h"
 #include "core/context.h"
 #include "core/scene.h"
-#include "radiosity/atlas.h"
-#include "radiosity/gpu_solver.h"
-#include "radiosity/reference_tracer.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/reference/reference_tracer.h"
 
 namespace cpgi::cli {
 

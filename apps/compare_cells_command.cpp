@@ -15,6 +15,7 @@
 #include "apps/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_cells_bake.h"
+#include "apps/options.h"
 #include "core/error.h"
 #include "core/scene_io.h"
 #include "decomposition/compare.h"
@@ -25,14 +26,14 @@ namespace {
 
 struct CompareOptions {
   std::string scene, a, b;
-  double voxel = 0.0;
+  decomp::DecomposeParams decompose;  ///< voxelSize 0: as decompose chooses
   bool json = false;
   bool bake = false;
-  int texelsPerQuad = 0;
-  float density = AtlasParams{}.density;
-  double unshot = SolverParams{}.unshotFraction;
-  int itemBuffer = SolverParams{}.itemBuffer;
-  int spp = 64;
+  CellBakeComparison bakeParams = [] {
+    CellBakeComparison p;
+    p.reference.spp = 64;  // a check of two decompositions, not a reference to keep
+    return p;
+  }();
 };
 
 struct Labelled {
@@ -44,12 +45,13 @@ struct Labelled {
 };
 
 Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std::string& scenePath,
-                   const decomp::VoxelSpace& space, bool forBake, Context& ctx) {
+                   const decomp::VoxelSpace& space, const decomp::DecomposeParams& params, bool forBake,
+                   Context& ctx) {
   Labelled out;
   out.source = what;
   out.bake.source = what;
   if (what == "auto") {
-    decomp::DecomposeParams p;
+    decomp::DecomposeParams p = params;
     p.voxelSize = space.frame.voxel;
     p.sourceName = scenePath;
     const auto start = std::chrono::steady_clock::now();
@@ -76,7 +78,7 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   if (forBake) {
     LoadedScene copy = scene;
     out.bake.source = path;
-    out.bake.graph = resolveCells(path, scenePath, copy, decomp::DecomposeParams{}, true, ctx);
+    out.bake.graph = resolveCells(path, scenePath, copy, params, LoadOptions{.repair = true}, ctx);
     out.bake.scene = std::move(copy.scene);
   }
   return out;
@@ -84,14 +86,14 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
 
 int runCompare(const CompareOptions& o) {
   LoadedScene loaded = loadScene(o.scene, LoadOptions{true});
-  decomp::DecomposeParams params;
-  params.voxelSize = o.voxel;
-  if (o.voxel < 0.0 || o.voxel > 10.0) throw InputError("--voxel", "must be in (0, 10] metres (0 chooses from the scene)");
+  const decomp::DecomposeParams& params = o.decompose;
+  if (params.voxelSize < 0.0 || params.voxelSize > 10.0)
+    throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   const double h = decomp::chooseVoxelSize(loaded.scene, params);
   const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx);
-  const Labelled a = labelsFor(o.a, loaded, o.scene, space, o.bake, ctx);
-  const Labelled b = labelsFor(o.b, loaded, o.scene, space, o.bake, ctx);
+  const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.bake, ctx);
+  const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.bake, ctx);
 
   size_t both = 0, inside = 0;
   for (size_t i = 0; i < space.space.size(); ++i) {
@@ -148,15 +150,7 @@ int runCompare(const CompareOptions& o) {
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
   if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
   if (o.b == "auto") j["decompose_seconds_b"] = b.decomposeSeconds;
-  if (o.bake) {
-    CellBakeComparison params;
-    params.atlas.texelsPerQuad = o.texelsPerQuad;
-    params.atlas.density = o.density;
-    params.solver.unshotFraction = o.unshot;
-    params.solver.itemBuffer = o.itemBuffer;
-    params.reference.spp = o.spp;
-    j["bake"] = compareCellBakes(a.bake, b.bake, params, ctx);
-  }
+  if (o.bake) j["bake"] = compareCellBakes(a.bake, b.bake, o.bakeParams, ctx);
   j["warnings"] = ctx.warnings();
 
   if (o.json) {
@@ -194,7 +188,7 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("scene", o->scene, "The scene both decompositions are of")->required();
   cmd->add_option("a", o->a, "Candidate decomposition")->required();
   cmd->add_option("b", o->b, "Reference decomposition")->required();
-  cmd->add_option("--voxel", o->voxel, "Voxel edge, metres; 0 = as decompose chooses")->capture_default_str();
+  addDecomposeOptions(*cmd, o->decompose);
   cmd->add_flag("--json", o->json,
                 "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m; with "
                 "--bake, a bake object: a, b, references, difference_points)");
@@ -202,27 +196,10 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
       "--bake", o->bake,
       "Also bake SCENE with A's and with B's cells (bake --method cells) and give each bake's seconds, shots, "
       "rounds and relative RMSE against a path-traced reference on the same atlas");
-  auto* tpq = cmd->add_option("--texels-per-quad", o->texelsPerQuad,
-                              "With --bake: N x N texels per quad whatever its size")
-                  ->check(CLI::Range(1, 4096))
-                  ->needs(bake);
-  auto* density = cmd->add_option("--density", o->density, "With --bake: texels per metre along each patch edge")
-                      ->check(kPositive)
-                      ->capture_default_str()
-                      ->needs(bake);
-  tpq->excludes(density);
-  cmd->add_option("--unshot", o->unshot, "With --bake: stop when this fraction of the emitted power is unshot")
-      ->check(CLI::Range(1e-9, 0.999999))
-      ->capture_default_str()
-      ->needs(bake);
-  cmd->add_option("--item-buffer", o->itemBuffer, "With --bake: item-buffer edge in pixels")
-      ->check(CLI::Range(16, 8192))
-      ->capture_default_str()
-      ->needs(bake);
-  cmd->add_option("--spp", o->spp, "With --bake: reference paths per texel (noise falls as 1/sqrt(spp))")
-      ->check(CLI::Range(2, 1 << 20))
-      ->capture_default_str()
-      ->needs(bake);
+  const OptionScope withBake{.needs = bake};
+  addAtlasOptions(*cmd, o->bakeParams.atlas, withBake);
+  addSolverOptions(*cmd, o->bakeParams.solver, withBake);
+  addSppOption(*cmd, o->bakeParams.reference.spp, withBake);
   cmd->callback([o, &selected] { selected = [o] { return runCompare(*o); }; });
 }
 

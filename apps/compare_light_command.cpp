@@ -1,5 +1,6 @@
 // `cpgi compare-light A_DIR B_DIR`: the accuracy of lightmap A against lightmap B (the reference) on the
-// same atlas, in the metric of design.md §5; with --report DIR, also report.html with the error per texel.
+// same atlas, in the metric of design.md §5; with --report DIR, also report.html with the error per texel
+// and per cell.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,11 +13,14 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/compare_light_cells.h"
+#include "apps/options.h"
 #include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "radiosity/metrics.h"
-#include "radiosity/texel_sample.h"
+#include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/metrics/metrics.h"
+#include "radiosity/metrics/texel_sample.h"
 
 namespace cpgi::cli {
 
@@ -36,6 +40,7 @@ struct Lightmap {
   std::vector<float> emissive;      ///< 1 for lamp texels; only in `cpgi reference` output, else empty
   std::vector<float> sigma;         ///< per-texel standard error; only in `cpgi reference` output
   std::vector<float> sampleWeight;  ///< only in a sparse reference (`--texels`): > 0 on traced texels
+  std::vector<float> cell;          ///< per texel its cell index (cell_metrics.h); empty in older outputs
 };
 
 Lightmap readLightmap(const std::string& dir) {
@@ -54,6 +59,8 @@ Lightmap readLightmap(const std::string& dir) {
       map.sigma = std::move(c.values);
     else if (c.name == "sample_weight")
       map.sampleWeight = std::move(c.values);
+    else if (c.name == kCellChannel)
+      map.cell = std::move(c.values);
   if (map.area.size() != map.rgb.pixels.size())
     throw InputError(path.string(), "no per-texel \"area\" channel (not written by cpgi bake or reference)");
   return map;
@@ -115,6 +122,21 @@ int runCompareLight(const CompareLightOptions& o) {
           sampledRelRmseError(a.rgb.pixels, b.rgb.pixels, unweighted, b.sampleWeight, valid);
   }
 
+  // Per cell, without the lamps: each texel's cell from the reference, else from A (same atlas).
+  const Lightmap& cellSource = !b.cell.empty() ? b : a;
+  std::vector<std::string> names = readCellNames(&cellSource == &b ? o.b : o.a);
+  if (names.empty()) names = readCellNames(&cellSource == &b ? o.a : o.b);
+  std::vector<CellError> cells;
+  if (!cellSource.cell.empty() && !names.empty()) {
+    std::vector<float> cellWeight = area;
+    if (emissive.size() == area.size())
+      for (size_t i = 0; i < area.size(); ++i)
+        if (emissive[i] > 0.5f) cellWeight[i] = 0.0f;
+    cells = compareCells(a.rgb.pixels, b.rgb.pixels, cellWeight, b.sigma, cellSource.cell, b.sampleWeight,
+                         valid, names);
+  }
+  const std::optional<size_t> worst = worstCell(cells);
+
   auto orNull = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
@@ -134,6 +156,8 @@ int runCompareLight(const CompareLightOptions& o) {
   j["rel_rmse_nonemissive_sampling_error"] =
       reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
   j["reference_noise_nonemissive"] = orNull(noiseReflectors);
+  j["cells"] = cellsJson(cells);
+  j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
   if (!o.report.empty()) {
     // The heat map leaves out the lamps as the figures without lamps do, and untraced texels of a sample.
     std::vector<float> weight = area;
@@ -166,6 +190,7 @@ int runCompareLight(const CompareLightOptions& o) {
     std::printf("rel_mean_error w/o lamps   %+.4f%%\n", 100.0 * reflectors->relMeanError);
   }
   if (noiseReflectors) std::printf("reference noise w/o lamps  %.4f%%\n", 100.0 * *noiseReflectors);
+  if (!cells.empty()) printCells(cells);
   if (noise && e.relRmse < 2.0 * *noise)
     std::printf("note: rel_rmse is within 2x the reference's noise; trace the reference with more --spp\n");
   return 0;
@@ -184,9 +209,7 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
       ->required();
   cmd->add_flag("--json", opts->json,
                 "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
-  cmd->add_option("--report", opts->report,
-                  "Also write DIR/report.html: A's baked.glb in 3D with a per-texel error heat map "
-                  "against B");
+  addReportOption(*cmd, opts->report);
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

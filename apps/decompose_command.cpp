@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
@@ -22,15 +23,13 @@ namespace {
 struct DecomposeOptions {
   std::string scene;
   std::string out;
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
   bool json = false;
   decomp::DecomposeParams params;
 };
 
 int runDecompose(DecomposeOptions o) {
-  LoadOptions load;
-  load.repair = o.repair;
-  LoadedScene loaded = loadScene(o.scene, load);
+  LoadedScene loaded = loadScene(o.scene, o.load);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
   if (!loaded.cells.empty())
     std::cerr << "cpgi: " << o.scene << ": ignoring its " << loaded.cells.cells.size()
@@ -82,26 +81,11 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
       "Automatic cells and portals: voxelize, watershed of the distance to the geometry, merge basins that "
       "meet at no real constriction, fit one quad per opening");
   cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
-  cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
-  cmd->add_option("--voxel", o->params.voxelSize,
-                  "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))")
-      ->capture_default_str();
-  cmd->add_option("--seal", o->params.sealRadius,
-                  "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel wide")
-      ->capture_default_str();
-  cmd->add_option("--saddle-ratio", o->params.merge.saddleRatio,
-                  "Merge two basins when saddle / smaller peak exceeds this (higher keeps more portals)")
-      ->capture_default_str();
-  cmd->add_option("--min-depth", o->params.merge.minDepth,
-                  "Merge when smaller peak - saddle is below this, metres (furniture, pillars)")
-      ->capture_default_str();
-  cmd->add_option("--opening-ratio", o->params.merge.openingRatio,
-                  "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 disables")
-      ->capture_default_str();
-  cmd->add_option("--min-cell-volume", o->params.merge.minCellVolume,
-                  "Cells smaller than this, m3, join a neighbour")
-      ->capture_default_str();
-  cmd->add_flag("--repair", o->repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd->add_option("-o,--out", o->out,
+                  "Output folder for cells.glb, cells.json, decomposition.png, report.html")
+      ->required();
+  addDecomposeOptions(*cmd, o->params);
+  addLoadOptions(*cmd, o->load);
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }

@@ -1,10 +1,11 @@
-// `cpgi info SCENE [--json] [--repair]`: what the loader sees in a scene, and what is wrong with it.
+// `cpgi info SCENE [--json] [--repair] [--allow-outside-files]`: what the loader sees in a scene, and what is wrong with it.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/cell_json.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
@@ -15,7 +16,7 @@ namespace {
 struct InfoOptions {
   std::string scene;
   bool json = false;
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
 };
 
 std::string fmt(const char* format, double a, double b = 0, double c = 0) {
@@ -114,12 +115,10 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
       app.add_subcommand("info", "Describe a scene: triangles, quads, materials, emitters, cameras, cells");
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
-  sub->add_flag("--repair", options->repair, "Drop zero-area and duplicate triangles instead of failing");
+  addLoadOptions(*sub, options->load);
   sub->callback([options, &selected] {
     selected = [options] {
-      LoadOptions load;
-      load.repair = options->repair;
-      const LoadedScene loaded = loadScene(options->scene, load);
+      const LoadedScene loaded = loadScene(options->scene, options->load);
       const nlohmann::json info = summarise(loaded);
       if (options->json) {
         std::cout << info.dump(2) << "\n";

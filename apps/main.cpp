@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
@@ -29,7 +30,8 @@ int main(int argc, char** argv) {
   try {
     return selected ? selected() : 1;
   } catch (const cpgi::InputError& e) {
-    std::cerr << "cpgi: " << e.what() << "\n";
+    // Libraries name parameters ("voxel size"); the user typed flags (--voxel).
+    std::cerr << "cpgi: " << cpgi::cli::userMessage(e) << "\n";
   } catch (const cpgi::SystemError& e) {
     std::cerr << "cpgi: " << e.what() << "\n";
   } catch (const std::bad_alloc&) {

@@ -1,7 +1,5 @@
 // `cpgi reference SCENE -o DIR`: the independent path-traced reference on the same atlas as `cpgi bake`,
 // written in the same files, so that `cpgi compare-light` can measure a bake against it.
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,17 +10,19 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "apps/lightmap_report.h"
+#include "apps/options.h"
 #include "apps/report_page.h"
-#include "apps/view_size.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
-#include "radiosity/atlas.h"
-#include "radiosity/lightmap_output.h"
-#include "radiosity/reference_tracer.h"
-#include "radiosity/texel_sample.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/lightmap_output.h"
+#include "radiosity/metrics/texel_sample.h"
+#include "radiosity/reference/reference_tracer.h"
 
 namespace cpgi::cli {
 
@@ -31,15 +31,13 @@ namespace {
 struct ReferenceOptions {
   std::string scene;
   std::string outDir;
-  int texelsPerQuad = 0;
-  float density = AtlasParams{}.density;
-  int spp = 1024;
+  AtlasParams atlas;
+  ReferenceParams trace{.spp = 1024};
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
-  uint64_t seed = ReferenceParams{}.seed;
-  bool repair = false;
+  LoadOptions load;  ///< --repair, --allow-outside-files
+  ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
-  std::string viewSize;  ///< "W×H" of the view pictures, "" for 640 × the camera's aspect
 };
 
 /// A sample's lightmap.exr, alone: R, G, B = B on the traced texels and NaN on the other valid texels, so
@@ -58,133 +56,139 @@ void writeSparseLightmap(OutputDir& out, const LightmapAtlas& atlas, const std::
   writeExr(out.file("lightmap.exr").string(), image, channels);
 }
 
-int runReference(const ReferenceOptions& o) {
-  const ViewParams viewSize = parseViewSize(o.viewSize);  // checked before any work
-  const auto start = std::chrono::steady_clock::now();
-  if (o.spp < 2)
-    throw InputError("--spp", "needs at least 2 samples per texel, got " + std::to_string(o.spp));
-  if (o.texelsPerQuad < 0) throw InputError("--texels-per-quad", "must be positive");
-  if (!(o.density > 0.0f)) throw InputError("--density", "must be positive");
-  if (o.texels < 0 || (o.texels == 0 && o.texelsGiven))
-    throw InputError("--texels", "must be at least 1 (leave it out to trace every texel), got " +
-                                     std::to_string(o.texels));
+// Step 1: which texels to trace: all of them, or a stratified sample (--texels), with the weight of each
+// in the metric: its area times, on a sample, the number of texels it stands for (0 where not traced),
+// so that the noise estimates the full reference's.
+struct TexelChoice {
+  bool sparse = false;
+  TexelSample sample;
+  ExrChannel sampleWeight{"sample_weight", {}};
+  std::vector<float> weightedArea;
+};
 
-  Context ctx;
-  const bool showProgress = !o.quiet && ::isatty(STDERR_FILENO);
-  if (showProgress)
-    ctx.setProgress([](const std::string& stage, double fraction, const std::string& status) {
-      std::fprintf(stderr, "\r%s %3d%% %s   ", stage.c_str(), int(100.0 * fraction + 0.5), status.c_str());
-      if (fraction >= 1.0) std::fputc('\n', stderr);
-    });
-
-  LoadOptions loadOptions;
-  loadOptions.repair = o.repair;
-  const LoadedScene loaded = loadScene(o.scene, loadOptions);
-  for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
-  const Scene& scene = loaded.scene;
-
-  OutputDir out(o.outDir);
-  AtlasParams atlasParams;
-  atlasParams.texelsPerQuad = o.texelsPerQuad;
-  atlasParams.density = o.density;
-  const QuadSet quads = findQuads(scene);
-  const LightmapAtlas atlas = buildAtlas(scene, quads, atlasParams, ctx);
-
+TexelChoice chooseTexels(const ReferenceOptions& o, const LightmapAtlas& atlas, Context& ctx) {
+  TexelChoice c;
   // A sample as large as the atlas is the full reference: traced, written and reported as one.
   const size_t valid = atlas.validTexels();
-  const bool sparse = o.texelsGiven && size_t(o.texels) < valid;
-  if (o.texelsGiven && !sparse) {
+  c.sparse = o.texelsGiven && size_t(o.texels) < valid;
+  if (o.texelsGiven && !c.sparse) {
     ctx.warn("--texels " + std::to_string(o.texels) + " is not below the atlas's " + std::to_string(valid) +
              " valid texels: all are traced");
     if (!o.quiet) std::cerr << "cpgi: warning: " << ctx.warnings().back() << "\n";
   }
-  TexelSample sample;
-  if (sparse) sample = sampleTexels(valid, size_t(o.texels), o.seed);
-
-  ReferenceParams params;
-  params.spp = o.spp;
-  params.seed = o.seed;
-  const auto solveStart = std::chrono::steady_clock::now();
-  const ReferenceResult result = traceReference(scene, atlas, params, ctx, sample.ranks);
-  const double solveSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
-
-  // The texels' weights in the metric: their area, times, on a sample, the number of texels each one
-  // stands for (0 where not traced), so that the noise below estimates the full reference's.
-  std::vector<float> weightedArea = atlas.area;
-  ExrChannel sampleWeight{"sample_weight", std::vector<float>(atlas.texelCount(), 0.0f)};
-  if (sparse) {
+  if (c.sparse) c.sample = sampleTexels(valid, size_t(o.texels), o.trace.seed);
+  c.weightedArea = atlas.area;
+  c.sampleWeight.values.assign(atlas.texelCount(), 0.0f);
+  if (c.sparse) {
     // One walk in atlas order, ranks increasing: no rank-to-texel table (19.6 M entries at seed3 128²).
     size_t rank = 0, k = 0;
-    for (size_t i = 0; i < atlas.texelCount() && k < sample.ranks.size(); ++i)
-      if (atlas.patch[i] >= 0 && rank++ == sample.ranks[k]) sampleWeight.values[i] = sample.weights[k++];
-    for (size_t i = 0; i < atlas.texelCount(); ++i) weightedArea[i] *= sampleWeight.values[i];
+    for (size_t i = 0; i < atlas.texelCount() && k < c.sample.ranks.size(); ++i)
+      if (atlas.patch[i] >= 0 && rank++ == c.sample.ranks[k])
+        c.sampleWeight.values[i] = c.sample.weights[k++];
+    for (size_t i = 0; i < atlas.texelCount(); ++i) c.weightedArea[i] *= c.sampleWeight.values[i];
   }
-  const double noise = relativeStandardError(result, weightedArea);
-  // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
-  // given over the texels that do not emit, where the solvers actually differ.
-  ExrChannel emissive{"emissive", std::vector<float>(atlas.texelCount(), 0.0f)};
-  std::vector<float> reflectorArea = weightedArea;
-  for (size_t i = 0; i < atlas.texelCount(); ++i)
-    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f))))
-      emissive.values[i] = 1.0f, reflectorArea[i] = 0.0f;
-  const double noiseNonEmissive = relativeStandardError(result, reflectorArea);
+  return c;
+}
 
-  ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
-  for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
-  LightmapOutputs written;
+// Step 2: the reference's own figures beside report.json's common keys.
+struct ReferenceFigures {
+  double solveSeconds = 0.0, noise = 0.0, noiseNonEmissive = 0.0;
+  size_t traced = 0;
+};
+
+nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loaded, const QuadSet& quads,
+                               const LightmapAtlas& atlas, const ReferenceResult& result,
+                               const ReferenceFigures& f, const LightmapOutputs& written, double seconds,
+                               const Context& ctx) {
+  LightmapRun run{.method = "reference",
+                  .scene = o.scene,
+                  .seconds = seconds,
+                  .solveSeconds = f.solveSeconds,
+                  .atlas = &atlas,
+                  .atlasParams = o.atlas,
+                  .triangles = loaded.scene.triangles.size(),
+                  .quads = quads.quads.size(),
+                  .views = written.views,
+                  .cellNames = cellNames(loaded.cells)};
+  nlohmann::json report = lightmapReport(run, ctx);
+  report["texels_traced"] = f.traced;
+  report["atlas_width"] = atlas.width;
+  report["atlas_height"] = atlas.height;
+  report["patches"] = atlas.patches.size();
+  report["texels_per_quad"] = o.atlas.texelsPerQuad;
+  report["density"] = o.atlas.texelsPerQuad > 0 ? 0.0f : o.atlas.density;
+  report["spp"] = result.spp;
+  report["seed"] = o.trace.seed;
+  report["rays"] = result.rays;
+  report["noise"] = f.noise;
+  report["noise_nonemissive"] = f.noiseNonEmissive;
+  return report;
+}
+
+void printSummary(const ReferenceOptions& o, const ReferenceFigures& f, bool sparse, size_t valid, int spp,
+                  double seconds) {
+  if (o.quiet) return;
   if (sparse)
-    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive}, sampleWeight);
-  else
-    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity, {sigma, emissive}, ctx,
-                                   viewSize);
-  const size_t traced = sparse ? sample.ranks.size() : valid;
-
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  nlohmann::json report = {
-      {"method", "reference"},
-      {"scene", o.scene},
-      {"seconds", seconds},
-      {"solve_seconds", solveSeconds},
-      {"texels", valid},
-      {"texels_traced", traced},
-      {"atlas_width", atlas.width},
-      {"atlas_height", atlas.height},
-      {"patches", atlas.patches.size()},
-      {"texels_per_quad", o.texelsPerQuad},
-      {"density", o.texelsPerQuad > 0 ? 0.0f : o.density},
-      {"spp", result.spp},
-      {"seed", o.seed},
-      {"rays", result.rays},
-      {"noise", noise},
-      {"noise_nonemissive", noiseNonEmissive},
-      {"cells", 1},
-      {"portals", 0},
-      {"shots", 0},
-      {"unshot_fraction", 0.0},
-      {"views", written.views},
-      {"warnings", ctx.warnings()},
-  };
-  nlohmann::json timings = nlohmann::json::array();
-  for (const Context::Timing& t : ctx.timings())
-    timings.push_back({{"stage", t.stage}, {"seconds", t.seconds}});
-  report["timings"] = timings;
-  writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
-  if (!sparse)
-    writeBakeReportPage(out, "reference of " + o.scene, report, scene, loaded.cells, atlas, result.radiosity,
-                        "reference");
-  out.commit();
-
-  if (!o.quiet && sparse)
     std::printf(
         "reference: %zu of %zu texels traced (a sample, marked in lightmap.exr; no baked.glb or views), %d "
         "spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
-        traced, valid, result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds,
+        f.traced, valid, spp, 100.0 * f.noise, 100.0 * f.noiseNonEmissive, seconds, f.solveSeconds,
         o.outDir.c_str());
-  else if (!o.quiet)
+  else
     std::printf(
         "reference: %zu texels, %d spp, noise %.3f%% (%.3f%% without lamps), %.1f s (trace %.1f s) -> %s\n",
-        valid, result.spp, 100.0 * noise, 100.0 * noiseNonEmissive, seconds, solveSeconds, o.outDir.c_str());
+        valid, spp, 100.0 * f.noise, 100.0 * f.noiseNonEmissive, seconds, f.solveSeconds, o.outDir.c_str());
+}
+
+int runReference(const ReferenceOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  if (o.texels < 0 || (o.texels == 0 && o.texelsGiven))
+    throw InputError("--texels", "must be at least 1 (leave it out to trace every texel), got " +
+                                     std::to_string(o.texels));
+  Context ctx;
+  ctx.setProgress(progressPrinter(o.quiet));
+  const LoadedScene loaded = loadScene(o.scene, o.load);
+  for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
+  const Scene& scene = loaded.scene;
+
+  OutputDir out(o.outDir);
+  const QuadSet quads = findQuads(scene);
+  const LightmapAtlas atlas = buildAtlas(scene, quads, o.atlas, ctx);
+  const TexelChoice choice = chooseTexels(o, atlas, ctx);
+
+  ReferenceFigures f;
+  const auto solveStart = std::chrono::steady_clock::now();
+  const ReferenceResult result = traceReference(scene, atlas, o.trace, ctx, choice.sample.ranks);
+  f.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  f.noise = relativeStandardError(result, choice.weightedArea);
+  // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
+  // given over the texels that do not emit, where the solvers actually differ.
+  const ExrChannel emissive{"emissive", emissiveMask(atlas)};
+  std::vector<float> reflectorArea = choice.weightedArea;
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (emissive.values[i] > 0.0f) reflectorArea[i] = 0.0f;
+  f.noiseNonEmissive = relativeStandardError(result, reflectorArea);
+
+  ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
+  for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
+  // "cell": each texel's cell of the scene's own graph, for compare-light's per-cell figures.
+  const ExrChannel cells = cellChannel(atlas, scene, loaded.cells);
+  LightmapOutputs written;
+  if (choice.sparse)
+    writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, choice.sampleWeight);
+  else
+    written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity,
+                                   {sigma, emissive, cells}, ctx, o.views);
+  f.traced = choice.sparse ? choice.sample.ranks.size() : atlas.validTexels();
+
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::json report = referenceReport(o, loaded, quads, atlas, result, f, written, seconds, ctx);
+  writeReport(out, report);
+  if (!choice.sparse)  // a sample has no baked.glb to show
+    writeBakeReportPage(out, "reference of " + o.scene, report, scene, loaded.cells, atlas, result.radiosity,
+                        "reference");
+  out.commit();
+  printSummary(o, f, choice.sparse, atlas.validTexels(), result.spp, seconds);
   return 0;
 }
 
@@ -196,22 +200,18 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       "reference",
       "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
   cmd->add_option("SCENE", opts->scene, "Scene file (.glb, .gltf, .obj)")->required();
-  cmd->add_option("-o,--output", opts->outDir, "Output folder (lightmap.exr, report.json, baked.glb, view-*)")
+  cmd->add_option("-o,--output", opts->outDir,
+                  "Output folder (lightmap.exr, report.json, report.html, baked.glb, view-*)")
       ->required();
-  auto* tpq = cmd->add_option("--texels-per-quad", opts->texelsPerQuad,
-                              "N x N texels per quad whatever its size (the thesis's mode)");
-  auto* density = cmd->add_option("--density", opts->density, "Texels per metre along each patch edge")
-                      ->capture_default_str();
-  tpq->excludes(density);
-  cmd->add_option("--spp", opts->spp, "Paths per texel (noise falls as 1/sqrt(spp))")->capture_default_str();
-  cmd->add_option("--seed", opts->seed, "Random seed (same seed, same result)")->capture_default_str();
+  addAtlasOptions(*cmd, opts->atlas);
+  addSppOption(*cmd, opts->trace.spp);
+  cmd->add_option("--seed", opts->trace.seed, "Random seed (same seed, same result)")->capture_default_str();
   auto* texels =
       cmd->add_option("--texels", opts->texels,
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
-  cmd->add_option("--view-size", opts->viewSize,
-                  "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide, the camera's aspect)");
-  cmd->add_flag("--repair", opts->repair, "Drop zero-area and duplicate triangles instead of failing");
+  addViewOptions(*cmd, opts->views);
+  addLoadOptions(*cmd, opts->load);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

@@ -4,9 +4,9 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/html_report/html_report.h"
 #include "core/scene_io.h"
-#include "radiosity/cell_selection.h"
-#include "report/html_report.h"
+#include "radiosity/lightmap/cell_channel.h"
 
 namespace cpgi::cli {
 namespace {
@@ -23,7 +23,8 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   lightmap.width = atlas.width, lightmap.height = atlas.height;
   lightmap.radiosity = std::move(radiosity);
   lightmap.area = atlas.area;
-  if (!cells.empty()) lightmap.cellOfTexel = cellOfTexels(atlas, cells, scene.triangles.size());
+  if (!cells.empty())
+    for (const float c : cellChannel(atlas, scene, cells).values) lightmap.cellOfTexel.push_back(int(c));
   HtmlReportInput input;
   input.title = title;
   input.kind = kind;

@@ -1,5 +1,5 @@
-// report.html for the commands (report/html_report.h): gathers what a bake or a decomposition leaves in
-// its output folder and stages the page beside it, so it appears with the rest on commit.
+// report.html for the commands (core/html_report/html_report.h): gathers what a bake or a decomposition
+// leaves in its output folder and stages the page beside it, so it appears with the rest on commit.
 #pragma once
 
 #include <string>
@@ -12,7 +12,7 @@
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/scene.h"
-#include "radiosity/atlas.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
 

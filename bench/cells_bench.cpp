@@ -14,9 +14,9 @@
 #include <string>
 
 #include "core/quads.h"
-#include "radiosity/atlas.h"
-#include "radiosity/cell_selection.h"
-#include "radiosity/cell_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/cells/cell_solver.h"
 #include "scenes/seed_scenes.h"
 
 namespace {
@@ -68,13 +68,13 @@ int main(int argc, char** argv) {
 
   cpgi::Context wholeCtx;
   auto start = std::chrono::steady_clock::now();
-  const cpgi::CellSolveResult whole = cpgi::solveCells(seed.scene, seed.cells, atlas, params, gl, wholeCtx);
+  const cpgi::SolveResult whole = cpgi::solveCells(seed.scene, seed.cells, atlas, params, gl, wholeCtx);
   std::printf("whole cells solve: %.2f s, %d shots, %d rounds, %zu texels\n", seconds(start), whole.shots,
-              whole.rounds, atlas.validTexels());
+              whole.perCell->rounds, atlas.validTexels());
   std::map<std::string, double> stages;
   for (const auto& t : wholeCtx.timings()) stages[t.stage] += t.seconds;
   for (const auto& [stage, s] : stages) std::printf("#   %-26s %8.3f s\n", stage.c_str(), s);
-  for (const cpgi::CellEnergy& c : whole.cells)
+  for (const cpgi::CellEnergy& c : whole.perCell->cells)
     std::printf("#   cell %-4s %2d solves %5d shots %8zu texels %7.2f s (%.1f ms/shot)\n", c.name.c_str(),
                 c.solves, c.shots, c.texels, c.seconds, c.shots ? 1000.0 * c.seconds / c.shots : 0.0);
   if (!onDemand) return 0;
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     const cpgi::CellSelection sel = cpgi::selectCells(seed.cells, baked);
     cpgi::Context c;
     const auto t0 = std::chrono::steady_clock::now();
-    const cpgi::CellSolveResult r =
+    const cpgi::SolveResult r =
         cpgi::solveCellsOnDemand(seed.scene, seed.cells, sel, mode, atlas, params, gl, c);
     const double s = seconds(t0);
     double num = 0.0, den = 0.0;
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
       den += atlas.area[i] * glm::dot(glm::dvec3(whole.radiosity[i]), glm::dvec3(whole.radiosity[i]));
     }
     size_t texels = 0;
-    for (const cpgi::CellEnergy& e : r.cells) texels += e.texels;
+    for (const cpgi::CellEnergy& e : r.perCell->cells) texels += e.texels;
     auto names = [&](const std::vector<int>& cells) {
       std::string out;
       for (int k : cells) out += (out.empty() ? "" : ",") + seed.cells.cells[k].name;

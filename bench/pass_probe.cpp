@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/context.h"
-#include "radiosity/egl_context.h"
-#include "radiosity/gl.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gl.h"
 
 namespace {
 

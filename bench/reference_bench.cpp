@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/quads.h"
-#include "radiosity/atlas.h"
-#include "radiosity/reference_tracer.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/reference/reference_tracer.h"
 #include "scenes/seed_scenes.h"
 
 namespace {

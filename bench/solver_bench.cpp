@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/quads.h"
-#include "radiosity/atlas.h"
-#include "radiosity/gpu_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/gpu/gpu_solver.h"
 #include "scenes/seed_scenes.h"
 
 namespace {
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
       const cpgi::LightmapAtlas atlas = cpgi::buildAtlas(seed.scene, quads, ap, ctx);
       for (const std::string& m : modes) {
         cpgi::SolverParams p = base;
-        p.visibility = cpgi::parseVisibility(m);
+        p.visibility = m == "hemisphere" ? cpgi::Visibility::Hemisphere : cpgi::Visibility::Hemicube;
         cpgi::Context run;
         const cpgi::SolveResult res = cpgi::solveProgressive(seed.scene, atlas, p, gl, run);
         const double shotSeconds = res.seconds - res.setupSeconds;

@@ -1,11 +1,16 @@
 // glTF 2.0 (.glb, .gltf) → RawScene. tinygltf parses; everything it hands back is bounds-checked here
 // before use, because a fuzzed file must end in an InputError, never in a crash.
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
 #include <set>
 
+#include <stb_image.h>
 #include <tiny_gltf.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -13,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace cpgi::detail {
@@ -51,11 +57,77 @@ std::string checkGlbContainer(const std::string& path, const std::string& b) {
   return b.substr(20, jsonLength);
 }
 
+// glTF itself nests about 6 levels deep (asset → meshes → primitive → attributes …); extras and
+// extensions may add some. tinygltf converts the JSON recursively, so a file of 16,000 nested arrays
+// would overflow the stack there: the depth is counted first, in one pass without recursion.
+constexpr int kMaxJsonDepth = 64;
+
+void checkJsonDepth(const std::string& path, const std::string& text, const char* what) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;  // skips the escaped character, which may be a quote
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        throw InputError(path, std::string("invalid JSON ") + what + ": nested deeper than " +
+                                   std::to_string(kMaxJsonDepth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// tinygltf hands an image's bufferView to the image loader without checking that it lies inside its
+// buffer (a heap over-read). A buffer's data has exactly its declared byteLength once tinygltf accepts
+// it, so the declared numbers are checked here, before tinygltf runs.
+void checkImageViews(const std::string& path, const nlohmann::json& doc) {
+  if (!doc.is_object() || !doc.contains("images") || !doc["images"].is_array()) return;
+  auto unsignedAt = [](const nlohmann::json& object, const char* key,
+                       uint64_t fallback) -> std::optional<uint64_t> {
+    if (!object.is_object() || !object.contains(key)) return fallback;
+    const nlohmann::json& v = object[key];
+    if (v.is_number_unsigned()) return v.get<uint64_t>();
+    if (v.is_number_integer() && v.get<int64_t>() >= 0) return uint64_t(v.get<int64_t>());
+    return std::nullopt;
+  };
+  const nlohmann::json none;
+  auto element = [&](const char* array, uint64_t i) -> const nlohmann::json& {
+    if (!doc.contains(array) || !doc[array].is_array() || i >= doc[array].size()) return none;
+    return doc[array][i];
+  };
+  for (size_t i = 0; i < doc["images"].size(); ++i) {
+    const nlohmann::json& image = doc["images"][i];
+    if (!image.is_object() || !image.contains("bufferView")) continue;
+    const std::string what = "image " + std::to_string(i) + ": ";
+    const auto viewIndex = unsignedAt(image, "bufferView", 0);
+    if (!viewIndex) throw InputError(path, what + "bufferView is not an index");
+    const nlohmann::json& view = element("bufferViews", *viewIndex);
+    const auto bufferIndex = unsignedAt(view, "buffer", uint64_t(-1));
+    const auto offset = unsignedAt(view, "byteOffset", 0),
+               length = unsignedAt(view, "byteLength", uint64_t(-1));
+    if (!view.is_object() || !bufferIndex || !offset || !length)
+      throw InputError(path, what + "its bufferView does not exist or is malformed");
+    const auto bufferLength = unsignedAt(element("buffers", *bufferIndex), "byteLength", uint64_t(-1));
+    if (!bufferLength || *bufferLength == uint64_t(-1) || *length == uint64_t(-1) ||
+        *offset > *bufferLength || *length > *bufferLength - *offset || *length > uint64_t(INT32_MAX))
+      throw InputError(
+          path, what + "bufferView " + std::to_string(*viewIndex) + " runs past the end of its buffer");
+  }
+}
+
 // nlohmann's messages start with "[json.exception.parse_error.101] "; the user needs the rest.
 void checkJson(const std::string& path, const std::string& text, const char* what) {
+  checkJsonDepth(path, text, what);
   try {
     const nlohmann::json parsed = nlohmann::json::parse(text);
-    (void)parsed;
+    checkImageViews(path, parsed);
   } catch (const nlohmann::json::exception& e) {
     std::string msg = e.what();
     const size_t close = msg.find("] ");
@@ -91,6 +163,61 @@ glm::vec3 srgbToLinear(glm::vec3 c) {
   for (int i = 0; i < 3; ++i)
     c[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
   return c;
+}
+
+// tinygltf's file callbacks, so that every buffer and image it loads goes through the scene's reference
+// policy (scene_files.h). tinygltf joins the scene's folder and the decoded URI, asks whether that
+// exists, then reads it; it also retries relative to the working directory, which is never allowed.
+class ReferencedFiles {
+ public:
+  explicit ReferencedFiles(ReferencePolicy policy)
+      : policy_(std::move(policy)), folder_(policy_.folder.string()) {
+    prefix_ = folder_.back() == '/' ? folder_ : folder_ + "/";
+  }
+  const std::string& folder() const { return folder_; }
+
+  static bool exists(const std::string& path, void* self) {
+    auto& files = *static_cast<ReferencedFiles*>(self);
+    if (path.compare(0, files.prefix_.size(), files.prefix_) != 0) return false;
+    std::optional<std::string> bytes = readReferencedFile(files.policy_, path.substr(files.prefix_.size()));
+    if (!bytes) return false;
+    files.read_[path] = std::move(*bytes);
+    return true;
+  }
+  static std::string expand(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
+  static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* self) {
+    auto& files = *static_cast<ReferencedFiles*>(self);
+    auto it = files.read_.find(path);
+    if (it == files.read_.end()) {
+      if (err) *err += "not checked before reading";
+      return false;
+    }
+    out->assign(it->second.begin(), it->second.end());
+    files.read_.erase(it);
+    return true;
+  }
+  static bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "the reader never writes";
+    return false;
+  }
+
+ private:
+  ReferencePolicy policy_;
+  std::string folder_, prefix_;
+  std::map<std::string, std::string> read_;  // checked and read by exists(), handed over by read()
+};
+
+// Images stay encoded until a material uses them (textureMean): an unused 16k² PNG costs its file
+// size, not gigabytes. width < 0 marks the bytes as encoded.
+bool keepImageEncoded(tinygltf::Image* image, const int, std::string* err, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (size <= 0) {
+    if (err) *err += "an image has no bytes";
+    return false;
+  }
+  image->image.assign(bytes, bytes + size);
+  image->width = image->height = image->component = -1;
+  return true;
 }
 
 class GltfReader {
@@ -155,14 +282,26 @@ class GltfReader {
     return t * r * s;
   }
 
+  // The recursion is bounded by kMaxNodeDepth (a fuzzed file may nest 100,000 nodes), and every node
+  // path by kMaxNodePath: each mesh node keeps its whole path, so deep nesting would otherwise cost
+  // memory quadratic in the depth.
+  static constexpr int kMaxNodeDepth = 256;
+  static constexpr size_t kMaxNodePath = 4096;
+
   void visit(int index, const glm::dmat4& parent, const std::string& parentPath, int cell,
-             RawScene::TaggedMesh* tagged) {
+             RawScene::TaggedMesh* tagged, int depth = 0) {
     if (index < 0 || index >= static_cast<int>(m_.nodes.size()))
       fail("a scene or node refers to node " + std::to_string(index) + ", which does not exist");
     if (visited_[index]) fail("node '" + nodeName(index) + "' appears twice in the node hierarchy");
+    if (depth >= kMaxNodeDepth)
+      fail("node '" + nodeName(index) + "': the node hierarchy is deeper than " +
+           std::to_string(kMaxNodeDepth) + " levels");
     visited_[index] = 1;
     const tinygltf::Node& node = m_.nodes[index];
     const std::string name = nodeName(index);
+    if (parentPath.size() + 1 + name.size() > kMaxNodePath)
+      fail("node '" + name + "': its path from the scene root is longer than " +
+           std::to_string(kMaxNodePath) + " characters");
     const std::string path = parentPath.empty() ? name : parentPath + "/" + name;
     const glm::dmat4 world = parent * localMatrix(node, name);
 
@@ -198,7 +337,7 @@ class GltfReader {
       addMesh(m_.meshes[node.mesh], world, path, cell, tagged);
     }
     // Nothing below a tagged node can add another tagged node, so `tagged` stays valid.
-    for (int child : node.children) visit(child, world, path, cell, tagged);
+    for (int child : node.children) visit(child, world, path, cell, tagged, depth + 1);
   }
 
   void addCamera(int index, const glm::dmat4& world, const std::string& nodeName) {
@@ -218,11 +357,18 @@ class GltfReader {
         !std::isfinite(glm::length(cam.position)))
       fail("node '" + nodeName + "': camera transform is degenerate");
     cam.forward = glm::normalize(forward);
-    cam.up = glm::normalize(up - glm::dot(up, cam.forward) * cam.forward);
+    // A scale of 0 along y (or a shear onto the view axis) leaves no up direction: the camera's rays
+    // would be NaN, which the renderers (Embree) assert on. Refused here with the node named.
+    const glm::vec3 upAcross = up - glm::dot(up, cam.forward) * cam.forward;
+    if (!(glm::length(upAcross) > 1e-6f * glm::length(forward)) || !std::isfinite(glm::length(upAcross)))
+      fail("node '" + nodeName + "': camera transform is degenerate (its up axis is null or along the view)");
+    cam.up = glm::normalize(upAcross);
     cam.yfov = static_cast<float>(c.perspective.yfov);
     cam.aspect =
         c.perspective.aspectRatio > 0.0 ? static_cast<float>(c.perspective.aspectRatio) : 4.0f / 3.0f;
     if (!(cam.yfov > 0.0f && cam.yfov < 3.14159f)) fail("camera '" + cam.name + "': yfov must be in (0, pi)");
+    if (!(cam.aspect >= 1e-3f && cam.aspect <= 1e3f))
+      fail("camera '" + cam.name + "': aspectRatio must be within [0.001, 1000]");
     raw_.scene.cameras.push_back(cam);
   }
 
@@ -232,6 +378,8 @@ class GltfReader {
     size_t count = 0, stride = 0;
     int componentType = 0, components = 0;
   };
+
+  static constexpr uint64_t kMaxZeroElements = 65536;
 
   View view(int index, const std::string& what) const {
     if (index < 0 || index >= static_cast<int>(m_.accessors.size()))
@@ -246,21 +394,32 @@ class GltfReader {
     if (componentSize <= 0 || v.components <= 0)
       fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
     const uint64_t elemSize = uint64_t(componentSize) * v.components;
-    if (a.bufferView < 0) return v;
+    if (a.bufferView < 0) {
+      // All zeros, with no bytes in the file to back them: a 1 KB file could ask for gigabytes.
+      if (v.count > kMaxZeroElements)
+        fail(what + ": accessor " + std::to_string(index) + " has no bufferView and " +
+             std::to_string(v.count) + " elements (all zeros); at most " + std::to_string(kMaxZeroElements) +
+             " are accepted");
+      return v;
+    }
     if (a.bufferView >= static_cast<int>(m_.bufferViews.size()))
       fail(what + ": accessor " + std::to_string(index) + " refers to a bufferView that does not exist");
     const tinygltf::BufferView& bv = m_.bufferViews[a.bufferView];
     if (bv.buffer < 0 || bv.buffer >= static_cast<int>(m_.buffers.size()))
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " refers to a buffer that does not exist");
     const std::vector<unsigned char>& data = m_.buffers[bv.buffer].data;
-    if (uint64_t(bv.byteOffset) + bv.byteLength > data.size())
+    // Every bound is compared against what remains, never added up first: a file may hold offsets and
+    // lengths near 2^64 whose sum wraps around to a small number.
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of its buffer");
     v.stride = bv.byteStride ? bv.byteStride : elemSize;
     if (v.stride < elemSize)
       fail(what + ": bufferView " + std::to_string(a.bufferView) + " has a stride smaller than its elements");
-    if (v.count > 0 && (v.count > (uint64_t(1) << 40) ||
-                        uint64_t(a.byteOffset) + v.stride * (v.count - 1) + elemSize > bv.byteLength))
-      fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
+    if (v.count > 0) {
+      const bool fits = a.byteOffset <= bv.byteLength && elemSize <= bv.byteLength - a.byteOffset &&
+                        v.count - 1 <= (bv.byteLength - a.byteOffset - elemSize) / v.stride;
+      if (!fits) fail(what + ": accessor " + std::to_string(index) + " runs past the end of its bufferView");
+    }
     v.data = data.data() + bv.byteOffset + a.byteOffset;
     return v;
   }
@@ -302,37 +461,47 @@ class GltfReader {
     return out;
   }
 
-  // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one.
+  // Texture images are decoded only up to this size (8-bit RGB: 200 MB), checked from the header first.
+  static constexpr uint64_t kMaxTexels = uint64_t(8192) * 8192;
+
+  // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one. The image
+  // is still encoded (keepImageEncoded); it is decoded here, once its header says its size is sane.
   glm::vec3 textureMean(int textureIndex, const std::string& what) {
     if (textureIndex < 0) return glm::vec3(1.0f);
     if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
     const int source = m_.textures[textureIndex].source;
     if (source < 0 || source >= static_cast<int>(m_.images.size()))
       fail(what + ": texture has no valid image");
-    const tinygltf::Image& img = m_.images[source];
-    const size_t texels = size_t(std::max(img.width, 0)) * size_t(std::max(img.height, 0));
-    const int bytes = img.bits == 16 ? 2 : 1;
-    if (texels == 0 || img.component < 1 || (img.bits != 8 && img.bits != 16) ||
-        img.image.size() < texels * img.component * bytes) {
+    const std::vector<unsigned char>& encoded = m_.images[source].image;
+    int width = 0, height = 0, channels = 0;
+    if (encoded.empty() || encoded.size() > size_t(INT32_MAX) ||
+        !stbi_info_from_memory(encoded.data(), int(encoded.size()), &width, &height, &channels) ||
+        width <= 0 || height <= 0) {
       raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
       return glm::vec3(1.0f);
     }
+    if (uint64_t(width) * uint64_t(height) > kMaxTexels)
+      fail(what + ": texture image " + std::to_string(source) + " is " + std::to_string(width) + "x" +
+           std::to_string(height) + ", more than the 8192x8192 texels cpgi decodes");
+    const bool sixteen = stbi_is_16_bit_from_memory(encoded.data(), int(encoded.size()));
+    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(encoded.data(), int(encoded.size()),
+                                                                         &width, &height, &channels, 3))
+                           : static_cast<void*>(stbi_load_from_memory(encoded.data(), int(encoded.size()),
+                                                                      &width, &height, &channels, 3));
+    if (!pixels) {
+      raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
+      return glm::vec3(1.0f);
+    }
+    std::unique_ptr<void, void (*)(void*)> owned(pixels, stbi_image_free);
+    const size_t texels = size_t(width) * size_t(height);
     std::array<float, 256> lut8{};
     for (int i = 0; i < 256; ++i) lut8[i] = srgbToLinear(glm::vec3(i / 255.0f)).r;
     glm::dvec3 sum(0.0);
-    for (size_t t = 0; t < texels; ++t) {
+    for (size_t t = 0; t < texels * 3; t += 3) {
       glm::vec3 c;
-      for (int ch = 0; ch < 3; ++ch) {
-        const int src = img.component >= 3 ? ch : 0;  // grey (+alpha) images
-        const size_t at = (t * img.component + src) * bytes;
-        if (bytes == 1) {
-          c[ch] = lut8[img.image[at]];
-        } else {
-          uint16_t s;
-          std::memcpy(&s, &img.image[at], 2);
-          c[ch] = srgbToLinear(glm::vec3(s / 65535.0f)).r;
-        }
-      }
+      for (int ch = 0; ch < 3; ++ch)
+        c[ch] = sixteen ? srgbToLinear(glm::vec3(static_cast<const uint16_t*>(pixels)[t + ch] / 65535.0f)).r
+                        : lut8[static_cast<const unsigned char*>(pixels)[t + ch]];
       sum += glm::dvec3(c);
     }
     return glm::vec3(sum / double(texels));
@@ -394,8 +563,6 @@ class GltfReader {
       if (!std::isfinite(mat.emission[i]) || mat.emission[i] < 0.0f)
         fail(what + ": emission is negative or not finite");
     }
-    if (glm::any(glm::greaterThan(mat.albedo, glm::vec3(1.0f))))
-      raw_.warnings.push_back(what + ": albedo above 1 (energy is not conserved)");
     materialIndex_[index] = static_cast<int>(raw_.scene.materials.size());
     raw_.scene.materials.push_back(mat);
     return static_cast<uint32_t>(materialIndex_[index]);
@@ -475,8 +642,8 @@ class GltfReader {
 
 }  // namespace
 
-RawScene readGltf(const std::string& path) {
-  const std::string bytes = readFileBytes(path);
+RawScene readGltf(const std::string& path, const LoadOptions& options) {
+  const std::string bytes = readSceneFile(path, options.maxFileBytes);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const bool glbName =
       std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
@@ -486,23 +653,28 @@ RawScene readGltf(const std::string& path) {
     checkJson(path, bytes, "document");
   if (bytes.size() > 0xFFFFFFFFu) throw InputError(path, "larger than 4 GiB");
 
+  ReferencedFiles files(referencePolicy(path, options));
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&ReferencedFiles::exists, &ReferencedFiles::expand, &ReferencedFiles::read,
+                         &ReferencedFiles::refuseWrite, &files});
+  loader.SetImageLoader(&keepImageEncoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const std::string baseDir = std::filesystem::path(path).parent_path().string();
   bool ok = false;
   try {
     ok = glbName || binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
                                                          reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                         static_cast<unsigned>(bytes.size()), baseDir)
+                                                         static_cast<unsigned>(bytes.size()), files.folder())
                            : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                                        static_cast<unsigned>(bytes.size()), baseDir);
+                                                        static_cast<unsigned>(bytes.size()), files.folder());
+  } catch (const InputError&) {
+    throw;  // a referenced file refused by the policy, already named
   } catch (const std::exception& e) {
-    throw InputError(path, std::string("invalid glTF: ") + firstLine(e.what()));
+    throw InputError(path, std::string("invalid glTF: ") + printable(firstLine(e.what()), 200));
   }
   if (!ok)
-    throw InputError(
-        path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser") : firstLine(err)));
+    throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser")
+                                                           : printable(firstLine(err), 200)));
   return GltfReader(path, model).read();
 }
 

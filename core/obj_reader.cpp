@@ -1,36 +1,131 @@
 // Wavefront OBJ + MTL → RawScene via tinyobjloader: Kd is the albedo, Ke the emission (W/m²); objects
 // and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME` follow the glTF convention.
-#include <filesystem>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <vector>
 
 #include <tiny_obj_loader.h>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace cpgi::detail {
 
-RawScene readObj(const std::string& path) {
-  readFileBytes(path);  // missing / directory / unreadable get their own message
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
-  config.mtl_search_path = std::filesystem::path(path).parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config) || !reader.Valid()) {
-    std::string err = reader.Error();
-    if (const size_t nl = err.find('\n'); nl != std::string::npos) err.resize(nl);
-    throw InputError(path, "invalid OBJ: " + (err.empty() ? std::string("rejected by the parser") : err));
+namespace {
+
+// tinyobjloader reads "v abc", "Kd inf", "Kd nan" and "Kd 0.5" (for 0.5 0 0) as numbers without a word,
+// so the lines whose numbers cpgi uses are checked first: each number finite as a float, and as many as
+// the keyword takes.
+struct NumberedKeyword {
+  std::string_view name;
+  int minCount, maxCount;
+};
+const std::vector<NumberedKeyword> kObjNumbers = {{"v", 3, 7}, {"vn", 3, 3}};
+const std::vector<NumberedKeyword> kMtlNumbers = {{"Kd", 3, 3}, {"Ke", 3, 3}};
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+// Throws InputError(where, "<file> line N: ...") for the first bad line.
+void checkNumbers(const std::string& where, const std::string& file, std::string_view text,
+                  const std::vector<NumberedKeyword>& keywords) {
+  size_t lineNumber = 0;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    ++lineNumber;
+    size_t at = 0;
+    auto nextToken = [&]() -> std::string_view {
+      while (at < line.size() && isBlank(line[at])) ++at;
+      const size_t from = at;
+      while (at < line.size() && !isBlank(line[at])) ++at;
+      return line.substr(from, at - from);
+    };
+    const std::string_view keyword = nextToken();
+    const auto rule = std::find_if(keywords.begin(), keywords.end(),
+                                   [&](const NumberedKeyword& k) { return k.name == keyword; });
+    if (rule == keywords.end()) continue;
+    auto bad = [&](const std::string& problem) {
+      return InputError(where, file + "line " + std::to_string(lineNumber) + " '" +
+                                   printable(std::string(line), 60) + "': " + problem);
+    };
+    int count = 0;
+    for (std::string_view token = nextToken(); !token.empty() && token[0] != '#'; token = nextToken()) {
+      if (token.size() > 1 && token[0] == '+') token.remove_prefix(1);
+      float value = 0.0f;
+      const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+      if (ec != std::errc() || ptr != token.data() + token.size() || !std::isfinite(value))
+        throw bad("'" + printable(std::string(token), 40) + "' is not a finite number");
+      ++count;
+    }
+    if (count < rule->minCount || count > rule->maxCount)
+      throw bad(std::string(rule->name) + " takes " + std::to_string(rule->minCount) +
+                (rule->maxCount > rule->minCount ? " to " + std::to_string(rule->maxCount) : std::string()) +
+                " numbers, found " + std::to_string(count));
   }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  RawScene raw;
-  if (!reader.Warning().empty()) {
-    std::string warning = reader.Warning();
-    if (const size_t nl = warning.find('\n'); nl != std::string::npos) warning.resize(nl);
-    if (warning.find("Material") != std::string::npos || warning.find("material") != std::string::npos)
-      raw.warnings.push_back(warning);
+}
+
+// tinyobjloader's own reader opens any path an mtllib line names; this one goes through the scene's
+// reference policy (scene_files.h).
+class PolicyMaterialReader : public tinyobj::MaterialReader {
+ public:
+  explicit PolicyMaterialReader(ReferencePolicy& policy) : policy_(policy) {}
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* byName, std::string* warn, std::string* err) override {
+    const std::optional<std::string> bytes = readReferencedFile(policy_, name);
+    if (!bytes) {
+      if (warn) *warn += "Material file '" + printable(name) + "' not found\n";
+      return false;
+    }
+    checkNumbers(policy_.sceneFile, "material file '" + printable(name) + "' ", *bytes, kMtlNumbers);
+    std::istringstream in(*bytes);
+    tinyobj::LoadMtl(byName, materials, &in, warn, err);
+    return true;
   }
 
-  for (const tinyobj::material_t& m : reader.GetMaterials()) {
+ private:
+  ReferencePolicy& policy_;
+};
+
+std::string firstLineOf(std::string text) {
+  if (const size_t nl = text.find('\n'); nl != std::string::npos) text.resize(nl);
+  return text;
+}
+
+}  // namespace
+
+RawScene readObj(const std::string& path, const LoadOptions& options) {
+  ReferencePolicy policy = referencePolicy(path, options);
+  const std::string bytes = readSceneFile(path, options.maxFileBytes);
+  checkNumbers(path, "", bytes, kObjNumbers);
+  std::istringstream text(bytes);
+  PolicyMaterialReader materialReader(policy);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &text, &materialReader,
+                        /*triangulate=*/true, /*default_vcols_fallback=*/false)) {
+    error = firstLineOf(error);
+    throw InputError(path, "invalid OBJ: " + (error.empty() ? std::string("rejected by the parser") : error));
+  }
+  RawScene raw;
+  if (!warning.empty()) {
+    warning = firstLineOf(warning);
+    if (warning.find("Material") != std::string::npos || warning.find("material") != std::string::npos)
+      raw.warnings.push_back(printable(warning, 200));
+  }
+
+  for (const tinyobj::material_t& m : materials) {
     Material mat;
     mat.name = m.name;
     mat.albedo = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
@@ -56,7 +151,7 @@ RawScene readObj(const std::string& path) {
     return glm::vec3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
   };
 
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const std::string name = shape.name.empty() ? "object" : shape.name;
     const CellTag tag = parseCellTag(path, name);
     RawScene::TaggedMesh* tagged = nullptr;

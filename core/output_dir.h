@@ -12,7 +12,9 @@ namespace cpgi {
 
 class OutputDir {
  public:
-  /// Creates `dir` (and parents) if needed. Throws InputError("-o DIR", ...) when it cannot.
+  /// Creates `dir` (and parents) if needed, checks that it is writable and locks it for this run;
+  /// removes temporaries that killed runs left there. Throws InputError(DIR, ...) with the reason when
+  /// it cannot create, write or lock it (another run holds it).
   explicit OutputDir(std::filesystem::path dir);
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
@@ -31,6 +33,7 @@ class OutputDir {
   std::filesystem::path dir_;
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> staged_;  // temp -> final
   bool committed_ = false;
+  int lock_ = -1;  // the folder, open and flock()ed while this object lives
 };
 
 /// Writes `bytes` to `path` through a temporary file and a rename (one file, atomically).

@@ -2,14 +2,12 @@
 #include "core/scene_io.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
 namespace fs = std::filesystem;
@@ -37,6 +35,9 @@ std::string lowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
+
+// Far above any room's lamps (a 100 W bulb), far below float's 3.4e38 once the solver sums and scales.
+constexpr double kMaxEmittedPower = 1e20;
 
 bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -93,7 +94,7 @@ void reverseCorners(PortalQuad& portal) {
 CellTag parseCellTag(const std::string& file, const std::string& name) {
   CellTag tag;
   auto requireName = [&](const std::string& cell) {
-    if (cell.empty()) throw InputError(file, name + ": empty cell name");
+    if (cell.empty()) throw InputError(file, printable(name) + ": empty cell name");
     return cell;
   };
   if (startsWith(name, "cellvolume:")) {
@@ -107,7 +108,7 @@ CellTag parseCellTag(const std::string& file, const std::string& name) {
     const std::string rest = name.substr(7);
     const size_t colon = rest.find(':');
     if (colon == std::string::npos || rest.find(':', colon + 1) != std::string::npos)
-      throw InputError(file, name + ": a portal is named portal:CELL_A:CELL_B");
+      throw InputError(file, printable(name) + ": a portal is named portal:CELL_A:CELL_B");
     tag.a = requireName(rest.substr(0, colon));
     tag.b = requireName(stripBlenderSuffix(rest.substr(colon + 1)));
   }
@@ -125,19 +126,6 @@ uint32_t RawScene::nodeIndex(const std::string& path) {
   const auto [it, fresh] = nodeIndex_.emplace(path, static_cast<uint32_t>(scene.nodePaths.size()));
   if (fresh) scene.nodePaths.push_back(path);
   return it->second;
-}
-
-std::string readFileBytes(const std::string& path) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) throw InputError(path, "no such file");
-  if (fs::is_directory(status)) throw InputError(path, "is a directory, not a scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw InputError(path, "read error");
-  return bytes.str();
 }
 
 std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::string& node,
@@ -177,6 +165,37 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
   return {t0.p[own0], t0.p[(own0 + 1) % 3], own1, t0.p[(own0 + 2) % 3]};
 }
 
+// One rule for every format (README, "Numbers"): an albedo outside [0, 1] or a non-finite emission is
+// refused, not clamped: either means a broken export, and the solver would run away (albedo 2 never
+// converges) or overflow (float power → inf report energies, NaN lightmap).
+void checkMaterials(const std::string& path, const Scene& scene) {
+  auto text = [](const glm::vec3& v) {
+    std::ostringstream s;
+    s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return s.str();
+  };
+  for (const Material& m : scene.materials) {
+    for (int i = 0; i < 3; ++i) {
+      if (!(m.albedo[i] >= 0.0f && m.albedo[i] <= 1.0f))
+        throw InputError(
+            path, "material '" + printable(m.name) + "': albedo " + text(m.albedo) + " is not within [0, 1]");
+      if (!(m.emission[i] >= 0.0f) || !std::isfinite(m.emission[i]))
+        throw InputError(path, "material '" + printable(m.name) + "': emission " + text(m.emission) +
+                                   " is negative or not finite");
+    }
+  }
+  glm::dvec3 power(0.0);
+  for (const Triangle& t : scene.triangles)
+    if (t.material < scene.materials.size())
+      power += glm::dvec3(scene.materials[t.material].emission) * double(t.area());
+  if (!(std::max({power.x, power.y, power.z}) <= kMaxEmittedPower)) {
+    std::ostringstream s;
+    s << "the scene emits " << std::max({power.x, power.y, power.z}) << " W, more than " << kMaxEmittedPower
+      << " W (emission x area would overflow the solver's float arithmetic)";
+    throw InputError(path, s.str());
+  }
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
@@ -192,6 +211,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
           if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
+  checkMaterials(path, scene);
 
   // Degenerate and duplicate triangles: errors, or dropped with --repair.
   std::vector<char> drop(scene.triangles.size(), 0);
@@ -220,11 +240,11 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       throw InputError(path, std::to_string(degenerate) + " zero-area triangle" +
                                  (degenerate > 1 ? "s" : "") + " (first in node '" +
                                  nodeOf(scene, scene.triangles[firstDegenerate]) +
-                                 "'); run with --repair to drop them");
+                                 "'); run with `repair` to drop them");
     if (duplicate)
       throw InputError(path, std::to_string(duplicate) + " duplicate triangle" + (duplicate > 1 ? "s" : "") +
                                  " (first in node '" + nodeOf(scene, scene.triangles[firstDuplicate]) +
-                                 "'); run with --repair to drop them");
+                                 "'); run with `repair` to drop them");
   }
   if (degenerate) out.warnings.push_back("dropped " + std::to_string(degenerate) + " zero-area triangles");
   if (duplicate) out.warnings.push_back("dropped " + std::to_string(duplicate) + " duplicate triangles");
@@ -240,7 +260,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
   }
   if (scene.triangles.empty())
     throw InputError(
-        path, degenerate + duplicate > 0 ? "no triangles left after --repair" : "the scene has no triangles");
+        path, degenerate + duplicate > 0 ? "no triangles left after `repair`" : "the scene has no triangles");
   for (Triangle& t : scene.triangles)
     for (glm::vec3& n : t.n) {
       const float len = glm::length(n);
@@ -293,10 +313,10 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
 LoadedScene loadScene(const std::string& path, const LoadOptions& options) {
   const std::string ext = detail::lowerExtension(path);
   if (ext != ".glb" && ext != ".gltf" && ext != ".obj") {
-    detail::readFileBytes(path);  // a missing file is the clearer message
-    throw InputError(path, "unknown scene format '" + ext + "' (expected .glb, .gltf or .obj)");
+    detail::readSceneFile(path, options.maxFileBytes);  // a missing file is the clearer message
+    throw InputError(path, "unknown scene format '" + printable(ext) + "' (expected .glb, .gltf or .obj)");
   }
-  detail::RawScene raw = ext == ".obj" ? detail::readObj(path) : detail::readGltf(path);
+  detail::RawScene raw = ext == ".obj" ? detail::readObj(path, options) : detail::readGltf(path, options);
   return detail::finishScene(path, std::move(raw), options);
 }
 

@@ -22,11 +22,17 @@ struct LoadOptions {
   /// Zero-area and duplicate triangles are errors by default (they usually mean a broken export); with
   /// repair they are dropped and counted in LoadedScene::warnings instead (the CLI's --repair).
   bool repair = false;
+  /// Files a scene refers to (glTF buffers and images, OBJ mtllib) are read only inside the scene's own
+  /// folder by default, so that a downloaded scene cannot pull /etc/passwd or ~/.ssh into a result
+  /// (the CLI's --allow-outside-files lifts that).
+  bool allowOutsideFiles = false;
+  /// The largest scene or referenced file read, checked before reading (a .glb cannot exceed 4 GiB).
+  uint64_t maxFileBytes = uint64_t(2) << 30;
 };
 
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,
 /// NaN/inf positions, an unsupported primitive mode, bad cell naming, degenerate triangles (unless
-/// repair), or a scene with no triangles.
+/// repair), a scene with no triangles, or a referenced file outside the scene's folder (see LoadOptions).
 LoadedScene loadScene(const std::string& path, const LoadOptions& options = {});
 
 struct GltfWriteOptions {

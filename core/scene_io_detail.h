@@ -44,11 +44,8 @@ struct RawScene {
   std::unordered_map<std::string, uint32_t> nodeIndex_;  // scenes may have many thousand nodes
 };
 
-/// The whole file; InputError when it is missing, a directory or unreadable.
-std::string readFileBytes(const std::string& path);
-
-RawScene readGltf(const std::string& path);
-RawScene readObj(const std::string& path);
+RawScene readGltf(const std::string& path, const LoadOptions& options);
+RawScene readObj(const std::string& path, const LoadOptions& options);
 
 /// The checks shared by every format (non-finite positions, degenerate and duplicate triangles, empty
 /// scene) and the cell graph (portal quads, orientation, validateCells).

@@ -75,6 +75,28 @@ std::vector<Triangle> splitByPlane(const Triangle& t, const glm::vec3& c, const 
   return out;
 }
 
+// The cell with the most votes (the first of equals, in cell order).
+int mostVoted(const std::map<int, double>& votes) {
+  int best = -1;
+  double bestVotes = -1.0;
+  for (const auto& [c, w] : votes)
+    if (w > bestVotes) best = c, bestVotes = w;
+  return best;
+}
+
+// The first portal between two voted cells whose plane `tri` crosses, or null.
+const PortalQuad* crossedPortal(const Triangle& tri, const std::map<int, double>& votes,
+                                const std::vector<PortalQuad>& portals) {
+  for (const PortalQuad& p : portals) {
+    if (!votes.count(p.cellA) || !votes.count(p.cellB)) continue;
+    const glm::vec3 c = p.centre();
+    float lo = 0.0f, hi = 0.0f;
+    for (const glm::vec3& q : tri.p) lo = std::min(lo, glm::dot(q - c, p.normal)), hi = std::max(hi, glm::dot(q - c, p.normal));
+    if (lo < -1e-4f && hi > 1e-4f) return &p;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::vector<int32_t>& cell,
@@ -175,23 +197,9 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
       if (votes.empty()) votes[nearestAt(tri.centroid())] = 1.0, fellBack = true;
     }
     // Two cells seen: split on the plane of a portal between them that the triangle crosses.
-    int best = -1;
-    double bestVotes = -1.0;
-    for (const auto& [c, w] : votes)
-      if (w > bestVotes) best = c, bestVotes = w;
+    const int best = mostVoted(votes);
     if (votes.size() > 1 && piece.depth < params.maxSplitDepth) {
-      const PortalQuad* splitter = nullptr;
-      for (const PortalQuad& p : portals) {
-        if (!votes.count(p.cellA) || !votes.count(p.cellB)) continue;
-        const glm::vec3 c = p.centre();
-        float lo = 0.0f, hi = 0.0f;
-        for (const glm::vec3& q : tri.p) lo = std::min(lo, glm::dot(q - c, p.normal)), hi = std::max(hi, glm::dot(q - c, p.normal));
-        if (lo < -1e-4f && hi > 1e-4f) {
-          splitter = &p;
-          break;
-        }
-      }
-      if (splitter) {
+      if (const PortalQuad* splitter = crossedPortal(tri, votes, portals)) {
         const std::vector<Triangle> parts = splitByPlane(tri, splitter->centre(), splitter->normal);
         if (parts.size() > 1) {
           wasSplit[piece.source] = 1;

@@ -23,20 +23,20 @@ void checkInput(const Scene& scene, const DecomposeParams& p) {
       if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
         throw InputError(p.sourceName, "triangle " + std::to_string(t) + " has a non-finite coordinate");
   if (p.voxelSize < 0.0 || p.voxelSize > 10.0 || !std::isfinite(p.voxelSize))
-    throw InputError("--voxel", "must be in (0, 10] metres (0 chooses from the scene)");
+    throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   if (p.sealRadius < 0.0 || p.sealRadius > 1.0 || !std::isfinite(p.sealRadius))
-    throw InputError("--seal", "must be in [0, 1] metres");
-  if (p.merge.saddleRatio < 0.0 || p.merge.saddleRatio > 1.0) throw InputError("--saddle-ratio", "must be in [0, 1]");
-  if (p.merge.minDepth < 0.0) throw InputError("--min-depth", "must be ≥ 0");
-  if (p.merge.minCellVolume < 0.0) throw InputError("--min-cell-volume", "must be ≥ 0");
-  if (p.merge.openingRatio < 0.0) throw InputError("--opening-ratio", "must be ≥ 0");
+    throw InputError("seal radius", "must be in [0, 1] metres");
+  if (p.merge.saddleRatio < 0.0 || p.merge.saddleRatio > 1.0) throw InputError("saddle ratio", "must be in [0, 1]");
+  if (p.merge.minDepth < 0.0) throw InputError("minimum depth", "must be ≥ 0");
+  if (p.merge.minCellVolume < 0.0) throw InputError("minimum cell volume", "must be ≥ 0");
+  if (p.merge.openingRatio < 0.0) throw InputError("opening ratio", "must be ≥ 0");
 }
 
 }  // namespace
 
 double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {
   if (params.voxelSize > 0.0) {
-    if (how) *how = "given (--voxel)";
+    if (how) *how = "given";
     return params.voxelSize;
   }
   const glm::dvec3 size = glm::dvec3(scene.bounds().size()) + 0.5;  // padded so flat scenes get a volume
@@ -87,7 +87,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
     out.basins = basins.basinCount();
     const CellLabels cells = mergeBasins(basins, params.merge, ctx);
     if (cells.cellCount() == 0) {
-      oneOutsideCell("no enclosed empty space larger than --min-cell-volume");
+      oneOutsideCell("no enclosed empty space larger than the minimum cell volume");
     } else {
       PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
       out.voxelCell = std::move(portals.cell);
@@ -144,7 +144,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
              "); light may leak through it in a bake");
   if (h > 0.125)
     ctx.warn("decompose: " + params.sourceName + ": " + metres(h) + " voxels: doors narrower than " +
-             metres(8 * h) + " may not become portals (give --voxel)");
+             metres(8 * h) + " may not become portals (give a smaller voxel size)");
   return out;
 }
 

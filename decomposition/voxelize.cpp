@@ -46,7 +46,7 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
   const double total = (std::ceil(span.x) + 2 * pad + 1) * (std::ceil(span.y) + 2 * pad + 1) *
                        (std::ceil(span.z) + 2 * pad + 1);
   if (!(total <= double(params.maxVoxels)))
-    throw InputError("--voxel", std::to_string(h) + " m gives " + std::to_string(size_t(total)) +
+    throw InputError("voxel size", std::to_string(h) + " m gives " + std::to_string(size_t(total)) +
                                     " voxels, more than the limit of " + std::to_string(params.maxVoxels));
   f.dims = glm::ivec3(int(std::ceil(span.x)) + 2 * pad + 1, int(std::ceil(span.y)) + 2 * pad + 1,
                       int(std::ceil(span.z)) + 2 * pad + 1);

@@ -36,7 +36,7 @@ struct SolidGrid {
 /// solid when its centre is within half a voxel of a triangle, which makes any plane at least one face-
 /// connected layer thick, so 6-connected empty space cannot leak through it. The grid is the scene's
 /// bounds padded by 2 + seal voxels, so its border is always empty.
-/// @throws InputError("--voxel", ...) when the grid would exceed params.maxVoxels.
+/// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels.
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx);
 
 }  // namespace cpgi::decomp

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "scenes/openings_scene.h"
 #include "scenes/scene_builder.h"
 
 namespace cpgi {
@@ -101,7 +102,8 @@ SeedScene makeThinWall(float thickness) {
 
 const std::vector<std::string>& builtinSceneNames() {
   static const std::vector<std::string> names = {"seed1",     "seed2",     "seed3",
-                                                 "spot-door", "thin-wall", "thin-wall-5cm"};
+                                                 "spot-door", "thin-wall", "thin-wall-5cm",
+                                                 "openings"};
   return names;
 }
 
@@ -112,6 +114,7 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "spot-door") return makeSpotThroughDoor();
   if (name == "thin-wall") return makeThinWall(0.0f);
   if (name == "thin-wall-5cm") return makeThinWall(0.05f);
+  if (name == "openings") return makeOpeningsScene();
   throw std::invalid_argument("unknown built-in scene '" + name + "'");
 }
 

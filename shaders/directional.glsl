@@ -1,4 +1,4 @@
-// Directional emission (SolverParams::directionalEmission; radiosity/emission_lobes.h has the maths and
+// Directional emission (SolverParams::directionalEmission; radiosity/gpu/emission_lobes.h has the maths and
 // the CPU twins of these functions). Included by receive.comp and shooter_pyramid.comp only when the
 // program is built with DIRECTIONAL, so the default solve is unchanged. Three pieces, each self-contained:
 //  - the lobe of a shooter texel (per-texel buffer) and of a pyramid node (nodeLobe, beside nodes[]);

@@ -5,6 +5,7 @@
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in int aPatch;
 flat out int vPatch;
+out vec3 vLocal;  // the point relative to the eye, for its distance (item.frag)
 
 uniform vec3 uEye;
 uniform mat3 uToShooter;  // rows: shooter tangent, bitangent, normal
@@ -20,6 +21,7 @@ out float gl_ClipDistance[1];
 void main() {
   vPatch = aPatch;
   vec3 local = uToShooter * (aPosition - uEye);
+  vLocal = local;
 #ifdef HEMISPHERE
   float d = length(local);
   vec3 p = local / max(d, 1e-12);

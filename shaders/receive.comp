@@ -15,6 +15,9 @@ layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
 layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
+// What this shot gave each receiver texel (0 where it gave nothing), so that rescale_shot.comp can take
+// back a shot that delivered more than its power.
+layout(std430, binding = 21) writeonly buffer ShotGain { vec4 shotGain[]; };
 
 uniform int uShooter;
 uniform int uRegionCount;
@@ -197,9 +200,10 @@ void main() {
     if (!blocksOf(r)) continue;
     vec3 local = uToShooter * (x - uEyes[r]);
     if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
-    if (!visibleFromShooter(local, tile.z, r)) continue;
+    if (!visibleFromShooter(local, uToShooter * np.xyz, tile.z, r)) continue;
     e += fromRegionWhole(x, np.xyz, r);
   }
+  shotGain[tx] = vec4(e, 0.0);
   if (e == vec3(0.0)) return;
 #ifdef DIRECTIONAL
   arrivals[tx] += gArrival;

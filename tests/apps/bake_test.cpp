@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
+#include "core/scene_io.h"
 #include "scenes/seed_scenes.h"
 #include "tests/support/run_cpgi.h"
 
@@ -45,11 +46,19 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   std::vector<ExrChannel> extra;
   const ImageRGB lightmap = readExr(dir / "out/lightmap.exr", &extra);
   EXPECT_EQ(lightmap.width, report["atlas"]["width"].get<int>());
-  ASSERT_EQ(extra.size(), 2u);
-  const auto& areas = extra[0].name == "area" ? extra[0] : extra[1];
-  const auto& emissive = extra[0].name == "emissive" ? extra[0] : extra[1];
+  ASSERT_EQ(extra.size(), 3u);  // area, emissive, cell (compare-light's per-cell figures)
+  auto named = [&](const std::string& n) -> const ExrChannel& {
+    for (const ExrChannel& c : extra)
+      if (c.name == n) return c;
+    ADD_FAILURE() << "no channel " << n;
+    return extra[0];
+  };
+  const auto& areas = named("area");
+  const auto& emissive = named("emissive");
+  const auto& cells = named("cell");
   EXPECT_EQ(areas.name, "area");
   EXPECT_EQ(emissive.name, "emissive");
+  EXPECT_EQ(*std::max_element(cells.values.begin(), cells.values.end()), 2.0f);  // seed1's cells A, B, C
   double area = 0.0, lit = 0.0, lampArea = 0.0;
   for (size_t i = 0; i < areas.values.size(); ++i) {
     area += areas.values[i];
@@ -64,6 +73,16 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   for (const Triangle& t : makeSeedScene(1).scene.triangles) sceneArea += t.area();
   EXPECT_NEAR(area, sceneArea, 1e-3 * sceneArea);
   EXPECT_GT(lit, 0.0);
+}
+
+TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
+  const std::string args = "' --texels-per-quad 2 --unshot 0.2 -q";
+  ASSERT_EQ(cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" + args).status, 0);
+  const LoadedScene baked = loadScene(dir / "out/baked.glb", LoadOptions{});
+  EXPECT_EQ(baked.cells.cells.size(), 3u);
+  EXPECT_EQ(baked.cells.portals.size(), 2u);
 }
 
 TEST(Bake, BadOptionsFailWithOneLine) {

@@ -93,6 +93,19 @@ TEST(CellsBake, AutomaticCells) {
     EXPECT_GT(p["a_to_b_w"].get<double>() + p["b_to_a_w"].get<double>(), 1.0);
 }
 
+// --cells auto decomposes with the decomposition options (apps/options.h): a voxel size out of range is
+// refused by the decomposition, naming the flag.
+TEST(CellsBake, DecompositionOptionsReachAutoCells) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
+                                 "' --method cells --cells auto --texels-per-quad 2 --voxel 20 -q");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind("cpgi: --voxel: ", 0), 0u) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json"));
+}
+
 TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

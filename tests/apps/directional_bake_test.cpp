@@ -25,7 +25,9 @@ TEST(DirectionalBake, SpotThroughADoorAgainstTheReference) {
   test::TempDir dir;
   const std::string scene = dir / "spot.glb";
   ASSERT_EQ(cpgi(dir, "generate spot-door -o '" + scene + "'").status, 0);
-  const std::string common = " --texels-per-quad 8 --unshot 1e-3 --item-buffer 256 -q";
+  // On the thesis's fixed eyes, where the portal modes' difference was measured: this test compares the
+  // portal modes, not the eyes (bench/RESULTS.md, issue 11, for the global solve with drawn eyes).
+  const std::string common = " --texels-per-quad 8 --unshot 1e-3 --item-buffer 256 --fixed-eyes -q";
   const std::string cells = " --method cells --cells '" + scene + "'";
   for (const std::string& run : {"global" + common, "diffuse" + common + cells + " --portals diffuse",
                                  "directional" + common + cells + " --portals directional"}) {

@@ -70,7 +70,7 @@ TEST_F(ReferenceCommand, FurnaceEndToEnd) {
       runCpgi("reference " + scene.string() + " -o " + out.string() + " --texels-per-quad 4 --spp 256", dir_);
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* name :
-       {"lightmap.exr", "report.json", "baked.glb", "view-overview.png", "view-overview.exr"})
+       {"lightmap.exr", "lightmap.png", "report.json", "baked.glb", "view-overview.png", "view-overview.exr"})
     EXPECT_TRUE(fs::exists(out / name)) << name;
 
   std::vector<ExrChannel> extra;

@@ -29,10 +29,7 @@ class SparseReference : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = std::make_unique<test::TempDir>();
-    auto run = [](const std::string& args) {
-      const test::CommandRun r = cpgi(*dir_, args);
-      if (r.status != 0) throw std::runtime_error("cpgi " + args + ": " + r.err);
-    };
+    auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
     const std::string scene = test::quote(*dir_ / "seed1.glb");
     const std::string atlas = " --texels-per-quad 8 ";
     run("generate seed1 -o " + scene);

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
-#include "radiosity/atlas.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::testing {
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,13 @@ inline CommandRun cpgi(const std::filesystem::path& folder, const std::string& a
 
 inline CommandRun cpgi(const TempDir& dir, const std::string& args) {
   return cpgi(dir.path(), args);
+}
+
+/// `cpgi ARGS` for a suite's set-up (generate, reference, bake), where a failure leaves nothing to test:
+/// throws with the command and its stderr.
+inline void cpgiOrThrow(const TempDir& dir, const std::string& args) {
+  const CommandRun r = cpgi(dir, args);
+  if (r.status != 0) throw std::runtime_error("cpgi " + args + ": " + r.err);
 }
 
 }  // namespace cpgi::test

@@ -1,0 +1,59 @@
+#include "apps/lightmap_report.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace cpgi::cli {
+
+Context::ProgressFn progressPrinter(bool quiet) {
+  if (quiet || !::isatty(STDERR_FILENO)) return {};
+  return [](const std::string& stage, double fraction, const std::string& status) {
+    const int width = 24, done = int(std::clamp(fraction, 0.0, 1.0) * width);
+    std::fprintf(stderr, "\r%-6s [%s%s] %-48s", stage.c_str(), std::string(done, '#').c_str(),
+                 std::string(width - done, ' ').c_str(), status.c_str());
+    if (fraction >= 1.0) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  };
+}
+
+nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx) {
+  const LightmapAtlas& atlas = *run.atlas;
+  nlohmann::json timings = nlohmann::json::object();
+  for (const Context::Timing& t : ctx.timings()) timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
+  return {{"method", run.method},
+          {"scene", run.scene},
+          {"seconds", run.seconds},
+          {"solve_seconds", run.solveSeconds},
+          {"texels", atlas.validTexels()},
+          {"shots", run.shots},
+          {"unshot_fraction", run.unshotFraction},
+          {"cells", run.cells},
+          {"portals", run.portals},
+          {"atlas",
+           {{"width", atlas.width},
+            {"height", atlas.height},
+            {"patches", atlas.patches.size()},
+            {"texels_per_quad", run.atlasParams.texelsPerQuad},
+            {"density", run.atlasParams.texelsPerQuad > 0 ? 0.0f : run.atlasParams.density}}},
+          {"triangles", run.triangles},
+          {"quads", run.quads},
+          {"timings", timings},
+          {"views", run.views},
+          {"cell_names", run.cellNames},
+          {"warnings", ctx.warnings()}};
+}
+
+nlohmann::json energyReport(const EnergyTotals& e) {
+  return {{"emitted_w", e.emitted},   {"shot_w", e.shot},
+          {"received_w", e.received}, {"absorbed_w", e.absorbed},
+          {"unshot_w", e.unshot},     {"escaped_w", e.escaped()},
+          {"created_w", e.created},   {"worst_shot_gain", e.worstShotGain}};
+}
+
+void writeReport(OutputDir& out, const nlohmann::json& report) {
+  writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
+}
+
+}  // namespace cpgi::cli

@@ -1,0 +1,51 @@
+// What `cpgi bake` and `cpgi reference` share besides the output files
+// (radiosity/lightmap/lightmap_output.h): the progress bar on the terminal and report.json, whose common keys
+// (design.md §3) are written here once, so the two reports stay comparable key for key; each command adds its
+// own keys beside them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/context.h"
+#include "core/output_dir.h"
+#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/atlas.h"
+
+namespace cpgi::cli {
+
+/// A one-line progress bar on a terminal; nothing when `quiet` or stderr is a file or a pipe.
+Context::ProgressFn progressPrinter(bool quiet);
+
+/// The figures every lightmap producer reports.
+struct LightmapRun {
+  std::string method;  ///< "global", "cells" or "reference"
+  std::string scene;
+  double seconds = 0.0;       ///< the whole command
+  double solveSeconds = 0.0;  ///< the solve (or trace) alone
+  const LightmapAtlas* atlas = nullptr;
+  AtlasParams atlasParams;
+  size_t triangles = 0, quads = 0;
+  int shots = 0;
+  double unshotFraction = 0.0;
+  size_t cells = 1, portals = 0;
+  std::vector<std::string> views;
+  /// The names of the indices in lightmap.exr's "cell" channel (radiosity/lightmap/cell_channel.h).
+  std::vector<std::string> cellNames;
+};
+
+/// report.json's common keys: method, scene, seconds, solve_seconds, texels, shots, unshot_fraction,
+/// cells, portals, atlas {width, height, patches, texels_per_quad, density}, triangles, quads, timings
+/// (seconds per stage of `ctx`, summed), views, cell_names and warnings.
+nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx);
+
+/// report.json's "energy" of a solve (W over R, G, B): emitted, shot, received, absorbed, unshot, escaped,
+/// created (light a shot made up beyond its power; non-zero is a defect) and worst_shot_gain.
+nlohmann::json energyReport(const EnergyTotals& e);
+
+/// Stages `report` as report.json in `out` (visible at out.commit()).
+void writeReport(OutputDir& out, const nlohmann::json& report);
+
+}  // namespace cpgi::cli

@@ -1,0 +1,310 @@
+#include "apps/options.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "apps/commands.h"
+
+namespace cpgi::cli {
+namespace {
+
+// Every parameter the libraries name in their errors, with the flag that sets it.
+struct ParameterFlag {
+  std::string_view parameter, flag;
+};
+constexpr ParameterFlag kFlags[] = {
+    // Loading (core/scene_io.h)
+    {"repair", "--repair"},
+    {"outside files", "--allow-outside-files"},
+    // Atlas (radiosity/lightmap/atlas.h)
+    {"texels per quad", "--texels-per-quad"},
+    {"texel density", "--density"},
+    // GPU solver (radiosity/gpu/gpu_solver.h)
+    {"unshot fraction", "--unshot"},
+    {"maximum shots", "--max-shots"},
+    {"visibility", "--visibility"},
+    {"item buffer", "--item-buffer"},
+    {"item-buffer neighbourhood", "--item-neighbourhood"},
+    {"far-field ratio", "--far-field"},
+    {"fixed eyes", "--fixed-eyes"},
+    {"visibility regions", "--regions"},
+    {"strong-shot regions", "--strong-regions"},
+    {"strong-shot fraction", "--strong-fraction"},
+    {"region size", "--region-size"},
+    // Ambient term (radiosity/gpu/ambient.h), bake only
+    {"no ambient term", "--no-ambient"},
+    // Views (radiosity/lightmap/views.h)
+    {"view size", "--view-size"},
+    // compare-light's page (core/html_report/html_report.h)
+    {"report folder", "--report"},
+    // Cells (radiosity/cells/)
+    {"cell graph", "--cells"},
+    {"portal light", "--portals"},
+    {"maximum rounds", "--max-rounds"},
+    {"jobs", "--jobs"},
+    {"boundary", "--boundary"},
+    // Reference (radiosity/reference/reference_tracer.h)
+    {"samples per texel", "--spp"},
+    // Decomposition (decomposition/decompose.h)
+    {"voxel size", "--voxel"},
+    {"seal radius", "--seal"},
+    {"saddle ratio", "--saddle-ratio"},
+    {"minimum depth", "--min-depth"},
+    {"opening ratio", "--opening-ratio"},
+    {"minimum cell volume", "--min-cell-volume"},
+};
+
+std::string flag(std::string_view parameter) {
+  for (const ParameterFlag& f : kFlags)
+    if (f.parameter == parameter) return std::string(f.flag);
+  throw std::logic_error("apps/options.cpp: no flag for parameter '" + std::string(parameter) + "'");
+}
+
+// "With --bake: " before the help of options that need another.
+std::string help(const OptionScope& scope, const std::string& text) {
+  return scope.needs ? "With " + scope.needs->get_name() + ": " + text : text;
+}
+
+CLI::Option* scoped(CLI::Option* option, const OptionScope& scope) {
+  if (scope.needs) option->needs(scope.needs);
+  return option;
+}
+
+// An option whose value `check` bounds, with its default in the help: the shape of most parameters.
+template <class T>
+CLI::Option* addChecked(CLI::App& cmd, const OptionScope& scope, std::string_view parameter, T& field,
+                        const std::string& text, const CLI::Validator& check) {
+  return scoped(
+      cmd.add_option(flag(parameter), field, help(scope, text))->check(check)->capture_default_str(), scope);
+}
+
+// A flag taking one of `choices` by name, setting `field` to the value named (help: "TEXT:{a,b}=a").
+template <class Enum>
+CLI::Option* addChoice(CLI::App& cmd, const std::string& name, Enum& field,
+                       const std::vector<std::pair<std::string, Enum>>& choices, const std::string& text) {
+  std::vector<std::string> names;
+  std::string current;
+  for (const auto& [n, value] : choices) {
+    names.push_back(n);
+    if (value == field) current = n;
+  }
+  return cmd
+      .add_option_function<std::string>(
+          name,
+          [&field, choices](const std::string& given) {
+            for (const auto& [n, value] : choices)
+              if (n == given) field = value;
+          },
+          text)
+      ->check(CLI::IsMember(names))
+      ->default_str(current);
+}
+
+}  // namespace
+
+std::string flagOf(const std::string& parameter) {
+  for (const ParameterFlag& f : kFlags)
+    if (f.parameter == parameter) return std::string(f.flag);
+  return parameter;
+}
+
+std::string userMessage(const InputError& e) {
+  std::string problem = e.problem();
+  for (size_t open = problem.find('`'); open != std::string::npos; open = problem.find('`', open + 1)) {
+    const size_t close = problem.find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string name = problem.substr(open + 1, close - open - 1), flag = flagOf(name);
+    if (flag == name) continue;
+    problem.replace(open, close - open + 1, flag);
+  }
+  return flagOf(e.where()) + ": " + problem;
+}
+
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
+  auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
+                                    help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
+                         ->check(CLI::Range(1, 4096)),
+                     scope);
+  auto* density = addChecked(cmd, scope, "texel density", atlas.density,
+                             "Texels per metre along each patch edge", kPositive);
+  tpq->excludes(density);
+}
+
+void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
+  addChecked(cmd, scope, "unshot fraction", solver.unshotFraction,
+             "Stop when this fraction of the emitted power is still unshot", CLI::Range(1e-9, 0.999999));
+  addChecked(cmd, scope, "maximum shots", solver.maxShots, "Stop after this many shots",
+             CLI::Range(1, 100000000));
+  scoped(addChoice(cmd, flag("visibility"), solver.visibility,
+                   {{"hemisphere", Visibility::Hemisphere}, {"hemicube", Visibility::Hemicube}},
+                   help(scope,
+                        "hemisphere: the thesis's one-pass item buffer; hemicube: five faces, exact "
+                        "straight edges")),
+         scope);
+  // The solver checks it against the GL limits and says why.
+  scoped(cmd.add_option(flag("item buffer"), solver.itemBuffer,
+                        help(scope, "Item-buffer edge in pixels (hemicube: faces of half this edge)"))
+             ->capture_default_str(),
+         scope);
+  addChecked(cmd, scope, "item-buffer neighbourhood", solver.neighbourhood,
+             "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; "
+             "0: its pixel)",
+             CLI::Range(0, 4));
+  addChecked(cmd, scope, "far-field ratio", solver.farField,
+             "A shooter piece counts as one for receivers farther than this many times its "
+             "radius",
+             CLI::Range(1.0f, 1000.0f));
+  addChecked(cmd, scope, "visibility regions", solver.maxRegions,
+             "Visibility regions per edge of a large shooter, each with its own item "
+             "buffer: soft light through doors from large shooters, at up to N² item "
+             "buffers per shot",
+             CLI::Range(1, 4));
+  addChecked(cmd, scope, "strong-shot regions", solver.strongShotRegions,
+             "Visibility regions per edge for the strong shots, those carrying at least "
+             "--strong-fraction of the emitted power (0: as --regions)",
+             CLI::Range(0, 4));
+  addChecked(cmd, scope, "strong-shot fraction", solver.strongShotFraction,
+             "Share of the emitted power that makes a shot strong", CLI::Range(0.0, 1.0));
+  addChecked(cmd, scope, "region size", solver.regionSize,
+             "Metres per visibility region along a shooter's edge", CLI::Range(0.01f, 1000.0f));
+  scoped(cmd.add_flag_callback(
+             flag("fixed eyes"), [&solver] { solver.jitteredEyes = false; },
+             help(scope,
+                  "One fixed eye per visibility region, chosen clear of nearby occluders, "
+                  "instead of eyes drawn by unshot power at every shot")),
+         scope);
+}
+
+void addAmbientOption(CLI::App& cmd, bool& noAmbient) {
+  cmd.add_flag(flag("no ambient term"), noAmbient,
+               "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
+}
+
+void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
+  scoped(addChoice(cmd, flag("portal light"), cells.portals,
+                   {{"diffuse", PortalLight::Diffuse}, {"directional", PortalLight::Directional}},
+                   help(scope,
+                        "Portal light with --method cells: diffuse (re-emits the irradiance as a "
+                        "Lambertian area light) or directional (keeps the directions the light arrived "
+                        "with)")),
+         scope);
+  addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
+             "With --method cells: solve rounds (syncs) at most", CLI::Range(1, 100000));
+  addChecked(cmd, scope, "jobs", cells.jobs,
+             "With --method cells: cells solved at once in a round, each on its own "
+             "thread and OpenGL context (same result as 1)",
+             CLI::Range(1, 64));
+}
+
+void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
+  scoped(cmd.add_option(flag("voxel size"), params.voxelSize,
+                        help(scope,
+                             "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds "
+                             "volume / 4e6))"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("seal radius"), params.sealRadius,
+                        help(scope,
+                             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel "
+                             "wide"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("saddle ratio"), params.merge.saddleRatio,
+                        help(scope,
+                             "Merge two basins when saddle / smaller peak exceeds this (higher keeps "
+                             "more portals)"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("minimum depth"), params.merge.minDepth,
+                        help(scope,
+                             "Merge when smaller peak - saddle is below this, metres (furniture, "
+                             "pillars)"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("opening ratio"), params.merge.openingRatio,
+                        help(scope,
+                             "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 "
+                             "disables"))
+             ->capture_default_str(),
+         scope);
+  scoped(cmd.add_option(flag("minimum cell volume"), params.merge.minCellVolume,
+                        help(scope, "Cells smaller than this, m3, join a neighbour"))
+             ->capture_default_str(),
+         scope);
+}
+
+void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
+  addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
+             CLI::Range(2, 1 << 20));
+}
+
+void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {
+  addChoice(
+      cmd, flag("boundary"), mode, {{"coarse", BoundaryMode::Coarse}, {"dark", BoundaryMode::Dark}},
+      "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their lamps and "
+      "bounces light the baked cells through the portals; not written) or dark");
+}
+
+void addViewOptions(CLI::App& cmd, ViewParams& views) {
+  cmd.add_option_function<std::string>(
+         flag("view size"), [&views](const std::string& text) { parseViewSize(text, views); },
+         "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide at the camera's aspect; the "
+         "vertical field of view stays the camera's)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            ViewParams unused;
+            return parseViewSize(text, unused);
+          },
+          "WxH"));
+}
+
+void addReportOption(CLI::App& cmd, std::string& dir) {
+  cmd.add_option(flag("report folder"), dir,
+                 "Also write DIR/report.html: A's baked.glb in 3D with a per-texel error heat map against B "
+                 "and the per-cell figures");
+}
+
+std::string parseViewSize(const std::string& text, ViewParams& views) {
+  std::string ascii = text;
+  for (size_t at = ascii.find("×"); at != std::string::npos; at = ascii.find("×")) ascii.replace(at, 2, "x");
+  int w = 0, h = 0;
+  char x = 0, rest = 0;
+  if (std::sscanf(ascii.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X') || w < 16 ||
+      w > 8192 || h < 16 || h > 8192)
+    return "must be WIDTHxHEIGHT in pixels, each in [16, 8192], got " + text;
+  views.width = w;
+  views.height = h;
+  return {};
+}
+
+glm::vec3 parsePoint(const std::string& text, const std::string& option) {
+  std::stringstream in(text);
+  std::string part;
+  std::vector<float> values;
+  while (std::getline(in, part, ',')) {
+    size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
+      throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+    values.push_back(v);
+  }
+  if (values.size() != 3) throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+  return {values[0], values[1], values[2]};
+}
+
+void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
+  cmd.add_flag(flag("repair"), load.repair, "Drop zero-area and duplicate triangles instead of failing");
+  cmd.add_flag(flag("outside files"), load.allowOutsideFiles,
+               "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+}
+
+}  // namespace cpgi::cli

@@ -1,0 +1,67 @@
+// The command line's names for the libraries' parameters, in one place. The libraries speak in fields
+// (AtlasParams::texelsPerQuad) and name a parameter in words when it is wrong (InputError("texels per
+// quad", ...)); this table binds each parameter to its flag once, with its help, check and default, for
+// every command that takes it (bake, reference, decompose, compare-cells --bake, info), and turns a
+// library error back into a line that names the flag the user typed.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
+
+#include "core/error.h"
+#include "core/scene_io.h"
+#include "decomposition/decompose.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/views.h"
+
+namespace cpgi::cli {
+
+/// The flag that sets `parameter` (a name as the libraries write it in an InputError, e.g. "voxel size"
+/// → "--voxel"), or `parameter` itself when no flag sets it.
+std::string flagOf(const std::string& parameter);
+
+/// The one line the CLI prints for `e`: its where() as a flag when it names a parameter, and every
+/// parameter quoted `like this` in its problem as a flag ("run with `repair`" → "run with --repair").
+std::string userMessage(const InputError& e);
+
+/// Options added with `needs` set require that option (compare-cells' --bake) and say so in their help.
+struct OptionScope {
+  CLI::Option* needs = nullptr;
+};
+
+/// --texels-per-quad | --density.
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {});
+/// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
+/// --strong-regions, --strong-fraction, --region-size, --fixed-eyes.
+void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
+/// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term).
+void addAmbientOption(CLI::App& cmd, bool& noAmbient);
+/// --portals, --max-rounds, --jobs (for `--method cells`).
+void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
+/// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume.
+void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
+/// --spp (paths per texel of the reference).
+void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
+/// --repair, --allow-outside-files.
+void addLoadOptions(CLI::App& cmd, LoadOptions& load);
+/// --view-size WxH (or W×H) of the view-*.png / .exr pictures: width and height in [16, 8192]; without it
+/// 640 wide at the camera's aspect. A bad size fails at parsing, before any work.
+void addViewOptions(CLI::App& cmd, ViewParams& views);
+/// --report DIR (compare-light: DIR/report.html).
+void addReportOption(CLI::App& cmd, std::string& dir);
+/// --boundary coarse|dark (on-demand bakes).
+void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode);
+
+/// Parses `--view-size`'s "WxH" (x, X or ×) into `views`; returns what is wrong with `text`, or "" when it
+/// is two whole numbers in [16, 8192].
+std::string parseViewSize(const std::string& text, ViewParams& views);
+
+/// Parses `--around`'s "X,Y,Z" (metres); throws InputError(option, ...) unless it is three finite numbers.
+glm::vec3 parsePoint(const std::string& text, const std::string& option);
+
+}  // namespace cpgi::cli

@@ -1,0 +1,80 @@
+// Radiosity with cells and portals (thesis ch. 8, Algorithm 3). Every cell is solved alone, with only its
+// own triangles and one patch per portal (the portal quad facing into the cell) in its own atlas, so a
+// solve's memory follows the cell. A portal patch has albedo 0: it never reflects nor re-shoots inside its
+// cell, it only keeps, per texel, the irradiance that reaches the opening. At each sync that irradiance
+// becomes the exitance of the same quad on the other side (a diffuse area emitter: the power through the
+// opening is conserved), and the cells that received light are solved again. Radiosity is linear, so each
+// round is a fresh solve of the newly injected light (plus what the previous solve left unshot) and the
+// rounds add up. Results land in one global atlas (the same layout as a global bake), patch by patch.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/quads.h"
+#include "core/scene.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gpu_solver.h"
+
+namespace cpgi {
+
+/// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
+/// directional (the light keeps the directions it arrived with; radiosity/gpu/emission_lobes.h). One
+/// PortalTransfer class per model (radiosity/cells/portal_transfer.h).
+enum class PortalLight { Diffuse, Directional };
+const char* portalLightName(PortalLight p);
+
+struct CellSolveParams {
+  /// Per-cell solver settings. Its unshotFraction is the whole scene's target: rounds go on until the
+  /// unshot power everywhere, plus the power held on portals and not yet re-emitted, is at most this
+  /// fraction of the emitted power. Each round's solves stop at half that budget (of the scene's
+  /// emitted power, not of their own input).
+  SolverParams solver;
+  /// The per-cell atlases use these too (the same charts as the global atlas built with them).
+  AtlasParams atlas;
+  int maxRounds = 64;  ///< syncs at most (>= 1)
+  PortalLight portals = PortalLight::Diffuse;
+  /// Directional portals: the narrowest lobe, as the standard deviation per axis of sin θ (≈ radians when
+  /// narrow), in (0, 0.45]. A collimated beam gets this width, so that receivers, sampled at texel
+  /// centres, do not alias it; a wider arrival keeps its own width.
+  float lobeMinWidth = 0.05f;
+  /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
+  /// (radiosity/cells/cell_workers.h). Any value gives the same result as 1.
+  int jobs = 1;
+  /// On-demand bakes (solveCellsOnDemand): cells of the graph solved on `boundaryAtlas` only to light
+  /// their neighbours through the portals; their texels are not written.
+  std::vector<int> boundaryCells;
+  AtlasParams boundaryAtlas;
+  /// Set by solveCellsOnDemand: the graph is part of the scene's, so triangles in no cell and a
+  /// disconnected graph are expected (the whole graph was validated and warned about).
+  bool partOfGraph = false;
+};
+
+/// Solves the scene cell by cell into `global` (an atlas of the whole scene); the result's perCell holds
+/// the rounds and the energy per cell and portal. Throws InputError when the graph is unusable
+/// (validateCells errors); triangles in no cell stay black (a warning in ctx).
+SolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
+                           const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+/// An on-demand bake (radiosity/cells/cell_selection.h): solveCells over the selection's baked cells and, in
+/// Coarse mode, its boundary cells on a coarse atlas (coarseAtlasParams);
+/// only the baked cells' texels are written. Portals to cells left out are open (light leaving through
+/// them counts as escaped). `result.perCell->cells` lists the solved cells in graph order (boundary ones with
+/// written = false); `result.perCell->portals` the portals between them.
+SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
+                                   BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
+                                   const EglContext& gl, Context& ctx);
+
+/// The boundary cells' atlas: half the texels per edge of `atlas` (at least 2 per quad edge). Most of a
+/// shot's time is the item buffer, which the atlas does not change; the receive pass and memory scale
+/// with the texels. A quarter per edge put room B of seed1 (8²/quad) 8.6 % off the whole bake, half
+/// 3.6 % (3.9 % with merged charts).
+AtlasParams coarseAtlasParams(const AtlasParams& atlas);
+
+}  // namespace cpgi

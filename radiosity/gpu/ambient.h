@@ -1,0 +1,29 @@
+// An ambient term for a progressive solve stopped early (after Cohen, Chen, Wallace & Greenberg 1988):
+// the power still unshot will, after all its bounces, add some irradiance everywhere; each texel shows
+// B + ρ × that irradiance. Cohen spreads it evenly over the scene, which measured +28 % in a room two
+// openings from the lamp (its light is mostly unshot in the lit rooms, and little of it gets through).
+// Here it follows the cells: each cell's unshot power bounces in its room, a share A_portal / (A_cell +
+// A_portals) of each bounce leaving through each portal, the small cell-to-cell system solved by its
+// series. One cell (a scene without cells) gives Cohen's term. Without any ambient the default stop
+// (1 % unshot) left a room lit through doors 9–16 % dark (issue 11).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/cell_graph.h"
+#include "radiosity/lightmap/atlas.h"
+
+namespace cpgi {
+
+/// Adds ρ_i × (its cell's ambient irradiance) to every valid texel of `radiosity` (per atlas texel,
+/// W/m²). `residual`: the unshot radiosity per texel (W/m²), or empty to spread `unshotPower` (W per
+/// channel) by area; `texelCell`: per texel its cell in `graph` (radiosity/lightmap/cell_channel.h), or
+/// empty, or a graph without cells: one cell. Returns the mean ambient irradiance over the scene (W/m², RGB).
+glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
+                      const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
+                      std::vector<glm::vec3>& radiosity);
+
+}  // namespace cpgi

@@ -1,0 +1,190 @@
+#include "radiosity/gpu/egl_context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "core/error.h"
+#include "radiosity/gpu/gl.h"
+
+#ifndef EGL_PLATFORM_SURFACELESS_MESA
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+#endif
+
+namespace cpgi {
+namespace {
+
+struct EglExtensions {
+  PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
+  PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
+  PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay = nullptr;
+};
+
+EglExtensions loadExtensions() {
+  EglExtensions e;
+  e.queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  e.queryDeviceString =
+      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  e.getPlatformDisplay =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  return e;
+}
+
+bool hasExtension(const char* list, const char* name) {
+  if (!list) return false;
+  const size_t n = std::strlen(name);
+  for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+  return false;
+}
+
+// One candidate display to try, in order of preference.
+struct Candidate {
+  EGLDisplay display;
+  const char* platform;
+};
+
+std::vector<Candidate> candidates(const EglExtensions& e) {
+  std::vector<Candidate> hardware, software, out;
+  if (e.queryDevices && e.getPlatformDisplay) {
+    EGLint count = 0;
+    if (e.queryDevices(0, nullptr, &count) && count > 0) {
+      std::vector<EGLDeviceEXT> devices(count);
+      e.queryDevices(count, devices.data(), &count);
+      for (EGLint i = 0; i < count; ++i) {
+        EGLDisplay d = e.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+        if (d == EGL_NO_DISPLAY) continue;
+        const char* ext = e.queryDeviceString ? e.queryDeviceString(devices[i], EGL_EXTENSIONS) : nullptr;
+        // Mesa marks its llvmpipe/softpipe device; prefer anything else.
+        (hasExtension(ext, "EGL_MESA_device_software") ? software : hardware).push_back({d, "device"});
+      }
+    }
+  }
+  out = hardware;
+  if (e.getPlatformDisplay) {
+    EGLDisplay d = e.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (d != EGL_NO_DISPLAY) out.push_back({d, "surfaceless"});
+  }
+  for (Candidate c : software) out.push_back({c.display, "software device"});
+  return out;
+}
+
+// Tries one display; returns the context or EGL_NO_CONTEXT with `why` filled in.
+EGLContext makeContext(EGLDisplay d, EGLConfig config, std::string& why) {
+  const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                   EGL_NONE};
+  EGLContext c = eglCreateContext(d, config, EGL_NO_CONTEXT, contextAttribs);
+  if (c == EGL_NO_CONTEXT) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", unsigned(eglGetError()));
+    why = std::string("no OpenGL 4.5 core context (EGL error ") + code + ")";
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, c)) {
+    eglDestroyContext(d, c);
+    why = "eglMakeCurrent without a surface failed";
+    return EGL_NO_CONTEXT;
+  }
+  return c;
+}
+
+EGLContext tryDisplay(EGLDisplay d, EGLConfig& chosen, std::string& why) {
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(d, &major, &minor)) {
+    why = "eglInitialize failed";
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    why = "no desktop OpenGL API";
+    return EGL_NO_CONTEXT;
+  }
+  // No surface at all (surfaceless); a pbuffer-capable config as the fallback for older drivers.
+  EGLConfig config = nullptr;
+  EGLint n = 0;
+  for (EGLint surfaceType : {0, EGL_PBUFFER_BIT}) {
+    const EGLint attribs[] = {EGL_SURFACE_TYPE, surfaceType, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    if (eglChooseConfig(d, attribs, &config, 1, &n) && n > 0) break;
+  }
+  const bool noConfig = n == 0 && hasExtension(eglQueryString(d, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
+  if (n == 0 && !noConfig) {
+    why = "no OpenGL-renderable EGL config";
+    return EGL_NO_CONTEXT;
+  }
+  chosen = n > 0 ? config : EGLConfig(nullptr);
+  return makeContext(d, chosen, why);
+}
+
+}  // namespace
+
+EglContext::EglContext(Context& ctx) {
+  const EglExtensions ext = loadExtensions();
+  std::string failures;
+  for (const Candidate& cand : candidates(ext)) {
+    std::string why;
+    EGLConfig config = nullptr;
+    EGLContext c = tryDisplay(cand.display, config, why);
+    if (c != EGL_NO_CONTEXT) {
+      display_ = cand.display;
+      context_ = c;
+      config_ = config;
+      platform_ = cand.platform;
+      break;
+    }
+    eglTerminate(cand.display);
+    failures += std::string(failures.empty() ? "" : "; ") + cand.platform + ": " + why;
+  }
+  if (!context_)
+    throw SystemError("EGL: no headless OpenGL 4.5 context (" +
+                      (failures.empty() ? std::string("no EGL device or surfaceless platform") : failures) +
+                      "); install Mesa (libegl-mesa0, libgl1-mesa-dri) or a GPU driver");
+  describe();
+  ctx.progress("egl", 1.0, platform_ + ": " + renderer_ + ", OpenGL " + version_);
+}
+
+std::unique_ptr<EglContext> EglContext::sibling(const EglContext& first) {
+  std::unique_ptr<EglContext> c(new EglContext());
+  c->display_ = first.display_;
+  c->config_ = first.config_;
+  c->platform_ = first.platform_;
+  c->ownsDisplay_ = false;
+  // The API binding is per thread.
+  if (!eglBindAPI(EGL_OPENGL_API)) throw SystemError("EGL: no desktop OpenGL API on a worker thread");
+  std::string why;
+  c->context_ = makeContext(first.display_, first.config_, why);
+  if (!c->context_) throw SystemError("EGL: a further context for a worker thread: " + why);
+  c->describe();
+  return c;
+}
+
+void EglContext::describe() {
+  auto str = [](GLenum name) {
+    const GLubyte* s = glGetString(name);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  renderer_ = str(GL_RENDERER);
+  version_ = str(GL_VERSION);
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize_);
+  if (major * 10 + minor < 45) {
+    release();
+    throw SystemError("EGL: the context is OpenGL " + version_ + ", 4.5 core is needed");
+  }
+}
+
+EglContext::~EglContext() { release(); }
+
+void EglContext::release() {
+  if (!display_) return;
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (context_) eglDestroyContext(display_, context_);
+  if (ownsDisplay_) eglTerminate(display_);
+  display_ = context_ = nullptr;
+}
+
+}  // namespace cpgi

@@ -1,0 +1,802 @@
+#include "radiosity/gpu/gpu_solver.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "core/error.h"
+#include "radiosity/gpu/gl.h"
+#include "radiosity/gpu/shader_library.h"
+#include "radiosity/gpu/shooter_layout.h"
+
+namespace cpgi {
+namespace {
+
+// Mirrors of the std430 structs in shaders/common.glsl and select_shooter.comp.
+struct GpuPatch {
+  glm::ivec4 rect, tiles;
+  glm::vec4 origin, texelU, texelV, normal;
+};
+struct GpuStats {
+  glm::vec4 unshot, incident, absorbed;
+};
+struct GpuNode {
+  glm::vec4 centreArea, radiosityRadius;
+};
+constexpr int kMaxLevels = 14;  // MAX_LEVELS: pyramids of charts up to 2^14 texels on an edge
+struct GpuRegion {
+  glm::ivec4 rect, top;
+  int32_t levelOffset[kMaxLevels + 2];
+};
+struct GpuSelection {
+  int32_t winner, winnerPending, pad0, pad1;
+  glm::vec4 winnerUnshot, unshot, incident, absorbed;
+};
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
+
+constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
+constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
+constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
+
+// Shader-storage binding points (shaders/*.comp).
+// The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
+enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
+                     kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
+                     kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
+                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19, kEyes = 20, kShotGain = 21 };
+
+struct Face {
+  glm::vec3 right, up, forward;
+};
+// The hemicube in shooter coordinates (z = shooter normal); must match visibility.glsl.
+constexpr Face kFaces[5] = {
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}},
+    {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+};
+
+// glm matrices are column-major; these are uploaded so that `M * v` in GLSL gives dot(row_i, v).
+glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return glm::transpose(glm::mat3(a, b, c)); }
+
+GLint loc(const gl::Program& p, const char* name) { return glGetUniformLocation(p.get(), name); }
+void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(), loc(p, n), v); }
+void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
+void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
+void set(const gl::Program& p, const char* n, const glm::mat3& m) {
+  glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
+}
+
+GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
+
+void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
+  if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
+      (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
+    throw InputError("item buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
+                                          std::to_string(maxTexture) + ")");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("item-buffer neighbourhood", "must be in 0..4");
+  if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
+    throw InputError("unshot fraction", "must be a fraction in (0, 1)");
+  if (p.maxShots < 1) throw InputError("maximum shots", "must be at least 1");
+  if (!(p.farField >= 1.0f)) throw InputError("far-field ratio", "must be at least 1");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
+  if (p.strongShotRegions < 0 || p.strongShotRegions > kMaxRegions)
+    throw InputError("solver", "visibility regions per edge of a strong shot must be in 0..4");
+  if (!(p.strongShotFraction >= 0.0 && p.strongShotFraction <= 1.0))
+    throw InputError("solver", "the strong-shot fraction must be in [0, 1]");
+  if (!(p.regionSize > 0.0f)) throw InputError("solver", "region size must be positive");
+  if (atlas.width > maxTexture || atlas.height > maxTexture)
+    throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
+                                  std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
+                                  std::to_string(maxTexture) + "; lower the resolution");
+}
+
+// Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
+// previous mark to `stage`.
+class PassClock {
+ public:
+  explicit PassClock(bool on) : on_(on) {}
+  void mark(const char* stage) {
+    if (!on_) return;
+    glFinish();
+    const auto now = std::chrono::steady_clock::now();
+    seconds_[stage] += std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+  void restart() {
+    if (on_) glFinish(), last_ = std::chrono::steady_clock::now();
+  }
+  void report(Context& ctx) const {
+    for (const auto& [stage, s] : seconds_) ctx.addTiming(std::string("solve: ") + stage, s);
+  }
+
+ private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::map<std::string, double> seconds_;
+};
+
+// The #defines each program is compiled with for `params`. Every SolverParams field that changes a
+// program's text goes here, and so into the cache key.
+struct ProgramDefines {
+  std::vector<std::string> item, receive, pyramid;
+  std::string key() const {
+    std::string k;
+    for (const auto* list : {&item, &receive, &pyramid}) {
+      for (const std::string& d : *list) k += d + ",";
+      k += ";";
+    }
+    return k;
+  }
+};
+
+// The user's settings and the caller's controls together, as the passes read them.
+struct SolveConfig : SolverParams {
+  bool readTransfer = false;
+  double minShotPower = 0.0;
+  bool directionalEmission = false;
+};
+
+ProgramDefines programDefines(const SolveConfig& params) {
+  ProgramDefines d;
+  if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
+  if (params.directionalEmission) d.receive.push_back("DIRECTIONAL"), d.pyramid.push_back("DIRECTIONAL");
+  return d;
+}
+
+}  // namespace
+
+struct SolverPrograms::Set {
+  explicit Set(const ProgramDefines& d) {
+    item = buildProgram({"item.vert", "item.frag"}, d.item);
+    compact = buildProgram({"compact.comp"});
+    finish = buildProgram({"finish_lists.comp"});
+    pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
+    receive = buildProgram({"receive.comp"}, d.receive);
+    stats = buildProgram({"patch_stats.comp"});
+    tileStats = buildProgram({"tile_stats.comp"});
+    select = buildProgram({"select_shooter.comp"});
+    pickEyes = buildProgram({"pick_eyes.comp"});
+    rescale = buildProgram({"rescale_shot.comp"});
+  }
+  gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select, pickEyes, rescale;
+};
+
+SolverPrograms::SolverPrograms() = default;
+SolverPrograms::~SolverPrograms() = default;
+
+const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, bool directionalEmission) {
+  SolveConfig config{settings};
+  config.directionalEmission = directionalEmission;
+  const ProgramDefines defines = programDefines(config);
+  std::unique_ptr<Set>& set = sets_[defines.key()];
+  if (!set) set = std::make_unique<Set>(defines);
+  return *set;
+}
+
+namespace {
+
+class Solver {
+ public:
+  // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
+  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
+         const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
+      : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
+        compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
+        receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
+        selectProgram_(programs.select), pickEyesProgram_(programs.pickEyes),
+        rescaleProgram_(programs.rescale), clock_(params.profilePasses) {
+    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
+    if (strongRegions() != params.maxRegions)
+      // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
+      // small lamp still gets several eyes, so with drawn eyes (jitteredEyes) its light through a narrow
+      // door, or out of a housing, is a stratified estimate rather than one texel's view.
+      strongLayouts_ = layoutShooters(scene, atlas, LayoutParams{1e-3f, strongRegions()});
+    uploadAtlas();
+    if (params.directionalEmission) uploadDirectional(emissionLobes);
+    uploadGeometry();
+    makeItemBuffer();
+    setConstantUniforms();
+    gl::check("solver setup");
+  }
+
+  // Statistics of every patch from the initial state, then the first selection.
+  GpuSelection start() {
+    std::vector<uint32_t> all(kListHeader / 4 + atlas_.patches.size());
+    all[0] = uint32_t(atlas_.patches.size());
+    for (size_t i = 0; i < atlas_.patches.size(); ++i) all[kListHeader / 4 + i] = uint32_t(i);
+    glNamedBufferSubData(patchList_.get(), 0, GLsizeiptr(all.size() * 4), all.data());
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    runTileStats(0, tileCount_, -1, false);
+    runStats(-1);
+    return select();
+  }
+
+  /// `strong`: the shot carries at least SolverParams::strongShotFraction of the emitted power.
+  GpuSelection shoot(int shooter, bool strong) {
+    const ShooterLayout& l = strong && !strongLayouts_.empty() ? strongLayouts_[shooter] : layouts_[shooter];
+    const Patch& p = atlas_.patches[shooter];
+    const int regions = l.regions.x * l.regions.y;
+    std::vector<glm::vec3> eyes;
+    for (const glm::vec3& e : l.eyes) eyes.push_back(e + l.normal * eyeOffset_);
+    const glm::mat3 toShooter = rowsOf(l.tangent, l.bitangent, l.normal);
+    clock_.restart();
+    ++shotCount_;
+
+    // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
+    const int levels = uploadRegions(l, p);
+    set(pyramidProgram_, "uShooter", shooter);
+    set(pyramidProgram_, "uRegionCount", regions);
+    set(pyramidProgram_, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission) set(pyramidProgram_, "uShooterNormal", l.normal);
+    glUseProgram(pyramidProgram_.get());
+    for (int k = 1; k <= levels; ++k) {
+      set(pyramidProgram_, "uLevel", k);
+      glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    if (params_.jitteredEyes) {
+      // Each region's eye drawn by power from the pyramid just built (pick_eyes.comp).
+      set(pickEyesProgram_, "uShooter", shooter);
+      set(pickEyesProgram_, "uRegionCount", regions);
+      setU(pickEyesProgram_, "uShot", GLuint(shotCount_));
+      glUseProgram(pickEyesProgram_.get());
+      glDispatchCompute(1, 1, 1);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      std::array<glm::vec4, kMaxRegions * kMaxRegions> drawn{};
+      glGetNamedBufferSubData(eyes_.get(), 0, GLsizeiptr(regions * sizeof(glm::vec4)), drawn.data());
+      for (int r = 0; r < regions; ++r)
+        if (drawn[r].w > 0.0f) eyes[r] = glm::vec3(drawn[r]) + l.normal * eyeOffset_;
+    }
+    clock_.mark("shooter pyramid");
+
+    const GLuint zero = 0;
+    glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
+    clock_.mark("item buffers");
+
+    // The item-buffer fragments flag the patches they show (item.frag); list those patches' tiles.
+    // Shader writes (the fragments' flags, last shot's list counters) must land before these updates.
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const GLuint one = 1;
+    glNamedBufferSubData(visible_.get(), GLintptr(shooter) * 4, 4, &one);  // its residual is zeroed below
+    const uint32_t header[4] = {0, 0, 1, 1};
+    glNamedBufferSubData(tileList_.get(), 0, sizeof header, header);
+    glNamedBufferSubData(patchList_.get(), 0, sizeof header, header);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(compactProgram_.get());
+    glDispatchCompute(groups(std::max(tileCount_, atlas_.patches.size()), 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(finishProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    clock_.mark("visible lists");
+
+    // Gather.
+    set(receiveProgram_, "uShooter", shooter);
+    set(receiveProgram_, "uRegionCount", regions);
+    glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
+    set(receiveProgram_, "uToShooter", toShooter);
+    set(receiveProgram_, "uShooterNormal", l.normal);
+    if (params_.directionalEmission) set(receiveProgram_, "uShooterLobes", int(hasLobes_[shooter]));
+    set(receiveProgram_, "uTexelU", p.texelU);
+    set(receiveProgram_, "uTexelV", p.texelV);
+    set(receiveProgram_, "uTexelRadius", l.texelRadius);
+    glUseProgram(receiveProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    clock_.mark("receive");
+
+    runTileStats(0, tileCount_, shooter, true);
+    runStats(shooter);
+    clock_.mark("patch statistics");
+    GpuSelection s = select();
+    clock_.mark("select");
+    return s;
+  }
+
+  /// Scales what the last shot (of `shooter`) gave every receiver by `scale` < 1 (rescale_shot.comp),
+  /// then the statistics and the selection again.
+  GpuSelection rescaleLastShot(int shooter, float scale) {
+    set(rescaleProgram_, "uShooter", shooter);
+    set(rescaleProgram_, "uScale", scale);
+    glUseProgram(rescaleProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    runTileStats(0, tileCount_, shooter, true);
+    runStats(shooter);
+    return select();
+  }
+
+  void reportPasses(Context& ctx) const { clock_.report(ctx); }
+
+  std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
+  std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
+  std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
+  std::vector<glm::vec4> readArrivals() const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetNamedBufferSubData(arrivals_.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    return v;
+  }
+
+ private:
+  // The region table (common.glsl, Region) of one shooter; fills levelNodes_ (nodes per level over all
+  // regions) and returns the highest level.
+  int uploadRegions(const ShooterLayout& l, const Patch& p) {
+    std::vector<GpuRegion> table(l.rects.size());
+    int levels = 1;
+    for (size_t r = 0; r < table.size(); ++r) {
+      const glm::ivec4 c = l.rects[r];
+      table[r].rect = glm::ivec4(p.x + c.x, p.y + c.y, p.x + c.z, p.y + c.w);
+      table[r].top.x = topLevel(glm::ivec2(c.z - c.x, c.w - c.y));
+      levels = std::max(levels, table[r].top.x);
+    }
+    int32_t offset = 0;
+    std::fill(levelNodes_.begin(), levelNodes_.end(), 0);
+    for (int k = 1; k <= levels; ++k)
+      for (GpuRegion& g : table) {
+        if (k > g.top.x) continue;
+        const glm::ivec2 d = levelDims(glm::ivec2(g.rect.z - g.rect.x, g.rect.w - g.rect.y), k);
+        g.levelOffset[k] = offset;
+        offset += d.x * d.y;
+        levelNodes_[k] += size_t(d.x) * d.y;
+      }
+    glNamedBufferSubData(regions_.get(), 0, GLsizeiptr(table.size() * sizeof(GpuRegion)), table.data());
+    return levels;
+  }
+
+  static glm::ivec2 levelDims(glm::ivec2 size, int k) { return (size + ((1 << k) - 1)) >> k; }
+  static int topLevel(glm::ivec2 size) {
+    int k = 1;
+    while (glm::any(glm::greaterThan(levelDims(size, k), glm::ivec2(1)))) ++k;
+    return k;
+  }
+
+  // Nodes the largest shooter's pyramids need (levels 1 and up, all regions).
+  size_t maxPyramidNodes() const {
+    size_t most = 0;
+    for (const ShooterLayout& l : allLayouts()) {
+      size_t n = 0;
+      for (const glm::ivec4& c : l.rects) {
+        const glm::ivec2 size(c.z - c.x, c.w - c.y);
+        for (int k = 1, top = topLevel(size); k <= top; ++k) n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
+      }
+      most = std::max(most, n);
+    }
+    return std::max<size_t>(most, 1);
+  }
+
+  // Tile sums of tiles [first, end) (of the visible patches only when `onlyVisible`); the shooter's
+  // residual is zeroed on the way.
+  void runTileStats(size_t first, size_t end, int shooter, bool onlyVisible) {
+    if (end <= first) return;
+    setU(tileStatsProgram_, "uFirstTile", GLuint(first));
+    setU(tileStatsProgram_, "uEndTile", GLuint(end));
+    set(tileStatsProgram_, "uShooter", shooter);
+    set(tileStatsProgram_, "uOnlyVisible", onlyVisible ? 1 : 0);
+    glUseProgram(tileStatsProgram_.get());
+    glDispatchCompute(groups(end - first, 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  void runStats(int shooter) {
+    set(statsProgram_, "uShooter", shooter);
+    glUseProgram(statsProgram_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, patchList_.get());
+    glDispatchComputeIndirect(4);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  GpuSelection select() {
+    glUseProgram(selectProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GpuSelection s{};
+    glGetNamedBufferSubData(selection_.get(), 0, sizeof s, &s);
+    gl::check("shot");
+    return s;
+  }
+
+  void renderItemBuffer(int layer, const glm::vec3& eye, const glm::mat3& toShooter) {
+    glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT0, items_.get(), 0, layer);
+    glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT1, distances_.get(), 0, layer);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    const GLint none = -1;
+    const GLfloat far = 1.0f, nothing = 1e30f;  // a pixel showing nothing cannot shadow
+    glClearNamedFramebufferiv(fbo_.get(), GL_COLOR, 0, &none);
+    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 1, &nothing);
+    glClearNamedFramebufferfv(fbo_.get(), GL_DEPTH, 0, &far);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glEnable(GL_CLIP_DISTANCE0);
+    glUseProgram(itemProgram_.get());
+    set(itemProgram_, "uEye", eye);
+    set(itemProgram_, "uToShooter", toShooter);
+    glBindVertexArray(vao_.get());
+    if (params_.visibility == Visibility::Hemisphere) {
+      glViewport(0, 0, itemSize_, itemSize_);
+      glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+    } else {
+      const int f = itemSize_, half = f / 2;
+      for (int i = 0; i < 5; ++i) {
+        set(itemProgram_, "uFace", rowsOf(kFaces[i].right, kFaces[i].up, kFaces[i].forward));
+        set(itemProgram_, "uHalfFace", i == 0 ? 0 : 1);
+        if (i == 0)
+          glViewport(0, 0, f, f);
+        else
+          glViewport(0, f + (i - 1) * half, f, half);
+        glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+      }
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  std::vector<glm::vec3> readImage(const gl::Buffer& b) const {
+    std::vector<glm::vec4> v(atlas_.texelCount());
+    glGetNamedBufferSubData(b.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
+    gl::check("read back");
+    std::vector<glm::vec3> out(v.size());
+    for (size_t i = 0; i < v.size(); ++i) out[i] = glm::vec3(v[i]);
+    return out;
+  }
+
+  void uploadAtlas() {
+    const int w = atlas_.width;
+    const size_t n = atlas_.texelCount();
+    std::vector<glm::vec4> posArea(n), normalPatch(n), albedo(n), emission(n, glm::vec4(0.0f));
+    for (size_t i = 0; i < n; ++i) {
+      posArea[i] = glm::vec4(atlas_.position[i], atlas_.area[i]);
+      normalPatch[i] = glm::vec4(atlas_.normal[i], float(atlas_.patch[i]));
+      albedo[i] = glm::vec4(atlas_.albedo[i], 0.0f);
+      if (atlas_.patch[i] >= 0) emission[i] = glm::vec4(atlas_.emission[i], 0.0f);
+    }
+    // Patch IDs travel as floats in uNormalPatch.w.
+    if (atlas_.patches.size() >= (1u << 24)) throw InputError("atlas", "more than 2^24 patches");
+    auto texels = [&](gl::Buffer& b, const std::vector<glm::vec4>& data, Ssbo binding) {
+      b = gl::makeBuffer(n * sizeof(glm::vec4), data.data());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
+    };
+    texels(posArea_, posArea, kPosArea);
+    texels(normalPatch_, normalPatch, kNormalPatch);
+    texels(albedo_, albedo, kAlbedo);
+    texels(radiosity_, emission, kRadiosity);
+    texels(residual_, emission, kResidual);
+    texels(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident);
+    shotGain_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShotGain, shotGain_.get());
+
+    const size_t np = atlas_.patches.size();
+    std::vector<GpuPatch> patches(np);
+    std::vector<uint32_t> pending(np, 0);
+    std::vector<glm::ivec4> tiles;
+    firstTile_.assign(np + 1, 0);
+    for (size_t i = 0; i < np; ++i) {
+      const Patch& p = atlas_.patches[i];
+      firstTile_[i] = tiles.size();
+      for (int y = 0; y < p.h; ++y)
+        for (int x = 0; x < p.w; ++x) {
+          const size_t t = size_t(p.y + y) * w + p.x + x;
+          if (atlas_.patch[t] == int(i) && atlas_.emission[t] != glm::vec3(0.0f)) pending[i] = 1;
+        }
+      for (int y = 0; y < p.h; y += kTile)
+        for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+      patches[i].rect = {p.x, p.y, p.w, p.h};
+      patches[i].tiles = {int(firstTile_[i]), int(tiles.size() - firstTile_[i]), 0, 0};
+      patches[i].origin = glm::vec4(p.origin, 0.0f);
+      patches[i].texelU = glm::vec4(p.texelU, 0.0f);
+      patches[i].texelV = glm::vec4(p.texelV, 0.0f);
+      patches[i].normal = glm::vec4(p.normal, 0.0f);
+    }
+    firstTile_[np] = tiles.size();
+    tileCount_ = tiles.size();
+    auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes, const void* data) {
+      b = gl::makeBuffer(bytes, data);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
+    };
+    ssbo(patches_, kPatches, np * sizeof(GpuPatch), patches.data());
+    ssbo(stats_, kStats, np * sizeof(GpuStats), nullptr);
+    ssbo(visible_, kVisible, np * 4, nullptr);
+    ssbo(tiles_, kTiles, tiles.size() * sizeof(glm::ivec4), tiles.data());
+    ssbo(tileStats_, kTileStats, tiles.size() * sizeof(GpuStats), nullptr);
+    ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
+    ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
+    ssbo(regions_, kRegions, kMaxRegions * kMaxRegions * sizeof(GpuRegion), nullptr);
+    ssbo(nodes_, kNodes, maxPyramidNodes() * sizeof(GpuNode), nullptr);
+    for (const ShooterLayout& l : allLayouts())
+      for (const glm::ivec4& c : l.rects)
+        if (topLevel(glm::ivec2(c.z - c.x, c.w - c.y)) > kMaxLevels)
+          throw InputError("atlas", "a chart wider than 2^14 texels");
+    ssbo(pending_, kPending, np * 4, pending.data());
+    ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
+    ssbo(eyes_, kEyes, kMaxRegions * kMaxRegions * sizeof(glm::vec4), nullptr);
+    const GLuint zero = 0;
+    glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  }
+
+  // Per-texel emission lobes (Lambertian when none are given) and zeroed arrival moments.
+  void uploadDirectional(const std::vector<glm::vec4>* lobes) {
+    const size_t n = atlas_.texelCount();
+    if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
+    const std::vector<glm::vec4> lambertian(lobes ? 0 : n, glm::vec4(0.0f));
+    hasLobes_.assign(atlas_.patches.size(), 0);
+    if (lobes)
+      for (size_t i = 0; i < n; ++i)
+        if (atlas_.patch[i] >= 0 && (*lobes)[i] != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
+    emissionLobes_ = gl::makeBuffer(n * sizeof(glm::vec4), lobes ? lobes->data() : lambertian.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEmissionLobes, emissionLobes_.get());
+    arrivals_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
+    const float zero = 0.0f;
+    glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
+    nodeLobes_ = gl::makeBuffer(maxPyramidNodes() * sizeof(glm::vec4), nullptr);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodeLobes, nodeLobes_.get());
+  }
+
+  void uploadGeometry() {
+    // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
+    std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
+    for (size_t i = 0; i < atlas_.patches.size(); ++i)
+      for (int32_t t : atlas_.patches[i].triangles)
+        if (t >= 0) patchOf[t] = int32_t(i);
+    std::vector<glm::vec3> positions;
+    std::vector<int32_t> ids;
+    for (size_t t = 0; t < scene_.triangles.size(); ++t) {
+      const Triangle& tri = scene_.triangles[t];
+      if (!(tri.area() > 0.0f)) continue;
+      for (const glm::vec3& q : tri.p) positions.push_back(q), ids.push_back(patchOf[t]);
+    }
+    vertexCount_ = GLsizei(positions.size());
+    positionBuffer_ = gl::makeBuffer(positions.size() * sizeof(glm::vec3), positions.data(), 0);
+    idBuffer_ = gl::makeBuffer(ids.size() * 4, ids.data(), 0);
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    vao_ = gl::VertexArray(vao);
+    glVertexArrayVertexBuffer(vao, 0, positionBuffer_.get(), 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayVertexBuffer(vao, 1, idBuffer_.get(), 0, 4);
+    glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, 0);
+    glVertexArrayAttribBinding(vao, 1, 1);
+    glEnableVertexArrayAttrib(vao, 1);
+
+    const Bounds b = scene_.bounds();
+    const float diagonal = std::max(glm::length(b.size()), 1e-3f);
+    far_ = 2.0f * diagonal;
+    // Drawn eyes (pick_eyes.comp) may sit a few millimetres from a wall (a lamp's edge texel in its
+    // housing): a near plane of 1e-3 × diagonal (9 mm in spot-door) cut such walls open and let the lamp
+    // light the room through them (global rel. RMSE 128 %).
+    near_ = 1e-4f * diagonal;
+    eyeOffset_ = 1e-4f * diagonal;
+  }
+
+  void makeItemBuffer() {
+    int w, h;
+    if (params_.visibility == Visibility::Hemisphere) {
+      itemSize_ = params_.itemBuffer;
+      w = h = itemSize_;
+    } else {
+      itemSize_ = params_.itemBuffer / 2 + (params_.itemBuffer / 2) % 2;  // face edge, even
+      w = itemSize_;
+      h = itemSize_ * 3;  // top face, then four half-height side faces
+    }
+    // One layer per shooter region.
+    GLuint items = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &items);
+    items_ = gl::Texture(items);
+    const int perEdge = std::max(params_.maxRegions, strongRegions());
+    glTextureStorage3D(items, 1, GL_R32I, w, h, perEdge * perEdge);
+    glTextureParameteri(items, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // else incomplete for texelFetch
+    glTextureParameteri(items, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    // The distance from the eye of what each pixel shows (item.frag), for the receivers' plane test.
+    GLuint distances = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &distances);
+    distances_ = gl::Texture(distances);
+    glTextureStorage3D(distances, 1, GL_R32F, w, h, perEdge * perEdge);
+    glTextureParameteri(distances, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(distances, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    depth_ = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    fbo_ = gl::Framebuffer(fbo);
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, items, 0, 0);
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT1, distances, 0, 0);
+    const GLenum outputs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, outputs);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw SystemError("OpenGL: the item-buffer framebuffer (R32I + R32F + depth) is incomplete");
+    glBindTextureUnit(0, items_.get());
+    glBindTextureUnit(1, distances_.get());
+  }
+
+  void setConstantUniforms() {
+    set(itemProgram_, "uFar", far_);
+    set(itemProgram_, "uNear", near_);
+    for (const gl::Program* p :
+         {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_, &rescaleProgram_})
+      set(*p, "uAtlasWidth", atlas_.width);
+    set(receiveProgram_, "uItemSize", itemSize_);
+    set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
+    set(receiveProgram_, "uPlaneSlack", eyeOffset_);
+    set(receiveProgram_, "uFarField", params_.farField);
+    setU(compactProgram_, "uTiles", GLuint(tileCount_));
+    setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
+    set(selectProgram_, "uPatches", int(atlas_.patches.size()));
+  }
+
+  const Scene& scene_;
+  const LightmapAtlas& atlas_;
+  SolveConfig params_;
+  const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
+      &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
+  gl::Buffer shotGain_;  ///< per texel, what the last shot gave it (rescale_shot.comp)
+  std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
+  gl::Texture items_, distances_, depth_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_, eyes_;
+  std::array<size_t, kMaxLevels + 2> levelNodes_{};
+  gl::Buffer tileStats_;
+  std::vector<size_t> firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
+  gl::Buffer positionBuffer_, idBuffer_;
+  gl::VertexArray vao_;
+  gl::Framebuffer fbo_;
+  std::vector<ShooterLayout> layouts_, strongLayouts_;  // strongLayouts_ empty when it would be layouts_
+  int strongRegions() const { return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions; }
+  std::vector<ShooterLayout> allLayouts() const {
+    std::vector<ShooterLayout> all = layouts_;
+    all.insert(all.end(), strongLayouts_.begin(), strongLayouts_.end());
+    return all;
+  }
+  PassClock clock_;
+  GLsizei vertexCount_ = 0;
+  size_t tileCount_ = 0;
+  uint32_t shotCount_ = 0;  ///< shots so far, the seed of the eyes' draw
+  int itemSize_ = 0;
+  float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
+};
+
+double channelSum(const glm::vec4& v) { return double(v.r) + double(v.g) + double(v.b); }
+
+std::string formatStatus(int shots, double fraction, double eta) {
+  char buf[96];
+  if (eta >= 0.0)
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%, ETA %.0f s", shots, 100.0 * fraction, eta);
+  else
+    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * fraction);
+  return buf;
+}
+
+}  // namespace
+
+namespace {
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs);
+}  // namespace
+
+const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             const EglContext& context, Context& ctx, const SolveControls& controls) {
+  if (!controls.directionalEmission && !controls.emissionLobes.empty())
+    throw InputError("solver", "emission lobes need SolveControls::directionalEmission");
+  SolveConfig config{settings};
+  config.readTransfer = controls.readTransfer;
+  config.minShotPower = controls.minShotPower;
+  config.directionalEmission = controls.directionalEmission;
+  const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
+  SolverPrograms own;
+  return solveWithLobes(scene, atlas, config, controls.emissionLobes.empty() ? nullptr : &lobes, context, ctx,
+                        controls.programs ? *controls.programs : own);
+}
+
+namespace {
+
+SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
+                           SolverPrograms& programs) {
+  checkParams(params, atlas, context.maxTextureSize());
+  SolveResult result;
+  result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
+  if (atlas.patches.empty()) return result;
+
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission), emissionLobes);
+  result.setupSeconds = since(start);
+  ctx.addTiming("solve: setup", result.setupSeconds);
+
+  const auto shootStart = std::chrono::steady_clock::now();
+  GpuSelection sel = solver.start();
+  EnergyTotals e;
+  e.emitted = channelSum(sel.unshot);
+  auto record = [&](const GpuSelection& s) {
+    e.unshot = channelSum(s.unshot);
+    e.received = channelSum(s.incident);
+    e.absorbed = channelSum(s.absorbed);
+    result.history.push_back(e);
+  };
+  record(sel);
+  double lastReport = -1.0;
+  double firstLog = 0.0;  // log of the unshot fraction after the first reflector shot, for the ETA
+  int firstShot = -1;
+  while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
+    const double fraction = e.unshot / e.emitted;
+    if (fraction <= params.unshotFraction) break;
+    if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
+    const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
+    e.shot += shotPower;
+    result.shooters.push_back(sel.winner);
+    sel = solver.shoot(sel.winner, shotPower >= params.strongShotFraction * e.emitted);
+    ++result.shots;
+    record(sel);
+    // Received ≤ shot on every shot (design.md §5). A shot that delivered more (a drawn eye that sees
+    // more than its region does, receivers point-sampled next to the shooter) is scaled back to its
+    // power; worstShotGain keeps the gain before that, `created` whatever is left beyond float rounding.
+    double gained = e.received - receivedBefore;
+    if (shotPower > 0.0) e.worstShotGain = std::max(e.worstShotGain, gained / shotPower);
+    // The tolerance covers float sums and the emission lobes' normalisation (+1.1e-3 measured).
+    constexpr double kTolerance = 2e-3;
+    if (gained > shotPower * (1.0 + kTolerance)) {
+      sel = solver.rescaleLastShot(result.shooters.back(), float(shotPower / gained));
+      result.history.pop_back();
+      record(sel);
+      gained = e.received - receivedBefore;
+    }
+    if (gained > shotPower * (1.0 + kTolerance)) e.created += gained - shotPower;
+    result.history.back() = e;
+
+    const double elapsed = since(shootStart), now = e.unshot / e.emitted;
+    if (elapsed - lastReport > 0.25) {
+      // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
+      double eta = -1.0;
+      if (firstShot < 0 && !sel.winnerPending) firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
+      if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
+        const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
+        if (rate < 0.0) eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+      }
+      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
+      lastReport = elapsed;
+    }
+  }
+  result.energy = e;
+  if (e.created > 1e-4 * e.emitted) {
+    char note[160];
+    std::snprintf(note, sizeof note, "the solve created %.3g W of light (%.2f%% of the emitted; worst shot received %.3fx its power)",
+                  e.created, 100.0 * e.created / e.emitted, e.worstShotGain);
+    ctx.warn(note);
+  }
+  result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
+  ctx.addTiming("solve: shots", since(shootStart));
+  solver.reportPasses(ctx);
+  {
+    auto t = ctx.time("solve: read back");
+    result.radiosity = solver.readRadiosity();
+    if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
+    if (params.directionalEmission) result.arrivals = solver.readArrivals();
+  }
+  for (size_t i = 0; i < result.radiosity.size(); ++i)
+    if (atlas.patch[i] < 0) {
+      result.radiosity[i] = glm::vec3(0.0f);
+      if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
+      if (params.directionalEmission) result.arrivals[i] = glm::vec4(0.0f);
+    }
+  ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
+  result.seconds = since(start);
+  return result;
+}
+
+}  // namespace
+
+}  // namespace cpgi

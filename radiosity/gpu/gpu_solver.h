@@ -1,0 +1,124 @@
+// GPU progressive radiosity (thesis ch. 6, after Coombe, Harris & Lastra 2004) over a lightmap atlas:
+// every atlas texel is a sub-patch with radiosity and residual (unshot) textures on the GPU. One shot:
+// select the patch with the largest unshot power (emitters first), build a residual pyramid over it
+// (sub-shooters), render an item buffer of patch IDs from its centre, and let every visible receiver texel
+// gather ρ ΔB F(dA → A_s) with the disk approximation. Stops when the unshot power falls under a fraction of
+// the emitted power.
+//
+// Requires a current OpenGL 4.5 context (EglContext) on the calling thread.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/context.h"
+#include "core/scene.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/atlas.h"
+
+namespace cpgi {
+
+enum class Visibility {
+  Hemisphere,  ///< the thesis's one-pass hemispherical item buffer (curved-edge error on coarse meshes)
+  Hemicube,    ///< five perspective faces: straight edges stay straight
+};
+
+const char* visibilityName(Visibility v);
+
+/// The user's settings of a solve (the CLI binds them to flags, apps/options.cpp).
+struct SolverParams {
+  Visibility visibility = Visibility::Hemicube;
+  /// Hemisphere: the buffer's edge in pixels. Hemicube: twice a face's edge (faces of N/2, so both modes
+  /// hold about N² pixels). In [16, GL_MAX_TEXTURE_SIZE], even.
+  int itemBuffer = 512;
+  /// Item-buffer neighbourhood radius for the visibility test: 0 → the receiver's own pixel, with the
+  /// plane test of shaders/visibility.glsl (right on average at silhouettes); 1 → also the thesis's
+  /// 3×3 (a texel within a pixel of a silhouette counts as lit: +15 % in a room lit through doors).
+  int neighbourhood = 0;
+  /// Each shot draws every visibility region's eye at a texel with probability ∝ its unshot power (a
+  /// low-discrepancy draw per shot), so that visibility from a region is right on average over its power.
+  /// Off: the fixed eye of shooter_layout.h, chosen clear of nearby occluders, which sees more than most of
+  /// the region does (a lamp under a ceiling: the ceiling's shots delivered 1.1–1.2× their power).
+  bool jitteredEyes = true;
+  /// Stop when the unshot power is at most this fraction of the emitted power, in (0, 1).
+  double unshotFraction = 0.01;
+  /// Stop after this many shots whatever the unshot fraction (>= 1).
+  int maxShots = 100000;
+  /// A shooter piece (a region, then a node of its residual pyramid, then a texel) counts as one piece
+  /// for receivers farther than this many times its bounding radius; nearer receivers use its four
+  /// children. >= 1.
+  float farField = 2.0f;
+  /// A shooter is split into visibility regions about this long (m), each with its own item buffer
+  /// drawn from its centre, so a lamp just under a ceiling's centre does not hide the whole ceiling.
+  float regionSize = 1.0f;
+  /// At most this many regions per chart edge, 1..4 (so at most 16 item buffers per shot).
+  int maxRegions = 2;
+  /// Shots carrying at least `strongShotFraction` of the emitted power use up to `strongShotRegions`
+  /// per edge (1..4; 0 = maxRegions). Such shots hold most of the light, and one eye per metres-wide
+  /// region is what gives light through a door from a large shooter a hard, misplaced edge; the many
+  /// weak shots after them keep the cheaper layout.
+  /// Measured on seed3 (density 10, unshot 1 %, error without lamps against the reference, CPU seconds):
+  /// 2 regions 16.5 % / 17.9 s; all shots 4: 12.4 % / 39.1 s; strong ≥ 1 %: 13.4 % / 20.4 s;
+  /// strong ≥ 0.2 % (the default): 12.4 % / 25.5 s.
+  int strongShotRegions = 4;
+  double strongShotFraction = 0.002;
+  /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
+  /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
+  bool profilePasses = false;
+};
+
+class SolverPrograms;
+
+/// What a caller driving the solver sets, apart from the user's settings: the cell solver
+/// (radiosity/cells/) reads what crosses its portals, stops on a per-patch bound and emits with lobes.
+struct SolveControls {
+  /// Also read back every texel's received irradiance and unshot residual (SolveResult::incident,
+  /// ::residual): what a cell solve hands on through its portals (radiosity/cells/cell_solver.h).
+  bool readTransfer = false;
+  /// Also stop when the next shooter's unshot power (W, summed over R, G, B) is below this: a bound per
+  /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
+  /// the whole scene would leave such small patches unshot (radiosity/cells/cell_solver.h). 0: off.
+  double minShotPower = 0.0;
+  /// Directional emission (radiosity/gpu/emission_lobes.h): shooters emit with the per-texel lobes of
+  /// `emissionLobes` (one per atlas texel; zero or none = Lambertian), and every texel accumulates the
+  /// direction moments of what it receives (SolveResult::arrivals). Off: the passes are built without it
+  /// and cost and results are those of the plain solver. Lobes without it are an error.
+  bool directionalEmission = false;
+  std::span<const glm::vec4> emissionLobes = {};
+  /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
+  SolverPrograms* programs = nullptr;
+};
+
+/// The solver's GLSL programs, compiled once and reused by every solve given the same object (a cell
+/// solve runs once per cell and round). llvmpipe translates a program to machine code at its first draw
+/// or dispatch, so a fresh set per solve costs setup time and slower first shots. Belongs to the
+/// context (and thread) current when the first solve used it.
+class SolverPrograms {
+ public:
+  SolverPrograms();
+  ~SolverPrograms();
+  SolverPrograms(const SolverPrograms&) = delete;
+  SolverPrograms& operator=(const SolverPrograms&) = delete;
+  struct Set;  // gpu_solver.cpp
+  /// The programs for `settings` with or without directional emission (their #defines: visibility mode,
+  /// ...), compiled at first use.
+  const Set& get(const SolverParams& settings, bool directionalEmission);
+
+ private:
+  std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines
+};
+
+/// Solves the atlas with the user's `settings` and the caller's `controls`. `scene` supplies occluders:
+/// every scene triangle is drawn in the item buffer, those outside the atlas with no patch (they block
+/// light but receive none). Throws InputError for bad settings, SystemError for GL failures.
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             const EglContext& gl, Context& ctx, const SolveControls& controls = {});
+
+}  // namespace cpgi

@@ -1,0 +1,327 @@
+#include "radiosity/lightmap/atlas.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "core/error.h"
+#include "radiosity/lightmap/quad_grids.h"
+
+namespace cpgi {
+namespace {
+
+// A chart before packing: the patch it belongs to and its size in texels (without padding).
+struct ChartSize {
+  int patch;
+  int w, h;
+};
+
+// Texels along an edge of `length` metres; the small slack keeps 4 m × 10 texel/m at 40, not 41.
+int texelsAlong(float length, const AtlasParams& params) {
+  const int n = static_cast<int>(std::ceil(length * params.density - 1e-3f));
+  return std::clamp(n, params.minTexels, params.maxTexels);
+}
+
+std::string sizeOption(const AtlasParams& params) {
+  return params.texelsPerQuad > 0 ? "texels per quad" : "texel density";
+}
+
+void checkParams(const AtlasParams& params) {
+  if (params.texelsPerQuad < 0) throw InputError("texels per quad", "must be positive");
+  if (params.texelsPerQuad == 0 && !(params.density > 0.0f && std::isfinite(params.density)))
+    throw InputError("texel density", "must be a positive number of texels per metre");
+  if (params.minTexels < 1 || params.maxTexels < params.minTexels)
+    throw InputError("atlas", "texel limits need 1 <= min <= max");
+  if (params.padding < 0) throw InputError("atlas", "padding must not be negative");
+  if (params.maxSize < 1) throw InputError("atlas", "maximum size must be positive");
+}
+
+// Loose triangles are laid out as the right triangle (0,0), (s,0), (0,s) of an s×s chart. The corner at
+// (0,0) is the vertex with the largest angle (opposite the longest edge), which keeps the texels least
+// sheared. Returns that vertex.
+int triangleOrigin(const Triangle& t) {
+  int corner = 0;
+  float best = -1.0f;
+  for (int i = 0; i < 3; ++i) {
+    const float len = glm::length(t.p[(i + 1) % 3] - t.p[(i + 2) % 3]);
+    if (len > best) best = len, corner = i;
+  }
+  return corner;
+}
+
+// Chart edge for a loose triangle: at least 2, since an s×s layout has s(s−1)/2 texel centres strictly
+// inside the triangle and s = 1 would leave it without a single texel.
+int triangleChartSide(const Triangle& t, const AtlasParams& params) {
+  int s;
+  if (params.texelsPerQuad > 0) {
+    s = params.texelsPerQuad;
+  } else {
+    const int o = triangleOrigin(t);
+    const float a = glm::length(t.p[(o + 1) % 3] - t.p[o]);
+    const float b = glm::length(t.p[(o + 2) % 3] - t.p[o]);
+    s = texelsAlong(std::max(a, b), params);
+  }
+  return std::max(s, 2);
+}
+
+// Shelf packing: charts sorted by height (tallest first), placed left to right on shelves of the width
+// chosen below. Returns the atlas size; writes the chart origins into the patches.
+glm::ivec2 packShelves(std::vector<ChartSize> charts, std::vector<Patch>& patches, const AtlasParams& params) {
+  const int pad = params.padding;
+  std::stable_sort(charts.begin(), charts.end(), [](const ChartSize& a, const ChartSize& b) {
+    return a.h != b.h ? a.h > b.h : a.w > b.w;
+  });
+  double area = 0.0;
+  int widest = 0;
+  for (const ChartSize& c : charts) {
+    area += double(c.w + 2 * pad) * double(c.h + 2 * pad);
+    widest = std::max(widest, c.w + 2 * pad);
+  }
+  // A little wider than the square root: shelves waste space under their shorter charts.
+  const int width = std::max(widest, static_cast<int>(std::ceil(std::sqrt(area * 1.15))));
+  int x = 0, y = 0, shelfHeight = 0;
+  for (const ChartSize& c : charts) {
+    const int cw = c.w + 2 * pad, ch = c.h + 2 * pad;
+    if (x + cw > width) y += shelfHeight, x = 0, shelfHeight = 0;
+    Patch& p = patches[c.patch];
+    p.x = x + pad, p.y = y + pad, p.w = c.w, p.h = c.h;
+    x += cw;
+    shelfHeight = std::max(shelfHeight, ch);
+  }
+  return {width, y + shelfHeight};
+}
+
+glm::vec2 atlasUV(const LightmapAtlas& atlas, float x, float y) {
+  return {x / float(atlas.width), y / float(atlas.height)};
+}
+
+void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 4>& corners, const Scene& scene) {
+  Patch& p = atlas.patches[patchIndex];
+  const Material& m = scene.materials[p.material];
+  const glm::vec3 u = corners[1] - corners[0], v = corners[3] - corners[0];
+  const float texelArea = p.area / float(p.w * p.h);
+  p.origin = corners[0], p.texelU = u / float(p.w), p.texelV = v / float(p.h);
+  for (int j = 0; j < p.h; ++j)
+    for (int i = 0; i < p.w; ++i) {
+      const size_t t = size_t(p.y + j) * atlas.width + (p.x + i);
+      atlas.patch[t] = patchIndex;
+      atlas.position[t] = corners[0] + (float(i) + 0.5f) / float(p.w) * u + (float(j) + 0.5f) / float(p.h) * v;
+      atlas.normal[t] = p.normal;
+      atlas.albedo[t] = m.albedo;
+      atlas.emission[t] = m.emission;
+      atlas.area[t] = texelArea;
+    }
+  // Every triangle corner is a tile corner, so its chart coordinates are whole multiples of a tile's
+  // texels: project on the rectangle's edges and round.
+  const float uu = glm::dot(u, u), vv = glm::dot(v, v);
+  const glm::vec2 tile(float(p.w) / float(p.grid.x), float(p.h) / float(p.grid.y));
+  for (int32_t tri : p.triangles) {
+    const Triangle& t = scene.triangles[tri];
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 d = t.p[k] - corners[0];
+      const glm::vec2 at = glm::round(glm::vec2(glm::dot(d, u) / uu * float(p.grid.x), glm::dot(d, v) / vv * float(p.grid.y)));
+      atlas.triangleUV[tri][k] = atlasUV(atlas, float(p.x) + at.x * tile.x, float(p.y) + at.y * tile.y);
+    }
+  }
+}
+
+void fillTriangle(LightmapAtlas& atlas, int patchIndex, uint32_t tri, const Scene& scene) {
+  const Patch& p = atlas.patches[patchIndex];
+  const Material& m = scene.materials[p.material];
+  const Triangle& t = scene.triangles[tri];
+  const int o = triangleOrigin(t);
+  const glm::vec3 a = t.p[o], e1 = t.p[(o + 1) % 3] - a, e2 = t.p[(o + 2) % 3] - a;
+  const int s = p.w;
+  Patch& chart = atlas.patches[patchIndex];
+  chart.origin = a, chart.texelU = e1 / float(s), chart.texelV = e2 / float(s);
+  // Centre (i+½, j+½)/s is strictly inside when i + j + 1 < s: s(s−1)/2 valid texels.
+  const int valid = s * (s - 1) / 2;
+  const float texelArea = p.area / float(valid);
+  for (int j = 0; j < s; ++j)
+    for (int i = 0; i + j + 1 < s; ++i) {
+      const size_t k = size_t(p.y + j) * atlas.width + (p.x + i);
+      atlas.patch[k] = patchIndex;
+      atlas.position[k] = a + (float(i) + 0.5f) / float(s) * e1 + (float(j) + 0.5f) / float(s) * e2;
+      atlas.normal[k] = p.normal;
+      atlas.albedo[k] = m.albedo;
+      atlas.emission[k] = m.emission;
+      atlas.area[k] = texelArea;
+    }
+  atlas.triangleUV[tri][o] = atlasUV(atlas, float(p.x), float(p.y));
+  atlas.triangleUV[tri][(o + 1) % 3] = atlasUV(atlas, float(p.x + s), float(p.y));
+  atlas.triangleUV[tri][(o + 2) % 3] = atlasUV(atlas, float(p.x), float(p.y + s));
+}
+
+// Texels of one tile of a grid along its u and v edges.
+glm::ivec2 tileTexels(const QuadGrid& g, const AtlasParams& params) {
+  if (params.texelsPerQuad > 0) return glm::ivec2(params.texelsPerQuad);
+  return {texelsAlong(glm::length(g.corners[1] - g.corners[0]) / float(g.size.x), params),
+          texelsAlong(glm::length(g.corners[3] - g.corners[0]) / float(g.size.y), params)};
+}
+
+// Cuts a grid into sub-grids of at most params.mergeTexels texels along each edge.
+std::vector<QuadGrid> splitToFit(const QuadGrid& g, const AtlasParams& params) {
+  const glm::ivec2 tile = tileTexels(g, params);
+  const glm::ivec2 most = params.mergeTexels > 0 ? glm::max(glm::ivec2(1), glm::ivec2(params.mergeTexels) / tile)
+                                                 : glm::ivec2(1);
+  if (g.size.x <= most.x && g.size.y <= most.y) return {g};
+  const glm::vec3 u = (g.corners[1] - g.corners[0]) / float(g.size.x), v = (g.corners[3] - g.corners[0]) / float(g.size.y);
+  std::vector<QuadGrid> parts;
+  for (int j0 = 0; j0 < g.size.y; j0 += most.y)
+    for (int i0 = 0; i0 < g.size.x; i0 += most.x) {
+      QuadGrid part;
+      part.size = {std::min(most.x, g.size.x - i0), std::min(most.y, g.size.y - j0)};
+      for (int j = j0; j < j0 + part.size.y; ++j)
+        for (int i = i0; i < i0 + part.size.x; ++i) part.quads.push_back(g.quads[size_t(j) * g.size.x + i]);
+      const glm::vec3 o = g.corners[0] + float(i0) * u + float(j0) * v;
+      const glm::vec3 pu = float(part.size.x) * u, pv = float(part.size.y) * v;
+      part.corners = {o, o + pu, o + pu + pv, o + pv};
+      parts.push_back(std::move(part));
+    }
+  return parts;
+}
+
+}  // namespace
+
+size_t LightmapAtlas::validTexels() const {
+  return static_cast<size_t>(std::count_if(patch.begin(), patch.end(), [](int32_t p) { return p >= 0; }));
+}
+
+LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
+                         const std::vector<uint32_t>& subset) {
+  checkParams(params);
+  const size_t triangleCount = scene.triangles.size();
+  std::vector<uint32_t> chosen = subset;
+  if (chosen.empty()) {
+    chosen.resize(triangleCount);
+    std::iota(chosen.begin(), chosen.end(), 0u);
+  }
+  std::sort(chosen.begin(), chosen.end());
+  chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  std::vector<char> inSubset(triangleCount, 0);
+  for (uint32_t t : chosen) {
+    if (t >= triangleCount) throw InputError("atlas", "triangle subset refers to a triangle past the scene's end");
+    inSubset[t] = 1;
+  }
+
+  LightmapAtlas atlas;
+  std::vector<ChartSize> charts;
+  std::vector<std::array<glm::vec3, 4>> chartCorners;  // per patch (unused for loose triangles)
+  // Whole quads first become grids; a grid's chart is placed where its first quad's triangle comes.
+  std::vector<char> wholeQuad(quads.quads.size(), 0);
+  for (size_t qi = 0; qi < quads.quads.size(); ++qi)
+    wholeQuad[qi] = inSubset[quads.quads[qi].triangles[0]] && inSubset[quads.quads[qi].triangles[1]];
+  int maxQuads = 1;
+  if (params.mergeTexels > 0)
+    maxQuads = std::max(1, params.mergeTexels / (params.texelsPerQuad > 0 ? params.texelsPerQuad : params.minTexels));
+  const std::vector<QuadGrid> grids = findQuadGrids(quads, wholeQuad, scene, maxQuads);
+  std::vector<int> gridOfQuad(quads.quads.size(), -1);
+  for (size_t g = 0; g < grids.size(); ++g) gridOfQuad[grids[g].quads.front()] = int(g);
+  std::vector<char> quadDone(quads.quads.size(), 0);
+  size_t degenerate = 0;
+  for (uint32_t tri : chosen) {
+    const Triangle& t = scene.triangles[tri];
+    if (t.material >= scene.materials.size()) throw InputError("atlas", "triangle refers to a missing material");
+    const int32_t qi = tri < quads.quadOfTriangle.size() ? quads.quadOfTriangle[tri] : -1;
+    Patch p;
+    p.material = t.material;
+    if (qi >= 0 && wholeQuad[qi]) {
+      if (quadDone[qi]) continue;
+      quadDone[qi] = 1;
+      if (gridOfQuad[qi] < 0) continue;  // charted when the grid's first quad comes
+      for (const QuadGrid& g : splitToFit(grids[gridOfQuad[qi]], params)) {
+        Patch gp = p;
+        gp.quad = int(g.quads.front());
+        gp.grid = g.size;
+        for (uint32_t q : g.quads) {
+          gp.quads.push_back(int32_t(q));
+          for (uint32_t qt : quads.quads[q].triangles) gp.triangles.push_back(int32_t(qt));
+          quadDone[q] = 1;
+        }
+        const Quad& first = quads.quads[g.quads.front()];
+        gp.normal = first.normal;
+        gp.area = first.area() * float(g.quads.size());
+        const glm::ivec2 tile = tileTexels(g, params);
+        charts.push_back({int(atlas.patches.size()), tile.x * g.size.x, tile.y * g.size.y});
+        chartCorners.push_back(g.corners);
+        atlas.patches.push_back(std::move(gp));
+      }
+      continue;
+    }
+    if (!(t.area() > 0.0f)) {
+      ++degenerate;
+      continue;
+    }
+    p.triangles = {int32_t(tri)};
+    p.normal = t.geometricNormal();
+    p.area = t.area();
+    const int s = triangleChartSide(t, params);
+    charts.push_back({int(atlas.patches.size()), s, s});
+    chartCorners.push_back({});
+    atlas.patches.push_back(p);
+  }
+  if (degenerate > 0)
+    ctx.warn("atlas: " + std::to_string(degenerate) + " zero-area triangle(s) left out of the lightmap");
+
+  const glm::ivec2 size = packShelves(charts, atlas.patches, params);
+  if (size.x > params.maxSize || size.y > params.maxSize)
+    throw InputError(sizeOption(params), "the lightmap atlas would be " + std::to_string(size.x) + "x" +
+                                             std::to_string(size.y) + " texels, over the limit of " +
+                                             std::to_string(params.maxSize) + "; lower the resolution");
+  atlas.width = std::max(size.x, 1);
+  atlas.height = std::max(size.y, 1);
+  const size_t n = atlas.texelCount();
+  atlas.patch.assign(n, -1);
+  atlas.position.assign(n, glm::vec3(0.0f));
+  atlas.normal.assign(n, glm::vec3(0.0f));
+  atlas.albedo.assign(n, glm::vec3(0.0f));
+  atlas.emission.assign(n, glm::vec3(0.0f));
+  atlas.area.assign(n, 0.0f);
+  atlas.triangleUV.assign(triangleCount, {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
+
+  for (size_t i = 0; i < atlas.patches.size(); ++i) {
+    const Patch& p = atlas.patches[i];
+    if (p.quad >= 0)
+      fillQuad(atlas, int(i), chartCorners[i], scene);
+    else
+      fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
+  }
+  return atlas;
+}
+
+std::vector<float> emissiveMask(const LightmapAtlas& atlas) {
+  std::vector<float> mask(atlas.texelCount(), 0.0f);
+  for (size_t i = 0; i < mask.size(); ++i)
+    if (atlas.patch[i] >= 0 && glm::any(glm::greaterThan(atlas.emission[i], glm::vec3(0.0f)))) mask[i] = 1.0f;
+  return mask;
+}
+
+void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius) {
+  if (values.size() != atlas.texelCount())
+    throw std::invalid_argument("dilate: values must have one entry per atlas texel");
+  const int w = atlas.width, h = atlas.height;
+  // Reads only valid texels, so the result does not depend on the order padding is visited in.
+  const std::vector<glm::vec3> source = values;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t t = size_t(y) * w + x;
+      if (atlas.patch[t] >= 0) continue;
+      int best = INT32_MAX;
+      size_t from = t;
+      for (int dy = -radius; dy <= radius; ++dy) {
+        const int yy = y + dy;
+        if (yy < 0 || yy >= h) continue;
+        for (int dx = -radius; dx <= radius; ++dx) {
+          const int xx = x + dx;
+          if (xx < 0 || xx >= w) continue;
+          const size_t s = size_t(yy) * w + xx;
+          const int d = dx * dx + dy * dy;
+          if (atlas.patch[s] >= 0 && d < best) best = d, from = s;
+        }
+      }
+      values[t] = from != t ? source[from] : glm::vec3(0.0f);
+    }
+}
+
+}  // namespace cpgi

@@ -1,0 +1,92 @@
+// The lightmap atlas: every patch (a recognised quad, or a loose triangle) gets a chart of texels; each
+// texel is a sub-patch of the radiosity solution (thesis ch. 6: "each texel is a sub-patch"). Charts are
+// packed into one atlas with padding so bilinear sampling shows no seams.
+//
+// Texel semantics, shared by the GPU solver, the reference path tracer and the metrics:
+//  - a valid texel (patch >= 0) stands for the part of its patch whose parameter square it covers;
+//    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
+//    texels = the patch's area);
+//  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
+//    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each quad
+//    keeping the texels it would have alone;
+//  - loose triangles: a right-triangle layout in a square chart; texels whose centre lies inside the
+//    triangle are valid, each with area = triangle area / valid texel count;
+//  - padding texels (patch == -1) get no light of their own: dilation copies their nearest valid
+//    neighbour's value after solving, for sampling only; they carry area 0 and never count in metrics.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/context.h"
+#include "core/quads.h"
+#include "core/scene.h"
+
+namespace cpgi {
+
+struct AtlasParams {
+  /// > 0: the thesis's mode, N×N texels per quad whatever its size (loose triangles get N×N charts too).
+  int texelsPerQuad = 0;
+  /// With texelsPerQuad == 0: texels per metre along each edge of a patch.
+  float density = 10.0f;
+  int minTexels = 2;    ///< per chart edge, so a thin ledge still has a texel across it
+  int maxTexels = 256;  ///< per chart edge, so a huge floor does not take the whole atlas
+  int padding = 1;      ///< texels of gutter around each chart, filled by dilation
+  int maxSize = 8192;   ///< atlas edge limit in texels; exceeded → InputError naming the option
+  /// Merge grids of equal coplanar quads into one chart (one shooter) up to this many texels along an
+  /// edge; 0: a chart per quad, as the thesis does.
+  int mergeTexels = 1024;
+};
+
+struct Patch {
+  int quad = -1;                  ///< the (first) quad in the QuadSet, or -1 for a loose triangle
+  std::vector<int32_t> quads;     ///< a merged grid's quads, row-major (grid.y rows of grid.x); one quad: itself
+  glm::ivec2 grid{1, 1};          ///< quads along the chart's x and y; each covers (w/grid.x) × (h/grid.y) texels
+  std::vector<int32_t> triangles;  ///< scene triangles: two per quad in `quads` order, or the loose one
+  uint32_t material = 0;
+  glm::vec3 normal{0.0f};
+  float area = 0.0f;               ///< m²
+  int x = 0, y = 0, w = 0, h = 0;  ///< the chart in atlas texels (without padding)
+  /// World-space parametrisation of the chart: texel (i, j) covers the parallelogram
+  /// origin + [i, i+1]·texelU + [j, j+1]·texelV (its centre is the sample point when valid).
+  glm::vec3 origin{0.0f}, texelU{0.0f}, texelV{0.0f};
+};
+
+struct LightmapAtlas {
+  int width = 0, height = 0;
+  std::vector<Patch> patches;
+
+  // Per texel, row-major, width × height.
+  std::vector<int32_t> patch;       ///< owning patch, -1 for padding/unused
+  std::vector<glm::vec3> position;  ///< world-space sample point (metres)
+  std::vector<glm::vec3> normal;    ///< unit
+  std::vector<glm::vec3> albedo;
+  std::vector<glm::vec3> emission;  ///< W/m²
+  std::vector<float> area;          ///< m²; 0 for padding
+
+  /// Per scene triangle, the atlas coordinates (in [0,1]², v down the rows) of its three corners;
+  /// triangles not in the atlas (e.g. outside the cell being baked) get all zeros.
+  std::vector<std::array<glm::vec2, 3>> triangleUV;
+
+  size_t texelCount() const { return static_cast<size_t>(width) * height; }
+  size_t validTexels() const;
+};
+
+/// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
+/// Deterministic: the same scene and params give the same atlas.
+LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
+                         const std::vector<uint32_t>& subset = {});
+
+/// Fills padding texels with the value of their nearest valid texel (within `radius` texels), so that
+/// bilinear lookups at chart edges don't pull in black.
+void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius = 2);
+
+/// Per texel, 1 where its patch emits (in any channel) and 0 elsewhere, padding included: the lamps, which
+/// lightmap.exr marks as "emissive" and the error figures without lamps leave out (their B ≈ E outweighs
+/// every lit wall in Σ a|R|²).
+std::vector<float> emissiveMask(const LightmapAtlas& atlas);
+
+}  // namespace cpgi

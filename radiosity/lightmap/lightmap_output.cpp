@@ -1,0 +1,39 @@
+#include "radiosity/lightmap/lightmap_output.h"
+
+#include <filesystem>
+#include <numbers>
+
+#include "core/scene_io.h"
+
+namespace cpgi {
+
+LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const CellGraph& cells,
+                                     const LightmapAtlas& atlas, std::vector<glm::vec3> radiosity,
+                                     const std::vector<ExrChannel>& extra, Context& ctx,
+                                     const ViewParams& viewParams) {
+  dilate(atlas, radiosity);
+  const ImageRGB image{atlas.width, atlas.height, radiosity};
+  std::vector<ExrChannel> channels{{"area", atlas.area}};
+  channels.insert(channels.end(), extra.begin(), extra.end());
+  writeExr(out.file("lightmap.exr").string(), image, channels);
+
+  LightmapOutputs result;
+  result.exposure = viewParams.exposure > 0.0f ? viewParams.exposure : viewExposure(atlas, radiosity);
+  GltfWriteOptions gltf;
+  gltf.lightmapUVs = &atlas.triangleUV;
+  // Keep the cells and portals, so the baked file still loads with its graph.
+  gltf.cells = cells.empty() ? nullptr : &cells;
+  gltf.lightmapPng = encodePng(image, result.exposure / std::numbers::pi_v<float>);
+  writeFileAtomically(out.file("lightmap.png"), gltf.lightmapPng);
+  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
+  const std::filesystem::path staged = out.file("baked.glb");
+  std::filesystem::path withExtension = staged;
+  withExtension += ".glb";
+  writeGltf(withExtension.string(), scene, gltf);
+  std::filesystem::rename(withExtension, staged);
+
+  result.views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams);
+  return result;
+}
+
+}  // namespace cpgi

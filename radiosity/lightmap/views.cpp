@@ -1,0 +1,141 @@
+#include "radiosity/lightmap/views.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "radiosity/lightmap/ray_scene.h"
+
+namespace cpgi {
+
+namespace {
+
+Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target) {
+  Camera cam;
+  cam.name = name;
+  cam.position = eye;
+  cam.forward = glm::normalize(target - eye);
+  const glm::vec3 worldUp(0.0f, 1.0f, 0.0f);
+  glm::vec3 up = worldUp - cam.forward * glm::dot(cam.forward, worldUp);
+  cam.up = glm::length(up) > 1e-4f ? glm::normalize(up) : glm::vec3(0.0f, 0.0f, -1.0f);
+  cam.yfov = glm::radians(65.0f);
+  cam.aspect = 4.0f / 3.0f;
+  return cam;
+}
+
+/// Bilinear lookup at atlas coordinates in [0,1]² (texel centres at (i+½)/width), clamped at the border.
+glm::vec3 sampleBilinear(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap, glm::vec2 uv) {
+  const float x = uv.x * float(atlas.width) - 0.5f, y = uv.y * float(atlas.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  auto at = [&](int i, int j) {
+    i = std::clamp(i, 0, atlas.width - 1);
+    j = std::clamp(j, 0, atlas.height - 1);
+    return lightmap[size_t(j) * atlas.width + i];
+  };
+  const int i = int(fx), j = int(fy);
+  return (1.0f - ty) * ((1.0f - tx) * at(i, j) + tx * at(i + 1, j)) +
+         ty * ((1.0f - tx) * at(i, j + 1) + tx * at(i + 1, j + 1));
+}
+
+}  // namespace
+
+std::vector<Camera> defaultCameras(const Scene& scene, const CellGraph& cells) {
+  std::vector<Camera> cameras;
+  auto cornerView = [](const std::string& name, const Bounds& b) {
+    const glm::vec3 size = b.size();
+    const float eyeHeight = std::min(1.6f, 0.55f * size.y);
+    const glm::vec3 eye(b.lo.x + 0.15f * size.x, b.lo.y + eyeHeight, b.lo.z + 0.15f * size.z);
+    const glm::vec3 target(b.hi.x - 0.1f * size.x, b.lo.y + 0.4f * size.y, b.hi.z - 0.1f * size.z);
+    return lookAt(name, eye, target);
+  };
+  for (const Cell& cell : cells.cells) {
+    Bounds b;
+    for (uint32_t t : cell.triangles)
+      if (t < scene.triangles.size())
+        for (const glm::vec3& p : scene.triangles[t].p) b.extend(p);
+    if (!b.empty()) cameras.push_back(cornerView(cell.name, b));
+  }
+  if (!cameras.empty()) return cameras;
+
+  const Bounds b = scene.bounds();
+  if (b.empty()) return cameras;
+  const glm::vec3 size = b.size(), centre = 0.5f * (b.lo + b.hi);
+  const glm::vec3 eye(centre.x, b.lo.y + std::min(1.6f, 0.55f * size.y), centre.z);
+  const glm::vec3 along = size.x >= size.z ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+  cameras.push_back(lookAt("overview", eye, eye + along - glm::vec3(0.0f, 0.15f, 0.0f)));
+  return cameras;
+}
+
+float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap) {
+  std::vector<std::pair<float, float>> radianceArea;  // (luminance-ish radiance, area)
+  double total = 0.0;
+  for (size_t i = 0; i < atlas.texelCount() && i < lightmap.size(); ++i) {
+    if (atlas.patch[i] < 0 || !(atlas.area[i] > 0.0f)) continue;
+    const glm::vec3& b = lightmap[i];
+    radianceArea.emplace_back(std::max({b.x, b.y, b.z}) / std::numbers::pi_v<float>, atlas.area[i]);
+    total += atlas.area[i];
+  }
+  std::sort(radianceArea.begin(), radianceArea.end());
+  double accumulated = 0.0;
+  for (const auto& [radiance, area] : radianceArea) {
+    accumulated += area;
+    if (accumulated >= 0.9 * total) return radiance > 0.0f ? 0.8f / radiance : 1.0f;
+  }
+  return 1.0f;
+}
+
+ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas,
+                    std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params) {
+  if (lightmap.size() != atlas.texelCount())
+    throw std::invalid_argument("renderView: the lightmap must have one value per atlas texel");
+  ImageRGB image;
+  image.width = std::clamp(params.width, 16, 8192);
+  // The vertical field of view is the camera's; a given height widens or narrows the horizontal one.
+  image.height = params.height > 0
+                     ? std::clamp(params.height, 16, 8192)
+                     : std::max(1, int(std::lround(image.width / std::max(camera.aspect, 1e-3f))));
+  image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
+  const int n = std::clamp(params.supersample, 1, 8);
+
+  const glm::vec3 forward = glm::normalize(camera.forward);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float tanY = std::tan(0.5f * camera.yfov), tanX = tanY * float(image.width) / float(image.height);
+
+  auto shade = [&](glm::vec3 dir) -> glm::vec3 {
+    const RayScene::Hit hit = rays.intersect(camera.position, dir);
+    if (!hit) return glm::vec3(0.0f);
+    const auto t = size_t(hit.triangle);
+    if (glm::dot(scene.triangles[t].geometricNormal(), dir) >= 0.0f) return glm::vec3(0.0f);
+    if (t >= atlas.triangleUV.size()) return glm::vec3(0.0f);
+    const auto& uv = atlas.triangleUV[t];
+    if (uv[0] == uv[1] && uv[1] == uv[2]) return glm::vec3(0.0f);  // not in this atlas
+    const glm::vec2 at = (1.0f - hit.u - hit.v) * uv[0] + hit.u * uv[1] + hit.v * uv[2];
+    return sampleBilinear(atlas, lightmap, at) / std::numbers::pi_v<float>;
+  };
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < image.width; ++x) {
+        glm::vec3 sum(0.0f);
+        for (int sy = 0; sy < n; ++sy)
+          for (int sx = 0; sx < n; ++sx) {
+            const float px = (float(x) + (float(sx) + 0.5f) / float(n)) / float(image.width);
+            const float py = (float(y) + (float(sy) + 0.5f) / float(n)) / float(image.height);
+            const glm::vec3 dir =
+                glm::normalize(forward + (2.0f * px - 1.0f) * tanX * right + (1.0f - 2.0f * py) * tanY * up);
+            sum += shade(dir);
+          }
+        image.at(x, y) = sum / float(n * n);
+      }
+  });
+  return image;
+}
+
+}  // namespace cpgi

@@ -1,0 +1,55 @@
+// Pictures of a baked lightmap: Embree primary rays from pinhole cameras, the hit triangle's lightmap
+// coordinates (LightmapAtlas::triangleUV) interpolated by the hit's barycentrics, a bilinear lookup, and
+// radiance L = B/π (diffuse surfaces). Used by `cpgi bake` and `cpgi reference` alike, so the two can be
+// compared picture by picture (view-*.exr; each PNG's exposure comes from what its camera sees).
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/image_io.h"
+#include "core/output_dir.h"
+#include "core/scene.h"
+#include "radiosity/lightmap/atlas.h"
+
+namespace cpgi {
+
+class RayScene;
+
+struct ViewParams {
+  int width = 640;      ///< pixels, in [16, 8192]
+  int height = 0;       ///< pixels, in [16, 8192]; 0: from the width and the camera's aspect ratio
+  int supersample = 2;  ///< n × n rays per pixel, box-filtered. In [1, 8].
+  /// Scale applied before the PNG's clamp and sRGB curve; ≤ 0 → chosen per picture from what it sees
+  /// (its pixels' 90th percentile of radiance to 0.8, as viewExposure does for the lightmap).
+  float exposure = 0.0f;
+};
+
+/// Interior views for a scene that has no cameras of its own (y up, as in glTF): with cells, one per cell,
+/// named after it, from near one lower corner of the cell's bounds at eye height towards the opposite
+/// corner; without, one named "overview" from the centre of the scene's bounds at eye height along its
+/// longest horizontal axis.
+std::vector<Camera> defaultCameras(const Scene& scene, const CellGraph& cells);
+
+/// An exposure that makes the area-weighted 90th percentile of radiance (B/π over valid texels) 0.8, so
+/// lit walls read well and lights saturate. 1 for a black lightmap.
+float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap);
+
+/// Linear radiance (W/m²/sr) seen by `camera`. Misses, back faces and triangles outside the atlas are
+/// black. `lightmap` is per atlas texel with padding already dilated (see dilate()).
+ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas,
+                    std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params = {});
+
+/// Renders every camera of the scene (defaultCameras() when it has none) and writes `view-NAME.exr`
+/// (linear radiance) and `view-NAME.png` (tone-mapped) through `out`; NAME is the camera name made
+/// file-safe. Returns the NAMEs written.
+std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+                                     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
+                                     const ViewParams& params = {});
+
+}  // namespace cpgi

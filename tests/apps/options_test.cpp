@@ -1,0 +1,67 @@
+// apps/options.h in-process: flags bind to the libraries' fields, enums parse by name, a library error
+// naming a parameter prints with its flag, and `--around`'s point parses.
+#include "apps/options.h"
+
+#include <gtest/gtest.h>
+
+namespace cpgi::cli {
+namespace {
+
+// Parses `args` (without the program name) with `add`'s options; returns false on a CLI11 error.
+template <class Add>
+bool parse(const std::string& args, Add add) {
+  CLI::App app;
+  add(app);
+  try {
+    app.parse(args, false);
+  } catch (const CLI::ParseError&) {
+    return false;
+  }
+  return true;
+}
+
+TEST(Options, FlagsSetTheLibrariesFields) {
+  SolverParams solver;
+  CellSolveParams cells;
+  decomp::DecomposeParams decompose;
+  AtlasParams atlas;
+  ASSERT_TRUE(
+      parse("--visibility hemisphere --portals directional --voxel 0.2 --seal 0.1 --density 4 "
+            "--item-buffer 256 --jobs 2",
+            [&](CLI::App& app) {
+              addSolverOptions(app, solver);
+              addCellOptions(app, cells);
+              addDecomposeOptions(app, decompose);
+              addAtlasOptions(app, atlas);
+            }));
+  EXPECT_EQ(solver.visibility, Visibility::Hemisphere);
+  EXPECT_EQ(solver.itemBuffer, 256);
+  EXPECT_EQ(cells.portals, PortalLight::Directional);
+  EXPECT_EQ(cells.jobs, 2);
+  EXPECT_DOUBLE_EQ(decompose.voxelSize, 0.2);
+  EXPECT_DOUBLE_EQ(decompose.sealRadius, 0.1);
+  EXPECT_FLOAT_EQ(atlas.density, 4.0f);
+  SolverParams other;
+  EXPECT_FALSE(parse("--visibility cube", [&](CLI::App& app) { addSolverOptions(app, other); }));
+  CellSolveParams spot;
+  EXPECT_FALSE(parse("--portals spot", [&](CLI::App& app) { addCellOptions(app, spot); }));
+}
+
+TEST(Options, LibraryErrorsNameTheFlag) {
+  EXPECT_EQ(userMessage(InputError("voxel size", "must be in (0, 10] metres")),
+            "--voxel: must be in (0, 10] metres");
+  EXPECT_EQ(userMessage(InputError("s.glb", "1 duplicate triangle; run with `repair` to drop them")),
+            "s.glb: 1 duplicate triangle; run with --repair to drop them");
+  EXPECT_EQ(userMessage(InputError("s.glb", "`not a parameter` stays")), "s.glb: `not a parameter` stays");
+  EXPECT_EQ(flagOf("item buffer"), "--item-buffer");
+  EXPECT_EQ(flagOf("scenes/house.glb"), "scenes/house.glb");
+}
+
+TEST(CellSelection, ParsePoint) {
+  EXPECT_EQ(parsePoint("1,-2.5, 3e1", "--around"), glm::vec3(1.0f, -2.5f, 30.0f));
+  for (const char* bad : {"", "1,2", "1,2,3,4", "1,x,3", "1,2,3m", "1,nan,3", "1,,3"})
+    EXPECT_THROW(parsePoint(bad, "--around"), InputError) << bad;
+}
+
+}  // namespace
+}  // namespace cpgi::cli

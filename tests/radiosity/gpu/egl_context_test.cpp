@@ -1,0 +1,68 @@
+#include "radiosity/gpu/egl_context.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "radiosity/gpu/gl.h"
+#include "radiosity/gpu/shader_library.h"
+
+namespace cpgi {
+namespace {
+
+TEST(EglContext, RunsAComputeShaderAndReadsBack) {
+  Context ctx;
+  std::string reported;
+  ctx.setProgress([&](const std::string& stage, double, const std::string& status) {
+    if (stage == "egl") reported = status;
+  });
+  EglContext context(ctx);
+  EXPECT_FALSE(context.renderer().empty());
+  EXPECT_NE(reported.find(context.renderer()), std::string::npos);
+  EXPECT_GE(context.maxTextureSize(), 1024);
+
+  const char* source = R"(#version 450 core
+    layout(local_size_x = 64) in;
+    layout(std430, binding = 0) buffer Data { float v[]; };
+    void main() { uint i = gl_GlobalInvocationID.x; v[i] = v[i] * v[i] + float(i); })";
+  GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  ASSERT_TRUE(ok);
+  gl::Program program(glCreateProgram());
+  glAttachShader(program.get(), shader);
+  glLinkProgram(program.get());
+  glDeleteShader(shader);
+  glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+  ASSERT_TRUE(ok);
+
+  std::vector<float> data(256);
+  for (size_t i = 0; i < data.size(); ++i) data[i] = 0.5f * float(i);
+  gl::Buffer buffer = gl::makeBuffer(data.size() * 4, data.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.get());
+  glUseProgram(program.get());
+  glDispatchCompute(4, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> out(data.size());
+  glGetNamedBufferSubData(buffer.get(), 0, GLsizeiptr(out.size() * 4), out.data());
+  gl::check("test");
+  for (size_t i = 0; i < out.size(); ++i) EXPECT_FLOAT_EQ(out[i], data[i] * data[i] + float(i));
+}
+
+TEST(EglContext, EmbeddedShadersCompile) {
+  Context ctx;
+  EglContext context(ctx);
+  for (const char* name : {"compact.comp", "finish_lists.comp", "shooter_pyramid.comp", "tile_stats.comp",
+                           "patch_stats.comp", "select_shooter.comp", "receive.comp"})
+    EXPECT_NO_THROW(buildProgram({name})) << name;
+  EXPECT_NO_THROW(buildProgram({"receive.comp"}, {"HEMISPHERE"}));
+  EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}));
+  EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}, {"HEMISPHERE"}));
+  EXPECT_NE(shaderSource("receive.comp").find("visibleFromShooter"), std::string::npos);
+  EXPECT_THROW(shaderSource("missing.comp"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -50,7 +50,7 @@ function cellsSection(data) {
   if (compared.size) {
     const e = (key) => (c) => compared.get(c.name)?.[key];
     columns.push(
-      { label: 'worst', value: (c) => (c.name === data.report.worst_cell ? 'worst' : ''), title: 'largest rel. RMSE' },
+      { label: 'worst', value: (c) => (c.name === data.report.worst_cell ? 'worst' : ''), title: 'ratio of means farthest from 1 (compare-light)' },
       { label: 'compared texels', value: e('texels') },
       { label: 'rel. RMSE', value: e('rel_rmse'), title: 'against the reference, normalised by the cell\'s own reference' },
       { label: 'ratio of means', value: e('ratio_of_means'), title: 'mean B of A / mean B of the reference' },

@@ -80,6 +80,17 @@ std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> w
   return signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
 }
 
+// --report DIR: the page with the error per texel; the heat map leaves out the lamps as the figures
+// without lamps do, and the untraced texels of a sample (`area` is 0 there).
+void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures, const Lightmap& a,
+                     const Lightmap& b, const std::vector<float>& area, const std::vector<float>& emissive) {
+  std::vector<float> weight = area;
+  if (emissive.size() == weight.size())
+    for (size_t i = 0; i < weight.size(); ++i)
+      if (emissive[i] > 0.5f) weight[i] = 0.0f;
+  writeComparisonReportPage(o.report, o.a, figures, a.rgb, b.rgb, b.area, weight);
+}
+
 int runCompareLight(const CompareLightOptions& o) {
   const Lightmap a = readLightmap(o.a), b = readLightmap(o.b);
   if (!a.sampleWeight.empty())
@@ -158,14 +169,7 @@ int runCompareLight(const CompareLightOptions& o) {
   j["reference_noise_nonemissive"] = orNull(noiseReflectors);
   j["cells"] = cellsJson(cells);
   j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
-  if (!o.report.empty()) {
-    // The heat map leaves out the lamps as the figures without lamps do, and untraced texels of a sample.
-    std::vector<float> weight = area;
-    if (emissive.size() == weight.size())
-      for (size_t i = 0; i < weight.size(); ++i)
-        if (emissive[i] > 0.5f) weight[i] = 0.0f;
-    writeComparisonReportPage(o.report, o.a, j, a.rgb, b.rgb, b.area, weight);
-  }
+  if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive);
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
     return 0;

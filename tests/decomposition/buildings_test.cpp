@@ -1,0 +1,167 @@
+// The automatic decomposition of buildings open to the outside and of two storeys joined by a stair
+// (issue 12), scored against each generator's own rooms.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "decomposition/compare.h"
+#include "decomposition/decompose.h"
+#include "scenes/buildings.h"
+
+namespace cpgi::decomp {
+namespace {
+
+// Per voxel, the index of the room whose boxes hold its centre, -1 elsewhere.
+std::vector<int32_t> roomLabels(const Building& b, const GridFrame& f) {
+  std::vector<int32_t> out(f.count(), -1);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const glm::vec3 p = f.centre(i);
+    for (size_t r = 0; r < b.rooms.size() && out[i] < 0; ++r)
+      for (const Box3& box : b.rooms[r].boxes)
+        if (box.contains(p)) out[i] = int32_t(r);
+  }
+  return out;
+}
+
+struct Scored {
+  Decomposition d;
+  double ari = 0.0;
+  std::vector<double> roomIoU;  // per room, its best-matching cell
+  std::vector<int> cellOfRoom;  // the cell holding most of each room
+};
+
+Scored decomposeBuilding(const Building& b, double voxel) {
+  DecomposeParams p;
+  p.voxelSize = voxel;
+  p.sourceName = "building";
+  Context ctx;
+  Scored s;
+  s.d = decompose(b.seed.scene, p, ctx);
+  const std::vector<int32_t> rooms = roomLabels(b, s.d.frame);
+  s.ari = adjustedRandIndex(rooms, s.d.voxelCell);
+  s.roomIoU = bestMatchIoU(rooms, int(b.rooms.size()), s.d.voxelCell, int(s.d.graph.cells.size()));
+  for (size_t r = 0; r < b.rooms.size(); ++r) {
+    std::map<int, size_t> votes;
+    for (size_t i = 0; i < rooms.size(); ++i)
+      if (rooms[i] == int(r) && s.d.voxelCell[i] >= 0) ++votes[s.d.voxelCell[i]];
+    int best = -1;
+    size_t most = 0;
+    for (const auto& [c, n] : votes)
+      if (n > most) best = c, most = n;
+    s.cellOfRoom.push_back(best);
+  }
+  return s;
+}
+
+const BuildingOpening& openingNamed(const Building& b, const std::string& name) {
+  for (const BuildingOpening& o : b.openings)
+    if (o.name == name) return o;
+  throw std::runtime_error("no opening " + name);
+}
+
+// The portals joining cells x and y.
+std::vector<const PortalQuad*> portalsBetween(const Decomposition& d, int x, int y) {
+  std::vector<const PortalQuad*> out;
+  for (const PortalQuad& q : d.graph.portals)
+    if ((q.cellA == x && q.cellB == y) || (q.cellA == y && q.cellB == x)) out.push_back(&q);
+  return out;
+}
+
+// Every room found as its own cell, the outside a cell of its own, no face between cells uncovered, and
+// a portal in the front door's opening, across its wall.
+void expectRoomsAndFrontDoor(const Building& b, const Scored& s, double voxel) {
+  const Decomposition& d = s.d;
+  EXPECT_GE(s.ari, 0.9);
+  for (size_t r = 0; r < b.rooms.size(); ++r) EXPECT_GE(s.roomIoU[r], 0.8) << b.rooms[r].name;
+  EXPECT_EQ(d.graph.cells.size(), b.rooms.size() + 1);
+  ASSERT_GE(d.outsideCell, 0);
+  EXPECT_EQ(d.graph.cells[size_t(d.outsideCell)].name, "outside");
+  EXPECT_EQ(d.leakingFaces, 0u);
+  EXPECT_TRUE(d.graph.connected());
+  const BuildingOpening& door = openingNamed(b, "front-door");
+  int doorRoom = -1;
+  for (size_t r = 0; r < b.rooms.size(); ++r)
+    if (b.rooms[r].name == door.b) doorRoom = s.cellOfRoom[r];
+  bool found = false;
+  for (const PortalQuad* q : portalsBetween(d, doorRoom, d.outsideCell)) {
+    const glm::vec3 c = q->centre(), o = door.box.centre();
+    const float along = std::abs(c[door.axis] - o[door.axis]);
+    const glm::vec3 inside = glm::clamp(c, door.box.lo - 0.2f, door.box.hi + 0.2f);
+    if (along <= float(door.box.hi[door.axis] - door.box.lo[door.axis]) && inside == c &&
+        std::abs(q->normal[door.axis]) > 0.98f)
+      found = true;
+  }
+  EXPECT_TRUE(found) << "no portal in the front door at " << voxel << " m voxels";
+}
+
+TEST(Buildings, OpenHouseFindsEveryRoomAndPortalsToTheOutside) {
+  const Building b = makeOpenHouse();
+  const Scored s = decomposeBuilding(b, 0.1);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  // Every exterior opening is a portal between its room and the outside: the terrace door and the four
+  // windows as well as the front door.
+  size_t exterior = 0, toOutside = 0;
+  for (const BuildingOpening& o : b.openings) exterior += o.exterior();
+  for (const PortalQuad& q : s.d.graph.portals)
+    toOutside += q.cellA == s.d.outsideCell || q.cellB == s.d.outsideCell;
+  EXPECT_EQ(toOutside, exterior);
+  EXPECT_EQ(s.d.graph.portals.size(), b.openings.size());
+}
+
+TEST(Buildings, OpenPlanStaysOneRoomAndPorchIsOutside) {
+  for (const Building& b : {makeOpenPlanHouse(), makePorchHouse()}) {
+    SCOPED_TRACE(b.rooms.front().name);
+    const Scored s = decomposeBuilding(b, 0.1);
+    expectRoomsAndFrontDoor(b, s, 0.1);
+  }
+  // The porch (under its roof, open on three sides) belongs to the outside cell.
+  const Building porch = makePorchHouse();
+  const Scored s = decomposeBuilding(porch, 0.1);
+  const glm::ivec3 v = s.d.frame.voxelOf(glm::vec3(2.0f, 1.5f, -1.2f));
+  EXPECT_EQ(s.d.voxelCell[s.d.frame.index(v)], s.d.outsideCell);
+}
+
+// The two floors meet in one planar, horizontal portal in the stair's hole, not a crust along the steps.
+void expectStairPortal(const Building& b, const Scored& s) {
+  const BuildingOpening& stair = openingNamed(b, "stair");
+  int hall = -1, landing = -1;
+  for (size_t r = 0; r < b.rooms.size(); ++r) {
+    if (b.rooms[r].name == "hall") hall = s.cellOfRoom[r];
+    if (b.rooms[r].name == "landing") landing = s.cellOfRoom[r];
+  }
+  ASSERT_NE(hall, landing) << "the two floors merged";
+  const std::vector<const PortalQuad*> between = portalsBetween(s.d, hall, landing);
+  ASSERT_EQ(between.size(), 1u);
+  const PortalQuad& q = *between.front();
+  EXPECT_GT(std::abs(q.normal.y), 0.999f);
+  const glm::vec3 c = q.centre();
+  EXPECT_GE(c.y, stair.box.lo.y - 0.5f * float(s.d.frame.voxel));
+  EXPECT_LE(c.y, stair.box.hi.y + 0.5f * float(s.d.frame.voxel));
+  // It covers the hole: its area is the hole's within 25 % (the top step and the margin).
+  const glm::vec3 size = stair.box.hi - stair.box.lo;
+  EXPECT_NEAR(q.area, size.x * size.z, 0.25f * size.x * size.z);
+}
+
+TEST(Buildings, StraightStairJoinsTheFloorsByOnePlanarPortal) {
+  const Building b = makeTwoStoreyHouse(false);
+  const Scored s = decomposeBuilding(b, 0.1);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  expectStairPortal(b, s);
+}
+
+TEST(Buildings, SpiralStairJoinsTheFloorsByOnePlanarPortal) {
+  const Building b = makeTwoStoreyHouse(true);
+  const Scored s = decomposeBuilding(b, 0.1);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  expectStairPortal(b, s);
+}
+
+TEST(Buildings, TwoStoreyHouseAtFiveCentimetres) {
+  const Building b = makeTwoStoreyHouse(false);
+  const Scored s = decomposeBuilding(b, 0.05);
+  expectRoomsAndFrontDoor(b, s, 0.05);
+  expectStairPortal(b, s);
+}
+
+}  // namespace
+}  // namespace cpgi::decomp

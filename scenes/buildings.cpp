@@ -128,7 +128,11 @@ class BuildingMaker {
     for (const Box3& box : boxes) massing.carved.push_back(box);
     out_.rooms.push_back({name, std::move(boxes)});
   }
+  /// Exterior openings are left solid: the same building with its doors and windows shut.
+  bool closedOutside = false;
+
   void opening(const std::string& name, Box3 box, int axis, const std::string& a, const std::string& b) {
+    if (closedOutside && (a == "outside" || b == "outside")) return;
     massing.carved.push_back(box);
     out_.openings.push_back({name, box, axis, a, b});
   }
@@ -296,8 +300,9 @@ void spiralTreads(BuildingMaker& m, glm::vec2 centre, int steps, float rise, flo
 
 }  // namespace
 
-Building makeTwoStoreyHouse(bool spiral) {
+Building makeTwoStoreyHouse(bool spiral, bool closedOutside) {
   BuildingMaker m;
+  m.closedOutside = closedOutside;
   houseShell(m, 10.0f, 8.0f, 2, 1.0f, 1.0f);
   const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey;
   m.room("hall", {box(0.2f, 0, 0.2f, 3.4f, H, 7.8f)});
@@ -380,8 +385,9 @@ Building makePorchHouse() {
 }
 
 const std::vector<std::string>& buildingNames() {
-  static const std::vector<std::string> names = {"house-open", "house-stair", "house-spiral", "open-plan",
-                                                 "porch"};
+  static const std::vector<std::string> names = {"house-open", "house-stair",        "house-spiral",
+                                                 "open-plan",  "porch",              "house-stair-closed",
+                                                 "house-spiral-closed"};
   return names;
 }
 
@@ -389,6 +395,8 @@ Building makeBuilding(const std::string& name) {
   if (name == "house-open") return makeOpenHouse();
   if (name == "house-stair") return makeTwoStoreyHouse(false);
   if (name == "house-spiral") return makeTwoStoreyHouse(true);
+  if (name == "house-stair-closed") return makeTwoStoreyHouse(false, true);
+  if (name == "house-spiral-closed") return makeTwoStoreyHouse(true, true);
   if (name == "open-plan") return makeOpenPlanHouse();
   if (name == "porch") return makePorchHouse();
   throw std::invalid_argument("unknown building '" + name + "'");

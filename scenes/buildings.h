@@ -49,14 +49,17 @@ struct Building {
 Building makeOpenHouse();
 /// Two storeys: hall, living room and kitchen below; landing and two bedrooms above; the hall and the
 /// landing joined by a straight stair (16 steps along +z through a 1 × 3 m hole in the floor) or a
-/// spiral stair (16 wedge steps round a column through a 2 × 2 m hole). Open front door, windows.
-Building makeTwoStoreyHouse(bool spiral);
+/// spiral stair (16 wedge steps round a column through a 2 × 2 m hole). Open front door, windows; with
+/// `closedOutside` every exterior door and window is shut (the stair alone, as older decompositions saw
+/// a house whose doors were closed by hand).
+Building makeTwoStoreyHouse(bool spiral, bool closedOutside = false);
 /// One L-shaped open-plan living, dining and kitchen room with a kitchen island, a bedroom and a bathroom.
 Building makeOpenPlanHouse();
 /// The house of makeOpenHouse's size with a roofed porch on posts in front of its open front door.
 Building makePorchHouse();
 
-/// "house-open", "house-stair", "house-spiral", "open-plan", "porch".
+/// "house-open", "house-stair", "house-spiral", "open-plan", "porch", "house-stair-closed",
+/// "house-spiral-closed".
 const std::vector<std::string>& buildingNames();
 /// Throws std::invalid_argument for a name not in buildingNames().
 Building makeBuilding(const std::string& name);

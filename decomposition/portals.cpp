@@ -292,8 +292,9 @@ bool alongOneAxis(const std::vector<const Face*>& faces) {
   return double(std::max({count[0], count[1], count[2]})) >= 0.9 * double(faces.size());
 }
 
-// The portal across the narrowest closed section near a non-planar opening (sections.h), facing from
-// cell a towards the side of b's deepest voxel; nothing when no section is closed.
+// The portal across the narrowest closed section near a non-planar opening (sections.h), facing away
+// from the side of a's deepest voxel (faceFromAToB checks it once the cells are relabelled); nothing
+// when no section is closed.
 std::optional<FittedPortal> sectionPortal(const GridFrame& f, const std::vector<int32_t>& cell,
                                           const DistanceGrid& distance, const std::vector<const Face*>& faces,
                                           const std::vector<size_t>& deepest, const PortalParams& params) {
@@ -306,7 +307,8 @@ std::optional<FittedPortal> sectionPortal(const GridFrame& f, const std::vector<
   const std::optional<Section> s =
       narrowestSection(f, cell, a, b, voxels, search, std::max<size_t>(400, 4 * faces.size()));
   if (!s) return std::nullopt;
-  const int sign = f.coord(deepest[size_t(b)])[s->axis] > s->layer ? 1 : -1;
+  // a is never the outside (numbered last), whose deepest voxel may lie at any corner of the grid.
+  const int sign = f.coord(deepest[size_t(a)])[s->axis] > s->layer ? -1 : 1;
   std::vector<Face> cut;
   for (size_t v : s->voxels) cut.push_back({a, b, v, s->axis, sign, float(distance.metres(v))});
   std::vector<const Face*> refs;
@@ -344,6 +346,28 @@ void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t
       }
 }
 
+// Turns a portal so that its normal points from cellA into cellB, by the labels half a voxel either side
+// of it at 5 × 5 points over the quad (its cells are on either side after relabelAcrossPortals).
+void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQuad& q) {
+  const float h = float(f.voxel);
+  int vote = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const float u = (float(i) + 0.5f) / 5.0f, v = (float(j) + 0.5f) / 5.0f;
+      const glm::vec3 p =
+          q.corners[0] + u * (q.corners[1] - q.corners[0]) + v * (q.corners[3] - q.corners[0]);
+      for (float side : {-1.0f, 1.0f}) {
+        const glm::ivec3 c = f.voxelOf(p + side * 0.5f * h * q.normal);
+        if (!f.contains(c)) continue;
+        const int l = cell[f.index(c)];
+        vote += (l == q.cellB ? 1 : l == q.cellA ? -1 : 0) * int(side);
+      }
+    }
+  if (vote >= 0) return;
+  std::swap(q.corners[1], q.corners[3]);
+  q.normal = -q.normal;
+}
+
 // Makes the cells of each pair joined by a section portal meet at its quad (relabelAcrossPortals), with
 // as few of the pair's portals as cut the two apart: between two rooms first the largest section alone
 // (the hole of a stair; smaller sections are pockets between the steps and the floor's edge), then every
@@ -378,6 +402,8 @@ void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const s
       for (size_t q : used) barrier.push_back(&fresh[q].quad);
       if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) continue;
       for (size_t q : all) redundant[q] = std::find(used.begin(), used.end(), q) == used.end();
+      for (size_t q : used)
+        if (fresh[q].section) faceFromAToB(f, cell, fresh[q].quad);
       separated = true;
       break;
     }

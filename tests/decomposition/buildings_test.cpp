@@ -67,6 +67,28 @@ std::vector<const PortalQuad*> portalsBetween(const Decomposition& d, int x, int
   return out;
 }
 
+// Every portal's normal points from its cellA into its cellB: over a 5 × 5 grid of points on the quad,
+// the voxels 0.75 voxel behind are mostly A's and those in front mostly B's (not half a voxel: a plane
+// through voxel centres would sample the voxels it cuts).
+void expectPortalsFaceFromAToB(const Decomposition& d) {
+  const GridFrame& f = d.frame;
+  for (const PortalQuad& q : d.graph.portals) {
+    int behindA = 0, behindB = 0, frontA = 0, frontB = 0;
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) {
+        const float u = (float(i) + 0.5f) / 5.0f, v = (float(j) + 0.5f) / 5.0f;
+        const glm::vec3 p =
+            q.corners[0] + u * (q.corners[1] - q.corners[0]) + v * (q.corners[3] - q.corners[0]);
+        const int behind = d.voxelCell[f.index(f.voxelOf(p - 0.75f * float(f.voxel) * q.normal))];
+        const int front = d.voxelCell[f.index(f.voxelOf(p + 0.75f * float(f.voxel) * q.normal))];
+        behindA += behind == q.cellA, behindB += behind == q.cellB;
+        frontA += front == q.cellA, frontB += front == q.cellB;
+      }
+    EXPECT_GT(behindA, behindB) << q.name;
+    EXPECT_GT(frontB, frontA) << q.name;
+  }
+}
+
 // Every room found as its own cell, the outside a cell of its own, no face between cells uncovered, and
 // a portal in the front door's opening, across its wall.
 void expectRoomsAndFrontDoor(const Building& b, const Scored& s, double voxel) {
@@ -78,6 +100,7 @@ void expectRoomsAndFrontDoor(const Building& b, const Scored& s, double voxel) {
   EXPECT_EQ(d.graph.cells[size_t(d.outsideCell)].name, "outside");
   EXPECT_EQ(d.leakingFaces, 0u);
   EXPECT_TRUE(d.graph.connected());
+  expectPortalsFaceFromAToB(d);
   const BuildingOpening& door = openingNamed(b, "front-door");
   int doorRoom = -1;
   for (size_t r = 0; r < b.rooms.size(); ++r)

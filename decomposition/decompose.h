@@ -8,6 +8,7 @@
 //   5 merge      basins → cells (keep only real constrictions); the outside is a cell   merge.h
 //                ("outside", last) when a room meets it
 //   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
+//                or across the narrowest closed section (a stair's hole)                sections.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 

@@ -5,6 +5,33 @@
 #include <unordered_map>
 
 namespace cpgi::decomp {
+namespace {
+
+// Labels every empty voxel of the grid's border as basin 0, the outside (no contacts: nothing else is
+// labelled yet), and returns the border's mask.
+std::vector<char> markOutside(const DistanceGrid& distance, WatershedLabels& out) {
+  const GridFrame& f = distance.frame;
+  std::vector<char> border(f.count(), 0);
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y) {
+      const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
+      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1)))
+        border[f.index(x, y, z)] = 1;
+    }
+  for (size_t i = 0; i < border.size(); ++i) {
+    if (!border[i] || !distance.d2[i]) continue;
+    if (out.outsideBasin < 0) {
+      out.outsideBasin = 0;
+      out.peak.push_back(0.0f);
+      out.volume.push_back(0);
+    }
+    out.basin[i] = 0;
+    ++out.volume[0];
+  }
+  return border;
+}
+
+}  // namespace
 
 WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedParams& params, Context& ctx) {
   auto timer = ctx.time("watershed");
@@ -19,13 +46,7 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   auto levelOf = [&](uint32_t d2) { return int(std::sqrt(double(d2)) / step); };
   const int levels = levelOf(distance.maxD2) + 1;
   // The border layer is the outside marker, not flooded level by level.
-  std::vector<char> border(n, 0);
-  for (int z = 0; z < f.dims.z; ++z)
-    for (int y = 0; y < f.dims.y; ++y) {
-      const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
-      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1)))
-        border[f.index(x, y, z)] = 1;
-    }
+  const std::vector<char> border = markOutside(distance, out);
   auto flooded = [&](size_t i) { return distance.d2[i] && !border[i]; };
   std::vector<size_t> start(size_t(levels) + 1, 0);
   for (size_t i = 0; i < n; ++i)
@@ -60,18 +81,6 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
       ++c.faces;
     }
   };
-
-  // The outside marker: basin 0, every empty border voxel (no contacts yet: nothing else is labelled).
-  for (size_t i = 0; i < n; ++i) {
-    if (!border[i] || !distance.d2[i]) continue;
-    if (out.outsideBasin < 0) {
-      out.outsideBasin = 0;
-      out.peak.push_back(0.0f);
-      out.volume.push_back(0);
-    }
-    out.basin[i] = 0;
-    ++out.volume[0];
-  }
 
   std::vector<size_t> queue;
   for (int l = 0; l < levels; ++l) {

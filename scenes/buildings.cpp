@@ -341,6 +341,33 @@ Building makeTwoStoreyHouse(bool spiral, bool closedOutside) {
   return m.finish();
 }
 
+Building makeGalleryHouse() {
+  BuildingMaker m;
+  houseShell(m, 10.0f, 8.0f, 2, 1.0f, 1.0f);
+  const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey;
+  m.room("hall", {box(0.2f, 0, 0.2f, 3.4f, H, 7.8f)});
+  m.room("living", {box(3.6f, 0, 0.2f, 9.8f, H2, 4.9f)});  // double height, no floor above it
+  m.room("kitchen", {box(3.6f, 0, 5.1f, 9.8f, H, 7.8f)});
+  m.room("gallery", {box(0.2f, y2, 0.2f, 3.4f, H2, 7.8f)});
+  m.room("bedroom", {box(3.6f, y2, 5.1f, 9.8f, H2, 7.8f)});
+  m.opening("front-door", hole(2, 0.0f, 1.6f, 2.6f, 0, kDoorTop), 2, "outside", "hall");
+  m.opening("door-hall-living", hole(0, 3.4f, 1.0f, 1.9f, 0, kDoorTop), 0, "hall", "living");
+  m.opening("door-hall-kitchen", hole(0, 3.4f, 6.4f, 7.3f, 0, kDoorTop), 0, "hall", "kitchen");
+  m.opening("door-gallery-bedroom", hole(0, 3.4f, 6.4f, 7.3f, y2, y2 + kDoorTop), 0, "gallery", "bedroom");
+  m.opening("window-living", hole(2, 0.0f, 5.5f, 7.5f, kSill, kHead), 2, "outside", "living");
+  m.opening("window-kitchen", hole(2, 7.8f, 6.0f, 7.2f, 1.0f, kHead), 2, "kitchen", "outside");
+  m.opening("window-bedroom", hole(2, 7.8f, 5.5f, 7.0f, y2 + kSill, y2 + kHead), 2, "bedroom", "outside");
+  // The gallery looks over the living room above a 1 m balustrade, along the whole of their shared wall.
+  m.opening("gallery", box(3.4f, y2 + 1.0f, 0.2f, 3.6f, H2, 4.9f), 0, "gallery", "living");
+  const int steps = 16;
+  const float rise = y2 / float(steps), run = 0.26f, z0 = 2.0f, zEnd = z0 + steps * run;
+  for (int k = 0; k < steps; ++k)
+    m.massing.added.push_back(box(0.2f, 0, z0 + k * run, 1.2f, (k + 1) * rise, z0 + (k + 1) * run));
+  m.opening("stair", box(0.2f, H, zEnd - 3.0f, 1.2f, y2, zEnd), 1, "hall", "gallery");
+  m.massing.added.push_back(box(1.2f, y2, zEnd - 3.0f, 1.25f, y2 + 1.0f, zEnd));
+  return m.finish();
+}
+
 Building makeOpenPlanHouse() {
   BuildingMaker m;
   houseShell(m, 12.0f, 9.0f, 1, 1.0f, 1.0f);
@@ -385,9 +412,9 @@ Building makePorchHouse() {
 }
 
 const std::vector<std::string>& buildingNames() {
-  static const std::vector<std::string> names = {"house-open", "house-stair",        "house-spiral",
-                                                 "open-plan",  "porch",              "house-stair-closed",
-                                                 "house-spiral-closed"};
+  static const std::vector<std::string> names = {"house-open",          "house-stair",  "house-spiral",
+                                                 "open-plan",           "porch",        "house-stair-closed",
+                                                 "house-spiral-closed", "house-gallery"};
   return names;
 }
 
@@ -398,6 +425,7 @@ Building makeBuilding(const std::string& name) {
   if (name == "house-stair-closed") return makeTwoStoreyHouse(false, true);
   if (name == "house-spiral-closed") return makeTwoStoreyHouse(true, true);
   if (name == "open-plan") return makeOpenPlanHouse();
+  if (name == "house-gallery") return makeGalleryHouse();
   if (name == "porch") return makePorchHouse();
   throw std::invalid_argument("unknown building '" + name + "'");
 }

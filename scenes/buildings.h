@@ -53,13 +53,16 @@ Building makeOpenHouse();
 /// `closedOutside` every exterior door and window is shut (the stair alone, as older decompositions saw
 /// a house whose doors were closed by hand).
 Building makeTwoStoreyHouse(bool spiral, bool closedOutside = false);
+/// Two storeys: a double-height living room overlooked by the upper gallery above a 1 m balustrade along
+/// their whole shared wall (4.7 × 1.5 m open), the gallery reached from the hall by the straight stair.
+Building makeGalleryHouse();
 /// One L-shaped open-plan living, dining and kitchen room with a kitchen island, a bedroom and a bathroom.
 Building makeOpenPlanHouse();
 /// The house of makeOpenHouse's size with a roofed porch on posts in front of its open front door.
 Building makePorchHouse();
 
 /// "house-open", "house-stair", "house-spiral", "open-plan", "porch", "house-stair-closed",
-/// "house-spiral-closed".
+/// "house-spiral-closed", "house-gallery".
 const std::vector<std::string>& buildingNames();
 /// Throws std::invalid_argument for a name not in buildingNames().
 Building makeBuilding(const std::string& name);

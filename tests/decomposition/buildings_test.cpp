@@ -171,8 +171,8 @@ void expectStairPortal(const Building& b, const Scored& s) {
   const BuildingOpening& stair = openingNamed(b, "stair");
   int hall = -1, landing = -1;
   for (size_t r = 0; r < b.rooms.size(); ++r) {
-    if (b.rooms[r].name == "hall") hall = s.cellOfRoom[r];
-    if (b.rooms[r].name == "landing") landing = s.cellOfRoom[r];
+    if (b.rooms[r].name == stair.a) hall = s.cellOfRoom[r];
+    if (b.rooms[r].name == stair.b) landing = s.cellOfRoom[r];
   }
   ASSERT_NE(hall, landing) << "the two floors merged";
   const std::vector<const PortalQuad*> between = portalsBetween(s.d, hall, landing);
@@ -199,6 +199,27 @@ TEST(Buildings, SpiralStairJoinsTheFloorsByOnePlanarPortal) {
   const Scored s = decomposeBuilding(b, 0.1);
   expectRoomsAndFrontDoor(b, s, 0.1);
   expectStairPortal(b, s);
+}
+
+TEST(Buildings, GalleryIsOneVerticalPortalOverTheBalustrade) {
+  // The upper gallery overlooks the double-height living room along their whole shared wall: two rooms
+  // (not merged), one planar portal in the opening above the balustrade, the stair one more.
+  const Building b = makeGalleryHouse();
+  const Scored s = decomposeBuilding(b, 0.1);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  expectStairPortal(b, s);
+  int gallery = -1, living = -1;
+  for (size_t r = 0; r < b.rooms.size(); ++r) {
+    if (b.rooms[r].name == "gallery") gallery = s.cellOfRoom[r];
+    if (b.rooms[r].name == "living") living = s.cellOfRoom[r];
+  }
+  const std::vector<const PortalQuad*> between = portalsBetween(s.d, gallery, living);
+  ASSERT_EQ(between.size(), 1u);
+  const BuildingOpening& opening = openingNamed(b, "gallery");
+  EXPECT_GT(std::abs(between.front()->normal.x), 0.999f);
+  EXPECT_NEAR(between.front()->centre().x, opening.box.centre().x, 0.1f);
+  const glm::vec3 size = opening.box.hi - opening.box.lo;
+  EXPECT_NEAR(between.front()->area, size.y * size.z, 0.2f * size.y * size.z);
 }
 
 TEST(Buildings, TwoStoreyHouseAtFiveCentimetres) {

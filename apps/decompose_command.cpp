@@ -66,6 +66,8 @@ int runDecompose(DecomposeOptions o) {
               d.graph.portals.size(), d.basins, d.frame.voxel, d.voxelChoice.c_str());
   std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
+  std::printf("outside: %s; voxel faces between cells not covered by a portal: %zu\n",
+              d.outsideCell >= 0 ? "a cell (\"outside\")" : "not a cell (no room opens onto it)", d.leakingFaces);
   for (const Context::Timing& t : ctx.timings()) std::printf("  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
   std::printf("  %-20s %8.3f s\n", "total", report["timings_s"]["total"].get<double>());
   std::printf("wrote %s/{cells.glb, cells.json, decomposition.png}\n", o.out.c_str());

@@ -56,6 +56,7 @@ constexpr ParameterFlag kFlags[] = {
     {"minimum depth", "--min-depth"},
     {"opening ratio", "--opening-ratio"},
     {"minimum cell volume", "--min-cell-volume"},
+    {"outside saddle ratio", "--outside-saddle-ratio"},
 };
 
 std::string flag(std::string_view parameter) {
@@ -235,6 +236,10 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
                         help(scope, "Cells smaller than this, m3, join a neighbour"))
              ->capture_default_str(),
          scope);
+  addChecked(cmd, scope, "outside saddle ratio", params.merge.outsideSaddleRatio,
+             "Merge a room into the outside when the saddle of its opening / its peak exceeds this (exterior "
+             "doors are wide)",
+             CLI::Range(0.0, 1.0));
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {

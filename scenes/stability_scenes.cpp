@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "scenes/buildings.h"
 #include "scenes/openings_scene.h"
 #include "scenes/scene_builder.h"
 
@@ -103,7 +104,8 @@ SeedScene makeThinWall(float thickness) {
 const std::vector<std::string>& builtinSceneNames() {
   static const std::vector<std::string> names = {"seed1",     "seed2",     "seed3",
                                                  "spot-door", "thin-wall", "thin-wall-5cm",
-                                                 "openings"};
+                                                 "openings",  "house-open", "house-stair",
+                                                 "house-spiral", "open-plan", "porch"};
   return names;
 }
 
@@ -115,6 +117,8 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "thin-wall") return makeThinWall(0.0f);
   if (name == "thin-wall-5cm") return makeThinWall(0.05f);
   if (name == "openings") return makeOpeningsScene();
+  for (const std::string& building : buildingNames())
+    if (name == building) return makeBuilding(name).seed;
   throw std::invalid_argument("unknown built-in scene '" + name + "'");
 }
 

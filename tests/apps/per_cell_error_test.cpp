@@ -30,6 +30,7 @@ class PerCellError : public ::testing::Test {
     run("generate openings -o " + scene);
     run("reference " + scene + " -o " + test::quote(*dir_ / "ref") + atlas + "--spp 1024 --texels 1500 -q");
     run("bake " + scene + " -o " + test::quote(*dir_ / "converged") + atlas + "--unshot 0.0001 -q");
+    run("bake " + scene + " -o " + test::quote(*dir_ / "default") + atlas + "-q");
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static nlohmann::json compare(const std::string& a) {
@@ -70,14 +71,18 @@ TEST_F(PerCellError, CompareLightReportsEveryCellAndTheWorst) {
   EXPECT_TRUE(j["worst_cell"].is_string());
 }
 
-// Converged, every room within 8 % of the reference (4 % noise and sampling allowed for at this size):
-// on main, B read 1.15 and C 1.17.
-TEST_F(PerCellError, ConvergedRoomsLitThroughOpeningsMatchTheReference) {
-  const nlohmann::json j = compare("converged");
-  for (const nlohmann::json& c : j["cells"]) {
-    const double ratio = c["ratio_of_means"], err = c["ratio_error"];
-    EXPECT_LT(err, 0.04) << c.dump();
-    EXPECT_NEAR(ratio, 1.0, 0.08) << c.dump();
+// Converged and at the default stop, every room within 5 % of the reference, plus twice the ratio's own
+// error (1 % in C at this size). On 7089168 B read 1.15 and C 1.17 converged; on 531185c the eyes' lost
+// light and the reference's back faces on the zero-thickness partition moved C by ±4 %; now
+// A/B/C = 0.99/1.02/1.04 (both stops).
+TEST_F(PerCellError, RoomsLitThroughOpeningsMatchTheReference) {
+  for (const char* stop : {"converged", "default"}) {
+    const nlohmann::json j = compare(stop);
+    for (const nlohmann::json& c : j["cells"]) {
+      const double ratio = c["ratio_of_means"], err = c["ratio_error"];
+      EXPECT_LT(err, 0.03) << stop << " " << c.dump();
+      EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << stop << " " << c.dump();
+    }
   }
 }
 

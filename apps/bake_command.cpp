@@ -191,8 +191,6 @@ void addCellsReport(const BakeOptions& o, const BakeInput& in, const CellSolveDa
                     nlohmann::json& report) {
   report["energy"].erase("shot_w");
   report["energy"].erase("received_w");
-  report["energy"].erase("created_w");  // per cell solve, in the warnings
-  report["energy"].erase("worst_shot_gain");
   report["rounds"] = r.rounds;
   report["jobs"] = o.cellParams.jobs;
   report["portal_mode"] = portalLightName(o.cellParams.portals);
@@ -206,6 +204,8 @@ void addCellsReport(const BakeOptions& o, const BakeInput& in, const CellSolveDa
                      {"sent_w", c.sent},
                      {"unshot_w", c.unshot},
                      {"escaped_w", c.escaped},
+                     {"created_w", c.created},
+                     {"worst_shot_gain", c.worstShotGain},
                      {"solves", c.solves},
                      {"written", c.written},
                      {"shots", c.shots},

@@ -154,6 +154,10 @@ void syncCell(size_t c, const CellState& s, const SolveResult& solved, const std
   result.shots += solved.shots;
   ce.seconds += solved.seconds;
   ce.escaped += solved.energy.escaped();
+  ce.created += solved.energy.created;
+  ce.worstShotGain = std::max(ce.worstShotGain, solved.energy.worstShotGain);
+  result.energy.created += solved.energy.created;
+  result.energy.worstShotGain = std::max(result.energy.worstShotGain, solved.energy.worstShotGain);
   result.energy.shot += solved.energy.shot;
   result.energy.received += solved.energy.received;
   for (const auto& [g, t] : s.toGlobal) result.radiosity[g] += solved.radiosity[t] - s.carried[t];

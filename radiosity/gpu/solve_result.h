@@ -38,6 +38,8 @@ struct CellEnergy {
   double sent = 0.0;      ///< collected on its portals and handed to the neighbours
   double unshot = 0.0;    ///< left at the end: residual plus received light not yet solved
   double escaped = 0.0;   ///< shot but caught by no receiver (form-factor error)
+  double created = 0.0;   ///< Σ EnergyTotals::created of its solves (non-zero is a defect)
+  double worstShotGain = 0.0;  ///< the largest EnergyTotals::worstShotGain of its solves
   int solves = 0, shots = 0;
   size_t texels = 0;     ///< valid texels of its atlas, portals included
   double seconds = 0.0;  ///< its solves

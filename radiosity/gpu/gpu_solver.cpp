@@ -151,7 +151,9 @@ ProgramDefines programDefines(const SolveConfig& params) {
 
 struct SolverPrograms::Set {
   explicit Set(const ProgramDefines& d) {
-    item = buildProgram({"item.vert", "item.frag"}, d.item);
+    const bool hemisphere = std::find(d.item.begin(), d.item.end(), "HEMISPHERE") != d.item.end();
+    item = hemisphere ? buildProgram({"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese", "item.frag"}, d.item)
+                      : buildProgram({"item.vert", "item.frag"}, d.item);
     compact = buildProgram({"compact.comp"});
     finish = buildProgram({"finish_lists.comp"});
     pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
@@ -461,7 +463,8 @@ class Solver {
     glBindVertexArray(vao_.get());
     if (params_.visibility == Visibility::Hemisphere) {
       glViewport(0, 0, itemSize_, itemSize_);
-      glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+      glPatchParameteri(GL_PATCH_VERTICES, 3);
+      glDrawArrays(GL_PATCHES, 0, vertexCount_);
     } else {
       const int f = itemSize_, half = f / 2;
       for (int i = 0; i < 5; ++i) {

@@ -38,6 +38,8 @@ GLenum stageOf(const std::string& file) {
   if (ends(".vert")) return GL_VERTEX_SHADER;
   if (ends(".frag")) return GL_FRAGMENT_SHADER;
   if (ends(".comp")) return GL_COMPUTE_SHADER;
+  if (ends(".tesc")) return GL_TESS_CONTROL_SHADER;
+  if (ends(".tese")) return GL_TESS_EVALUATION_SHADER;
   throw std::invalid_argument("shader library: unknown stage for " + file);
 }
 

@@ -39,16 +39,24 @@ inline std::string quote(const std::string& s) {
   return q + "'";
 }
 
-/// `cpgi ARGS` with stdout and stderr captured through files in `folder`. ARGS is shell text: quote paths.
-inline CommandRun cpgi(const std::filesystem::path& folder, const std::string& args) {
-  const std::string out = (folder / "stdout.txt").string(), err = (folder / "stderr.txt").string();
-  const std::string command = quote(CPGI_BINARY) + " " + args + " > " + quote(out) + " 2> " + quote(err);
+/// A shell command line with stdout and stderr captured through the files `prefix`stdout.txt and
+/// `prefix`stderr.txt in `folder`.
+inline CommandRun runCaptured(const std::filesystem::path& folder, const std::string& commandLine,
+                              const std::string& prefix = "") {
+  const std::string out = (folder / (prefix + "stdout.txt")).string();
+  const std::string err = (folder / (prefix + "stderr.txt")).string();
+  const std::string command = commandLine + " > " + quote(out) + " 2> " + quote(err);
   const int raw = std::system(command.c_str());
   CommandRun r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+/// `cpgi ARGS` with stdout and stderr captured through files in `folder`. ARGS is shell text: quote paths.
+inline CommandRun cpgi(const std::filesystem::path& folder, const std::string& args) {
+  return runCaptured(folder, quote(CPGI_BINARY) + " " + args);
 }
 
 inline CommandRun cpgi(const TempDir& dir, const std::string& args) {

@@ -21,16 +21,11 @@ inline std::string missingNodeTools() {
 /// `node core/html_report/web/SCRIPT ARGS` (ARGS is shell text), output captured through files in `folder`.
 inline CommandRun runNodeScript(const std::filesystem::path& folder, const std::string& script,
                                 const std::string& args) {
-  const std::string out = (folder / "node-stdout.txt").string(), err = (folder / "node-stderr.txt").string();
-  const std::string command =
-      quote(CPGI_NODE) + " " + quote(std::string(CPGI_SOURCE_DIR) + "/core/html_report/web/" + script) + " " +
-      quote(CPGI_NODE_MODULES) + " " + args + " > " + quote(out) + " 2> " + quote(err);
-  const int raw = std::system(command.c_str());
-  CommandRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return runCaptured(folder,
+                     quote(CPGI_NODE) + " " +
+                         quote(std::string(CPGI_SOURCE_DIR) + "/core/html_report/web/" + script) + " " +
+                         quote(CPGI_NODE_MODULES) + " " + args,
+                     "node-");
 }
 
 }  // namespace cpgi::test

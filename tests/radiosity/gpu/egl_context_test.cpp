@@ -59,7 +59,11 @@ TEST(EglContext, EmbeddedShadersCompile) {
     EXPECT_NO_THROW(buildProgram({name})) << name;
   EXPECT_NO_THROW(buildProgram({"receive.comp"}, {"HEMISPHERE"}));
   EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}));
-  EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}, {"HEMISPHERE"}));
+  EXPECT_NO_THROW(buildProgram({"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese", "item.frag"},
+                               {"HEMISPHERE"}));
+  EXPECT_NO_THROW(buildProgram({"shot_coverage.comp"}));
+  EXPECT_NO_THROW(buildProgram({"shot_coverage.comp"}, {"HEMISPHERE"}));
+  EXPECT_NO_THROW(buildProgram({"rescale_shot.comp"}));
   EXPECT_NE(shaderSource("receive.comp").find("visibleFromShooter"), std::string::npos);
   EXPECT_THROW(shaderSource("missing.comp"), std::invalid_argument);
 }

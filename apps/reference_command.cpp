@@ -34,7 +34,8 @@ struct ReferenceOptions {
   ReferenceParams trace{.spp = 1024};
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
+  bool allowDark = false;
   bool quiet = false;
 };
 
@@ -146,6 +147,7 @@ int runReference(const ReferenceOptions& o) {
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
   const LoadedScene loaded = loadScene(o.scene, o.load);
+  requireLight(loaded, o.scene, o.allowDark);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
 
@@ -204,6 +206,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
   addLoadOptions(*cmd, opts->load);
+  addDarkOption(*cmd, opts->allowDark);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

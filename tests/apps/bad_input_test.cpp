@@ -145,8 +145,8 @@ TEST(BadInput, DuplicateTrianglesAreDroppedWithOneWarningAndRefusedWithStrict) {
 TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
   test::TempDir dir;
   test::GlbBuilder sliver;
-  sliver.addNode({{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1,
-                                                               1, 0, 0})}});
+  sliver.addNode(
+      {{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1, 1, 0, 0})}});
   sliver.writeGlb(dir / "slivers.glb");
   const std::string scene = quote(dir / "slivers.glb");
   const std::vector<std::string> commands = {
@@ -159,10 +159,28 @@ TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
     EXPECT_EQ(strict.status, 1) << command;
     ASSERT_EQ(strict.errLines().size(), 1u) << command << "\n" << strict.err;
     EXPECT_NE(strict.err.find("1 zero-area triangle (first in node 'sliver')"), std::string::npos)
-        << command << "\n" << strict.err;
+        << command << "\n"
+        << strict.err;
   }
   const CommandRun info = cpgi(dir, commands[0]);
   EXPECT_EQ(info.status, 0) << info.err;
+}
+
+TEST(BadInput, BadPunctualLightsNameTheFileAndTheLight) {
+  test::TempDir dir;
+  const std::vector<std::pair<json, std::string>> cases = {
+      {{{"type", "point"}, {"name", "bulb"}, {"intensity", -5}},
+       "light 'bulb': intensity -5 is negative or not finite"},
+      {{{"type", "spot"}, {"name", "cone"}, {"spot", {{"innerConeAngle", 1.0}, {"outerConeAngle", 0.5}}}},
+       "light 'cone': spot cone angles must satisfy"},
+      {{{"type", "point"}, {"name", "sun-sized"}, {"intensity", 1e30}}, "more than 1e+20 W"}};
+  for (const auto& [light, problem] : cases) {
+    test::GlbBuilder g = oneTriangle();
+    g.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
+    g.addNode({{"name", "lamp"}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    g.writeGlb(dir / "light.glb");
+    expectOneLineError(dir, dir / "light.glb", problem);
+  }
 }
 
 TEST(BadInput, LinesPrimitive) {

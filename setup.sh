@@ -12,12 +12,16 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libopenexr-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev
   libembree-dev libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  chromium
 )
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# node and npm (report.html's three.js, the glTF validator, the browser test): Debian's, unless a node
+# that brings its own npm is there already (NodeSource's nodejs, which conflicts with Debian's npm).
+command -v node >/dev/null && command -v npm >/dev/null || missing+=(nodejs npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
@@ -27,6 +31,16 @@ if ((${#missing[@]})); then
 fi
 
 build_dir="${BUILD_DIR:-build}"
+# The npm packages of core/html_report/web/package-lock.json, into the build folder (never into the
+# sources); again only when the lock file changed since the last install that succeeded.
+web_dir="$build_dir/web"
+if ! cmp -s core/html_report/web/package-lock.json "$web_dir/installed-lock.json"; then
+  echo "setup: npm ci into $web_dir"
+  mkdir -p "$web_dir"
+  cp core/html_report/web/package.json core/html_report/web/package-lock.json "$web_dir/"
+  (cd "$web_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  cp core/html_report/web/package-lock.json "$web_dir/installed-lock.json"
+fi
 # shellcheck disable=SC2086
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CPGI_CMAKE_ARGS:-} >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"

@@ -1,12 +1,12 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
-// [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient] [--allow-dark] [loading options]`: GPU
-// progressive radiosity over a lightmap atlas (design.md §1, §3), over the whole scene at once or cell by cell
-// through portals (radiosity/cells/cell_solver.h); both write the same atlas layout, plus an ambient term for
-// the power the stop left unshot (radiosity/gpu/ambient.h). Writes the lightmap files
-// (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and "cell", lightmap.png,
-// baked.glb with the cells, view-*.png/.exr) and report.json, all or nothing. The options are
-// apps/options.h's.
+// [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient]
+// [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3),
+// over the whole scene at once or cell by cell through portals (radiosity/cells/cell_solver.h); both write
+// the same atlas layout, plus an ambient term for the power the stop left unshot (radiosity/gpu/ambient.h).
+// Writes the lightmap files (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and
+// "cell", lightmap.png, baked.glb with the cells, view-*.png/.exr), report.json and report.html
+// (apps/report_page.h), all or nothing. The options are apps/options.h's.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -20,6 +20,7 @@
 #include "apps/commands.h"
 #include "apps/lightmap_report.h"
 #include "apps/options.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
@@ -53,6 +54,7 @@ struct BakeOptions {
   bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
   LoadOptions load;                   ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;             ///< go on when nothing lights the scene
+  ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
 };
 
@@ -291,12 +293,14 @@ int runBake(const BakeOptions& o) {
     // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
     // gives each texel its cell, for compare-light's per-cell figures.
     const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-    f.views =
-        writeLightmapOutputs(out, in.loaded.scene, cells, in.atlas, s.radiosity, {emissive, texelCells}, ctx)
-            .views;
+    f.views = writeLightmapOutputs(out, in.loaded.scene, cells, in.atlas, s.radiosity, {emissive, texelCells},
+                                   ctx, o.views)
+                  .views;
   }
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  writeReport(out, bakeReport(o, in, s, *gl, f, ctx));
+  const nlohmann::json report = bakeReport(o, in, s, *gl, f, ctx);
+  writeReport(out, report);
+  writeBakeReportPage(out, "bake of " + o.scene, report, in.loaded.scene, cells, in.atlas, s.radiosity);
   out.commit();
   if (!o.quiet) {
     std::cout << o.output << ": " << in.atlas.validTexels() << " texels, " << s.shots << " shots, unshot "
@@ -347,6 +351,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);
   addAmbientOption(*sub, o->noAmbient);
+  addViewOptions(*sub, o->views);
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");

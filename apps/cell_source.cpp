@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "decomposition/outside_portals.h"
 
 namespace cpgi::cli {
 
@@ -50,12 +51,17 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
   std::filesystem::path path = source;
   if (std::filesystem::is_directory(path)) path /= "cells.glb";
   if (!std::filesystem::exists(path)) throw InputError("--cells", path.string() + ": no such file");
+  // Read back from a file, portals onto the outside may face into their room (outside_portals.h).
   if (std::filesystem::equivalent(path, scenePath)) {
     if (loaded.cells.empty()) throw InputError(path.string(), "has no cell:/portal: nodes");
-    return loaded.cells;
+    CellGraph graph = loaded.cells;
+    decomp::orientOutsidePortals(loaded.scene, graph);
+    return graph;
   }
   const LoadedScene other = loadScene(path.string(), load);
-  return matchCellsToScene(loaded.scene, other, path.string(), ctx);
+  CellGraph graph = matchCellsToScene(loaded.scene, other, path.string(), ctx);
+  decomp::orientOutsidePortals(loaded.scene, graph);
+  return graph;
 }
 
 }  // namespace cpgi::cli

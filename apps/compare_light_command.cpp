@@ -1,5 +1,6 @@
 // `cpgi compare-light A_DIR B_DIR`: the accuracy of lightmap A against lightmap B (the reference) on the
-// same atlas, in the metric of design.md §5.
+// same atlas, in the metric of design.md §5; with --report DIR, also report.html with the error per texel
+// and per cell.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,8 @@
 
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
+#include "apps/options.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "radiosity/lightmap/cell_channel.h"
@@ -28,6 +31,7 @@ namespace fs = std::filesystem;
 struct CompareLightOptions {
   std::string a, b;
   bool json = false;
+  std::string report;  ///< a folder for report.html with the error heat map, or empty
 };
 
 struct Lightmap {
@@ -74,6 +78,17 @@ std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> w
     signal += weight[i] * glm::dot(r, r);
   }
   return signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
+}
+
+// --report DIR: the page with the error per texel; the heat map leaves out the lamps as the figures
+// without lamps do, and the untraced texels of a sample (`area` is 0 there).
+void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures, const Lightmap& a,
+                     const Lightmap& b, const std::vector<float>& area, const std::vector<float>& emissive) {
+  std::vector<float> weight = area;
+  if (emissive.size() == weight.size())
+    for (size_t i = 0; i < weight.size(); ++i)
+      if (emissive[i] > 0.5f) weight[i] = 0.0f;
+  writeComparisonReportPage(o.report, o.a, figures, a.rgb, b.rgb, b.area, weight);
 }
 
 int runCompareLight(const CompareLightOptions& o) {
@@ -136,26 +151,26 @@ int runCompareLight(const CompareLightOptions& o) {
   auto orNull = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
+  nlohmann::json j = {{"a", o.a},
+                      {"b", o.b},
+                      {"rel_rmse", e.relRmse},
+                      {"rel_mean_error", e.relMeanError},
+                      {"max_abs", e.maxAbs},
+                      {"texels", e.texels},
+                      {"texels_valid", valid},
+                      {"sparse_reference", sparse},
+                      {"rel_rmse_sampling_error", samplingError}};
+  j["reference_noise"] = orNull(noise);
+  j["rel_rmse_nonemissive"] = orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
+  j["rel_mean_error_nonemissive"] =
+      orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
+  j["rel_rmse_nonemissive_sampling_error"] =
+      reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
+  j["reference_noise_nonemissive"] = orNull(noiseReflectors);
+  j["cells"] = cellsJson(cells);
+  j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
+  if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive);
   if (o.json) {
-    nlohmann::json j = {{"a", o.a},
-                        {"b", o.b},
-                        {"rel_rmse", e.relRmse},
-                        {"rel_mean_error", e.relMeanError},
-                        {"max_abs", e.maxAbs},
-                        {"texels", e.texels},
-                        {"texels_valid", valid},
-                        {"sparse_reference", sparse},
-                        {"rel_rmse_sampling_error", samplingError}};
-    j["reference_noise"] = orNull(noise);
-    j["rel_rmse_nonemissive"] =
-        orNull(reflectors ? std::optional<double>(reflectors->relRmse) : std::nullopt);
-    j["rel_mean_error_nonemissive"] =
-        orNull(reflectors ? std::optional<double>(reflectors->relMeanError) : std::nullopt);
-    j["rel_rmse_nonemissive_sampling_error"] =
-        reflectors ? nlohmann::json(samplingErrorReflectors) : nlohmann::json(nullptr);
-    j["reference_noise_nonemissive"] = orNull(noiseReflectors);
-    j["cells"] = cellsJson(cells);
-    j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
@@ -198,6 +213,7 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
       ->required();
   cmd->add_flag("--json", opts->json,
                 "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
+  addReportOption(*cmd, opts->report);
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

@@ -1,5 +1,6 @@
 // cpgi decompose SCENE -o DIR: automatic cells and portals (decomposition/decompose.h), written as
-// DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json and DIR/decomposition.png.
+// DIR/cells.glb (the scene split by cell plus portal quads), DIR/cells.json, DIR/decomposition.png and
+// DIR/report.html (apps/report_page.h).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -7,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "apps/options.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -53,6 +55,7 @@ int runDecompose(DecomposeOptions o) {
   }
   const nlohmann::json report = decomp::decompositionReport(d, o.params, ctx);
   writeFileAtomically(dir.file("cells.json"), report.dump(2) + "\n");
+  writeDecompositionReportPage(dir, "decomposition of " + o.scene, report, d.scene, d.graph);
   dir.commit();
 
   for (const std::string& w : ctx.warnings()) std::cerr << "cpgi: warning: " << w << "\n";
@@ -64,6 +67,8 @@ int runDecompose(DecomposeOptions o) {
               d.graph.portals.size(), d.basins, d.frame.voxel, d.voxelChoice.c_str());
   std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
+  std::printf("outside: %s; voxel faces between cells not covered by a portal: %zu\n",
+              d.outsideCell >= 0 ? "a cell (\"outside\")" : "not a cell (no room opens onto it)", d.leakingFaces);
   for (const Context::Timing& t : ctx.timings()) std::printf("  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
   std::printf("  %-20s %8.3f s\n", "total", report["timings_s"]["total"].get<double>());
   std::printf("wrote %s/{cells.glb, cells.json, decomposition.png}\n", o.out.c_str());
@@ -79,7 +84,9 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
       "Automatic cells and portals: voxelize, watershed of the distance to the geometry, merge basins that "
       "meet at no real constriction, fit one quad per opening");
   cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
-  cmd->add_option("-o,--out", o->out, "Output folder for cells.glb, cells.json, decomposition.png")->required();
+  cmd->add_option("-o,--out", o->out,
+                  "Output folder for cells.glb, cells.json, decomposition.png, report.html")
+      ->required();
   addDecomposeOptions(*cmd, o->params);
   addLoadOptions(*cmd, o->load);
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");

@@ -1,6 +1,7 @@
 #include "apps/options.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -40,6 +41,10 @@ constexpr ParameterFlag kFlags[] = {
     {"region size", "--region-size"},
     // Ambient term (radiosity/gpu/ambient.h), bake only
     {"no ambient term", "--no-ambient"},
+    // Views (radiosity/lightmap/views.h)
+    {"view size", "--view-size"},
+    // compare-light's page (core/html_report/html_report.h)
+    {"report folder", "--report"},
     // Cells (radiosity/cells/)
     {"cell graph", "--cells"},
     {"portal light", "--portals"},
@@ -55,6 +60,7 @@ constexpr ParameterFlag kFlags[] = {
     {"minimum depth", "--min-depth"},
     {"opening ratio", "--opening-ratio"},
     {"minimum cell volume", "--min-cell-volume"},
+    {"outside saddle ratio", "--outside-saddle-ratio"},
 };
 
 std::string flag(std::string_view parameter) {
@@ -234,6 +240,10 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
                         help(scope, "Cells smaller than this, m3, join a neighbour"))
              ->capture_default_str(),
          scope);
+  addChecked(cmd, scope, "outside saddle ratio", params.merge.outsideSaddleRatio,
+             "Merge a room into the outside when the saddle of its opening / its peak exceeds this (exterior "
+             "doors are wide)",
+             CLI::Range(0.0, 1.0));
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
@@ -246,6 +256,38 @@ void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {
       cmd, flag("boundary"), mode, {{"coarse", BoundaryMode::Coarse}, {"dark", BoundaryMode::Dark}},
       "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their lamps and "
       "bounces light the baked cells through the portals; not written) or dark");
+}
+
+void addViewOptions(CLI::App& cmd, ViewParams& views) {
+  cmd.add_option_function<std::string>(
+         flag("view size"), [&views](const std::string& text) { parseViewSize(text, views); },
+         "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide at the camera's aspect; the "
+         "vertical field of view stays the camera's)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            ViewParams unused;
+            return parseViewSize(text, unused);
+          },
+          "WxH"));
+}
+
+void addReportOption(CLI::App& cmd, std::string& dir) {
+  cmd.add_option(flag("report folder"), dir,
+                 "Also write DIR/report.html: A's baked.glb in 3D with a per-texel error heat map against B "
+                 "and the per-cell figures");
+}
+
+std::string parseViewSize(const std::string& text, ViewParams& views) {
+  std::string ascii = text;
+  for (size_t at = ascii.find("×"); at != std::string::npos; at = ascii.find("×")) ascii.replace(at, 2, "x");
+  int w = 0, h = 0;
+  char x = 0, rest = 0;
+  if (std::sscanf(ascii.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || (x != 'x' && x != 'X') || w < 16 ||
+      w > 8192 || h < 16 || h > 8192)
+    return "must be WIDTHxHEIGHT in pixels, each in [16, 8192], got " + text;
+  views.width = w;
+  views.height = h;
+  return {};
 }
 
 glm::vec3 parsePoint(const std::string& text, const std::string& option) {

@@ -17,6 +17,7 @@
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/views.h"
 
 namespace cpgi::cli {
 
@@ -54,8 +55,17 @@ void addDarkOption(CLI::App& cmd, bool& allowDark);
 /// Throws InputError(scenePath, ...) naming --emit and --allow-dark when nothing lights the scene, unless
 /// allowDark.
 void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark);
+/// --view-size WxH (or W×H) of the view-*.png / .exr pictures: width and height in [16, 8192]; without it
+/// 640 wide at the camera's aspect. A bad size fails at parsing, before any work.
+void addViewOptions(CLI::App& cmd, ViewParams& views);
+/// --report DIR (compare-light: DIR/report.html).
+void addReportOption(CLI::App& cmd, std::string& dir);
 /// --boundary coarse|dark (on-demand bakes).
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode);
+
+/// Parses `--view-size`'s "WxH" (x, X or ×) into `views`; returns what is wrong with `text`, or "" when it
+/// is two whole numbers in [16, 8192].
+std::string parseViewSize(const std::string& text, ViewParams& views);
 
 /// Parses `--around`'s "X,Y,Z" (metres); throws InputError(option, ...) unless it is three finite numbers.
 glm::vec3 parsePoint(const std::string& text, const std::string& option);

@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "apps/lightmap_report.h"
 #include "apps/options.h"
+#include "apps/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -36,6 +37,7 @@ struct ReferenceOptions {
   bool texelsGiven = false;
   LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;
+  ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
 };
 
@@ -178,11 +180,15 @@ int runReference(const ReferenceOptions& o) {
     writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, choice.sampleWeight);
   else
     written = writeLightmapOutputs(out, scene, loaded.cells, atlas, result.radiosity,
-                                   {sigma, emissive, cells}, ctx);
+                                   {sigma, emissive, cells}, ctx, o.views);
   f.traced = choice.sparse ? choice.sample.ranks.size() : atlas.validTexels();
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  writeReport(out, referenceReport(o, loaded, quads, atlas, result, f, written, seconds, ctx));
+  const nlohmann::json report = referenceReport(o, loaded, quads, atlas, result, f, written, seconds, ctx);
+  writeReport(out, report);
+  if (!choice.sparse)  // a sample has no baked.glb to show
+    writeBakeReportPage(out, "reference of " + o.scene, report, scene, loaded.cells, atlas, result.radiosity,
+                        "reference");
   out.commit();
   printSummary(o, f, choice.sparse, atlas.validTexels(), result.spp, seconds);
   return 0;
@@ -196,7 +202,8 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       "reference",
       "Path-traced reference lightmap on the same atlas as `bake` (Embree, NEE + MIS), for compare-light");
   cmd->add_option("SCENE", opts->scene, "Scene file (.glb, .gltf, .obj)")->required();
-  cmd->add_option("-o,--output", opts->outDir, "Output folder (lightmap.exr, report.json, baked.glb, view-*)")
+  cmd->add_option("-o,--output", opts->outDir,
+                  "Output folder (lightmap.exr, report.json, report.html, baked.glb, view-*)")
       ->required();
   addAtlasOptions(*cmd, opts->atlas);
   addSppOption(*cmd, opts->trace.spp);
@@ -205,6 +212,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       cmd->add_option("--texels", opts->texels,
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
+  addViewOptions(*cmd, opts->views);
   addLoadOptions(*cmd, opts->load);
   addDarkOption(*cmd, opts->allowDark);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");

@@ -220,7 +220,7 @@ class SceneWriter {
       if (baked) {
         // Viewers show the baked light as is; the material it was baked with stays in extras.
         mat["pbrMetallicRoughness"] = {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}},
-                                       {"baseColorTexture", {{"index", texture}}},
+                                       {"baseColorTexture", {{"index", texture}, {"texCoord", 1}}},
                                        {"metallicFactor", 0.0},
                                        {"roughnessFactor", 1.0}};
         mat["extensions"]["KHR_materials_unlit"] = json::object();
@@ -286,7 +286,14 @@ class SceneWriter {
         }
       }
       json attributes = {{"POSITION", b_.addVec3(pos, true)}, {"NORMAL", b_.addVec3(nrm, false)}};
-      if (options_.lightmapUVs) attributes["TEXCOORD_0"] = b_.addVec2(uv);
+      if (options_.lightmapUVs) {
+        // The lightmap is the second UV set, where engines look for one (Godot's UV2, Blender's second
+        // map, three.js's uv1). glTF wants sets numbered from 0 and the scene keeps no texture
+        // coordinates of its own, so TEXCOORD_0 shares the same accessor.
+        const int lightmapUVs = b_.addVec2(uv);
+        attributes["TEXCOORD_0"] = lightmapUVs;
+        attributes["TEXCOORD_1"] = lightmapUVs;
+      }
       primitives.push_back({{"attributes", attributes}, {"material", material}, {"mode", 4}});
     }
     return b_.push("meshes", {{"name", name}, {"primitives", primitives}});

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 #include "core/error.h"
@@ -93,6 +94,12 @@ fs::path OutputDir::file(const std::string& name) {
   fs::path temp = temporaryName(dir_, name);
   staged_.emplace_back(temp, final);
   return temp;
+}
+
+fs::path OutputDir::staged(const std::string& name) const {
+  for (const auto& [temp, final] : staged_)
+    if (final == dir_ / name) return temp;
+  throw std::logic_error("OutputDir: " + name + " was not staged");
 }
 
 void OutputDir::commit() {

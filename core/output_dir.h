@@ -22,6 +22,9 @@ class OutputDir {
 
   /// The temporary path to write `name` to; the file becomes `dir/name` on commit().
   std::filesystem::path file(const std::string& name);
+  /// The temporary path of `name`, staged earlier by file() (to read back a file written before commit).
+  /// Throws std::logic_error when `name` was not staged.
+  std::filesystem::path staged(const std::string& name) const;
   /// Renames every staged file into place. Files not written are skipped.
   void commit();
   const std::filesystem::path& dir() const { return dir_; }

@@ -53,7 +53,8 @@ struct GltfWriteOptions {
   /// When set, triangles are grouped under `cell:NAME` nodes and portals written as `portal:A:B` quads
   /// (design.md §3), so loadScene reads the same graph back.
   const CellGraph* cells = nullptr;
-  /// Per triangle, the lightmap coordinates of its three corners (TEXCOORD_0); size = triangle count.
+  /// Per triangle, the lightmap coordinates of its three corners (TEXCOORD_1, and TEXCOORD_0 too since
+  /// the scene has no other); size = triangle count.
   const std::vector<std::array<glm::vec2, 3>>* lightmapUVs = nullptr;
   /// PNG bytes of the baked lightmap. With lightmapUVs, every material becomes unlit
   /// (KHR_materials_unlit) with this texture as base colour, so any viewer shows the baked light.

@@ -12,7 +12,8 @@
 namespace cpgi::decomp {
 namespace {
 
-// Inside voxels whose centres lie in the closed mesh, by the parity of crossings along +x per row.
+// Empty voxels (inside or outside, not void) whose centres lie in the closed mesh, by the parity of
+// crossings along +x per row.
 void fillVolume(const std::vector<Triangle>& mesh, const GridFrame& f, const std::vector<Space>& space, int label,
                 std::vector<int32_t>& out) {
   Bounds b;
@@ -40,7 +41,9 @@ void fillVolume(const std::vector<Triangle>& mesh, const GridFrame& f, const std
         for (int x = lo.x; x <= hi.x; ++x) {
           const double cx = f.origin.x + f.voxel * x;
           const size_t i = f.index(x, y, z);
-          if (cx >= xs[k] && cx <= xs[k + 1] && space[i] == Space::Inside) out[i] = label;
+          // Outside voxels too: the rooms of a building whose doors stand open are reachable from the bounds.
+          if (cx >= xs[k] && cx <= xs[k + 1] && (space[i] == Space::Inside || space[i] == Space::Outside))
+            out[i] = label;
         }
     }
 }

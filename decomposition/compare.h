@@ -24,7 +24,8 @@ VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx);
 
 /// Labels the inside voxels of `space` by the cells of `graph` over `scene` (the scene the graph's triangle
 /// indices refer to; it must have the same geometry as the one `space` was made from). A cell with a
-/// `cellvolume:` mesh owns the inside voxels whose centres that closed mesh contains; the others grow
+/// `cellvolume:` mesh owns the empty voxels (inside or outside: the rooms of an open building are reachable
+/// from its bounds) whose centres that closed mesh contains; the others grow
 /// breadth-first from the voxels their triangles face (one to three voxels along each normal), blocked by
 /// solid voxels and by the voxels within half a voxel of a portal quad; portal voxels join a neighbour
 /// afterwards. -1 where no cell reaches.

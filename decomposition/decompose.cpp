@@ -26,7 +26,10 @@ void checkInput(const Scene& scene, const DecomposeParams& p) {
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   if (p.sealRadius < 0.0 || p.sealRadius > 1.0 || !std::isfinite(p.sealRadius))
     throw InputError("seal radius", "must be in [0, 1] metres");
-  if (p.merge.saddleRatio < 0.0 || p.merge.saddleRatio > 1.0) throw InputError("saddle ratio", "must be in [0, 1]");
+  if (p.merge.saddleRatio < 0.0 || p.merge.saddleRatio > 1.0)
+    throw InputError("saddle ratio", "must be in [0, 1]");
+  if (!(p.merge.outsideSaddleRatio >= 0.0 && p.merge.outsideSaddleRatio <= 1.0))
+    throw InputError("outside saddle ratio", "must be in [0, 1]");
   if (p.merge.minDepth < 0.0) throw InputError("minimum depth", "must be ≥ 0");
   if (p.merge.minCellVolume < 0.0) throw InputError("minimum cell volume", "must be ≥ 0");
   if (p.merge.openingRatio < 0.0) throw InputError("opening ratio", "must be ≥ 0");
@@ -66,43 +69,35 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
 
   std::vector<PortalQuad> quads;
   std::vector<float> peaks;
-  // Nothing enclosed (outdoors, or a building with a hole larger than the seal), or every enclosed region
-  // too small to be a cell: the outside is the one cell.
-  auto oneOutsideCell = [&](const std::string& why) {
-    out.enclosed = false;
-    out.voxelCell.assign(out.frame.count(), -1);
-    for (size_t i = 0; i < space.space.size(); ++i)
-      if (space.space[i] == Space::Outside) out.voxelCell[i] = 0;
-    peaks.assign(1, 0.0f);
-    quads.clear();
-    out.portals.clear();
-    ctx.warn("decompose: " + params.sourceName + ": " + why + " at " + metres(h) +
-             " voxels; the whole scene is one outside cell");
+  // The watershed runs over all empty space, the outside included (its basin grows from the grid's
+  // border); interior cells meet the outside at exterior doors and open windows.
+  const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
+  const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
+  out.basins = basins.basinCount();
+  const CellLabels cells = mergeBasins(basins, params.merge, ctx);
+  out.enclosed = cells.roomCount() > 0;
+  out.outsideCell = cells.outsideCell;
+  PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
+  out.voxelCell = std::move(portals.cell);
+  out.leakingFaces = portals.leakingFaces;
+  peaks = cells.peak;
+  auto cellName = [&](int c) {
+    return c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c);
   };
-  if (space.insideVoxels == 0) {
-    oneOutsideCell("no enclosed empty space");
-  } else {
-    const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
-    const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
-    out.basins = basins.basinCount();
-    const CellLabels cells = mergeBasins(basins, params.merge, ctx);
-    if (cells.cellCount() == 0) {
-      oneOutsideCell("no enclosed empty space larger than the minimum cell volume");
-    } else {
-      PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
-      out.voxelCell = std::move(portals.cell);
-      out.leakingFaces = portals.leakingFaces;
-      peaks = cells.peak;
-      for (FittedPortal& fp : portals.portals) {
-        fp.quad.name = "portal:c" + std::to_string(fp.quad.cellA) + ":c" + std::to_string(fp.quad.cellB);
-        quads.push_back(fp.quad);
-      }
-      out.portals = std::move(portals.portals);
-      if (out.leakingFaces > 0)
-        ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
-                 " voxel faces join two cells outside any portal");
-    }
+  for (FittedPortal& fp : portals.portals) {
+    fp.quad.name = "portal:" + cellName(fp.quad.cellA) + ":" + cellName(fp.quad.cellB);
+    quads.push_back(fp.quad);
   }
+  out.portals = std::move(portals.portals);
+  if (!out.enclosed)
+    ctx.warn("decompose: " + params.sourceName + ": " +
+             (space.insideVoxels == 0 && cells.cellCount() <= 1
+                  ? "no enclosed empty space"
+                  : "no room larger than the minimum cell volume") +
+             " at " + metres(h) + " voxels; the whole scene is one outside cell");
+  if (out.leakingFaces > 0)
+    ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
+             " voxel faces join two cells outside any portal");
   out.space = std::move(space.space);
 
   Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
@@ -117,7 +112,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   out.graph.cells.resize(size_t(cellCount));
   out.cellStats.resize(size_t(cellCount));
   for (int c = 0; c < cellCount; ++c) {
-    out.graph.cells[size_t(c)].name = out.enclosed ? "c" + std::to_string(c) : "outside";
+    out.graph.cells[size_t(c)].name = c == out.outsideCell ? "outside" : "c" + std::to_string(c);
     out.cellStats[size_t(c)].peak = peaks[size_t(c)];
   }
   for (size_t t = 0; t < assigned.cellOfTriangle.size(); ++t) {

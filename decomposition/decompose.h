@@ -2,10 +2,13 @@
 // Eurographics 2003), as a pipeline of stages over plain data, Recast style:
 //   1 voxelize   scene → solid voxels (OpenVDB unsigned distance, optional closing)     voxelize.h
 //   2 classify   empty voxels → outside / inside / void                                 classify.h
-//   3 distance   inside voxels → distance to the geometry (exact EDT)                   distance.h
-//   4 watershed  distance → basins and the saddles where they meet                      watershed.h
-//   5 merge      basins → cells (keep only real constrictions)                          merge.h
+//   3 distance   empty voxels → distance to the geometry (exact EDT)                    distance.h
+//   4 watershed  distance → basins and the saddles where they meet; the grid's border   watershed.h
+//                is the outside's marker, so the outside is a basin like a room's
+//   5 merge      basins → cells (keep only real constrictions); the outside is a cell   merge.h
+//                ("outside", last) when a room meets it
 //   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
+//                or across the narrowest closed section (a stair's hole)                sections.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 
@@ -54,7 +57,8 @@ struct Decomposition {
   std::vector<Space> space;           ///< per voxel
   std::vector<int32_t> voxelCell;     ///< per voxel: the final cell, -1 for none
   std::string voxelChoice;            ///< how the voxel size was chosen, in words
-  bool enclosed = true;               ///< false: no enclosed empty space; the outside is the only cell
+  bool enclosed = true;               ///< false: no room was found; the outside is the only cell
+  int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                     ///< watershed basins before merging
   size_t leakingFaces = 0;            ///< see PortalSet::leakingFaces
   size_t inputTriangles = 0;

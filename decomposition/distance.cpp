@@ -68,7 +68,7 @@ DistanceGrid distanceToGeometry(const SolidGrid& solid, const SpaceGrid& space, 
   out.frame = f;
   out.d2.assign(f.count(), 0);
   for (size_t i = 0; i < d.size(); ++i) {
-    if (space.space[i] != Space::Inside) continue;
+    if (space.space[i] != Space::Inside && space.space[i] != Space::Outside) continue;
     out.d2[i] = uint32_t(std::min<int64_t>(d[i], std::numeric_limits<uint32_t>::max()));
     out.maxD2 = std::max(out.maxD2, out.d2[i]);
   }

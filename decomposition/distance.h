@@ -1,4 +1,5 @@
-// Stage 3: distance from every inside voxel to the geometry, the height field the watershed floods.
+// Stage 3: distance from every empty voxel (inside or outside; not void) to the geometry, the height field
+// the watershed floods.
 #pragma once
 
 #include <cmath>
@@ -12,8 +13,8 @@ namespace cpgi::decomp {
 
 struct DistanceGrid {
   GridFrame frame;
-  /// Squared Euclidean distance, in voxel units², from each inside voxel's centre to the nearest solid
-  /// voxel's centre; 0 for every voxel that is not inside (the watershed skips those).
+  /// Squared Euclidean distance, in voxel units², from each inside or outside voxel's centre to the
+  /// nearest solid voxel's centre; 0 for solid and void voxels (the watershed skips those).
   std::vector<uint32_t> d2;
   uint32_t maxD2 = 0;
   /// Distance in metres of voxel i (centre to nearest solid centre; the surface is ~half a voxel nearer).

@@ -18,6 +18,7 @@ struct Group {
   std::unordered_map<int, Interface> neighbours;
   int version = 0;
   bool alive = true;
+  bool outside = false;  // holds the outside marker basin: infinitely high, never the "smaller" room
 };
 
 struct Candidate {
@@ -34,7 +35,9 @@ CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params,
   const double h = f.voxel;
   const int count = basins.basinCount();
   std::vector<Group> groups(static_cast<size_t>(count));
-  for (int b = 0; b < count; ++b) groups[size_t(b)].peak = basins.peak[size_t(b)], groups[size_t(b)].volume = basins.volume[size_t(b)];
+  for (int b = 0; b < count; ++b)
+    groups[size_t(b)].peak = basins.peak[size_t(b)], groups[size_t(b)].volume = basins.volume[size_t(b)];
+  if (basins.outsideBasin >= 0) groups[size_t(basins.outsideBasin)].outside = true;
   for (const BasinContact& c : basins.contacts) {
     groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces};
     groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces};
@@ -48,11 +51,14 @@ CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params,
   for (int b = 0; b < count; ++b) pushAll(b);
 
   const double minVoxels = params.minCellVolume / f.voxelVolume();
+  // Against the outside, the rules ask whether the other group is a room of its own: its own volume and
+  // peak decide (the outside's are those of the padded grid, not of the world around the building).
   auto shouldMerge = [&](const Group& x, const Group& y, const Interface& iface) {
-    const Group& small = x.volume <= y.volume ? x : y;
-    const float lowPeak = std::min(x.peak, y.peak);
+    const Group& small = x.outside ? y : y.outside ? x : x.volume <= y.volume ? x : y;
+    const float lowPeak = x.outside ? y.peak : y.outside ? x.peak : std::min(x.peak, y.peak);
     if (small.volume < minVoxels) return true;
-    if (lowPeak <= 0.0f || iface.saddle / lowPeak > params.saddleRatio) return true;
+    const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
+    if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
     if (lowPeak - iface.saddle < params.minDepth) return true;
     const double crossSection = std::pow(small.volume, 2.0 / 3.0) * h * h;
     return params.openingRatio > 0.0 && double(iface.faces) * h * h > params.openingRatio * crossSection;
@@ -85,6 +91,7 @@ CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params,
     k.neighbours.erase(gone);
     k.peak = std::max(k.peak, g.peak);
     k.volume += g.volume;
+    k.outside = k.outside || g.outside;
     ++k.version;
     g.alive = false;
     g.neighbours.clear();
@@ -96,29 +103,40 @@ CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params,
     while (mergedInto[size_t(b)] != b) b = mergedInto[size_t(b)];
     return b;
   };
+  // The outside is kept only where it meets a room (an open door, a window): around a closed building
+  // it stays unlabelled, as before the outside was a region. With no room at all it is the one cell.
+  const int outsideRoot = basins.outsideBasin >= 0 ? root(basins.outsideBasin) : -1;
+  bool anyRoom = false;
+  for (int b = 0; b < count; ++b)
+    anyRoom = anyRoom || (root(b) != outsideRoot && groups[size_t(root(b))].volume >= minVoxels);
+  auto kept = [&](int r) {
+    if (r == outsideRoot) return !anyRoom || !groups[size_t(r)].neighbours.empty();
+    return groups[size_t(r)].volume >= minVoxels;
+  };
   CellLabels out;
   out.frame = f;
   out.cell.assign(f.count(), -1);
   out.cellOfBasin.assign(size_t(count), -1);
   std::vector<int> cellOfGroup(size_t(count), -1);
-  for (int b = 0; b < count; ++b) {
-    const Group& g = groups[size_t(root(b))];
-    if (g.volume < minVoxels) ++out.droppedBasins;
-  }
-  for (size_t i = 0; i < out.cell.size(); ++i) {
-    const int b = basins.basin[i];
-    if (b < 0) continue;
-    const int r = root(b);
-    if (groups[size_t(r)].volume < minVoxels) continue;
-    if (cellOfGroup[size_t(r)] < 0) {
-      cellOfGroup[size_t(r)] = out.cellCount();
-      out.peak.push_back(groups[size_t(r)].peak);
-      out.volume.push_back(0);
+  for (int b = 0; b < count; ++b)
+    if (root(b) != outsideRoot && !kept(root(b))) ++out.droppedBasins;
+  // Rooms numbered by their lowest voxel, the outside last.
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t i = 0; i < out.cell.size(); ++i) {
+      const int b = basins.basin[i];
+      if (b < 0) continue;
+      const int r = root(b);
+      if ((r == outsideRoot) != (pass == 1) || !kept(r)) continue;
+      if (cellOfGroup[size_t(r)] < 0) {
+        cellOfGroup[size_t(r)] = out.cellCount();
+        out.peak.push_back(groups[size_t(r)].peak);
+        out.volume.push_back(0);
+        if (r == outsideRoot) out.outsideCell = cellOfGroup[size_t(r)];
+      }
+      const int c = cellOfGroup[size_t(r)];
+      out.cell[i] = c;
+      ++out.volume[size_t(c)];
     }
-    const int c = cellOfGroup[size_t(r)];
-    out.cell[i] = c;
-    ++out.volume[size_t(c)];
-  }
   for (int b = 0; b < count; ++b) out.cellOfBasin[size_t(b)] = cellOfGroup[size_t(root(b))];
   ctx.progress("merge", 1.0);
   return out;

@@ -26,6 +26,11 @@ struct MergeParams {
   /// Any group smaller than this, m³, joins the neighbour it meets at the highest saddle; an isolated
   /// one is dropped (its voxels become unlabelled).
   double minCellVolume = 1.0;
+  /// saddleRatio between a room and the outside, in [0, 1]. Higher than saddleRatio: exterior doors are
+  /// wide (a 2 m terrace door into a 2.7 m high room has 1.0 / 1.35 = 0.74), and whether a space is a
+  /// room or part of the outside is better told by how much of it is open (openingRatio): a porch open
+  /// on three sides merges by that rule.
+  double outsideSaddleRatio = 0.9;
 };
 
 struct CellLabels {
@@ -35,12 +40,18 @@ struct CellLabels {
   std::vector<float> peak;           ///< per cell, metres
   std::vector<uint32_t> volume;      ///< per cell, voxels
   int droppedBasins = 0;
+  /// The cell grown from the outside marker (always the last), -1 when there is none: the outside of a
+  /// closed building touches no room and is left unlabelled.
+  int outsideCell = -1;
   int cellCount() const { return int(peak.size()); }
+  int roomCount() const { return cellCount() - (outsideCell >= 0 ? 1 : 0); }
 };
 
 /// Greedy agglomeration: candidate contacts from the highest saddle down, each re-tested whenever one of
 /// its groups changes (a merge sums volumes and interfaces and keeps the higher peak and saddle). Cells
-/// are numbered by their lowest voxel index, so the numbering does not depend on the merge order.
+/// are numbered by their lowest voxel index, so the numbering does not depend on the merge order; the
+/// outside (the group of the watershed's outside marker) comes last, and only when it meets a room or
+/// when there is no room at all. Against the outside the rules use the room's own volume and peak.
 /// Run after floodWatershed.
 CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params, Context& ctx);
 

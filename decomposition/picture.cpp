@@ -22,15 +22,24 @@ void drawView(const Decomposition& d, const View& v, int scale, int top, ImageRG
     for (int b = 0; b < f.dims[v.down]; ++b) {
       counts.clear();
       bool solid = false, voidSpace = false;
+      int outside = 0, solidCount = 0;
       for (int k = 0; k < f.dims[v.depth]; ++k) {
         glm::ivec3 c;
         c[v.across] = a, c[v.down] = b, c[v.depth] = k;
         const size_t i = f.index(c);
-        if (d.voxelCell[i] >= 0 && (d.enclosed || d.space[i] == Space::Outside)) ++counts[d.voxelCell[i]];
+        const int cell = d.voxelCell[i];
+        // The outside cell of a building is drawn white like unlabelled outside space, below its rooms.
+        if (d.enclosed && cell >= 0 && cell == d.outsideCell)
+          ++outside;
+        else if (cell >= 0 && (d.enclosed || d.space[i] == Space::Outside))
+          ++counts[cell];
         solid |= d.space[i] == Space::Solid;
+        solidCount += d.space[i] == Space::Solid;
         voidSpace |= d.space[i] == Space::Void;
       }
-      glm::vec3 colour = solid ? kWall : voidSpace ? kVoid : kOutside;
+      // Where the outside outweighs the solid (the ground around a house, not its walls) it shows white.
+      const bool open = outside > solidCount;
+      glm::vec3 colour = solid && !open ? kWall : voidSpace && !open ? kVoid : kOutside;
       int best = 0;
       for (const auto& [cell, n] : counts)
         if (n > best) best = n, colour = cellColour(cell);

@@ -4,12 +4,16 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <unordered_map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
 #include <CGAL/linear_least_squares_fitting_3.h>
 #include <CGAL/min_quadrilateral_2.h>
+
+#include "decomposition/sections.h"
 
 namespace cpgi::decomp {
 namespace {
@@ -247,10 +251,9 @@ std::vector<Face> uncoveredFaces(const GridFrame& f, const std::vector<int32_t>&
   return faces;
 }
 
-// Per pair of cells, openings = faces connected within one voxel (half-coordinates within 2); one
-// fitted portal per opening.
-std::vector<FittedPortal> fitOpenings(const GridFrame& f, const std::vector<Face>& faces, double margin) {
-  std::vector<FittedPortal> out;
+// Per pair of cells, openings = faces connected within one voxel (half-coordinates within 2).
+std::vector<std::vector<const Face*>> groupOpenings(const GridFrame& f, const std::vector<Face>& faces) {
+  std::vector<std::vector<const Face*>> out;
   for (size_t lo = 0; lo < faces.size();) {
     size_t hi = lo;
     while (hi < faces.size() && faces[hi].a == faces[lo].a && faces[hi].b == faces[lo].b) ++hi;
@@ -275,10 +278,45 @@ std::vector<FittedPortal> fitOpenings(const GridFrame& f, const std::vector<Face
           }
     std::map<int, std::vector<const Face*>> openings;
     for (int q = 0; q < n; ++q) openings[findRoot(parent, q)].push_back(&faces[lo + size_t(q)]);
-    for (const auto& [root, members] : openings) out.push_back(fitOpening(f, members, margin));
+    for (auto& [root, members] : openings) out.push_back(std::move(members));
     lo = hi;
   }
   return out;
+}
+
+// True when at least 90 % of the opening's faces are crossed along one grid axis: a door or a window
+// in a wall, a hole met at the floor's level. A stair's interface, following the steps, is not.
+bool alongOneAxis(const std::vector<const Face*>& faces) {
+  size_t count[3] = {0, 0, 0};
+  for (const Face* face : faces) ++count[face->axis];
+  return double(std::max({count[0], count[1], count[2]})) >= 0.9 * double(faces.size());
+}
+
+// The portal across the narrowest closed section near a non-planar opening (sections.h), facing away
+// from the side of a's deepest voxel (faceFromAToB checks it once the cells are relabelled); nothing
+// when no section is closed.
+std::optional<FittedPortal> sectionPortal(const GridFrame& f, const std::vector<int32_t>& cell,
+                                          const DistanceGrid& distance, const std::vector<const Face*>& faces,
+                                          const std::vector<size_t>& deepest, const PortalParams& params) {
+  const int a = faces.front()->a, b = faces.front()->b;
+  const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+  std::vector<size_t> voxels;
+  for (const Face* face : faces)
+    voxels.push_back(face->lower), voxels.push_back(size_t(ptrdiff_t(face->lower) + strides[face->axis]));
+  const int search = int(std::ceil(params.searchRange / f.voxel));
+  const std::optional<Section> s =
+      narrowestSection(f, cell, a, b, voxels, search, std::max<size_t>(400, 4 * faces.size()));
+  if (!s) return std::nullopt;
+  // a is never the outside (numbered last), whose deepest voxel may lie at any corner of the grid.
+  const int sign = f.coord(deepest[size_t(a)])[s->axis] > s->layer ? -1 : 1;
+  std::vector<Face> cut;
+  for (size_t v : s->voxels) cut.push_back({a, b, v, s->axis, sign, float(distance.metres(v))});
+  std::vector<const Face*> refs;
+  for (const Face& face : cut) refs.push_back(&face);
+  FittedPortal fp = fitOpening(f, refs, params.marginVoxels);
+  fp.faces = uint32_t(faces.size());
+  fp.section = true;
+  return fp;
 }
 
 // Relabels the slab around a portal (its quad, ± depth along the normal) by the side of its plane.
@@ -308,6 +346,78 @@ void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t
       }
 }
 
+// Turns a portal so that its normal points from cellA into cellB, by the labels half a voxel either side
+// of it at 5 × 5 points over the quad (its cells are on either side after relabelAcrossPortals).
+void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQuad& q) {
+  const float h = float(f.voxel);
+  int vote = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const float u = (float(i) + 0.5f) / 5.0f, v = (float(j) + 0.5f) / 5.0f;
+      const glm::vec3 p =
+          q.corners[0] + u * (q.corners[1] - q.corners[0]) + v * (q.corners[3] - q.corners[0]);
+      for (float side : {-1.0f, 1.0f}) {
+        const glm::ivec3 c = f.voxelOf(p + side * 0.5f * h * q.normal);
+        if (!f.contains(c)) continue;
+        const int l = cell[f.index(c)];
+        vote += (l == q.cellB ? 1 : l == q.cellA ? -1 : 0) * int(side);
+      }
+    }
+  if (vote >= 0) return;
+  std::swap(q.corners[1], q.corners[3]);
+  q.normal = -q.normal;
+}
+
+// Makes the cells of each pair joined by a section portal meet at its quad (relabelAcrossPortals), with
+// as few of the pair's portals as cut the two apart: between two rooms first the largest section alone
+// (the hole of a stair; smaller sections are pockets between the steps and the floor's edge), then every
+// section, then every portal of the pair; between a room and the outside every portal of the pair (the
+// room's windows and doors all open onto it). The portals left out are dropped. When none of these cuts
+// the pair apart, its sections go back to the planes fitted to their interfaces.
+void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const std::vector<size_t>& deepest,
+                         int outsideCell, const PortalParams& params, std::vector<FittedPortal>& fresh,
+                         const std::vector<FittedPortal>& planeFits) {
+  std::vector<char> redundant(fresh.size(), 0);
+  std::set<std::pair<int, int>> done;
+  for (size_t k = 0; k < fresh.size(); ++k) {
+    const int a = fresh[k].quad.cellA, b = fresh[k].quad.cellB;
+    if (!fresh[k].section || !done.insert({a, b}).second) continue;
+    std::vector<size_t> sections, others;
+    for (size_t q = 0; q < fresh.size(); ++q)
+      if (fresh[q].quad.cellA == a && fresh[q].quad.cellB == b)
+        (fresh[q].section ? sections : others).push_back(q);
+    std::sort(sections.begin(), sections.end(),
+              [&](size_t x, size_t y) { return fresh[x].quad.area > fresh[y].quad.area; });
+    std::vector<std::vector<size_t>> attempts;
+    std::vector<size_t> all = sections;
+    all.insert(all.end(), others.begin(), others.end());
+    if (a != outsideCell && b != outsideCell) {
+      attempts.push_back({sections.front()});
+      if (sections.size() > 1) attempts.push_back(sections);
+    }
+    if (!others.empty() || attempts.empty()) attempts.push_back(all);
+    bool separated = false;
+    for (const std::vector<size_t>& used : attempts) {
+      std::vector<const PortalQuad*> barrier;
+      for (size_t q : used) barrier.push_back(&fresh[q].quad);
+      if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) continue;
+      for (size_t q : all) redundant[q] = std::find(used.begin(), used.end(), q) == used.end();
+      for (size_t q : used)
+        if (fresh[q].section) faceFromAToB(f, cell, fresh[q].quad);
+      separated = true;
+      break;
+    }
+    if (separated) continue;
+    for (size_t q : sections) {
+      fresh[q] = planeFits[q];
+      centreInConstriction(fresh[q], f, cell, params.searchRange);
+      relabelSlab(f, fresh[q], cell);
+    }
+  }
+  for (size_t k = fresh.size(); k-- > 0;)
+    if (redundant[k]) fresh.erase(fresh.begin() + ptrdiff_t(k));
+}
+
 }  // namespace
 
 PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params,
@@ -316,18 +426,42 @@ PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, cons
   const GridFrame& f = cells.frame;
   PortalSet out;
   out.cell = cells.cell;
+  // Each cell's deepest voxel, to tell the sides of a section portal apart.
+  std::vector<size_t> deepest(size_t(cells.cellCount()), 0);
+  for (size_t i = 0; i < out.cell.size(); ++i) {
+    const int c = out.cell[i];
+    if (c >= 0 && distance.d2[i] > distance.d2[deepest[size_t(c)]]) deepest[size_t(c)] = i;
+  }
   // Round 0 fits every opening; later rounds fit what the earlier portals left uncovered (an interface
   // that bends out of its portal's slab, the fringe of a wide arch), up to params.extraRounds times.
   for (int round = 0; round <= params.extraRounds; ++round) {
     const std::vector<Face> faces = uncoveredFaces(f, out.cell, distance, out.portals);
     if (faces.empty()) break;
-    std::vector<FittedPortal> fresh = fitOpenings(f, faces, params.marginVoxels);
+    std::vector<FittedPortal> fresh, planeFits;
+    for (const std::vector<const Face*>& opening : groupOpenings(f, faces)) {
+      FittedPortal fp = fitOpening(f, opening, params.marginVoxels);
+      std::optional<FittedPortal> cut;
+      if (round == 0 && !alongOneAxis(opening))
+        cut = sectionPortal(f, out.cell, distance, opening, deepest, params);
+      // Several pieces of one stair's interface find the same section: one portal for them.
+      if (cut && std::any_of(fresh.begin(), fresh.end(), [&](const FittedPortal& q) {
+            return q.section && q.quad.cellA == cut->quad.cellA && q.quad.cellB == cut->quad.cellB &&
+                   glm::length(q.quad.centre() - cut->quad.centre()) < 2.0f * float(f.voxel);
+          }))
+        continue;
+      planeFits.push_back(fp);
+      fresh.push_back(cut ? *cut : fp);
+    }
     // Each to the middle of its constriction, then the cells made to meet exactly at its quad.
     // Later rounds leave the labels alone: relabelling around a fringe portal moves the interface
-    // somewhere else instead of covering it.
+    // somewhere else instead of covering it. A section portal's cells are relabelled by side, whole:
+    // the stair's interface runs far from the hole the portal covers.
     if (round == 0) {
-      for (FittedPortal& fp : fresh) centreInConstriction(fp, f, out.cell, params.searchRange);
-      for (const FittedPortal& fp : fresh) relabelSlab(f, fp, out.cell);
+      for (FittedPortal& fp : fresh)
+        if (!fp.section) centreInConstriction(fp, f, out.cell, params.searchRange);
+      for (const FittedPortal& fp : fresh)
+        if (!fp.section) relabelSlab(f, fp, out.cell);
+      relabelSectionPairs(f, out.cell, deepest, cells.outsideCell, params, fresh, planeFits);
     }
     out.portals.insert(out.portals.end(), fresh.begin(), fresh.end());
   }

@@ -30,6 +30,9 @@ struct FittedPortal {
   float halfWidth = 0.0f; ///< the constriction: max over the interface of min(distance), metres
   uint32_t faces = 0;     ///< voxel faces of the interface it was fitted to
   float depth = 0.0f;     ///< half-thickness of the slab relabelled around its plane, metres
+  /// Cut across the narrowest closed section near a non-planar interface (sections.h: a stair's hole in
+  /// the floor) rather than fitted to the interface.
+  bool section = false;
 };
 
 struct PortalSet {
@@ -42,7 +45,9 @@ struct PortalSet {
 };
 
 /// Splits the faces between each pair of cells into connected openings (faces within one voxel of each
-/// other) and fits one quad to each. Run after mergeBasins.
+/// other) and fits one quad to each: to the interface's plane when its faces are crossed along one axis
+/// (doors, windows), else across the narrowest closed section near it (sections.h: the hole a stair
+/// climbs through), whose two cells are then relabelled by side. Run after mergeBasins.
 PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx);
 
 /// Counts voxel faces between different cells that cross no portal joining those cells (see PortalSet).

@@ -17,6 +17,7 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
       {"seal_m", params.sealRadius},
       {"level_step_voxels", params.watershed.levelStep},
       {"saddle_ratio", params.merge.saddleRatio},
+      {"outside_saddle_ratio", params.merge.outsideSaddleRatio},
       {"min_depth_m", params.merge.minDepth},
       {"opening_ratio", params.merge.openingRatio},
       {"min_cell_volume_m3", params.merge.minCellVolume},
@@ -35,10 +36,12 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                {"void", counts[size_t(Space::Void)]},
                {"sealed", d.sealedVoxels}};
   j["enclosed"] = d.enclosed;
+  j["outside_cell"] = d.outsideCell >= 0 ? nlohmann::json(d.graph.cells[size_t(d.outsideCell)].name) : nlohmann::json();
   json cells = json::array();
   for (size_t c = 0; c < d.graph.cells.size(); ++c) {
     const CellStats& s = d.cellStats[c];
     cells.push_back({{"name", d.graph.cells[c].name},
+                     {"exterior", int(c) == d.outsideCell},
                      {"volume_m3", s.volume},
                      {"bounds_m", {vec(s.bounds.lo), vec(s.bounds.hi)}},
                      {"peak_m", s.peak},

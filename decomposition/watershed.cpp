@@ -5,6 +5,33 @@
 #include <unordered_map>
 
 namespace cpgi::decomp {
+namespace {
+
+// Labels every empty voxel of the grid's border as basin 0, the outside (no contacts: nothing else is
+// labelled yet), and returns the border's mask.
+std::vector<char> markOutside(const DistanceGrid& distance, WatershedLabels& out) {
+  const GridFrame& f = distance.frame;
+  std::vector<char> border(f.count(), 0);
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y) {
+      const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
+      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1)))
+        border[f.index(x, y, z)] = 1;
+    }
+  for (size_t i = 0; i < border.size(); ++i) {
+    if (!border[i] || !distance.d2[i]) continue;
+    if (out.outsideBasin < 0) {
+      out.outsideBasin = 0;
+      out.peak.push_back(0.0f);
+      out.volume.push_back(0);
+    }
+    out.basin[i] = 0;
+    ++out.volume[0];
+  }
+  return border;
+}
+
+}  // namespace
 
 WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedParams& params, Context& ctx) {
   auto timer = ctx.time("watershed");
@@ -18,18 +45,21 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   const double step = params.levelStep > 0.0 ? params.levelStep : 0.5;
   auto levelOf = [&](uint32_t d2) { return int(std::sqrt(double(d2)) / step); };
   const int levels = levelOf(distance.maxD2) + 1;
+  // The border layer is the outside marker, not flooded level by level.
+  const std::vector<char> border = markOutside(distance, out);
+  auto flooded = [&](size_t i) { return distance.d2[i] && !border[i]; };
   std::vector<size_t> start(size_t(levels) + 1, 0);
   for (size_t i = 0; i < n; ++i)
-    if (distance.d2[i]) ++start[size_t(levels - 1 - levelOf(distance.d2[i])) + 1];
+    if (flooded(i)) ++start[size_t(levels - 1 - levelOf(distance.d2[i])) + 1];
   for (int l = 0; l < levels; ++l) start[size_t(l) + 1] += start[size_t(l)];
   std::vector<size_t> order(start.back());
   {
     std::vector<size_t> fillAt(start.begin(), start.end() - 1);
     for (size_t i = 0; i < n; ++i)
-      if (distance.d2[i]) order[fillAt[size_t(levels - 1 - levelOf(distance.d2[i]))]++] = i;
+      if (flooded(i)) order[fillAt[size_t(levels - 1 - levelOf(distance.d2[i]))]++] = i;
   }
 
-  // Inside voxels never touch the grid border (the border is outside), so face neighbours are in range.
+  // Only voxels off the border are flooded, so face neighbours of a flooded voxel are in range.
   const ptrdiff_t sy = f.dims.x, sz = ptrdiff_t(f.dims.x) * f.dims.y;
   const ptrdiff_t offsets[6] = {-1, 1, -sy, sy, -sz, sz};
   std::vector<uint8_t> atLevel(n, 0);
@@ -107,6 +137,10 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
     if ((l & 15) == 0) ctx.progress("watershed", double(l) / levels);
   }
 
+  if (out.outsideBasin >= 0)
+    for (size_t i = 0; i < n; ++i)
+      if (out.basin[i] == out.outsideBasin)
+        out.peak[size_t(out.outsideBasin)] = std::max(out.peak[size_t(out.outsideBasin)], metres(i));
   out.contacts.reserve(contacts.size());
   for (const auto& [key, c] : contacts) out.contacts.push_back(c);
   std::sort(out.contacts.begin(), out.contacts.end(),

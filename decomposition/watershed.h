@@ -28,10 +28,14 @@ struct BasinContact {
 
 struct WatershedLabels {
   GridFrame frame;
-  std::vector<int32_t> basin;  ///< per voxel: basin index, -1 where the voxel is not inside
+  std::vector<int32_t> basin;  ///< per voxel: basin index, -1 for solid and void voxels
   std::vector<float> peak;     ///< per basin: its highest distance, metres
   std::vector<uint32_t> volume;  ///< per basin: voxels
   std::vector<BasinContact> contacts;
+  /// The basin grown from the grid's border (0), -1 when no border voxel is empty. Its peak is its real
+  /// highest distance, but it stands for the unbounded space around the scene: merging treats it as
+  /// infinitely high.
+  int outsideBasin = -1;
   int basinCount() const { return int(peak.size()); }
 };
 
@@ -39,6 +43,12 @@ struct WatershedLabels {
 /// the level's voxels it touches (so a plateau is shared out by distance from the basins that reach it),
 /// then each remaining connected patch of the level starts a new basin (a local maximum). Every voxel
 /// pair of different basins is seen once, when the second voxel is labelled, which records the contact.
+///
+/// The empty voxels of the grid's border are one marker basin, the outside, labelled before the first
+/// level (a marker-controlled watershed, Meyer & Beucher 1990): the padded grid cuts the space around a
+/// building off a few voxels from its walls, where the true distance would keep growing, so the outside
+/// is given the top of the height field instead. A room whose front door stands open then meets the
+/// outside at the door's half-width, like any other constriction, instead of flooding out through it.
 /// Run after distanceToGeometry.
 WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedParams& params, Context& ctx);
 

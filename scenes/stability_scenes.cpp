@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "scenes/buildings.h"
 #include "scenes/openings_scene.h"
 #include "scenes/scene_builder.h"
 
@@ -154,9 +155,9 @@ SeedScene makeThinWall(float thickness) {
 }
 
 const std::vector<std::string>& builtinSceneNames() {
-  static const std::vector<std::string> names = {"seed1",     "seed2",       "seed3",
-                                                 "spot-door", "thin-wall",   "thin-wall-5cm",
-                                                 "openings",  "point-light", "spot-light"};
+  static const std::vector<std::string> names = {
+      "seed1",      "seed2",       "seed3",        "spot-door", "thin-wall", "thin-wall-5cm", "openings",
+      "house-open", "house-stair", "house-spiral", "open-plan", "porch",     "point-light",   "spot-light"};
   return names;
 }
 
@@ -170,6 +171,8 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "openings") return makeOpeningsScene();
   if (name == "point-light") return makePointLightRooms();
   if (name == "spot-light") return makeSpotLightThroughDoor();
+  for (const std::string& building : buildingNames())
+    if (name == building) return makeBuilding(name).seed;
   throw std::invalid_argument("unknown built-in scene '" + name + "'");
 }
 

@@ -1,8 +1,8 @@
-// Takes back the part of the last shot that exceeded its power: every receiver texel of the shot (the
-// same tiles and texels receive.comp gathered into) loses (1 − uScale) of what it gained. A shot's form
-// factors sum to at most 1, so a shot that delivered more than it carried made light up (visibility
-// from a drawn eye can see more than its region does, point-sampled receivers next to the shooter); the
-// solver's bookkeeping finds such a shot and scales it to its power (design.md §5: received ≤ shot).
+// Scales the last shot to what it should have delivered: every receiver texel of the shot (the same
+// tiles and texels receive.comp gathered into) gets uScale × what it gained instead. The solver's
+// bookkeeping compares the gathered total with the power times the share of the eyes' hemispheres that
+// the item buffers show covered (shot_coverage.comp), which is at most the power (design.md §5:
+// received ≤ shot).
 #include "common.glsl"
 #include "atlas_buffers.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -11,7 +11,7 @@ layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
 layout(std430, binding = 21) readonly buffer ShotGain { vec4 shotGain[]; };  // irradiance of the last shot
 uniform int uShooter;
-uniform float uScale;  // in [0, 1)
+uniform float uScale;  // > 0
 
 void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;

@@ -32,9 +32,7 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   writeGltf(withExtension.string(), scene, gltf);
   std::filesystem::rename(withExtension, staged);
 
-  ViewParams views = viewParams;
-  views.exposure = result.exposure;
-  result.views = renderViews(scene, cells, atlas, radiosity, out, ctx, views);
+  result.views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams);
   return result;
 }
 

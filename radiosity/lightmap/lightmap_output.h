@@ -19,7 +19,7 @@
 namespace cpgi {
 
 struct LightmapOutputs {
-  float exposure = 1.0f;           ///< used for the PNGs and the glb's texture (viewExposure)
+  float exposure = 1.0f;           ///< used for the glb's texture (viewExposure)
   std::vector<std::string> views;  ///< camera names, files view-NAME.exr / .png
 };
 
@@ -27,7 +27,7 @@ struct LightmapOutputs {
 ///  - lightmap.exr: R, G, B = radiosity B; channel "area" (m² per texel, 0 on padding) and any `extra`;
 ///  - lightmap.png: the lightmap as radiance B/π at `exposure`, as the glb shows it;
 ///  - baked.glb: the scene (with `cells` and their portals, when there are any) with the atlas as
-///    TEXCOORD_0 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
+///    TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
 ///    baked light;
 ///  - view-NAME.exr / .png for every camera (renderViews).
 /// Nothing appears in the folder before out.commit().

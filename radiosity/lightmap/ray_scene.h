@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -30,7 +31,8 @@ class RayScene {
     explicit operator bool() const { return triangle >= 0; }
   };
 
-  /// Nearest hit on (tnear, tfar). Thread-safe.
+  /// Nearest hit on (tnear, tfar); where a triangle seen from behind and one seen from the front lie at
+  /// the same distance (within 1e-4 of it), the front one. Thread-safe.
   Hit intersect(const glm::vec3& origin, const glm::vec3& direction, float tnear = 0.0f,
                 float tfar = 3.0e38f) const;
   /// True when anything lies on (tnear, tfar). Thread-safe.
@@ -43,6 +45,7 @@ class RayScene {
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
   float diagonal_ = 0.0f;
+  std::vector<glm::vec3> normals_;  ///< per triangle, by its winding (Triangle::geometricNormal)
 };
 
 }  // namespace cpgi

@@ -96,7 +96,10 @@ ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtla
     throw std::invalid_argument("renderView: the lightmap must have one value per atlas texel");
   ImageRGB image;
   image.width = std::clamp(params.width, 16, 8192);
-  image.height = std::max(1, int(std::lround(image.width / std::max(camera.aspect, 1e-3f))));
+  // The vertical field of view is the camera's; a given height widens or narrows the horizontal one.
+  image.height = params.height > 0
+                     ? std::clamp(params.height, 16, 8192)
+                     : std::max(1, int(std::lround(image.width / std::max(camera.aspect, 1e-3f))));
   image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
   const int n = std::clamp(params.supersample, 1, 8);
 

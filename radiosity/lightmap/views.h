@@ -1,7 +1,7 @@
 // Pictures of a baked lightmap: Embree primary rays from pinhole cameras, the hit triangle's lightmap
 // coordinates (LightmapAtlas::triangleUV) interpolated by the hit's barycentrics, a bilinear lookup, and
 // radiance L = B/π (diffuse surfaces). Used by `cpgi bake` and `cpgi reference` alike, so the two can be
-// compared picture by picture: the exposure comes from the lightmap, not from the method.
+// compared picture by picture (view-*.exr; each PNG's exposure comes from what its camera sees).
 #pragma once
 
 #include <span>
@@ -22,9 +22,11 @@ namespace cpgi {
 class RayScene;
 
 struct ViewParams {
-  int width = 640;      ///< pixels; the height follows the camera's aspect ratio. In [16, 8192].
+  int width = 640;      ///< pixels, in [16, 8192]
+  int height = 0;       ///< pixels, in [16, 8192]; 0: from the width and the camera's aspect ratio
   int supersample = 2;  ///< n × n rays per pixel, box-filtered. In [1, 8].
-  /// Scale applied before the PNG's clamp and sRGB curve; ≤ 0 → viewExposure(atlas, lightmap).
+  /// Scale applied before the PNG's clamp and sRGB curve; ≤ 0 → chosen per picture from what it sees
+  /// (its pixels' 90th percentile of radiance to 0.8, as viewExposure does for the lightmap).
   float exposure = 0.0f;
 };
 

@@ -306,12 +306,21 @@ class PathTracer {
     const float cosX = glm::dot(n, w);
     const float cosY = -glm::dot(ny, w);
     if (cosX <= 0.0f || cosY <= 0.0f) return glm::vec3(0.0f);
-    const glm::vec3 target = y + offset_ * ny;
-    const glm::vec3 toTarget = target - origin;
-    const float distance = glm::length(toTarget);
+    // Visible when the first thing the ray meets is the emitter there. A shadow ray stopped short of the
+    // light (the old test: occluded up to the light point moved off its surface, less an offset) passed
+    // through a wall that meets the lamp's edge within that offset of the light point: light from a lamp
+    // against a zero-thickness partition leaked into the room behind.
+    const glm::vec3 toY = y - origin;
+    const float distance = glm::length(toY);
     ++rayCount;
-    if (distance <= offset_ || rays_.occluded(origin, toTarget / distance, 0.0f, distance - offset_))
-      return glm::vec3(0.0f);
+    if (distance <= offset_) return glm::vec3(0.0f);
+    const float slack = 1e-4f * distance + offset_;
+    const RayScene::Hit seen = rays_.intersect(origin, toY / distance, 0.0f, distance + slack);
+    if (!seen) return glm::vec3(0.0f);
+    const auto s = static_cast<size_t>(seen.triangle);
+    const bool light = s == e || (surfaces_.emitterIndex[s] >= 0 && std::abs(seen.t - distance) <= slack &&
+                                  glm::dot(surfaces_.normal[s], ny) > 0.999f);
+    if (!light) return glm::vec3(0.0f);
     const float pdfLight = lights.probability(surfaces_, k) / tri.area() * r2 / cosY;  // per steradian
     const float pdfBsdf = cosX / kPi;
     return powerHeuristic(pdfLight, pdfBsdf) * (surfaces_.emission[e] / kPi) * cosX / pdfLight;
@@ -367,7 +376,8 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
   if (!streams.empty() && streams.size() != points.size())
     throw std::invalid_argument("traceReference: one stream per point, or none");
   if (params.spp < 2)
-    throw InputError("samples per texel", "needs at least 2 samples per texel, got " + std::to_string(params.spp));
+    throw InputError("samples per texel",
+                     "needs at least 2 samples per texel, got " + std::to_string(params.spp));
   auto timer = ctx.time("reference");
   const PathTracer tracer(scene, params);
 

@@ -71,6 +71,32 @@ TEST(DecomposeCommand, SeedSceneRoundTripsThroughInfoAndCompareCells) {
   EXPECT_GE(json::parse(autoCmp.out)["adjusted_rand_index"].get<double>(), 0.95);
 }
 
+TEST(DecomposeCommand, OpenHouseHasAnOutsideCellAndEveryRoom) {
+  // A generated house whose front door, terrace door and windows stand open (issue 12): the rooms are
+  // cells, the outside is one more, flagged exterior, joined to them by a portal per opening.
+  test::TempDir dir;
+  const std::string scene = dir / "house.glb", out = dir / "cells";
+  ASSERT_EQ(cpgi(dir, "generate house-open -o '" + scene + "'").status, 0);
+  const CommandResult run = cpgi(dir, "decompose '" + scene + "' -o '" + out + "' --voxel 0.1");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("not covered by a portal: 0"), std::string::npos) << run.out;
+  const json report = json::parse(slurp(out + "/cells.json"));
+  EXPECT_EQ(report["enclosed"], true);
+  EXPECT_EQ(report["outside_cell"], "outside");
+  EXPECT_EQ(report["counts"]["cells"], 5);    // hall, living room, kitchen, bedroom + outside
+  EXPECT_EQ(report["counts"]["portals"], 9);  // 3 interior doors, 2 exterior doors, 4 windows
+  EXPECT_EQ(report["checks"]["leaking_faces"], 0);
+  EXPECT_EQ(report["checks"]["connected"], true);
+  int exterior = 0;
+  for (const json& c : report["cells"]) exterior += c["exterior"].get<bool>();
+  EXPECT_EQ(exterior, 1);
+  // Scored against the house's own rooms (its cellvolume: boxes).
+  const CommandResult cmp =
+      cpgi(dir, "compare-cells '" + scene + "' '" + out + "' '" + scene + "' --json --voxel 0.1");
+  ASSERT_EQ(cmp.status, 0) << cmp.err;
+  EXPECT_GE(json::parse(cmp.out)["adjusted_rand_index"].get<double>(), 0.9);
+}
+
 TEST(DecomposeCommand, OpenSceneIsOneCellWithAMessage) {
   test::TempDir dir;
   std::ofstream(dir / "ground.obj") << "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 3 2\nf 1 4 3\n"

@@ -57,6 +57,31 @@ TEST(Options, LibraryErrorsNameTheFlag) {
   EXPECT_EQ(flagOf("scenes/house.glb"), "scenes/house.glb");
 }
 
+TEST(Options, ViewSizeSetsBothSidesOrIsRefused) {
+  ViewParams views;
+  ASSERT_TRUE(parse("--view-size 320x200", [&](CLI::App& app) { addViewOptions(app, views); }));
+  EXPECT_EQ(views.width, 320);
+  EXPECT_EQ(views.height, 200);
+  ViewParams multiplied;
+  ASSERT_TRUE(parse("--view-size 1920×1080", [&](CLI::App& app) { addViewOptions(app, multiplied); }));
+  EXPECT_EQ(multiplied.width, 1920);
+  EXPECT_EQ(multiplied.height, 1080);
+  ViewParams untouched;
+  ASSERT_TRUE(parse("", [&](CLI::App& app) { addViewOptions(app, untouched); }));
+  EXPECT_EQ(untouched.width, ViewParams{}.width);
+  EXPECT_EQ(untouched.height, 0);  // from the camera's aspect
+  for (const char* bad : {"15x200", "320", "320x200x3", "axb", "320x9000", "320x200px"}) {
+    ViewParams refused;
+    EXPECT_FALSE(parse(std::string("--view-size ") + bad, [&](CLI::App& app) {
+      addViewOptions(app, refused);
+    })) << bad;
+    EXPECT_EQ(refused.width, ViewParams{}.width) << bad;
+    EXPECT_EQ(refused.height, 0) << bad;
+  }
+  EXPECT_EQ(flagOf("view size"), "--view-size");
+  EXPECT_EQ(flagOf("report folder"), "--report");
+}
+
 TEST(CellSelection, ParsePoint) {
   EXPECT_EQ(parsePoint("1,-2.5, 3e1", "--around"), glm::vec3(1.0f, -2.5f, 30.0f));
   for (const char* bad : {"", "1,2", "1,2,3,4", "1,x,3", "1,2,3m", "1,nan,3", "1,,3"})

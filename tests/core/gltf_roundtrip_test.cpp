@@ -183,9 +183,13 @@ TEST(GltfWriter, BakedFileIsUnlitWithLightmapAndKeepsMaterialsInExtras) {
   for (const auto& m : doc["materials"]) {
     EXPECT_TRUE(m["extensions"].contains("KHR_materials_unlit"));
     EXPECT_EQ(m["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+    EXPECT_EQ(m["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"], 1);
   }
   for (const auto& mesh : doc["meshes"])
-    for (const auto& prim : mesh["primitives"]) EXPECT_TRUE(prim["attributes"].contains("TEXCOORD_0"));
+    for (const auto& prim : mesh["primitives"]) {
+      EXPECT_TRUE(prim["attributes"].contains("TEXCOORD_0"));
+      EXPECT_TRUE(prim["attributes"].contains("TEXCOORD_1"));
+    }
   EXPECT_EQ(doc["images"][0]["mimeType"], "image/png");
 
   // Reading it back gives the materials it was baked with, not the lightmap's mean.

@@ -1,0 +1,90 @@
+#include "apps/report_page.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/html_report/html_report.h"
+#include "core/scene_io.h"
+#include "radiosity/lightmap/cell_channel.h"
+
+namespace cpgi::cli {
+namespace {
+std::string bDir(const nlohmann::json& figures) {
+  return figures.value("b", std::string("the reference"));
+}
+}  // namespace
+
+void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohmann::json& report,
+                         const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+                         std::vector<glm::vec3> radiosity, const std::string& kind) {
+  dilate(atlas, radiosity);  // as lightmap.exr: filtering at chart edges must not pull in black
+  ReportLightmap lightmap;
+  lightmap.width = atlas.width, lightmap.height = atlas.height;
+  lightmap.radiosity = std::move(radiosity);
+  lightmap.area = atlas.area;
+  if (!cells.empty())
+    for (const float c : cellChannel(atlas, scene, cells).values) lightmap.cellOfTexel.push_back(int(c));
+  HtmlReportInput input;
+  input.title = title;
+  input.kind = kind;
+  input.report = report;
+  input.glb = readFileBytes(out.staged("baked.glb").string());
+  input.scene = &scene;
+  input.cells = &cells;
+  input.lightmap = &lightmap;
+  writeHtmlReport(out, input);
+}
+
+void writeDecompositionReportPage(OutputDir& out, const std::string& title, const nlohmann::json& report,
+                                  const Scene& scene, const CellGraph& cells) {
+  HtmlReportInput input;
+  input.title = title;
+  input.kind = "decomposition";
+  input.report = report;
+  input.glb = readFileBytes(out.staged("cells.glb").string());
+  input.scene = &scene;
+  input.cells = &cells;
+  writeHtmlReport(out, input);
+}
+
+void writeComparisonReportPage(const std::string& dir, const std::string& aDir, const nlohmann::json& figures,
+                               const ImageRGB& a, const ImageRGB& b, const std::vector<float>& area,
+                               const std::vector<float>& weight) {
+  const std::string glbPath = (std::filesystem::path(aDir) / "baked.glb").string();
+  if (!std::filesystem::exists(glbPath))
+    throw InputError(glbPath,
+                     "no such file (--report shows A's baked.glb; A must be a bake or reference folder)");
+  const LoadedScene baked = loadScene(glbPath);  // for its cells and portals
+
+  double signal = 0.0, weights = 0.0;
+  for (size_t i = 0; i < weight.size(); ++i)
+    if (weight[i] > 0.0f)
+      signal += weight[i] * glm::dot(glm::dvec3(b.pixels[i]), glm::dvec3(b.pixels[i])), weights += weight[i];
+  const double rms = weights > 0.0 ? std::sqrt(signal / weights) : 0.0;
+  ReportLightmap lightmap;
+  lightmap.width = a.width, lightmap.height = a.height;
+  lightmap.radiosity = a.pixels;
+  lightmap.area = area;
+  lightmap.error.assign(weight.size(), NAN);  // not compared: left black by the heat map
+  const glm::vec3 luminance(0.2126f, 0.7152f, 0.0722f);
+  for (size_t i = 0; i < weight.size() && rms > 0.0; ++i)
+    if (weight[i] > 0.0f) {
+      const float sign = glm::dot(a.pixels[i] - b.pixels[i], luminance) < 0.0f ? -1.0f : 1.0f;
+      lightmap.error[i] = sign * float(glm::length(a.pixels[i] - b.pixels[i]) / rms);
+    }
+
+  OutputDir out(dir);
+  HtmlReportInput input;
+  input.title = "comparison of " + aDir + " against " + bDir(figures);
+  input.kind = "comparison";
+  input.report = figures;
+  input.glb = readFileBytes(glbPath);
+  input.scene = &baked.scene;
+  input.cells = &baked.cells;
+  input.lightmap = &lightmap;
+  writeHtmlReport(out, input);
+  out.commit();
+}
+
+}  // namespace cpgi::cli

@@ -1,0 +1,58 @@
+// report.html: one self-contained page beside a bake or a decomposition that shows the result in 3D
+// (three.js, inlined) with its cells and portals, and the numbers of report.json. It opens offline from
+// file://: the viewer script, the glTF and the lightmap are all inside the file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/cell_graph.h"
+#include "core/output_dir.h"
+#include "core/scene.h"
+
+namespace cpgi {
+
+/// The baked lightmap as the page shows it: per atlas texel, row-major, width × height, v down the rows
+/// (the atlas's and glTF's convention).
+struct ReportLightmap {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> radiosity;  ///< W/m², dilated (so filtering at chart edges stays lit)
+  std::vector<float> area;           ///< m² per texel, 0 on padding
+  std::vector<int> cellOfTexel;      ///< index into the cell graph, -1 for padding or no cell; may be empty
+  /// A comparison only (else empty): per texel, |A − B| / RMS(B) with the sign of A's luminance minus B's,
+  /// RMS over the reference's texels weighted by area; the page's error heat map.
+  std::vector<float> error;
+};
+
+struct HtmlReportInput {
+  std::string title;                 ///< shown on top, e.g. "bake of seed1.glb"
+  std::string kind;                  ///< "bake", "reference", "comparison" or "decomposition"
+  nlohmann::json report;             ///< report.json as written beside the page
+  std::string glb;                   ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
+  const Scene* scene = nullptr;      ///< for the cameras placed in each cell (may be null)
+  const CellGraph* cells = nullptr;  ///< cells and portals (may be null or empty)
+  const ReportLightmap* lightmap = nullptr;  ///< null for a decomposition
+};
+
+/// The page's HTML. Throws std::invalid_argument when the lightmap's arrays do not match its size.
+std::string renderHtmlReport(const HtmlReportInput& input);
+
+/// Stages `report.html` in `out` (it appears with the rest on out.commit()).
+void writeHtmlReport(OutputDir& out, const HtmlReportInput& input);
+
+/// Reads a staged or finished file whole (to embed baked.glb). Throws SystemError naming it.
+std::string readFileBytes(const std::string& path);
+
+/// Where a person would stand in each cell: above the middle of its lowest floor (up-facing surfaces),
+/// at eye height (1.6 m, or 60 % of the way to the top of the cell when it is lower), looking along its
+/// longer horizontal extent. Y is up (glTF). A cell without an up-facing surface gets none.
+struct CellViewpoint {
+  bool valid = false;
+  glm::vec3 eye{0.0f}, look{0.0f};
+};
+std::vector<CellViewpoint> cellViewpoints(const Scene& scene, const CellGraph& cells);
+
+}  // namespace cpgi

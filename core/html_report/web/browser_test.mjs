@@ -1,0 +1,239 @@
+// node browser_test.mjs MODULES_DIR CHROMIUM REPORT.html SCREENSHOT_DIR: opens a report.html in headless
+// Chromium (puppeteer-core, software WebGL through SwiftShader) and checks that the 3D view shows the bake:
+//  - the page loads from file:// with no script error and nothing fetched from the network;
+//  - the canvas drew the scene: its pixels vary, and where the lightmap holds more light the picture is
+//    brighter (rank correlation over a grid of pixels, lit quarter against dark quarter);
+//  - colour by cell paints several cells in distinct hues; texel density, portals and (for a comparison)
+//    the error heat map change the picture;
+//  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
+//  - the tables of report.json are there.
+// Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
+// cell) and page.png in SCREENSHOT_DIR; prints a JSON
+// summary of the figures; exits 1 with one line per failed check.
+import fs from 'node:fs';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+
+const [modules, chromium, report, shots] = process.argv.slice(2);
+if (!shots) {
+  console.error('usage: node browser_test.mjs NODE_MODULES_DIR CHROMIUM REPORT.html SCREENSHOT_DIR');
+  process.exit(2);
+}
+const puppeteer = createRequire(path.join(path.resolve(modules), 'noop.js'))('puppeteer-core');
+fs.mkdirSync(shots, { recursive: true });
+
+const failures = [];
+const check = (ok, message) => { if (!ok) failures.push(message); };
+const summary = {};
+const started = Date.now();
+const lap = (name) => { (summary.seconds ||= {})[name] = (Date.now() - started) / 1000; };
+
+const browser = await puppeteer.launch({
+  executablePath: chromium,
+  headless: true,
+  // No GPU: WebGL through SwiftShader. --no-sandbox because CI runs as root.
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+    '--disable-dev-shm-usage', '--no-first-run'],
+});
+try {
+  lap('launched');
+  const page = await browser.newPage();
+  await page.setViewport({ width: 960, height: 900 });
+  const errors = [], requests = [];
+  page.on('pageerror', (e) => errors.push('page error: ' + e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push('console error: ' + m.text()); });
+  page.on('request', (r) => { if (!r.url().startsWith('file:') && !r.url().startsWith('data:') && !r.url().startsWith('blob:')) requests.push(r.url()); });
+  await page.goto('file://' + path.resolve(report), { waitUntil: 'load', timeout: 120000 });
+  await page.waitForFunction(() => window.cpgiViewer !== undefined || document.getElementById('status').textContent, { timeout: 60000 });
+  const status = await page.evaluate(() => document.getElementById('status').textContent);
+  check(!status, 'status line says: ' + status);
+  await page.evaluate(() => window.cpgiViewer.ready);
+  lap('loaded');
+
+  // Pixels of the canvas as luminance and hue, after one render with the current settings.
+  // The pixels stay in the page (window.shots[name]): sending them over the DevTools protocol is slow.
+  const capture = (name) => page.evaluate(async (name) => {
+    const v = window.cpgiViewer;
+    v.render();
+    const c = v.canvas, ctx = document.createElement('canvas').getContext('2d');
+    ctx.canvas.width = c.width, ctx.canvas.height = c.height;
+    ctx.drawImage(c, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let sum = 0, sum2 = 0;
+    const hues = new Array(12).fill(0);
+    for (let i = 0; i < d.length; i += 4) {
+      const r = d[i] / 255, g = d[i + 1] / 255, b = d[i + 2] / 255;
+      const y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+      sum += y, sum2 += y * y;
+      const max = Math.max(r, g, b), min = Math.min(r, g, b);
+      if (max > 0.15 && max - min > 0.25 * max) {
+        let h = max === r ? (g - b) / (max - min) : max === g ? 2 + (b - r) / (max - min) : 4 + (r - g) / (max - min);
+        hues[Math.floor((((h * 60) % 360) + 360) % 360 / 30)] += 1;
+      }
+    }
+    const n = d.length / 4, mean = sum / n;
+    (window.shots ||= {})[name] = d;
+    return { mean, std: Math.sqrt(Math.max(0, sum2 / n - mean * mean)), hues: hues.map((h) => h / n) };
+  }, name).then(async (r) => {
+    await page.screenshot({ path: path.join(shots, name + '.png'), clip: await canvasBox() });
+    return r;
+  });
+  // Mean absolute difference of two captures, 0-255 per channel; with `fraction`, the share of pixels
+  // that differ by more than 24 levels in some channel instead (for small changes such as doors).
+  const meanAbsDiff = (first, second, fraction = false) => page.evaluate((first, second, fraction) => {
+    const a = window.shots[first], b = window.shots[second];
+    let s = 0, changed = 0;
+    for (let i = 0; i < a.length; i += 4) {
+      const d = [0, 1, 2].map((k) => Math.abs(a[i + k] - b[i + k]));
+      s += d[0] + d[1] + d[2];
+      changed += Math.max(...d) > 24;
+    }
+    return fraction ? changed / (a.length / 4) : s / (a.length / 4) / 3;
+  }, first, second, fraction);
+  const canvasBox = async () => {
+    const box = await (await page.$('#scene')).boundingBox();
+    return { x: box.x, y: box.y, width: box.width, height: box.height };
+  };
+
+  // 1. Light: from inside a cell (a view a person would take), where lit walls and shadows both show.
+  const views = await page.evaluate(() => window.cpgiViewer.views.map((v) => v.name));
+  const inside = views.find((v) => v.startsWith('camera ')) || views.find((v) => v.startsWith('in ')) || views[0];
+  await page.evaluate((v) => { window.cpgiViewer.showView(v); window.cpgiViewer.setMode('light'); }, inside);
+  const light = await capture('light');
+  summary.view = inside;
+  summary.light = { mean: light.mean, std: light.std };
+  check(light.std > 0.04, `light: the picture hardly varies (luminance std ${light.std.toFixed(3)})`);
+  check(light.mean > 0.03, `light: the picture is black (mean luminance ${light.mean.toFixed(3)})`);
+
+  // Where the lightmap is brighter, the pixel is: Spearman correlation over a 32 × 24 grid.
+  const pairs = await page.evaluate(() => {
+    const v = window.cpgiViewer, w = v.canvas.width, h = v.canvas.height, out = [], pixels = window.shots.light;
+    for (let gy = 0; gy < 24; ++gy)
+      for (let gx = 0; gx < 32; ++gx) {
+        const x = Math.floor(((gx + 0.5) / 32) * w), y = Math.floor(((gy + 0.5) / 24) * h);
+        const expected = v.expectedRadianceAt(x + 0.5, y + 0.5);
+        if (expected === null || !(expected >= 0)) continue;
+        const i = 4 * (y * w + x);
+        out.push([expected, 0.2126 * pixels[i] + 0.7152 * pixels[i + 1] + 0.0722 * pixels[i + 2]]);
+      }
+    return out;
+  });
+  const ranks = (xs) => {
+    const order = xs.map((x, i) => [x, i]).sort((a, b) => a[0] - b[0]), r = new Array(xs.length);
+    order.forEach(([, i], k) => { r[i] = k; });
+    return r;
+  };
+  const pearson = (a, b) => {
+    const n = a.length, ma = a.reduce((s, x) => s + x, 0) / n, mb = b.reduce((s, x) => s + x, 0) / n;
+    let sab = 0, saa = 0, sbb = 0;
+    for (let i = 0; i < n; ++i) sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) ** 2, sbb += (b[i] - mb) ** 2;
+    return sab / Math.sqrt(saa * sbb);
+  };
+  const rho = pairs.length > 10 ? pearson(ranks(pairs.map((p) => p[0])), ranks(pairs.map((p) => p[1]))) : NaN;
+  const sorted = [...pairs].sort((a, b) => a[0] - b[0]), q = Math.floor(sorted.length / 4);
+  const meanOf = (xs) => xs.reduce((s, p) => s + p[1], 0) / Math.max(1, xs.length);
+  const dark = meanOf(sorted.slice(0, q)), lit = meanOf(sorted.slice(sorted.length - q));
+  summary.correlation = { samples: pairs.length, spearman: rho, litPixel: lit, darkPixel: dark };
+  check(pairs.length >= 100, `light: only ${pairs.length} grid pixels see a baked surface`);
+  check(rho > 0.7, `light: pixel brightness follows the lightmap poorly (Spearman ${rho.toFixed(3)})`);
+  check(lit > 1.5 * dark + 5, `light: lit surfaces (${lit.toFixed(1)}) not brighter than dark ones (${dark.toFixed(1)})`);
+
+  lap('light');
+  // 2. Colour by cell, from the overview where every cell shows.
+  await page.evaluate(() => { window.cpgiViewer.showView('overview'); });
+  const overview = await capture('overview');
+  await page.evaluate(() => { document.querySelector('input[name=mode][value=cells]').click(); });
+  const cells = await capture('cells');
+  const cellCount = await page.evaluate(() => window.cpgiViewer.cells.length);
+  const hueBins = cells.hues.filter((h) => h > 0.005).length;
+  summary.cells = { cells: cellCount, hueBins, changed: await meanAbsDiff('overview', 'cells') };
+  check(hueBins >= Math.min(cellCount, 3), `cells: ${hueBins} distinct hues for ${cellCount} cells`);
+  check(summary.cells.changed > 5, 'cells: the toggle did not change the picture');
+
+  // 3. Texel density and 4. portals (with their labels).
+  await page.evaluate(() => { document.querySelector('input[name=mode][value=density]').click(); });
+  const density = await capture('density');
+  summary.density = { changed: await meanAbsDiff('overview', 'density') };
+  check(summary.density.changed > 5, 'density: the toggle did not change the picture');
+  await page.evaluate(() => { document.querySelector('input[name=mode][value=light]').click(); document.getElementById('portals').click(); });
+  const portals = await capture('portals');
+  const labels = await page.evaluate(() => [...document.querySelectorAll('.portal-label')].filter((l) => l.style.display !== 'none').map((l) => l.textContent));
+  const portalCount = await page.evaluate(() => (window.cpgiViewer.data.portals || []).length);
+  summary.portals = { portals: portalCount, labels, changedPixels: await meanAbsDiff('overview', 'portals', true) };
+  if (portalCount) {
+    check(labels.length > 0, 'portals: no label shown');
+    check(summary.portals.changedPixels > 0.001, 'portals: the toggle did not change the picture');
+  }
+
+  lap('cells, density, portals');
+  // 4b. A comparison: the error heat map.
+  if (await page.evaluate(() => !!window.cpgiViewer.lightmap?.errorTexture)) {
+    await page.evaluate(() => { document.getElementById('portals').checked && document.getElementById('portals').click(); document.querySelector('input[name=mode][value=error]').click(); });
+    const error = await capture('error');
+    summary.error = { changed: await meanAbsDiff('overview', 'error'), mean: error.mean };
+    check(summary.error.changed > 5, 'error: the heat map did not change the picture');
+    await page.evaluate(() => { document.querySelector('input[name=mode][value=light]').click(); document.getElementById('portals').click(); });
+  }
+
+  // 5. The exposure slider brightens the picture.
+  await page.evaluate(() => { const s = document.getElementById('exposure'); s.value = '2'; s.dispatchEvent(new Event('input')); });
+  const brighter = await capture('exposure+2');
+  summary.exposure = { before: portals.mean, after: brighter.mean };
+  check(brighter.mean > portals.mean * 1.1, 'exposure: +2 EV did not brighten the picture');
+
+  // 6. Every view from inside a cell, chosen from the list (which exposes for what the camera sees), is
+  // readable: the dark middle room of seed1 as much as the lit ones.
+  summary.insideViews = {};
+  for (const name of views.filter((v) => v.startsWith('in '))) {
+    await page.select('#views', name);
+    const shot = await capture('view-' + name.slice(3).replace(/[^A-Za-z0-9_-]/g, '_'));
+    summary.insideViews[name] = { mean: shot.mean, std: shot.std };
+    check(shot.mean > 0.15 && shot.std > 0.02, `view ${name}: unreadable (mean ${shot.mean.toFixed(3)}, std ${shot.std.toFixed(3)})`);
+  }
+  lap('inside views');
+
+  // 7. Walk: W moves the camera forward along the floor, at the same height.
+  await page.click('#walk');
+  const before = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+  await page.keyboard.down('KeyW');
+  await new Promise((resolve) => setTimeout(resolve, 400));
+  await page.keyboard.up('KeyW');
+  const after = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+  const moved = Math.hypot(after[0] - before[0], after[2] - before[2]);
+  summary.walk = { moved, rise: after[1] - before[1] };
+  check(moved > 0.05 && Math.abs(after[1] - before[1]) < 1e-6, `walk: W moved the camera ${moved.toFixed(3)} m along the floor`);
+  await page.click('#walk');
+
+  // 8. The numbers.
+  const tables = await page.evaluate(() => [...document.querySelectorAll('#panels table')].map((t) => t.id + ':' + t.rows.length));
+  summary.tables = tables;
+  check(tables.some((t) => t.startsWith('parameters-table')), 'panels: no parameters table');
+  if (await page.evaluate(() => !!(window.cpgiViewer.data.report.timings || window.cpgiViewer.data.report.timings_s)))
+    check(tables.some((t) => t.startsWith('timings-table')), 'panels: no timings table');
+  // A bake's cells have texel figures; a decomposition's, cells.json's; a comparison's, compare-light's
+  // error per cell: any makes a table, and a comparison's marks its worst cell.
+  const cellFigures = await page.evaluate(() => window.cpgiViewer.cells.some((c) => c.texels !== undefined) ||
+    (Array.isArray(window.cpgiViewer.data.report.cells) && window.cpgiViewer.data.report.cells.length > 0));
+  if (cellFigures) check(tables.some((t) => t.startsWith('cells-table')), 'panels: no cells table');
+  const worst = await page.evaluate(() => window.cpgiViewer.data.report.worst_cell);
+  if (worst) {
+    const marked = await page.evaluate(() => [...document.querySelectorAll('#cells-table tbody tr')]
+      .filter((r) => r.cells[1]?.textContent === 'worst').map((r) => r.cells[0].textContent));
+    summary.worstCell = marked;
+    check(marked.length === 1 && marked[0] === worst, `panels: worst cell ${worst} marked as ${marked}`);
+  }
+  await page.select('#views', 'overview');
+  await page.evaluate(() => window.cpgiViewer.render());
+  await page.screenshot({ path: path.join(shots, 'page.png'), fullPage: true });
+
+  lap('done');
+  check(!errors.length, errors.join('; '));
+  check(!requests.length, 'fetched from the network: ' + requests.join(', '));
+} finally {
+  await browser.close();
+}
+
+
+console.log(JSON.stringify(summary));
+for (const f of failures) console.error('browser test: ' + f);
+process.exit(failures.length ? 1 : 0);

@@ -1,0 +1,585 @@
+// report.html's viewer: the baked scene in 3D (three.js), its cells and portals, and the numbers of
+// report.json. Bundled with three.js into one script by esbuild at build time
+// (core/html_report/CMakeLists.txt) and inlined by core/html_report/html_report.cpp, so the page opens
+// offline from file://.
+//
+// The page carries two data blocks written by cpgi:
+//   #cpgi-data (JSON): kind, title, report (report.json), cells [{name, eye, look}], portals
+//     [{name, cell_a, cell_b, corners}], lightmap {width, height, rgb (base64 half floats, RGBA,
+//     radiosity W/m²), cell (base64 int16 per texel, -1 for none), area (base64 float32 m² per texel)}
+//   #cpgi-glb: baked.glb (or cells.glb) as base64.
+// window.cpgiViewer is the handle the browser test (core/html_report/web/browser_test.mjs) drives.
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { buildPanels, formatNumber } from './panels.js';
+
+const MODES = ['light', 'cells', 'density', 'error'];
+const ERROR_SCALE = 0.5;  // the heat map saturates at ±50 % of the reference's RMS radiosity
+
+function base64Bytes(text) {
+  const binary = atob(text.replace(/\s+/g, ''));
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  return bytes;
+}
+
+// A colour per cell, far apart in hue for neighbouring indices (golden-ratio steps).
+export function cellColour(index) {
+  if (index < 0) return new THREE.Color(0.35, 0.35, 0.35);
+  return new THREE.Color().setHSL((index * 0.618033988749895) % 1, 0.65, 0.55);
+}
+
+// Radiance of the brightest surfaces a person would look at: the area-weighted 90th percentile of B/π
+// over texels that are not lamps, so that a lamp does not set the exposure for the room.
+function autoExposure(rgb, area, count) {
+  const samples = [];
+  for (let i = 0; i < count; ++i) {
+    if (!(area[i] > 0)) continue;
+    const y = 0.2126 * rgb[4 * i] + 0.7152 * rgb[4 * i + 1] + 0.0722 * rgb[4 * i + 2];
+    if (y > 0) samples.push(y / Math.PI);
+  }
+  if (!samples.length) return 1;
+  samples.sort((a, b) => a - b);
+  const key = samples[Math.floor(samples.length * 0.9)];
+  return key > 0 ? 0.8 / key : 1;
+}
+
+function halfToFloat(h) {
+  const s = h & 0x8000 ? -1 : 1, e = (h >> 10) & 0x1f, f = h & 0x3ff;
+  if (e === 0) return s * f * 2 ** -24;
+  if (e === 31) return f ? NaN : s * Infinity;
+  return s * (1 + f / 1024) * 2 ** (e - 15);
+}
+
+// The lightmap as textures: radiosity (half float, filtered), cell colours and texel density (nearest).
+function lightmapTextures(lm, cells) {
+  const count = lm.width * lm.height;
+  const halves = new Uint16Array(base64Bytes(lm.rgb).buffer);
+  const rgb = new Float32Array(4 * count);
+  for (let i = 0; i < 4 * count; ++i) rgb[i] = halfToFloat(halves[i]);
+  const cell = lm.cell ? new Int16Array(base64Bytes(lm.cell).buffer) : null;
+  const area = new Float32Array(base64Bytes(lm.area).buffer);
+
+  const radiosity = new THREE.DataTexture(halves, lm.width, lm.height, THREE.RGBAFormat, THREE.HalfFloatType);
+  radiosity.magFilter = radiosity.minFilter = THREE.LinearFilter;
+  radiosity.needsUpdate = true;
+
+  const nearest = (bytes) => {
+    const t = new THREE.DataTexture(bytes, lm.width, lm.height);
+    t.magFilter = t.minFilter = THREE.NearestFilter;
+    t.needsUpdate = true;
+    return t;
+  };
+  // Cells per texel when cpgi knew them (a bake); otherwise (a comparison) per mesh, by cell: node names.
+  let cellTexture = null;
+  if (cell) {
+    const cellBytes = new Uint8Array(4 * count);
+    const palette = cells.map((_, c) => cellColour(c));
+    const none = cellColour(-1);
+    for (let i = 0; i < count; ++i) {
+      const c = cell[i] >= 0 && cell[i] < palette.length ? palette[cell[i]] : none;
+      cellBytes.set([c.r * 255, c.g * 255, c.b * 255, 255], 4 * i);
+    }
+    cellTexture = nearest(cellBytes);
+  }
+
+  // A comparison: signed error per texel, blue where A is darker than the reference, red where brighter.
+  let errorTexture = null;
+  if (lm.error) {
+    const error = new Float32Array(base64Bytes(lm.error).buffer);
+    const errorBytes = new Uint8Array(4 * count);
+    for (let i = 0; i < count; ++i) {
+      if (!(area[i] > 0) || !Number.isFinite(error[i])) continue;
+      const t = Math.max(-1, Math.min(1, error[i] / ERROR_SCALE));
+      const c = t >= 0 ? [1, 1 - t, 1 - t] : [1 + t, 1 + t, 1];
+      errorBytes.set([c[0] * 255, c[1] * 255, c[2] * 255, 255], 4 * i);
+    }
+    errorTexture = nearest(errorBytes);
+  }
+
+  // Texels per metre (1/√area) on a log scale from the sparsest to the densest texel: blue to red.
+  let lo = Infinity, hi = 0;
+  for (let i = 0; i < count; ++i)
+    if (area[i] > 0) lo = Math.min(lo, area[i]), hi = Math.max(hi, area[i]);
+  const densityBytes = new Uint8Array(4 * count);
+  const span = Math.log(hi / lo) || 1;
+  for (let i = 0; i < count; ++i) {
+    if (!(area[i] > 0)) continue;
+    const t = Math.log(hi / area[i]) / span;  // 0 = largest texel (sparsest), 1 = densest
+    const c = new THREE.Color().setHSL(0.66 * (1 - t), 0.9, 0.5);
+    densityBytes.set([c.r * 255, c.g * 255, c.b * 255, 255], 4 * i);
+  }
+  const densityTexture = nearest(densityBytes);
+
+  const density = { min: 1 / Math.sqrt(hi), max: 1 / Math.sqrt(lo) };
+  return { radiosity, cellTexture, densityTexture, errorTexture, rgb, cell, area, count, density };
+}
+
+const vertexShader = /* glsl */ `
+  in vec2 uv1;
+  out vec2 vLightmapUv;
+  void main() {
+    vLightmapUv = uv1;
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+  }`;
+
+// Radiance B/π times the exposure, tone-mapped (1 − e^−x) and encoded as sRGB. Colour by cell keeps the
+// light's shading so that the rooms stay recognisable; the density view draws the texel grid.
+const fragmentShader = /* glsl */ `
+  uniform sampler2D radiosity, cellColours, density, error;
+  uniform bool cellsPerTexel;
+  uniform vec3 cellColour;
+  uniform vec2 atlasSize;
+  uniform float exposure;
+  uniform int mode;
+  in vec2 vLightmapUv;
+  out vec4 outColour;
+  vec3 toneMap(vec3 x) { return 1.0 - exp(-x); }
+  vec3 toSrgb(vec3 c) {
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+  }
+  void main() {
+    vec3 light = toneMap(texture(radiosity, vLightmapUv).rgb / 3.14159265 * exposure);
+    vec3 colour = light;
+    if (mode == 1) {
+      float shade = dot(light, vec3(0.2126, 0.7152, 0.0722));
+      vec3 cell = cellsPerTexel ? texture(cellColours, vLightmapUv).rgb : cellColour;
+      colour = cell * (0.25 + 0.75 * sqrt(shade));
+    } else if (mode == 3) {
+      colour = texture(error, vLightmapUv).rgb;
+    } else if (mode == 2) {
+      vec2 texel = floor(vLightmapUv * atlasSize);
+      float checker = mod(texel.x + texel.y, 2.0);
+      colour = texture(density, vLightmapUv).rgb * (0.7 + 0.3 * checker);
+    }
+    outColour = vec4(toSrgb(clamp(colour, 0.0, 1.0)), 1.0);
+  }`;
+
+class Viewer {
+  constructor(data, glb) {
+    this.data = data;
+    this.cells = data.cells || [];
+    this.mode = 'light';
+    this.walking = false;
+    this.openWalls = true;
+    this.keys = new Set();
+    this.ready = new Promise((resolve, reject) => { this.resolveReady = resolve; this.rejectReady = reject; });
+    this.buildDom();
+    this.renderer = new THREE.WebGLRenderer({ canvas: this.canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(1);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x101418);
+    this.camera = new THREE.PerspectiveCamera(60, 1, 0.02, 1000);
+    this.controls = new OrbitControls(this.camera, this.canvas);
+    this.controls.addEventListener('change', () => this.requestRender());
+    if (data.lightmap) this.lightmap = lightmapTextures(data.lightmap, this.cells);
+    this.exposure = this.lightmap ? autoExposure(this.lightmap.rgb, this.lightmap.area, this.lightmap.count) : 1;
+    this.autoExposureValue = this.exposure;
+    this.portalGroup = new THREE.Group();
+    this.portalGroup.visible = false;
+    this.scene.add(this.portalGroup);
+    this.load(glb);
+  }
+
+  buildDom() {
+    const view = document.getElementById('view');
+    this.canvas = document.createElement('canvas');
+    this.canvas.id = 'scene';
+    this.canvas.tabIndex = 0;
+    view.appendChild(this.canvas);
+    this.labels = document.createElement('div');
+    this.labels.className = 'labels';
+    view.appendChild(this.labels);
+    new ResizeObserver(() => this.resize()).observe(view);
+    this.canvas.addEventListener('keydown', (e) => { this.keys.add(e.code); this.tick(); });
+    this.canvas.addEventListener('keyup', (e) => this.keys.delete(e.code));
+    this.canvas.addEventListener('pointerdown', (e) => this.pointerDown(e));
+  }
+
+  resize() {
+    const view = this.canvas.parentElement;
+    const w = Math.max(1, view.clientWidth), h = Math.max(1, view.clientHeight);
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  load(glb) {
+    new GLTFLoader().parse(glb.buffer, '', (gltf) => {
+      try {
+        this.setup(gltf);
+        this.resolveReady();
+      } catch (e) {
+        this.fail(e);
+      }
+    }, (e) => this.fail(e));
+  }
+
+  fail(error) {
+    document.getElementById('status').textContent = 'Could not show the scene: ' + (error.message || error);
+    this.rejectReady(error);
+  }
+
+  // The cell a node belongs to: its nearest ancestor named cell:NAME (design.md §3). GLTFLoader strips
+  // ':' from object names; the glTF's own name is in userData.name.
+  cellOfNode(node) {
+    for (let n = node; n; n = n.parent) {
+      const nodeName = n.userData.name || '';
+      if (nodeName.startsWith('cell:')) {
+        const name = nodeName.slice(5).replace(/\.\d{3}$/, '');
+        return this.cells.findIndex((c) => c.name === name);
+      }
+    }
+    return -1;
+  }
+
+  setup(gltf) {
+    const root = gltf.scene;
+    this.gltfCameras = gltf.cameras || [];
+    const meshes = [];
+    root.traverse((o) => { if (o.isMesh) meshes.push(o); });
+    for (const mesh of meshes) {
+      // Portal quads and cell volumes of the glTF: the page draws portals itself, with their light.
+      const helper = [mesh, mesh.parent].some((o) => /^(portal:|cellvolume:)/.test(o?.userData.name || ''));
+      if (helper) { mesh.visible = false; continue; }
+      // The atlas is TEXCOORD_1 (uv1); bakes written before it moved there have it as TEXCOORD_0.
+      if (this.lightmap && !mesh.geometry.attributes.uv1 && mesh.geometry.attributes.uv)
+        mesh.geometry.setAttribute('uv1', mesh.geometry.attributes.uv);
+      if (this.lightmap && mesh.geometry.attributes.uv1) {
+        mesh.material = this.lightmapMaterial(this.cellOfNode(mesh));
+      } else {
+        // No lightmap (a decomposition): the albedo, or the cell's colour, under a simple sky light.
+        const cell = this.cellOfNode(mesh);
+        mesh.userData.albedo = mesh.material.color ? mesh.material.color.clone() : new THREE.Color(0.8, 0.8, 0.8);
+        mesh.userData.cellColour = cellColour(cell);
+        mesh.material = new THREE.MeshLambertMaterial({ color: mesh.userData.albedo });
+      }
+    }
+    if (!this.lightmap) {
+      this.scene.add(new THREE.HemisphereLight(0xffffff, 0x404040, 2.2));
+      const sun = new THREE.DirectionalLight(0xffffff, 1.2);
+      sun.position.set(0.4, 1, 0.3);
+      this.scene.add(sun);
+    }
+    this.meshes = meshes.filter((m) => m.visible);
+    this.scene.add(root);
+    this.bounds = new THREE.Box3().setFromObject(root);
+    this.buildPortals();
+    this.buildCameraList();
+    this.home();
+    this.resize();
+    this.buildControls();
+  }
+
+  // One material per mesh over shared uniforms (so exposure and mode are set once), with the mesh's cell
+  // colour for when the cells are known per mesh only.
+  lightmapMaterial(cell) {
+    if (!this.sharedUniforms) {
+      const lm = this.data.lightmap;
+      this.sharedUniforms = {
+        radiosity: { value: this.lightmap.radiosity },
+        cellColours: { value: this.lightmap.cellTexture },
+        cellsPerTexel: { value: !!this.lightmap.cellTexture },
+        density: { value: this.lightmap.densityTexture },
+        error: { value: this.lightmap.errorTexture },
+        atlasSize: { value: new THREE.Vector2(lm.width, lm.height) },
+        exposure: { value: this.exposure },
+        mode: { value: 0 },
+      };
+    }
+    return new THREE.ShaderMaterial({
+      glslVersion: THREE.GLSL3,
+      vertexShader,
+      fragmentShader,
+      side: THREE.FrontSide,
+      uniforms: { ...this.sharedUniforms, cellColour: { value: cellColour(cell) } },
+    });
+  }
+
+  // Portals as translucent quads, brighter the more light they carried; each labelled with its flows.
+  buildPortals() {
+    const portals = this.data.portals || [];
+    const flows = new Map((this.data.report?.portal_energy || []).map((p) => [p.name, p]));
+    let most = 0;
+    for (const p of flows.values()) most = Math.max(most, (p.a_to_b_w || 0) + (p.b_to_a_w || 0));
+    this.portalLabels = [];
+    for (const p of portals) {
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.Float32BufferAttribute(p.corners.flat(), 3));
+      geometry.setIndex([0, 1, 2, 0, 2, 3]);
+      const flow = flows.get(p.name);
+      const carried = flow ? (flow.a_to_b_w || 0) + (flow.b_to_a_w || 0) : 0;
+      const strength = most > 0 ? carried / most : 0.5;
+      const material = new THREE.MeshBasicMaterial({
+        color: new THREE.Color().setHSL(0.55 - 0.45 * strength, 1, 0.55),
+        transparent: true, opacity: 0.35 + 0.4 * strength, side: THREE.DoubleSide, depthWrite: false,
+      });
+      const mesh = new THREE.Mesh(geometry, material);
+      mesh.name = p.name;
+      this.portalGroup.add(mesh);
+      const label = document.createElement('div');
+      label.className = 'portal-label';
+      label.textContent = flow
+        ? `${p.cell_a}→${p.cell_b} ${formatNumber(flow.a_to_b_w)} W · ${p.cell_b}→${p.cell_a} ${formatNumber(flow.b_to_a_w)} W`
+        : `${p.cell_a} | ${p.cell_b}`;
+      label.style.display = 'none';
+      this.labels.appendChild(label);
+      const centre = new THREE.Vector3();
+      for (const c of p.corners) centre.add(new THREE.Vector3(...c).multiplyScalar(0.25));
+      this.portalLabels.push({ label, centre });
+    }
+  }
+
+  // Views: the scene's own cameras, one inside each cell at eye height, and the overview.
+  buildCameraList() {
+    this.views = [{ name: 'overview', overview: true }];
+    for (const cam of this.gltfCameras) {
+      cam.updateMatrixWorld(true);
+      const eye = new THREE.Vector3().setFromMatrixPosition(cam.matrixWorld);
+      const dir = new THREE.Vector3(0, 0, -1).transformDirection(cam.matrixWorld);
+      this.views.push({ name: 'camera ' + (cam.name || this.views.length), eye, look: eye.clone().add(dir) });
+    }
+    for (const c of this.cells)
+      if (c.eye) this.views.push({ name: 'in ' + c.name, eye: new THREE.Vector3(...c.eye), look: new THREE.Vector3(...c.look) });
+  }
+
+  home() { this.showView(this.views[0]); }
+
+  showView(v) {
+    if (typeof v === 'string') v = this.views.find((x) => x.name === v);
+    if (!v) throw new Error('no such view');
+    this.currentView = v.name;
+    if (v.overview) {
+      const size = this.bounds.getSize(new THREE.Vector3()), centre = this.bounds.getCenter(new THREE.Vector3());
+      const radius = Math.max(size.length() * 0.5, 0.5);
+      this.camera.position.copy(centre).add(new THREE.Vector3(0.6, 1.1, 0.9).normalize().multiplyScalar(radius * 1.8));
+      this.controls.target.copy(centre);
+    } else {
+      this.camera.position.copy(v.eye);
+      this.controls.target.copy(v.look);
+    }
+    this.camera.near = Math.max(0.01, this.bounds.getSize(new THREE.Vector3()).length() * 1e-4);
+    this.camera.far = this.bounds.getSize(new THREE.Vector3()).length() * 10 + 10;
+    this.camera.updateProjectionMatrix();
+    this.camera.lookAt(this.controls.target);
+    this.controls.update();
+    this.requestRender();
+  }
+
+  setMode(mode) {
+    if (!MODES.includes(mode)) throw new Error('unknown mode ' + mode);
+    this.mode = mode;
+    if (this.sharedUniforms) this.sharedUniforms.mode.value = MODES.indexOf(mode);
+    for (const m of this.meshes || [])
+      if (m.userData.albedo) m.material.color.copy(mode === 'cells' ? m.userData.cellColour : m.userData.albedo);
+    this.syncControls();
+    this.requestRender();
+  }
+
+  setExposure(value) {
+    this.exposure = value;
+    if (this.sharedUniforms) this.sharedUniforms.exposure.value = value;
+    this.syncControls();
+    this.requestRender();
+  }
+
+  // Surfaces face into the rooms: drawing only their front faces lets the overview look in through the
+  // walls and ceilings that face away (a doll's house); both sides show models wound the other way.
+  setOpenWalls(open) {
+    this.openWalls = open;
+    for (const m of this.meshes || []) m.material.side = open ? THREE.FrontSide : THREE.DoubleSide;
+    for (const m of this.meshes || []) m.material.needsUpdate = true;
+    this.syncControls();
+    this.requestRender();
+  }
+
+  setPortals(visible) {
+    this.portalGroup.visible = visible;
+    this.syncControls();
+    this.requestRender();
+  }
+
+  // Walk: drag turns the head, W/A/S/D or the arrows move along the floor, Q/E down and up.
+  setWalking(on) {
+    this.walking = on;
+    this.controls.enabled = !on;
+    if (!on) {
+      const forward = new THREE.Vector3();
+      this.camera.getWorldDirection(forward);
+      this.controls.target.copy(this.camera.position).add(forward.multiplyScalar(2));
+      this.controls.update();
+    }
+    this.syncControls();
+    this.canvas.focus();
+  }
+
+  pointerDown(e) {
+    if (!this.walking) return;
+    const start = { x: e.clientX, y: e.clientY };
+    const euler = new THREE.Euler().setFromQuaternion(this.camera.quaternion, 'YXZ');
+    const move = (m) => {
+      const yaw = euler.y - (m.clientX - start.x) * 0.004, pitch = euler.x - (m.clientY - start.y) * 0.004;
+      this.camera.quaternion.setFromEuler(new THREE.Euler(Math.max(-1.5, Math.min(1.5, pitch)), yaw, 0, 'YXZ'));
+      this.requestRender();
+    };
+    const up = () => { window.removeEventListener('pointermove', move); window.removeEventListener('pointerup', up); };
+    window.addEventListener('pointermove', move);
+    window.addEventListener('pointerup', up);
+  }
+
+  tick() {
+    if (!this.walking || !this.keys.size || this.ticking) return;
+    this.ticking = true;
+    let last = performance.now();
+    const step = (now) => {
+      const dt = Math.min(0.1, (now - last) / 1000);
+      last = now;
+      const speed = Math.max(1.5, this.bounds.getSize(new THREE.Vector3()).length() * 0.05) * dt;
+      const forward = new THREE.Vector3();
+      this.camera.getWorldDirection(forward);
+      forward.y = 0;
+      forward.normalize();
+      const right = new THREE.Vector3().crossVectors(forward, new THREE.Vector3(0, 1, 0));
+      const k = this.keys, move = new THREE.Vector3();
+      if (k.has('KeyW') || k.has('ArrowUp')) move.add(forward);
+      if (k.has('KeyS') || k.has('ArrowDown')) move.sub(forward);
+      if (k.has('KeyD') || k.has('ArrowRight')) move.add(right);
+      if (k.has('KeyA') || k.has('ArrowLeft')) move.sub(right);
+      if (k.has('KeyE')) move.y += 1;
+      if (k.has('KeyQ')) move.y -= 1;
+      this.camera.position.addScaledVector(move, speed);
+      this.render();
+      if (this.walking && this.keys.size) requestAnimationFrame(step);
+      else this.ticking = false;
+    };
+    requestAnimationFrame(step);
+  }
+
+  buildControls() {
+    const bar = document.getElementById('controls');
+    bar.innerHTML = '';
+    const add = (html) => { const span = document.createElement('span'); span.className = 'control'; span.innerHTML = html; bar.appendChild(span); return span; };
+    const modes = add(MODES.map((m) => `<label><input type="radio" name="mode" value="${m}"> ${
+      { light: 'light', cells: 'colour by cell', density: 'texel density', error: 'error against the reference' }[m]}</label>`).join(''));
+    modes.addEventListener('change', (e) => this.setMode(e.target.value));
+    if (!this.lightmap) modes.querySelector('input[value=density]').parentElement.style.display = 'none';
+    if (!this.lightmap?.errorTexture) modes.querySelector('input[value=error]').parentElement.style.display = 'none';
+    const exposure = add(`exposure <input id="exposure" type="range" min="-8" max="8" step="0.1" value="0">
+      <output id="exposure-value"></output> <button id="exposure-auto">auto</button>`);
+    if (!this.lightmap) exposure.style.display = 'none';
+    exposure.querySelector('input').addEventListener('input', (e) =>
+      this.setExposure(this.autoExposureValue * 2 ** Number(e.target.value)));
+    exposure.querySelector('button').addEventListener('click', () => this.setExposure(this.viewExposure()));
+    const portals = add('<label><input id="portals" type="checkbox"> portals</label>');
+    if (!(this.data.portals || []).length) portals.style.display = 'none';
+    portals.querySelector('input').addEventListener('change', (e) => this.setPortals(e.target.checked));
+    const open = add('<label><input id="open-walls" type="checkbox"> see in through walls</label>');
+    open.querySelector('input').addEventListener('change', (e) => this.setOpenWalls(e.target.checked));
+    const walk = add('<label><input id="walk" type="checkbox"> walk (drag to look, W A S D Q E to move)</label>');
+    walk.querySelector('input').addEventListener('change', (e) => this.setWalking(e.target.checked));
+    const views = add('view <select id="views"></select>');
+    const select = views.querySelector('select');
+    for (const v of this.views) select.add(new Option(v.name, v.name));
+    select.addEventListener('change', () => {
+      this.showView(select.value);
+      this.setExposure(this.viewExposure());  // a dim room is shown as readable as a lit one
+    });
+    this.syncControls();
+  }
+
+  syncControls() {
+    const views = document.getElementById('views');
+    if (views && this.currentView) views.value = this.currentView;
+    const radio = document.querySelector(`input[name=mode][value=${this.mode}]`);
+    if (radio) radio.checked = true;
+    const slider = document.getElementById('exposure');
+    if (slider) {
+      slider.value = Math.log2(this.exposure / this.autoExposureValue).toFixed(1);
+      document.getElementById('exposure-value').textContent = `${Number(slider.value) >= 0 ? '+' : ''}${slider.value} EV`;
+    }
+    const portals = document.getElementById('portals');
+    if (portals) portals.checked = this.portalGroup.visible;
+    const walk = document.getElementById('walk');
+    if (walk) walk.checked = this.walking;
+    const open = document.getElementById('open-walls');
+    if (open) open.checked = this.openWalls;
+    const legend = document.getElementById('legend');
+    if (legend) legend.innerHTML = this.legend();
+  }
+
+  legend() {
+    if (this.mode === 'cells')
+      return this.cells.map((c, i) => `<span class="swatch" style="background:#${cellColour(i).getHexString()}"></span>${c.name}`).join(' ');
+    if (this.mode === 'error')
+      return `(A − B) / RMS(B), per texel: <span class="swatch" style="background:#00f"></span>−${ERROR_SCALE * 100} % or less
+        <span class="swatch" style="background:#fff"></span>0 <span class="swatch" style="background:#f00"></span>+${ERROR_SCALE * 100} % or more`;
+    if (this.mode === 'density' && this.lightmap)
+      return `texels per metre: <span class="ramp"></span> ${formatNumber(this.lightmap.density.min)} (blue) to ${formatNumber(this.lightmap.density.max)} (red); alternate texels shaded`;
+    return this.lightmap ? 'radiance B/π × exposure, tone-mapped 1 − e<sup>−x</sup>' : 'albedo under a sky light (no lightmap)';
+  }
+
+  requestRender() {
+    if (this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => { this.pending = false; this.render(); });
+  }
+
+  render() {
+    this.renderer.render(this.scene, this.camera);
+    const w = this.canvas.clientWidth, h = this.canvas.clientHeight, v = new THREE.Vector3();
+    for (const { label, centre } of this.portalLabels || []) {
+      v.copy(centre).project(this.camera);
+      const shown = this.portalGroup.visible && v.z < 1 && Math.abs(v.x) < 1 && Math.abs(v.y) < 1;
+      label.style.display = shown ? '' : 'none';
+      if (shown) label.style.transform = `translate(${((v.x + 1) / 2) * w}px, ${((1 - v.y) / 2) * h}px) translate(-50%, -50%)`;
+    }
+  }
+
+  // An exposure for what the camera sees: the 90th percentile of the radiance under a 32 × 24 grid of
+  // pixels to 0.8 (as autoExposure does for the whole lightmap; cpgi's view-*.png are exposed alike).
+  viewExposure() {
+    if (!this.lightmap) return this.exposure;
+    const seen = [];
+    for (let gy = 0; gy < 24; ++gy)
+      for (let gx = 0; gx < 32; ++gx) {
+        const r = this.expectedRadianceAt(((gx + 0.5) / 32) * this.canvas.clientWidth, ((gy + 0.5) / 24) * this.canvas.clientHeight);
+        if (r > 0) seen.push(r);
+      }
+    if (!seen.length) return this.autoExposureValue;
+    seen.sort((a, b) => a - b);
+    return 0.8 / seen[Math.floor(0.9 * (seen.length - 1))];
+  }
+
+  // For the browser test: the radiance the lightmap holds where pixel (x, y) of the canvas looks,
+  // or null where it sees no baked surface.
+  expectedRadianceAt(x, y) {
+    const ndc = new THREE.Vector2((x / this.canvas.clientWidth) * 2 - 1, 1 - (y / this.canvas.clientHeight) * 2);
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, this.camera);
+    const hit = ray.intersectObjects(this.meshes, false)[0];
+    if (!hit || !hit.uv1 || !this.lightmap) return null;
+    const lm = this.data.lightmap;
+    const tx = Math.min(lm.width - 1, Math.floor(hit.uv1.x * lm.width));
+    const ty = Math.min(lm.height - 1, Math.floor(hit.uv1.y * lm.height));
+    const i = ty * lm.width + tx, rgb = this.lightmap.rgb;
+    return (0.2126 * rgb[4 * i] + 0.7152 * rgb[4 * i + 1] + 0.0722 * rgb[4 * i + 2]) / Math.PI;
+  }
+}
+
+function main() {
+  const data = JSON.parse(document.getElementById('cpgi-data').textContent);
+  document.title = data.title;
+  document.getElementById('title').textContent = data.title;
+  buildPanels(document.getElementById('panels'), data);
+  if (!window.WebGL2RenderingContext) {
+    document.getElementById('status').textContent = 'This browser has no WebGL 2; the numbers are below.';
+    return;
+  }
+  const glb = base64Bytes(document.getElementById('cpgi-glb').textContent);
+  window.cpgiViewer = new Viewer(data, glb);
+  window.cpgiViewer.cellColour = (i) => '#' + cellColour(i).getHexString();
+}
+
+main();

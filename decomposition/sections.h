@@ -1,0 +1,41 @@
+// Planar cuts for openings whose watershed interface is not a plane: two floors joined by a stair meet
+// along a surface that follows the steps, and a quad fitted to it is tilted across the stairwell. The
+// opening a person sees is the hole in the floor: the smallest closed cross-section of the two cells'
+// empty space across one grid axis, near the interface. Architecture is built along the grid's axes
+// (floors, walls), so the three axis directions are the candidates.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/cell_graph.h"
+#include "decomposition/voxel_grid.h"
+
+namespace cpgi::decomp {
+
+struct Section {
+  int axis = -1;               ///< the grid axis the cut is across
+  int layer = 0;               ///< the cut lies between voxel layers `layer` and `layer + 1` along axis
+  std::vector<size_t> voxels;  ///< the section's voxels, in layer `layer`
+};
+
+/// Across each grid axis, every voxel layer within `searchVoxels` of the interface's extent is cut: the
+/// voxels of cells a or b in that layer that are connected (face neighbours, within the layer) to the
+/// interface's projection form its section, closed when the walls bound it before it grows past
+/// `maxArea` voxels or reaches the grid's border. The narrowest closed section wins; the cut goes through
+/// the middle of the run of layers within 2 % of its area (a floor's mid-plane). `interfaceVoxels` are the
+/// voxels on both sides of the interface faces. Returns nothing when no layer is closed.
+std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
+                                        const std::vector<size_t>& interfaceVoxels, int searchVoxels,
+                                        size_t maxArea);
+
+/// Relabels the voxels of cells a and b by which side of `portals` (those joining a and b) they are on:
+/// the voxels reachable from `seedA` without crossing a portal become a, the other voxels of a or b
+/// become b. Leaves the labels alone and returns false when `seedB` is reachable too (the portals do not
+/// separate the cells).
+bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,
+                          size_t seedB, const std::vector<const PortalQuad*>& portals);
+
+}  // namespace cpgi::decomp

@@ -1,0 +1,133 @@
+// report.html's writer: the page carries its data intact (lightmap, cells, portals, report.json) and
+// nothing in the data can end its script elements early; viewpoints stand above each cell's floor.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/html_report/html_report.h"
+
+namespace cpgi {
+namespace {
+
+Triangle triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  Triangle t;
+  t.p = {a, b, c};
+  const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+  t.n = {n, n, n};
+  return t;
+}
+
+// A box room [x0, x0+w] × [0, h] × [0, d]: floor (up), ceiling (down) and two walls, as cell `name`.
+void addRoom(Scene& scene, CellGraph& graph, const std::string& name, float x0, float w, float h, float d) {
+  Cell cell{name, {}, {}};
+  const auto add = [&](const Triangle& t) {
+    cell.triangles.push_back(uint32_t(scene.triangles.size()));
+    scene.triangles.push_back(t);
+  };
+  const float x1 = x0 + w;
+  add(triangle({x0, 0, 0}, {x0, 0, d}, {x1, 0, 0}));  // floor, normal +y
+  add(triangle({x1, 0, 0}, {x0, 0, d}, {x1, 0, d}));
+  add(triangle({x0, h, 0}, {x1, h, 0}, {x0, h, d}));  // ceiling, normal -y
+  add(triangle({x0, 0, 0}, {x1, 0, 0}, {x1, h, 0}));  // wall
+  graph.cells.push_back(cell);
+}
+
+std::string scriptText(const std::string& page, const std::string& id) {
+  const std::string open = "<script id=\"" + id + "\"";
+  const size_t start = page.find('>', page.find(open)) + 1;
+  return page.substr(start, page.find("</script>", start) - start);
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(HtmlReport, PageCarriesItsDataIntact) {
+  Scene scene;
+  CellGraph graph;
+  addRoom(scene, graph, "hall", 0.0f, 4.0f, 3.0f, 2.0f);
+  addRoom(scene, graph, "</script><b>kitchen", 4.0f, 2.0f, 3.0f, 2.0f);
+  PortalQuad door;
+  door.name = "portal:hall:kitchen";
+  door.corners = {glm::vec3(4, 0, 0.5f), glm::vec3(4, 0, 1.5f), glm::vec3(4, 2, 1.5f), glm::vec3(4, 2, 0.5f)};
+  door.cellA = 0, door.cellB = 1;
+  graph.portals.push_back(door);
+
+  ReportLightmap lightmap;
+  lightmap.width = 3, lightmap.height = 2;
+  lightmap.radiosity = {glm::vec3(1, 2, 3), glm::vec3(0.5f), glm::vec3(0),
+                        glm::vec3(4),       glm::vec3(0),    glm::vec3(1)};
+  lightmap.area = {0.5f, 0.5f, 0.0f, 0.25f, 0.0f, 0.25f};
+  lightmap.cellOfTexel = {0, 0, -1, 1, -1, 1};
+
+  HtmlReportInput input;
+  input.title = "bake of </script>.glb";
+  input.kind = "bake";
+  input.report = {{"method", "cells"}, {"note", "</SCRIPT> and </script>"}};
+  input.glb = std::string("glTF\x02\0\0\0", 8);
+  input.scene = &scene;
+  input.cells = &graph;
+  input.lightmap = &lightmap;
+  const std::string page = renderHtmlReport(input);
+
+  // Exactly the page's three script elements end: data, glb, viewer.
+  EXPECT_EQ(count(page, "</script>"), 3u);
+  EXPECT_EQ(count(page, "@CPGI_"), 0u);
+  EXPECT_EQ(scriptText(page, "cpgi-glb"), "Z2xURgIAAAA=");
+
+  const nlohmann::json data = nlohmann::json::parse(scriptText(page, "cpgi-data"));
+  EXPECT_EQ(data["title"], input.title);
+  EXPECT_EQ(data["report"], input.report);
+  EXPECT_EQ(data["lightmap"]["width"], 3);
+  EXPECT_EQ(data["lightmap"]["height"], 2);
+  // RGBA half floats (8 bytes a texel), int16 cells, float32 areas, in base64.
+  EXPECT_EQ(data["lightmap"]["rgb"].get<std::string>().size(), 4 * ((6 * 8 + 2) / 3));
+  EXPECT_EQ(data["lightmap"]["cell"].get<std::string>().size(), 4 * ((6 * 2 + 2) / 3));
+  ASSERT_EQ(data["cells"].size(), 2u);
+  EXPECT_EQ(data["cells"][1]["name"], graph.cells[1].name);
+  EXPECT_EQ(data["cells"][0]["texels"], 2);
+  EXPECT_DOUBLE_EQ(data["cells"][0]["area_m2"].get<double>(), 1.0);
+  // Σ B·A with B the mean of R, G, B: (2 × 0.5) + (0.5 × 0.5).
+  EXPECT_NEAR(data["cells"][0]["power_w"].get<double>(), 1.25, 1e-9);
+  EXPECT_NEAR(data["cells"][1]["power_w"].get<double>(), 4 * 0.25 + 1 * 0.25, 1e-9);
+  ASSERT_EQ(data["portals"].size(), 1u);
+  EXPECT_EQ(data["portals"][0]["cell_b"], graph.cells[1].name);
+  EXPECT_EQ(data["portals"][0]["corners"][2], nlohmann::json({4.0, 2.0, 1.5}));
+}
+
+TEST(HtmlReport, RefusesALightmapOfTheWrongSize) {
+  ReportLightmap lightmap;
+  lightmap.width = 2, lightmap.height = 2;
+  lightmap.radiosity.assign(3, glm::vec3(1.0f));
+  lightmap.area.assign(4, 1.0f);
+  HtmlReportInput input;
+  input.lightmap = &lightmap;
+  EXPECT_THROW(renderHtmlReport(input), std::invalid_argument);
+}
+
+TEST(HtmlReport, ViewpointsStandAboveEachFloorAtEyeHeight) {
+  Scene scene;
+  CellGraph graph;
+  addRoom(scene, graph, "tall", 0.0f, 6.0f, 3.0f, 2.0f);
+  addRoom(scene, graph, "low", 10.0f, 2.0f, 1.5f, 4.0f);
+  graph.cells.push_back(Cell{"empty", {}, {}});
+  const std::vector<CellViewpoint> views = cellViewpoints(scene, graph);
+  ASSERT_EQ(views.size(), 3u);
+  ASSERT_TRUE(views[0].valid);
+  EXPECT_FLOAT_EQ(views[0].eye.y, 1.6f);
+  EXPECT_GT(views[0].eye.x, 0.0f);
+  EXPECT_LT(views[0].eye.x, 6.0f);
+  // Level, along the longer horizontal side (x for the tall room, z for the low one).
+  EXPECT_FLOAT_EQ(views[0].look.y, views[0].eye.y);
+  EXPECT_NEAR(std::abs(views[0].look.x - views[0].eye.x), 1.0f, 1e-6f);
+  ASSERT_TRUE(views[1].valid);
+  EXPECT_NEAR(views[1].eye.y, 0.9f, 1e-6f);  // 60 % of a 1.5 m cell
+  EXPECT_NEAR(std::abs(views[1].look.z - views[1].eye.z), 1.0f, 1e-6f);
+  EXPECT_GE(views[1].eye.x, 10.0f);
+  EXPECT_FALSE(views[2].valid);
+}
+
+}  // namespace
+}  // namespace cpgi

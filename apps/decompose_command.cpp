@@ -23,7 +23,7 @@ namespace {
 struct DecomposeOptions {
   std::string scene;
   std::string out;
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool json = false;
   decomp::DecomposeParams params;
 };

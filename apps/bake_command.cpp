@@ -1,7 +1,7 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 // [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient]
-// [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3),
+// [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3),
 // over the whole scene at once or cell by cell through portals (radiosity/cells/cell_solver.h); both write
 // the same atlas layout, plus an ambient term for the power the stop left unshot (radiosity/gpu/ambient.h).
 // Writes the lightmap files (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and
@@ -52,7 +52,8 @@ struct BakeOptions {
   CellSolveParams cellParams;         ///< portals, maxRounds, jobs; its atlas and solver are the two above
   decomp::DecomposeParams decompose;  ///< for --cells auto
   bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
-  LoadOptions load;                   ///< --repair, --allow-outside-files
+  LoadOptions load;                   ///< --strict, --allow-outside-files, --emit, --albedo
+  bool allowDark = false;             ///< go on when nothing lights the scene
   ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
 };
@@ -132,6 +133,7 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
     auto t = ctx.time("load");
     in.loaded = loadScene(o.scene, o.load);
   }
+  requireLight(in.loaded, o.scene, o.allowDark);
   for (const std::string& w : in.loaded.warnings) ctx.warn(w);
   if (o.method == "cells") in.graph = resolveCells(o.cells, o.scene, in.loaded, o.decompose, o.load, ctx);
   in.onDemand = resolveOnDemand(o, in.loaded.scene, in.graph);
@@ -145,9 +147,7 @@ void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
     in.atlas = buildAtlas(in.loaded.scene, in.quads, o.atlas, ctx);
   }
   if (in.atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
-  const glm::vec3 power = in.loaded.scene.emittedPower();
-  if (!(power.r + power.g + power.b > 0.0f))
-    ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
+  if (!in.loaded.scene.hasLight()) ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
 }
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -353,6 +353,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addAmbientOption(*sub, o->noAmbient);
   addViewOptions(*sub, o->views);
   addLoadOptions(*sub, o->load);
+  addDarkOption(*sub, o->allowDark);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
 }

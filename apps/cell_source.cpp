@@ -43,7 +43,9 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     p.sourceName = scenePath;
     decomp::Decomposition d = decomp::decompose(loaded.scene, p, ctx);
     if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
+    std::vector<PunctualLight> lights = std::move(loaded.scene.lights);
     loaded.scene = std::move(d.scene);
+    loaded.scene.lights = std::move(lights);  // the decomposition splits triangles; the lights stay
     return std::move(d.graph);
   }
   std::filesystem::path path = source;

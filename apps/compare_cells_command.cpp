@@ -27,6 +27,7 @@ namespace {
 struct CompareOptions {
   std::string scene, a, b;
   decomp::DecomposeParams decompose;  ///< voxelSize 0: as decompose chooses
+  LoadOptions load;                   ///< SCENE's and A's/B's scene files
   bool json = false;
   bool bake = false;
   CellBakeComparison bakeParams = [] {
@@ -45,8 +46,8 @@ struct Labelled {
 };
 
 Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std::string& scenePath,
-                   const decomp::VoxelSpace& space, const decomp::DecomposeParams& params, bool forBake,
-                   Context& ctx) {
+                   const decomp::VoxelSpace& space, const decomp::DecomposeParams& params,
+                   const LoadOptions& load, bool forBake, Context& ctx) {
   Labelled out;
   out.source = what;
   out.bake.source = what;
@@ -61,6 +62,7 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
       throw SystemError("compare-cells: the automatic decomposition's grid differs from the scene's");
     if (forBake) {  // the very decomposition compared, split triangles and all
       out.bake.scene = std::move(d.scene);
+      out.bake.scene.lights = scene.scene.lights;  // split triangles, the same lights
       out.bake.graph = d.graph;
     }
     out.graph = std::move(d.graph);
@@ -70,7 +72,7 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   std::string path = what;
   if (std::filesystem::is_directory(path)) path = (std::filesystem::path(path) / "cells.glb").string();
   if (!std::filesystem::exists(path)) throw InputError(what, "no such file (give a scene with cells, a folder with cells.glb, or auto)");
-  LoadedScene loaded = loadScene(path, LoadOptions{true});
+  LoadedScene loaded = loadScene(path, load);
   if (loaded.cells.empty()) throw InputError(path, "has no cell: nodes to compare");
   out.source = path;
   out.graph = std::move(loaded.cells);
@@ -78,22 +80,22 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   if (forBake) {
     LoadedScene copy = scene;
     out.bake.source = path;
-    out.bake.graph = resolveCells(path, scenePath, copy, params, LoadOptions{.repair = true}, ctx);
+    out.bake.graph = resolveCells(path, scenePath, copy, params, load, ctx);
     out.bake.scene = std::move(copy.scene);
   }
   return out;
 }
 
 int runCompare(const CompareOptions& o) {
-  LoadedScene loaded = loadScene(o.scene, LoadOptions{true});
+  LoadedScene loaded = loadScene(o.scene, o.load);
   const decomp::DecomposeParams& params = o.decompose;
   if (params.voxelSize < 0.0 || params.voxelSize > 10.0)
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   const double h = decomp::chooseVoxelSize(loaded.scene, params);
   const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx);
-  const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.bake, ctx);
-  const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.bake, ctx);
+  const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);
+  const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.load, o.bake, ctx);
 
   size_t both = 0, inside = 0;
   for (size_t i = 0; i < space.space.size(); ++i) {
@@ -189,6 +191,7 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("a", o->a, "Candidate decomposition")->required();
   cmd->add_option("b", o->b, "Reference decomposition")->required();
   addDecomposeOptions(*cmd, o->decompose);
+  addLoadOptions(*cmd, o->load);
   cmd->add_flag("--json", o->json,
                 "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m; with "
                 "--bake, a bake object: a, b, references, difference_points)");

@@ -23,7 +23,7 @@ namespace {
 struct DecomposeOptions {
   std::string scene;
   std::string out;
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool json = false;
   decomp::DecomposeParams params;
 };
@@ -38,7 +38,8 @@ int runDecompose(DecomposeOptions o) {
 
   OutputDir dir(o.out);
   Context ctx;
-  const decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
+  decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
+  d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it
 
   GltfWriteOptions gltf;
   gltf.cells = &d.graph;

@@ -1,4 +1,4 @@
-// `cpgi info SCENE [--json] [--repair] [--allow-outside-files]`: what the loader sees in a scene, and what is wrong with it.
+// `cpgi info SCENE [--json] [loading options]`: what the loader sees in a scene, and what is wrong with it.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -7,6 +7,7 @@
 #include "apps/commands.h"
 #include "apps/options.h"
 #include "core/cell_json.h"
+#include "core/lights.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 
@@ -16,7 +17,7 @@ namespace {
 struct InfoOptions {
   std::string scene;
   bool json = false;
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
 };
 
 std::string fmt(const char* format, double a, double b = 0, double c = 0) {
@@ -50,6 +51,24 @@ nlohmann::json summarise(const LoadedScene& loaded) {
                           {"area_m2", area[m]},
                           {"power_w", toJson(s.materials[m].emission * float(area[m]))}});
 
+  // Punctual lights in cpgi's units (W/sr, or W/m² for directional) and, for point and spot, their power.
+  json lights = json::array();
+  for (const PunctualLight& l : s.lights) {
+    const char* kind = l.kind == PunctualLight::Kind::Point  ? "point"
+                       : l.kind == PunctualLight::Kind::Spot ? "spot"
+                                                             : "directional";
+    json j = {{"name", l.name}, {"type", kind}, {"direction", toJson(l.direction)}};
+    if (l.kind == PunctualLight::Kind::Directional) {
+      j["irradiance_w_m2"] = toJson(l.intensity);
+    } else {
+      j["position"] = toJson(l.position);
+      j["intensity_w_sr"] = toJson(l.intensity);
+      j["power_w"] = toJson(glm::vec3(punctualPower(l)));
+    }
+    if (l.kind == PunctualLight::Kind::Spot) j["cone_rad"] = {l.innerCone, l.outerCone};
+    lights.push_back(j);
+  }
+
   json cameras = json::array();
   for (const Camera& c : s.cameras)
     cameras.push_back({{"name", c.name},
@@ -66,6 +85,7 @@ nlohmann::json summarise(const LoadedScene& loaded) {
           {"materials", materials},
           {"emitters", emitters},
           {"emitted_power", toJson(s.emittedPower())},
+          {"lights", lights},
           {"bounds", {{"min", toJson(b.lo)}, {"max", toJson(b.hi)}, {"size", toJson(b.size())}}},
           {"cameras", cameras},
           {"cells", graph["cells"]},
@@ -88,7 +108,16 @@ void printText(const std::string& path, const nlohmann::json& info) {
   for (const auto& e : info["emitters"])
     out << "\n    " << e["material"].get<std::string>() << ": " << e["triangles"].get<size_t>()
         << " triangles, " << fmt("%.4g m², ", e["area_m2"].get<double>()) << triple(vec(e["power_w"]), " W");
-  out << "\n  emitted power  " << triple(vec(info["emitted_power"]), " W (RGB)") << "\n";
+  out << "\n  emitted power  " << triple(vec(info["emitted_power"]), " W (RGB)");
+  out << "\n  lights         " << info["lights"].size();
+  for (const auto& l : info["lights"]) {
+    out << "\n    " << l["name"].get<std::string>() << ": " << l["type"].get<std::string>();
+    if (l.contains("power_w"))
+      out << " at " << triple(vec(l["position"])) << ", " << triple(vec(l["power_w"]), " W");
+    else
+      out << ", " << triple(vec(l["irradiance_w_m2"]), " W/m²");
+  }
+  out << "\n";
   out << "  bounds         " << triple(vec(info["bounds"]["min"])) << "  to  "
       << triple(vec(info["bounds"]["max"])) << "  (size " << triple(vec(info["bounds"]["size"]), " m")
       << ")\n";

@@ -19,7 +19,11 @@ struct ParameterFlag {
 constexpr ParameterFlag kFlags[] = {
     // Loading (core/scene_io.h)
     {"repair", "--repair"},
+    {"strict", "--strict"},
     {"outside files", "--allow-outside-files"},
+    {"emit", "--emit"},
+    {"albedo", "--albedo"},
+    {"dark", "--allow-dark"},
     // Atlas (radiosity/lightmap/atlas.h)
     {"texels per quad", "--texels-per-quad"},
     {"texel density", "--density"},
@@ -306,10 +310,79 @@ glm::vec3 parsePoint(const std::string& text, const std::string& option) {
   return {values[0], values[1], values[2]};
 }
 
+// "NAME=V" or "NAME=R,G,B" (split at the last '=', so a name may hold one) → an override of NAME.
+MaterialOverride parseOverride(const std::string& text, const std::string& parameter, bool emission) {
+  const size_t eq = text.rfind('=');
+  const std::string what = emission ? "W/m2" : "albedo";
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(parameter, "'" + text + "' is not MATERIAL=" + what + " or MATERIAL=R,G,B");
+  std::vector<float> values;
+  std::stringstream in(text.substr(eq + 1));
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v) ||
+        v < 0.0f || (!emission && v > 1.0f))
+      throw InputError(
+          parameter,
+          "'" + text +
+              "': " + (emission ? "an emission is a number >= 0 (W/m2)" : "an albedo is a number in [0, 1]"));
+    values.push_back(v);
+  }
+  if (values.size() != 1 && values.size() != 3)
+    throw InputError(parameter, "'" + text + "' is not MATERIAL=" + what + " or MATERIAL=R,G,B");
+  const glm::vec3 v = values.size() == 1 ? glm::vec3(values[0]) : glm::vec3(values[0], values[1], values[2]);
+  MaterialOverride o{text.substr(0, eq), std::nullopt, std::nullopt};
+  (emission ? o.emission : o.albedo) = v;
+  return o;
+}
+
 void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
-  cmd.add_flag(flag("repair"), load.repair, "Drop zero-area and duplicate triangles instead of failing");
+  auto* strict = cmd.add_flag(flag("strict"), load.strict,
+                              "Refuse a scene with zero-area or duplicate triangles (default: drop them, "
+                              "with one warning)");
+  // Kept for scripts written when refusing was the default: dropping is the default now.
+  const std::string repairHelp = "Drop zero-area and duplicate triangles (the default; excludes --strict)";
+  cmd.add_flag(flag("repair"), repairHelp)->excludes(strict);
   cmd.add_flag(flag("outside files"), load.allowOutsideFiles,
                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
+  // One value per occurrence (repeat the flag), so that it never swallows the scene argument.
+  for (const bool emission : {true, false})
+    cmd.add_option_function<std::vector<std::string>>(
+           flag(emission ? "emit" : "albedo"),
+           [&load, emission](const std::vector<std::string>& texts) {
+             // Runs while CLI11 parses: its own error type, so main prints the one line.
+             try {
+               for (const std::string& text : texts)
+                 load.overrides.push_back(parseOverride(text, emission ? "emit" : "albedo", emission));
+             } catch (const InputError& e) {
+               throw CLI::ValidationError(userMessage(e));
+             }
+           },
+           emission ? "MATERIAL=W/m2 or MATERIAL=R,G,B: the material (by name) emits this, replacing the "
+                      "file's emission (repeatable)"
+                    : "MATERIAL=A or MATERIAL=R,G,B: the material's albedo in [0, 1], replacing the file's "
+                      "(repeatable)")
+        ->allow_extra_args(false);
+}
+
+void addDarkOption(CLI::App& cmd, bool& allowDark) {
+  cmd.add_flag(flag("dark"), allowDark,
+               "Go on when nothing lights the scene (no emissive material, no punctual light, no --emit): "
+               "the result is black");
+}
+
+void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark) {
+  if (allowDark || loaded.scene.hasLight()) return;
+  throw InputError(scenePath,
+                   "no light in the scene (no emissive material, no KHR_lights_punctual light); light a "
+                   "material with `emit` MATERIAL=W/m2, or pass `dark` for a black result");
 }
 
 }  // namespace cpgi::cli

@@ -47,8 +47,14 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
 /// --spp (paths per texel of the reference).
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
-/// --repair, --allow-outside-files.
+/// --strict, --repair (the default, kept for old scripts), --allow-outside-files, --emit MATERIAL=W/m2 and
+/// --albedo MATERIAL=R,G,B (repeatable): every command that loads a scene takes these.
 void addLoadOptions(CLI::App& cmd, LoadOptions& load);
+/// --allow-dark (bake, reference): go on with a scene nothing lights.
+void addDarkOption(CLI::App& cmd, bool& allowDark);
+/// Throws InputError(scenePath, ...) naming --emit and --allow-dark when nothing lights the scene, unless
+/// allowDark.
+void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark);
 /// --view-size WxH (or W×H) of the view-*.png / .exr pictures: width and height in [16, 8192]; without it
 /// 640 wide at the camera's aspect. A bad size fails at parsing, before any work.
 void addViewOptions(CLI::App& cmd, ViewParams& views);

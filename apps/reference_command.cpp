@@ -35,7 +35,8 @@ struct ReferenceOptions {
   ReferenceParams trace{.spp = 1024};
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
-  LoadOptions load;  ///< --repair, --allow-outside-files
+  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
+  bool allowDark = false;
   ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
 };
@@ -148,6 +149,7 @@ int runReference(const ReferenceOptions& o) {
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
   const LoadedScene loaded = loadScene(o.scene, o.load);
+  requireLight(loaded, o.scene, o.allowDark);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
 
@@ -212,6 +214,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
   addViewOptions(*cmd, opts->views);
   addLoadOptions(*cmd, opts->load);
+  addDarkOption(*cmd, opts->allowDark);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, &selected] {
     opts->texelsGiven = texels->count() > 0;

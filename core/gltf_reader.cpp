@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include <stb_image.h>
 #include <tiny_gltf.h>
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/lights.h"
 #include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
@@ -226,7 +228,8 @@ class GltfReader {
 
   RawScene read() {
     for (const std::string& ext : m_.extensionsRequired)
-      if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit")
+      if (ext != "KHR_materials_emissive_strength" && ext != "KHR_materials_unlit" &&
+          ext != "KHR_lights_punctual")
         fail("requires the glTF extension " + ext + ", which cpgi does not support");
     materialIndex_.assign(m_.materials.size(), -1);
 
@@ -331,6 +334,8 @@ class GltfReader {
     }
 
     if (node.camera >= 0) addCamera(node.camera, world, name);
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
+      addLight(it->second, world, name);
     if (node.mesh >= 0) {
       if (node.mesh >= static_cast<int>(m_.meshes.size()))
         fail("node '" + name + "': mesh index out of range");
@@ -370,6 +375,61 @@ class GltfReader {
     if (!(cam.aspect >= 1e-3f && cam.aspect <= 1e3f))
       fail("camera '" + cam.name + "': aspectRatio must be within [0.001, 1000]");
     raw_.scene.cameras.push_back(cam);
+  }
+
+  static std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+
+  // A KHR_lights_punctual light placed by its node: at the node's origin, shining down its -Z. The file's
+  // candela (point, spot) and lux (directional) become W/sr and W/m² (core/lights.h, kLumensPerWatt).
+  void addLight(const tinygltf::Value& reference, const glm::dmat4& world, const std::string& nodeName) {
+    const std::string what = "node '" + nodeName + "'";
+    const tinygltf::Value& index = member(reference, "light");
+    if (!index.IsNumber()) fail(what + ": KHR_lights_punctual without a light index");
+    const double i = index.GetNumberAsDouble();
+    if (!(i >= 0.0 && i < double(m_.lights.size())) || i != std::floor(i))
+      fail(what + ": light " + number(i) + " does not exist");
+    const tinygltf::Light& gl = m_.lights[size_t(i)];
+    PunctualLight light;
+    light.name = gl.name.empty() ? nodeName : gl.name;
+    const std::string lightWhat = "light '" + printable(light.name) + "'";
+    if (gl.type == "point")
+      light.kind = PunctualLight::Kind::Point;
+    else if (gl.type == "spot")
+      light.kind = PunctualLight::Kind::Spot;
+    else if (gl.type == "directional")
+      light.kind = PunctualLight::Kind::Directional;
+    else
+      fail(lightWhat + ": unknown type '" + printable(gl.type) + "' (expected point, spot or directional)");
+    glm::dvec3 colour(1.0);
+    if (!gl.color.empty()) {
+      if (gl.color.size() != 3) fail(lightWhat + ": color must have 3 numbers");
+      colour = glm::dvec3(gl.color[0], gl.color[1], gl.color[2]);
+    }
+    for (int c = 0; c < 3; ++c)
+      if (!(colour[c] >= 0.0) || !std::isfinite(colour[c]))
+        fail(lightWhat + ": color is negative or not finite");
+    if (!(gl.intensity >= 0.0) || !std::isfinite(gl.intensity))
+      fail(lightWhat + ": intensity " + number(gl.intensity) + " is negative or not finite");
+    light.intensity = glm::vec3(colour * gl.intensity / kLumensPerWatt);
+    if (!(gl.range >= 0.0) || !std::isfinite(gl.range)) fail(lightWhat + ": range must be a positive number");
+    light.range = float(gl.range);
+    if (light.kind == PunctualLight::Kind::Spot) {
+      const double inner = gl.spot.innerConeAngle, outer = gl.spot.outerConeAngle;
+      if (!(inner >= 0.0 && inner < outer && outer <= std::acos(-1.0) / 2.0))
+        fail(lightWhat + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+      light.innerCone = float(inner), light.outerCone = float(outer);
+    }
+    light.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+    const glm::dvec3 axis(world * glm::dvec4(0, 0, -1, 0));
+    const double length = glm::length(axis);
+    if (!std::isfinite(glm::length(light.position)) || !(length > 0.0) || !std::isfinite(length))
+      fail(what + ": the transform of " + lightWhat + " is degenerate or not finite");
+    light.direction = glm::vec3(axis / length);
+    raw_.scene.lights.push_back(light);
   }
 
   // A checked view of an accessor's bytes.

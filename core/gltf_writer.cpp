@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/lights.h"
 #include "core/output_dir.h"
 #include "core/scene_io.h"
 #include "core/scene_io_detail.h"
@@ -197,6 +198,7 @@ class SceneWriter {
     for (int r : tree_.roots) sceneRoots_.push_back(emitTreeNode(r));
     if (options_.cells) writeCellExtras();
     writeCameras();
+    writeLights();
     b_.doc["scenes"] = json::array({{{"nodes", sceneRoots_}}});
     b_.doc["scene"] = 0;
     return b_.finish(binary);
@@ -384,6 +386,42 @@ class SceneWriter {
                                               {"translation", vec(cam.position)},
                                               {"rotation", {q.x, q.y, q.z, q.w}}}));
     }
+  }
+
+  // KHR_lights_punctual back in the file's units (candela, lux): colour × intensity with the brightest
+  // channel as the intensity, so loadScene reads the same light back.
+  void writeLights() {
+    if (scene_.lights.empty()) return;
+    json lights = json::array();
+    for (const PunctualLight& l : scene_.lights) {
+      const float peak = std::max({l.intensity.r, l.intensity.g, l.intensity.b});
+      const glm::vec3 colour = peak > 0.0f ? l.intensity / peak : glm::vec3(1.0f);
+      json light = {{"name", l.name}, {"color", vec(colour)}, {"intensity", double(peak) * kLumensPerWatt}};
+      if (l.range > 0.0f) light["range"] = l.range;
+      switch (l.kind) {
+        case PunctualLight::Kind::Point:
+          light["type"] = "point";
+          break;
+        case PunctualLight::Kind::Spot:
+          light["type"] = "spot";
+          light["spot"] = {{"innerConeAngle", l.innerCone}, {"outerConeAngle", l.outerCone}};
+          break;
+        case PunctualLight::Kind::Directional:
+          light["type"] = "directional";
+          break;
+      }
+      const int index = static_cast<int>(lights.size());
+      lights.push_back(light);
+      // The light shines down its node's -Z: the rotation taking -Z to the direction.
+      const glm::quat q = glm::quat(glm::vec3(0, 0, -1), glm::normalize(l.direction));
+      sceneRoots_.push_back(
+          b_.push("nodes", {{"name", l.name.empty() ? "light" : l.name},
+                            {"translation", vec(l.position)},
+                            {"rotation", {q.x, q.y, q.z, q.w}},
+                            {"extensions", {{"KHR_lights_punctual", {{"light", index}}}}}}));
+    }
+    b_.doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
+    b_.useExtension("KHR_lights_punctual");
   }
 
   const Scene& scene_;

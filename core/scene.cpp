@@ -26,4 +26,12 @@ glm::vec3 Scene::emittedPower() const {
   return power;
 }
 
+bool Scene::hasLight() const {
+  const glm::vec3 p = emittedPower();
+  if (p.r + p.g + p.b > 0.0f) return true;
+  for (const PunctualLight& l : lights)
+    if (l.intensity.r + l.intensity.g + l.intensity.b > 0.0f) return true;
+  return false;
+}
+
 }  // namespace cpgi

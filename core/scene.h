@@ -42,6 +42,22 @@ struct Camera {
   float aspect = 4.0f / 3.0f;            ///< width / height
 };
 
+/// A KHR_lights_punctual light in world space, in cpgi's radiometric units: the file's candela and lux are
+/// divided by 683 lm/W (README, "Light units"; core/lights.h evaluates it).
+struct PunctualLight {
+  enum class Kind { Point, Spot, Directional };
+  Kind kind = Kind::Point;
+  std::string name;
+  glm::vec3 position{0.0f};                ///< metres (point, spot)
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< unit; where the light travels (spot axis, directional rays)
+  /// Point and spot: radiant intensity, W/sr per channel (a spot's, on its axis). Directional: irradiance on
+  /// a surface facing the light, W/m² per channel.
+  glm::vec3 intensity{0.0f};
+  float innerCone = 0.0f;       ///< spot: full intensity within this angle of the axis, radians
+  float outerCone = 0.785398f;  ///< spot: no light beyond this angle, radians; inner < outer ≤ π/2
+  float range = 0.0f;  ///< point and spot: metres where glTF's smooth window reaches 0; 0 = unlimited
+};
+
 struct Bounds {
   glm::vec3 lo{std::numeric_limits<float>::max()};
   glm::vec3 hi{-std::numeric_limits<float>::max()};
@@ -56,10 +72,13 @@ struct Scene {
   /// Slash-joined glTF node names from the root ("building/cell:A/walls"); OBJ: the object/group name.
   std::vector<std::string> nodePaths;
   std::vector<Camera> cameras;
+  std::vector<PunctualLight> lights;  ///< KHR_lights_punctual point, spot and directional lights
 
   Bounds bounds() const;
   /// Total emitted power, W per channel: Σ emission × area over emissive triangles.
   glm::vec3 emittedPower() const;
+  /// Whether anything lights the scene: an emissive triangle or a punctual light with some intensity.
+  bool hasLight() const;
 };
 
 }  // namespace cpgi

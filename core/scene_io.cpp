@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/lights.h"
 #include "core/scene_files.h"
 #include "core/scene_io_detail.h"
 
@@ -165,9 +166,30 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
   return {t0.p[own0], t0.p[(own0 + 1) % 3], own1, t0.p[(own0 + 2) % 3]};
 }
 
+// --emit and --albedo, by material name, before the checks (an override is checked like the file's own).
+void applyOverrides(const std::string& path, Scene& scene, const std::vector<MaterialOverride>& overrides) {
+  for (const MaterialOverride& o : overrides) {
+    bool found = false;
+    for (Material& m : scene.materials)
+      if (m.name == o.material) {
+        found = true;
+        if (o.emission) m.emission = *o.emission;
+        if (o.albedo) m.albedo = *o.albedo;
+      }
+    if (found) continue;
+    std::string names;
+    for (size_t i = 0; i < scene.materials.size() && i < 12; ++i)
+      names += (i ? ", " : "") + printable(scene.materials[i].name, 40);
+    if (scene.materials.size() > 12) names += ", ...";
+    throw InputError(o.emission ? "emit" : "albedo", "no material named '" + printable(o.material) + "' in " +
+                                                         printable(path, 200) + " (it has: " + names + ")");
+  }
+}
+
 // One rule for every format (README, "Numbers"): an albedo outside [0, 1] or a non-finite emission is
 // refused, not clamped: either means a broken export, and the solver would run away (albedo 2 never
-// converges) or overflow (float power → inf report energies, NaN lightmap).
+// converges) or overflow (float power → inf report energies, NaN lightmap). Lights count in the power:
+// a point or spot light by what it emits, a directional one by what would cross the scene's bounds.
 void checkMaterials(const std::string& path, const Scene& scene) {
   auto text = [](const glm::vec3& v) {
     std::ostringstream s;
@@ -188,12 +210,50 @@ void checkMaterials(const std::string& path, const Scene& scene) {
   for (const Triangle& t : scene.triangles)
     if (t.material < scene.materials.size())
       power += glm::dvec3(scene.materials[t.material].emission) * double(t.area());
+  const glm::dvec3 size(scene.bounds().size());
+  for (const PunctualLight& l : scene.lights)
+    power += l.kind == PunctualLight::Kind::Directional ? glm::dvec3(l.intensity) * glm::dot(size, size)
+                                                        : punctualPower(l);
   if (!(std::max({power.x, power.y, power.z}) <= kMaxEmittedPower)) {
     std::ostringstream s;
     s << "the scene emits " << std::max({power.x, power.y, power.z}) << " W, more than " << kMaxEmittedPower
       << " W (emission x area would overflow the solver's float arithmetic)";
     throw InputError(path, s.str());
   }
+}
+
+// Degenerate and duplicate triangles: dropped with one warning naming how many and the first one's node
+// (real exports have a few slivers), or refused with `strict`. Returns a mark per triangle to drop.
+std::vector<char> dropDegenerate(const std::string& path, const Scene& scene, const LoadOptions& options,
+                                 std::vector<std::string>& warnings) {
+  std::vector<char> drop(scene.triangles.size(), 0);
+  size_t degenerate = 0, duplicate = 0;
+  size_t first = scene.triangles.size();
+  for (size_t i = 0; i < scene.triangles.size(); ++i)
+    if (isDegenerate(scene.triangles[i])) {
+      drop[i] = 1, ++degenerate;
+      first = std::min(first, i);
+    }
+  std::vector<std::pair<TriangleKey, uint32_t>> keys;
+  keys.reserve(scene.triangles.size());
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i)
+    if (!drop[i]) keys.emplace_back(canonicalKey(scene.triangles[i]), i);
+  std::sort(keys.begin(), keys.end());
+  for (size_t k = 1; k < keys.size(); ++k)
+    if (keys[k].first == keys[k - 1].first) {
+      drop[keys[k].second] = 1, ++duplicate;
+      first = std::min<size_t>(first, keys[k].second);
+    }
+  if (degenerate + duplicate == 0) return drop;
+  auto count = [](size_t n, const char* what) {
+    return std::to_string(n) + " " + what + " triangle" + (n > 1 ? "s" : "");
+  };
+  std::string what = degenerate ? count(degenerate, "zero-area") : "";
+  if (duplicate) what += (degenerate ? " and " : "") + count(duplicate, "duplicate");
+  what += " (first in node '" + nodeOf(scene, scene.triangles[first]) + "')";
+  if (options.strict) throw InputError(path, what + "; without `strict` they are dropped");
+  warnings.push_back("dropped " + what + "; --strict refuses them");
+  return drop;
 }
 
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
@@ -211,43 +271,10 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
           if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
+  applyOverrides(path, scene, options.overrides);
   checkMaterials(path, scene);
-
-  // Degenerate and duplicate triangles: errors, or dropped with --repair.
-  std::vector<char> drop(scene.triangles.size(), 0);
-  size_t degenerate = 0, duplicate = 0;
-  int firstDegenerate = -1, firstDuplicate = -1;
-  for (size_t i = 0; i < scene.triangles.size(); ++i)
-    if (isDegenerate(scene.triangles[i])) {
-      drop[i] = 1, ++degenerate;
-      if (firstDegenerate < 0) firstDegenerate = static_cast<int>(i);
-    }
-  {
-    std::vector<std::pair<TriangleKey, uint32_t>> keys;
-    keys.reserve(scene.triangles.size());
-    for (uint32_t i = 0; i < scene.triangles.size(); ++i)
-      if (!drop[i]) keys.emplace_back(canonicalKey(scene.triangles[i]), i);
-    std::sort(keys.begin(), keys.end());
-    for (size_t k = 1; k < keys.size(); ++k)
-      if (keys[k].first == keys[k - 1].first) {
-        drop[keys[k].second] = 1, ++duplicate;
-        if (firstDuplicate < 0 || static_cast<int>(keys[k].second) < firstDuplicate)
-          firstDuplicate = static_cast<int>(keys[k].second);
-      }
-  }
-  if (!options.repair) {
-    if (degenerate)
-      throw InputError(path, std::to_string(degenerate) + " zero-area triangle" +
-                                 (degenerate > 1 ? "s" : "") + " (first in node '" +
-                                 nodeOf(scene, scene.triangles[firstDegenerate]) +
-                                 "'); run with `repair` to drop them");
-    if (duplicate)
-      throw InputError(path, std::to_string(duplicate) + " duplicate triangle" + (duplicate > 1 ? "s" : "") +
-                                 " (first in node '" + nodeOf(scene, scene.triangles[firstDuplicate]) +
-                                 "'); run with `repair` to drop them");
-  }
-  if (degenerate) out.warnings.push_back("dropped " + std::to_string(degenerate) + " zero-area triangles");
-  if (duplicate) out.warnings.push_back("dropped " + std::to_string(duplicate) + " duplicate triangles");
+  const std::vector<char> drop = dropDegenerate(path, scene, options, out.warnings);
+  const bool dropped = std::find(drop.begin(), drop.end(), 1) != drop.end();
 
   std::vector<int> cellOf;
   cellOf.reserve(scene.triangles.size());
@@ -259,8 +286,8 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     scene.triangles = std::move(kept);
   }
   if (scene.triangles.empty())
-    throw InputError(
-        path, degenerate + duplicate > 0 ? "no triangles left after `repair`" : "the scene has no triangles");
+    throw InputError(path, dropped ? "no triangles left once the degenerate ones are dropped"
+                                   : "the scene has no triangles");
   for (Triangle& t : scene.triangles)
     for (glm::vec3& n : t.n) {
       const float len = glm::length(n);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,10 +19,22 @@ struct LoadedScene {
   std::vector<std::string> warnings;  ///< e.g. dropped zero-area or duplicate triangles
 };
 
+/// A material's light or colour set by name instead of by the file (the CLI's --emit, --albedo): a raw
+/// model has no emissive surfaces, and editing the file is not what a user lighting it wants to do.
+struct MaterialOverride {
+  std::string material;               ///< the material's name as the file gives it (every one of that name)
+  std::optional<glm::vec3> emission;  ///< W/m² per channel, replaces the file's emission
+  std::optional<glm::vec3> albedo;    ///< in [0, 1] per channel, replaces the file's albedo
+};
+
 struct LoadOptions {
-  /// Zero-area and duplicate triangles are errors by default (they usually mean a broken export); with
-  /// repair they are dropped and counted in LoadedScene::warnings instead (the CLI's --repair).
-  bool repair = false;
+  /// Zero-area and duplicate triangles (real exports have a few) are dropped with one warning in
+  /// LoadedScene::warnings (their count and the first one's node); strict refuses the scene instead
+  /// (the CLI's --strict).
+  bool strict = false;
+  /// Applied in order before the materials are checked; a name no material has is an InputError("emit"
+  /// or "albedo", ...) naming the file.
+  std::vector<MaterialOverride> overrides = {};
   /// Files a scene refers to (glTF buffers and images, OBJ mtllib) are read only inside the scene's own
   /// folder by default, so that a downloaded scene cannot pull /etc/passwd or ~/.ssh into a result
   /// (the CLI's --allow-outside-files lifts that).
@@ -31,8 +44,9 @@ struct LoadOptions {
 };
 
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,
-/// NaN/inf positions, an unsupported primitive mode, bad cell naming, degenerate triangles (unless
-/// repair), a scene with no triangles, or a referenced file outside the scene's folder (see LoadOptions).
+/// NaN/inf positions, an unsupported primitive mode, bad cell naming, degenerate triangles (with
+/// strict), bad KHR_lights_punctual lights, a scene with no triangles, or a referenced file outside the
+/// scene's folder (see LoadOptions).
 LoadedScene loadScene(const std::string& path, const LoadOptions& options = {});
 
 struct GltfWriteOptions {

@@ -87,6 +87,59 @@ SeedScene makeSpotThroughDoor() {
   return s;
 }
 
+namespace {
+// Two plain rooms A | B with the seed door between them, its portal and cells, and no emissive surface:
+// the punctual-light scenes add their lamp.
+SeedScene twoDarkRooms() {
+  SeedScene s;
+  SceneBuilder b(s.scene);
+  const Palette p = addPalette(b, glm::vec3(0.0f));
+  const float wall = 0.2f, xb = kRoom + wall;
+  SceneBuilder::Room a = plainRoom("A", 0.0f, p), rb = plainRoom("B", xb, p);
+  a.doorEast = rb.doorWest = true;
+  b.room(a);
+  b.room(rb);
+  b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
+  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
+  PortalQuad portal;
+  portal.name = "portal:A:B";
+  const float xm = kRoom + wall / 2;
+  portal.corners = {glm::vec3(xm, 0, a.door.z0), glm::vec3(xm, a.door.top, a.door.z0),
+                    glm::vec3(xm, a.door.top, a.door.z1), glm::vec3(xm, 0, a.door.z1)};
+  portal.cellA = 0;
+  portal.cellB = 1;
+  computePortalFrame(portal);
+  s.cells.portals.push_back(portal);
+  s.scene.cameras.push_back(lookAt("B", {xb + 0.3f, 1.8f, 3.7f}, {xb + kRoom, 1.0f, 2.0f}));
+  s.scene.cameras.push_back(lookAt("A", {3.7f, 1.8f, 3.7f}, {0.0f, 1.0f, 2.0f}));
+  return s;
+}
+}  // namespace
+
+SeedScene makePointLightRooms() {
+  SeedScene s = twoDarkRooms();
+  PunctualLight lamp;
+  lamp.kind = PunctualLight::Kind::Point;
+  lamp.name = "lamp";
+  lamp.position = glm::vec3(2.0f, 2.2f, 2.0f);
+  lamp.intensity = glm::vec3(8.0f);  // W/sr: 4π × 8 ≈ 100 W, the seed scenes' lamp
+  s.scene.lights.push_back(lamp);
+  return s;
+}
+
+SeedScene makeSpotLightThroughDoor() {
+  SeedScene s = twoDarkRooms();
+  PunctualLight spot;
+  spot.kind = PunctualLight::Kind::Spot;
+  spot.name = "spot";
+  spot.position = glm::vec3(0.3f, 1.05f, 2.0f);
+  spot.direction = glm::vec3(1.0f, 0.0f, 0.0f);
+  spot.innerCone = 0.14f, spot.outerCone = 0.19f;  // ≈ 8° and 11°, the lamp housing of spot-door
+  spot.intensity = glm::vec3(600.0f);              // W/sr on the axis: about 47 W in all
+  s.scene.lights.push_back(spot);
+  return s;
+}
+
 SeedScene makeThinWall(float thickness) {
   if (!(thickness >= 0.0f)) throw std::invalid_argument("wall thickness must be >= 0");
   SeedScene s;
@@ -102,10 +155,9 @@ SeedScene makeThinWall(float thickness) {
 }
 
 const std::vector<std::string>& builtinSceneNames() {
-  static const std::vector<std::string> names = {"seed1",     "seed2",     "seed3",
-                                                 "spot-door", "thin-wall", "thin-wall-5cm",
-                                                 "openings",  "house-open", "house-stair",
-                                                 "house-spiral", "open-plan", "porch"};
+  static const std::vector<std::string> names = {
+      "seed1",      "seed2",       "seed3",        "spot-door", "thin-wall", "thin-wall-5cm", "openings",
+      "house-open", "house-stair", "house-spiral", "open-plan", "porch",     "point-light",   "spot-light"};
   return names;
 }
 
@@ -117,6 +169,8 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "thin-wall") return makeThinWall(0.0f);
   if (name == "thin-wall-5cm") return makeThinWall(0.05f);
   if (name == "openings") return makeOpeningsScene();
+  if (name == "point-light") return makePointLightRooms();
+  if (name == "spot-light") return makeSpotLightThroughDoor();
   for (const std::string& building : buildingNames())
     if (name == building) return makeBuilding(name).seed;
   throw std::invalid_argument("unknown built-in scene '" + name + "'");

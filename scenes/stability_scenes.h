@@ -15,6 +15,14 @@ namespace cpgi {
 /// re-emitter spreads that pool over all of B; the truth keeps it concentrated.
 SeedScene makeSpotThroughDoor();
 
+/// Two rooms A and B (seed dimensions) joined by the seed door, lit by nothing but a KHR_lights_punctual
+/// point light (about 100 W) in the middle of A, 0.8 m under its ceiling: B gets only what passes the door.
+SeedScene makePointLightRooms();
+
+/// The same rooms lit by a punctual spot light in A (inner cone 8°, outer 11°, about 47 W) aimed +x through
+/// the door at door height, the punctual twin of makeSpotThroughDoor: the beam lands on B's east wall.
+SeedScene makeSpotLightThroughDoor();
+
 /// Two rooms sharing one wall of `thickness` metres (0: two coincident back-to-back faces) with no
 /// opening: A is lit, B must stay exactly black. Light in B is a leak.
 SeedScene makeThinWall(float thickness);

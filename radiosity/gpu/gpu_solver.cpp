@@ -11,6 +11,8 @@
 #include "radiosity/gpu/gl.h"
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
+#include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
 namespace {
@@ -138,6 +140,7 @@ struct SolveConfig : SolverParams {
   bool readTransfer = false;
   double minShotPower = 0.0;
   bool directionalEmission = false;
+  const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
 };
 
 ProgramDefines programDefines(const SolveConfig& params) {
@@ -480,6 +483,17 @@ class Solver {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
+  // Punctual lights (radiosity/lightmap/direct_light.h): their shot is done, so the solve starts after it,
+  // as after any shot: ρE reflected in radiosity and residual, E received.
+  void addDirectLight(const DirectLight& direct, std::vector<glm::vec4>& exitance,
+                      std::vector<glm::vec4>& incident) const {
+    for (size_t i = 0; i < direct.irradiance.size() && i < exitance.size(); ++i) {
+      if (atlas_.patch[i] < 0) continue;
+      exitance[i] += glm::vec4(atlas_.albedo[i] * direct.irradiance[i], 0.0f);
+      incident[i] = glm::vec4(direct.irradiance[i], 0.0f);
+    }
+  }
+
   std::vector<glm::vec3> readImage(const gl::Buffer& b) const {
     std::vector<glm::vec4> v(atlas_.texelCount());
     glGetNamedBufferSubData(b.get(), 0, GLsizeiptr(v.size() * sizeof(glm::vec4)), v.data());
@@ -508,9 +522,11 @@ class Solver {
     texels(posArea_, posArea, kPosArea);
     texels(normalPatch_, normalPatch, kNormalPatch);
     texels(albedo_, albedo, kAlbedo);
+    std::vector<glm::vec4> incident(n, glm::vec4(0.0f));
+    if (params_.direct) addDirectLight(*params_.direct, emission, incident);
     texels(radiosity_, emission, kRadiosity);
     texels(residual_, emission, kResidual);
-    texels(incident_, std::vector<glm::vec4>(n, glm::vec4(0.0f)), kIncident);
+    texels(incident_, incident, kIncident);
     shotGain_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShotGain, shotGain_.get());
 
@@ -747,6 +763,12 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.readTransfer = controls.readTransfer;
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
+  // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver).
+  DirectLight direct;
+  if (!scene.lights.empty()) {
+    direct = shootPunctualLights(scene.lights, RayScene(scene), atlas, ctx);
+    config.direct = &direct;
+  }
   const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
   SolverPrograms own;
   return solveWithLobes(scene, atlas, config, controls.emissionLobes.empty() ? nullptr : &lobes, context, ctx,
@@ -775,6 +797,16 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   GpuSelection sel = solver.start();
   EnergyTotals e;
   e.emitted = channelSum(sel.unshot);
+  if (params.direct) {  // the lights' power was emitted and shot; what it left reflected is in the unshot sum
+    double reflected = 0.0;
+    for (size_t i = 0; i < params.direct->irradiance.size(); ++i)
+      if (atlas.patch[i] >= 0) {
+        const glm::dvec3 r = glm::dvec3(atlas.albedo[i]) * glm::dvec3(params.direct->irradiance[i]);
+        reflected += (r.r + r.g + r.b) * atlas.area[i];
+      }
+    e.shot = punctualEmitted(scene.lights, params.direct->directionalLanded);
+    e.emitted += e.shot - reflected;
+  }
   auto record = [&](const GpuSelection& s) {
     e.unshot = channelSum(s.unshot);
     e.received = channelSum(s.incident);

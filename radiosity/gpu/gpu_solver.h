@@ -117,7 +117,9 @@ class SolverPrograms {
 
 /// Solves the atlas with the user's `settings` and the caller's `controls`. `scene` supplies occluders:
 /// every scene triangle is drawn in the item buffer, those outside the atlas with no patch (they block
-/// light but receive none). Throws InputError for bad settings, SystemError for GL failures.
+/// light but receive none). Its punctual lights (Scene::lights) are shot first, exactly, on the CPU
+/// (radiosity/lightmap/direct_light.h): the solve starts from their reflected light as unshot radiosity and
+/// counts their power as emitted and shot. Throws InputError for bad settings, SystemError for GL failures.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                              const EglContext& gl, Context& ctx, const SolveControls& controls = {});
 

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/lights.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
@@ -246,6 +247,7 @@ class PathTracer {
       if (bounce > 0) deeperLights.emplace(surfaces_, scene_, x, n, false);
       const LightSelection& lights = bounce > 0 ? *deeperLights : firstLights;
       sum += throughput * directLight(x, origin, n, lights, u, rayCount);
+      if (!scene_.lights.empty()) sum += throughput * punctualLight(x, origin, n, rng, rayCount);
 
       const glm::vec3 dir = sampleCosine(n, u.direction[0], u.direction[1]);
       ++rayCount;
@@ -322,6 +324,41 @@ class PathTracer {
     const float pdfLight = lights.probability(surfaces_, k) / tri.area() * r2 / cosY;  // per steradian
     const float pdfBsdf = cosX / kPi;
     return powerHeuristic(pdfLight, pdfBsdf) * (surfaces_.emission[e] / kPi) * cosX / pdfLight;
+  }
+
+  /// Next-event estimate of the irradiance at x from the punctual lights (core/lights.h), which no
+  /// bounce can hit: every light with its own shadow ray when there are few, else one light drawn in
+  /// proportion to its unoccluded irradiance there and weighted by the inverse of that chance.
+  glm::vec3 punctualLight(const glm::vec3& x, const glm::vec3& origin, const glm::vec3& n, Pcg32& rng,
+                          uint64_t& rayCount) const {
+    auto visible = [&](const LightArrival& a) {
+      ++rayCount;
+      const float far = std::isinf(a.distance) ? 3.0e38f : a.distance - offset_;
+      return !(far > 0.0f && rays_.occluded(origin, a.toLight, 0.0f, far));
+    };
+    constexpr size_t kAllUpTo = 8;
+    const std::vector<PunctualLight>& lights = scene_.lights;
+    glm::vec3 sum(0.0f);
+    if (lights.size() <= kAllUpTo) {
+      for (const PunctualLight& light : lights) {
+        const LightArrival a = lightArrival(light, x, n);
+        if (maxComponent(a.irradiance) > 0.0f && visible(a)) sum += a.irradiance;
+      }
+      return sum;
+    }
+    std::vector<float> weight(lights.size());
+    float total = 0.0f;
+    for (size_t k = 0; k < lights.size(); ++k) {
+      const glm::vec3 e = lightArrival(lights[k], x, n).irradiance;
+      total += weight[k] = e.r + e.g + e.b;
+    }
+    if (!(total > 0.0f)) return sum;
+    float target = rng.uniform() * total;
+    size_t k = 0;
+    while (k + 1 < lights.size() && (target >= weight[k] || weight[k] <= 0.0f)) target -= weight[k++];
+    if (weight[k] <= 0.0f) return sum;
+    const LightArrival a = lightArrival(lights[k], x, n);
+    return visible(a) ? a.irradiance * (total / weight[k]) : sum;
   }
 
   const Scene& scene_;

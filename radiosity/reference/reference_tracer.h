@@ -3,7 +3,8 @@
 // irradiance. It shares nothing with the GPU solver: Embree rays for visibility (radiosity/lightmap/ray_scene.h),
 // cosine-weighted hemisphere sampling, next-event estimation to emissive triangles by area sampling,
 // combined with the BSDF-sampled emitter hits by multiple importance sampling (Veach's power heuristic),
-// Russian roulette after a few bounces. Surfaces are one-sided like the solver's patches: a ray that
+// next-event estimation to the punctual lights (core/lights.h; a shadow ray each, since no bounce can hit
+// a point), Russian roulette after a few bounces. Surfaces are one-sided like the solver's patches: a ray that
 // reaches a triangle's back face sees black.
 #pragma once
 

@@ -1,5 +1,5 @@
 // End to end: `cpgi info` on broken scenes exits 1 with exactly one line on stderr that names the file
-// and the problem; --repair turns degenerate input into a warning and exit 0.
+// and the problem; degenerate input is dropped with one warning (exit 0) unless --strict.
 #include <sys/wait.h>
 
 #include <cmath>
@@ -101,33 +101,86 @@ TEST(BadInput, NanAndInfPositions) {
   }
 }
 
-TEST(BadInput, ZeroAreaTrianglesNeedRepair) {
+TEST(BadInput, ZeroAreaTrianglesAreDroppedWithOneWarningAndRefusedWithStrict) {
   test::TempDir dir;
   test::GlbBuilder g;
   g.addNode(
       {{"name", "sliver"}, {"mesh", g.addMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2})}});
   g.writeGlb(dir / "zero.glb");
+  const std::string dropped =
+      "cpgi: warning: " + (dir / "zero.glb") +
+      ": dropped 1 zero-area triangle (first in node 'sliver'); --strict refuses them\n";
+  for (const char* flags : {"", " --repair"}) {  // --repair: the default, kept for old scripts
+    const CommandRun r = cpgi(dir, "info " + quote(dir / "zero.glb") + flags);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err, dropped);
+    EXPECT_NE(r.out.find("triangles      1 "), std::string::npos) << r.out;
+  }
   expectOneLineError(dir, dir / "zero.glb",
-                     "1 zero-area triangle (first in node 'sliver'); run with --repair");
-  const CommandRun r = cpgi(dir, "info " + quote(dir / "zero.glb") + " --repair");
-  EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err, "cpgi: warning: " + (dir / "zero.glb") + ": dropped 1 zero-area triangles\n");
-  EXPECT_NE(r.out.find("triangles      1 "), std::string::npos) << r.out;
+                     "1 zero-area triangle (first in node 'sliver'); without --strict they are dropped",
+                     " --strict");
+  const CommandRun both = cpgi(dir, "info " + quote(dir / "zero.glb") + " --strict --repair");
+  EXPECT_EQ(both.status, 1);
+  EXPECT_EQ(both.errLines().size(), 1u) << both.err;
 }
 
-TEST(BadInput, DuplicateTrianglesNeedRepair) {
+TEST(BadInput, DuplicateTrianglesAreDroppedWithOneWarningAndRefusedWithStrict) {
   test::TempDir dir;
   test::GlbBuilder g;
   const int mesh = g.addMesh(kTriangle);
   g.addNode({{"name", "once"}, {"mesh", mesh}});
   g.addNode({{"name", "twice"}, {"mesh", mesh}});
   g.writeGlb(dir / "dup.glb");
-  expectOneLineError(dir, dir / "dup.glb", "1 duplicate triangle (first in node 'twice'); run with --repair");
-  const CommandRun r = cpgi(dir, "info " + quote(dir / "dup.glb") + " --repair --json");
+  expectOneLineError(dir, dir / "dup.glb", "1 duplicate triangle (first in node 'twice')", " --strict");
+  const CommandRun r = cpgi(dir, "info " + quote(dir / "dup.glb") + " --json");
   EXPECT_EQ(r.status, 0) << r.err;
   const json info = json::parse(r.out);
   EXPECT_EQ(info["triangles"], 1);
-  EXPECT_EQ(info["warnings"], json::array({"dropped 1 duplicate triangles"}));
+  EXPECT_EQ(info["warnings"],
+            json::array({"dropped 1 duplicate triangle (first in node 'twice'); --strict refuses them"}));
+}
+
+// Every command that loads a scene loads it the same way: the slivers of a real export do not stop
+// decompose or bake, and --strict stops each of them.
+TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
+  test::TempDir dir;
+  test::GlbBuilder sliver;
+  sliver.addNode(
+      {{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1, 1, 0, 0})}});
+  sliver.writeGlb(dir / "slivers.glb");
+  const std::string scene = quote(dir / "slivers.glb");
+  const std::vector<std::string> commands = {
+      "info " + scene, "decompose " + scene + " -o " + quote(dir / "d"),
+      "bake " + scene + " -o " + quote(dir / "b") + " -q --allow-dark --texels-per-quad 2",
+      "reference " + scene + " -o " + quote(dir / "r") + " -q --allow-dark --texels-per-quad 2 --spp 2",
+      "compare-cells " + scene + " auto auto"};
+  for (const std::string& command : commands) {
+    const CommandRun strict = cpgi(dir, command + " --strict");
+    EXPECT_EQ(strict.status, 1) << command;
+    ASSERT_EQ(strict.errLines().size(), 1u) << command << "\n" << strict.err;
+    EXPECT_NE(strict.err.find("1 zero-area triangle (first in node 'sliver')"), std::string::npos)
+        << command << "\n"
+        << strict.err;
+  }
+  const CommandRun info = cpgi(dir, commands[0]);
+  EXPECT_EQ(info.status, 0) << info.err;
+}
+
+TEST(BadInput, BadPunctualLightsNameTheFileAndTheLight) {
+  test::TempDir dir;
+  const std::vector<std::pair<json, std::string>> cases = {
+      {{{"type", "point"}, {"name", "bulb"}, {"intensity", -5}},
+       "light 'bulb': intensity -5 is negative or not finite"},
+      {{{"type", "spot"}, {"name", "cone"}, {"spot", {{"innerConeAngle", 1.0}, {"outerConeAngle", 0.5}}}},
+       "light 'cone': spot cone angles must satisfy"},
+      {{{"type", "point"}, {"name", "sun-sized"}, {"intensity", 1e30}}, "more than 1e+20 W"}};
+  for (const auto& [light, problem] : cases) {
+    test::GlbBuilder g = oneTriangle();
+    g.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({light});
+    g.addNode({{"name", "lamp"}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    g.writeGlb(dir / "light.glb");
+    expectOneLineError(dir, dir / "light.glb", problem);
+  }
 }
 
 TEST(BadInput, LinesPrimitive) {

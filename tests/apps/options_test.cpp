@@ -50,8 +50,8 @@ TEST(Options, FlagsSetTheLibrariesFields) {
 TEST(Options, LibraryErrorsNameTheFlag) {
   EXPECT_EQ(userMessage(InputError("voxel size", "must be in (0, 10] metres")),
             "--voxel: must be in (0, 10] metres");
-  EXPECT_EQ(userMessage(InputError("s.glb", "1 duplicate triangle; run with `repair` to drop them")),
-            "s.glb: 1 duplicate triangle; run with --repair to drop them");
+  EXPECT_EQ(userMessage(InputError("s.glb", "1 duplicate triangle; without `strict` they are dropped")),
+            "s.glb: 1 duplicate triangle; without --strict they are dropped");
   EXPECT_EQ(userMessage(InputError("s.glb", "`not a parameter` stays")), "s.glb: `not a parameter` stays");
   EXPECT_EQ(flagOf("item buffer"), "--item-buffer");
   EXPECT_EQ(flagOf("scenes/house.glb"), "scenes/house.glb");

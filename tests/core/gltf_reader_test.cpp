@@ -309,22 +309,31 @@ TEST(GltfReader, OutOfRangeAccessorsAndIndicesAreInputErrors) {
   }
 }
 
-TEST(GltfReader, DegenerateAndDuplicateTrianglesNeedRepair) {
+TEST(GltfReader, DegenerateAndDuplicateTrianglesAreDroppedWithOneWarningOrRefusedWhenStrict) {
   test::GlbBuilder g;
   // Two copies of one triangle, one with its corners rotated (the same triangle), a zero-area one and
   // the mirror-wound copy (a two-sided face, kept).
   const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0,
                                 0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 1, 0, 1, 0, 0};
   g.addNode({{"name", "messy"}, {"mesh", g.addMesh(p)}});
-  EXPECT_NE(loadError(g).find("`repair`"), std::string::npos);  // the CLI names its flag
-  EXPECT_NE(loadError(g).find("zero-area"), std::string::npos) << loadError(g);
-  LoadOptions repair;
-  repair.repair = true;
-  const LoadedScene repaired = load(g, "scene.glb", repair);
-  EXPECT_EQ(repaired.scene.triangles.size(), 2u);
-  ASSERT_EQ(repaired.warnings.size(), 2u);
-  EXPECT_EQ(repaired.warnings[0], "dropped 1 zero-area triangles");
-  EXPECT_EQ(repaired.warnings[1], "dropped 1 duplicate triangles");
+  const LoadedScene loaded = load(g);
+  EXPECT_EQ(loaded.scene.triangles.size(), 2u);
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_EQ(loaded.warnings[0],
+            "dropped 1 zero-area triangle and 1 duplicate triangle (first in node 'messy'); --strict refuses "
+            "them");
+
+  LoadOptions strict;
+  strict.strict = true;
+  const std::string error = loadError(g, strict);
+  EXPECT_EQ(error, "1 zero-area triangle and 1 duplicate triangle (first in node 'messy'); without `strict` "
+                   "they are dropped");
+}
+
+TEST(GltfReader, NothingLeftOnceDegenerateTrianglesAreDroppedIsAnError) {
+  test::GlbBuilder g;
+  g.addNode({{"name", "sliver"}, {"mesh", g.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2})}});
+  EXPECT_EQ(loadError(g), "no triangles left once the degenerate ones are dropped");
 }
 
 }  // namespace

@@ -40,11 +40,11 @@ inline std::string write(const std::string& name, const uint8_t* data, size_t si
   return path;
 }
 
-/// Loads `path` with and without --repair; an InputError is the expected answer to a bad file.
+/// Loads `path` with and without --strict; an InputError is the expected answer to a bad file.
 inline void load(const std::string& path) {
   for (bool repair : {false, true}) {
     try {
-      loadScene(path, LoadOptions{.repair = repair, .maxFileBytes = 1 << 20});
+      loadScene(path, LoadOptions{.strict = !repair, .maxFileBytes = 1 << 20});
     } catch (const InputError&) {
     }
   }

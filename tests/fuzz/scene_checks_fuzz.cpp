@@ -64,7 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   const bool repair = in.next() % 2;
   try {
-    detail::finishScene("fuzz", std::move(raw), LoadOptions{.repair = repair});
+    detail::finishScene("fuzz", std::move(raw), LoadOptions{.strict = !repair});
   } catch (const InputError&) {
   }
   return 0;

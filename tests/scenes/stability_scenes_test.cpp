@@ -34,8 +34,8 @@ TEST(StabilityScenes, ThinWallRoomsShareAWallAndHaveNoPortal) {
     for (const Triangle& t : s.scene.triangles) {
       const glm::vec3 n = t.geometricNormal();
       const bool atA = std::abs(t.p[0].x - 4.0f) < 1e-6f && std::abs(t.p[2].x - 4.0f) < 1e-6f;
-      const bool atB = std::abs(t.p[0].x - (4.0f + thickness)) < 1e-6f &&
-                       std::abs(t.p[2].x - (4.0f + thickness)) < 1e-6f;
+      const bool atB =
+          std::abs(t.p[0].x - (4.0f + thickness)) < 1e-6f && std::abs(t.p[2].x - (4.0f + thickness)) < 1e-6f;
       aEast += atA && n.x < -0.999f;
       bWest += atB && n.x > 0.999f;
     }
@@ -43,6 +43,25 @@ TEST(StabilityScenes, ThinWallRoomsShareAWallAndHaveNoPortal) {
     EXPECT_EQ(bWest, 2);
   }
   EXPECT_THROW(makeThinWall(-1.0f), std::invalid_argument);
+}
+
+TEST(StabilityScenes, PunctualLightRoomsAreLitByTheirLampAlone) {
+  for (const SeedScene& s : {makePointLightRooms(), makeSpotLightThroughDoor()}) {
+    EXPECT_EQ(s.scene.emittedPower(), glm::vec3(0.0f));
+    ASSERT_EQ(s.scene.lights.size(), 1u);
+    EXPECT_TRUE(s.scene.hasLight());
+    const PunctualLight& l = s.scene.lights[0];
+    EXPECT_LT(l.position.x, 4.0f);  // in room A
+    EXPECT_EQ(s.cells.cells.size(), 2u);
+    EXPECT_EQ(s.cells.portals.size(), 1u);
+  }
+  // The spot aims through the door (z in [1.5, 2.5], y below 2.1) along +x.
+  const PunctualLight spot = makeSpotLightThroughDoor().scene.lights[0];
+  EXPECT_EQ(spot.kind, PunctualLight::Kind::Spot);
+  EXPECT_EQ(spot.direction, glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_GT(spot.position.z, 1.5f);
+  EXPECT_LT(spot.position.z, 2.5f);
+  EXPECT_LT(spot.position.y, 2.1f);
 }
 
 TEST(StabilityScenes, EveryBuiltinNameBuilds) {

@@ -1,7 +1,9 @@
 #include "apps/options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <utility>
@@ -290,7 +292,9 @@ std::string parseViewSize(const std::string& text, ViewParams& views) {
   return {};
 }
 
-glm::vec3 parsePoint(const std::string& text, const std::string& option) {
+namespace {
+// Comma-separated finite numbers ("1,2.5, 3"); nothing when any part is not one.
+std::optional<std::vector<float>> parseNumberList(const std::string& text) {
   std::stringstream in(text);
   std::string part;
   std::vector<float> values;
@@ -303,11 +307,18 @@ glm::vec3 parsePoint(const std::string& text, const std::string& option) {
       used = 0;
     }
     if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
-      throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+      return std::nullopt;
     values.push_back(v);
   }
-  if (values.size() != 3) throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
-  return {values[0], values[1], values[2]};
+  return values;
+}
+}  // namespace
+
+glm::vec3 parsePoint(const std::string& text, const std::string& option) {
+  const std::optional<std::vector<float>> values = parseNumberList(text);
+  if (!values || values->size() != 3)
+    throw InputError(option, "'" + text + "' is not X,Y,Z (three numbers in metres)");
+  return {(*values)[0], (*values)[1], (*values)[2]};
 }
 
 // "NAME=V" or "NAME=R,G,B" (split at the last '=', so a name may hold one) → an override of NAME.
@@ -316,28 +327,18 @@ MaterialOverride parseOverride(const std::string& text, const std::string& param
   const std::string what = emission ? "W/m2" : "albedo";
   if (eq == std::string::npos || eq == 0)
     throw InputError(parameter, "'" + text + "' is not MATERIAL=" + what + " or MATERIAL=R,G,B");
-  std::vector<float> values;
-  std::stringstream in(text.substr(eq + 1));
-  std::string part;
-  while (std::getline(in, part, ',')) {
-    size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v) ||
-        v < 0.0f || (!emission && v > 1.0f))
-      throw InputError(
-          parameter,
-          "'" + text +
-              "': " + (emission ? "an emission is a number >= 0 (W/m2)" : "an albedo is a number in [0, 1]"));
-    values.push_back(v);
-  }
-  if (values.size() != 1 && values.size() != 3)
+  const std::optional<std::vector<float>> values = parseNumberList(text.substr(eq + 1));
+  const bool inRange = values && std::all_of(values->begin(), values->end(),
+                                             [&](float v) { return v >= 0.0f && (emission || v <= 1.0f); });
+  if (!inRange)
+    throw InputError(
+        parameter,
+        "'" + text +
+            "': " + (emission ? "an emission is a number >= 0 (W/m2)" : "an albedo is a number in [0, 1]"));
+  if (values->size() != 1 && values->size() != 3)
     throw InputError(parameter, "'" + text + "' is not MATERIAL=" + what + " or MATERIAL=R,G,B");
-  const glm::vec3 v = values.size() == 1 ? glm::vec3(values[0]) : glm::vec3(values[0], values[1], values[2]);
+  const std::vector<float>& n = *values;
+  const glm::vec3 v = n.size() == 1 ? glm::vec3(n[0]) : glm::vec3(n[0], n[1], n[2]);
   MaterialOverride o{text.substr(0, eq), std::nullopt, std::nullopt};
   (emission ? o.emission : o.albedo) = v;
   return o;

@@ -38,6 +38,25 @@ SceneBuilder::Room plainRoom(const std::string& name, float x0, const Palette& p
 
 }  // namespace
 
+namespace {
+// Cells A and B from the node paths, the portal in the door at the wall's mid-plane (A → B), and a
+// camera in each room, for the two-room scenes of kRoom × kRoom rooms on either side of a `wall`.
+void addTwoRoomCellsAndCameras(SeedScene& s, const SceneBuilder::Door& door, float wall) {
+  const float xb = kRoom + wall, xm = kRoom + wall / 2;
+  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
+  PortalQuad portal;
+  portal.name = "portal:A:B";
+  portal.corners = {glm::vec3(xm, 0, door.z0), glm::vec3(xm, door.top, door.z0),
+                    glm::vec3(xm, door.top, door.z1), glm::vec3(xm, 0, door.z1)};
+  portal.cellA = 0;
+  portal.cellB = 1;
+  computePortalFrame(portal);
+  s.cells.portals.push_back(portal);
+  s.scene.cameras.push_back(lookAt("B", {xb + 0.3f, 1.8f, 3.7f}, {xb + kRoom, 1.0f, 2.0f}));
+  s.scene.cameras.push_back(lookAt("A", {3.7f, 1.8f, 3.7f}, {0.0f, 1.0f, 2.0f}));
+}
+}  // namespace
+
 SeedScene makeSpotThroughDoor() {
   SeedScene s;
   SceneBuilder b(s.scene);
@@ -72,18 +91,7 @@ SeedScene makeSpotThroughDoor() {
   b.rect(0, hi.x, +1, {lo.y, olo.z}, {hi.y, lo.z}, p.black, lamp);
   b.rect(0, hi.x, +1, {lo.y, hi.z}, {hi.y, ohi.z}, p.black, lamp);
 
-  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
-  PortalQuad portal;
-  portal.name = "portal:A:B";
-  const float xm = kRoom + wall / 2;
-  portal.corners = {glm::vec3(xm, 0, a.door.z0), glm::vec3(xm, a.door.top, a.door.z0),
-                    glm::vec3(xm, a.door.top, a.door.z1), glm::vec3(xm, 0, a.door.z1)};
-  portal.cellA = 0;
-  portal.cellB = 1;
-  computePortalFrame(portal);
-  s.cells.portals.push_back(portal);
-  s.scene.cameras.push_back(lookAt("B", {xb + 0.3f, 1.8f, 3.7f}, {xb + kRoom, 1.0f, 2.0f}));
-  s.scene.cameras.push_back(lookAt("A", {3.7f, 1.8f, 3.7f}, {0.0f, 1.0f, 2.0f}));
+  addTwoRoomCellsAndCameras(s, a.door, wall);
   return s;
 }
 
@@ -100,18 +108,7 @@ SeedScene twoDarkRooms() {
   b.room(a);
   b.room(rb);
   b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
-  cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
-  PortalQuad portal;
-  portal.name = "portal:A:B";
-  const float xm = kRoom + wall / 2;
-  portal.corners = {glm::vec3(xm, 0, a.door.z0), glm::vec3(xm, a.door.top, a.door.z0),
-                    glm::vec3(xm, a.door.top, a.door.z1), glm::vec3(xm, 0, a.door.z1)};
-  portal.cellA = 0;
-  portal.cellB = 1;
-  computePortalFrame(portal);
-  s.cells.portals.push_back(portal);
-  s.scene.cameras.push_back(lookAt("B", {xb + 0.3f, 1.8f, 3.7f}, {xb + kRoom, 1.0f, 2.0f}));
-  s.scene.cameras.push_back(lookAt("A", {3.7f, 1.8f, 3.7f}, {0.0f, 1.0f, 2.0f}));
+  addTwoRoomCellsAndCameras(s, a.door, wall);
   return s;
 }
 }  // namespace

@@ -39,6 +39,25 @@ SceneBuilder::Room plainRoom(const std::string& name, float x0, const Palette& p
 }  // namespace
 
 namespace {
+constexpr float kTwoRoomWall = 0.2f;
+
+struct TwoRooms {
+  Palette palette;
+  SceneBuilder::Door door;
+};
+
+// Plain rooms A | B, kRoom square, on either side of a kTwoRoomWall wall with the seed door and its reveal.
+TwoRooms addTwoPlainRooms(SceneBuilder& b, glm::vec3 lightEmission) {
+  const Palette p = addPalette(b, lightEmission);
+  const float xb = kRoom + kTwoRoomWall;
+  SceneBuilder::Room a = plainRoom("A", 0.0f, p), rb = plainRoom("B", xb, p);
+  a.doorEast = rb.doorWest = true;
+  b.room(a);
+  b.room(rb);
+  b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
+  return {p, a.door};
+}
+
 // Cells A and B from the node paths, the portal in the door at the wall's mid-plane (A → B), and a
 // camera in each room, for the two-room scenes of kRoom × kRoom rooms on either side of a `wall`.
 void addTwoRoomCellsAndCameras(SeedScene& s, const SceneBuilder::Door& door, float wall) {
@@ -61,13 +80,8 @@ SeedScene makeSpotThroughDoor() {
   SeedScene s;
   SceneBuilder b(s.scene);
   // 0.1 m × 0.1 m at 5000 W/m²: 50 W, about what the seed scenes' 1 m² lights put into a room.
-  const Palette p = addPalette(b, glm::vec3(5000.0f));
-  const float wall = 0.2f, xb = kRoom + wall;
-  SceneBuilder::Room a = plainRoom("A", 0.0f, p), rb = plainRoom("B", xb, p);
-  a.doorEast = rb.doorWest = true;
-  b.room(a);
-  b.room(rb);
-  b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
+  const TwoRooms rooms = addTwoPlainRooms(b, glm::vec3(5000.0f));
+  const Palette& p = rooms.palette;
 
   // The lamp: a black tube 0.5 m long, 0.1 m square inside (1 cm walls), its open end facing +x at door
   // height, the emitter at its closed end. Its beam half-angle is atan(0.1 / 0.5) ≈ 11°.
@@ -91,7 +105,7 @@ SeedScene makeSpotThroughDoor() {
   b.rect(0, hi.x, +1, {lo.y, olo.z}, {hi.y, lo.z}, p.black, lamp);
   b.rect(0, hi.x, +1, {lo.y, hi.z}, {hi.y, ohi.z}, p.black, lamp);
 
-  addTwoRoomCellsAndCameras(s, a.door, wall);
+  addTwoRoomCellsAndCameras(s, rooms.door, kTwoRoomWall);
   return s;
 }
 
@@ -101,14 +115,7 @@ namespace {
 SeedScene twoDarkRooms() {
   SeedScene s;
   SceneBuilder b(s.scene);
-  const Palette p = addPalette(b, glm::vec3(0.0f));
-  const float wall = 0.2f, xb = kRoom + wall;
-  SceneBuilder::Room a = plainRoom("A", 0.0f, p), rb = plainRoom("B", xb, p);
-  a.doorEast = rb.doorWest = true;
-  b.room(a);
-  b.room(rb);
-  b.doorReveal(kRoom, xb, a.door, "A", "B", p.wall, p.floor);
-  addTwoRoomCellsAndCameras(s, a.door, wall);
+  addTwoRoomCellsAndCameras(s, addTwoPlainRooms(b, glm::vec3(0.0f)).door, kTwoRoomWall);
   return s;
 }
 }  // namespace

@@ -75,7 +75,7 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
   const Clock::time_point start = Clock::now();
   SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
   // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/gpu/ambient.h).
-  addAmbient(atlas, {}, glm::dvec3(solved.energy.unshot / 3.0),
+  addAmbient(atlas, solved.residual, glm::dvec3(solved.energy.unshot / 3.0),
              cellChannel(atlas, cells.scene, cells.graph).values, cells.graph, solved.radiosity);
   const double seconds = secondsSince(start);
   radiosity = std::move(solved.radiosity);

@@ -6,10 +6,9 @@
 
 #include "core/error.h"
 #include "radiosity/cells/cell_atlases.h"
+#include "radiosity/cells/cell_first_shot.h"
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/portal_transfer.h"
-#include "radiosity/lightmap/direct_light.h"
-#include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
 namespace {
@@ -36,68 +35,6 @@ void checkCells(const Scene& scene, const CellGraph& graph, const CellSolveParam
   if (params.portals == PortalLight::Directional &&
       !(params.lobeMinWidth > 0.0f && params.lobeMinWidth <= 0.45f))
     throw InputError("solver", "the narrowest portal lobe must be in (0, 0.45]");
-}
-
-// Punctual lights (radiosity/lightmap/direct_light.h): their exact first shot lands on every cell's own
-// texels through the whole scene (a lamp's light reaches the next room through the door directly, as it
-// does in a global solve, instead of being re-emitted diffusely by the portal); portal patches get none.
-// What each texel reflects joins its cell's pending light. Returns, per cell, the light absorbed at once.
-struct CellDirectLight {
-  std::vector<double> absorbed;  ///< per cell, W (R + G + B): (1 − ρ) E × area
-  double landed = 0.0, emitted = 0.0;
-};
-CellDirectLight shootLightsIntoCells(const Scene& scene, std::vector<CellState>& cells, Context& ctx) {
-  CellDirectLight out;
-  out.absorbed.assign(cells.size(), 0.0);
-  if (scene.lights.empty()) return out;
-  const RayScene occluders(scene);
-  std::vector<DirectLight> direct(cells.size());
-  double directional = 0.0;
-  for (size_t c = 0; c < cells.size(); ++c) {
-    std::vector<char> portal(cells[c].atlas.patches.size(), 0);
-    for (int p : cells[c].portalPatch)
-      if (p >= 0) portal[size_t(p)] = 1;
-    direct[c] = shootPunctualLights(scene.lights, occluders, cells[c].atlas, ctx, portal);
-    out.landed += direct[c].landed;
-    directional += direct[c].directionalLanded;
-  }
-  out.emitted = punctualEmitted(scene.lights, directional);
-  // Each cell's sum is within its lights' power, but texel centres over all cells may sum to a little more
-  // (+0.2 % for the point-light rooms at 4 texels/m): scaled back so that no light is made up.
-  const float scale = out.landed > out.emitted ? float(out.emitted / out.landed) : 1.0f;
-  out.landed = std::min(out.landed, out.emitted);
-  for (size_t c = 0; c < cells.size(); ++c) {
-    CellState& s = cells[c];
-    for (size_t i = 0; i < direct[c].irradiance.size(); ++i) {
-      if (s.atlas.patch[i] < 0) continue;
-      const glm::vec3 e = direct[c].irradiance[i] * scale;
-      s.pending[i] += s.atlas.albedo[i] * e;
-      const glm::dvec3 kept = (glm::dvec3(1.0) - glm::dvec3(s.atlas.albedo[i])) * glm::dvec3(e);
-      out.absorbed[c] += (kept.r + kept.g + kept.b) * s.atlas.area[i];
-    }
-  }
-  return out;
-}
-
-// The lights' share of the bookkeeping: each cell emitted what landed in it (the reflected part is in its
-// pending light already, the rest absorbed at once); what landed nowhere escaped from the cell that got
-// the most, so that every cell balances.
-void addDirectBookkeeping(const CellDirectLight& direct, SolveResult& result) {
-  if (direct.emitted <= 0.0) return;
-  std::vector<CellEnergy>& cells = result.perCell->cells;
-  size_t most = 0;
-  for (size_t c = 0; c < cells.size(); ++c) {
-    cells[c].emitted += direct.absorbed[c];
-    cells[c].absorbed += direct.absorbed[c];
-    result.energy.emitted += direct.absorbed[c];
-    if (cells[c].emitted > cells[most].emitted) most = c;
-  }
-  const double escaped = std::max(direct.emitted - direct.landed, 0.0);
-  cells[most].emitted += escaped;
-  cells[most].escaped += escaped;
-  result.energy.emitted += escaped;
-  result.energy.shot += direct.landed + escaped;
-  result.energy.received += direct.landed;
 }
 
 // The result before the first round: every cell's name, emitted power and texels.
@@ -249,6 +186,28 @@ double endRound(std::vector<CellState>& cells, NextRound& next, PortalTransfer& 
   return unshot;
 }
 
+// What is still pending at the stop, per global texel (W/m²), for the ambient term (radiosity/gpu/ambient.h)
+// to follow: light arrived on a portal and not yet shot is spread over its cell's own texels, where it
+// would have landed first. Without it the ambient term spread the whole scene's unshot power by area, and
+// a dim room two doors from the lamp came out 19 % bright at the default stop.
+std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells, const LightmapAtlas& global) {
+  std::vector<glm::vec3> residual(global.texelCount(), glm::vec3(0.0f));
+  for (const CellState& s : cells) {
+    std::vector<char> onPortal(s.atlas.patches.size(), 0);
+    for (int p : s.portalPatch)
+      if (p >= 0) onPortal[size_t(p)] = 1;
+    glm::dvec3 portalPower(0.0);
+    for (size_t t = 0; t < s.pending.size(); ++t)
+      if (s.atlas.patch[t] >= 0 && onPortal[size_t(s.atlas.patch[t])])
+        portalPower += texelPower(s.pending[t], s.atlas.area[t]);
+    double ownArea = 0.0;
+    for (const auto& [g, t] : s.toGlobal) ownArea += global.area[g];
+    const glm::vec3 spread = ownArea > 0.0 ? glm::vec3(portalPower / ownArea) : glm::vec3(0.0f);
+    for (const auto& [g, t] : s.toGlobal) residual[g] += s.pending[t] + spread;
+  }
+  return residual;
+}
+
 // The totals once the rounds are over.
 void finishBookkeeping(const std::vector<CellState>& cells, const LightmapAtlas& global,
                        SolveResult& result) {
@@ -258,6 +217,7 @@ void finishBookkeeping(const std::vector<CellState>& cells, const LightmapAtlas&
     result.energy.absorbed += ce.absorbed;
     result.energy.unshot += ce.unshot;
   }
+  result.residual = pendingPerGlobalTexel(cells, global);
   result.unshotFraction = result.energy.emitted > 0.0 ? result.energy.unshot / result.energy.emitted : 0.0;
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (global.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
@@ -286,11 +246,11 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
   const std::vector<PortalLink> links = linkPortals(graph, cells);
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params, cells);
-
-  const CellDirectLight direct = shootLightsIntoCells(scene, cells, ctx);
-  SolveResult result = startBookkeeping(graph, cells, global);
-  addDirectBookkeeping(direct, result);
   CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
+
+  const CellFirstShot first = shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
+  SolveResult result = startBookkeeping(graph, cells, global);
+  addFirstShotBookkeeping(first, result);
   SolveControls controls;
   controls.readTransfer = true;
   const double emitted = result.energy.emitted, target = params.solver.unshotFraction * emitted;

@@ -46,9 +46,12 @@ TEST(DirectionalBake, SpotThroughADoorAgainstTheReference) {
                directional = nonEmissiveError(dir, "directional");
   std::printf("spot-door 8x8: relative RMSE (non-emissive) global %.4f, cells diffuse %.4f, directional %.4f\n",
               global, diffuse, directional);
-  // The target: directional portals at least halve the cells' excess error over the global solve.
-  EXPECT_GT(diffuse - global, 0.1);  // the failure being fixed is there
-  EXPECT_LT(directional - global, 0.5 * (diffuse - global));
+  // The spot's beam crossed the door as portal light, and a diffuse portal spread it: the cells' excess
+  // error over the global solve was > 0.1 with diffuse portals, halved by directional ones. Since the
+  // lights' first shot goes over the whole scene (radiosity/cells/cell_first_shot.h) both are at the
+  // global solve's error: measured +0.004 either way.
+  EXPECT_LT(diffuse - global, 0.02);
+  EXPECT_LT(directional - global, 0.02);
 }
 
 TEST(DirectionalBake, UnknownPortalModeFailsWithOneLine) {

@@ -157,7 +157,7 @@ TEST_F(OnDemandSolve, OneRoomWithCoarseNeighbours) {
   EXPECT_TRUE(blackOutside(r, {1}));
   const double error = errorIn(r, 1);
   std::printf("room B on demand (coarse A, C) against the whole cells solve: relative RMSE %.4f\n", error);
-  EXPECT_LT(error, 0.07);  // measured 0.046
+  EXPECT_LT(error, 0.05);  // measured 0.046, 0.017 since the lamps shoot over the whole scene
   ASSERT_EQ(r.perCell->cells.size(), 3u);
   EXPECT_FALSE(r.perCell->cells[0].written);
   EXPECT_TRUE(r.perCell->cells[1].written);

@@ -282,12 +282,15 @@ int runBake(const BakeOptions& o) {
     gl = std::make_unique<EglContext>(ctx);
   }
   SolveResult s = solveBake(o, in, *gl, ctx);
-  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake).
+  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
+  // scene without any is labelled by its automatic rooms, for the per-cell figures and the ambient term.
   const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
-  const ExrChannel texelCells = cellChannel(in.atlas, in.loaded.scene, cells);
+  const RoomLabels rooms = cells.empty() ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx) : RoomLabels{};
+  const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
+  const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
   BakeFigures f;
-  f.cellNames = cellNames(cells);
-  f.ambient = addBakeAmbient(o, in, cells, texelCells, s);
+  f.cellNames = cellNames(texelGraph);
+  f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
   {
     auto t = ctx.time("write");
     // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"

@@ -5,7 +5,9 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "decomposition/faced_cells.h"
 #include "decomposition/outside_portals.h"
+#include "radiosity/lightmap/cell_channel.h"
 
 namespace cpgi::cli {
 
@@ -62,6 +64,32 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
   CellGraph graph = matchCellsToScene(loaded.scene, other, path.string(), ctx);
   decomp::orientOutsidePortals(loaded.scene, graph);
   return graph;
+}
+
+RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
+                             Context& ctx) {
+  auto t = ctx.time("rooms");
+  RoomLabels out;
+  decomp::Decomposition d;
+  try {
+    Context quiet;  // the decomposition's warnings are about cells the user did not ask for
+    decomp::DecomposeParams params;
+    params.sourceName = scenePath;
+    d = decomp::decompose(scene, params, quiet);
+  } catch (const InputError&) {
+    return out;
+  }
+  if (d.graph.cells.size() < 2) return out;
+  std::vector<glm::vec3> points, normals;
+  std::vector<size_t> texel;
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (atlas.patch[i] >= 0) points.push_back(atlas.position[i]), normals.push_back(atlas.normal[i]), texel.push_back(i);
+  const std::vector<int> cell = decomp::cellsFaced(d, points, normals);
+  out.channel = ExrChannel{kCellChannel, std::vector<float>(atlas.texelCount(), -1.0f)};
+  for (size_t k = 0; k < texel.size(); ++k) out.channel.values[texel[k]] = float(cell[k]);
+  out.graph = std::move(d.graph);
+  for (Cell& c : out.graph.cells) c.triangles.clear();  // they index the decomposition's split scene
+  return out;
 }
 
 }  // namespace cpgi::cli

@@ -8,7 +8,9 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "core/scene_io.h"
+#include "core/image_io.h"
 #include "decomposition/decompose.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
 
@@ -28,5 +30,17 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 /// Throws InputError("--cells", ...) for "none" or a missing file.
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
                        const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx);
+
+/// The rooms of a scene without cells of its own, for its lightmap's "cell" channel (compare-light's
+/// per-cell figures) and the ambient term: the automatic decomposition with default options (so that bake
+/// and reference label alike), each texel given the room in front of it (decomp::cellsFaced); no triangle
+/// is split. `graph` holds the rooms' names and portals, no triangles. Both are empty when the
+/// decomposition finds fewer than two rooms or cannot take the scene: then the scene is one room.
+struct RoomLabels {
+  CellGraph graph;
+  ExrChannel channel;
+};
+RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
+                             Context& ctx);
 
 }  // namespace cpgi::cli

@@ -17,6 +17,7 @@ namespace {
 struct GenerateOptions {
   std::string name;
   std::string output;
+  bool noCells = false;  ///< the raw model, as a user would bring it
 };
 
 int runGenerate(const GenerateOptions& o) {
@@ -35,6 +36,7 @@ int runGenerate(const GenerateOptions& o) {
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec) throw InputError(o.output, "cannot create its folder: " + ec.message());
   GltfWriteOptions options;
+  if (o.noCells) scene.cells = CellGraph{};
   options.cells = &scene.cells;
   writeGltf(o.output, scene.scene, options);
   std::cout << o.output << ": " << o.name << ", " << scene.scene.triangles.size() << " triangles, "
@@ -51,6 +53,8 @@ void addGenerateCommand(CLI::App& app, CommandFn& selected) {
   CLI::App* sub = app.add_subcommand("generate", "Write a built-in scene as glTF, with its hand-made cells");
   sub->add_option("name", options->name, names)->required();
   sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required();
+  sub->add_flag("--no-cells", options->noCells,
+                "Leave out the hand-made cells and portals: the raw model, as a user would bring it");
   sub->callback([&selected, options] { selected = [options] { return runGenerate(*options); }; });
 }
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/cell_source.h"
 #include "apps/commands.h"
 #include "apps/lightmap_report.h"
 #include "apps/options.h"
@@ -95,6 +96,7 @@ TexelChoice chooseTexels(const ReferenceOptions& o, const LightmapAtlas& atlas, 
 struct ReferenceFigures {
   double solveSeconds = 0.0, noise = 0.0, noiseNonEmissive = 0.0;
   size_t traced = 0;
+  std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
 };
 
 nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loaded, const QuadSet& quads,
@@ -110,7 +112,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
                   .triangles = loaded.scene.triangles.size(),
                   .quads = quads.quads.size(),
                   .views = written.views,
-                  .cellNames = cellNames(loaded.cells)};
+                  .cellNames = f.cellNames};
   nlohmann::json report = lightmapReport(run, ctx);
   report["texels_traced"] = f.traced;
   report["atlas_width"] = atlas.width;
@@ -173,8 +175,11 @@ int runReference(const ReferenceOptions& o) {
 
   ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
-  // "cell": each texel's cell of the scene's own graph, for compare-light's per-cell figures.
-  const ExrChannel cells = cellChannel(atlas, scene, loaded.cells);
+  // "cell": each texel's cell of the scene's own graph (or of its automatic rooms, labelled as bake
+  // does), for compare-light's per-cell figures.
+  const RoomLabels rooms = loaded.cells.empty() ? labelTexelsByRoom(scene, o.scene, atlas, ctx) : RoomLabels{};
+  const ExrChannel cells = rooms.graph.empty() ? cellChannel(atlas, scene, loaded.cells) : rooms.channel;
+  f.cellNames = cellNames(rooms.graph.empty() ? loaded.cells : rooms.graph);
   LightmapOutputs written;
   if (choice.sparse)
     writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, choice.sampleWeight);

@@ -3,6 +3,7 @@
 // cell. On the openings scene (room C two openings from the lamp), the far rooms' ratios are pinned for
 // the global solve (the 3×3 item-buffer test and the fixed eyes made B +15 % and C +17 % converged) and
 // cell by cell with both portal models (bench/RESULTS.md).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -117,6 +118,45 @@ TEST_F(PerCellPortals, RoomsLitThroughPortalsMatchTheReference) {
       EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << bake << " " << c.dump();
     }
   }
+}
+
+std::vector<float> channelOf(const std::filesystem::path& dir, const std::string& name) {
+  std::vector<ExrChannel> extra;
+  readExr((dir / "lightmap.exr").string(), &extra);
+  for (ExrChannel& c : extra)
+    if (c.name == name) return std::move(c.values);
+  return {};
+}
+
+// A raw model without cells (openings without its hand-made ones): bake and reference label every texel
+// by the room of the automatic decomposition in front of it, alike, so compare-light reports the three
+// rooms; before, the whole scene was one figure and a dark room could not be seen.
+TEST(PerCellErrorWithoutCells, RoomsOfTheAutomaticDecomposition) {
+  test::TempDir dir;
+  const std::string scene = test::quote(dir / "raw.glb"), atlas = " --density 2 ";
+  test::cpgiOrThrow(dir, "generate openings --no-cells -o " + scene);
+  test::cpgiOrThrow(dir, "bake " + scene + " -o " + test::quote(dir / "bake") + atlas + "-q");
+  test::cpgiOrThrow(dir, "reference " + scene + " -o " + test::quote(dir / "ref") + atlas + "--spp 32 -q");
+  const std::vector<float> baked = channelOf(dir / "bake", "cell"), traced = channelOf(dir / "ref", "cell");
+  const std::vector<float> area = channelOf(dir / "bake", "area");
+  ASSERT_FALSE(baked.empty());
+  ASSERT_EQ(area.size(), baked.size());
+  EXPECT_EQ(baked, traced);
+  EXPECT_EQ(*std::max_element(baked.begin(), baked.end()), 2.0f);
+  size_t surface = 0, unlabelled = 0;
+  for (size_t i = 0; i < area.size(); ++i)
+    if (area[i] > 0.0f) ++surface, unlabelled += baked[i] < 0.0f;
+  const nlohmann::json report = nlohmann::json::parse(test::slurp(dir / "bake/report.json"));
+  EXPECT_EQ(report["cell_names"].size(), 3u);
+  const test::CommandRun r =
+      cpgi(dir, "compare-light " + test::quote(dir / "bake") + " " + test::quote(dir / "ref") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["cells"].size(), 3u);
+  for (const nlohmann::json& c : j["cells"]) EXPECT_GT(c["texels"].get<size_t>(), 0u) << c.dump();
+  // Every surface faces a room (only padding is −1).
+  EXPECT_GT(surface, 0u);
+  EXPECT_EQ(unlabelled, 0u);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "apps/compare_cells_bake.h"
 
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -11,6 +13,7 @@
 #include "radiosity/gpu/ambient.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/metrics/cell_metrics.h"
 #include "radiosity/metrics/metrics.h"
 
 namespace cpgi::cli {
@@ -91,6 +94,29 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
           {"max_cell_texels", solved.perCell->maxCellTexels}};
 }
 
+// Each cell of the side's own graph against the reference (radiosity/metrics/cell_metrics.h), lamps left
+// out as in the whole figures: the room lit through doors is the one a whole figure cannot see.
+void addCellErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, const LightmapAtlas& atlas,
+                   const CellsToBake& cells, const Reference& ref) {
+  std::vector<float> sigma(atlas.texelCount());
+  for (size_t i = 0; i < sigma.size(); ++i) sigma[i] = glm::length(ref.result.standardError[i]);
+  const ExrChannel cell = cellChannel(atlas, cells.scene, cells.graph);
+  const std::vector<CellError> errors = compareCells(radiosity, ref.result.radiosity, ref.nonEmissive, sigma,
+                                                     cell.values, {}, atlas.validTexels(), cellNames(cells.graph));
+  nlohmann::json list = nlohmann::json::array();
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  for (const CellError& e : errors)
+    list.push_back({{"name", e.name},
+                    {"texels", e.texels},
+                    {"ratio_of_means", number(e.ratioOfMeans)},
+                    {"ratio_error", number(e.ratioError)},
+                    {"rel_rmse", number(e.relRmse)},
+                    {"reference_noise", number(e.referenceNoise)}});
+  side["cells_error"] = list;
+  const std::optional<size_t> worst = worstCell(errors);
+  side["worst_cell"] = worst ? nlohmann::json(errors[*worst].name) : nlohmann::json(nullptr);
+}
+
 void addErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, const LightmapAtlas& atlas,
                const Reference& ref, int refIndex) {
   const LightmapError all = compareLightmaps(radiosity, ref.result.radiosity, atlas.area);
@@ -119,12 +145,15 @@ nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, cons
   const Reference refA = trace(a, atlasA, params.reference, ctx);
   nlohmann::json references = nlohmann::json::array({refA.report});
   addErrors(sideA, radiosityA, atlasA, refA, 0);
+  addCellErrors(sideA, radiosityA, atlasA, a, refA);
   if (shared) {
     addErrors(sideB, radiosityB, atlasB, refA, 0);
+    addCellErrors(sideB, radiosityB, atlasB, b, refA);
   } else {
     const Reference refB = trace(b, atlasB, params.reference, ctx);
     references.push_back(refB.report);
     addErrors(sideB, radiosityB, atlasB, refB, 1);
+    addCellErrors(sideB, radiosityB, atlasB, b, refB);
   }
 
   nlohmann::json out = {{"texels_per_quad", params.atlas.texelsPerQuad},
@@ -167,6 +196,13 @@ void printCellBakes(const nlohmann::json& bake) {
         key[0] == 'a' ? "A" : "B", s["source"].get<std::string>().c_str(), s["cells"].get<int>(),
         s["seconds"].get<double>(), s["shots"].get<int>(), s["rounds"].get<int>(),
         100.0 * s["rel_rmse"].get<double>(), 100.0 * s["rel_rmse_nonemissive"].get<double>());
+    std::printf("    per cell (without lamps), ratio of means and rel RMSE:");
+    for (const auto& c : s["cells_error"]) {
+      if (c["ratio_of_means"].is_null()) continue;
+      std::printf(" %s %.3f (%.1f%%)%s", c["name"].get<std::string>().c_str(), c["ratio_of_means"].get<double>(),
+                  100.0 * c["rel_rmse"].get<double>(), c["name"] == s["worst_cell"] ? " <- worst" : "");
+    }
+    std::printf("\n");
   }
   const auto& d = bake["difference_points"];
   std::printf("  A - B: %+.3f points of rel RMSE (%+.3f without lamps)\n", d["rel_rmse"].get<double>(),

@@ -2,9 +2,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/error.h"
@@ -101,8 +101,9 @@ void addCellErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity
   std::vector<float> sigma(atlas.texelCount());
   for (size_t i = 0; i < sigma.size(); ++i) sigma[i] = glm::length(ref.result.standardError[i]);
   const ExrChannel cell = cellChannel(atlas, cells.scene, cells.graph);
-  const std::vector<CellError> errors = compareCells(radiosity, ref.result.radiosity, ref.nonEmissive, sigma,
-                                                     cell.values, {}, atlas.validTexels(), cellNames(cells.graph));
+  const std::vector<CellError> errors =
+      compareCells(radiosity, ref.result.radiosity, ref.nonEmissive, sigma, cell.values, {},
+                   atlas.validTexels(), cellNames(cells.graph));
   nlohmann::json list = nlohmann::json::array();
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   for (const CellError& e : errors)
@@ -199,8 +200,9 @@ void printCellBakes(const nlohmann::json& bake) {
     std::printf("    per cell (without lamps), ratio of means and rel RMSE:");
     for (const auto& c : s["cells_error"]) {
       if (c["ratio_of_means"].is_null()) continue;
-      std::printf(" %s %.3f (%.1f%%)%s", c["name"].get<std::string>().c_str(), c["ratio_of_means"].get<double>(),
-                  100.0 * c["rel_rmse"].get<double>(), c["name"] == s["worst_cell"] ? " <- worst" : "");
+      std::printf(" %s %.3f (%.1f%%)%s", c["name"].get<std::string>().c_str(),
+                  c["ratio_of_means"].get<double>(), 100.0 * c["rel_rmse"].get<double>(),
+                  c["name"] == s["worst_cell"] ? " <- worst" : "");
     }
     std::printf("\n");
   }

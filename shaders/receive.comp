@@ -9,9 +9,10 @@
 // which measured twice as slow for this pass (seed3, 64² per quad).
 #include "common.glsl"
 #include "atlas_buffers.glsl"
+layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
+#define SEEN_PATCH_COVERS
 #include "visibility.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 3) readonly buffer Tiles { ivec4 tiles[]; };
 layout(std430, binding = 4) readonly buffer TileList { uint tileCount; uint tileArgs[3]; uint tileList[]; };
 layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
@@ -178,6 +179,20 @@ vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
              : fromRegion(x, n, r);
 }
 
+vec3 gReceiver;  // the receiver texel's position (m), set by main()
+
+// Whether gReceiver lies on patch `seen`'s chart (within a quarter texel of its edge): its parallelogram
+// origin + [0, w] texelU + [0, h] texelV, in the patch's plane.
+bool seenPatchCovers(int seen) {
+  PatchInfo q = patches[seen];
+  vec3 u = q.texelU.xyz, v = q.texelV.xyz, d = gReceiver - q.origin.xyz;
+  float uu = dot(u, u), vv = dot(v, v), uv = dot(u, v), du = dot(d, u), dv = dot(d, v);
+  float det = uu * vv - uv * uv;
+  if (det <= 0.0) return false;
+  vec2 ij = vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
+  return all(greaterThanEqual(ij, vec2(-0.25))) && all(lessThanEqual(ij, vec2(q.rect.zw) + 0.25));
+}
+
 void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
   if (entry >= tileCount) return;  // uniform across the group
@@ -192,6 +207,7 @@ void main() {
   vec4 np = normalPatch[tx];
   if (int(np.w) != tile.z) return;
   vec3 x = posArea[tx].xyz;
+  gReceiver = x;
   vec3 e = vec3(0.0);
 #ifdef DIRECTIONAL
   gReceiverArea = posArea[tx].w;

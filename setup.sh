@@ -12,6 +12,7 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libopenexr-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev
   libembree-dev libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
   chromium
 )
 

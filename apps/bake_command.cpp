@@ -8,11 +8,14 @@
 // "cell", lightmap.png, baked.glb with the cells, view-*.png/.exr), report.json and report.html
 // (apps/report_page.h), all or nothing. The options are apps/options.h's.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +25,7 @@
 #include "apps/options.h"
 #include "apps/report_page.h"
 #include "core/error.h"
+#include "core/memory_limit.h"
 #include "core/output_dir.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
@@ -33,6 +37,7 @@
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 
 namespace cpgi::cli {
@@ -56,6 +61,7 @@ struct BakeOptions {
   bool allowDark = false;             ///< go on when nothing lights the scene
   ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
+  bool maxShotsGiven = false;  ///< --max-shots on the command line (else the solver's default bound)
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -148,6 +154,46 @@ void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
   }
   if (in.atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
   if (!in.loaded.scene.hasLight()) ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
+}
+
+// The atlas was checked alone when it was built; the solve adds its item buffers: per visibility region
+// (up to the larger of --regions and --strong-regions, squared) an item and a depth layer of the buffer's
+// pixels (8 bytes a pixel), and half as much again for what the GL driver keeps beside them.
+void requireSolveMemory(const BakeOptions& o, const LightmapAtlas& atlas) {
+  const double regions = std::pow(std::max(o.solver.maxRegions, o.solver.strongShotRegions), 2);
+  const double pixels = double(o.solver.itemBuffer) * double(o.solver.itemBuffer) * regions;
+  const double bytes = double(atlas.texelCount()) * kBakeBytesPerTexel + pixels * 12.0;
+  requireMemory(bytes, o.atlas.memoryLimit, "item buffer",
+                "the solve (" + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+                    " atlas texels, item buffers of " + std::to_string(o.solver.itemBuffer) + "^2 pixels x " +
+                    std::to_string(int(regions)) + " regions)",
+                "lower `item buffer` or raise `maximum memory`");
+}
+
+// In a closed scene of mean albedo ρ, light bounces about ln(unshot) / ln(ρ) times before the unshot
+// share falls to --unshot, each bounce a round of shots over the lit patches: near ρ = 1 that is thousands
+// of rounds (at 1, never), which the default --max-shots of 100,000 would let run for hours. Refused
+// up front unless the user bounded the solve with --max-shots (an open scene lets light escape, so an
+// albedo of 1 there would converge: the message says how to go on). A dark scene has nothing to shoot.
+void requireConvergence(const BakeOptions& o, const Scene& scene, const LightmapAtlas& atlas) {
+  constexpr double kMaxBounces = 200.0;
+  if (o.maxShotsGiven || !scene.hasLight()) return;
+  double weighted = 0.0, area = 0.0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (atlas.patch[i] >= 0) {
+      const glm::vec3& a = atlas.albedo[i];
+      weighted += double(atlas.area[i]) * std::max({a.r, a.g, a.b});
+      area += atlas.area[i];
+    }
+  const double albedo = area > 0.0 ? weighted / area : 0.0;
+  const double bounces = albedo >= 1.0 ? INFINITY : std::log(o.solver.unshotFraction) / std::log(albedo);
+  if (!(bounces > kMaxBounces)) return;
+  std::ostringstream s;
+  s << "mean albedo " << albedo << ": light would bounce "
+    << (std::isinf(bounces) ? std::string("for ever") : "about " + std::to_string(int(bounces)) + " times")
+    << " before `unshot fraction` " << o.solver.unshotFraction
+    << " is unshot; lower the albedo, raise `unshot fraction`, or bound the solve with `maximum shots` N";
+  throw InputError(o.scene, s.str());
 }
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -274,8 +320,10 @@ int runBake(const BakeOptions& o) {
   Context ctx;
   ctx.setProgress(progressPrinter(o.quiet));
   BakeInput in = loadBakeInput(o, ctx);
-  OutputDir out(o.output);
+  OutputDir out(o.output, kLightmapResultNames);
   buildBakeAtlas(o, in, ctx);
+  requireSolveMemory(o, in.atlas);
+  requireConvergence(o, in.loaded.scene, in.atlas);
   std::unique_ptr<EglContext> gl;
   {
     auto t = ctx.time("egl");
@@ -291,6 +339,12 @@ int runBake(const BakeOptions& o) {
   BakeFigures f;
   f.cellNames = cellNames(texelGraph);
   f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
+  const std::pair<const char*, double> totals[] = {{"emitted", s.energy.emitted},
+                                                   {"shot", s.energy.shot},
+                                                   {"received", s.energy.received},
+                                                   {"absorbed", s.energy.absorbed},
+                                                   {"unshot", s.energy.unshot}};
+  requireFiniteResult(o.scene, in.atlas, s.radiosity, totals);
   {
     auto t = ctx.time("write");
     // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
@@ -358,7 +412,10 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
-  sub->callback([&selected, o] { selected = [o] { return runBake(*o); }; });
+  sub->callback([&selected, o, sub] {
+    o->maxShotsGiven = sub->count("--max-shots") > 0;
+    selected = [o] { return runBake(*o); };
+  });
 }
 
 }  // namespace cpgi::cli

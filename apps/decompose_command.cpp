@@ -36,7 +36,7 @@ int runDecompose(DecomposeOptions o) {
               << " hand-made cells (compare them with `cpgi compare-cells`)\n";
   o.params.sourceName = o.scene;
 
-  OutputDir dir(o.out);
+  OutputDir dir(o.out, {"cells.glb", "cells.json", "decomposition.png", "report.html"});
   Context ctx;
   decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
   d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it

@@ -45,6 +45,12 @@ nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx);
 /// created (light a shot made up beyond its power; non-zero is a defect) and worst_shot_gain.
 nlohmann::json energyReport(const EnergyTotals& e);
 
+/// The names of a bake's or a reference's result set (OutputDir's resultNames): those of an earlier run
+/// that a new one does not write (views of other cameras, a sampled reference's missing baked.glb) go
+/// when the new set is committed.
+inline const std::vector<std::string> kLightmapResultNames = {"lightmap.exr", "lightmap.png", "baked.glb",
+                                                              "report.json",  "report.html",  "view-*"};
+
 /// Stages `report` as report.json in `out` (visible at out.commit()).
 void writeReport(OutputDir& out, const nlohmann::json& report);
 

@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 
 #include "apps/commands.h"
 #include "apps/options.h"
@@ -35,7 +36,11 @@ int main(int argc, char** argv) {
   } catch (const cpgi::SystemError& e) {
     std::cerr << "cpgi: " << e.what() << "\n";
   } catch (const std::bad_alloc&) {
-    std::cerr << "cpgi: out of memory\n";
+    std::cerr << "cpgi: out of memory (lower the resolution, or see --max-memory)\n";
+  } catch (const std::length_error& e) {
+    // std::vector's "vector::_M_default_append": a size taken from the input beyond what can be allocated.
+    std::cerr << "cpgi: out of memory: the input asks for an array larger than can be allocated (" << e.what()
+              << ")\n";
   } catch (const std::exception& e) {
     std::cerr << "cpgi: internal error: " << e.what() << "\n";
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "core/memory_limit.h"
 
 namespace cpgi::cli {
 namespace {
@@ -29,6 +31,7 @@ constexpr ParameterFlag kFlags[] = {
     // Atlas (radiosity/lightmap/atlas.h)
     {"texels per quad", "--texels-per-quad"},
     {"texel density", "--density"},
+    {"maximum memory", "--max-memory"},
     // GPU solver (radiosity/gpu/gpu_solver.h)
     {"unshot fraction", "--unshot"},
     {"maximum shots", "--max-shots"},
@@ -81,12 +84,42 @@ CLI::Option* scoped(CLI::Option* option, const OptionScope& scope) {
   return option;
 }
 
-// An option whose value `check` bounds, with its default in the help: the shape of most parameters.
+// Every number a flag takes is finite: CLI11 reads "nan", "inf" and "1e999" into a float, and its Range
+// lets NaN through (every comparison with NaN is false).
+const CLI::Validator kFinite(
+    [](std::string& value) -> std::string {
+      double v = 0.0;
+      if (CLI::detail::lexical_cast(value, v) && !std::isfinite(v))
+        return "must be a finite number, got " + printable(value);
+      return {};
+    },
+    "");
+
+// Numbers in [min, max], NaN refused, saying the range and what was given.
+CLI::Validator within(double min, double max) {
+  std::ostringstream range;
+  range << "[" << min << ", " << max << "]";
+  return CLI::Validator(
+      [min, max, range = range.str()](std::string& value) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(value, v)) return "must be a number, got " + printable(value);
+        if (!(v >= min && v <= max)) return "must be in " + range + ", got " + printable(value);
+        return {};
+      },
+      "");
+}
+const CLI::Validator kNonNegative = within(0.0, std::numeric_limits<double>::max());
+
+// An option whose value `check` bounds, with its default in the help: the shape of every numeric
+// parameter, so that each is refused when not finite.
 template <class T>
 CLI::Option* addChecked(CLI::App& cmd, const OptionScope& scope, std::string_view parameter, T& field,
                         const std::string& text, const CLI::Validator& check) {
-  return scoped(
-      cmd.add_option(flag(parameter), field, help(scope, text))->check(check)->capture_default_str(), scope);
+  return scoped(cmd.add_option(flag(parameter), field, help(scope, text))
+                    ->check(kFinite)
+                    ->check(check)
+                    ->capture_default_str(),
+                scope);
 }
 
 // A flag taking one of `choices` by name, setting `field` to the value named (help: "TEXT:{a,b}=a").
@@ -134,18 +167,30 @@ std::string userMessage(const InputError& e) {
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
   auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
                                     help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
-                         ->check(CLI::Range(1, 4096)),
+                         ->check(within(1, 4096)),
                      scope);
   auto* density = addChecked(cmd, scope, "texel density", atlas.density,
                              "Texels per metre along each patch edge", kPositive);
   tpq->excludes(density);
+  atlas.memoryLimit = defaultMemoryLimit();
+  scoped(cmd.add_option_function<std::string>(
+                flag("maximum memory"), [&atlas](const std::string& text) { atlas.memoryLimit = parseByteSize(text); },
+                help(scope, "Refuse up front a run whose estimated memory passes this (e.g. 8G, 512M; default 75 % "
+                            "of this machine's: " +
+                                formatBytes(double(atlas.memoryLimit)) + ")"))
+             ->check(CLI::Validator(
+                 [](std::string& text) -> std::string {
+                   return parseByteSize(text) > 0 ? "" : "must be a size such as 8G or 512M, got " + printable(text);
+                 },
+                 "SIZE")),
+         scope);
 }
 
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
   addChecked(cmd, scope, "unshot fraction", solver.unshotFraction,
-             "Stop when this fraction of the emitted power is still unshot", CLI::Range(1e-9, 0.999999));
+             "Stop when this fraction of the emitted power is still unshot", within(1e-9, 0.999999));
   addChecked(cmd, scope, "maximum shots", solver.maxShots, "Stop after this many shots",
-             CLI::Range(1, 100000000));
+             within(1, 100000000));
   scoped(addChoice(cmd, flag("visibility"), solver.visibility,
                    {{"hemisphere", Visibility::Hemisphere}, {"hemicube", Visibility::Hemicube}},
                    help(scope,
@@ -160,24 +205,24 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
   addChecked(cmd, scope, "item-buffer neighbourhood", solver.neighbourhood,
              "Item-buffer pixels around a receiver's own searched for its patch (1: 3x3; "
              "0: its pixel)",
-             CLI::Range(0, 4));
+             within(0, 4));
   addChecked(cmd, scope, "far-field ratio", solver.farField,
              "A shooter piece counts as one for receivers farther than this many times its "
              "radius",
-             CLI::Range(1.0f, 1000.0f));
+             within(1.0f, 1000.0f));
   addChecked(cmd, scope, "visibility regions", solver.maxRegions,
              "Visibility regions per edge of a large shooter, each with its own item "
              "buffer: soft light through doors from large shooters, at up to N² item "
              "buffers per shot",
-             CLI::Range(1, 4));
+             within(1, 4));
   addChecked(cmd, scope, "strong-shot regions", solver.strongShotRegions,
              "Visibility regions per edge for the strong shots, those carrying at least "
              "--strong-fraction of the emitted power (0: as --regions)",
-             CLI::Range(0, 4));
+             within(0, 4));
   addChecked(cmd, scope, "strong-shot fraction", solver.strongShotFraction,
-             "Share of the emitted power that makes a shot strong", CLI::Range(0.0, 1.0));
+             "Share of the emitted power that makes a shot strong", within(0.0, 1.0));
   addChecked(cmd, scope, "region size", solver.regionSize,
-             "Metres per visibility region along a shooter's edge", CLI::Range(0.01f, 1000.0f));
+             "Metres per visibility region along a shooter's edge", within(0.01f, 1000.0f));
   scoped(cmd.add_flag_callback(
              flag("fixed eyes"), [&solver] { solver.jitteredEyes = false; },
              help(scope,
@@ -200,57 +245,37 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
                         "with)")),
          scope);
   addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
-             "With --method cells: solve rounds (syncs) at most", CLI::Range(1, 100000));
+             "With --method cells: solve rounds (syncs) at most", within(1, 100000));
   addChecked(cmd, scope, "jobs", cells.jobs,
              "With --method cells: cells solved at once in a round, each on its own "
              "thread and OpenGL context (same result as 1)",
-             CLI::Range(1, 64));
+             within(1, 64));
 }
 
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
-  scoped(cmd.add_option(flag("voxel size"), params.voxelSize,
-                        help(scope,
-                             "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds "
-                             "volume / 4e6))"))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("seal radius"), params.sealRadius,
-                        help(scope,
-                             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel "
-                             "wide"))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("saddle ratio"), params.merge.saddleRatio,
-                        help(scope,
-                             "Merge two basins when saddle / smaller peak exceeds this (higher keeps "
-                             "more portals)"))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("minimum depth"), params.merge.minDepth,
-                        help(scope,
-                             "Merge when smaller peak - saddle is below this, metres (furniture, "
-                             "pillars)"))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("opening ratio"), params.merge.openingRatio,
-                        help(scope,
-                             "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 "
-                             "disables"))
-             ->capture_default_str(),
-         scope);
-  scoped(cmd.add_option(flag("minimum cell volume"), params.merge.minCellVolume,
-                        help(scope, "Cells smaller than this, m3, join a neighbour"))
-             ->capture_default_str(),
-         scope);
+  addChecked(cmd, scope, "voxel size", params.voxelSize,
+             "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))",
+             within(0.0, 10.0));
+  addChecked(cmd, scope, "seal radius", params.sealRadius,
+             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel wide", within(0.0, 1.0));
+  addChecked(cmd, scope, "saddle ratio", params.merge.saddleRatio,
+             "Merge two basins when saddle / smaller peak exceeds this (higher keeps more portals)",
+             within(0.0, 1.0));
+  addChecked(cmd, scope, "minimum depth", params.merge.minDepth,
+             "Merge when smaller peak - saddle is below this, metres (furniture, pillars)", kNonNegative);
+  addChecked(cmd, scope, "opening ratio", params.merge.openingRatio,
+             "Merge when interface area / (smaller volume)^(2/3) exceeds this; 0 disables", kNonNegative);
+  addChecked(cmd, scope, "minimum cell volume", params.merge.minCellVolume,
+             "Cells smaller than this, m3, join a neighbour", kNonNegative);
   addChecked(cmd, scope, "outside saddle ratio", params.merge.outsideSaddleRatio,
              "Merge a room into the outside when the saddle of its opening / its peak exceeds this (exterior "
              "doors are wide)",
-             CLI::Range(0.0, 1.0));
+             within(0.0, 1.0));
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
   addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
-             CLI::Range(2, 1 << 20));
+             within(2, 1 << 20));
 }
 
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {

@@ -21,6 +21,7 @@
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/metrics/texel_sample.h"
 #include "radiosity/reference/reference_tracer.h"
@@ -155,7 +156,7 @@ int runReference(const ReferenceOptions& o) {
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
 
-  OutputDir out(o.outDir);
+  OutputDir out(o.outDir, kLightmapResultNames);
   const QuadSet quads = findQuads(scene);
   const LightmapAtlas atlas = buildAtlas(scene, quads, o.atlas, ctx);
   const TexelChoice choice = chooseTexels(o, atlas, ctx);
@@ -164,6 +165,7 @@ int runReference(const ReferenceOptions& o) {
   const auto solveStart = std::chrono::steady_clock::now();
   const ReferenceResult result = traceReference(scene, atlas, o.trace, ctx, choice.sample.ranks);
   f.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  requireFiniteResult(o.scene, atlas, result.radiosity);
   f.noise = relativeStandardError(result, choice.weightedArea);
   // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
   // given over the texels that do not emit, where the solvers actually differ.

@@ -74,7 +74,7 @@ void writeComparisonReportPage(const std::string& dir, const std::string& aDir, 
       lightmap.error[i] = sign * float(glm::length(a.pixels[i] - b.pixels[i]) / rms);
     }
 
-  OutputDir out(dir);
+  OutputDir out(dir, {"report.html"});
   HtmlReportInput input;
   input.title = "comparison of " + aDir + " against " + bDir(figures);
   input.kind = "comparison";

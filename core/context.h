@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace cpgi {
 
 class Context {
@@ -14,7 +16,8 @@ class Context {
   /// Called with (stage, fraction in [0,1], short status such as "shots 120, unshot 3.2%").
   using ProgressFn = std::function<void(const std::string&, double, const std::string&)>;
 
-  void warn(std::string message) { warnings_.push_back(std::move(message)); }
+  /// Kept to one line of sane length whatever names a file smuggled into it (core/error.h).
+  void warn(const std::string& message) { warnings_.push_back(printable(message, 2000)); }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   void setProgress(ProgressFn fn) { progress_ = std::move(fn); }

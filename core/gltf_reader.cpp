@@ -224,7 +224,8 @@ bool keepImageEncoded(tinygltf::Image* image, const int, std::string* err, std::
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model) : path_(path), m_(model) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, size_t maxTriangles)
+      : path_(path), m_(model), maxTriangles_(maxTriangles) {}
 
   RawScene read() {
     for (const std::string& ext : m_.extensionsRequired)
@@ -673,6 +674,11 @@ class GltfReader {
           corners.push_back({indices[0], indices[i], indices[i + 1]});
       }
       const uint32_t material = tagged ? 0 : materialFor(prim.material);
+      // Before placing them: each node that instances a mesh places all of its triangles again.
+      placed_ += corners.size();
+      if (placed_ > maxTriangles_)
+        fail("nodes place more than " + std::to_string(maxTriangles_) + " triangles (at " + what +
+             "; a mesh instanced by many nodes counts once per node)");
       for (const auto& c : corners) {
         Triangle t;
         for (int k = 0; k < 3; ++k) {
@@ -694,6 +700,8 @@ class GltfReader {
 
   const std::string& path_;
   const tinygltf::Model& m_;
+  size_t maxTriangles_;
+  size_t placed_ = 0;  // triangles placed so far, tagged meshes included
   RawScene raw_;
   std::vector<int> materialIndex_;
   int defaultMaterial_ = -1;
@@ -735,7 +743,7 @@ RawScene readGltf(const std::string& path, const LoadOptions& options) {
   if (!ok)
     throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser")
                                                            : printable(firstLine(err), 200)));
-  return GltfReader(path, model).read();
+  return GltfReader(path, model, options.maxTriangles).read();
 }
 
 }  // namespace cpgi::detail

@@ -332,6 +332,8 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     out.warnings.insert(out.warnings.end(), v.warnings.begin(), v.warnings.end());
   }
   out.scene = std::move(scene);
+  // Warnings quote node and material names: kept to one line of sane length, like errors.
+  for (std::string& w : out.warnings) w = printable(w, 2000);
   return out;
 }
 

@@ -41,6 +41,9 @@ struct LoadOptions {
   bool allowOutsideFiles = false;
   /// The largest scene or referenced file read, checked before reading (a .glb cannot exceed 4 GiB).
   uint64_t maxFileBytes = uint64_t(2) << 30;
+  /// The most triangles a scene may place (about 80 bytes each, before the atlas): a small glTF whose
+  /// thousands of nodes instance one large mesh would otherwise expand into gigabytes.
+  size_t maxTriangles = 10'000'000;
 };
 
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,

@@ -1,6 +1,8 @@
 #include "decomposition/voxelize.h"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include <openvdb/openvdb.h>
@@ -37,17 +39,27 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
   SolidGrid out;
   const Bounds b = scene.bounds();
   const double h = params.voxelSize;
-  out.sealVoxels = params.sealRadius > 0.0 ? std::max(1, int(std::lround(params.sealRadius / h))) : 0;
+  // In doubles until checked: a tiny voxel makes every count here overflow an int (1e-6 m said "0 voxels").
+  const double seal = params.sealRadius > 0.0 ? std::max(1.0, std::round(params.sealRadius / h)) : 0.0;
+  const double padding = 2.0 + seal;
+  const glm::dvec3 span = glm::dvec3(b.hi - b.lo) / h;
+  const double total = (std::ceil(span.x) + 2 * padding + 1) * (std::ceil(span.y) + 2 * padding + 1) *
+                       (std::ceil(span.z) + 2 * padding + 1);
+  if (!(total <= double(params.maxVoxels))) {
+    // The smallest voxel whose grid fits, for the bounds alone (the padding adds a little).
+    const glm::dvec3 size = glm::dvec3(b.hi - b.lo);
+    const double fits = std::cbrt(std::max(size.x, 1e-3) * std::max(size.y, 1e-3) * std::max(size.z, 1e-3) /
+                                  double(params.maxVoxels));
+    std::ostringstream s;
+    s << h << " m gives " << total << " voxels, more than the limit of " << params.maxVoxels
+      << "; the scene's bounds need a voxel of at least about " << std::setprecision(2) << fits << " m";
+    throw InputError("voxel size", s.str());
+  }
+  out.sealVoxels = int(seal);
   const int pad = 2 + out.sealVoxels;
   GridFrame& f = out.frame;
   f.voxel = h;
   f.origin = glm::dvec3(b.lo) - pad * h;
-  const glm::dvec3 span = glm::dvec3(b.hi - b.lo) / h;
-  const double total = (std::ceil(span.x) + 2 * pad + 1) * (std::ceil(span.y) + 2 * pad + 1) *
-                       (std::ceil(span.z) + 2 * pad + 1);
-  if (!(total <= double(params.maxVoxels)))
-    throw InputError("voxel size", std::to_string(h) + " m gives " + std::to_string(size_t(total)) +
-                                    " voxels, more than the limit of " + std::to_string(params.maxVoxels));
   f.dims = glm::ivec3(int(std::ceil(span.x)) + 2 * pad + 1, int(std::ceil(span.y)) + 2 * pad + 1,
                       int(std::ceil(span.z)) + 2 * pad + 1);
 

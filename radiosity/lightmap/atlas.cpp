@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/memory_limit.h"
 #include "radiosity/lightmap/quad_grids.h"
 
 namespace cpgi {
@@ -204,6 +206,23 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     if (t >= triangleCount) throw InputError("atlas", "triangle subset refers to a triangle past the scene's end");
     inSubset[t] = 1;
   }
+  // Charts are capped at maxTexels per edge: a density beyond what the longest edge can take there gets
+  // fewer texels per metre on the largest patches (--density 1e9 was clamped silently). Said when they get
+  // less than half of it.
+  if (params.texelsPerQuad == 0) {
+    float longest = 0.0f;
+    for (uint32_t t : chosen)
+      for (int i = 0; i < 3; ++i)
+        longest = std::max(longest, glm::length(scene.triangles[t].p[(i + 1) % 3] - scene.triangles[t].p[i]));
+    const double wanted = std::ceil(double(longest) * params.density - 1e-3);
+    if (wanted > 2.0 * params.maxTexels) {
+      std::ostringstream s;
+      s << "atlas: --density " << params.density << " asks for " << wanted << " texels along a "
+        << longest << " m edge; charts are capped at " << params.maxTexels
+        << " texels per edge, so the largest patches get fewer texels per metre";
+      ctx.warn(s.str());
+    }
+  }
 
   LightmapAtlas atlas;
   std::vector<ChartSize> charts;
@@ -269,6 +288,9 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     throw InputError(sizeOption(params), "the lightmap atlas would be " + std::to_string(size.x) + "x" +
                                              std::to_string(size.y) + " texels, over the limit of " +
                                              std::to_string(params.maxSize) + "; lower the resolution");
+  requireMemory(double(size.x) * double(size.y) * kBakeBytesPerTexel, params.memoryLimit, sizeOption(params),
+                "the lightmap atlas of " + std::to_string(size.x) + "x" + std::to_string(size.y) + " texels",
+                "lower the resolution or raise `maximum memory`");
   atlas.width = std::max(size.x, 1);
   atlas.height = std::max(size.y, 1);
   const size_t n = atlas.texelCount();

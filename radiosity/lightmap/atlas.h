@@ -39,7 +39,15 @@ struct AtlasParams {
   /// Merge grids of equal coplanar quads into one chart (one shooter) up to this many texels along an
   /// edge; 0: a chart per quad, as the thesis does.
   int mergeTexels = 1024;
+  /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
+  /// before any per-texel array: InputError naming the size option when passed. 0: no limit.
+  uint64_t memoryLimit = 0;
 };
+
+/// What one atlas texel costs through a bake: the atlas's arrays (56 bytes), the solver's seven RGBA32F
+/// buffers (112) and their upload copies (80), emission lobes and arrivals (32), the read-back and the
+/// output images (~120).
+inline constexpr double kBakeBytesPerTexel = 400.0;
 
 struct Patch {
   int quad = -1;                  ///< the (first) quad in the QuadSet, or -1 for a loose triangle

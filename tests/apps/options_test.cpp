@@ -2,6 +2,9 @@
 // naming a parameter prints with its flag, and `--around`'s point parses.
 #include "apps/options.h"
 
+#include <set>
+#include <string>
+
 #include <gtest/gtest.h>
 
 namespace cpgi::cli {
@@ -45,6 +48,58 @@ TEST(Options, FlagsSetTheLibrariesFields) {
   EXPECT_FALSE(parse("--visibility cube", [&](CLI::App& app) { addSolverOptions(app, other); }));
   CellSolveParams spot;
   EXPECT_FALSE(parse("--portals spot", [&](CLI::App& app) { addCellOptions(app, spot); }));
+}
+
+// Every numeric flag of the table refuses what is not a finite number, in one line naming the flag.
+TEST(Options, EveryNumericFlagRefusesNonFiniteNumbers) {
+  SolverParams solver;
+  CellSolveParams cells;
+  decomp::DecomposeParams decompose;
+  AtlasParams atlas;
+  int spp = 0;
+  auto addAll = [&](CLI::App& app) {
+    addSolverOptions(app, solver);
+    addCellOptions(app, cells);
+    addDecomposeOptions(app, decompose);
+    addAtlasOptions(app, atlas);
+    addSppOption(app, spp);
+  };
+  CLI::App all;
+  addAll(all);
+  const std::set<std::string> words = {"--visibility", "--portals"};  // take names, not numbers
+  size_t numeric = 0;
+  for (const CLI::Option* option : all.get_options()) {
+    const std::string name = option->get_name();
+    if (option->get_expected_min() < 1 || words.count(name) || name == "--help") continue;
+    ++numeric;
+    for (const char* bad : {"nan", "inf", "-inf", "1e999", "NaN"}) {
+      CLI::App app;
+      addAll(app);
+      std::string message = "accepted";
+      try {
+        app.parse(name + " " + bad, false);
+      } catch (const CLI::ParseError& e) {
+        message = e.what();
+      }
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      EXPECT_NE(message.find(name), std::string::npos) << name << " " << bad << ": " << message;
+    }
+  }
+  EXPECT_GE(numeric, 20u);
+}
+
+// Out of range, named with the range; NaN never slips through a range check.
+TEST(Options, RangesSayTheRange) {
+  decomp::DecomposeParams decompose;
+  CLI::App app;
+  addDecomposeOptions(app, decompose);
+  try {
+    app.parse("--saddle-ratio 1.5", false);
+    ADD_FAILURE() << "accepted";
+  } catch (const CLI::ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("--saddle-ratio: must be in [0, 1], got 1.5"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Options, LibraryErrorsNameTheFlag) {

@@ -157,3 +157,33 @@ TEST(HostileGltf, ImageBufferViewPastItsBufferIsRefused) {
 
 }  // namespace
 }  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+// A small file whose many nodes instance one mesh: refused once the placed triangles pass the cap, before
+// they are all expanded (the cap is lowered here; the default is 10 million, about 800 MB).
+TEST(HostileGltf, NodesInstancingOneMeshAreCappedInTriangles) {
+  std::vector<float> strip;
+  for (int i = 0; i < 100; ++i) {
+    const float x = float(i);
+    strip.insert(strip.end(), {x, 0, 0, x + 1, 0, 0, x, 1, 0});
+  }
+  auto instances = [&](int nodes) {
+    test::GlbBuilder g;
+    const int mesh = g.addMesh(strip);
+    for (int n = 0; n < nodes; ++n)
+      g.addNode({{"name", "copy" + std::to_string(n)}, {"mesh", mesh}, {"translation", {0, 0, float(n)}}});
+    return g;
+  };
+  LoadOptions capped;
+  capped.maxTriangles = 5000;
+  const std::string refused = loadError(instances(60), capped);
+  EXPECT_NE(refused.find("nodes place more than 5000 triangles"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("a mesh instanced by many nodes counts once per node"), std::string::npos) << refused;
+  EXPECT_EQ(loadError(instances(50), capped), "no error");
+  EXPECT_LE(LoadOptions{}.maxTriangles, size_t(20'000'000));
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -13,14 +13,15 @@ shift || true
 targets=("$@")
 ((${#targets[@]})) || targets=(gltf glb obj scene_checks)
 build="${BUILD_DIR:-$root/build-fuzz}"
+main_build="${CPGI_BUILD_DIR:-$root/build}"  # the ordinary build: its cpgi makes seeds, its web/ configures
 
 command -v clang++ >/dev/null || { echo "run.sh: clang++ and libFuzzer are needed (apt install clang libclang-rt-14-dev)" >&2; exit 1; }
 # The whole tree configures, report.html's writer too: it takes the npm packages ./setup.sh put in build/web.
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCPGI_FUZZ=ON \
-  -DCPGI_WEB_DIR="$root/build/web" >/dev/null || exit 1
+  -DCPGI_WEB_DIR="$main_build/web" >/dev/null || exit 1
 nice cmake --build "$build" -j2 -t $(printf 'fuzz_%s ' "${targets[@]}") >/dev/null || exit 1
 
-cpgi="$root/build/apps/cpgi"
+cpgi="$main_build/apps/cpgi"
 failed=0
 for target in "${targets[@]}"; do
   corpus="$build/corpus/$target"

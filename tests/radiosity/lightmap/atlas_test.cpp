@@ -258,3 +258,31 @@ TEST(Atlas, DilateCopiesNearestValidTexel) {
 
 }  // namespace
 }  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+// A density the chart cap cannot give (issue 15, defect 8: --density 1e9 was clamped silently) is said,
+// once; a density the charts can hold says nothing.
+TEST(Atlas, DensityBeyondTheChartCapIsSaid) {
+  Scene s;
+  addRect(s, glm::vec3(0.0f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f),
+          testing::addMaterial(s, glm::vec3(0.5f)), 0);
+  for (const float density : {10.0f, 1e9f}) {
+    AtlasParams params;
+    params.density = density;
+    Context ctx;
+    const LightmapAtlas atlas = buildAtlas(s, findQuads(s), params, ctx);
+    if (density < 100.0f) {
+      EXPECT_TRUE(ctx.warnings().empty());
+      continue;
+    }
+    ASSERT_EQ(ctx.warnings().size(), 1u);
+    EXPECT_NE(ctx.warnings()[0].find("atlas: --density 1e+09 asks for"), std::string::npos) << ctx.warnings()[0];
+    EXPECT_NE(ctx.warnings()[0].find("capped at 256 texels per edge"), std::string::npos) << ctx.warnings()[0];
+    EXPECT_LE(atlas.width, 2 * (256 + 2));
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

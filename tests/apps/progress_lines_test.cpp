@@ -1,6 +1,6 @@
 // Progress in a pipe or a log: plain "progress: STAGE NN% ..." lines on stderr, at most one per
 // CPGI_PROGRESS_SECONDS (10 s by default, so short runs stay silent), from bake (global and cells, whose
-// lines name the round), reference and decompose; none with -q.
+// lines name the round), reference, decompose and view; none with -q.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -49,6 +49,10 @@ TEST(ProgressLines, EveryLongCommandReportsItsStagesInAPipe) {
   r = cpgiEvery(dir, "0", "decompose " + quote(scene) + " -o " + quote(dir / "dec") + " --voxel 0.1");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(hasLine(r, "progress: watershed ")) << r.err;
+
+  r = cpgiEvery(dir, "0", "view " + quote(dir / "global"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(hasLine(r, "progress: views ")) << r.err;
 
   // A long period: a short run prints no progress; -q prints none at all.
   r = cpgiEvery(dir, "1000",

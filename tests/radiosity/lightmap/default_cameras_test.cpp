@@ -32,11 +32,15 @@ void expectStandsOnFloor(const RayScene& rays, const Scene& scene, const std::ve
   EXPECT_GT(scene.triangles[size_t(below.triangle)].geometricNormal().y, 0.7f);
   EXPECT_GE(below.t, 0.5f);
   EXPECT_LE(below.t, 1.6f + 1e-3f);
-  if (cell >= 0) EXPECT_EQ(triangleCell[size_t(below.triangle)], cell);
+  if (cell >= 0) {
+    EXPECT_EQ(triangleCell[size_t(below.triangle)], cell);
+  }
   for (int k = 0; k < 16; ++k) {
     const float a = float(k) * 3.14159265f / 8.0f;
     const RayScene::Hit h = rays.intersect(cam.position, {std::cos(a), 0.0f, std::sin(a)});
-    if (h) EXPECT_GT(h.t, 0.25f) << "direction " << k;
+    if (h) {
+      EXPECT_GT(h.t, 0.25f) << "direction " << k;
+    }
   }
   EXPECT_NEAR(glm::length(cam.forward), 1.0f, 1e-5f);
   EXPECT_LT(std::abs(cam.forward.y), 0.2f);
@@ -65,7 +69,7 @@ TEST(DefaultCameras, OnePerRoomOfEveryBuildingInsideItsRoomAboveItsFloor) {
 
 TEST(DefaultCameras, WithoutCellsOneOverviewInsideARoomOfTheHouse) {
   // Terrain or a roof must not decide: the eye stands in a room, under a roof.
-  for (const std::string& name : {"house-open", "house-stair", "house-gallery", "porch"}) {
+  for (const char* name : {"house-open", "house-stair", "house-gallery", "porch"}) {
     SCOPED_TRACE(name);
     Building b = makeBuilding(name);
     Scene& scene = b.seed.scene;

@@ -28,7 +28,7 @@ class ProgressPrinter {
   /// `clock` defaults to std::chrono::steady_clock.
   ProgressPrinter(Settings settings, Sink sink, Clock clock = {});
 
-  /// Thread-safe: the cell solver's workers report from their own threads.
+  /// Thread-safe, so a stage may report from worker threads.
   void report(const std::string& stage, double fraction, const std::string& status);
 
   /// The text of one report without its "\r" or newline: "solve  42% shots 120, unshot 3.2% · 1 min left".

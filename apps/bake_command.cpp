@@ -27,6 +27,7 @@
 #include "core/error.h"
 #include "core/memory_limit.h"
 #include "core/output_dir.h"
+#include "core/progress.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
@@ -318,7 +319,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
 int runBake(const BakeOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   Context ctx;
-  ctx.setProgress(progressPrinter(o.quiet));
+  ctx.setProgress(stderrProgress(o.quiet));
   BakeInput in = loadBakeInput(o, ctx);
   OutputDir out(o.output, kLightmapResultNames);
   buildBakeAtlas(o, in, ctx);

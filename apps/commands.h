@@ -30,5 +30,6 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected);
 void addCompareLightCommand(CLI::App& app, CommandFn& selected);
 void addDecomposeCommand(CLI::App& app, CommandFn& selected);
 void addCompareCellsCommand(CLI::App& app, CommandFn& selected);
+void addViewCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

@@ -17,6 +17,7 @@
 #include "apps/compare_cells_bake.h"
 #include "apps/options.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/scene_io.h"
 #include "decomposition/compare.h"
 #include "decomposition/decompose.h"
@@ -92,6 +93,7 @@ int runCompare(const CompareOptions& o) {
   if (params.voxelSize < 0.0 || params.voxelSize > 10.0)
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
+  ctx.setProgress(stderrProgress(false));
   const double h = decomp::chooseVoxelSize(loaded.scene, params);
   const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx);
   const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);

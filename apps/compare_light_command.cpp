@@ -32,6 +32,7 @@ struct CompareLightOptions {
   std::string a, b;
   bool json = false;
   std::string report;  ///< a folder for report.html with the error heat map, or empty
+  std::string bench;   ///< with `report`: bench results for its speed-against-accuracy chart, or empty
 };
 
 struct Lightmap {
@@ -83,15 +84,17 @@ std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> w
 // --report DIR: the page with the error per texel; the heat map leaves out the lamps as the figures
 // without lamps do, and the untraced texels of a sample (`area` is 0 there).
 void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures, const Lightmap& a,
-                     const Lightmap& b, const std::vector<float>& area, const std::vector<float>& emissive) {
+                     const Lightmap& b, const std::vector<float>& area, const std::vector<float>& emissive,
+                     const nlohmann::json& bench) {
   std::vector<float> weight = area;
   if (emissive.size() == weight.size())
     for (size_t i = 0; i < weight.size(); ++i)
       if (emissive[i] > 0.5f) weight[i] = 0.0f;
-  writeComparisonReportPage(o.report, o.a, figures, a.rgb, b.rgb, b.area, weight);
+  writeComparisonReportPage(o.report, o.a, figures, a.rgb, b.rgb, b.area, weight, bench);
 }
 
 int runCompareLight(const CompareLightOptions& o) {
+  const nlohmann::json bench = o.bench.empty() ? nlohmann::json(nullptr) : readBenchResults(o.bench);
   const Lightmap a = readLightmap(o.a), b = readLightmap(o.b);
   if (!a.sampleWeight.empty())
     throw InputError(o.a,
@@ -169,7 +172,7 @@ int runCompareLight(const CompareLightOptions& o) {
   j["reference_noise_nonemissive"] = orNull(noiseReflectors);
   j["cells"] = cellsJson(cells);
   j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
-  if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive);
+  if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive, bench);
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
@@ -214,6 +217,10 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_flag("--json", opts->json,
                 "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
   addReportOption(*cmd, opts->report);
+  cmd->add_option("--bench", opts->bench,
+                  "With --report: also chart speed against accuracy from this results.json of "
+                  "bench/speed_accuracy.py")
+      ->needs(cmd->get_option("--report"));
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
+#include "core/progress.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
 #include "decomposition/picture.h"
@@ -38,6 +39,7 @@ int runDecompose(DecomposeOptions o) {
 
   OutputDir dir(o.out, {"cells.glb", "cells.json", "decomposition.png", "report.html"});
   Context ctx;
+  ctx.setProgress(stderrProgress(false));
   decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
   d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it
 

@@ -1,22 +1,6 @@
 #include "apps/lightmap_report.h"
 
-#include <unistd.h>
-
-#include <algorithm>
-#include <cstdio>
-
 namespace cpgi::cli {
-
-Context::ProgressFn progressPrinter(bool quiet) {
-  if (quiet || !::isatty(STDERR_FILENO)) return {};
-  return [](const std::string& stage, double fraction, const std::string& status) {
-    const int width = 24, done = int(std::clamp(fraction, 0.0, 1.0) * width);
-    std::fprintf(stderr, "\r%-6s [%s%s] %-48s", stage.c_str(), std::string(done, '#').c_str(),
-                 std::string(width - done, ' ').c_str(), status.c_str());
-    if (fraction >= 1.0) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  };
-}
 
 nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx) {
   const LightmapAtlas& atlas = *run.atlas;

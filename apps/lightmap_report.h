@@ -1,5 +1,5 @@
 // What `cpgi bake` and `cpgi reference` share besides the output files
-// (radiosity/lightmap/lightmap_output.h): the progress bar on the terminal and report.json, whose common keys
+// (radiosity/lightmap/lightmap_output.h): report.json, whose common keys
 // (design.md §3) are written here once, so the two reports stay comparable key for key; each command adds its
 // own keys beside them.
 #pragma once
@@ -15,9 +15,6 @@
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
-
-/// A one-line progress bar on a terminal; nothing when `quiet` or stderr is a file or a pipe.
-Context::ProgressFn progressPrinter(bool quiet);
 
 /// The figures every lightmap producer reports.
 struct LightmapRun {

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   cpgi::cli::addCompareLightCommand(app, selected);
   cpgi::cli::addDecomposeCommand(app, selected);
   cpgi::cli::addCompareCellsCommand(app, selected);
+  cpgi::cli::addViewCommand(app, selected);
 
   try {
     app.parse(argc, argv);

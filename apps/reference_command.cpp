@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
+#include "core/progress.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
@@ -150,7 +151,7 @@ int runReference(const ReferenceOptions& o) {
     throw InputError("--texels", "must be at least 1 (leave it out to trace every texel), got " +
                                      std::to_string(o.texels));
   Context ctx;
-  ctx.setProgress(progressPrinter(o.quiet));
+  ctx.setProgress(stderrProgress(o.quiet));
   const LoadedScene loaded = loadScene(o.scene, o.load);
   requireLight(loaded, o.scene, o.allowDark);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";

@@ -2,16 +2,25 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 #include "core/html_report/html_report.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/views.h"
 
 namespace cpgi::cli {
 namespace {
 std::string bDir(const nlohmann::json& figures) {
   return figures.value("b", std::string("the reference"));
+}
+
+// The page's view from inside each cell: the same cameras as the bake's pictures of a scene without any.
+std::vector<Camera> cellCameras(const Scene& scene, const CellGraph& cells) {
+  if (cells.empty()) return {};
+  return defaultCameras(RayScene(scene), scene, cells);
 }
 }  // namespace
 
@@ -30,7 +39,7 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   input.kind = kind;
   input.report = report;
   input.glb = readFileBytes(out.staged("baked.glb").string());
-  input.scene = &scene;
+  input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
   input.lightmap = &lightmap;
   writeHtmlReport(out, input);
@@ -43,14 +52,14 @@ void writeDecompositionReportPage(OutputDir& out, const std::string& title, cons
   input.kind = "decomposition";
   input.report = report;
   input.glb = readFileBytes(out.staged("cells.glb").string());
-  input.scene = &scene;
+  input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
   writeHtmlReport(out, input);
 }
 
 void writeComparisonReportPage(const std::string& dir, const std::string& aDir, const nlohmann::json& figures,
                                const ImageRGB& a, const ImageRGB& b, const std::vector<float>& area,
-                               const std::vector<float>& weight) {
+                               const std::vector<float>& weight, const nlohmann::json& bench) {
   const std::string glbPath = (std::filesystem::path(aDir) / "baked.glb").string();
   if (!std::filesystem::exists(glbPath))
     throw InputError(glbPath,
@@ -80,11 +89,31 @@ void writeComparisonReportPage(const std::string& dir, const std::string& aDir, 
   input.kind = "comparison";
   input.report = figures;
   input.glb = readFileBytes(glbPath);
-  input.scene = &baked.scene;
+  input.cellCameras = cellCameras(baked.scene, baked.cells);
   input.cells = &baked.cells;
   input.lightmap = &lightmap;
+  input.bench = bench;
   writeHtmlReport(out, input);
   out.commit();
+}
+
+nlohmann::json readBenchResults(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot read it (bench results: bench/speed_accuracy.py's results.json)");
+  const nlohmann::json rows = nlohmann::json::parse(in, nullptr, false);
+  if (rows.is_discarded() || !rows.is_array() || rows.empty())
+    throw InputError(path, "is not a JSON array of bench rows (bench/speed_accuracy.py's results.json)");
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const nlohmann::json& r = rows[i];
+    const auto positive = [&](const char* key) {
+      return r.contains(key) && r[key].is_number() && r[key].get<double>() > 0.0;
+    };
+    if (!r.is_object() || !r.contains("scene") || !r.contains("method") || !positive("seconds") ||
+        !positive("rel_rmse"))
+      throw InputError(path, "row " + std::to_string(i + 1) +
+                                 " lacks a scene, a method, or positive seconds and rel_rmse");
+  }
+  return rows;
 }
 
 }  // namespace cpgi::cli

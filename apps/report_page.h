@@ -30,9 +30,14 @@ void writeDecompositionReportPage(OutputDir& out, const std::string& title, cons
 /// After `compare-light A B --report DIR`: DIR/report.html with A's baked.glb lit by `a` (its lightmap)
 /// and the error heat map against `b`: per texel |A − B| / RMS(B) with the sign of the luminance
 /// difference, RMS and map over texels of `weight` > 0 (the others stay black); `area` for the cells
-/// table. `figures` (compare-light's JSON) fill the numbers. Throws InputError when A has no baked.glb.
+/// table. `figures` (compare-light's JSON) fill the numbers; `bench` (rows of bench/speed_accuracy.py's
+/// results.json, or null) the speed-against-accuracy chart. Throws InputError when A has no baked.glb.
 void writeComparisonReportPage(const std::string& dir, const std::string& aDir, const nlohmann::json& figures,
                                const ImageRGB& a, const ImageRGB& b, const std::vector<float>& area,
-                               const std::vector<float>& weight);
+                               const std::vector<float>& weight, const nlohmann::json& bench = nullptr);
+
+/// The rows of a bench results file (bench/speed_accuracy.py's results.json: an array of objects, each
+/// with a scene, a method and positive seconds and rel_rmse). Throws InputError naming the file otherwise.
+nlohmann::json readBenchResults(const std::string& path);
 
 }  // namespace cpgi::cli

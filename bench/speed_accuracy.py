@@ -3,7 +3,8 @@
 method, bake the reference on the same atlas, and put seconds beside the relative RMSE against it.
 
 Writes OUT/results.json, OUT/results.csv and OUT/table.md (the thesis's Table 9.1 layout with our figures),
-and with --plot one error-against-seconds plot per scene (PNG and SVG) by bench/plot_speed_accuracy.py, which
+OUT/report/report.html (the last bake in 3D against its reference, with the speed-against-accuracy chart of
+every row: `cpgi compare-light --report --bench`), and with --plot one error-against-seconds plot per scene (PNG and SVG) by bench/plot_speed_accuracy.py, which
 also plots an existing results.csv on its own. Plotting needs matplotlib (`apt-get install python3-matplotlib`).
 
   bench/speed_accuracy.py --cpgi build/apps/cpgi --out out/bench --scenes seed1,seed3 --reps 3 --plot
@@ -81,6 +82,7 @@ def main():
     results = os.path.join(args.out, "results.json")
     rows = json.load(open(results)) if args.resume and os.path.exists(results) else []
     done = {(r["scene"], r["resolution"], r["method"]) for r in rows}
+    last = None  # the last (bake, reference) compared, for OUT/report
     for scene in args.scenes.split(","):
         glb = os.path.join(args.out, scene + ".glb")
         if not os.path.exists(glb):
@@ -121,6 +123,7 @@ def main():
                     print(f"{scene} {res} {method}: compare failed: {proc.stderr.strip()}", file=sys.stderr)
                     continue
                 err = json.loads(proc.stdout)
+                last = (out_dir, ref_dir)
                 row = {
                     "scene": scene, "resolution": res, "method": method,
                     "seconds": statistics.median(times), "seconds_min": min(times), "seconds_max": max(times),
@@ -147,6 +150,11 @@ def main():
                 save(rows, args.out)  # after every row: a long run stopped half-way keeps what it measured
 
     save(rows, args.out)
+    if last and rows:
+        proc, _ = run([args.cpgi, "compare-light", last[0], last[1], "--report", os.path.join(args.out, "report"),
+                       "--bench", results], log)
+        if proc.returncode:
+            print(f"report: {proc.stderr.strip()}", file=sys.stderr)
     if args.plot and rows:
         plot(args.out)
 

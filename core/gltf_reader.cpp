@@ -495,6 +495,16 @@ class GltfReader {
     return out;
   }
 
+  /// Float VEC2 data; empty for any other type.
+  std::vector<glm::vec2> readFloatVec2(int index, const std::string& what) const {
+    const View v = view(index, what);
+    if (v.components != 2 || v.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) return {};
+    std::vector<glm::vec2> out(v.count, glm::vec2(0.0f));
+    if (v.data)
+      for (size_t i = 0; i < v.count; ++i) std::memcpy(&out[i], v.data + i * v.stride, sizeof(glm::vec2));
+    return out;
+  }
+
   std::vector<uint32_t> readIndices(int index, const std::string& what) const {
     const View v = view(index, what);
     if (v.components != 1) fail(what + ": indices must be scalars");
@@ -651,6 +661,13 @@ class GltfReader {
         normals = readVec3(nrm->second, what + " NORMAL");
         if (normals.size() != positions.size()) fail(what + ": NORMAL and POSITION counts differ");
       }
+      // A baked lightmap's atlas coordinates (our own baked.glb), for `cpgi view`. Other files may store
+      // them as normalized integers or not at all: then the scene simply has none.
+      std::vector<glm::vec2> lightmapUVs;
+      if (auto uv = prim.attributes.find("TEXCOORD_1"); uv != prim.attributes.end() && !tagged) {
+        lightmapUVs = readFloatVec2(uv->second, what + " TEXCOORD_1");
+        if (lightmapUVs.size() != positions.size()) lightmapUVs.clear();
+      }
       std::vector<uint32_t> indices;
       if (prim.indices >= 0) {
         indices = readIndices(prim.indices, what + " indices");
@@ -693,6 +710,10 @@ class GltfReader {
         } else {
           raw_.scene.triangles.push_back(t);
           raw_.cellOfTriangle.push_back(cell);
+          std::array<glm::vec2, 3> uv{};
+          for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k) uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
+          raw_.lightmapUVs.push_back(uv);
+          raw_.everyLightmapUV = raw_.everyLightmapUV && !lightmapUVs.empty();
         }
       }
     }

@@ -278,11 +278,15 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
 
   std::vector<int> cellOf;
   cellOf.reserve(scene.triangles.size());
+  const bool lightmapUVs = raw.everyLightmapUV && raw.lightmapUVs.size() == scene.triangles.size();
   {
     std::vector<Triangle> kept;
     kept.reserve(scene.triangles.size());
     for (size_t i = 0; i < scene.triangles.size(); ++i)
-      if (!drop[i]) kept.push_back(scene.triangles[i]), cellOf.push_back(raw.cellOfTriangle[i]);
+      if (!drop[i]) {
+        kept.push_back(scene.triangles[i]), cellOf.push_back(raw.cellOfTriangle[i]);
+        if (lightmapUVs) out.lightmapUVs.push_back(raw.lightmapUVs[i]);
+      }
     scene.triangles = std::move(kept);
   }
   if (scene.triangles.empty())

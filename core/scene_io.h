@@ -17,6 +17,9 @@ struct LoadedScene {
   Scene scene;
   CellGraph cells;                    ///< hand-made cells when the file has `cell:`/`portal:` nodes
   std::vector<std::string> warnings;  ///< e.g. dropped zero-area or duplicate triangles
+  /// Per scene triangle, the lightmap coordinates of its corners when every triangle of the file has a
+  /// TEXCOORD_1 (a baked.glb: GltfWriteOptions::lightmapUVs read back); empty otherwise.
+  std::vector<std::array<glm::vec2, 3>> lightmapUVs;
 };
 
 /// A material's light or colour set by name instead of by the file (the CLI's --emit, --albedo): a raw

@@ -34,6 +34,10 @@ struct RawScene {
   };
   std::vector<TaggedMesh> portals, volumes;
   std::vector<std::string> warnings;
+  /// Per scene triangle, its corners' second texture coordinates (glTF TEXCOORD_1: a baked lightmap's
+  /// atlas); kept only when every triangle has them (`everyLightmapUV`).
+  std::vector<std::array<glm::vec2, 3>> lightmapUVs;
+  bool everyLightmapUV = true;
 
   /// Index of the cell called `name`, added if new.
   int cellIndex(const std::string& name);

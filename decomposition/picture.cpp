@@ -2,58 +2,107 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <vector>
 
 namespace cpgi::decomp {
 namespace {
 
 const glm::vec3 kWall(0.08f), kOutside(1.0f), kVoid(0.3f), kPortalEdge(0.0f), kPortalCore(1.0f, 0.02f, 0.02f);
 
-// One view: `across` and `up` are the grid axes shown left→right and top→bottom; `depth` is summed over.
-struct View {
-  int across, down, depth;
-  bool flipDown;  // elevation: y grows up the page
-};
+// Where the picture cuts: one horizontal section per storey, `kSectionHeight` above its floor (through
+// doors and windows, under the lamps), so an upper floor never hides the one below.
+constexpr double kSectionHeight = 1.2;  ///< metres above a storey's floor
+constexpr double kStoreyGap = 1.5;      ///< metres between two cells' floors that make two storeys
+constexpr int kElevationSamples = 96;   ///< voxels sampled along each elevation column, at most
 
-void drawView(const Decomposition& d, const View& v, int scale, int top, ImageRGB& img) {
+/// The voxel layer of each storey's section: the cells' floors (the bottom of their empty voxels)
+/// clustered by height, the outside left out; one layer at mid-height when there is no room.
+std::vector<int> sectionLayers(const Decomposition& d) {
   const GridFrame& f = d.frame;
-  std::unordered_map<int, int> counts;
-  for (int a = 0; a < f.dims[v.across]; ++a)
-    for (int b = 0; b < f.dims[v.down]; ++b) {
-      counts.clear();
-      bool solid = false, voidSpace = false;
-      int outside = 0, solidCount = 0;
-      for (int k = 0; k < f.dims[v.depth]; ++k) {
-        glm::ivec3 c;
-        c[v.across] = a, c[v.down] = b, c[v.depth] = k;
-        const size_t i = f.index(c);
+  std::vector<double> floors;
+  for (size_t c = 0; c < d.cellStats.size(); ++c)
+    if (int(c) != d.outsideCell && d.cellStats[c].voxels > 0 && d.enclosed)
+      floors.push_back(d.cellStats[c].bounds.lo.y);
+  std::sort(floors.begin(), floors.end());
+  std::vector<int> layers;
+  for (size_t k = 0; k < floors.size(); ++k) {
+    if (k > 0 && floors[k] - floors[k - 1] < kStoreyGap) continue;  // one storey begins at its lowest floor
+    const glm::ivec3 v = f.voxelOf(glm::vec3(0.0f, float(floors[k] + kSectionHeight), 0.0f));
+    const int layer = std::clamp(v.y, 0, f.dims.y - 1);
+    if (layers.empty() || layers.back() != layer) layers.push_back(layer);
+  }
+  if (layers.empty()) layers.push_back(f.dims.y / 2);
+  return layers;
+}
+
+/// What one voxel shows: its cell's colour, walls dark, outside white, void (inside closed solids) grey.
+/// The outside cell of a building is drawn white like unlabelled outside space; in an open scene (the
+/// outside its only cell) the geometry shows over it.
+glm::vec3 voxelColour(const Decomposition& d, size_t i) {
+  const int cell = d.voxelCell[i];
+  const Space space = d.space[i];
+  if (space == Space::Solid) return kWall;
+  if (cell >= 0 && !(d.enclosed && cell == d.outsideCell)) return cellColour(cell);
+  return space == Space::Void ? kVoid : kOutside;
+}
+
+// A plan section: x to the right, z down the page, the voxel layer `y`.
+void drawSection(const Decomposition& d, int y, int scale, glm::ivec2 corner, ImageRGB& img) {
+  const GridFrame& f = d.frame;
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int x = 0; x < f.dims.x; ++x) {
+      const glm::vec3 colour = voxelColour(d, f.index(x, y, z));
+      for (int py = 0; py < scale; ++py)
+        for (int px = 0; px < scale; ++px)
+          img.at(corner.x + x * scale + px, corner.y + z * scale + py) = colour;
+    }
+}
+
+// The elevation: looking along −z, y up; each pixel the cell most of up to kElevationSamples voxels along
+// its depth belong to (a sample, so that its cost does not grow with the depth of a large grid), solid
+// where there is no cell in the column.
+void drawElevation(const Decomposition& d, int scale, glm::ivec2 corner, ImageRGB& img) {
+  const GridFrame& f = d.frame;
+  const int step = std::max(1, f.dims.z / kElevationSamples);
+  std::vector<int> counts(d.graph.cells.size() + 1, 0);
+  std::vector<int> touched;
+  for (int y = 0; y < f.dims.y; ++y)
+    for (int x = 0; x < f.dims.x; ++x) {
+      int outside = 0, solid = 0;
+      bool voidSpace = false;
+      for (int z = 0; z < f.dims.z; z += step) {
+        const size_t i = f.index(x, y, z);
         const int cell = d.voxelCell[i];
-        // The outside cell of a building is drawn white like unlabelled outside space, below its rooms.
         if (d.enclosed && cell >= 0 && cell == d.outsideCell)
           ++outside;
-        else if (cell >= 0 && (d.enclosed || d.space[i] == Space::Outside))
-          ++counts[cell];
-        solid |= d.space[i] == Space::Solid;
-        solidCount += d.space[i] == Space::Solid;
+        else if (cell >= 0 && size_t(cell) < counts.size() && (d.enclosed || d.space[i] == Space::Outside)) {
+          if (counts[size_t(cell)]++ == 0) touched.push_back(cell);
+        }
+        solid += d.space[i] == Space::Solid;
         voidSpace |= d.space[i] == Space::Void;
       }
       // Where the outside outweighs the solid (the ground around a house, not its walls) it shows white.
-      const bool open = outside > solidCount;
-      glm::vec3 colour = solid && !open ? kWall : voidSpace && !open ? kVoid : kOutside;
+      const bool open = outside > solid;
+      glm::vec3 colour = solid > 0 && !open ? kWall : voidSpace && !open ? kVoid : kOutside;
       int best = 0;
-      for (const auto& [cell, n] : counts)
-        if (n > best) best = n, colour = cellColour(cell);
-      if (!d.enclosed && solid) colour = kWall;  // an open scene: show its geometry over the one cell
-      const int row = v.flipDown ? f.dims[v.down] - 1 - b : b;
+      for (int c : touched) {
+        if (counts[size_t(c)] > best) best = counts[size_t(c)], colour = cellColour(c);
+        counts[size_t(c)] = 0;
+      }
+      touched.clear();
+      if (!d.enclosed && solid > 0) colour = kWall;  // an open scene: show its geometry over the one cell
+      const int row = f.dims.y - 1 - y;
       for (int py = 0; py < scale; ++py)
-        for (int px = 0; px < scale; ++px) img.at(a * scale + px, top + row * scale + py) = colour;
+        for (int px = 0; px < scale; ++px)
+          img.at(corner.x + x * scale + px, corner.y + row * scale + py) = colour;
     }
 }
 
 void disk(ImageRGB& img, int cx, int cy, int r, glm::vec3 colour, int top, int bottom) {
   for (int y = cy - r; y <= cy + r; ++y)
     for (int x = cx - r; x <= cx + r; ++x)
-      if (x >= 0 && x < img.width && y >= top && y < bottom && (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
+      if (x >= 0 && x < img.width && y >= top && y < bottom &&
+          (x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r)
         img.at(x, y) = colour;
 }
 
@@ -65,21 +114,27 @@ void line(ImageRGB& img, glm::vec2 a, glm::vec2 b, int r, glm::vec3 colour, int 
   }
 }
 
-void drawPortals(const Decomposition& d, const View& v, int scale, int top, ImageRGB& img) {
+/// Draws the portals as black lines with a red core; `across` and `down` are the grid axes shown, `flip`
+/// puts the down axis up the page. `keep` chooses the portals of this panel.
+template <typename Keep>
+void drawPortals(const Decomposition& d, int across, int down, bool flip, int scale, glm::ivec2 corner,
+                 ImageRGB& img, Keep keep) {
   const GridFrame& f = d.frame;
-  const int bottom = top + f.dims[v.down] * scale;
+  const int top = corner.y, bottom = corner.y + f.dims[down] * scale;
   auto toPixel = [&](const glm::vec3& p) {
     const glm::dvec3 q = (glm::dvec3(p) - f.origin) / f.voxel + 0.5;  // voxel units, cube corners at integers
-    double down = q[v.down];
-    if (v.flipDown) down = f.dims[v.down] - down;
-    return glm::vec2(float(q[v.across] * scale), float(top + down * scale));
+    double row = q[down];
+    if (flip) row = f.dims[down] - row;
+    return glm::vec2(float(corner.x + q[across] * scale), float(top + row * scale));
   };
   const int thick = std::max(1, scale / 2 + 1);
   for (int pass = 0; pass < 2; ++pass)
     for (const PortalQuad& q : d.graph.portals)
-      for (int e = 0; e < 4; ++e)
-        line(img, toPixel(q.corners[size_t(e)]), toPixel(q.corners[size_t((e + 1) % 4)]),
-             pass == 0 ? thick + 1 : std::max(0, thick - 1), pass == 0 ? kPortalEdge : kPortalCore, top, bottom);
+      if (keep(q))
+        for (int e = 0; e < 4; ++e)
+          line(img, toPixel(q.corners[size_t(e)]), toPixel(q.corners[size_t((e + 1) % 4)]),
+               pass == 0 ? thick + 1 : std::max(0, thick - 1), pass == 0 ? kPortalEdge : kPortalCore, top,
+               bottom);
 }
 
 }  // namespace
@@ -94,12 +149,24 @@ glm::vec3 cellColour(int c) {
   const float p = val * (1 - s), q = val * (1 - s * frac), t = val * (1 - s * (1 - frac));
   glm::vec3 rgb;
   switch (sector) {
-    case 0: rgb = {val, t, p}; break;
-    case 1: rgb = {q, val, p}; break;
-    case 2: rgb = {p, val, t}; break;
-    case 3: rgb = {p, q, val}; break;
-    case 4: rgb = {t, p, val}; break;
-    default: rgb = {val, p, q}; break;
+    case 0:
+      rgb = {val, t, p};
+      break;
+    case 1:
+      rgb = {q, val, p};
+      break;
+    case 2:
+      rgb = {p, val, t};
+      break;
+    case 3:
+      rgb = {p, q, val};
+      break;
+    case 4:
+      rgb = {t, p, val};
+      break;
+    default:
+      rgb = {val, p, q};
+      break;
   }
   return rgb * rgb;
 }
@@ -108,17 +175,32 @@ ImageRGB drawDecomposition(const Decomposition& d, const PictureParams& params) 
   const GridFrame& f = d.frame;
   const int longest = std::max(f.dims.x, f.dims.z);
   const int scale = std::max(1, params.targetWidth / std::max(1, longest));
-  const View plan{0, 2, 1, false}, elevation{0, 1, 2, true};
-  const int gap = 8;
+  const std::vector<int> layers = sectionLayers(d);
+  const int gap = 8, panel = f.dims.x * scale, n = int(layers.size());
   ImageRGB img;
-  img.width = f.dims.x * scale;
+  img.width = n * panel + (n - 1) * gap;
   img.height = (f.dims.z + f.dims.y) * scale + gap;
   img.pixels.assign(size_t(img.width) * size_t(img.height), glm::vec3(0.6f));
-  drawView(d, plan, scale, 0, img);
-  drawPortals(d, plan, scale, 0, img);
-  const int top = f.dims.z * scale + gap;
-  drawView(d, elevation, scale, top, img);
-  drawPortals(d, elevation, scale, top, img);
+  for (int k = 0; k < n; ++k) {
+    const glm::ivec2 corner(k * (panel + gap), 0);
+    drawSection(d, layers[size_t(k)], scale, corner, img);
+    // A door or window crossing the section; a hole in a floor (a stair) in the storey above it.
+    const double y = f.origin.y + f.voxel * layers[size_t(k)];
+    const double below = k > 0 ? f.origin.y + f.voxel * layers[size_t(k - 1)] : -1e30;
+    drawPortals(d, 0, 2, false, scale, corner, img, [&](const PortalQuad& q) {
+      float lo = q.corners[0].y, hi = lo;
+      for (const glm::vec3& c : q.corners) lo = std::min(lo, c.y), hi = std::max(hi, c.y);
+      if (std::abs(q.normal.y) > 0.7f) return q.centre().y < y && q.centre().y >= below;
+      return lo <= y && hi >= y;
+    });
+    // Storey k+1 is marked by k+1 small dark squares in its top left corner.
+    for (int m = 0; m <= k && 4 + m * 9 + 6 <= panel && 10 <= img.height; ++m)
+      for (int py = 4; py < 10; ++py)
+        for (int px = 0; px < 6; ++px) img.at(corner.x + 4 + m * 9 + px, py) = kPortalEdge;
+  }
+  const glm::ivec2 below(0, f.dims.z * scale + gap);
+  drawElevation(d, scale, below, img);
+  drawPortals(d, 0, 1, true, scale, below, img, [](const PortalQuad&) { return true; });
   return img;
 }
 

@@ -1,5 +1,6 @@
-// decomposition.png: the cells seen from above (plan) and from the front (elevation), one colour per
-// cell, portals drawn as black lines with a white core.
+// decomposition.png: the cells in plan, one horizontal section per storey side by side (so an upper floor
+// never hides the one below), above an elevation from the front; one colour per cell, portals drawn as
+// black lines with a red core. Its cost grows with the grid's plan and front areas, not its volume.
 #pragma once
 
 #include "core/image_io.h"
@@ -11,9 +12,12 @@ struct PictureParams {
   int targetWidth = 900;  ///< pixels across the longer horizontal side; each voxel becomes a square of pixels
 };
 
-/// Plan (looking down −y, x to the right, z down the page) above elevation (looking along −z, y up). Each
-/// pixel column shows the cell most of the voxels behind it belong to; walls dark grey, outside white,
-/// void (inside closed solids) mid grey. Linear colours in [0, 1] for writePng.
+/// One plan per storey (looking down −y, x to the right, z down the page; storey k marked by k small dark
+/// squares at its top left): the voxel layer 1.2 m above the storey's floor, storeys being the cells'
+/// floors clustered 1.5 m apart (one mid-height layer without rooms); the doors and windows it cuts and
+/// the holes in the floor below it. Under them, the elevation (looking along −z, y up): each pixel the cell
+/// most of a sample of the voxels behind it belong to. Walls dark grey, outside white, void (inside closed
+/// solids) mid grey. Linear colours in [0, 1] for writePng.
 ImageRGB drawDecomposition(const Decomposition& d, const PictureParams& params = {});
 
 /// A distinct colour for cell c (golden-ratio hue steps), linear RGB.

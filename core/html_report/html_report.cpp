@@ -102,8 +102,6 @@ json lightmapJson(const ReportLightmap& lm) {
 json cellsJson(const HtmlReportInput& in) {
   json cells = json::array();
   if (!in.cells) return cells;
-  const std::vector<CellViewpoint> views =
-      in.scene ? cellViewpoints(*in.scene, *in.cells) : std::vector<CellViewpoint>(in.cells->cells.size());
   std::vector<size_t> texels(in.cells->cells.size(), 0);
   std::vector<double> area(texels.size(), 0.0), power(texels.size(), 0.0);
   if (in.lightmap)
@@ -117,7 +115,9 @@ json cellsJson(const HtmlReportInput& in) {
     }
   for (size_t c = 0; c < in.cells->cells.size(); ++c) {
     json cell = {{"name", in.cells->cells[c].name}};
-    if (views[c].valid) cell["eye"] = vec(views[c].eye), cell["look"] = vec(views[c].look);
+    for (const Camera& cam : in.cellCameras)
+      if (cam.name == in.cells->cells[c].name)
+        cell["eye"] = vec(cam.position), cell["look"] = vec(cam.position + cam.forward);
     if (in.lightmap && !in.lightmap->cellOfTexel.empty())
       cell["texels"] = texels[c], cell["area_m2"] = area[c], cell["power_w"] = power[c];
     cells.push_back(cell);
@@ -143,62 +143,12 @@ json portalsJson(const CellGraph* graph) {
 
 }  // namespace
 
-std::vector<CellViewpoint> cellViewpoints(const Scene& scene, const CellGraph& graph) {
-  constexpr float kEyeHeight = 1.6f, kFloorBand = 0.3f;
-  std::vector<CellViewpoint> out(graph.cells.size());
-  for (size_t c = 0; c < graph.cells.size(); ++c) {
-    Bounds bounds;
-    float floorY = std::numeric_limits<float>::max();
-    for (uint32_t t : graph.cells[c].triangles) {
-      if (t >= scene.triangles.size()) continue;
-      const Triangle& tri = scene.triangles[t];
-      for (const glm::vec3& p : tri.p) bounds.extend(p);
-      if (tri.geometricNormal().y > 0.9f) floorY = std::min(floorY, tri.centroid().y);
-    }
-    if (bounds.empty() || floorY == std::numeric_limits<float>::max()) continue;
-    // The lowest floor: up-facing triangles near floorY. Stand over the one nearest their area-weighted
-    // middle, so that an L-shaped room still puts the eye above its own floor.
-    glm::vec3 middle(0.0f);
-    float total = 0.0f;
-    for (uint32_t t : graph.cells[c].triangles) {
-      if (t >= scene.triangles.size()) continue;
-      const Triangle& tri = scene.triangles[t];
-      if (tri.geometricNormal().y > 0.9f && tri.centroid().y < floorY + kFloorBand)
-        middle += tri.centroid() * tri.area(), total += tri.area();
-    }
-    if (!(total > 0.0f)) continue;
-    middle /= total;
-    glm::vec3 stand = middle;
-    float best = std::numeric_limits<float>::max();
-    for (uint32_t t : graph.cells[c].triangles) {
-      if (t >= scene.triangles.size()) continue;
-      const Triangle& tri = scene.triangles[t];
-      if (!(tri.geometricNormal().y > 0.9f && tri.centroid().y < floorY + kFloorBand)) continue;
-      for (int k = 0; k <= 3; ++k) {  // the centroid and the corners pulled a little inwards
-        const glm::vec3 p = k == 3 ? tri.centroid() : glm::mix(tri.p[k], tri.centroid(), 0.2f);
-        const float d = glm::distance(glm::vec2(p.x, p.z), glm::vec2(middle.x, middle.z));
-        if (d < best) best = d, stand = p;
-      }
-    }
-    const float height = std::min(kEyeHeight, 0.6f * (bounds.hi.y - stand.y));
-    CellViewpoint& v = out[c];
-    v.valid = true;
-    v.eye = stand + glm::vec3(0.0f, std::max(height, 0.1f), 0.0f);
-    const glm::vec3 size = bounds.hi - bounds.lo;
-    const glm::vec3 centre = (bounds.lo + bounds.hi) * 0.5f;
-    // Look towards the farther wall along the longer horizontal extent, level.
-    glm::vec3 dir = size.x >= size.z ? glm::vec3(v.eye.x < centre.x ? 1.0f : -1.0f, 0.0f, 0.0f)
-                                     : glm::vec3(0.0f, 0.0f, v.eye.z < centre.z ? 1.0f : -1.0f);
-    v.look = v.eye + dir;
-  }
-  return out;
-}
-
 std::string renderHtmlReport(const HtmlReportInput& in) {
   json data = {{"kind", in.kind}, {"title", in.title}, {"report", in.report}};
   data["cells"] = cellsJson(in);
   data["portals"] = portalsJson(in.cells);
   if (in.lightmap) data["lightmap"] = lightmapJson(*in.lightmap);
+  if (!in.bench.is_null()) data["bench"] = in.bench;
   return fillTemplate(
       embedded::kPageTemplate,
       {{"@CPGI_DATA@", escapeForScript(data.dump(-1, ' ', false, json::error_handler_t::replace))},

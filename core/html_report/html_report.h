@@ -32,9 +32,14 @@ struct HtmlReportInput {
   std::string kind;                  ///< "bake", "reference", "comparison" or "decomposition"
   nlohmann::json report;             ///< report.json as written beside the page
   std::string glb;                   ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
-  const Scene* scene = nullptr;      ///< for the cameras placed in each cell (may be null)
+  /// Where a person would stand in each cell (radiosity/lightmap/views.h's defaultCameras), by the cell's
+  /// name; the page offers a view from each. A cell without one gets none.
+  std::vector<Camera> cellCameras;
   const CellGraph* cells = nullptr;  ///< cells and portals (may be null or empty)
   const ReportLightmap* lightmap = nullptr;  ///< null for a decomposition
+  /// Rows of bench/speed_accuracy.py's results.json (scene, method, resolution, seconds, rel_rmse,
+  /// rel_rmse_nonemissive ...) for the speed-against-accuracy chart; null for none.
+  nlohmann::json bench;
 };
 
 /// The page's HTML. Throws std::invalid_argument when the lightmap's arrays do not match its size.
@@ -46,13 +51,5 @@ void writeHtmlReport(OutputDir& out, const HtmlReportInput& input);
 /// Reads a staged or finished file whole (to embed baked.glb). Throws SystemError naming it.
 std::string readFileBytes(const std::string& path);
 
-/// Where a person would stand in each cell: above the middle of its lowest floor (up-facing surfaces),
-/// at eye height (1.6 m, or 60 % of the way to the top of the cell when it is lower), looking along its
-/// longer horizontal extent. Y is up (glTF). A cell without an up-facing surface gets none.
-struct CellViewpoint {
-  bool valid = false;
-  glm::vec3 eye{0.0f}, look{0.0f};
-};
-std::vector<CellViewpoint> cellViewpoints(const Scene& scene, const CellGraph& cells);
 
 }  // namespace cpgi

@@ -223,6 +223,14 @@ void finishBookkeeping(const std::vector<CellState>& cells, const LightmapAtlas&
     if (global.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
 }
 
+// The cells a round solves, for its progress line: the first six names and how many more.
+std::string cellList(const CellGraph& graph, const std::vector<size_t>& active) {
+  std::string list = active.size() == 1 ? "cell " : "cells ";
+  for (size_t k = 0; k < active.size() && k < 6; ++k) list += (k ? ", " : "") + graph.cells[active[k]].name;
+  if (active.size() > 6) list += " and " + std::to_string(active.size() - 6) + " more";
+  return list;
+}
+
 }  // namespace
 
 const char* portalLightName(PortalLight p) {
@@ -256,6 +264,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   const double emitted = result.energy.emitted, target = params.solver.unshotFraction * emitted;
   int& rounds = result.perCell->rounds;
   double unshot = emitted;
+  double done = 0.0;  // the "cells" progress: unshot power on a log scale from all to the target
   while (emitted > 0.0 && unshot > target && rounds < params.maxRounds) {
     ++rounds;
     const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
@@ -265,14 +274,13 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
       next.pending[c].assign(cells[c].pending.size(), glm::vec3(0.0f));
     transfer->beginRound();
     const std::vector<size_t> active = activeCells(cells, target, next, *transfer);
+    ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     std::vector<SolveResult> solved = solveRound(cells, active, settings, controls, *transfer, workers, ctx);
     for (size_t c : active) syncCell(c, cells[c], solved[c], links, cells, graph, next, *transfer, result);
     unshot = endRound(cells, next, *transfer);
-    ctx.progress(
-        "cells",
-        std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction), 0.0,
-                   1.0),
-        "round " + std::to_string(rounds));
+    done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction), 0.0,
+                      1.0);
+    ctx.progress("cells", done, "round " + std::to_string(rounds));
   }
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

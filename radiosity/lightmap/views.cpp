@@ -15,19 +15,6 @@ namespace cpgi {
 
 namespace {
 
-Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target) {
-  Camera cam;
-  cam.name = name;
-  cam.position = eye;
-  cam.forward = glm::normalize(target - eye);
-  const glm::vec3 worldUp(0.0f, 1.0f, 0.0f);
-  glm::vec3 up = worldUp - cam.forward * glm::dot(cam.forward, worldUp);
-  cam.up = glm::length(up) > 1e-4f ? glm::normalize(up) : glm::vec3(0.0f, 0.0f, -1.0f);
-  cam.yfov = glm::radians(65.0f);
-  cam.aspect = 4.0f / 3.0f;
-  return cam;
-}
-
 /// Bilinear lookup at atlas coordinates in [0,1]² (texel centres at (i+½)/width), clamped at the border.
 glm::vec3 sampleBilinear(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap, glm::vec2 uv) {
   const float x = uv.x * float(atlas.width) - 0.5f, y = uv.y * float(atlas.height) - 0.5f;
@@ -44,33 +31,6 @@ glm::vec3 sampleBilinear(const LightmapAtlas& atlas, std::span<const glm::vec3> 
 }
 
 }  // namespace
-
-std::vector<Camera> defaultCameras(const Scene& scene, const CellGraph& cells) {
-  std::vector<Camera> cameras;
-  auto cornerView = [](const std::string& name, const Bounds& b) {
-    const glm::vec3 size = b.size();
-    const float eyeHeight = std::min(1.6f, 0.55f * size.y);
-    const glm::vec3 eye(b.lo.x + 0.15f * size.x, b.lo.y + eyeHeight, b.lo.z + 0.15f * size.z);
-    const glm::vec3 target(b.hi.x - 0.1f * size.x, b.lo.y + 0.4f * size.y, b.hi.z - 0.1f * size.z);
-    return lookAt(name, eye, target);
-  };
-  for (const Cell& cell : cells.cells) {
-    Bounds b;
-    for (uint32_t t : cell.triangles)
-      if (t < scene.triangles.size())
-        for (const glm::vec3& p : scene.triangles[t].p) b.extend(p);
-    if (!b.empty()) cameras.push_back(cornerView(cell.name, b));
-  }
-  if (!cameras.empty()) return cameras;
-
-  const Bounds b = scene.bounds();
-  if (b.empty()) return cameras;
-  const glm::vec3 size = b.size(), centre = 0.5f * (b.lo + b.hi);
-  const glm::vec3 eye(centre.x, b.lo.y + std::min(1.6f, 0.55f * size.y), centre.z);
-  const glm::vec3 along = size.x >= size.z ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
-  cameras.push_back(lookAt("overview", eye, eye + along - glm::vec3(0.0f, 0.15f, 0.0f)));
-  return cameras;
-}
 
 float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap) {
   std::vector<std::pair<float, float>> radianceArea;  // (luminance-ish radiance, area)

@@ -30,11 +30,15 @@ struct ViewParams {
   float exposure = 0.0f;
 };
 
-/// Interior views for a scene that has no cameras of its own (y up, as in glTF): with cells, one per cell,
-/// named after it, from near one lower corner of the cell's bounds at eye height towards the opposite
-/// corner; without, one named "overview" from the centre of the scene's bounds at eye height along its
-/// longest horizontal axis.
-std::vector<Camera> defaultCameras(const Scene& scene, const CellGraph& cells);
+/// Interior views for a scene that has no cameras of its own (y up, as in glTF), from default_cameras.cpp:
+/// one per cell but "outside", named after it; without cells (or with only "outside"), one named
+/// "overview" for the whole scene, preferring a spot with something overhead. Each eye stands at 1.6 m
+/// (less under a low ceiling) above an upward-facing surface of its cell, found by casting rays down
+/// columns over the cell's bounds (its `volume` when it has one), at least 0.3 m from any surface, not
+/// inside a solid (its rays see front faces), and looks along the longest horizontal axis of the bounds,
+/// the way that sees furthest, tilted down by 8.5°. A cell with no such floor gets a view from near one
+/// lower corner of its bounds towards the opposite one.
+std::vector<Camera> defaultCameras(const RayScene& rays, const Scene& scene, const CellGraph& cells);
 
 /// An exposure that makes the area-weighted 90th percentile of radiance (B/π over valid texels) 0.8, so
 /// lit walls read well and lights saturate. 1 for a black lightmap.
@@ -45,9 +49,18 @@ float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightm
 ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas,
                     std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params = {});
 
-/// Renders every camera of the scene (defaultCameras() when it has none) and writes `view-NAME.exr`
-/// (linear radiance) and `view-NAME.png` (tone-mapped) through `out`; NAME is the camera name made
-/// file-safe. Returns the NAMEs written.
+/// The cameras views are rendered from: the scene's own, or defaultCameras() when it has none.
+std::vector<Camera> viewCameras(const RayScene& rays, const Scene& scene, const CellGraph& cells);
+
+/// Renders each of `cameras` and writes `view-NAME.exr` (linear radiance) and `view-NAME.png` (tone-mapped:
+/// params.exposure, or else chosen from what that camera sees, its pixels' 90th percentile of radiance to
+/// 0.8) through `out`; NAME is the camera name made file-safe and unique. Returns the NAMEs written.
+std::vector<std::string> renderCameraViews(const RayScene& rays, const Scene& scene,
+                                           std::span<const Camera> cameras, const LightmapAtlas& atlas,
+                                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
+                                           const ViewParams& params = {});
+
+/// renderCameraViews() over viewCameras().
 std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
                                      std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
                                      const ViewParams& params = {});

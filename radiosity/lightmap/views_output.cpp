@@ -30,12 +30,14 @@ float pictureExposure(const ImageRGB& image, float fallback) {
 
 }  // namespace
 
-std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
-                                     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                                     const ViewParams& params) {
-  auto timer = ctx.time("views");
-  const std::vector<Camera> cameras = scene.cameras.empty() ? defaultCameras(scene, cells) : scene.cameras;
-  const RayScene rays(scene);
+std::vector<Camera> viewCameras(const RayScene& rays, const Scene& scene, const CellGraph& cells) {
+  return scene.cameras.empty() ? defaultCameras(rays, scene, cells) : scene.cameras;
+}
+
+std::vector<std::string> renderCameraViews(const RayScene& rays, const Scene& scene,
+                                           std::span<const Camera> cameras, const LightmapAtlas& atlas,
+                                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
+                                           const ViewParams& params) {
   const float lightmapExposure = viewExposure(atlas, lightmap);
   std::vector<std::string> names;
   std::set<std::string> used;
@@ -48,12 +50,22 @@ std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells,
     while (!used.insert(name).second) name.append("_").append(std::to_string(c));
     const ImageRGB image = renderView(rays, scene, atlas, lightmap, cameras[c], params);
     writeExr(out.file("view-" + name + ".exr").string(), image);
-    const float exposure = params.exposure > 0.0f ? params.exposure : pictureExposure(image, lightmapExposure);
+    const float exposure =
+        params.exposure > 0.0f ? params.exposure : pictureExposure(image, lightmapExposure);
     writePng(out.file("view-" + name + ".png").string(), image, exposure);
     names.push_back(name);
     ctx.progress("views", double(c + 1) / double(cameras.size()), name);
   }
   return names;
+}
+
+std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+                                     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
+                                     const ViewParams& params) {
+  auto timer = ctx.time("views");
+  const RayScene rays(scene);
+  const std::vector<Camera> cameras = viewCameras(rays, scene, cells);
+  return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params);
 }
 
 }  // namespace cpgi

@@ -202,6 +202,19 @@ TEST(GltfWriter, BakedFileIsUnlitWithLightmapAndKeepsMaterialsInExtras) {
     EXPECT_LE(glm::length(m.albedo - it->albedo), 1e-6f);
     EXPECT_LE(glm::length(m.emission - it->emission), 1e-4f);
   }
+  // And each triangle's lightmap coordinates (TEXCOORD_1), for `cpgi view`; by position, as the cells
+  // are not written here and the triangle order may change.
+  ASSERT_EQ(loaded.lightmapUVs.size(), loaded.scene.triangles.size());
+  for (size_t t = 0; t < loaded.scene.triangles.size(); ++t) {
+    size_t match = uvs.size();
+    for (size_t u = 0; u < rooms.scene.triangles.size(); ++u)
+      if (rooms.scene.triangles[u].p == loaded.scene.triangles[t].p) match = u;
+    ASSERT_LT(match, uvs.size()) << t;
+    EXPECT_EQ(loaded.lightmapUVs[t], uvs[match]) << t;
+  }
+  // A scene without them has none.
+  writeGltf(dir / "plain.glb", rooms.scene);
+  EXPECT_TRUE(loadScene(dir / "plain.glb").lightmapUVs.empty());
 }
 
 TEST(GltfWriter, WritesThroughAnOutputDir) {

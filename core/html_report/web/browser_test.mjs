@@ -6,7 +6,7 @@
 //  - colour by cell paints several cells in distinct hues; texel density, portals and (for a comparison)
 //    the error heat map change the picture;
 //  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
-//  - the tables of report.json are there.
+//  - the tables of report.json are there, and the bench chart when the page has bench rows.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
@@ -221,6 +221,23 @@ try {
       .filter((r) => r.cells[1]?.textContent === 'worst').map((r) => r.cells[0].textContent));
     summary.worstCell = marked;
     check(marked.length === 1 && marked[0] === worst, `panels: worst cell ${worst} marked as ${marked}`);
+  }
+  // Bench rows given (compare-light --bench): one chart per scene, one line per method through its points.
+  const bench = await page.evaluate(() => window.cpgiViewer.data.bench || []);
+  if (bench.length) {
+    const charts = await page.evaluate(() => [...document.querySelectorAll('.bench-chart')].map((f) => ({
+      scene: f.dataset.scene,
+      lines: [...f.querySelectorAll('polyline.method')].map((l) => [l.dataset.method, l.points.numberOfItems]),
+      points: f.querySelectorAll('circle').length,
+    })));
+    summary.bench = charts;
+    const scenes = new Set(bench.map((r) => String(r.scene)));
+    check(charts.length === scenes.size, `bench: ${charts.length} charts for ${scenes.size} scenes`);
+    for (const c of charts) {
+      const rows = bench.filter((r) => String(r.scene) === c.scene);
+      check(c.points === rows.length, `bench: ${c.scene} shows ${c.points} points for ${rows.length} rows`);
+      check(c.lines.length === new Set(rows.map((r) => r.method)).size, `bench: ${c.scene} lines ${JSON.stringify(c.lines)}`);
+    }
   }
   await page.select('#views', 'overview');
   await page.evaluate(() => window.cpgiViewer.render());

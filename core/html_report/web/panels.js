@@ -1,4 +1,5 @@
-// report.html's numbers: per-cell table, portals, timings by stage and every parameter of report.json.
+// report.html's numbers: per-cell table, portals, the bench's speed against accuracy, timings by stage and
+// every parameter of report.json.
 // Plain DOM tables, built from the page's #cpgi-data (see viewer.js).
 
 export function formatNumber(x) {
@@ -132,7 +133,61 @@ function warningsSection(report) {
   return section('Warnings', '<ul>' + warnings.map((w) => `<li>${escapeHtml(w)}</li>`).join('') + '</ul>');
 }
 
+// Speed against accuracy (the rows of bench/speed_accuracy.py's results.json, given to compare-light with
+// --bench): per scene, the relative RMSE without the lamps (with them when a row lacks it) against the
+// whole bake's seconds, both logarithmic, one line per method through its atlas resolutions.
+const METHOD_COLOURS = { 'global-hemicube': '#4e9bff', 'global-hemisphere': '#ff9e4a', 'cells-diffuse': '#5fd068',
+  'cells-directional': '#ff5c5c' };
+const benchError = (r) => (typeof r.rel_rmse_nonemissive === 'number' ? r.rel_rmse_nonemissive : r.rel_rmse);
+
+function decades(values) {
+  let lo = Math.floor(Math.min(...values)), hi = Math.ceil(Math.max(...values));
+  if (hi === lo) hi = lo + 1;
+  return [lo, hi];
+}
+
+function benchChart(scene, rows) {
+  const W = 560, H = 300, left = 64, right = 150, top = 14, bottom = 40;
+  const [x0, x1] = decades(rows.map((r) => Math.log10(r.seconds)));
+  const [y0, y1] = decades(rows.map((r) => Math.log10(benchError(r))));
+  const x = (s) => left + ((Math.log10(s) - x0) / (x1 - x0)) * (W - left - right);
+  const y = (e) => H - bottom - ((Math.log10(e) - y0) / (y1 - y0)) * (H - top - bottom);
+  const parts = [];
+  for (let k = x0; k <= x1; ++k)
+    parts.push(`<line x1="${x(10 ** k)}" x2="${x(10 ** k)}" y1="${top}" y2="${H - bottom}" class="grid"/>`,
+      `<text x="${x(10 ** k)}" y="${H - bottom + 16}" text-anchor="middle">${escapeHtml(formatNumber(10 ** k))}</text>`);
+  for (let k = y0; k <= y1; ++k)
+    parts.push(`<line x1="${left}" x2="${W - right}" y1="${y(10 ** k)}" y2="${y(10 ** k)}" class="grid"/>`,
+      `<text x="${left - 6}" y="${y(10 ** k) + 4}" text-anchor="end">${escapeHtml(formatNumber(10 ** k))}</text>`);
+  parts.push(`<text x="${(left + W - right) / 2}" y="${H - 6}" text-anchor="middle">seconds (whole bake)</text>`,
+    `<text transform="translate(14 ${(top + H - bottom) / 2}) rotate(-90)" text-anchor="middle">relative RMSE (lamps left out)</text>`);
+  const methods = [...new Set(rows.map((r) => r.method))];
+  methods.forEach((method, m) => {
+    const colour = METHOD_COLOURS[method] || `hsl(${(m * 137) % 360} 70% 60%)`;
+    const points = rows.filter((r) => r.method === method).sort((a, b) => a.seconds - b.seconds);
+    parts.push(`<polyline class="method" data-method="${escapeHtml(method)}" fill="none" stroke="${colour}" stroke-width="2" points="${
+      points.map((r) => `${x(r.seconds).toFixed(1)},${y(benchError(r)).toFixed(1)}`).join(' ')}"/>`);
+    for (const r of points)
+      parts.push(`<circle cx="${x(r.seconds).toFixed(1)}" cy="${y(benchError(r)).toFixed(1)}" r="4" fill="${colour}"><title>${
+        escapeHtml(`${method}, ${r.resolution ?? ''}: ${formatNumber(r.seconds)} s, ${formatNumber(100 * benchError(r))} %`)}</title></circle>`,
+      `<text x="${x(r.seconds) + 6}" y="${y(benchError(r)) - 6}" class="point">${escapeHtml(r.resolution ?? '')}</text>`);
+    parts.push(`<rect x="${W - right + 12}" y="${top + 18 * m}" width="12" height="12" fill="${colour}"/>`,
+      `<text x="${W - right + 30}" y="${top + 18 * m + 10}">${escapeHtml(method)}</text>`);
+  });
+  return `<figure class="bench-chart" data-scene="${escapeHtml(scene)}"><svg viewBox="0 0 ${W} ${H}" width="${W}" height="${H}">${
+    parts.join('')}</svg><figcaption>${escapeHtml(scene)}</figcaption></figure>`;
+}
+
+function benchSection(data) {
+  const rows = (Array.isArray(data.bench) ? data.bench : []).filter((r) => r && typeof r === 'object' &&
+    r.seconds > 0 && benchError(r) > 0);
+  if (!rows.length) return '';
+  const scenes = [...new Set(rows.map((r) => String(r.scene ?? '')))];
+  return section('Speed against accuracy (bench)',
+    scenes.map((s) => benchChart(s, rows.filter((r) => String(r.scene ?? '') === s))).join(''));
+}
+
 export function buildPanels(element, data) {
-  element.innerHTML = [cellsSection(data), portalsSection(data), timingsSection(data.report),
+  element.innerHTML = [cellsSection(data), portalsSection(data), benchSection(data), timingsSection(data.report),
     warningsSection(data.report), parametersSection(data.report)].join('');
 }

@@ -2,9 +2,10 @@
 // of a cells bake of seed1, and that of a comparison with a reference, and checks what they draw
 // (core/html_report/web/browser_test.mjs: the canvas follows the lightmap; cells, texel density, portals and
 // the error heat map toggle; exposure brightens; in-cell views are readable; walking moves; tables are
-// there). The screenshots stay in BUILD_DIR/report-screenshots.
+// there; the comparison's bench chart). The screenshots stay in BUILD_DIR/report-screenshots.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <iostream>
 
 #include "tests/core/html_report/node_tools.h"
@@ -56,8 +57,19 @@ TEST(ReportInBrowser, Seed1ComparisonShowsTheErrorHeatMap) {
   ASSERT_EQ(cpgi(dir, "bake " + quote(scene) + " -o " + quote(dir / "bake") + atlas + " -q").status, 0);
   ASSERT_EQ(
       cpgi(dir, "reference " + quote(scene) + " -o " + quote(dir / "ref") + atlas + " --spp 4 -q").status, 0);
-  const test::CommandRun compare = cpgi(dir, "compare-light " + quote(dir / "bake") + " " +
-                                                 quote(dir / "ref") + " --report " + quote(dir / "cmp"));
+  // Two scenes' bench rows (bench/speed_accuracy.py's results.json): the page charts them.
+  {
+    std::ofstream bench(dir / "results.json");
+    bench
+        << R"([{"scene": "seed1", "resolution": "8", "method": "global-hemicube", "seconds": 2.5, "rel_rmse": 0.08},
+      {"scene": "seed1", "resolution": "16", "method": "global-hemicube", "seconds": 9, "rel_rmse": 0.04,
+       "rel_rmse_nonemissive": 0.05},
+      {"scene": "seed1", "resolution": "8", "method": "cells-diffuse", "seconds": 1.5, "rel_rmse": 0.09},
+      {"scene": "seed3", "resolution": "8", "method": "cells-diffuse", "seconds": 30, "rel_rmse": 0.02}])";
+  }
+  const test::CommandRun compare =
+      cpgi(dir, "compare-light " + quote(dir / "bake") + " " + quote(dir / "ref") + " --report " +
+                    quote(dir / "cmp") + " --bench " + quote(dir / "results.json"));
   ASSERT_EQ(compare.status, 0) << compare.err;
   expectPageWorks(dir, dir / "cmp/report.html", "seed1-comparison");
 }

@@ -1,5 +1,5 @@
 // report.html's writer: the page carries its data intact (lightmap, cells, portals, report.json) and
-// nothing in the data can end its script elements early; viewpoints stand above each cell's floor.
+// nothing in the data can end its script elements early; each cell's view is the camera given for it.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -67,7 +67,11 @@ TEST(HtmlReport, PageCarriesItsDataIntact) {
   input.kind = "bake";
   input.report = {{"method", "cells"}, {"note", "</SCRIPT> and </script>"}};
   input.glb = std::string("glTF\x02\0\0\0", 8);
-  input.scene = &scene;
+  Camera inHall;
+  inHall.name = "hall";
+  inHall.position = {1, 1.6f, 1};
+  inHall.forward = {1, 0, 0};
+  input.cellCameras = {inHall};
   input.cells = &graph;
   input.lightmap = &lightmap;
   const std::string page = renderHtmlReport(input);
@@ -92,6 +96,10 @@ TEST(HtmlReport, PageCarriesItsDataIntact) {
   // Σ B·A with B the mean of R, G, B: (2 × 0.5) + (0.5 × 0.5).
   EXPECT_NEAR(data["cells"][0]["power_w"].get<double>(), 1.25, 1e-9);
   EXPECT_NEAR(data["cells"][1]["power_w"].get<double>(), 4 * 0.25 + 1 * 0.25, 1e-9);
+  // The hall's view from its camera; the kitchen has none.
+  EXPECT_EQ(data["cells"][0]["eye"], nlohmann::json({1.0, 1.6f, 1.0}));
+  EXPECT_EQ(data["cells"][0]["look"], nlohmann::json({2.0, 1.6f, 1.0}));
+  EXPECT_FALSE(data["cells"][1].contains("eye"));
   ASSERT_EQ(data["portals"].size(), 1u);
   EXPECT_EQ(data["portals"][0]["cell_b"], graph.cells[1].name);
   EXPECT_EQ(data["portals"][0]["corners"][2], nlohmann::json({4.0, 2.0, 1.5}));
@@ -105,28 +113,6 @@ TEST(HtmlReport, RefusesALightmapOfTheWrongSize) {
   HtmlReportInput input;
   input.lightmap = &lightmap;
   EXPECT_THROW(renderHtmlReport(input), std::invalid_argument);
-}
-
-TEST(HtmlReport, ViewpointsStandAboveEachFloorAtEyeHeight) {
-  Scene scene;
-  CellGraph graph;
-  addRoom(scene, graph, "tall", 0.0f, 6.0f, 3.0f, 2.0f);
-  addRoom(scene, graph, "low", 10.0f, 2.0f, 1.5f, 4.0f);
-  graph.cells.push_back(Cell{"empty", {}, {}});
-  const std::vector<CellViewpoint> views = cellViewpoints(scene, graph);
-  ASSERT_EQ(views.size(), 3u);
-  ASSERT_TRUE(views[0].valid);
-  EXPECT_FLOAT_EQ(views[0].eye.y, 1.6f);
-  EXPECT_GT(views[0].eye.x, 0.0f);
-  EXPECT_LT(views[0].eye.x, 6.0f);
-  // Level, along the longer horizontal side (x for the tall room, z for the low one).
-  EXPECT_FLOAT_EQ(views[0].look.y, views[0].eye.y);
-  EXPECT_NEAR(std::abs(views[0].look.x - views[0].eye.x), 1.0f, 1e-6f);
-  ASSERT_TRUE(views[1].valid);
-  EXPECT_NEAR(views[1].eye.y, 0.9f, 1e-6f);  // 60 % of a 1.5 m cell
-  EXPECT_NEAR(std::abs(views[1].look.z - views[1].eye.z), 1.0f, 1e-6f);
-  EXPECT_GE(views[1].eye.x, 10.0f);
-  EXPECT_FALSE(views[2].valid);
 }
 
 }  // namespace

@@ -117,7 +117,8 @@ TEST(Views, DefaultCamerasOnePerCellInsideIt) {
   cells.cells[1].name = "B";
   for (uint32_t t = 0; t < 12; ++t) cells.cells[0].triangles.push_back(t);
   for (uint32_t t = 12; t < 24; ++t) cells.cells[1].triangles.push_back(t);
-  const std::vector<Camera> cameras = defaultCameras(scene, cells);
+  const RayScene rays(scene);
+  const std::vector<Camera> cameras = defaultCameras(rays, scene, cells);
   ASSERT_EQ(cameras.size(), 2u);
   EXPECT_EQ(cameras[0].name, "A");
   EXPECT_EQ(cameras[1].name, "B");
@@ -129,13 +130,12 @@ TEST(Views, DefaultCamerasOnePerCellInsideIt) {
     EXPECT_NEAR(glm::length(cameras[c].forward), 1.0f, 1e-5f);
     EXPECT_NEAR(glm::dot(cameras[c].forward, cameras[c].up), 0.0f, 1e-5f);
     // Looking into the room: the ray along the view axis hits a wall of the same cell from inside.
-    const RayScene rays(scene);
     const RayScene::Hit hit = rays.intersect(eye, cameras[c].forward);
     ASSERT_TRUE(hit);
     EXPECT_EQ(hit.triangle / 12, c);
   }
 
-  const std::vector<Camera> overview = defaultCameras(scene, CellGraph{});
+  const std::vector<Camera> overview = defaultCameras(rays, scene, CellGraph{});
   ASSERT_EQ(overview.size(), 1u);
   EXPECT_EQ(overview[0].name, "overview");
   EXPECT_NEAR(glm::abs(overview[0].forward.x), 0.989f, 0.01f);  // the longest horizontal axis is x

@@ -1,0 +1,111 @@
+// Default cameras on the generated buildings (their own cameras removed): every eye stands in its room's
+// empty space, at eye height above a floor of its cell, away from the walls; with the hand-made cells,
+// with the automatic decomposition's and with no cells at all.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "decomposition/decompose.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/views.h"
+#include "scenes/buildings.h"
+
+namespace cpgi {
+namespace {
+
+/// The room (by index in b.rooms) whose boxes hold `p`, -1 for none.
+int roomHolding(const Building& b, glm::vec3 p) {
+  for (size_t r = 0; r < b.rooms.size(); ++r)
+    for (const Box3& box : b.rooms[r].boxes)
+      if (box.contains(p)) return int(r);
+  return -1;
+}
+
+/// Checks what every default camera must satisfy whatever its cells: a floor facing up straight below the
+/// eye, between 0.5 and 1.6 m down (1.6 unless the ceiling is low), owned by `cell` (unless -1); no surface
+/// within 0.25 m around the eye; a unit view direction close to horizontal.
+void expectStandsOnFloor(const RayScene& rays, const Scene& scene, const std::vector<int>& triangleCell,
+                         const Camera& cam, int cell) {
+  SCOPED_TRACE(cam.name);
+  const RayScene::Hit below = rays.intersect(cam.position, {0, -1, 0});
+  ASSERT_TRUE(below);
+  EXPECT_GT(scene.triangles[size_t(below.triangle)].geometricNormal().y, 0.7f);
+  EXPECT_GE(below.t, 0.5f);
+  EXPECT_LE(below.t, 1.6f + 1e-3f);
+  if (cell >= 0) {
+    EXPECT_EQ(triangleCell[size_t(below.triangle)], cell);
+  }
+  for (int k = 0; k < 16; ++k) {
+    const float a = float(k) * 3.14159265f / 8.0f;
+    const RayScene::Hit h = rays.intersect(cam.position, {std::cos(a), 0.0f, std::sin(a)});
+    if (h) {
+      EXPECT_GT(h.t, 0.25f) << "direction " << k;
+    }
+  }
+  EXPECT_NEAR(glm::length(cam.forward), 1.0f, 1e-5f);
+  EXPECT_LT(std::abs(cam.forward.y), 0.2f);
+}
+
+TEST(DefaultCameras, OnePerRoomOfEveryBuildingInsideItsRoomAboveItsFloor) {
+  for (const std::string& name : buildingNames()) {
+    SCOPED_TRACE(name);
+    Building b = makeBuilding(name);
+    Scene& scene = b.seed.scene;
+    scene.cameras.clear();
+    const RayScene rays(scene);
+    const CellGraph& cells = b.seed.cells;
+    const std::vector<int> triangleCell = cells.cellOfTriangle(scene.triangles.size());
+    const std::vector<Camera> cameras = defaultCameras(rays, scene, cells);
+    ASSERT_EQ(cameras.size(), b.rooms.size());  // every cell but "outside"
+    for (size_t r = 0; r < b.rooms.size(); ++r) {
+      const Camera& cam = cameras[r];
+      EXPECT_EQ(cam.name, b.rooms[r].name);
+      EXPECT_EQ(roomHolding(b, cam.position), int(r))
+          << cam.name << " at " << cam.position.x << "," << cam.position.y << "," << cam.position.z;
+      expectStandsOnFloor(rays, scene, triangleCell, cam, cells.findCell(cam.name));
+    }
+  }
+}
+
+TEST(DefaultCameras, WithoutCellsOneOverviewInsideARoomOfTheHouse) {
+  // Terrain or a roof must not decide: the eye stands in a room, under a roof.
+  for (const char* name : {"house-open", "house-stair", "house-gallery", "porch"}) {
+    SCOPED_TRACE(name);
+    Building b = makeBuilding(name);
+    Scene& scene = b.seed.scene;
+    scene.cameras.clear();
+    const RayScene rays(scene);
+    const std::vector<Camera> cameras = defaultCameras(rays, scene, CellGraph{});
+    ASSERT_EQ(cameras.size(), 1u);
+    EXPECT_EQ(cameras[0].name, "overview");
+    EXPECT_GE(roomHolding(b, cameras[0].position), 0);
+    EXPECT_TRUE(rays.intersect(cameras[0].position, {0, 1, 0}));
+    expectStandsOnFloor(rays, scene, {}, cameras[0], -1);
+  }
+}
+
+TEST(DefaultCameras, OnePerCellOfTheAutomaticDecompositionInsideThatCell) {
+  const Building b = makeBuilding("house-stair");
+  decomp::DecomposeParams params;
+  params.voxelSize = 0.1;
+  Context ctx;
+  decomp::Decomposition d = decomp::decompose(b.seed.scene, params, ctx);
+  d.scene.cameras.clear();
+  const RayScene rays(d.scene);
+  const std::vector<int> triangleCell = d.graph.cellOfTriangle(d.scene.triangles.size());
+  const std::vector<Camera> cameras = defaultCameras(rays, d.scene, d.graph);
+  const size_t rooms = d.graph.cells.size() - (d.outsideCell >= 0 ? 1 : 0);
+  ASSERT_EQ(cameras.size(), rooms);
+  ASSERT_GE(rooms, b.rooms.size() - 1);
+  for (const Camera& cam : cameras) {
+    const int cell = d.graph.findCell(cam.name);
+    ASSERT_GE(cell, 0) << cam.name;
+    // In the cell's own empty voxels, and in a room of the house.
+    EXPECT_EQ(d.voxelCell[d.frame.index(d.frame.voxelOf(cam.position))], cell) << cam.name;
+    EXPECT_GE(roomHolding(b, cam.position), 0) << cam.name;
+    expectStandsOnFloor(rays, d.scene, triangleCell, cam, cell);
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -149,8 +149,9 @@ TEST(Buildings, PortalsOntoTheOutsideFaceOutOfTheirRoomsWhenReadBack) {
   orientOutsidePortals(loaded.scene, loaded.cells);
   for (const PortalQuad& read : loaded.cells.portals)
     for (const PortalQuad& made : s.d.graph.portals)
-      if (glm::length(read.centre() - made.centre()) < 1e-3f)
+      if (glm::length(read.centre() - made.centre()) < 1e-3f) {
         EXPECT_GT(glm::dot(read.normal, made.normal), 0.99f) << made.name;
+      }
 }
 
 TEST(Buildings, OpenPlanStaysOneRoomAndPorchIsOutside) {

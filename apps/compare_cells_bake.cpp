@@ -1,5 +1,7 @@
 #include "apps/compare_cells_bake.h"
 
+#include "apps/compare_light_cells.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -104,16 +106,7 @@ void addCellErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity
   const std::vector<CellError> errors =
       compareCells(radiosity, ref.result.radiosity, ref.nonEmissive, sigma, cell.values, {},
                    atlas.validTexels(), cellNames(cells.graph));
-  nlohmann::json list = nlohmann::json::array();
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  for (const CellError& e : errors)
-    list.push_back({{"name", e.name},
-                    {"texels", e.texels},
-                    {"ratio_of_means", number(e.ratioOfMeans)},
-                    {"ratio_error", number(e.ratioError)},
-                    {"rel_rmse", number(e.relRmse)},
-                    {"reference_noise", number(e.referenceNoise)}});
-  side["cells_error"] = list;
+  side["cells_error"] = cellsJson(errors);  // as compare-light --json gives them
   const std::optional<size_t> worst = worstCell(errors);
   side["worst_cell"] = worst ? nlohmann::json(errors[*worst].name) : nlohmann::json(nullptr);
 }

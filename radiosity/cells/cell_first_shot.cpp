@@ -100,6 +100,12 @@ CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& gl
   const LightmapAtlas black = blackReceivers(global, cellOfTriangle);
   SolverParams first = settings;
   first.unshotFraction = 1e-12;
+  // Each emitter patch shoots once (black receivers give nothing back to shoot), whatever --max-shots.
+  std::vector<char> emits(black.patches.size(), 0);
+  for (size_t i = 0; i < black.texelCount(); ++i)
+    if (black.patch[i] >= 0 && black.emission[i] != glm::vec3(0.0f)) emits[size_t(black.patch[i])] = 1;
+  const int emitters = int(std::count(emits.begin(), emits.end(), char(1)));
+  first.maxShots = std::max(first.maxShots, emitters + 1);
   SolveResult direct;
   {
     auto t = ctx.time("cells: first shot");

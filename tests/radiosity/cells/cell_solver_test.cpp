@@ -96,10 +96,14 @@ TEST(CellScene, PortalTexelsMapOneToOneAcrossTheOpening) {
 }
 
 // A closed 2 × 1 × 1 box, uniform albedo ρ and emission E on every face, cut by a portal filling the
-// cross-section at x = 1: as a single room it converges to B = E/(1−ρ); through the portal it must too.
-TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
-  Scene s;
-  const float rho = 0.5f, e = 1.0f;
+// cross-section at x = 1.
+struct Furnace {
+  Scene scene;
+  CellGraph graph;
+};
+Furnace twoCellFurnace(float rho, float e) {
+  Furnace f;
+  Scene& s = f.scene;
   const uint32_t m = addMaterial(s, glm::vec3(rho), glm::vec3(e));
   const glm::vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   for (int half = 0; half < 2; ++half) {
@@ -111,7 +115,7 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
   }
   addRect(s, glm::vec3(0), Y, Z, m);      // x = 0, normal +x (A)
   addRect(s, 2.0f * X, Z, Y, m);          // x = 2, normal −x (B)
-  CellGraph g;
+  CellGraph& g = f.graph;
   g.cells = {Cell{"A", {}, {}}, Cell{"B", {}, {}}};
   for (uint32_t t = 0; t < s.triangles.size(); ++t) g.cells[s.triangles[t].centroid().x < 1.0f ? 0 : 1].triangles.push_back(t);
   PortalQuad portal;
@@ -120,8 +124,14 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
   portal.cellA = 0, portal.cellB = 1;
   computePortalFrame(portal);
   g.portals.push_back(portal);
+  return f;
+}
 
-  const CellRun r = runCells(s, g, 8, 1e-3);
+// As a single room the furnace converges to B = E/(1−ρ); through the portal it must too.
+TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
+  const float rho = 0.5f, e = 1.0f;
+  const Furnace f = twoCellFurnace(rho, e);
+  const CellRun r = runCells(f.scene, f.graph, 8, 1e-3);
   expectConserved(r.result);
   EXPECT_LE(r.result.unshotFraction, 1e-3);
   EXPECT_GT(r.result.perCell->rounds, 2);
@@ -130,6 +140,23 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
   EXPECT_NEAR(door.aToB, door.bToA, 0.02 * door.aToB);  // symmetric
   const double expect = e / (1.0 - rho);
   testing::expectFurnace(r.atlas, r.result.radiosity, expect, 0.05, 0.015);
+}
+
+// The lights' first shot over the whole scene (cell_first_shot.h) shoots every emitter patch once, even
+// when --max-shots is smaller than their number (the furnace has 12): what it left unshot was dropped.
+TEST(CellSolver, EveryEmitterShootsFirstWhateverTheShotLimit) {
+  const Furnace f = twoCellFurnace(0.5f, 1.0f);
+  Context ctx;
+  EglContext gl(ctx);
+  CellSolveParams params;
+  params.atlas.texelsPerQuad = 4;
+  params.solver.itemBuffer = 64;
+  params.solver.maxShots = 2;
+  const LightmapAtlas atlas = buildAtlas(f.scene, findQuads(f.scene), params.atlas, ctx);
+  const SolveResult r = solveCells(f.scene, f.graph, atlas, params, gl, ctx);
+  expectConserved(r);
+  EXPECT_NEAR(r.energy.emitted, 3.0 * 10.0, 0.01 * 30.0);  // 10 m² emitting 1 W/m² in R, G and B
+  EXPECT_LE(r.energy.escaped(), 0.01 * r.energy.emitted);
 }
 
 // Two rooms sharing a wall with no opening: without a portal no light can reach B, whatever the solver's

@@ -167,6 +167,13 @@ void mapCellTexels(std::vector<CellState>& cells, const std::vector<int>& cellOf
              " patches are charted differently in their cell than in the whole scene");
 }
 
+std::vector<char> portalPatchFlags(const CellState& s) {
+  std::vector<char> portal(s.atlas.patches.size(), 0);
+  for (int p : s.portalPatch)
+    if (p >= 0) portal[size_t(p)] = 1;
+  return portal;
+}
+
 std::vector<PortalLink> linkPortals(const CellGraph& graph, const std::vector<CellState>& cells) {
   std::vector<PortalLink> links;
   std::vector<int32_t> source;

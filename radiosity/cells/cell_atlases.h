@@ -48,6 +48,9 @@ struct CellState {
   bool boundary = false;           ///< an on-demand boundary cell: coarse atlas, texels not written
 };
 
+/// Per patch of `s.atlas`, 1 for a portal patch.
+std::vector<char> portalPatchFlags(const CellState& s);
+
 /// Per portal and direction: (texel in the receiving cell, texel in the sending cell).
 struct PortalLink {
   int portal = -1;

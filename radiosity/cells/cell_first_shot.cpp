@@ -5,13 +5,6 @@
 namespace cpgi {
 namespace {
 
-std::vector<char> portalPatches(const CellState& s) {
-  std::vector<char> portal(s.atlas.patches.size(), 0);
-  for (int p : s.portalPatch)
-    if (p >= 0) portal[size_t(p)] = 1;
-  return portal;
-}
-
 // Each cell's sum is within the lights' power, but texel centres over all cells may sum to a little more
 // (+0.2 % for the point-light rooms at 4 texels/m): scaled back so that no light is made up.
 float fitLandedToEmitted(CellFirstShot& shot) {
@@ -126,7 +119,7 @@ CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& gl
     e = s.boundary ? irradianceOfBoundaryCell(s, global, globalPatchOfTriangle, direct.incident)
                    : irradianceOfWrittenCell(s, global, direct.incident, shot.emission);
     std::fill(s.pending.begin(), s.pending.end(), glm::vec3(0.0f));  // its emitters have shot
-    const std::vector<char> portal = portalPatches(s);
+    const std::vector<char> portal = portalPatchFlags(s);
     for (size_t t = 0; t < e.size(); ++t) {
       if (s.atlas.patch[t] < 0 || portal[size_t(s.atlas.patch[t])]) {
         e[t] = glm::vec3(0.0f);

@@ -193,9 +193,7 @@ double endRound(std::vector<CellState>& cells, NextRound& next, PortalTransfer& 
 std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells, const LightmapAtlas& global) {
   std::vector<glm::vec3> residual(global.texelCount(), glm::vec3(0.0f));
   for (const CellState& s : cells) {
-    std::vector<char> onPortal(s.atlas.patches.size(), 0);
-    for (int p : s.portalPatch)
-      if (p >= 0) onPortal[size_t(p)] = 1;
+    const std::vector<char> onPortal = portalPatchFlags(s);
     glm::dvec3 portalPower(0.0);
     for (size_t t = 0; t < s.pending.size(); ++t)
       if (s.atlas.patch[t] >= 0 && onPortal[size_t(s.atlas.patch[t])])

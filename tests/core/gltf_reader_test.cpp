@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/scene_io.h"
+#include "tests/support/expect_vec.h"
 #include "tests/support/glb_builder.h"
 #include "tests/support/temp_dir.h"
 
@@ -15,10 +16,7 @@ namespace {
 
 using nlohmann::json;
 
-void expectNear(const glm::vec3& got, const glm::vec3& want, float tol = 1e-5f) {
-  EXPECT_LE(glm::length(got - want), tol) << "got (" << got.x << ", " << got.y << ", " << got.z << ") want ("
-                                          << want.x << ", " << want.y << ", " << want.z << ")";
-}
+using test::expectNear;
 
 LoadedScene load(const test::GlbBuilder& g, const std::string& name = "scene.glb", LoadOptions options = {}) {
   test::TempDir dir;

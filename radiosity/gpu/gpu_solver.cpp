@@ -699,6 +699,7 @@ class Solver {
   void setConstantUniforms() {
     set(itemProgram_, "uFar", far_);
     set(itemProgram_, "uNear", near_);
+    if (params_.visibility == Visibility::Hemisphere) set(itemProgram_, "uItemSize", itemSize_);
     for (const gl::Program* p :
          {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_, &rescaleProgram_})
       set(*p, "uAtlasWidth", atlas_.width);

@@ -61,10 +61,12 @@ bool visibleFromShooter(vec3 local, vec3 normal, int id, int layer) {
   vec2 xy = normalize(local).xy;
   ivec2 p = clamp(ivec2(floor((xy * 0.5 + 0.5) * float(n))), ivec2(0), ivec2(n - 1));
   vec2 c = (vec2(p) + 0.5) / float(n) * 2.0 - 1.0;
-  // A pixel straddling the rim with its centre outside the disk shows nothing (no direction there), so
-  // nothing could hide the receiver: its neighbour inwards does the test. Grazing receivers behind a
-  // door frame got light this way (openings: room C 5 % too bright).
-  if (dot(c, c) >= 1.0) {
+  // A pixel straddling the rim with its centre outside the disk shows nothing (no direction there), and
+  // one just inside may fall between the rim and the chords that approximate it (item_hemisphere.tesc):
+  // nothing could hide the receiver there, so its neighbour inwards does the test. Grazing receivers
+  // behind a door frame got light this way (openings, room C: 7.4 % too bright, 2.4 % with this).
+  float rimBand = 1.0 - 4.0 / float(n);  // two pixels
+  if (dot(c, c) >= 1.0 || (dot(c, c) > rimBand * rimBand && texelFetch(uItems, ivec3(p, layer), 0).r == -1)) {
     if (abs(c.x) >= abs(c.y)) p.x -= int(sign(c.x)); else p.y -= int(sign(c.y));
     c = (vec2(p) + 0.5) / float(n) * 2.0 - 1.0;
   }

@@ -33,21 +33,22 @@ nlohmann::json cellsJson(const std::vector<CellError>& cells) {
                    {"ratio_of_means", number(c.ratioOfMeans)},
                    {"ratio_error", number(c.ratioError)},
                    {"rel_rmse", number(c.relRmse)},
+                   {"rel_rmse_without_noise", number(c.relRmseWithoutNoise)},
                    {"reference_noise", number(c.referenceNoise)}});
   return out;
 }
 
 void printCells(const std::vector<CellError>& cells) {
   const std::optional<size_t> worst = worstCell(cells);
-  std::printf("per cell (without lamps)   ratio of means       rel_rmse   ref. noise  texels\n");
+  std::printf("per cell (without lamps)   ratio of means       rel_rmse   ref. noise  without it  texels\n");
   for (size_t c = 0; c < cells.size(); ++c) {
     const CellError& e = cells[c];
     if (e.texels == 0) {
       std::printf("  %-24s no texel compared\n", e.name.c_str());
       continue;
     }
-    std::printf("  %-24s %7.4f +- %.4f  %8.3f%%  %8.3f%%  %6zu%s\n", e.name.c_str(), e.ratioOfMeans,
-                e.ratioError, 100.0 * e.relRmse, 100.0 * e.referenceNoise, e.texels,
+    std::printf("  %-24s %7.4f +- %.4f  %8.3f%%  %8.3f%%  %8.3f%%  %6zu%s\n", e.name.c_str(), e.ratioOfMeans,
+                e.ratioError, 100.0 * e.relRmse, 100.0 * e.referenceNoise, 100.0 * e.relRmseWithoutNoise, e.texels,
                 worst && *worst == c ? "  <- worst" : "");
   }
 }

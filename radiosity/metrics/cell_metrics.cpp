@@ -54,11 +54,13 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (s[c].texels == 0 || !(s[c].r > 0.0)) {
       out[c].ratioOfMeans = out[c].relRmse = out[c].referenceNoise = out[c].ratioError = nan;
+      out[c].relRmseWithoutNoise = nan;
       continue;
     }
     out[c].ratioOfMeans = s[c].b / s[c].r;
     out[c].relRmse = std::sqrt(s[c].squaredError / s[c].squaredReference);
     out[c].referenceNoise = std::sqrt(s[c].noise / s[c].squaredReference);
+    out[c].relRmseWithoutNoise = std::sqrt(std::max(s[c].squaredError - s[c].noise, 0.0) / s[c].squaredReference);
   }
   if (sparse)
     for (size_t i = 0; i < n; ++i) {

@@ -38,9 +38,21 @@ TEST(CellMetrics, WeightsNoiseAndSkippedTexels) {
   EXPECT_NEAR(e[0].relRmse, std::sqrt(3.0 / 39.0), 1e-9);
   // Σ w σ² = 0.01 + 3·0.04 = 0.13.
   EXPECT_NEAR(e[0].referenceNoise, std::sqrt(0.13 / 39.0), 1e-6);
+  // The reference's noise taken out of the error: (3 − 0.13) / 39.
+  EXPECT_NEAR(e[0].relRmseWithoutNoise, std::sqrt(2.87 / 39.0), 1e-6);
   // √3 |σ| per texel: Σ 3 (w σ)² = 3 (0.01 + 0.36) → ratio × sqrt(1.11) / 21.
   EXPECT_NEAR(e[0].ratioError, 24.0 / 21.0 * std::sqrt(1.11) / 21.0, 1e-6);
   EXPECT_EQ(e[0].texels, 2u);
+}
+
+TEST(CellMetrics, AnErrorWithinTheReferencesNoiseReadsZeroWithoutIt) {
+  // The test equals the truth; the reference is off by its own noise (σ = 0.1 per texel).
+  const std::vector<glm::vec3> reference = {{1.05f, 1.05f, 1.05f}, {0.95f, 0.95f, 0.95f}};
+  const std::vector<glm::vec3> test = {{1, 1, 1}, {1, 1, 1}};
+  const std::vector<float> weight = {1, 1}, sigma = {0.1f, 0.1f}, cell = {0, 0};
+  const std::vector<CellError> e = compareCells(test, reference, weight, sigma, cell, {}, 2, {"A"});
+  EXPECT_GT(e[0].relRmse, 0.04);
+  EXPECT_EQ(e[0].relRmseWithoutNoise, 0.0);
 }
 
 TEST(CellMetrics, SparseSampleAddsSamplingErrorAndBlackCellIsWorst) {
@@ -61,6 +73,7 @@ TEST(CellMetrics, CellsWithoutTexelsAreNaNAndNeverWorst) {
   const std::vector<CellError> e = compareCells(b, r, w, {}, cell, {}, 1, {"A"});
   EXPECT_EQ(e[0].texels, 0u);
   EXPECT_TRUE(std::isnan(e[0].ratioOfMeans));
+  EXPECT_TRUE(std::isnan(e[0].relRmseWithoutNoise));
   EXPECT_FALSE(worstCell(e).has_value());
   const std::vector<float> shortCell;
   EXPECT_THROW(compareCells(b, r, w, {}, shortCell, {}, 1, {"A"}), std::invalid_argument);

@@ -260,12 +260,17 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
   controls.readTransfer = true;
   const SolverParams settings = roundBudget(params.solver, plan.target, before, controls, plan.globalPatches);
 
-  // The cells run and their neighbours (whose atlases the portal links need).
+  // The cells run, their neighbours (whose atlases the portal links need) and the neighbours' neighbours:
+  // a cell's atlas holds a patch for each of its portals, so a neighbour's is the whole graph's only when
+  // every cell across its portals is there too.
   std::vector<int> keep = run;
-  for (int c : run)
-    keep.insert(keep.end(), plan.neighbours[size_t(c)].begin(), plan.neighbours[size_t(c)].end());
-  std::sort(keep.begin(), keep.end());
-  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  for (int ring = 0; ring < 2; ++ring) {
+    const std::vector<int> inner = keep;
+    for (int c : inner)
+      keep.insert(keep.end(), plan.neighbours[size_t(c)].begin(), plan.neighbours[size_t(c)].end());
+    std::sort(keep.begin(), keep.end());
+    keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  }
   const SubGraph sub = subGraph(graph, keep);
   std::vector<CellState> cells;
   {

@@ -60,6 +60,79 @@ PortalQuad portal(const std::string& a, const std::string& b, int cellA, int cel
   return p;
 }
 
+// Which faces of a room have an opening.
+struct Openings {
+  bool west = false, east = false, south = false, north = false, down = false, up = false;
+};
+
+// The inside faces of room `q`, with a door or hatch cut where `o` says, and its lamp when `lamp`.
+void addRoomFaces(SceneBuilder& b, const Materials& m, const Room& q, const Openings& o, bool lamp) {
+  const glm::vec3 lo = q.lo, hi = q.hi, mid = 0.5f * (lo + hi);
+  auto node = [&](const std::string& part) { return b.node(q.name + "/" + part); };
+  // Holes: doors in the x walls (coordinates y, z) and z walls (x, y); hatches in the slabs (z, x).
+  const glm::vec2 xd0{lo.y, mid.z - kDoorHalf}, xd1{lo.y + kDoorTop, mid.z + kDoorHalf};
+  const glm::vec2 zd0{mid.x - kDoorHalf, lo.y}, zd1{mid.x + kDoorHalf, lo.y + kDoorTop};
+  const glm::vec2 h0{lo.z + kHatch0, lo.x + kHatch0}, h1{lo.z + kHatch1, lo.x + kHatch1};
+  rectWithHole(b, 0, lo.x, 1, {lo.y, lo.z}, {hi.y, hi.z}, o.west ? &xd0 : nullptr, &xd1, m.wall,
+               node("wall-west"));
+  rectWithHole(b, 0, hi.x, -1, {lo.y, lo.z}, {hi.y, hi.z}, o.east ? &xd0 : nullptr, &xd1, m.wall,
+               node("wall-east"));
+  rectWithHole(b, 2, lo.z, 1, {lo.x, lo.y}, {hi.x, hi.y}, o.south ? &zd0 : nullptr, &zd1, m.wall,
+               node("wall-south"));
+  rectWithHole(b, 2, hi.z, -1, {lo.x, lo.y}, {hi.x, hi.y}, o.north ? &zd0 : nullptr, &zd1, m.wall,
+               node("wall-north"));
+  rectWithHole(b, 1, lo.y, 1, {lo.z, lo.x}, {hi.z, hi.x}, o.down ? &h0 : nullptr, &h1, m.floor,
+               node("floor"));
+  rectWithHole(b, 1, hi.y, -1, {lo.z, lo.x}, {hi.z, hi.x}, o.up ? &h0 : nullptr, &h1, m.ceiling,
+               node("ceiling"));
+  if (lamp)
+    b.rect(1, hi.y - kLampDrop, -1, {mid.z - kLampHalf, mid.x - kLampHalf},
+           {mid.z + kLampHalf, mid.x + kLampHalf}, m.lamp, node("lamp"));
+}
+
+// The door from `a` to its east neighbour `e` through x in [a.hi.x, a.hi.x + kWall]: its reveal, and its
+// portal.
+PortalQuad doorEast(SceneBuilder& b, const Materials& m, const Room& a, int ia, const Room& e, int ie) {
+  const uint32_t na = b.node(a.name + "/door-" + e.name), ne = b.node(e.name + "/door-" + a.name);
+  const float mz = 0.5f * (a.lo.z + a.hi.z), y0 = a.lo.y, y1 = a.lo.y + kDoorTop;
+  const float x0 = a.hi.x, xm = x0 + kWall / 2, x1 = x0 + kWall, z0 = mz - kDoorHalf, z1 = mz + kDoorHalf;
+  splitRect(b, 2, z0, 1, {x0, y0}, {x1, y1}, 0, xm, m.wall, na, ne);
+  splitRect(b, 2, z1, -1, {x0, y0}, {x1, y1}, 0, xm, m.wall, na, ne);
+  splitRect(b, 1, y1, -1, {z0, x0}, {z1, x1}, 1, xm, m.wall, na, ne);
+  splitRect(b, 1, y0, 1, {z0, x0}, {z1, x1}, 1, xm, m.floor, na, ne);
+  return portal(a.name, e.name, ia, ie,
+                {glm::vec3(xm, y0, z0), glm::vec3(xm, y0, z1), glm::vec3(xm, y1, z1), glm::vec3(xm, y1, z0)},
+                {1, 0, 0});
+}
+
+// The door from `a` to its north neighbour `n` through z in [a.hi.z, a.hi.z + kWall].
+PortalQuad doorNorth(SceneBuilder& b, const Materials& m, const Room& a, int ia, const Room& n, int in) {
+  const uint32_t na = b.node(a.name + "/door-" + n.name), nn = b.node(n.name + "/door-" + a.name);
+  const float mx = 0.5f * (a.lo.x + a.hi.x), y0 = a.lo.y, y1 = a.lo.y + kDoorTop;
+  const float z0 = a.hi.z, zm = z0 + kWall / 2, z1 = z0 + kWall, x0 = mx - kDoorHalf, x1 = mx + kDoorHalf;
+  splitRect(b, 0, x0, 1, {y0, z0}, {y1, z1}, 1, zm, m.wall, na, nn);
+  splitRect(b, 0, x1, -1, {y0, z0}, {y1, z1}, 1, zm, m.wall, na, nn);
+  splitRect(b, 1, y1, -1, {z0, x0}, {z1, x1}, 0, zm, m.wall, na, nn);
+  splitRect(b, 1, y0, 1, {z0, x0}, {z1, x1}, 0, zm, m.floor, na, nn);
+  return portal(a.name, n.name, ia, in,
+                {glm::vec3(x0, y0, zm), glm::vec3(x1, y0, zm), glm::vec3(x1, y1, zm), glm::vec3(x0, y1, zm)},
+                {0, 0, 1});
+}
+
+// The hatch from `a` up to `u` through y in [a.hi.y, a.hi.y + kWall].
+PortalQuad hatchUp(SceneBuilder& b, const Materials& m, const Room& a, int ia, const Room& u, int iu) {
+  const uint32_t na = b.node(a.name + "/hatch-" + u.name), nu = b.node(u.name + "/hatch-" + a.name);
+  const float ya = a.hi.y, ym = ya + kWall / 2, yb = ya + kWall;
+  const float x0 = a.lo.x + kHatch0, x1 = a.lo.x + kHatch1, z0 = a.lo.z + kHatch0, z1 = a.lo.z + kHatch1;
+  splitRect(b, 0, x0, 1, {ya, z0}, {yb, z1}, 0, ym, m.wall, na, nu);
+  splitRect(b, 0, x1, -1, {ya, z0}, {yb, z1}, 0, ym, m.wall, na, nu);
+  splitRect(b, 2, z0, 1, {x0, ya}, {x1, yb}, 1, ym, m.wall, na, nu);
+  splitRect(b, 2, z1, -1, {x0, ya}, {x1, yb}, 1, ym, m.wall, na, nu);
+  return portal(a.name, u.name, ia, iu,
+                {glm::vec3(x0, ym, z0), glm::vec3(x1, ym, z0), glm::vec3(x1, ym, z1), glm::vec3(x0, ym, z1)},
+                {0, 1, 0});
+}
+
 }  // namespace
 
 SeedScene makeOfficeBuilding(const OfficeLayout& layout) {
@@ -90,86 +163,24 @@ SeedScene makeOfficeBuilding(const OfficeLayout& layout) {
   for (int f = 0; f < S; ++f)
     for (int r = 0; r < R; ++r)
       for (int c = 0; c < C; ++c) {
-        const Room& q = rooms[size_t(index(f, r, c))];
-        const glm::vec3 lo = q.lo, hi = q.hi, mid = 0.5f * (lo + hi);
-        auto node = [&](const std::string& part) { return b.node(q.name + "/" + part); };
-        // Holes: doors in the x walls (coordinates y, z) and z walls (x, y); hatches in the slabs (z, x) of
-        // the corner rooms (0, 0) between storeys.
-        const glm::vec2 xd0{lo.y, mid.z - kDoorHalf}, xd1{lo.y + kDoorTop, mid.z + kDoorHalf};
-        const glm::vec2 zd0{mid.x - kDoorHalf, lo.y}, zd1{mid.x + kDoorHalf, lo.y + kDoorTop};
-        const glm::vec2 h0{lo.z + kHatch0, lo.x + kHatch0}, h1{lo.z + kHatch1, lo.x + kHatch1};
-        const bool corner = r == 0 && c == 0;
-        rectWithHole(b, 0, lo.x, 1, {lo.y, lo.z}, {hi.y, hi.z}, c > 0 ? &xd0 : nullptr, &xd1, m.wall,
-                     node("wall-west"));
-        rectWithHole(b, 0, hi.x, -1, {lo.y, lo.z}, {hi.y, hi.z}, c + 1 < C ? &xd0 : nullptr, &xd1, m.wall,
-                     node("wall-east"));
-        rectWithHole(b, 2, lo.z, 1, {lo.x, lo.y}, {hi.x, hi.y}, r > 0 ? &zd0 : nullptr, &zd1, m.wall,
-                     node("wall-south"));
-        rectWithHole(b, 2, hi.z, -1, {lo.x, lo.y}, {hi.x, hi.y}, r + 1 < R ? &zd0 : nullptr, &zd1, m.wall,
-                     node("wall-north"));
-        rectWithHole(b, 1, lo.y, 1, {lo.z, lo.x}, {hi.z, hi.x}, corner && f > 0 ? &h0 : nullptr, &h1, m.floor,
-                     node("floor"));
-        rectWithHole(b, 1, hi.y, -1, {lo.z, lo.x}, {hi.z, hi.x}, corner && f + 1 < S ? &h0 : nullptr, &h1,
-                     m.ceiling, node("ceiling"));
-        if (index(f, r, c) % 3 == 0)
-          b.rect(1, hi.y - kLampDrop, -1, {mid.z - kLampHalf, mid.x - kLampHalf},
-                 {mid.z + kLampHalf, mid.x + kLampHalf}, m.lamp, node("lamp"));
+        const int i = index(f, r, c);
+        const bool corner = r == 0 && c == 0;  // the hatches join the corner rooms of consecutive storeys
+        addRoomFaces(b, m, rooms[size_t(i)],
+                     {c > 0, c + 1 < C, r > 0, r + 1 < R, corner && f > 0, corner && f + 1 < S}, i % 3 == 0);
       }
-
   // Reveals (split at the wall's or slab's mid-plane between the two rooms) and portals.
   for (int f = 0; f < S; ++f)
     for (int r = 0; r < R; ++r)
       for (int c = 0; c < C; ++c) {
-        const int ia = index(f, r, c);
-        const Room& a = rooms[size_t(ia)];
-        const glm::vec3 mid = 0.5f * (a.lo + a.hi);
-        const float y0 = a.lo.y, y1 = a.lo.y + kDoorTop;
-        if (c + 1 < C) {  // door east, through x in [a.hi.x, a.hi.x + kWall]
-          const int ib = index(f, r, c + 1);
-          const Room& e = rooms[size_t(ib)];
-          const uint32_t na = b.node(a.name + "/door-" + e.name), ne = b.node(e.name + "/door-" + a.name);
-          const float x0 = a.hi.x, xm = x0 + kWall / 2, x1 = x0 + kWall, z0 = mid.z - kDoorHalf,
-                      z1 = mid.z + kDoorHalf;
-          splitRect(b, 2, z0, 1, {x0, y0}, {x1, y1}, 0, xm, m.wall, na, ne);
-          splitRect(b, 2, z1, -1, {x0, y0}, {x1, y1}, 0, xm, m.wall, na, ne);
-          splitRect(b, 1, y1, -1, {z0, x0}, {z1, x1}, 1, xm, m.wall, na, ne);
-          splitRect(b, 1, y0, 1, {z0, x0}, {z1, x1}, 1, xm, m.floor, na, ne);
-          out.cells.portals.push_back(portal(
-              a.name, e.name, ia, ib,
-              {glm::vec3(xm, y0, z0), glm::vec3(xm, y0, z1), glm::vec3(xm, y1, z1), glm::vec3(xm, y1, z0)},
-              {1, 0, 0}));
-        }
-        if (r + 1 < R) {  // door north, through z in [a.hi.z, a.hi.z + kWall]
-          const int ib = index(f, r + 1, c);
-          const Room& n = rooms[size_t(ib)];
-          const uint32_t na = b.node(a.name + "/door-" + n.name), nn = b.node(n.name + "/door-" + a.name);
-          const float z0 = a.hi.z, zm = z0 + kWall / 2, z1 = z0 + kWall, x0 = mid.x - kDoorHalf,
-                      x1 = mid.x + kDoorHalf;
-          splitRect(b, 0, x0, 1, {y0, z0}, {y1, z1}, 1, zm, m.wall, na, nn);
-          splitRect(b, 0, x1, -1, {y0, z0}, {y1, z1}, 1, zm, m.wall, na, nn);
-          splitRect(b, 1, y1, -1, {z0, x0}, {z1, x1}, 0, zm, m.wall, na, nn);
-          splitRect(b, 1, y0, 1, {z0, x0}, {z1, x1}, 0, zm, m.floor, na, nn);
-          out.cells.portals.push_back(portal(
-              a.name, n.name, ia, ib,
-              {glm::vec3(x0, y0, zm), glm::vec3(x1, y0, zm), glm::vec3(x1, y1, zm), glm::vec3(x0, y1, zm)},
-              {0, 0, 1}));
-        }
-        if (r == 0 && c == 0 && f + 1 < S) {  // hatch up, through y in [a.hi.y, a.hi.y + kWall]
-          const int ib = index(f + 1, r, c);
-          const Room& u = rooms[size_t(ib)];
-          const uint32_t na = b.node(a.name + "/hatch-" + u.name), nu = b.node(u.name + "/hatch-" + a.name);
-          const float ya = a.hi.y, ym = ya + kWall / 2, yb = ya + kWall;
-          const float x0 = a.lo.x + kHatch0, x1 = a.lo.x + kHatch1, z0 = a.lo.z + kHatch0,
-                      z1 = a.lo.z + kHatch1;
-          splitRect(b, 0, x0, 1, {ya, z0}, {yb, z1}, 0, ym, m.wall, na, nu);
-          splitRect(b, 0, x1, -1, {ya, z0}, {yb, z1}, 0, ym, m.wall, na, nu);
-          splitRect(b, 2, z0, 1, {x0, ya}, {x1, yb}, 1, ym, m.wall, na, nu);
-          splitRect(b, 2, z1, -1, {x0, ya}, {x1, yb}, 1, ym, m.wall, na, nu);
-          out.cells.portals.push_back(portal(
-              a.name, u.name, ia, ib,
-              {glm::vec3(x0, ym, z0), glm::vec3(x1, ym, z0), glm::vec3(x1, ym, z1), glm::vec3(x0, ym, z1)},
-              {0, 1, 0}));
-        }
+        const int i = index(f, r, c);
+        const Room& a = rooms[size_t(i)];
+        std::vector<PortalQuad>& portals = out.cells.portals;
+        if (c + 1 < C)
+          portals.push_back(doorEast(b, m, a, i, rooms[size_t(index(f, r, c + 1))], index(f, r, c + 1)));
+        if (r + 1 < R)
+          portals.push_back(doorNorth(b, m, a, i, rooms[size_t(index(f, r + 1, c))], index(f, r + 1, c)));
+        if (r == 0 && c == 0 && f + 1 < S)
+          portals.push_back(hatchUp(b, m, a, i, rooms[size_t(index(f + 1, r, c))], index(f + 1, r, c)));
       }
   cellsFromNodePaths(out.scene, names, out.cells);  // the cells, beside the portals already there
 

@@ -370,10 +370,11 @@ int runCellJobStage(const BakeOptions& o) {
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
   const EglContext gl(ctx);
-  const CellJobPlan plan = planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), gl, ctx);
+  const CellJobPlan plan =
+      planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), gl, ctx);
   if (!o.quiet) {
-    std::cout << o.plan << ": plan of " << plan.cells.size() << " cells, first shot done; next: cpgi cell-job "
-              << o.plan << " --round 1\n";
+    std::cout << o.plan << ": plan of " << plan.cells.size()
+              << " cells, first shot done; next: cpgi cell-job " << o.plan << " --round 1\n";
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
@@ -469,9 +470,10 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   addCellOptions(*sub, o->cellParams);
   addOnDemandOptions(*sub, *o);
-  sub->add_option("--plan", o->plan,
-                  "With --method cells: do not solve; write the cell jobs' plan (the lamps' first shot and "
-                  "every cell's light) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
+  sub->add_option(
+      "--plan", o->plan,
+      "With --method cells: do not solve; write the cell jobs' plan (the lamps' first shot and "
+      "every cell's light) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
   // Set by `cpgi cell-job` (apps/cell_job_command.cpp) on the plan's own arguments; not for users.
   sub->add_option("--job-round", o->jobRound)->group("")->check(CLI::Range(1, 1000000));
   sub->add_option("--job-cells", o->jobCells)->group("");

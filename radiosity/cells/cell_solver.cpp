@@ -71,8 +71,8 @@ std::vector<size_t> activeCells(std::vector<CellState>& cells, double target) {
 // cell gets its CellRound (radiosity/cells/cell_round.h), a waiting one too.
 std::vector<CellRound> solveRound(const std::vector<CellState>& cells, const std::vector<size_t>& active,
                                   const std::vector<PortalLink>& links, const SolverParams& settings,
-                                  const SolveControls& controls, PortalTransfer& transfer, CellWorkers& workers,
-                                  Context& ctx) {
+                                  const SolveControls& controls, PortalTransfer& transfer,
+                                  CellWorkers& workers, Context& ctx) {
   std::vector<SolveResult> solvedOf(cells.size());
   std::vector<CellRound> round(cells.size());
   {
@@ -103,7 +103,8 @@ std::vector<CellRound> solveRound(const std::vector<CellState>& cells, const std
 }
 
 // The round's gathered light becomes every cell's pending; returns the power now unshot everywhere.
-double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& round, PortalTransfer& transfer) {
+double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& round,
+                PortalTransfer& transfer) {
   std::vector<const PortalSend*> sends;
   std::vector<double> kept(cells.size());
   for (size_t c = 0; c < cells.size(); ++c) {

@@ -160,10 +160,10 @@ SeedScene makeThinWall(float thickness) {
 }
 
 const std::vector<std::string>& builtinSceneNames() {
-  static const std::vector<std::string> names = {"seed1",       "seed2",         "seed3",     "spot-door",
-                                                 "thin-wall",   "thin-wall-5cm", "openings",  "house-open",
-                                                 "house-stair", "house-spiral",  "open-plan", "porch",
-                                                 "point-light", "spot-light",    "office",    "office-small"};
+  static const std::vector<std::string> names = {
+      "seed1",      "seed2",       "seed3",        "spot-door", "thin-wall", "thin-wall-5cm", "openings",
+      "house-open", "house-stair", "house-spiral", "open-plan", "porch",     "point-light",   "spot-light",
+      "office",     "office-small"};
   return names;
 }
 

@@ -23,7 +23,7 @@ import random
 import struct
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps"))
+sys.dont_write_bytecode = True  # apps/cpgi-dask is loaded for its partition(); no __pycache__ beside it
 
 
 def read_summary(path):

@@ -14,6 +14,7 @@ packages=(
   libembree-dev libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   chromium
+  python3-distributed
 )
 
 missing=()

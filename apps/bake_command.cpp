@@ -31,6 +31,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
+#include "radiosity/cells/cell_jobs.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/ambient.h"
@@ -63,6 +64,12 @@ struct BakeOptions {
   ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
   bool maxShotsGiven = false;  ///< --max-shots on the command line (else the solver's default bound)
+  // Cell jobs (radiosity/cells/cell_jobs.h, docs/cell-jobs.md): --plan DIR prepares them instead of
+  // solving; `cpgi cell-job` runs a round of some cells (jobRound, jobCells) or the gather through here.
+  std::string plan;
+  int jobRound = 0;
+  std::string jobCells;
+  bool gather = false;
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -207,6 +214,10 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContex
   CellSolveParams params = o.cellParams;
   params.solver = o.solver;
   params.atlas = o.atlas;
+  if (o.gather) {
+    const CellJobPlan plan = readCellJobPlan(o.plan);
+    return gatherCellJobs(o.plan, plan, in.loaded.scene, in.graph, in.atlas, params, ctx);
+  }
   return in.onDemand.active ? solveCellsOnDemand(in.loaded.scene, in.graph, in.onDemand.selection,
                                                  in.onDemand.mode, in.atlas, params, gl, ctx)
                             : solveCells(in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
@@ -316,7 +327,61 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   return report;
 }
 
+// The bake's own arguments (after "bake") without --plan: what every cell job re-reads from plan.json.
+std::vector<std::string> bakeArguments() {
+  const std::vector<std::string>& all = commandArguments();
+  std::vector<std::string> args;
+  auto it = std::find(all.begin(), all.end(), "bake");
+  for (it = it == all.end() ? it : it + 1; it != all.end(); ++it) {
+    if (*it == "--plan") {
+      if (++it == all.end()) break;
+      continue;
+    }
+    if (it->rfind("--plan=", 0) == 0) continue;
+    args.push_back(*it);
+  }
+  return args;
+}
+
+// --plan DIR: the cell jobs' plan (first shot included), or one round of some cells (`cpgi cell-job`).
+int runCellJobStage(const BakeOptions& o) {
+  Context ctx;
+  ctx.setProgress(stderrProgress(o.quiet));
+  if (o.method != "cells") throw InputError("--plan", "needs --method cells");
+  if (!o.onlyCells.empty() || !o.around.empty())
+    throw InputError("--plan", "cell jobs bake the whole cell graph: leave out --only-cells and --around");
+  BakeInput in = loadBakeInput(o, ctx);
+  CellSolveParams params = o.cellParams;
+  params.solver = o.solver;
+  params.atlas = o.atlas;
+  if (o.jobRound > 0) {
+    const CellJobPlan plan = readCellJobPlan(o.plan);
+    std::vector<int> run;
+    if (o.jobCells.empty())
+      for (int c = 0; c < int(in.graph.cells.size()); ++c) run.push_back(c);
+    else
+      run = cellsByName(in.graph, o.jobCells, "--cell");
+    const EglContext gl(ctx);
+    runCellJobs(o.plan, plan, o.jobRound, run, in.loaded.scene, in.graph, params, gl, ctx);
+    if (!o.quiet) std::cout << o.plan << ": round " << o.jobRound << " of " << run.size() << " cells done\n";
+    return 0;
+  }
+  buildBakeAtlas(o, in, ctx);
+  requireSolveMemory(o, in.atlas);
+  requireConvergence(o, in.loaded.scene, in.atlas);
+  const EglContext gl(ctx);
+  const CellJobPlan plan =
+      planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), gl, ctx);
+  if (!o.quiet) {
+    std::cout << o.plan << ": plan of " << plan.cells.size()
+              << " cells, first shot done; next: cpgi cell-job " << o.plan << " --round 1\n";
+    for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
+  }
+  return 0;
+}
+
 int runBake(const BakeOptions& o) {
+  if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
   Context ctx;
   ctx.setProgress(stderrProgress(o.quiet));
@@ -405,6 +470,14 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->capture_default_str();
   addCellOptions(*sub, o->cellParams);
   addOnDemandOptions(*sub, *o);
+  sub->add_option(
+      "--plan", o->plan,
+      "With --method cells: do not solve; write the cell jobs' plan (the lamps' first shot and "
+      "every cell's light) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
+  // Set by `cpgi cell-job` (apps/cell_job_command.cpp) on the plan's own arguments; not for users.
+  sub->add_option("--job-round", o->jobRound)->group("")->check(CLI::Range(1, 1000000));
+  sub->add_option("--job-cells", o->jobCells)->group("");
+  sub->add_flag("--gather", o->gather)->group("");
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);

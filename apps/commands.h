@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -22,6 +23,13 @@ inline const CLI::Validator kPositive(
     },
     "POSITIVE");
 
+/// The command line as main received it (argv[1..]), for a command that records how it was run (bake
+/// --plan keeps its own arguments for the cell jobs).
+inline std::vector<std::string>& commandArguments() {
+  static std::vector<std::string> args;
+  return args;
+}
+
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
 void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);
@@ -31,5 +39,6 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected);
 void addDecomposeCommand(CLI::App& app, CommandFn& selected);
 void addCompareCellsCommand(CLI::App& app, CommandFn& selected);
 void addViewCommand(CLI::App& app, CommandFn& selected);
+void addCellJobCommand(CLI::App& app, CommandFn& selected);
 
 }  // namespace cpgi::cli

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
   cpgi::cli::addDecomposeCommand(app, selected);
   cpgi::cli::addCompareCellsCommand(app, selected);
   cpgi::cli::addViewCommand(app, selected);
+  cpgi::cli::addCellJobCommand(app, selected);
+  cpgi::cli::commandArguments().assign(argv + 1, argv + argc);
 
   try {
     app.parse(argc, argv);

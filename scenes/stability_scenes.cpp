@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "scenes/buildings.h"
+#include "scenes/office_building.h"
 #include "scenes/openings_scene.h"
 #include "scenes/scene_builder.h"
 
@@ -161,7 +162,8 @@ SeedScene makeThinWall(float thickness) {
 const std::vector<std::string>& builtinSceneNames() {
   static const std::vector<std::string> names = {
       "seed1",      "seed2",       "seed3",        "spot-door", "thin-wall", "thin-wall-5cm", "openings",
-      "house-open", "house-stair", "house-spiral", "open-plan", "porch",     "point-light",   "spot-light"};
+      "house-open", "house-stair", "house-spiral", "open-plan", "porch",     "point-light",   "spot-light",
+      "office",     "office-small"};
   return names;
 }
 
@@ -175,6 +177,9 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "openings") return makeOpeningsScene();
   if (name == "point-light") return makePointLightRooms();
   if (name == "spot-light") return makeSpotLightThroughDoor();
+  // Many rooms for cell jobs (issue 16): 108 rooms on 3 storeys, and 4 rooms on 2 for the tests.
+  if (name == "office") return makeOfficeBuilding(OfficeLayout{3, 6, 6});
+  if (name == "office-small") return makeOfficeBuilding(OfficeLayout{2, 1, 2});
   for (const std::string& building : buildingNames())
     if (name == building) return makeBuilding(name).seed;
   throw std::invalid_argument("unknown built-in scene '" + name + "'");

@@ -7,22 +7,18 @@
 #include "core/error.h"
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_first_shot.h"
+#include "radiosity/cells/cell_round.h"
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/portal_transfer.h"
 
 namespace cpgi {
 namespace {
 
-double power(const std::vector<glm::vec3>& exitance, const LightmapAtlas& atlas) {
-  double sum = 0.0;
-  for (size_t i = 0; i < exitance.size(); ++i)
-    if (atlas.patch[i] >= 0) sum += (double(exitance[i].r) + exitance[i].g + exitance[i].b) * atlas.area[i];
-  return sum;
-}
-
 glm::dvec3 texelPower(const glm::vec3& v, float area) {
   return glm::dvec3(v) * double(area);
 }
+
+}  // namespace
 
 // Step 0: the graph and the parameters, before any work.
 void checkCells(const Scene& scene, const CellGraph& graph, const CellSolveParams& params, Context& ctx) {
@@ -47,7 +43,7 @@ SolveResult startBookkeeping(const CellGraph& graph, const std::vector<CellState
   d.portals.resize(graph.portals.size());
   for (size_t c = 0; c < cells.size(); ++c) {
     d.cells[c].name = graph.cells[c].name;
-    d.cells[c].emitted = power(cells[c].pending, cells[c].atlas);
+    d.cells[c].emitted = cellPower(cells[c].pending, cells[c].atlas);
     d.cells[c].texels = cells[c].atlas.validTexels();
     d.cells[c].written = !cells[c].boundary;
     result.energy.emitted += d.cells[c].emitted;
@@ -57,133 +53,70 @@ SolveResult startBookkeeping(const CellGraph& graph, const std::vector<CellState
   return result;
 }
 
-// The round's stopping rule. Half the scene's budget is for what the solves leave unshot (the other half for
-// what the portals collect): a solve stops at that fraction of the round's input, or as soon as no patch
-// holds more than its share of it (half the budget over the scene's patches). A cell lit only through a
-// door must not be solved to the scene's fraction of its own small input: a room of many small patches
-// would then take more shots than the whole scene.
-SolverParams roundBudget(const SolverParams& settings, double target, double unshot, SolveControls& controls,
-                         size_t globalPatches) {
-  SolverParams round = settings;
-  round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
-  controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
-  return round;
-}
+namespace {
 
-// What the next round starts from, per cell, gathered during this one.
-struct NextRound {
-  std::vector<std::vector<glm::vec3>> pending, carried;
-};
-
-// The cells solved this round, their pending light moved into their atlas's emission. A cell holding a
-// negligible share waits (its light stays pending, counted as unshot).
-std::vector<size_t> activeCells(std::vector<CellState>& cells, double target, NextRound& next,
-                                PortalTransfer& transfer) {
+// The cells solved this round, their pending light moved into their atlas's emission; the others wait.
+std::vector<size_t> activeCells(std::vector<CellState>& cells, double target) {
   std::vector<size_t> active;
   for (size_t c = 0; c < cells.size(); ++c) {
     CellState& s = cells[c];
-    if (!(power(s.pending, s.atlas) > 1e-6 * target)) {
-      for (size_t i = 0; i < s.pending.size(); ++i) next.pending[c][i] += s.pending[i];
-      transfer.keepPending(c);
-      next.carried[c] = s.carried;
-      continue;
-    }
+    if (!cellSolvesRound(s, target)) continue;
     for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
     active.push_back(c);
   }
   return active;
 }
 
-// The round's solves are independent (each reads only its own cell): side by side with `jobs`.
-std::vector<SolveResult> solveRound(const std::vector<CellState>& cells, const std::vector<size_t>& active,
-                                    const SolverParams& settings, const SolveControls& controls,
-                                    const PortalTransfer& transfer, CellWorkers& workers, Context& ctx) {
+// The round's solves are independent (each reads only its own cell): side by side with `jobs`. Every
+// cell gets its CellRound (radiosity/cells/cell_round.h), a waiting one too.
+std::vector<CellRound> solveRound(const std::vector<CellState>& cells, const std::vector<size_t>& active,
+                                  const std::vector<PortalLink>& links, const SolverParams& settings,
+                                  const SolveControls& controls, PortalTransfer& transfer,
+                                  CellWorkers& workers, Context& ctx) {
   std::vector<SolveResult> solvedOf(cells.size());
-  auto t = ctx.time("cells: solve");
-  workers.run(active.size(), ctx,
-              [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
-                SolveControls own = controls;
-                own.programs = &programs;
-                solvedOf[active[k]] =
-                    transfer.solve(active[k], cells[active[k]], settings, own, context, taskCtx);
-              });
-  return solvedOf;
-}
-
-// Re-emission through the portals leaving cell `c` after its solve: the irradiance collected on the
-// sending side becomes exitance on the far side. Returns the power collected (W, R + G + B).
-double sendThroughPortals(size_t c, const CellState& s, const SolveResult& solved,
-                          const std::vector<PortalLink>& links, const std::vector<CellState>& cells,
-                          const CellGraph& graph, NextRound& next, PortalTransfer& transfer,
-                          CellSolveData& result) {
-  double collected = 0.0;
-  for (const PortalLink& link : links) {
-    if (link.from != int(c)) continue;
-    const LightmapAtlas& to = cells[link.to].atlas;
-    glm::dvec3 sent(0.0), arrived(0.0);
-    for (const auto& [tt, ft] : link.texels) arrived += texelPower(solved.incident[ft], to.area[tt]);
-    const Patch& F = s.atlas.patches[link.fromPatch];
-    for (int j = 0; j < F.h; ++j)
-      for (int i = 0; i < F.w; ++i) {
-        const size_t t = size_t(F.y + j) * s.atlas.width + F.x + i;
-        if (s.atlas.patch[t] == link.fromPatch) sent += texelPower(solved.incident[t], s.atlas.area[t]);
-      }
-    // Exitance on the far side = irradiance on this side, rescaled so that the power through the opening
-    // is exactly what arrived (charts of the two sides may differ).
-    glm::vec3 scale(0.0f);
-    for (int k = 0; k < 3; ++k) scale[k] = arrived[k] > 0.0 ? float(sent[k] / arrived[k]) : 0.0f;
-    for (const auto& [tt, ft] : link.texels) next.pending[link.to][tt] += solved.incident[ft] * scale;
-    transfer.send(link, solved, scale);
-    const double w = sent.r + sent.g + sent.b;
-    collected += w;
-    result.cells[c].sent += w;
-    result.cells[link.to].received += w;
-    (link.from == graph.portals[link.portal].cellA ? result.portals[link.portal].aToB
-                                                   : result.portals[link.portal].bToA) += w;
+  std::vector<CellRound> round(cells.size());
+  {
+    auto t = ctx.time("cells: solve");
+    workers.run(active.size(), ctx,
+                [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
+                  SolveControls own = controls;
+                  own.programs = &programs;
+                  const size_t c = active[k];
+                  solvedOf[c] = transfer.solve(c, cells[c], settings, own, context, taskCtx);
+                  round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells);
+                });
   }
-  return collected;
+  // The portal model's own bookkeeping, in the order it has always had: the waiting cells, then the
+  // solved ones in cell order.
+  for (size_t c = 0; c < cells.size(); ++c)
+    if (round[c].cell < 0) {
+      round[c] = waitingCellRound(c, cells[c]);
+      transfer.keepPending(c);
+    }
+  for (size_t c : active) {
+    transfer.keepUnshot(c, cells[c], round[c].kept);
+    size_t k = 0;
+    for (const PortalLink& link : links)
+      if (link.from == int(c)) transfer.send(link, solvedOf[c], round[c].sends[k++].scale);
+  }
+  return round;
 }
 
-// One cell's solve into the result, in cell order so the numbers do not depend on which solve finished
-// first: its radiosity into the global atlas, what it left unshot kept pending, its portals' light sent on.
-void syncCell(size_t c, const CellState& s, const SolveResult& solved, const std::vector<PortalLink>& links,
-              const std::vector<CellState>& cells, const CellGraph& graph, NextRound& next,
-              PortalTransfer& transfer, SolveResult& result) {
-  CellEnergy& ce = result.perCell->cells[c];
-  ++ce.solves;
-  ce.shots += solved.shots;
-  result.shots += solved.shots;
-  ce.seconds += solved.seconds;
-  ce.escaped += solved.energy.escaped();
-  ce.created += solved.energy.created;
-  ce.worstShotGain = std::max(ce.worstShotGain, solved.energy.worstShotGain);
-  result.energy.created += solved.energy.created;
-  result.energy.worstShotGain = std::max(result.energy.worstShotGain, solved.energy.worstShotGain);
-  result.energy.shot += solved.energy.shot;
-  result.energy.received += solved.energy.received;
-  for (const auto& [g, t] : s.toGlobal) result.radiosity[g] += solved.radiosity[t] - s.carried[t];
-  // What the solve left unshot is shot at the next one; it is in the radiosity already.
-  next.carried[c] = solved.residual;
-  for (size_t i = 0; i < s.pending.size(); ++i) next.pending[c][i] += solved.residual[i];
-  transfer.keepUnshot(c, s, solved.residual);
-  const double collected =
-      sendThroughPortals(c, s, solved, links, cells, graph, next, transfer, *result.perCell);
-  // Portal texels have albedo 0: all they received counts as absorbed by the solver.
-  ce.absorbed += solved.energy.absorbed - collected;
-}
-
-// The round's gathered light becomes pending; returns the power now unshot everywhere.
-double endRound(std::vector<CellState>& cells, NextRound& next, PortalTransfer& transfer) {
-  double unshot = 0.0;
+// The round's gathered light becomes every cell's pending; returns the power now unshot everywhere.
+double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& round,
+                PortalTransfer& transfer) {
+  std::vector<const PortalSend*> sends;
+  std::vector<double> kept(cells.size());
   for (size_t c = 0; c < cells.size(); ++c) {
-    cells[c].pending = std::move(next.pending[c]);
-    cells[c].carried = next.carried[c].empty()
-                           ? std::vector<glm::vec3>(cells[c].pending.size(), glm::vec3(0.0f))
-                           : std::move(next.carried[c]);
-    unshot += power(cells[c].pending, cells[c].atlas);
+    kept[c] = round[c].keptPower;
+    for (const PortalSend& s : round[c].sends) sends.push_back(&s);
+  }
+  for (size_t c = 0; c < cells.size(); ++c) {
+    cells[c].pending = gatherPending(round[c], sendsTo(int(c), sends), cells[c].pending.size());
+    cells[c].carried = round[c].carried;
   }
   transfer.endRound();
-  return unshot;
+  return roundUnshot(kept, sends);
 }
 
 // What is still pending at the stop, per global texel (W/m²), for the ambient term (radiosity/gpu/ambient.h)
@@ -206,12 +139,14 @@ std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells
   return residual;
 }
 
+}  // namespace
+
 // The totals once the rounds are over.
 void finishBookkeeping(const std::vector<CellState>& cells, const LightmapAtlas& global,
                        SolveResult& result) {
   for (size_t c = 0; c < cells.size(); ++c) {
     CellEnergy& ce = result.perCell->cells[c];
-    ce.unshot = power(cells[c].pending, cells[c].atlas);
+    ce.unshot = cellPower(cells[c].pending, cells[c].atlas);
     result.energy.absorbed += ce.absorbed;
     result.energy.unshot += ce.unshot;
   }
@@ -220,6 +155,8 @@ void finishBookkeeping(const std::vector<CellState>& cells, const LightmapAtlas&
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (global.patch[i] < 0) result.radiosity[i] = glm::vec3(0.0f);
 }
+
+namespace {
 
 // The cells a round solves, for its progress line: the first six names and how many more.
 std::string cellList(const CellGraph& graph, const std::vector<size_t>& active) {
@@ -266,16 +203,13 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   while (emitted > 0.0 && unshot > target && rounds < params.maxRounds) {
     ++rounds;
     const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
-    NextRound next{std::vector<std::vector<glm::vec3>>(cells.size()),
-                   std::vector<std::vector<glm::vec3>>(cells.size())};
-    for (size_t c = 0; c < cells.size(); ++c)
-      next.pending[c].assign(cells[c].pending.size(), glm::vec3(0.0f));
     transfer->beginRound();
-    const std::vector<size_t> active = activeCells(cells, target, next, *transfer);
+    const std::vector<size_t> active = activeCells(cells, target);
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
-    std::vector<SolveResult> solved = solveRound(cells, active, settings, controls, *transfer, workers, ctx);
-    for (size_t c : active) syncCell(c, cells[c], solved[c], links, cells, graph, next, *transfer, result);
-    unshot = endRound(cells, next, *transfer);
+    const std::vector<CellRound> round =
+        solveRound(cells, active, links, settings, controls, *transfer, workers, ctx);
+    for (size_t c : active) addCellRound(round[c], cells[c], graph, result);
+    unshot = endRound(cells, round, *transfer);
     done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction), 0.0,
                       1.0);
     ctx.progress("cells", done, "round " + std::to_string(rounds));

@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""Projects the wall time of a cell-job bake (docs/cell-jobs.md) on 1..64 workers from one measured run.
+
+    bench/cell_jobs_projection.py PLAN --job-overhead SECONDS [--first-shot S] [--gather S] [--barrier S]
+                                  [--straggle P] [--time-scale F]
+
+Reads every round's cell summaries in PLAN (the binary records of radiosity/cells/cell_job_files.h: each
+cell's measured job seconds and portal bytes) and simulates, per worker count W:
+  - the groups cpgi-dask makes (2 per worker, contiguous runs of texels along a breadth-first walk),
+  - each round's jobs list-scheduled longest first onto the earliest free worker, each costing the fixed
+    per-job overhead (process start, scene load, atlases of the group's cells and their neighbours) plus
+    its cells' measured seconds,
+  - a barrier between rounds, the plan's first shot before and the gather after (both on one worker),
+  - stragglers: each job 2x slower with probability 5 % (mean of 20 draws).
+Prints a Markdown table: workers, projected wall, speed-up against 1 worker, efficiency, critical path
+(the slowest single job of each round, summed: no worker count goes below it).
+"""
+import argparse
+import glob
+import json
+import os
+import random
+import struct
+import sys
+
+sys.dont_write_bytecode = True  # apps/cpgi-dask is loaded for its partition(); no __pycache__ beside it
+
+
+def read_summary(path):
+    data = open(path, "rb").read()
+    magic, version, kind, size = struct.unpack_from("<8sIIQ", data, 0)
+    if magic != b"CPGICELL" or version != 1 or kind != 3 or size != len(data) - 32:
+        sys.exit("%s: not a version 1 cell summary" % path)
+    p = struct.unpack_from("<iiBdi7d", data, 24)
+    at = 24 + struct.calcsize("<iiBdi7d")
+    (sends,) = struct.unpack_from("<I", data, at)
+    at += 4 + sends * struct.calcsize("<iii3fdd")
+    seconds, portal_bytes = struct.unpack_from("<dQ", data, at)
+    return {"round": p[0], "cell": p[1], "solved": p[2], "shots": p[4], "seconds": seconds,
+            "portal_bytes": portal_bytes}
+
+
+def load_partitioner():
+    import importlib.machinery
+    import importlib.util
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "cpgi-dask")
+    loader = importlib.machinery.SourceFileLoader("cpgi_dask", path)
+    spec = importlib.util.spec_from_loader("cpgi_dask", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module.partition
+
+
+def simulate(rounds, groups_of, workers, overhead, barrier, straggle, rng):
+    total = 0.0
+    for cells in rounds:
+        jobs = []
+        for g in groups_of:
+            t = overhead + sum(cells.get(c, 0.0) for c in g)
+            if rng.random() < straggle:
+                t *= 2.0
+            jobs.append(t)
+        free = [0.0] * workers
+        for t in sorted(jobs, reverse=True):
+            k = free.index(min(free))
+            free[k] += t
+        total += max(free) + barrier
+    return total
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("plan")
+    ap.add_argument("--job-overhead", type=float, required=True, help="seconds per job besides its cells")
+    ap.add_argument("--first-shot", type=float, default=0.0)
+    ap.add_argument("--gather", type=float, default=0.0)
+    ap.add_argument("--barrier", type=float, default=0.3, help="seconds between rounds (status, scheduling)")
+    ap.add_argument("--straggle", type=float, default=0.05)
+    ap.add_argument("--time-scale", type=float, default=1.0,
+                    help="multiplies the measured cell seconds (jobs measured side by side on shared cores run "
+                         "slower than one job alone on its machine)")
+    args = ap.parse_args()
+    plan = json.load(open(os.path.join(args.plan, "plan.json")))
+    texels = [c["texels"] for c in plan["cells"]]
+    neighbours = [c["neighbours"] for c in plan["cells"]]
+    rounds, traffic = [], []
+    for d in sorted(glob.glob(os.path.join(args.plan, "round-*")))[1:]:
+        cells = {}
+        bytes_ = 0
+        for f in glob.glob(os.path.join(d, "*.summary")):
+            s = read_summary(f)
+            cells[s["cell"]] = s["seconds"] * args.time_scale
+            bytes_ += s["portal_bytes"]
+        rounds.append(cells)
+        traffic.append(bytes_)
+    partition = load_partitioner()
+    cell_seconds = [t for r in rounds for t in r.values()]
+    print("%d cells, %d rounds, cell job seconds: sum %.1f, max %.2f, median %.3f; portal traffic per round: "
+          "%s kB" % (len(texels), len(rounds), sum(cell_seconds), max(cell_seconds),
+                     sorted(cell_seconds)[len(cell_seconds) // 2], ", ".join("%.0f" % (b / 1e3) for b in traffic)))
+    critical = sum(max(r.values()) + args.job_overhead + args.barrier for r in rounds)
+    base = None
+    print("\n| workers | groups | projected wall (s) | speed-up | efficiency | critical path (s) |")
+    print("|---|---|---|---|---|---|")
+    for w in (1, 2, 4, 8, 16, 32, 64):
+        groups = partition(texels, neighbours, 2 * w)
+        rng = random.Random(w)
+        walls = [simulate(rounds, groups, w, args.job_overhead, args.barrier, args.straggle, rng) for _ in range(20)]
+        wall = args.first_shot + args.gather + sum(walls) / len(walls)
+        base = base or wall
+        print("| %d | %d | %.1f | %.2f | %.2f | %.1f |" % (w, len(groups), wall, base / wall, base / wall / w,
+                                                          args.first_shot + args.gather + critical))
+
+
+if __name__ == "__main__":
+    main()

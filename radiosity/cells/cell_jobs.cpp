@@ -1,0 +1,391 @@
+#include "radiosity/cells/cell_jobs.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "radiosity/cells/cell_atlases.h"
+#include "radiosity/cells/cell_first_shot.h"
+#include "radiosity/cells/cell_job_files.h"
+#include "radiosity/cells/cell_round.h"
+#include "radiosity/cells/cell_workers.h"
+#include "radiosity/cells/portal_transfer.h"
+
+namespace cpgi {
+namespace fs = std::filesystem;
+namespace {
+
+std::string padded(int i, const char* prefix) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%s%04d", prefix, i);
+  return buf;
+}
+
+// The cells across `c`'s portals, ascending.
+std::vector<int> neighboursOf(const CellGraph& graph, int c) {
+  std::vector<int> out;
+  for (int p : graph.portalsOf(c)) {
+    const PortalQuad& q = graph.portals[size_t(p)];
+    const int other = q.cellA == c ? q.cellB : q.cellA;
+    if (other >= 0 && other != c) out.push_back(other);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Part of the graph: `keep` (ascending) and the portals between them, in graph order, so that every kept
+// cell's scene, atlas and portal links are those of the whole graph.
+struct SubGraph {
+  CellGraph graph;
+  std::vector<int> cellOf, portalOf;  ///< sub index → graph index
+  std::vector<int> subOf;             ///< graph cell → sub index or -1
+};
+SubGraph subGraph(const CellGraph& graph, const std::vector<int>& keep) {
+  SubGraph s;
+  s.subOf.assign(graph.cells.size(), -1);
+  for (int c : keep) {
+    s.subOf[size_t(c)] = int(s.graph.cells.size());
+    s.cellOf.push_back(c);
+    s.graph.cells.push_back(graph.cells[size_t(c)]);
+  }
+  for (size_t p = 0; p < graph.portals.size(); ++p) {
+    const PortalQuad& q = graph.portals[p];
+    if (q.cellA < 0 || q.cellB < 0 || s.subOf[size_t(q.cellA)] < 0 || s.subOf[size_t(q.cellB)] < 0) continue;
+    PortalQuad sub = q;
+    sub.cellA = s.subOf[size_t(q.cellA)], sub.cellB = s.subOf[size_t(q.cellB)];
+    s.graph.portals.push_back(sub);
+    s.portalOf.push_back(int(p));
+  }
+  return s;
+}
+
+// A round of cell `sub` as the graph numbers it.
+void toGraphIndices(CellRound& r, const SubGraph& s) {
+  r.cell = s.cellOf[size_t(r.cell)];
+  for (PortalSend& send : r.sends) {
+    send.portal = s.portalOf[size_t(send.portal)];
+    send.from = s.cellOf[size_t(send.from)], send.to = s.cellOf[size_t(send.to)];
+  }
+}
+
+// The power unshot after `round` (>= 1), from its summaries.
+double unshotAfter(const fs::path& dir, const CellJobPlan& plan, int round,
+                   std::vector<CellRoundSummary>* summaries = nullptr) {
+  std::vector<CellRoundSummary> all(plan.cells.size());
+  std::vector<double> kept(plan.cells.size());
+  std::vector<const PortalSend*> sends;
+  for (size_t c = 0; c < all.size(); ++c) {
+    all[c] = readSummary(cellSummaryFile(dir, round, int(c)), round, int(c));
+    kept[c] = all[c].figures.keptPower;
+  }
+  for (const CellRoundSummary& s : all)
+    for (const PortalSend& send : s.figures.sends) sends.push_back(&send);
+  const double unshot = roundUnshot(kept, sends);
+  if (summaries) *summaries = std::move(all);
+  return unshot;
+}
+
+bool roundNeeded(const CellJobPlan& plan, int round, double unshotBefore) {
+  return plan.emitted > 0.0 && unshotBefore > plan.target && round <= plan.maxRounds;
+}
+
+// Cell `c`'s pending light for round `round`: its own state and the portal light its neighbours sent it
+// in round − 1. `carried` receives the part already in the radiosity.
+std::vector<glm::vec3> gatherFromFiles(const fs::path& dir, const CellJobPlan& plan, int round, int c,
+                                       size_t texels, std::vector<glm::vec3>& carried) {
+  const CellRound own = readCellState(cellStateFile(dir, round - 1, c), round - 1, c);
+  if (own.kept.size() != texels)
+    throw InputError(cellStateFile(dir, round - 1, c).string(),
+                     "holds " + std::to_string(own.kept.size()) + " texels, the cell has " +
+                         std::to_string(texels) + " (another scene or other options than the plan's?)");
+  std::vector<PortalSend> arriving;
+  if (round - 1 >= 1)
+    for (int n : plan.neighbours[size_t(c)]) {
+      std::vector<PortalSend> in = readPortalLight(portalLightFile(dir, round - 1, n, c), round - 1, n, c);
+      arriving.insert(arriving.end(), std::make_move_iterator(in.begin()), std::make_move_iterator(in.end()));
+    }
+  std::vector<const PortalSend*> ptrs;
+  for (const PortalSend& s : arriving) {
+    for (const auto& [t, e] : s.exitance)
+      if (size_t(t) >= texels)
+        throw InputError(portalLightFile(dir, round - 1, s.from, c).string(), "a texel outside the cell");
+    ptrs.push_back(&s);
+  }
+  carried = own.carried;
+  return gatherPending(own, sendsTo(c, ptrs), texels);
+}
+
+void requireSupported(const CellSolveParams& params) {
+  if (params.portals != PortalLight::Diffuse)
+    throw InputError("portal light", "cell jobs carry diffuse portal light only for now");
+  if (!params.boundaryCells.empty() || params.partOfGraph)
+    throw InputError("cells", "cell jobs bake the whole cell graph (no on-demand cells)");
+}
+
+}  // namespace
+
+fs::path roundDir(const fs::path& dir, int round) {
+  return dir / padded(round, "round-");
+}
+fs::path cellStateFile(const fs::path& dir, int round, int cell) {
+  return roundDir(dir, round) / (padded(cell, "cell-") + ".state");
+}
+fs::path cellSummaryFile(const fs::path& dir, int round, int cell) {
+  return roundDir(dir, round) / (padded(cell, "cell-") + ".summary");
+}
+fs::path portalLightFile(const fs::path& dir, int round, int from, int to) {
+  return roundDir(dir, round) / (padded(from, "portal-") + padded(to, "-") + ".light");
+}
+
+void writeCellJobPlan(const fs::path& dir, const CellJobPlan& plan) {
+  nlohmann::json j = {{"format", "cpgi cell jobs"},      {"version", plan.version},
+                      {"bake_args", plan.bakeArgs},      {"working_dir", plan.workingDir},
+                      {"emitted_w", plan.emitted},       {"target_w", plan.target},
+                      {"max_rounds", plan.maxRounds},    {"global_patches", plan.globalPatches},
+                      {"cells", nlohmann::json::array()}};
+  for (size_t c = 0; c < plan.cells.size(); ++c)
+    j["cells"].push_back(
+        {{"name", plan.cells[c]}, {"texels", plan.texels[c]}, {"neighbours", plan.neighbours[c]}});
+  const fs::path part = dir / "plan.json.part";
+  {
+    std::ofstream f(part);
+    f << j.dump(1) << "\n";
+    if (!f) throw SystemError((dir / "plan.json").string() + ": cannot write");
+  }
+  fs::rename(part, dir / "plan.json");
+}
+
+CellJobPlan readCellJobPlan(const fs::path& dir) {
+  const std::string file = (dir / "plan.json").string();
+  std::ifstream f(file);
+  if (!f)
+    throw InputError(file,
+                     "cannot read the cell job plan (made by `cpgi bake ... --method cells --plan DIR`)");
+  CellJobPlan plan;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(f);
+    if (j.value("format", "") != "cpgi cell jobs") throw InputError(file, "not a cpgi cell job plan");
+    plan.version = j.at("version").get<int>();
+    if (plan.version != kCellJobPlanVersion)
+      throw InputError(file, "cell job plan version " + std::to_string(plan.version) + ", this cpgi reads " +
+                                 std::to_string(kCellJobPlanVersion));
+    plan.bakeArgs = j.at("bake_args").get<std::vector<std::string>>();
+    plan.workingDir = j.at("working_dir").get<std::string>();
+    plan.emitted = j.at("emitted_w").get<double>();
+    plan.target = j.at("target_w").get<double>();
+    plan.maxRounds = j.at("max_rounds").get<int>();
+    plan.globalPatches = j.at("global_patches").get<size_t>();
+    for (const nlohmann::json& c : j.at("cells")) {
+      plan.cells.push_back(c.at("name").get<std::string>());
+      plan.texels.push_back(c.at("texels").get<size_t>());
+      plan.neighbours.push_back(c.at("neighbours").get<std::vector<int>>());
+      for (int n : plan.neighbours.back())
+        if (n < 0 || n >= int(j.at("cells").size())) throw InputError(file, "a neighbour that is no cell");
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, std::string("damaged cell job plan: ") + e.what());
+  }
+  return plan;
+}
+
+CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGraph& graph,
+                         const LightmapAtlas& global, const CellSolveParams& params,
+                         std::vector<std::string> bakeArgs, const EglContext& gl, Context& ctx) {
+  requireSupported(params);
+  checkCells(scene, graph, params, ctx);
+  const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
+  std::vector<CellState> cells;
+  {
+    auto t = ctx.time("cells: atlases");
+    std::vector<int32_t> localIndex;
+    cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
+    mapCellTexels(cells, cellOf, localIndex, global, ctx);
+  }
+  linkPortals(graph, cells);  // refuses a degenerate portal now rather than in a job
+  CellWorkers workers(1, gl);
+  const CellFirstShot first =
+      shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
+  SolveResult result = startBookkeeping(graph, cells, global);
+  addFirstShotBookkeeping(first, result);
+
+  CellJobPlan plan;
+  plan.bakeArgs = std::move(bakeArgs);
+  plan.workingDir = fs::current_path().string();
+  plan.emitted = result.energy.emitted;
+  plan.target = params.solver.unshotFraction * plan.emitted;
+  plan.maxRounds = params.maxRounds;
+  plan.globalPatches = global.patches.size();
+  for (size_t c = 0; c < cells.size(); ++c) {
+    plan.cells.push_back(graph.cells[c].name);
+    plan.texels.push_back(cells[c].atlas.texelCount());
+    plan.neighbours.push_back(neighboursOf(graph, int(c)));
+  }
+  fs::create_directories(dir);
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    if (e.is_directory() && e.path().filename().string().rfind("round-", 0) == 0) fs::remove_all(e.path());
+  fs::remove(dir / "plan.json");
+  fs::create_directories(roundDir(dir, 0));
+  writeFirstShot(dir / "first-shot.cell",
+                 FirstShotRecord{first.emitted, first.landed, first.absorbed, first.emission});
+  for (size_t c = 0; c < cells.size(); ++c) {
+    CellRoundSummary s;
+    s.figures = waitingCellRound(c, cells[c]);
+    writeCellState(cellStateFile(dir, 0, int(c)), 0, s.figures);
+    s.figures.kept.clear(), s.figures.carried.clear();
+    writeSummary(cellSummaryFile(dir, 0, int(c)), s);
+  }
+  writeCellJobPlan(dir, plan);  // last: its presence marks a complete plan
+  return plan;
+}
+
+void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
+                 const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
+                 const EglContext& gl, Context& ctx) {
+  requireSupported(params);
+  if (graph.cells.size() != plan.cells.size())
+    throw InputError((dir / "plan.json").string(), "the plan has " + std::to_string(plan.cells.size()) +
+                                                       " cells, the scene's graph " +
+                                                       std::to_string(graph.cells.size()));
+  if (round < 1) throw InputError("round", "cell job rounds count from 1");
+  const double before = round == 1 ? plan.emitted : unshotAfter(dir, plan, round - 1);
+  if (!roundNeeded(plan, round, before))
+    throw InputError(roundDir(dir, round).string(), "the solve needs no round " + std::to_string(round) +
+                                                        " (converged, or past the maximum rounds): gather");
+  SolveControls controls;
+  controls.readTransfer = true;
+  const SolverParams settings = roundBudget(params.solver, plan.target, before, controls, plan.globalPatches);
+
+  // The cells run, their neighbours (whose atlases the portal links need) and the neighbours' neighbours:
+  // a cell's atlas holds a patch for each of its portals, so a neighbour's is the whole graph's only when
+  // every cell across its portals is there too.
+  std::vector<int> keep = run;
+  for (int ring = 0; ring < 2; ++ring) {
+    const std::vector<int> inner = keep;
+    for (int c : inner)
+      keep.insert(keep.end(), plan.neighbours[size_t(c)].begin(), plan.neighbours[size_t(c)].end());
+    std::sort(keep.begin(), keep.end());
+    keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  }
+  const SubGraph sub = subGraph(graph, keep);
+  std::vector<CellState> cells;
+  {
+    auto t = ctx.time("cells: atlases");
+    std::vector<int32_t> localIndex;
+    cells = buildCellAtlases(scene, sub.graph, params, localIndex, ctx);
+  }
+  const std::vector<PortalLink> links = linkPortals(sub.graph, cells);
+  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params, cells);
+  SolverPrograms programs;
+  controls.programs = &programs;
+  fs::create_directories(roundDir(dir, round));
+  for (int c : run) {
+    const auto start = std::chrono::steady_clock::now();
+    const size_t k = size_t(sub.subOf[size_t(c)]);
+    CellState& s = cells[k];
+    if (s.atlas.texelCount() != plan.texels[size_t(c)])
+      throw InputError((dir / "plan.json").string(),
+                       "cell " + plan.cells[size_t(c)] + " has " + std::to_string(s.atlas.texelCount()) +
+                           " texels here, " + std::to_string(plan.texels[size_t(c)]) + " in the plan");
+    s.pending = gatherFromFiles(dir, plan, round, c, s.pending.size(), s.carried);
+    CellRound r;
+    if (cellSolvesRound(s, plan.target)) {
+      for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
+      auto t = ctx.time("cells: solve");
+      const SolveResult solved = transfer->solve(k, s, settings, controls, gl, ctx);
+      r = cellRoundOf(k, s, solved, links, cells);
+    } else {
+      r = waitingCellRound(k, s);
+    }
+    toGraphIndices(r, sub);
+    writeCellState(cellStateFile(dir, round, c), round, r);
+    CellRoundSummary summary;
+    summary.round = round;
+    for (int n : plan.neighbours[size_t(c)])
+      summary.portalBytes += writePortalLight(portalLightFile(dir, round, c, n), round, r, n);
+    summary.figures = std::move(r);
+    summary.figures.kept.clear(), summary.figures.carried.clear(), summary.figures.radiosity.clear();
+    for (PortalSend& send : summary.figures.sends) send.exitance.clear();
+    summary.jobSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeSummary(cellSummaryFile(dir, round, c), summary);  // last: the job for this cell is done
+  }
+}
+
+CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
+  CellJobStatus status;
+  double unshot = plan.emitted;
+  for (int round = 1;; ++round) {
+    if (!roundNeeded(plan, round, unshot)) {
+      status.nextRound = 0;
+      return status;
+    }
+    status.nextRound = round;
+    for (size_t c = 0; c < plan.cells.size(); ++c)
+      if (!fs::exists(cellSummaryFile(dir, round, int(c)))) status.missing.push_back(int(c));
+    if (!status.missing.empty()) return status;
+    std::vector<CellRoundSummary> summaries;
+    unshot = unshotAfter(dir, plan, round, &summaries);
+    CellJobRoundStatus r;
+    r.round = round;
+    r.unshot = unshot;
+    for (const CellRoundSummary& s : summaries) {
+      r.solved += s.figures.solved;
+      r.shots += s.figures.shots;
+      r.jobSeconds += s.jobSeconds;
+      r.maxJobSeconds = std::max(r.maxJobSeconds, s.jobSeconds);
+      r.portalBytes += s.portalBytes;
+    }
+    status.rounds.push_back(r);
+  }
+}
+
+SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const Scene& scene,
+                           const CellGraph& graph, const LightmapAtlas& global, const CellSolveParams& params,
+                           Context& ctx) {
+  const auto start = std::chrono::steady_clock::now();
+  requireSupported(params);
+  if (graph.cells.size() != plan.cells.size())
+    throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
+  const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
+  std::vector<CellState> cells;
+  {
+    auto t = ctx.time("cells: atlases");
+    std::vector<int32_t> localIndex;
+    cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
+    mapCellTexels(cells, cellOf, localIndex, global, ctx);
+  }
+  for (size_t c = 0; c < cells.size(); ++c)
+    cells[c].pending = gatherFromFiles(dir, plan, 1, int(c), cells[c].pending.size(), cells[c].carried);
+  SolveResult result = startBookkeeping(graph, cells, global);
+  const FirstShotRecord shot = readFirstShot(dir / "first-shot.cell");
+  if (shot.absorbed.size() != cells.size() || shot.emission.size() != global.texelCount())
+    throw InputError((dir / "first-shot.cell").string(), "made for another scene or atlas than the plan's");
+  addFirstShotBookkeeping(CellFirstShot{shot.absorbed, shot.landed, shot.emitted, shot.emission}, result);
+  double unshot = plan.emitted;
+  int& rounds = result.perCell->rounds;
+  while (roundNeeded(plan, rounds + 1, unshot)) {
+    const int round = ++rounds;
+    std::vector<CellRound> states(cells.size());
+    std::vector<CellRoundSummary> summaries;
+    unshot = unshotAfter(dir, plan, round, &summaries);
+    std::vector<const PortalSend*> sends;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      states[c] = readCellState(cellStateFile(dir, round, int(c)), round, int(c));
+      CellRound& r = summaries[c].figures;  // the figures, with the state's arrays
+      r.radiosity = std::move(states[c].radiosity);
+      addCellRound(r, cells[c], graph, result);
+    }
+    for (size_t c = 0; c < cells.size(); ++c)
+      cells[c].pending =
+          gatherFromFiles(dir, plan, round + 1, int(c), cells[c].pending.size(), cells[c].carried);
+  }
+  finishBookkeeping(cells, global, result);
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace cpgi

@@ -1,0 +1,89 @@
+// The cells solve as jobs that share nothing but files (issue 16; docs/cell-jobs.md): a plan, then for
+// each round one job per cell or group of cells, then a gather. Any engine that can run a command on a
+// machine that sees the plan folder can drive them (cpgi-dask, a Slurm job array); a job reads only
+// files of the round before and writes only its own, each atomically, so rerunning a job (a lost
+// worker) rewrites the same bytes.
+//
+//   planCellJobs     the set-up of solveCells and the lamps' first shot over the whole scene (GPU);
+//                    writes plan.json, first-shot.cell and round 0: every cell's pending light.
+//   runCellJobs      round R of some cells: each gathers its pending light from round R − 1 (its own
+//                    state and the portal light its neighbours sent it), solves it on the GPU when it holds
+//                    enough (cell_round.h, as solveCells does), and writes its state, the portal light it
+//                    sends each neighbour and its summary (last: its presence marks the job done).
+//   cellJobStatus    which round comes next, from plan.json and the summaries alone (cheap).
+//   gatherCellJobs   every round applied in order, as solveCells applies them: the same SolveResult.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/scene.h"
+#include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/atlas.h"
+
+namespace cpgi {
+
+inline constexpr int kCellJobPlanVersion = 1;
+
+/// plan.json: what every job and the gather need besides the scene and the bake's options.
+struct CellJobPlan {
+  int version = kCellJobPlanVersion;
+  std::vector<std::string> bakeArgs;  ///< the bake's command line (after "bake"), less --plan
+  std::string workingDir;             ///< where the plan was made: the bake's relative paths start there
+  double emitted = 0.0;               ///< W (R + G + B) after the first shot's bookkeeping
+  double target = 0.0;                ///< unshot power at which the rounds stop (W)
+  int maxRounds = 0;
+  size_t globalPatches = 0;                  ///< patches of the whole scene's atlas (for roundBudget)
+  std::vector<std::string> cells;            ///< graph order
+  std::vector<size_t> texels;                ///< per cell, valid texels of its atlas (a job checks its own)
+  std::vector<std::vector<int>> neighbours;  ///< per cell, the cells across its portals (ascending)
+};
+
+void writeCellJobPlan(const std::filesystem::path& dir, const CellJobPlan& plan);
+/// Throws InputError naming dir/plan.json when it is missing, unreadable or of another version.
+CellJobPlan readCellJobPlan(const std::filesystem::path& dir);
+
+/// Files of the plan folder.
+std::filesystem::path roundDir(const std::filesystem::path& dir, int round);
+std::filesystem::path cellStateFile(const std::filesystem::path& dir, int round, int cell);
+std::filesystem::path cellSummaryFile(const std::filesystem::path& dir, int round, int cell);
+std::filesystem::path portalLightFile(const std::filesystem::path& dir, int round, int from, int to);
+
+/// Writes the plan into `dir` (created; an earlier plan's rounds there are removed). `params.jobs`,
+/// on-demand cells and directional portals are refused (InputError).
+CellJobPlan planCellJobs(const std::filesystem::path& dir, const Scene& scene, const CellGraph& graph,
+                         const LightmapAtlas& global, const CellSolveParams& params,
+                         std::vector<std::string> bakeArgs, const EglContext& gl, Context& ctx);
+
+/// Round `round` (>= 1) of `cells` (graph indices): needs round − 1 complete for them and their
+/// neighbours, and the round to be one the solve still needs (InputError otherwise).
+void runCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, int round,
+                 const std::vector<int>& cells, const Scene& scene, const CellGraph& graph,
+                 const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+/// One finished round in figures.
+struct CellJobRoundStatus {
+  int round = 0;
+  double unshot = 0.0;  ///< W after it
+  int solved = 0, shots = 0;
+  double jobSeconds = 0.0, maxJobSeconds = 0.0;  ///< Σ and max over cells
+  uint64_t portalBytes = 0;
+};
+struct CellJobStatus {
+  std::vector<CellJobRoundStatus> rounds;  ///< complete rounds, 1 on
+  int nextRound = 1;                       ///< 0: converged (or at --max-rounds): gather
+  std::vector<int> missing;                ///< cells whose round nextRound is not done yet
+};
+CellJobStatus cellJobStatus(const std::filesystem::path& dir, const CellJobPlan& plan);
+
+/// Every round of the plan applied in order (InputError unless the rounds are complete up to the stop).
+SolveResult gatherCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, const Scene& scene,
+                           const CellGraph& graph, const LightmapAtlas& global, const CellSolveParams& params,
+                           Context& ctx);
+
+}  // namespace cpgi

@@ -1,0 +1,165 @@
+#include "radiosity/cells/cell_round.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace cpgi {
+namespace {
+
+glm::dvec3 texelPower(const glm::vec3& v, float area) {
+  return glm::dvec3(v) * double(area);
+}
+
+// One link's send: the irradiance collected on the sending side becomes exitance on the far side.
+PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveResult& solved,
+                       const std::vector<CellState>& cells) {
+  const LightmapAtlas& to = cells[link.to].atlas;
+  glm::dvec3 sent(0.0), arrived(0.0);
+  for (const auto& [tt, ft] : link.texels) arrived += texelPower(solved.incident[ft], to.area[tt]);
+  const Patch& F = s.atlas.patches[link.fromPatch];
+  for (int j = 0; j < F.h; ++j)
+    for (int i = 0; i < F.w; ++i) {
+      const size_t t = size_t(F.y + j) * s.atlas.width + F.x + i;
+      if (s.atlas.patch[t] == link.fromPatch) sent += texelPower(solved.incident[t], s.atlas.area[t]);
+    }
+  PortalSend send;
+  send.portal = link.portal, send.from = link.from, send.to = link.to;
+  for (int k = 0; k < 3; ++k) send.scale[k] = arrived[k] > 0.0 ? float(sent[k] / arrived[k]) : 0.0f;
+  send.exitance.reserve(link.texels.size());
+  for (const auto& [tt, ft] : link.texels) {
+    const glm::vec3 e = solved.incident[ft] * send.scale;
+    send.exitance.push_back({tt, e});
+    send.arriving += (double(e.r) + e.g + e.b) * to.area[tt];
+  }
+  send.watts = sent.r + sent.g + sent.b;
+  return send;
+}
+
+}  // namespace
+
+double cellPower(const std::vector<glm::vec3>& exitance, const LightmapAtlas& atlas) {
+  double sum = 0.0;
+  for (size_t i = 0; i < exitance.size(); ++i)
+    if (atlas.patch[i] >= 0) sum += (double(exitance[i].r) + exitance[i].g + exitance[i].b) * atlas.area[i];
+  return sum;
+}
+
+bool cellSolvesRound(const CellState& s, double target) {
+  return cellPower(s.pending, s.atlas) > 1e-6 * target;
+}
+
+SolverParams roundBudget(const SolverParams& settings, double target, double unshot, SolveControls& controls,
+                         size_t globalPatches) {
+  SolverParams round = settings;
+  round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
+  controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
+  return round;
+}
+
+CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
+                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells) {
+  CellRound r;
+  r.cell = int(c);
+  r.solved = true;
+  // What the solve left unshot is shot at the next one; it is in the radiosity already.
+  r.kept = solved.residual;
+  r.carried = solved.residual;
+  r.keptPower = cellPower(r.kept, s.atlas);
+  if (!s.boundary) {
+    r.radiosity.resize(s.atlas.texelCount());
+    for (size_t t = 0; t < r.radiosity.size(); ++t) r.radiosity[t] = solved.radiosity[t] - s.carried[t];
+  }
+  double collected = 0.0;
+  for (const PortalLink& link : links) {
+    if (link.from != int(c)) continue;
+    r.sends.push_back(sendThrough(link, s, solved, cells));
+    collected += r.sends.back().watts;
+  }
+  r.shots = solved.shots;
+  r.seconds = solved.seconds;
+  r.shot = solved.energy.shot;
+  r.received = solved.energy.received;
+  r.escaped = solved.energy.escaped();
+  r.created = solved.energy.created;
+  r.worstShotGain = solved.energy.worstShotGain;
+  // Portal texels have albedo 0: all they received counts as absorbed by the solver.
+  r.absorbed = solved.energy.absorbed - collected;
+  return r;
+}
+
+CellRound waitingCellRound(size_t c, const CellState& s) {
+  CellRound r;
+  r.cell = int(c);
+  r.kept = s.pending;
+  r.carried = s.carried;
+  r.keptPower = cellPower(r.kept, s.atlas);
+  return r;
+}
+
+std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<const PortalSend*>& arriving,
+                                     size_t texels) {
+  std::vector<glm::vec3> pending(texels, glm::vec3(0.0f));
+  bool ownAdded = false;
+  auto addOwn = [&] {
+    for (size_t i = 0; i < own.kept.size() && i < texels; ++i) pending[i] += own.kept[i];
+    ownAdded = true;
+  };
+  if (!own.solved) addOwn();
+  for (const PortalSend* send : arriving) {
+    if (!ownAdded && send->from > own.cell) addOwn();
+    for (const auto& [t, e] : send->exitance) pending[size_t(t)] += e;
+  }
+  if (!ownAdded) addOwn();
+  return pending;
+}
+
+std::vector<const PortalSend*> sendsTo(int to, const std::vector<const PortalSend*>& sends) {
+  std::vector<const PortalSend*> out;
+  for (const PortalSend* s : sends)
+    if (s->to == to) out.push_back(s);
+  std::sort(out.begin(), out.end(), [](const PortalSend* a, const PortalSend* b) {
+    return std::tie(a->from, a->portal) < std::tie(b->from, b->portal);
+  });
+  return out;
+}
+
+double roundUnshot(const std::vector<double>& keptPower, std::vector<const PortalSend*> sends) {
+  std::sort(sends.begin(), sends.end(), [](const PortalSend* a, const PortalSend* b) {
+    return std::tie(a->to, a->from, a->portal) < std::tie(b->to, b->from, b->portal);
+  });
+  double unshot = 0.0;
+  size_t k = 0;
+  for (size_t c = 0; c < keptPower.size(); ++c) {
+    unshot += keptPower[c];
+    for (; k < sends.size() && sends[k]->to == int(c); ++k) unshot += sends[k]->arriving;
+  }
+  return unshot;
+}
+
+void addCellRound(const CellRound& r, const CellState& s, const CellGraph& graph, SolveResult& result) {
+  if (!r.solved) return;
+  CellSolveData& d = *result.perCell;
+  CellEnergy& ce = d.cells[size_t(r.cell)];
+  ++ce.solves;
+  ce.shots += r.shots;
+  result.shots += r.shots;
+  ce.seconds += r.seconds;
+  ce.escaped += r.escaped;
+  ce.created += r.created;
+  ce.worstShotGain = std::max(ce.worstShotGain, r.worstShotGain);
+  result.energy.created += r.created;
+  result.energy.worstShotGain = std::max(result.energy.worstShotGain, r.worstShotGain);
+  result.energy.shot += r.shot;
+  result.energy.received += r.received;
+  if (!r.radiosity.empty())
+    for (const auto& [g, t] : s.toGlobal) result.radiosity[g] += r.radiosity[t];
+  for (const PortalSend& send : r.sends) {
+    ce.sent += send.watts;
+    d.cells[size_t(send.to)].received += send.watts;
+    PortalEnergy& pe = d.portals[size_t(send.portal)];
+    (send.from == graph.portals[size_t(send.portal)].cellA ? pe.aToB : pe.bToA) += send.watts;
+  }
+  ce.absorbed += r.absorbed;
+}
+
+}  // namespace cpgi

@@ -1,0 +1,119 @@
+// Cell jobs (issue 16): the rounds run one cell per job from files and gathered give solveCells' result bit
+// for bit, on the 4-room office (two storeys joined by a hatch, one lamp); the job files refuse damage.
+#include "radiosity/cells/cell_jobs.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/quads.h"
+#include "radiosity/cells/cell_job_files.h"
+#include "scenes/stability_scenes.h"
+#include "tests/radiosity/cells/cell_energy_check.h"
+
+namespace cpgi {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() /
+                  ("cpgi-cell-jobs-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                   "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  TempDir() { fs::remove_all(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+TEST(CellJobs, OneCellPerJobGivesTheSingleProcessSolve) {
+  const SeedScene s = makeBuiltinScene("office-small");
+  Context ctx;
+  EglContext gl(ctx);
+  CellSolveParams params;
+  params.atlas.texelsPerQuad = 6;
+  params.solver.itemBuffer = 256;
+  const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), params.atlas, ctx);
+  const SolveResult single = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
+  ASSERT_GE(single.perCell->rounds, 2);
+
+  TempDir dir;
+  const CellJobPlan plan = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {"unused"}, gl, ctx);
+  EXPECT_EQ(readCellJobPlan(dir.path).cells, plan.cells);
+  for (int round = 1;; ++round) {
+    const CellJobStatus status = cellJobStatus(dir.path, plan);
+    if (status.nextRound == 0) break;
+    ASSERT_EQ(status.nextRound, round);
+    for (int c = int(plan.cells.size()) - 1; c >= 0; --c)  // any order within a round
+      runCellJobs(dir.path, plan, round, {c}, s.scene, s.cells, params, gl, ctx);
+  }
+  const SolveResult gathered = gatherCellJobs(dir.path, plan, s.scene, s.cells, atlas, params, ctx);
+  EXPECT_EQ(gathered.perCell->rounds, single.perCell->rounds);
+  EXPECT_EQ(gathered.shots, single.shots);
+  ASSERT_EQ(gathered.radiosity.size(), single.radiosity.size());
+  size_t differ = 0;
+  for (size_t i = 0; i < single.radiosity.size(); ++i) differ += gathered.radiosity[i] != single.radiosity[i];
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(gathered.residual, single.residual);
+  EXPECT_EQ(gathered.energy.unshot, single.energy.unshot);
+  EXPECT_EQ(gathered.energy.absorbed, single.energy.absorbed);
+  testing::expectConserved(gathered);
+
+  // A round the solve does not need is refused, naming the round's folder.
+  EXPECT_THROW(
+      runCellJobs(dir.path, plan, gathered.perCell->rounds + 1, {0}, s.scene, s.cells, params, gl, ctx),
+      InputError);
+}
+
+TEST(CellJobFiles, DamageIsNamedAndRefused) {
+  TempDir dir;
+  fs::create_directories(dir.path);
+  CellRoundSummary s;
+  s.round = 2;
+  s.figures.cell = 5;
+  s.figures.solved = true;
+  s.figures.keptPower = 1.5;
+  PortalSend send;
+  send.portal = 3, send.from = 5, send.to = 6, send.watts = 2.0, send.arriving = 1.9;
+  s.figures.sends.push_back(send);
+  const fs::path file = dir.path / "cell-0005.summary";
+  writeSummary(file, s);
+  const CellRoundSummary back = readSummary(file, 2, 5);
+  EXPECT_EQ(back.figures.keptPower, 1.5);
+  ASSERT_EQ(back.figures.sends.size(), 1u);
+  EXPECT_EQ(back.figures.sends[0].arriving, 1.9);
+
+  auto refused = [&](const std::string& expected) {
+    try {
+      readSummary(file, 2, 5);
+      ADD_FAILURE() << "read a damaged file";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  EXPECT_THROW(readSummary(file, 3, 5), InputError);    // another round than asked
+  EXPECT_THROW(readCellState(file, 2, 5), InputError);  // another kind
+
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto rewrite = [&](const std::string& b) { std::ofstream(file, std::ios::binary | std::ios::trunc) << b; };
+  rewrite(bytes.substr(0, bytes.size() - 5));
+  refused("truncated");
+  std::string flipped = bytes;
+  flipped[30] ^= 1;
+  rewrite(flipped);
+  refused("checksum");
+  std::string version = bytes;
+  version[8] = 9;
+  rewrite(version);
+  refused("format 9");
+  fs::remove(file);
+  refused("cannot read");
+}
+
+}  // namespace
+}  // namespace cpgi

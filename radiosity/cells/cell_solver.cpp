@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "core/error.h"
 #include "radiosity/cells/cell_atlases.h"
@@ -67,9 +69,24 @@ std::vector<size_t> activeCells(std::vector<CellState>& cells, double target) {
   return active;
 }
 
+// A cell's solve within a round, its progress lines labelled with the cell and round: without it a
+// user watched the solve's bar restart once per cell with nothing to say which room it was in.
+SolveResult solveLabelled(const std::string& label, const std::function<SolveResult(Context&)>& solve,
+                          Context& ctx) {
+  Context cellCtx;
+  cellCtx.setProgress([&](const std::string& stage, double fraction, const std::string& status) {
+    ctx.progress(stage, fraction, label + (status.empty() ? "" : ": " + status));
+  });
+  SolveResult solved = solve(cellCtx);
+  for (const Context::Timing& t : cellCtx.timings()) ctx.addTiming(t.stage, t.seconds);
+  for (const std::string& w : cellCtx.warnings()) ctx.warn(w);
+  return solved;
+}
+
 // The round's solves are independent (each reads only its own cell): side by side with `jobs`. Every
 // cell gets its CellRound (radiosity/cells/cell_round.h), a waiting one too.
-std::vector<CellRound> solveRound(const std::vector<CellState>& cells, const std::vector<size_t>& active,
+std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
+                                  const std::vector<CellState>& cells, const std::vector<size_t>& active,
                                   const std::vector<PortalLink>& links, const SolverParams& settings,
                                   const SolveControls& controls, PortalTransfer& transfer,
                                   CellWorkers& workers, Context& ctx) {
@@ -77,14 +94,20 @@ std::vector<CellRound> solveRound(const std::vector<CellState>& cells, const std
   std::vector<CellRound> round(cells.size());
   {
     auto t = ctx.time("cells: solve");
-    workers.run(active.size(), ctx,
-                [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
-                  SolveControls own = controls;
-                  own.programs = &programs;
-                  const size_t c = active[k];
-                  solvedOf[c] = transfer.solve(c, cells[c], settings, own, context, taskCtx);
-                  round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells);
-                });
+    workers.run(
+        active.size(), ctx,
+        [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
+          SolveControls own = controls;
+          own.programs = &programs;
+          const size_t c = active[k];
+          const std::string label = "cell " + graph.cells[c].name + " (" + std::to_string(k + 1) + " of " +
+                                    std::to_string(active.size()) + "), round " + std::to_string(roundNumber);
+          solvedOf[c] = solveLabelled(
+              label,
+              [&](Context& cellCtx) { return transfer.solve(c, cells[c], settings, own, context, cellCtx); },
+              taskCtx);
+          round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells);
+        });
   }
   // The portal model's own bookkeeping, in the order it has always had: the waiting cells, then the
   // solved ones in cell order.
@@ -123,7 +146,8 @@ double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& rou
 // to follow: light arrived on a portal and not yet shot is spread over its cell's own texels, where it
 // would have landed first. Without it the ambient term spread the whole scene's unshot power by area, and
 // a dim room two doors from the lamp came out 19 % bright at the default stop.
-std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells, const LightmapAtlas& global) {
+std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells,
+                                             const LightmapAtlas& global) {
   std::vector<glm::vec3> residual(global.texelCount(), glm::vec3(0.0f));
   for (const CellState& s : cells) {
     const std::vector<char> onPortal = portalPatchFlags(s);
@@ -191,7 +215,8 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params, cells);
   CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
 
-  const CellFirstShot first = shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
+  const CellFirstShot first =
+      shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
   SolveResult result = startBookkeeping(graph, cells, global);
   addFirstShotBookkeeping(first, result);
   SolveControls controls;
@@ -207,11 +232,11 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     const std::vector<size_t> active = activeCells(cells, target);
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =
-        solveRound(cells, active, links, settings, controls, *transfer, workers, ctx);
+        solveRound(graph, rounds, cells, active, links, settings, controls, *transfer, workers, ctx);
     for (size_t c : active) addCellRound(round[c], cells[c], graph, result);
     unshot = endRound(cells, round, *transfer);
-    done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction), 0.0,
-                      1.0);
+    done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction),
+                      0.0, 1.0);
     ctx.progress("cells", done, "round " + std::to_string(rounds));
   }
   finishBookkeeping(cells, global, result);

@@ -1,6 +1,7 @@
 // Progress in a pipe or a log: plain "progress: STAGE NN% ..." lines on stderr, at most one per
 // CPGI_PROGRESS_SECONDS (10 s by default, so short runs stay silent), from bake (global and cells, whose
-// lines name the round and its cells), reference, decompose and view; none with -q.
+// lines name the round and its cells, and each cell's solve its cell), reference, decompose and view;
+// none with -q.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -46,6 +47,10 @@ TEST(ProgressLines, EveryLongCommandReportsItsStagesInAPipe) {
   const std::string named = r.err.substr(round, r.err.find('\n', round) - round);
   EXPECT_TRUE(named.find('A') != std::string::npos || named.find('C') != std::string::npos) << named;
   EXPECT_NE(r.err.find("round 1\n"), std::string::npos) << r.err;
+  // Each cell's own solve says which cell and round it is.
+  EXPECT_TRUE(hasLine(r, "progress: solve ")) << r.err;
+  EXPECT_NE(r.err.find("(1 of "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("), round 1: shots"), std::string::npos) << r.err;
 
   r = cpgiEvery(dir, "0", "reference " + quote(scene) + " -o " + quote(dir / "ref") + atlas + " --spp 2");
   ASSERT_EQ(r.status, 0) << r.err;

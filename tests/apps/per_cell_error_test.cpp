@@ -99,17 +99,17 @@ TEST_F(PerCellError, CompareLightReportsEveryCellAndTheWorst) {
   EXPECT_TRUE(j["worst_cell"].is_string());
 }
 
-// Converged and at the default stop, every room within 5 % of the reference, plus twice the ratio's own
-// error (1 % in C at this size). On 7089168 B read 1.15 and C 1.17 converged; on 531185c the eyes' lost
-// light and the reference's back faces on the zero-thickness partition moved C by ±4 %; now
-// A/B/C = 0.99/1.02/1.04 (both stops).
+// Every room within 3 % of the reference converged (no early stop to hide a bias) and 5 % at the default
+// stop, plus twice the ratio's own error (1.2 % in C at this size). On 7089168 B read 1.15 and C 1.17
+// converged; on 531185c the eyes' lost light and the reference's back faces on the zero-thickness
+// partition moved C by ±4 %; now A/B/C = 0.992 / 1.015 / 1.018 converged, C 1.022 at the default stop.
 TEST_F(PerCellError, RoomsLitThroughOpeningsMatchTheReference) {
-  for (const char* stop : {"converged", "default"}) {
+  for (const auto& [stop, tolerance] : {std::pair{"converged", 0.03}, std::pair{"default", 0.05}}) {
     const nlohmann::json j = compare(stop);
     for (const nlohmann::json& c : j["cells"]) {
       const double ratio = c["ratio_of_means"], err = c["ratio_error"];
       EXPECT_LT(err, 0.03) << stop << " " << c.dump();
-      EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << stop << " " << c.dump();
+      EXPECT_NEAR(ratio, 1.0, tolerance + 2.0 * err) << stop << " " << c.dump();
     }
   }
 }

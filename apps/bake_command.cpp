@@ -334,7 +334,9 @@ int runBake(const BakeOptions& o) {
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the per-cell figures and the ambient term.
   const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
-  const RoomLabels rooms = cells.empty() ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx) : RoomLabels{};
+  const RoomLabels rooms = cells.empty() || cells.definedByVolumes()
+                               ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx, cells)
+                               : RoomLabels{};
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
   BakeFigures f;
@@ -399,7 +401,8 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->check(CLI::IsMember({"global", "cells"}))
       ->capture_default_str();
   sub->add_option("--cells", o->cells,
-                  "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
+                  "With --method cells: a glTF with cell:/portal: nodes or with rooms given as cellvolume: meshes "
+                  "alone (the scene itself when it has them), "
                   "a decompose output folder, or auto (the automatic decomposition, with the decomposition "
                   "options below)")
       ->capture_default_str();

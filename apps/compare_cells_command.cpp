@@ -106,14 +106,18 @@ int runCompare(const CompareOptions& o) {
   const int countA = int(a.graph.cells.size()), countB = int(b.graph.cells.size());
   // Scored over the whole interior, the voxels either puts in a room: a decomposition that labels only
   // part of the rooms (a scene whose cells reach only enclosed space, in an open house) scores low.
-  const decomp::InteriorLabels interior = decomp::interiorLabels(a.labels, countA, a.graph.findCell("outside"),
-                                                                 b.labels, countB, b.graph.findCell("outside"));
+  const decomp::InteriorLabels interior = decomp::interiorLabels(
+      a.labels, countA, a.graph.findCell("outside"), b.labels, countB, b.graph.findCell("outside"));
   std::optional<double> ari;
-  if (interior.both >= 2) ari = decomp::adjustedRandIndex(interior.a, interior.b);
-  else ctx.warn("compare-cells: A and B share no room voxel: nothing to score (no adjusted Rand index)");
-  for (const auto& [name, coverage] : {std::pair{"A", interior.coverageA()}, std::pair{"B", interior.coverageB()}})
+  if (interior.both >= 2)
+    ari = decomp::adjustedRandIndex(interior.a, interior.b);
+  else
+    ctx.warn("compare-cells: A and B share no room voxel: nothing to score (no adjusted Rand index)");
+  for (const auto& [name, coverage] :
+       {std::pair{"A", interior.coverageA()}, std::pair{"B", interior.coverageB()}})
     if (interior.interior > 0 && coverage < 0.5)
-      ctx.warn("compare-cells: " + std::string(name) + " puts only " + std::to_string(int(std::lround(100 * coverage))) +
+      ctx.warn("compare-cells: " + std::string(name) + " puts only " +
+               std::to_string(int(std::lround(100 * coverage))) +
                " % of the interior in a room (the interior: the voxels A or B puts in a room)");
   // Each side's "no room" counts in the other's cell sizes but is no match.
   std::vector<double> iouB = decomp::bestMatchIoU(interior.b, countB + 1, interior.a, countA + 1, countA);
@@ -165,7 +169,8 @@ int runCompare(const CompareOptions& o) {
   }
   j["portal_matches"] = pm;
   // The worst matched portal's centre error; null when B has portals that A cannot match at all, or none.
-  if (unmatched || matches.empty()) j["portal_centre_error_m"] = nullptr;
+  if (unmatched || matches.empty())
+    j["portal_centre_error_m"] = nullptr;
   else j["portal_centre_error_m"] = worst;
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
   if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
@@ -179,10 +184,13 @@ int runCompare(const CompareOptions& o) {
   }
   std::printf("A: %s (%d cells, %zu portals)\nB: %s (%d cells, %zu portals)\n", a.source.c_str(), countA,
               a.graph.portals.size(), b.source.c_str(), countB, b.graph.portals.size());
-  std::printf("voxel %.3g m, %zu interior voxels (in a room of A or B): %.0f %% in A's rooms, %.0f %% in B's\n", h,
-              interior.interior, 100 * interior.coverageA(), 100 * interior.coverageB());
-  if (ari) std::printf("adjusted Rand index %.4f, mean best-match IoU %.4f\n", *ari, meanIoU);
-  else std::printf("adjusted Rand index n/a (no room voxel in both), mean best-match IoU %.4f\n", meanIoU);
+  std::printf(
+      "voxel %.3g m, %zu interior voxels (in a room of A or B): %.0f %% in A's rooms, %.0f %% in B's\n", h,
+      interior.interior, 100 * interior.coverageA(), 100 * interior.coverageB());
+  if (ari)
+    std::printf("adjusted Rand index %.4f, mean best-match IoU %.4f\n", *ari, meanIoU);
+  else
+    std::printf("adjusted Rand index n/a (no room voxel in both), mean best-match IoU %.4f\n", meanIoU);
   for (int c = 0; c < countB; ++c) std::printf("  cell %-12s best IoU %.4f\n", b.graph.cells[size_t(c)].name.c_str(), iouB[size_t(c)]);
   for (const auto& m : matches) {
     if (m.candidate < 0) {

@@ -48,7 +48,8 @@ bool CellGraph::connected() const {
 
 bool CellGraph::definedByVolumes() const {
   if (cells.empty() || !portals.empty()) return false;
-  return std::all_of(cells.begin(), cells.end(), [](const Cell& c) { return c.triangles.empty() && !c.volume.empty(); });
+  return std::all_of(cells.begin(), cells.end(),
+                     [](const Cell& c) { return c.triangles.empty() && !c.volume.empty(); });
 }
 
 void computePortalFrame(PortalQuad& portal) {

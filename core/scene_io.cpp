@@ -101,7 +101,8 @@ CellTag parseCellTag(const std::string& file, const std::string& name) {
   };
   if (startsWith(name, "cellvolume:")) {
     tag.kind = CellTag::Kind::CellVolume;
-    tag.a = requireName(stripBlenderSuffix(name.substr(11)));  // a room of several volumes, as Blender names them
+    tag.a =
+        requireName(stripBlenderSuffix(name.substr(11)));  // a room of several volumes, as Blender names them
   } else if (startsWith(name, "cell:")) {
     tag.kind = CellTag::Kind::Cell;
     tag.a = requireName(name.substr(5));
@@ -231,7 +232,8 @@ size_t closedVolumeEdges(const std::vector<Triangle>& mesh) {
   using Key = std::array<int64_t, 3>;
   std::map<std::pair<Key, Key>, int> uses;
   auto key = [](const glm::vec3& p) {
-    return Key{int64_t(std::llround(p.x * 1e4)), int64_t(std::llround(p.y * 1e4)), int64_t(std::llround(p.z * 1e4))};
+    return Key{int64_t(std::llround(p.x * 1e4)), int64_t(std::llround(p.y * 1e4)),
+               int64_t(std::llround(p.z * 1e4))};
   };
   for (const Triangle& t : mesh)
     for (int k = 0; k < 3; ++k) {
@@ -330,8 +332,9 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     int c = graph.findCell(v.tag.a);
     if (c < 0 && volumesOnly) graph.cells.push_back(Cell{v.tag.a, {}, {}}), c = int(graph.cells.size()) - 1;
     if (c < 0)
-      throw InputError(path, v.node + ": names a cell that does not exist (volumes define cells only in a "
-                                      "scene without cell: and portal: nodes)");
+      throw InputError(path, v.node +
+                                 ": names a cell that does not exist (volumes define cells only in a "
+                                 "scene without cell: and portal: nodes)");
     auto& volume = graph.cells[c].volume;
     volume.insert(volume.end(), v.triangles.begin(), v.triangles.end());
   }

@@ -134,8 +134,8 @@ double adjustedRandIndex(const std::vector<int32_t>& a, const std::vector<int32_
   return (sumJoint - expected) / (maximum - expected);
 }
 
-std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b, int countB,
-                                 int unmatchable) {
+std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b,
+                                 int countB, int unmatchable) {
   std::map<std::pair<int, int>, double> joint;
   std::vector<double> sizeA(size_t(std::max(countA, 0)), 0.0), sizeB(size_t(std::max(countB, 0)), 0.0);
   for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
@@ -153,8 +153,8 @@ std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, cons
   return best;
 }
 
-InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int outsideA, const std::vector<int32_t>& b,
-                              int countB, int outsideB) {
+InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int outsideA,
+                              const std::vector<int32_t>& b, int countB, int outsideB) {
   InteriorLabels out;
   const size_t n = std::min(a.size(), b.size());
   out.a.assign(n, -1), out.b.assign(n, -1);

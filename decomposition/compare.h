@@ -40,8 +40,8 @@ double adjustedRandIndex(const std::vector<int32_t>& a, const std::vector<int32_
 /// For each label of `a` (0 … countA − 1): the best intersection-over-union with any label of `b`, over
 /// the positions where both are ≥ 0 (and below their counts); 0 for a label with no such position.
 /// A `b` label of `unmatchable` counts in the sizes of the `a` labels it overlaps but is never a match.
-std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b, int countB,
-                                 int unmatchable = -1);
+std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b,
+                                 int countB, int unmatchable = -1);
 
 /// Two labellings restricted to the interior: the positions either puts in a room (any label ≥ 0 but its
 /// outside). There each keeps its rooms and gives the positions it leaves out (unlabelled, or its
@@ -49,15 +49,15 @@ std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, cons
 /// rooms scores low instead of being compared only where it says something. −1 off the interior.
 struct InteriorLabels {
   std::vector<int32_t> a, b;
-  size_t interior = 0;        ///< positions in a room of A or of B
+  size_t interior = 0;          ///< positions in a room of A or of B
   size_t roomA = 0, roomB = 0;  ///< of those, in a room of A; of B
-  size_t both = 0;            ///< in a room of both
+  size_t both = 0;              ///< in a room of both
   double coverageA() const { return interior ? double(roomA) / double(interior) : 0.0; }
   double coverageB() const { return interior ? double(roomB) / double(interior) : 0.0; }
 };
 /// `outsideA`/`outsideB`: the label of each one's outside cell, −1 when it has none.
-InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int outsideA, const std::vector<int32_t>& b,
-                              int countB, int outsideB);
+InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int outsideA,
+                              const std::vector<int32_t>& b, int countB, int outsideB);
 
 struct PortalMatch {
   int reference = -1;       ///< index into the reference portals

@@ -79,15 +79,17 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
                   ? "no enclosed empty space"
                   : "no room larger than the minimum cell volume") +
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
-  Decomposition out = finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
+  Decomposition out =
+      finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
   out.voxelChoice = std::move(voxelChoice);
   out.basins = basins.basinCount();
   return out;
 }
 
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance, const CellLabels& cells,
-                                  const std::vector<std::string>& names, Context& ctx) {
+                                  std::vector<Space> space, const DistanceGrid& distance,
+                                  const CellLabels& cells, const std::vector<std::string>& names,
+                                  Context& ctx) {
   Decomposition out;
   const double h = solid.frame.voxel;
   out.frame = solid.frame;

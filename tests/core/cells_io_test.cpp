@@ -169,8 +169,9 @@ TEST(CellsIo, CellVolumesAndBlenderDuplicateSuffix) {
   test::GlbBuilder bad;
   bad.addNode({{"name", "cell:A"}, {"mesh", bad.addMesh(floorAt(0))}});
   bad.addNode({{"name", "cellvolume:Z"}, {"mesh", bad.addMesh(floorAt(1))}});
-  EXPECT_EQ(errorOf(bad), "cellvolume:Z: names a cell that does not exist (volumes define cells only in a "
-                          "scene without cell: and portal: nodes)");
+  EXPECT_EQ(errorOf(bad),
+            "cellvolume:Z: names a cell that does not exist (volumes define cells only in a "
+            "scene without cell: and portal: nodes)");
 }
 
 TEST(CellsIo, VolumesAloneDefineTheCells) {

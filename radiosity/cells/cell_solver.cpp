@@ -259,11 +259,16 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   addFirstShotBookkeeping(first, result);
   SolveControls controls;
   controls.readTransfer = true;
+  controls.deadline = params.deadline;
   const double emitted = result.energy.emitted, target = params.solver.unshotFraction * emitted;
   int& rounds = result.perCell->rounds;
   double unshot = emitted;
   double done = 0.0;  // the "cells" progress: unshot power on a log scale from all to the target
   while (emitted > 0.0 && unshot > target && rounds < params.maxRounds) {
+    if (std::chrono::steady_clock::now() >= params.deadline) {
+      result.timedOut = true;
+      break;
+    }
     ++rounds;
     const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
     NextRound next{std::vector<std::vector<glm::vec3>>(cells.size()),
@@ -274,7 +279,10 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     const std::vector<size_t> active = activeCells(cells, target, next, *transfer);
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     std::vector<SolveResult> solved = solveRound(cells, active, settings, controls, *transfer, workers, ctx);
-    for (size_t c : active) syncCell(c, cells[c], solved[c], links, cells, graph, next, *transfer, result);
+    for (size_t c : active) {
+      syncCell(c, cells[c], solved[c], links, cells, graph, next, *transfer, result);
+      result.timedOut = result.timedOut || solved[c].timedOut;
+    }
     unshot = endRound(cells, next, *transfer);
     done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction), 0.0,
                       1.0);

@@ -8,14 +8,17 @@
 // "cell", lightmap.png, baked.glb with the cells, view-*.png/.exr), report.json and report.html
 // (apps/report_page.h), all or nothing. The options are apps/options.h's.
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -70,6 +73,7 @@ struct BakeOptions {
   int jobRound = 0;
   std::string jobCells;
   bool gather = false;
+  double timeLimit = 0.0;      ///< --time-limit: seconds of wall clock from the start, 0 = none
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -167,11 +171,18 @@ void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
 // The atlas was checked alone when it was built; the solve adds its item buffers: per visibility region
 // (up to the larger of --regions and --strong-regions, squared) an item and a depth layer of the buffer's
 // pixels (8 bytes a pixel), and half as much again for what the GL driver keeps beside them.
+double solveRegions(const BakeOptions& o) {
+  return std::pow(std::max(o.solver.maxRegions, o.solver.strongShotRegions), 2);
+}
+
+double solveBytes(const BakeOptions& o, const LightmapAtlas& atlas) {
+  const double pixels = double(o.solver.itemBuffer) * double(o.solver.itemBuffer) * solveRegions(o);
+  return double(atlas.texelCount()) * kBakeBytesPerTexel + pixels * 12.0;
+}
+
 void requireSolveMemory(const BakeOptions& o, const LightmapAtlas& atlas) {
-  const double regions = std::pow(std::max(o.solver.maxRegions, o.solver.strongShotRegions), 2);
-  const double pixels = double(o.solver.itemBuffer) * double(o.solver.itemBuffer) * regions;
-  const double bytes = double(atlas.texelCount()) * kBakeBytesPerTexel + pixels * 12.0;
-  requireMemory(bytes, o.atlas.memoryLimit, "item buffer",
+  const double regions = solveRegions(o);
+  requireMemory(solveBytes(o, atlas), o.atlas.memoryLimit, "item buffer",
                 "the solve (" + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
                     " atlas texels, item buffers of " + std::to_string(o.solver.itemBuffer) + "^2 pixels x " +
                     std::to_string(int(regions)) + " regions)",
@@ -185,7 +196,7 @@ void requireSolveMemory(const BakeOptions& o, const LightmapAtlas& atlas) {
 // albedo of 1 there would converge: the message says how to go on). A dark scene has nothing to shoot.
 void requireConvergence(const BakeOptions& o, const Scene& scene, const LightmapAtlas& atlas) {
   constexpr double kMaxBounces = 200.0;
-  if (o.maxShotsGiven || !scene.hasLight()) return;
+  if (o.maxShotsGiven || o.timeLimit > 0.0 || !scene.hasLight()) return;
   double weighted = 0.0, area = 0.0;
   for (size_t i = 0; i < atlas.texelCount(); ++i)
     if (atlas.patch[i] >= 0) {
@@ -200,20 +211,23 @@ void requireConvergence(const BakeOptions& o, const Scene& scene, const Lightmap
   s << "mean albedo " << albedo << ": light would bounce "
     << (std::isinf(bounces) ? std::string("for ever") : "about " + std::to_string(int(bounces)) + " times")
     << " before `unshot fraction` " << o.solver.unshotFraction
-    << " is unshot; lower the albedo, raise `unshot fraction`, or bound the solve with `maximum shots` N";
+    << " is unshot; lower the albedo, raise `unshot fraction`, or bound the solve with `maximum shots` N or "
+       "`time limit` SECONDS";
   throw InputError(o.scene, s.str());
 }
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
-SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl, Context& ctx) {
+SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl,
+                      std::chrono::steady_clock::time_point deadline, Context& ctx) {
   auto t = ctx.time("solve");
   // The residual, for the ambient term.
   if (o.method != "cells")
     return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx,
-                            SolveControls{.readTransfer = !o.noAmbient});
+                            SolveControls{.readTransfer = !o.noAmbient, .deadline = deadline});
   CellSolveParams params = o.cellParams;
   params.solver = o.solver;
   params.atlas = o.atlas;
+  params.deadline = deadline;
   if (o.gather) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
     return gatherCellJobs(o.plan, plan, in.loaded.scene, in.graph, in.atlas, params, ctx);
@@ -323,6 +337,17 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["egl_platform"] = gl.platform();
   report["energy"] = energyReport(s.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
+  // A bake stopped by --time-limit is valid but partial: what it left unshot is in energy.unshot_w (and
+  // spread by the ambient term unless --no-ambient).
+  report["time_limit_s"] = o.timeLimit > 0.0 ? nlohmann::json(o.timeLimit) : nlohmann::json(nullptr);
+  report["partial"] = s.timedOut;
+  if (s.timedOut) {
+    std::ostringstream why;
+    why << "time limit of " << o.timeLimit << " s reached after " << s.shots << " shots with "
+        << s.unshotFraction * 100.0 << " % of the emitted power unshot (target "
+        << o.solver.unshotFraction * 100.0 << " %)";
+    report["partial_reason"] = why.str();
+  }
   if (s.perCell) addCellsReport(o, in, *s.perCell, report);
   return report;
 }
@@ -380,26 +405,86 @@ int runCellJobStage(const BakeOptions& o) {
   return 0;
 }
 
+// A line on stderr that stays, clear of a live progress line on a terminal.
+void printNote(const std::string& text) {
+  std::fprintf(stderr, "%s%s\n", ::isatty(STDERR_FILENO) ? "\r\033[K" : "", text.c_str());
+  std::fflush(stderr);
+}
+
+// How large the bake is, and what decides how long it takes.
+std::string bakeSizeLine(const BakeOptions& o, const BakeInput& in) {
+  std::ostringstream line;
+  line << "bake: " << in.atlas.validTexels() << " texels in " << in.atlas.patches.size() << " patches ("
+       << in.loaded.scene.triangles.size() << " triangles";
+  if (o.method == "cells")
+    line << ", " << in.graph.cells.size() << " cells, " << in.graph.portals.size() << " portals";
+  line << "), about " << int(std::ceil(solveBytes(o, in.atlas) / (1 << 20)))
+       << " MB; the time is estimated from the first shots";
+  if (o.timeLimit > 0.0) line << "; --time-limit " << o.timeLimit << " s stops it with a partial result";
+  return line.str();
+}
+
+// Two lines that stay, around the progress line: the bake's size (`size`, once set) at the solver's first
+// report, before its first shot and after its settings are checked (an error stays one line); and, for a
+// global solve, the first time estimate, once its status carries one (measured from the first shots' cost
+// and the decay of the unshot power), with what the time limit will do to it. The progress line goes on
+// updating the estimate.
+Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& o,
+                                  std::chrono::steady_clock::time_point start,
+                                  std::shared_ptr<std::string> size) {
+  if (!inner) return inner;
+  auto said = std::make_shared<std::pair<bool, bool>>(false, false);  // size, estimate
+  return [inner, said, size, global = o.method == "global", limit = o.timeLimit, start](
+             const std::string& stage, double fraction, const std::string& status) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!said->first && stage == "solve" && !size->empty()) {
+      said->first = true;
+      printNote(*size + " (" + formatDuration(std::max(elapsed, 1.0)) + " so far)");
+    }
+    int shots = 0;
+    double unshot = 0.0, eta = 0.0;
+    if (global && !said->second && stage == "solve" &&
+        std::sscanf(status.c_str(), "shots %d, unshot %lf%%, ETA %lf s", &shots, &unshot, &eta) == 3) {
+      said->second = true;
+      std::ostringstream line;
+      line << "bake: after " << shots << " shots, about " << formatDuration(eta) << " more to solve";
+      if (limit > 0.0 && elapsed + eta > limit)
+        line << "; the time limit stops it in " << formatDuration(std::max(0.0, limit - elapsed))
+             << " with a partial result";
+      printNote(line.str());
+    }
+    inner(stage, fraction, status);
+  };
+}
+
 int runBake(const BakeOptions& o) {
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
+  const auto deadline = o.timeLimit > 0.0
+                            ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                          std::chrono::duration<double>(o.timeLimit))
+                            : std::chrono::steady_clock::time_point::max();
   Context ctx;
-  ctx.setProgress(stderrProgress(o.quiet));
+  auto sizeLine = std::make_shared<std::string>();
+  ctx.setProgress(withBakeNotes(stderrProgress(o.quiet), o, start, sizeLine));
   BakeInput in = loadBakeInput(o, ctx);
   OutputDir out(o.output, kLightmapResultNames);
   buildBakeAtlas(o, in, ctx);
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
+  *sizeLine = bakeSizeLine(o, in);
   std::unique_ptr<EglContext> gl;
   {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   }
-  SolveResult s = solveBake(o, in, *gl, ctx);
+  SolveResult s = solveBake(o, in, *gl, deadline, ctx);
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the per-cell figures and the ambient term.
   const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
-  const RoomLabels rooms = cells.empty() ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx) : RoomLabels{};
+  const RoomLabels rooms = cells.empty() || cells.definedByVolumes()
+                               ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx, cells)
+                               : RoomLabels{};
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
   BakeFigures f;
@@ -427,7 +512,8 @@ int runBake(const BakeOptions& o) {
   out.commit();
   if (!o.quiet) {
     std::cout << o.output << ": " << in.atlas.validTexels() << " texels, " << s.shots << " shots, unshot "
-              << s.unshotFraction * 100.0 << " %, " << f.seconds << " s\n";
+              << s.unshotFraction * 100.0 << " %, " << f.seconds << " s"
+              << (s.timedOut ? " (partial: stopped at the time limit)" : "") << "\n";
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
@@ -463,10 +549,12 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
                   "handed on through portals (needs --cells)")
       ->check(CLI::IsMember({"global", "cells"}))
       ->capture_default_str();
-  sub->add_option("--cells", o->cells,
-                  "With --method cells: a glTF with cell:/portal: nodes (the scene itself when it has them), "
-                  "a decompose output folder, or auto (the automatic decomposition, with the decomposition "
-                  "options below)")
+  sub->add_option(
+         "--cells", o->cells,
+         "With --method cells: a glTF with cell:/portal: nodes or with rooms given as cellvolume: meshes "
+         "alone (the scene itself when it has them), "
+         "a decompose output folder, or auto (the automatic decomposition, with the decomposition "
+         "options below)")
       ->capture_default_str();
   addCellOptions(*sub, o->cellParams);
   addOnDemandOptions(*sub, *o);
@@ -485,6 +573,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addViewOptions(*sub, o->views);
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);
+  addTimeLimitOption(*sub, o->timeLimit);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {
     o->maxShotsGiven = sub->count("--max-shots") > 0;

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "decomposition/faced_cells.h"
 #include "decomposition/outside_portals.h"
+#include "decomposition/volume_cells.h"
 #include "radiosity/lightmap/cell_channel.h"
 
 namespace cpgi::cli {
@@ -39,35 +40,45 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
                        const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx) {
   if (source == "none" || source.empty())
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
-  if (source == "auto") {
-    auto t = ctx.time("decompose");
-    decomp::DecomposeParams p = params;
-    p.sourceName = scenePath;
-    decomp::Decomposition d = decomp::decompose(loaded.scene, p, ctx);
-    if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
+  decomp::DecomposeParams p = params;
+  p.sourceName = scenePath;
+  // The decomposition splits triangles: the scene becomes the split one, with the same lights.
+  auto takeDecomposition = [&](decomp::Decomposition d) {
     std::vector<PunctualLight> lights = std::move(loaded.scene.lights);
     loaded.scene = std::move(d.scene);
-    loaded.scene.lights = std::move(lights);  // the decomposition splits triangles; the lights stay
+    loaded.scene.lights = std::move(lights);
     return std::move(d.graph);
+  };
+  if (source == "auto") {
+    auto t = ctx.time("decompose");
+    decomp::Decomposition d = decomp::decompose(loaded.scene, p, ctx);
+    if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
+    return takeDecomposition(std::move(d));
   }
   std::filesystem::path path = source;
   if (std::filesystem::is_directory(path)) path /= "cells.glb";
   if (!std::filesystem::exists(path)) throw InputError("--cells", path.string() + ": no such file");
+  auto fromVolumes = [&](const CellGraph& volumes) {
+    auto t = ctx.time("decompose");
+    return takeDecomposition(decomp::decomposeFromVolumes(loaded.scene, volumes, p, {}, ctx));
+  };
   // Read back from a file, portals onto the outside may face into their room (outside_portals.h).
   if (std::filesystem::equivalent(path, scenePath)) {
-    if (loaded.cells.empty()) throw InputError(path.string(), "has no cell:/portal: nodes");
+    if (loaded.cells.empty()) throw InputError(path.string(), "has no cell:/portal:/cellvolume: nodes");
+    if (loaded.cells.definedByVolumes()) return fromVolumes(CellGraph(loaded.cells));
     CellGraph graph = loaded.cells;
     decomp::orientOutsidePortals(loaded.scene, graph);
     return graph;
   }
   const LoadedScene other = loadScene(path.string(), load);
+  if (other.cells.definedByVolumes()) return fromVolumes(other.cells);
   CellGraph graph = matchCellsToScene(loaded.scene, other, path.string(), ctx);
   decomp::orientOutsidePortals(loaded.scene, graph);
   return graph;
 }
 
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
-                             Context& ctx) {
+                             Context& ctx, const CellGraph& volumes) {
   auto t = ctx.time("rooms");
   RoomLabels out;
   decomp::Decomposition d;
@@ -75,7 +86,8 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
     Context quiet;  // the decomposition's warnings are about cells the user did not ask for
     decomp::DecomposeParams params;
     params.sourceName = scenePath;
-    d = decomp::decompose(scene, params, quiet);
+    d = volumes.definedByVolumes() ? decomp::decomposeFromVolumes(scene, volumes, params, {}, quiet)
+                                   : decomp::decompose(scene, params, quiet);
   } catch (const InputError&) {
     return out;
   }

@@ -25,7 +25,9 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 ///  - "auto": the automatic decomposition with `params`; it may split triangles on portal planes, so it
 ///    replaces loaded.scene by the split scene;
 ///  - a folder: its cells.glb (a `cpgi decompose` output);
-///  - the scene file itself: its own cell:/portal: nodes;
+///  - the scene file itself: its own cell:/portal: nodes, or rooms given only as cellvolume: meshes
+///    (decomp::decomposeFromVolumes with `params`' voxel size; like auto, it replaces loaded.scene by the
+///    split scene);
 ///  - another glTF of the same scene: matchCellsToScene.
 /// Throws InputError("--cells", ...) for "none" or a missing file.
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
@@ -40,7 +42,9 @@ struct RoomLabels {
   CellGraph graph;
   ExrChannel channel;
 };
+/// With `volumes` (rooms given only as cellvolume: meshes, CellGraph::definedByVolumes), the rooms are
+/// those volumes' cells (decomp::decomposeFromVolumes) instead.
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
-                             Context& ctx);
+                             Context& ctx, const CellGraph& volumes = {});
 
 }  // namespace cpgi::cli

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -74,7 +76,7 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   if (std::filesystem::is_directory(path)) path = (std::filesystem::path(path) / "cells.glb").string();
   if (!std::filesystem::exists(path)) throw InputError(what, "no such file (give a scene with cells, a folder with cells.glb, or auto)");
   LoadedScene loaded = loadScene(path, load);
-  if (loaded.cells.empty()) throw InputError(path, "has no cell: nodes to compare");
+  if (loaded.cells.empty()) throw InputError(path, "has no cell: or cellvolume: nodes to compare");
   out.source = path;
   out.graph = std::move(loaded.cells);
   out.labels = decomp::labelsFromCells(loaded.scene, out.graph, space.frame, space.space);
@@ -99,14 +101,27 @@ int runCompare(const CompareOptions& o) {
   const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);
   const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.load, o.bake, ctx);
 
-  size_t both = 0, inside = 0;
-  for (size_t i = 0; i < space.space.size(); ++i) {
-    inside += space.space[i] == decomp::Space::Inside;
-    both += a.labels[i] >= 0 && b.labels[i] >= 0;
-  }
-  const double ari = decomp::adjustedRandIndex(a.labels, b.labels);
+  size_t inside = 0;
+  for (const decomp::Space v : space.space) inside += v == decomp::Space::Inside;
   const int countA = int(a.graph.cells.size()), countB = int(b.graph.cells.size());
-  const std::vector<double> iouB = decomp::bestMatchIoU(b.labels, countB, a.labels, countA);
+  // Scored over the whole interior, the voxels either puts in a room: a decomposition that labels only
+  // part of the rooms (a scene whose cells reach only enclosed space, in an open house) scores low.
+  const decomp::InteriorLabels interior = decomp::interiorLabels(
+      a.labels, countA, a.graph.findCell("outside"), b.labels, countB, b.graph.findCell("outside"));
+  std::optional<double> ari;
+  if (interior.both >= 2)
+    ari = decomp::adjustedRandIndex(interior.a, interior.b);
+  else
+    ctx.warn("compare-cells: A and B share no room voxel: nothing to score (no adjusted Rand index)");
+  for (const auto& [name, coverage] :
+       {std::pair{"A", interior.coverageA()}, std::pair{"B", interior.coverageB()}})
+    if (interior.interior > 0 && coverage < 0.5)
+      ctx.warn("compare-cells: " + std::string(name) + " puts only " +
+               std::to_string(int(std::lround(100 * coverage))) +
+               " % of the interior in a room (the interior: the voxels A or B puts in a room)");
+  // Each side's "no room" counts in the other's cell sizes but is no match.
+  std::vector<double> iouB = decomp::bestMatchIoU(interior.b, countB + 1, interior.a, countA + 1, countA);
+  iouB.resize(size_t(countB));
   double meanIoU = 0.0;
   for (double v : iouB) meanIoU += v;
   meanIoU = iouB.empty() ? 0.0 : meanIoU / double(iouB.size());
@@ -117,6 +132,7 @@ int runCompare(const CompareOptions& o) {
     if (m.candidate < 0) unmatched = true;
     worst = std::max(worst, double(m.centreDistance));
   }
+  if (matches.empty()) ctx.warn("compare-cells: B has no portals: no portal to match");
 
   nlohmann::json j;
   j["scene"] = o.scene;
@@ -124,12 +140,16 @@ int runCompare(const CompareOptions& o) {
   j["b"] = b.source;
   j["voxel_m"] = h;
   j["inside_voxels"] = inside;
-  j["labelled_in_both"] = both;
+  j["interior_voxels"] = interior.interior;
+  j["labelled_in_both"] = interior.both;
+  j["coverage_a"] = interior.coverageA();
+  j["coverage_b"] = interior.coverageB();
   j["cells_a"] = countA;
   j["cells_b"] = countB;
   j["portals_a"] = a.graph.portals.size();
   j["portals_b"] = b.graph.portals.size();
-  j["adjusted_rand_index"] = ari;
+  // null, not a perfect 1, when there is nothing to compare.
+  j["adjusted_rand_index"] = ari ? nlohmann::json(*ari) : nlohmann::json(nullptr);
   j["matched_iou"] = meanIoU;
   nlohmann::json perCell = nlohmann::json::array();
   for (int c = 0; c < countB; ++c) perCell.push_back({{"cell", b.graph.cells[size_t(c)].name}, {"best_iou", iouB[size_t(c)]}});
@@ -148,8 +168,9 @@ int runCompare(const CompareOptions& o) {
     pm.push_back(e);
   }
   j["portal_matches"] = pm;
-  // The worst matched portal's centre error; null when B has portals that A cannot match at all.
-  if (unmatched) j["portal_centre_error_m"] = nullptr;
+  // The worst matched portal's centre error; null when B has portals that A cannot match at all, or none.
+  if (unmatched || matches.empty())
+    j["portal_centre_error_m"] = nullptr;
   else j["portal_centre_error_m"] = worst;
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
   if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
@@ -163,8 +184,13 @@ int runCompare(const CompareOptions& o) {
   }
   std::printf("A: %s (%d cells, %zu portals)\nB: %s (%d cells, %zu portals)\n", a.source.c_str(), countA,
               a.graph.portals.size(), b.source.c_str(), countB, b.graph.portals.size());
-  std::printf("voxel %.3g m, %zu inside voxels, %zu labelled by both\n", h, inside, both);
-  std::printf("adjusted Rand index %.4f, mean best-match IoU %.4f\n", ari, meanIoU);
+  std::printf(
+      "voxel %.3g m, %zu interior voxels (in a room of A or B): %.0f %% in A's rooms, %.0f %% in B's\n", h,
+      interior.interior, 100 * interior.coverageA(), 100 * interior.coverageB());
+  if (ari)
+    std::printf("adjusted Rand index %.4f, mean best-match IoU %.4f\n", *ari, meanIoU);
+  else
+    std::printf("adjusted Rand index n/a (no room voxel in both), mean best-match IoU %.4f\n", meanIoU);
   for (int c = 0; c < countB; ++c) std::printf("  cell %-12s best IoU %.4f\n", b.graph.cells[size_t(c)].name.c_str(), iouB[size_t(c)]);
   for (const auto& m : matches) {
     if (m.candidate < 0) {

@@ -17,6 +17,7 @@
 #include "decomposition/decompose.h"
 #include "decomposition/picture.h"
 #include "decomposition/report.h"
+#include "decomposition/volume_cells.h"
 
 namespace cpgi::cli {
 namespace {
@@ -26,13 +27,18 @@ struct DecomposeOptions {
   std::string out;
   LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool json = false;
+  bool fromVolumes = false;  ///< the scene's own rooms given as cellvolume: meshes alone, not the watershed
   decomp::DecomposeParams params;
 };
 
 int runDecompose(DecomposeOptions o) {
   LoadedScene loaded = loadScene(o.scene, o.load);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
-  if (!loaded.cells.empty())
+  if (o.fromVolumes && !loaded.cells.definedByVolumes())
+    throw InputError(o.scene,
+                     "--from-volumes needs rooms given as cellvolume: meshes alone (no cell: or "
+                     "portal: nodes)");
+  if (!loaded.cells.empty() && !o.fromVolumes)
     std::cerr << "cpgi: " << o.scene << ": ignoring its " << loaded.cells.cells.size()
               << " hand-made cells (compare them with `cpgi compare-cells`)\n";
   o.params.sourceName = o.scene;
@@ -40,7 +46,9 @@ int runDecompose(DecomposeOptions o) {
   OutputDir dir(o.out, {"cells.glb", "cells.json", "decomposition.png", "report.html"});
   Context ctx;
   ctx.setProgress(stderrProgress(false));
-  decomp::Decomposition d = decomp::decompose(loaded.scene, o.params, ctx);
+  decomp::Decomposition d = o.fromVolumes
+                                ? decomp::decomposeFromVolumes(loaded.scene, loaded.cells, o.params, {}, ctx)
+                                : decomp::decompose(loaded.scene, o.params, ctx);
   d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it
 
   GltfWriteOptions gltf;
@@ -65,8 +73,10 @@ int runDecompose(DecomposeOptions o) {
     std::cout << report.dump(2) << "\n";
     return 0;
   }
-  std::printf("%zu cells, %zu portals from %d watershed basins; voxel %.3g m (%s)\n", d.graph.cells.size(),
-              d.graph.portals.size(), d.basins, d.frame.voxel, d.voxelChoice.c_str());
+  const std::string from =
+      o.fromVolumes ? "the scene's cellvolume: meshes" : std::to_string(d.basins) + " watershed basins";
+  std::printf("%zu cells, %zu portals from %s; voxel %.3g m (%s)\n", d.graph.cells.size(),
+              d.graph.portals.size(), from.c_str(), d.frame.voxel, d.voxelChoice.c_str());
   std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
   std::printf("outside: %s; voxel faces between cells not covered by a portal: %zu\n",
@@ -91,6 +101,10 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
       ->required();
   addDecomposeOptions(*cmd, o->params);
   addLoadOptions(*cmd, o->load);
+  cmd->add_flag(
+      "--from-volumes", o->fromVolumes,
+      "The cells of the scene's own rooms given as cellvolume: meshes alone (as `bake --cells SCENE` "
+      "makes them): portals where they meet an opening, every surface in the room it faces");
   cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }

@@ -18,6 +18,7 @@ struct GenerateOptions {
   std::string name;
   std::string output;
   bool noCells = false;  ///< the raw model, as a user would bring it
+  bool volumesOnly = false;  ///< the rooms as cellvolume: meshes alone, as an IFC export gives them
 };
 
 int runGenerate(const GenerateOptions& o) {
@@ -37,6 +38,13 @@ int runGenerate(const GenerateOptions& o) {
   if (ec) throw InputError(o.output, "cannot create its folder: " + ec.message());
   GltfWriteOptions options;
   if (o.noCells) scene.cells = CellGraph{};
+  if (o.volumesOnly) {
+    CellGraph volumes;
+    for (const Cell& c : scene.cells.cells)
+      if (!c.volume.empty()) volumes.cells.push_back(Cell{c.name, {}, c.volume});
+    if (volumes.cells.empty()) throw InputError(o.name, "has no room volumes to write (--volumes-only)");
+    scene.cells = std::move(volumes);
+  }
   options.cells = &scene.cells;
   writeGltf(o.output, scene.scene, options);
   std::cout << o.output << ": " << o.name << ", " << scene.scene.triangles.size() << " triangles, "
@@ -55,6 +63,10 @@ void addGenerateCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required();
   sub->add_flag("--no-cells", options->noCells,
                 "Leave out the hand-made cells and portals: the raw model, as a user would bring it");
+  sub->add_flag("--volumes-only", options->volumesOnly,
+                "Give the rooms only as cellvolume: meshes (no cell: or portal: nodes), as an IFC export's "
+                "rooms come; the buildings have them")
+      ->excludes("--no-cells");
   sub->callback([&selected, options] { selected = [options] { return runGenerate(*options); }; });
 }
 

@@ -46,6 +46,8 @@ constexpr ParameterFlag kFlags[] = {
     {"region size", "--region-size"},
     // Ambient term (radiosity/gpu/ambient.h), bake only
     {"no ambient term", "--no-ambient"},
+    // Bake only: stop the solve at a wall-clock limit, writing a partial result
+    {"time limit", "--time-limit"},
     // Views (radiosity/lightmap/views.h)
     {"view size", "--view-size"},
     // compare-light's page (core/html_report/html_report.h)
@@ -234,6 +236,13 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
 void addAmbientOption(CLI::App& cmd, bool& noAmbient) {
   cmd.add_flag(flag("no ambient term"), noAmbient,
                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
+}
+
+void addTimeLimitOption(CLI::App& cmd, double& seconds) {
+  addChecked(cmd, OptionScope{}, "time limit", seconds,
+             "Stop shooting once the bake has run this many seconds (wall clock, from its start; 0: no "
+             "limit) and write what it has, marked partial in report.json; the writing comes on top",
+             within(0.0, 1e9));
 }
 
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {

@@ -41,6 +41,8 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {});
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
 /// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term).
 void addAmbientOption(CLI::App& cmd, bool& noAmbient);
+/// bake's `--time-limit SECONDS` (0: none).
+void addTimeLimitOption(CLI::App& cmd, double& seconds);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
 /// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume.

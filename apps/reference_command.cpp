@@ -180,7 +180,9 @@ int runReference(const ReferenceOptions& o) {
   for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
   // "cell": each texel's cell of the scene's own graph (or of its automatic rooms, labelled as bake
   // does), for compare-light's per-cell figures.
-  const RoomLabels rooms = loaded.cells.empty() ? labelTexelsByRoom(scene, o.scene, atlas, ctx) : RoomLabels{};
+  const RoomLabels rooms = loaded.cells.empty() || loaded.cells.definedByVolumes()
+                               ? labelTexelsByRoom(scene, o.scene, atlas, ctx, loaded.cells)
+                               : RoomLabels{};
   const ExrChannel cells = rooms.graph.empty() ? cellChannel(atlas, scene, loaded.cells) : rooms.channel;
   f.cellNames = cellNames(rooms.graph.empty() ? loaded.cells : rooms.graph);
   LightmapOutputs written;

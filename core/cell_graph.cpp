@@ -1,5 +1,6 @@
 #include "core/cell_graph.h"
 
+#include <algorithm>
 #include <cmath>
 #include <queue>
 
@@ -43,6 +44,12 @@ bool CellGraph::connected() const {
   for (char s : seen)
     if (!s) return false;
   return true;
+}
+
+bool CellGraph::definedByVolumes() const {
+  if (cells.empty() || !portals.empty()) return false;
+  return std::all_of(cells.begin(), cells.end(),
+                     [](const Cell& c) { return c.triangles.empty() && !c.volume.empty(); });
 }
 
 void computePortalFrame(PortalQuad& portal) {

@@ -44,6 +44,9 @@ struct CellGraph {
   std::vector<int> cellOfTriangle(size_t triangleCount) const;
   /// True when every cell can be reached from cell 0 through portals.
   bool connected() const;
+  /// True for rooms given only as volumes: cells, each with a volume, but no triangle in any and no
+  /// portal (decomp::decomposeFromVolumes makes the rest).
+  bool definedByVolumes() const;
 };
 
 /// Fills corners' normal and area from the corners (Newell's method, so slightly non-planar quads work).

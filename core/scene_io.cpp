@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "core/error.h"
@@ -100,7 +101,8 @@ CellTag parseCellTag(const std::string& file, const std::string& name) {
   };
   if (startsWith(name, "cellvolume:")) {
     tag.kind = CellTag::Kind::CellVolume;
-    tag.a = requireName(name.substr(11));
+    tag.a =
+        requireName(stripBlenderSuffix(name.substr(11)));  // a room of several volumes, as Blender names them
   } else if (startsWith(name, "cell:")) {
     tag.kind = CellTag::Kind::Cell;
     tag.a = requireName(name.substr(5));
@@ -224,6 +226,26 @@ void checkMaterials(const std::string& path, const Scene& scene) {
 
 // Degenerate and duplicate triangles: dropped with one warning naming how many and the first one's node
 // (real exports have a few slivers), or refused with `strict`. Returns a mark per triangle to drop.
+// Edges of a volume mesh not shared by exactly two of its triangles (positions to 0.1 mm): 0 for a
+// closed mesh, whose inside the parity of crossings decides.
+size_t closedVolumeEdges(const std::vector<Triangle>& mesh) {
+  using Key = std::array<int64_t, 3>;
+  std::map<std::pair<Key, Key>, int> uses;
+  auto key = [](const glm::vec3& p) {
+    return Key{int64_t(std::llround(p.x * 1e4)), int64_t(std::llround(p.y * 1e4)),
+               int64_t(std::llround(p.z * 1e4))};
+  };
+  for (const Triangle& t : mesh)
+    for (int k = 0; k < 3; ++k) {
+      Key a = key(t.p[k]), b = key(t.p[(k + 1) % 3]);
+      if (b < a) std::swap(a, b);
+      ++uses[{a, b}];
+    }
+  size_t open = 0;
+  for (const auto& [edge, n] : uses) open += n != 2;
+  return open;
+}
+
 std::vector<char> dropDegenerate(const std::string& path, const Scene& scene, const LoadOptions& options,
                                  std::vector<std::string>& warnings) {
   std::vector<char> drop(scene.triangles.size(), 0);
@@ -303,9 +325,16 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
   for (const std::string& name : raw.cellNames) graph.cells.push_back(Cell{name, {}, {}});
   for (uint32_t i = 0; i < cellOf.size(); ++i)
     if (cellOf[i] >= 0) graph.cells[cellOf[i]].triangles.push_back(i);
+  // Rooms given only as volumes (no cell: or portal: node, as an IFC export's IfcSpace rooms): each
+  // cellvolume: defines its cell; decomp::decomposeFromVolumes gives them their surfaces and portals.
+  const bool volumesOnly = graph.cells.empty() && raw.portals.empty() && !raw.volumes.empty();
   for (RawScene::TaggedMesh& v : raw.volumes) {
-    const int c = graph.findCell(v.tag.a);
-    if (c < 0) throw InputError(path, v.node + ": names a cell that does not exist");
+    int c = graph.findCell(v.tag.a);
+    if (c < 0 && volumesOnly) graph.cells.push_back(Cell{v.tag.a, {}, {}}), c = int(graph.cells.size()) - 1;
+    if (c < 0)
+      throw InputError(path, v.node +
+                                 ": names a cell that does not exist (volumes define cells only in a "
+                                 "scene without cell: and portal: nodes)");
     auto& volume = graph.cells[c].volume;
     volume.insert(volume.end(), v.triangles.begin(), v.triangles.end());
   }
@@ -326,7 +355,13 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     }
     graph.portals.push_back(portal);
   }
-  if (!graph.cells.empty() || !graph.portals.empty()) {
+  if (volumesOnly) {
+    for (const Cell& c : graph.cells)
+      if (closedVolumeEdges(c.volume) != 0)
+        out.warnings.push_back("cellvolume:" + c.name + ": is not a closed mesh (" +
+                               std::to_string(closedVolumeEdges(c.volume)) +
+                               " edges not shared by two of its triangles); its inside may be wrong");
+  } else if (!graph.cells.empty() || !graph.portals.empty()) {
     const CellValidation v = validateCells(scene, graph);
     if (!v.errors.empty()) {
       std::string message = v.errors.front();

@@ -7,46 +7,11 @@
 #include <unordered_map>
 
 #include "decomposition/classify.h"
+#include "decomposition/volume_cells.h"
 #include "decomposition/voxelize.h"
 
 namespace cpgi::decomp {
 namespace {
-
-// Empty voxels (inside or outside, not void) whose centres lie in the closed mesh, by the parity of
-// crossings along +x per row.
-void fillVolume(const std::vector<Triangle>& mesh, const GridFrame& f, const std::vector<Space>& space, int label,
-                std::vector<int32_t>& out) {
-  Bounds b;
-  for (const Triangle& t : mesh)
-    for (const glm::vec3& q : t.p) b.extend(q);
-  if (b.empty()) return;
-  const glm::ivec3 lo = glm::max(f.voxelOf(b.lo), glm::ivec3(0)), hi = glm::min(f.voxelOf(b.hi), f.dims - 1);
-  std::vector<double> xs;
-  for (int z = lo.z; z <= hi.z; ++z)
-    for (int y = lo.y; y <= hi.y; ++y) {
-      const glm::vec3 row = f.centre(glm::ivec3(0, y, z));
-      xs.clear();
-      for (const Triangle& t : mesh) {
-        // Where the line (·, row.y, row.z) meets the triangle, by 2D barycentrics in the y-z plane.
-        const glm::dvec2 a(t.p[0].y, t.p[0].z), bb(t.p[1].y, t.p[1].z), c(t.p[2].y, t.p[2].z), p(row.y, row.z);
-        const double det = (bb.x - a.x) * (c.y - a.y) - (c.x - a.x) * (bb.y - a.y);
-        if (std::abs(det) < 1e-12) continue;
-        const double u = ((p.x - a.x) * (c.y - a.y) - (c.x - a.x) * (p.y - a.y)) / det;
-        const double v = ((bb.x - a.x) * (p.y - a.y) - (p.x - a.x) * (bb.y - a.y)) / det;
-        if (u < 0 || v < 0 || u + v > 1) continue;
-        xs.push_back(t.p[0].x + u * (t.p[1].x - t.p[0].x) + v * (t.p[2].x - t.p[0].x));
-      }
-      std::sort(xs.begin(), xs.end());
-      for (size_t k = 0; k + 1 < xs.size(); k += 2)
-        for (int x = lo.x; x <= hi.x; ++x) {
-          const double cx = f.origin.x + f.voxel * x;
-          const size_t i = f.index(x, y, z);
-          // Outside voxels too: the rooms of a building whose doors stand open are reachable from the bounds.
-          if (cx >= xs[k] && cx <= xs[k + 1] && (space[i] == Space::Inside || space[i] == Space::Outside))
-            out[i] = label;
-        }
-    }
-}
 
 double choose2(double n) { return 0.5 * n * (n - 1.0); }
 
@@ -65,7 +30,13 @@ std::vector<int32_t> labelsFromCells(const Scene& scene, const CellGraph& graph,
   std::vector<int32_t> label(f.count(), -1);
   const float h = float(f.voxel);
   std::vector<char> blocked(f.count(), 0);
-  for (size_t i = 0; i < space.size(); ++i) blocked[i] = space[i] != Space::Inside;
+  // A graph with an "outside" cell models the exterior and has portals on the openings, so its cells grow
+  // through all empty space (the rooms of an open building are reachable from its bounds: enclosed space
+  // alone is a few litres of it); without one, only through enclosed space, which a room's facade
+  // triangles would otherwise flood from outside.
+  const bool modelsOutside = graph.findCell("outside") >= 0;
+  for (size_t i = 0; i < space.size(); ++i)
+    blocked[i] = !(space[i] == Space::Inside || (modelsOutside && space[i] == Space::Outside));
 
   // Portal quads as walls half a voxel thick.
   std::vector<char> portalVoxel(f.count(), 0);
@@ -92,7 +63,7 @@ std::vector<int32_t> labelsFromCells(const Scene& scene, const CellGraph& graph,
   for (size_t c = 0; c < graph.cells.size(); ++c) {
     const Cell& cell = graph.cells[c];
     if (!cell.volume.empty()) {
-      fillVolume(cell.volume, f, space, int(c), label);
+      labelVolumeVoxels(cell.volume, f, space, int32_t(c), label);
       continue;
     }
     for (uint32_t t : cell.triangles) {
@@ -163,7 +134,8 @@ double adjustedRandIndex(const std::vector<int32_t>& a, const std::vector<int32_
   return (sumJoint - expected) / (maximum - expected);
 }
 
-std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b, int countB) {
+std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, const std::vector<int32_t>& b,
+                                 int countB, int unmatchable) {
   std::map<std::pair<int, int>, double> joint;
   std::vector<double> sizeA(size_t(std::max(countA, 0)), 0.0), sizeB(size_t(std::max(countB, 0)), 0.0);
   for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
@@ -174,10 +146,27 @@ std::vector<double> bestMatchIoU(const std::vector<int32_t>& a, int countA, cons
   }
   std::vector<double> best(sizeA.size(), 0.0);
   for (const auto& [key, inter] : joint) {
+    if (key.second == unmatchable) continue;
     const double iou = inter / (sizeA[size_t(key.first)] + sizeB[size_t(key.second)] - inter);
     best[size_t(key.first)] = std::max(best[size_t(key.first)], iou);
   }
   return best;
+}
+
+InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int outsideA,
+                              const std::vector<int32_t>& b, int countB, int outsideB) {
+  InteriorLabels out;
+  const size_t n = std::min(a.size(), b.size());
+  out.a.assign(n, -1), out.b.assign(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    const bool roomA = a[i] >= 0 && a[i] < countA && a[i] != outsideA;
+    const bool roomB = b[i] >= 0 && b[i] < countB && b[i] != outsideB;
+    if (!roomA && !roomB) continue;
+    ++out.interior, out.roomA += roomA, out.roomB += roomB, out.both += roomA && roomB;
+    out.a[i] = roomA ? a[i] : countA;
+    out.b[i] = roomB ? b[i] : countB;
+  }
+  return out;
 }
 
 std::vector<PortalMatch> matchPortals(const std::vector<PortalQuad>& reference, const std::vector<PortalQuad>& candidate) {

@@ -16,7 +16,9 @@ std::string metres(double v) {
   return s.str();
 }
 
-void checkInput(const Scene& scene, const DecomposeParams& p) {
+}  // namespace
+
+void checkDecomposeInput(const Scene& scene, const DecomposeParams& p) {
   if (scene.triangles.empty()) throw InputError(p.sourceName, "the scene has no triangles");
   for (size_t t = 0; t < scene.triangles.size(); ++t)
     for (const glm::vec3& q : scene.triangles[t].p)
@@ -34,8 +36,6 @@ void checkInput(const Scene& scene, const DecomposeParams& p) {
   if (p.merge.minCellVolume < 0.0) throw InputError("minimum cell volume", "must be ≥ 0");
   if (p.merge.openingRatio < 0.0) throw InputError("opening ratio", "must be ≥ 0");
 }
-
-}  // namespace
 
 double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {
   if (params.voxelSize > 0.0) {
@@ -55,50 +55,61 @@ double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::s
 }
 
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
-  checkInput(scene, params);
-  Decomposition out;
-  const double h = chooseVoxelSize(scene, params, &out.voxelChoice);
+  checkDecomposeInput(scene, params);
+  std::string voxelChoice;
+  const double h = chooseVoxelSize(scene, params, &voxelChoice);
 
   VoxelizeParams vp;
   vp.voxelSize = h;
   vp.sealRadius = params.sealRadius;
   const SolidGrid solid = voxelize(scene, vp, ctx);
-  out.frame = solid.frame;
-  out.sealedVoxels = solid.sealedVoxels;
   SpaceGrid space = classifySpace(scene, solid, params.classify, ctx);
 
-  std::vector<PortalQuad> quads;
-  std::vector<float> peaks;
   // The watershed runs over all empty space, the outside included (its basin grows from the grid's
   // border); interior cells meet the outside at exterior doors and open windows.
   const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
   const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
-  out.basins = basins.basinCount();
   const CellLabels cells = mergeBasins(basins, params.merge, ctx);
-  out.enclosed = cells.roomCount() > 0;
-  out.outsideCell = cells.outsideCell;
-  PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
-  out.voxelCell = std::move(portals.cell);
-  out.leakingFaces = portals.leakingFaces;
-  peaks = cells.peak;
-  auto cellName = [&](int c) {
-    return c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c);
-  };
-  for (FittedPortal& fp : portals.portals) {
-    fp.quad.name = "portal:" + cellName(fp.quad.cellA) + ":" + cellName(fp.quad.cellB);
-    quads.push_back(fp.quad);
-  }
-  out.portals = std::move(portals.portals);
-  if (!out.enclosed)
+  std::vector<std::string> names;
+  for (int c = 0; c < cells.cellCount(); ++c)
+    names.push_back(c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c));
+  if (cells.roomCount() == 0)
     ctx.warn("decompose: " + params.sourceName + ": " +
              (space.insideVoxels == 0 && cells.cellCount() <= 1
                   ? "no enclosed empty space"
                   : "no room larger than the minimum cell volume") +
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
+  Decomposition out =
+      finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
+  out.voxelChoice = std::move(voxelChoice);
+  out.basins = basins.basinCount();
+  return out;
+}
+
+Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
+                                  std::vector<Space> space, const DistanceGrid& distance,
+                                  const CellLabels& cells, const std::vector<std::string>& names,
+                                  Context& ctx) {
+  Decomposition out;
+  const double h = solid.frame.voxel;
+  out.frame = solid.frame;
+  out.sealedVoxels = solid.sealedVoxels;
+  out.enclosed = cells.roomCount() > 0;
+  out.outsideCell = cells.outsideCell;
+  PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
+  out.voxelCell = std::move(portals.cell);
+  out.leakingFaces = portals.leakingFaces;
+  const std::vector<float>& peaks = cells.peak;
+  std::vector<PortalQuad> quads;
+  for (FittedPortal& fp : portals.portals) {
+    fp.quad.name = "portal:" + names[size_t(fp.quad.cellA)] + ":" + names[size_t(fp.quad.cellB)];
+    quads.push_back(fp.quad);
+  }
+  out.portals = std::move(portals.portals);
   if (out.leakingFaces > 0)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
              " voxel faces join two cells outside any portal");
-  out.space = std::move(space.space);
+  out.space = std::move(space);
 
   Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
   out.inputTriangles = scene.triangles.size();
@@ -112,7 +123,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   out.graph.cells.resize(size_t(cellCount));
   out.cellStats.resize(size_t(cellCount));
   for (int c = 0; c < cellCount; ++c) {
-    out.graph.cells[size_t(c)].name = c == out.outsideCell ? "outside" : "c" + std::to_string(c);
+    out.graph.cells[size_t(c)].name = names[size_t(c)];
     out.cellStats[size_t(c)].peak = peaks[size_t(c)];
   }
   for (size_t t = 0; t < assigned.cellOfTriangle.size(); ++t) {

@@ -20,6 +20,7 @@
 #include "core/scene.h"
 #include "decomposition/assign.h"
 #include "decomposition/classify.h"
+#include "decomposition/distance.h"
 #include "decomposition/merge.h"
 #include "decomposition/portals.h"
 #include "decomposition/watershed.h"
@@ -75,5 +76,18 @@ double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::s
 /// ctx.warn; each stage's time to ctx's timers.
 /// @throws InputError for an empty scene, non-finite coordinates or out-of-range parameters.
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx);
+
+/// The checks decompose makes before any work.
+/// @throws InputError for an empty scene, non-finite coordinates or out-of-range parameters.
+void checkDecomposeInput(const Scene& scene, const DecomposeParams& params);
+
+/// Stages 6 and 7 and the graph, over cells labelled by any means (the watershed and merge of decompose,
+/// or a scene's room volumes, volume_cells.h): portals fitted where the cells meet, every triangle given
+/// to the cell it faces (split on portal planes), per-cell statistics. `names` holds one name per cell of
+/// `cells`; `space` and `distance` are those of `solid`.
+Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
+                                  std::vector<Space> space, const DistanceGrid& distance,
+                                  const CellLabels& cells, const std::vector<std::string>& names,
+                                  Context& ctx);
 
 }  // namespace cpgi::decomp

@@ -61,6 +61,7 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   CellRound r;
   r.cell = int(c);
   r.solved = true;
+  r.timedOut = solved.timedOut;
   // What the solve left unshot is shot at the next one; it is in the radiosity already.
   r.kept = solved.residual;
   r.carried = solved.residual;

@@ -41,6 +41,7 @@ struct PortalSend {
 struct CellRound {
   int cell = -1;                     ///< graph cell
   bool solved = false;               ///< false: it waited (too little pending light), its pending light kept
+  bool timedOut = false;             ///< its solve stopped at the bake's --time-limit (not in job files)
   std::vector<glm::vec3> kept;       ///< per cell texel: its own share of the next pending light (W/m²)
   std::vector<glm::vec3> carried;    ///< per cell texel: the part of `kept` already in the radiosity
   std::vector<glm::vec3> radiosity;  ///< per cell texel: radiosity gained this round (solved cells only)

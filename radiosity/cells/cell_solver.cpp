@@ -221,11 +221,16 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   addFirstShotBookkeeping(first, result);
   SolveControls controls;
   controls.readTransfer = true;
+  controls.deadline = params.deadline;
   const double emitted = result.energy.emitted, target = params.solver.unshotFraction * emitted;
   int& rounds = result.perCell->rounds;
   double unshot = emitted;
   double done = 0.0;  // the "cells" progress: unshot power on a log scale from all to the target
   while (emitted > 0.0 && unshot > target && rounds < params.maxRounds) {
+    if (std::chrono::steady_clock::now() >= params.deadline) {
+      result.timedOut = true;
+      break;
+    }
     ++rounds;
     const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
     transfer->beginRound();
@@ -233,7 +238,10 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =
         solveRound(graph, rounds, cells, active, links, settings, controls, *transfer, workers, ctx);
-    for (size_t c : active) addCellRound(round[c], cells[c], graph, result);
+    for (size_t c : active) {
+      addCellRound(round[c], cells[c], graph, result);
+      result.timedOut = result.timedOut || round[c].timedOut;
+    }
     unshot = endRound(cells, round, *transfer);
     done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction),
                       0.0, 1.0);

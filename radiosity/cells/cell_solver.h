@@ -8,6 +8,7 @@
 // rounds add up. Results land in one global atlas (the same layout as a global bake), patch by patch.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct CellSolveParams {
   /// Set by solveCellsOnDemand: the graph is part of the scene's, so triangles in no cell and a
   /// disconnected graph are expected (the whole graph was validated and warned about).
   bool partOfGraph = false;
+  /// Start no round, and stop every cell solve, after this instant (bake --time-limit): light still in
+  /// flight stays pending, counted as unshot, and the result has SolveResult::timedOut. The direct step
+  /// (the emitters' first shot) always runs.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 /// Solves the scene cell by cell into `global` (an atlas of the whole scene); the result's perCell holds

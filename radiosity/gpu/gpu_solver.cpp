@@ -141,6 +141,7 @@ struct SolveConfig : SolverParams {
   double minShotPower = 0.0;
   bool directionalEmission = false;
   const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 ProgramDefines programDefines(const SolveConfig& params) {
@@ -776,6 +777,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.readTransfer = controls.readTransfer;
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
+  config.deadline = controls.deadline;
   // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver).
   DirectLight direct;
   if (!scene.lights.empty()) {
@@ -827,6 +829,9 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     result.history.push_back(e);
   };
   record(sel);
+  // Before the first shot, once the settings are checked and the programs built: the CLI prints the
+  // bake's size here (apps/bake_command.cpp).
+  ctx.progress("solve", 0.0, formatStatus(0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
   double lastReport = -1.0;
   double firstLog = 0.0;  // log of the unshot fraction after the first reflector shot, for the ETA
   int firstShot = -1;
@@ -834,6 +839,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double fraction = e.unshot / e.emitted;
     if (fraction <= params.unshotFraction) break;
     if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
+    if (std::chrono::steady_clock::now() >= params.deadline) {
+      result.timedOut = true;
+      break;
+    }
     const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
     e.shot += shotPower;
     result.shooters.push_back(sel.winner);

@@ -8,6 +8,7 @@
 // Requires a current OpenGL 4.5 context (EglContext) on the calling thread.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -94,6 +95,9 @@ struct SolveControls {
   std::span<const glm::vec4> emissionLobes = {};
   /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
   SolverPrograms* programs = nullptr;
+  /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
+  /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 /// The solver's GLSL programs, compiled once and reused by every solve given the same object (a cell

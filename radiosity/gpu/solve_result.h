@@ -65,6 +65,9 @@ struct SolveResult {
   double unshotFraction = 0.0;  ///< unshot / emitted at the end (0 when nothing emits)
   EnergyTotals energy;
   double seconds = 0.0;  ///< solve time (a cell solve: all solves, atlases and syncs)
+  /// Stopped at SolveControls::deadline (a cell solve: CellSolveParams::deadline) before its target: a
+  /// valid but partial result.
+  bool timedOut = false;
 
   // A solve of one atlas (gpu_solver.h):
   /// With SolveControls::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;

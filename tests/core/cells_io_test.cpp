@@ -169,7 +169,31 @@ TEST(CellsIo, CellVolumesAndBlenderDuplicateSuffix) {
   test::GlbBuilder bad;
   bad.addNode({{"name", "cell:A"}, {"mesh", bad.addMesh(floorAt(0))}});
   bad.addNode({{"name", "cellvolume:Z"}, {"mesh", bad.addMesh(floorAt(1))}});
-  EXPECT_EQ(errorOf(bad), "cellvolume:Z: names a cell that does not exist");
+  EXPECT_EQ(errorOf(bad),
+            "cellvolume:Z: names a cell that does not exist (volumes define cells only in a "
+            "scene without cell: and portal: nodes)");
+}
+
+TEST(CellsIo, VolumesAloneDefineTheCells) {
+  // An IFC export's rooms: cellvolume: meshes, no cell: or portal: node. Each volume is a cell, with no
+  // triangles yet (decomp::decomposeFromVolumes gives them), and no "in no cell" warning at load.
+  test::GlbBuilder g;
+  g.addNode({{"name", "walls"}, {"mesh", g.addMesh(floorAt(0))}});
+  g.addNode({{"name", "cellvolume:Hall"}, {"mesh", g.addMesh(floorAt(1))}});
+  g.addNode({{"name", "cellvolume:Kitchen"}, {"mesh", g.addMesh(floorAt(2))}});
+  g.addNode({{"name", "cellvolume:Hall.001"}, {"mesh", g.addMesh(floorAt(3))}});
+  const LoadedScene s = loadBuilt(g);
+  ASSERT_EQ(s.cells.cells.size(), 2u);
+  EXPECT_EQ(s.cells.cells[0].name, "Hall");
+  EXPECT_EQ(s.cells.cells[1].name, "Kitchen");
+  EXPECT_EQ(s.cells.cells[0].volume.size(), 4u);  // Hall.001 is more of Hall (Blender's duplicate suffix)
+  EXPECT_TRUE(s.cells.definedByVolumes());
+  EXPECT_EQ(s.scene.triangles.size(), 2u);  // the volumes are not part of the scene
+  for (const std::string& w : s.warnings) EXPECT_EQ(w.find("in no cell"), std::string::npos) << w;
+  // A flat square is no closed volume: said once per volume.
+  size_t open = 0;
+  for (const std::string& w : s.warnings) open += w.find("is not a closed mesh") != std::string::npos;
+  EXPECT_EQ(open, 2u);
 }
 
 TEST(CellsIo, PortalJoiningACellToItself) {

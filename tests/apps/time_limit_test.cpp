@@ -1,0 +1,85 @@
+// End to end (issue 12 item 6): `bake --time-limit SECONDS` stops the solve at the limit and writes a
+// valid result marked partial, with the energy still balanced, for a global and a cells bake; the size
+// line comes before the first shot.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/run_cpgi.h"
+
+namespace cpgi {
+namespace {
+
+using nlohmann::json;
+using test::cpgi;
+using test::slurp;
+
+const char* kAtlas = " --texels-per-quad 8 --item-buffer 128";
+
+void expectBalanced(const json& energy) {
+  const double emitted = energy["emitted_w"].get<double>();
+  const double out = energy["absorbed_w"].get<double>() + energy["unshot_w"].get<double>() +
+                     energy["escaped_w"].get<double>();
+  EXPECT_NEAR(out, emitted, 1e-3 * emitted);
+  EXPECT_GE(energy["escaped_w"].get<double>(), -1e-3 * emitted);
+}
+
+TEST(TimeLimit, TinyLimitWritesAPartialResultForBothMethods) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  for (const std::string method : {"global", "cells"}) {
+    SCOPED_TRACE(method);
+    const std::string out = dir / method;
+    const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + out + "' --method " + method +
+                                             " --cells '" + scene + "'" + kAtlas + " --time-limit 0.001");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("texels in"), std::string::npos) << r.err;  // the size, before the first shot
+    EXPECT_NE(r.out.find("partial"), std::string::npos) << r.out;
+    for (const char* f : {"lightmap.exr", "baked.glb", "report.json", "report.html"})
+      EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / f)) << f;
+    const json report = json::parse(slurp(out + "/report.json"));
+    EXPECT_EQ(report["partial"], true);
+    EXPECT_NE(report["partial_reason"].get<std::string>().find("time limit"), std::string::npos);
+    EXPECT_DOUBLE_EQ(report["time_limit_s"].get<double>(), 0.001);
+    EXPECT_GT(report["energy"]["unshot_w"].get<double>(), 0.0);  // what the limit left unshot, reported
+    expectBalanced(report["energy"]);
+    if (method == "cells") {
+      for (const json& c : report["cell_energy"]) {
+        const double in = c["emitted_w"].get<double>() + c["received_w"].get<double>();
+        const double outW = c["absorbed_w"].get<double>() + c["sent_w"].get<double>() +
+                            c["unshot_w"].get<double>() + c["escaped_w"].get<double>();
+        EXPECT_NEAR(outW, in, 1e-3 * in + 1e-9) << c["name"];
+      }
+    }
+  }
+}
+
+TEST(TimeLimit, LimitNotReachedIsNoPartialResult) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const test::CommandRun r = cpgi(
+      dir, "bake '" + scene + "' -o '" + dir / "out" + "'" + kAtlas + " --unshot 0.2 --time-limit 3600 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json report = json::parse(slurp(dir / "out/report.json"));
+  EXPECT_EQ(report["partial"], false);
+  EXPECT_FALSE(report.contains("partial_reason"));
+  EXPECT_LE(report["unshot_fraction"].get<double>(), 0.2);
+}
+
+TEST(TimeLimit, NegativeOrNotANumberIsRefused) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  for (const char* bad : {"-1", "nan", "abc"}) {
+    const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --time-limit " + bad);
+    EXPECT_EQ(r.status, 1) << bad;
+    EXPECT_NE(r.err.find("--time-limit"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json"));
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -54,20 +54,27 @@ double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::s
   return h;
 }
 
+EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params, Context& ctx) {
+  EmptySpace e;
+  e.voxelSize = chooseVoxelSize(scene, params, &e.voxelChoice);
+  VoxelizeParams vp;
+  vp.voxelSize = e.voxelSize;
+  vp.sealRadius = params.sealRadius;
+  e.solid = voxelize(scene, vp, ctx);
+  e.space = classifySpace(scene, e.solid, params.classify, ctx);
+  e.distance = distanceToGeometry(e.solid, e.space, ctx);
+  return e;
+}
+
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
   checkDecomposeInput(scene, params);
-  std::string voxelChoice;
-  const double h = chooseVoxelSize(scene, params, &voxelChoice);
-
-  VoxelizeParams vp;
-  vp.voxelSize = h;
-  vp.sealRadius = params.sealRadius;
-  const SolidGrid solid = voxelize(scene, vp, ctx);
-  SpaceGrid space = classifySpace(scene, solid, params.classify, ctx);
-
+  EmptySpace empty = voxelizeEmptySpace(scene, params, ctx);
+  const double h = empty.voxelSize;
+  const SolidGrid& solid = empty.solid;
+  SpaceGrid& space = empty.space;
   // The watershed runs over all empty space, the outside included (its basin grows from the grid's
   // border); interior cells meet the outside at exterior doors and open windows.
-  const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
+  const DistanceGrid& distance = empty.distance;
   const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
   const CellLabels cells = mergeBasins(basins, params.merge, ctx);
   std::vector<std::string> names;
@@ -81,7 +88,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
   Decomposition out =
       finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
-  out.voxelChoice = std::move(voxelChoice);
+  out.voxelChoice = std::move(empty.voxelChoice);
   out.basins = basins.basinCount();
   return out;
 }

@@ -72,6 +72,17 @@ struct Decomposition {
 /// Picks the voxel size for `scene` by the rule in DecomposeParams::voxelSize; `how` gets the rule in words.
 double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how = nullptr);
 
+/// Stages 1–3, shared by decompose and decomposeFromVolumes: the voxel size, the solid grid, empty space
+/// classified (inside, outside, sealed) and its distance to the geometry.
+struct EmptySpace {
+  double voxelSize = 0.0;
+  std::string voxelChoice;  ///< how the voxel size was chosen, in words
+  SolidGrid solid;
+  SpaceGrid space;
+  DistanceGrid distance;
+};
+EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params, Context& ctx);
+
 /// Runs the seven stages. Warnings (open scene, walls thinner than a voxel, leaks, coarse voxels) go to
 /// ctx.warn; each stage's time to ctx's timers.
 /// @throws InputError for an empty scene, non-finite coordinates or out-of-range parameters.

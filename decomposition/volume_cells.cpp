@@ -154,14 +154,11 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   checkDecomposeInput(scene, params);
   if (!(volumeParams.reach >= 0.0 && volumeParams.reach <= 10.0))
     throw InputError("volume reach", "must be in [0, 10] metres");
-  std::string voxelChoice;
-  const double h = chooseVoxelSize(scene, params, &voxelChoice);
-  VoxelizeParams vp;
-  vp.voxelSize = h;
-  vp.sealRadius = params.sealRadius;
-  const SolidGrid solid = voxelize(scene, vp, ctx);
-  SpaceGrid space = classifySpace(scene, solid, params.classify, ctx);
-  const DistanceGrid distance = distanceToGeometry(solid, space, ctx);
+  EmptySpace empty = voxelizeEmptySpace(scene, params, ctx);
+  const double h = empty.voxelSize;
+  const SolidGrid& solid = empty.solid;
+  SpaceGrid& space = empty.space;
+  const DistanceGrid& distance = empty.distance;
 
   std::optional<Context::ScopedTimer> timer;
   timer.emplace(ctx, "volumes");
@@ -228,7 +225,7 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   timer.reset();
   Decomposition out =
       finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
-  out.voxelChoice = voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
+  out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
   return out;
 }
 

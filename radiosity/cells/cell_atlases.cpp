@@ -174,6 +174,17 @@ std::vector<char> portalPatchFlags(const CellState& s) {
   return portal;
 }
 
+std::vector<CellState> buildMappedCellAtlases(const Scene& scene, const CellGraph& graph,
+                                              const CellSolveParams& params,
+                                              const std::vector<int>& cellOfTriangle,
+                                              const LightmapAtlas& global, Context& ctx) {
+  auto t = ctx.time("cells: atlases");
+  std::vector<int32_t> localIndex;
+  std::vector<CellState> cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
+  mapCellTexels(cells, cellOfTriangle, localIndex, global, ctx);
+  return cells;
+}
+
 std::vector<PortalLink> linkPortals(const CellGraph& graph, const std::vector<CellState>& cells) {
   std::vector<PortalLink> links;
   std::vector<int32_t> source;

@@ -72,6 +72,13 @@ std::vector<CellState> buildCellAtlases(const Scene& scene, const CellGraph& gra
 void mapCellTexels(std::vector<CellState>& cells, const std::vector<int>& cellOfTriangle,
                    const std::vector<int32_t>& localIndex, const LightmapAtlas& global, Context& ctx);
 
+/// buildCellAtlases, then mapCellTexels onto `global` (timed as "cells: atlases"): the cells of a whole
+/// solve, a job plan or a gather.
+std::vector<CellState> buildMappedCellAtlases(const Scene& scene, const CellGraph& graph,
+                                              const CellSolveParams& params,
+                                              const std::vector<int>& cellOfTriangle,
+                                              const LightmapAtlas& global, Context& ctx);
+
 /// Both directions of every portal, with the texel of the sending side under each receiving texel.
 /// Throws InputError when a portal has no patch in one of its cells (a degenerate quad).
 std::vector<PortalLink> linkPortals(const CellGraph& graph, const std::vector<CellState>& cells);

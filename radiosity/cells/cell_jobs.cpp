@@ -199,13 +199,7 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
   requireSupported(params);
   checkCells(scene, graph, params, ctx);
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
-  std::vector<CellState> cells;
-  {
-    auto t = ctx.time("cells: atlases");
-    std::vector<int32_t> localIndex;
-    cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
-    mapCellTexels(cells, cellOf, localIndex, global, ctx);
-  }
+  std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
   linkPortals(graph, cells);  // refuses a degenerate portal now rather than in a job
   CellWorkers workers(1, gl);
   const CellFirstShot first =
@@ -351,13 +345,7 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
   if (graph.cells.size() != plan.cells.size())
     throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
-  std::vector<CellState> cells;
-  {
-    auto t = ctx.time("cells: atlases");
-    std::vector<int32_t> localIndex;
-    cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
-    mapCellTexels(cells, cellOf, localIndex, global, ctx);
-  }
+  std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
   for (size_t c = 0; c < cells.size(); ++c)
     cells[c].pending = gatherFromFiles(dir, plan, 1, int(c), cells[c].pending.size(), cells[c].carried);
   SolveResult result = startBookkeeping(graph, cells, global);

@@ -201,13 +201,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   const auto start = std::chrono::steady_clock::now();
   checkCells(scene, graph, params, ctx);
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
-  std::vector<CellState> cells;
-  {
-    auto t = ctx.time("cells: atlases");
-    std::vector<int32_t> localIndex;
-    cells = buildCellAtlases(scene, graph, params, localIndex, ctx);
-    mapCellTexels(cells, cellOf, localIndex, global, ctx);
-  }
+  std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
   const size_t unassigned = size_t(std::count_if(cellOf.begin(), cellOf.end(), [](int c) { return c < 0; }));
   if (unassigned > 0 && !params.partOfGraph)
     ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");

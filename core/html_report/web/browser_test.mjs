@@ -195,11 +195,16 @@ try {
   // 7. Walk: W moves the camera forward along the floor, at the same height.
   await page.click('#walk');
   const before = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+  // Held until it has moved or 10 s have passed: a frame of software rendering on a loaded machine can
+  // take longer than the 0.4 s the key was once held (CI: one frame, 0.024 m).
   await page.keyboard.down('KeyW');
-  await new Promise((resolve) => setTimeout(resolve, 400));
+  let after = before, moved = 0;
+  for (const start = Date.now(); moved <= 0.05 && Date.now() - start < 10000;) {
+    await new Promise((resolve) => setTimeout(resolve, 200));
+    after = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
+    moved = Math.hypot(after[0] - before[0], after[2] - before[2]);
+  }
   await page.keyboard.up('KeyW');
-  const after = await page.evaluate(() => window.cpgiViewer.camera.position.toArray());
-  const moved = Math.hypot(after[0] - before[0], after[2] - before[2]);
   summary.walk = { moved, rise: after[1] - before[1] };
   check(moved > 0.05 && Math.abs(after[1] - before[1]) < 1e-6, `walk: W moved the camera ${moved.toFixed(3)} m along the floor`);
   await page.click('#walk');

@@ -1,7 +1,8 @@
 // The hemisphere item buffer's tessellation: each edge cut into pieces that subtend a small angle from
-// the eye (evenly in angle, item_hemisphere.tese), so that the projection's curves (a straight edge maps to an arc of the unit disk) are
-// followed to well under a pixel. Drawn straight, a wall next to the eye lost a wedge of the view
-// (thesis fig. 6.2): seed1's room B came out 1.48× the reference, openings' C 2.4×.
+// the eye (evenly in angle, item_hemisphere.tese), so that the projection's curves (a straight edge maps
+// to an arc of the unit disk) are followed to about half a pixel. Drawn straight, a wall next to the eye
+// lost a wedge of the view (thesis fig. 6.2): seed1's room B came out 1.48× the reference, openings' C
+// 2.4×.
 layout(vertices = 3) out;
 in vec3 tcLocal[];
 flat in int tcPatch[];

@@ -22,12 +22,16 @@ layout(std430, binding = 21) writeonly buffer ShotGain { vec4 shotGain[]; };
 
 uniform int uShooter;
 uniform int uRegionCount;
+uniform bool uLampShot;  // an emitter's own shot: edge and near receivers are resampled (main())
+uniform float uRegionShare;  // 1 / replicas: the share of each entry's eye when regions are replicated
 uniform vec3 uEyes[MAX_REGIONS];
 uniform mat3 uToShooter;
 uniform vec3 uShooterNormal;
 uniform vec3 uTexelU, uTexelV;  // the shooter's texel edges (m)
 uniform float uTexelRadius;
 uniform float uFarField;
+// How near (in the receiver's texel edges) a shooter piece must come for the receiver to be resampled.
+#define NEAR_TEXELS 2.0
 
 #ifdef DIRECTIONAL
 #include "directional.glsl"
@@ -105,10 +109,16 @@ bool far(vec3 x, vec3 c, float radius, vec4 lobe) {
   return dot(d, d) > f * f;
 }
 
+// How close the receiver came to the pieces it gathered from: the distance to each piece's centre less
+// its radius, smallest over the walk (main() resamples a receiver that came near).
+float gNearest = 1e30;
+void noteNearest(vec3 x, vec3 c, float radius) { gNearest = min(gNearest, distance(x, c) - radius); }
+
 vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
   vec4 pa = posArea[texel(t)];
   vec3 b = residual[texel(t)].rgb;
   vec4 l = texelLobe(t);
+  noteNearest(x, pa.xyz, uTexelRadius);
   if (far(x, pa.xyz, uTexelRadius, l)) {
     // 2×2 Gauss points, as for larger pieces: the disk form's "+ A" would bias a texel 2 radii away
     // by up to 1/(2π) ≈ 16 % low.
@@ -156,6 +166,7 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
     vec4 lobe = nodeLobeAt(index);
     if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w, lobe)) {
       ivec2 lo = rect.xy + (at << k);
+      noteNearest(x, p.centreArea.xyz, p.radiosityRadius.w);
       sum += piece(x, n, p, min(lo + (1 << k), rect.zw) - lo, lobe);
       continue;
     }
@@ -174,12 +185,12 @@ vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
   int rootIndex = regions[r].levelOffset[regions[r].top.x];
   Node root = nodes[rootIndex];
   vec4 lobe = nodeLobeAt(rootIndex);
-  return far(x, root.centreArea.xyz, root.radiosityRadius.w, lobe)
-             ? piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy, lobe)
-             : fromRegion(x, n, r);
+  if (!far(x, root.centreArea.xyz, root.radiosityRadius.w, lobe)) return fromRegion(x, n, r);
+  noteNearest(x, root.centreArea.xyz, root.radiosityRadius.w);
+  return piece(x, n, root, regions[r].rect.zw - regions[r].rect.xy, lobe);
 }
 
-vec3 gReceiver;  // the receiver texel's position (m), set by main()
+vec3 gReceiver = vec3(0.0);  // the receiver texel's position (m), set by main()
 
 // Whether gReceiver lies on patch `seen`'s chart (within a quarter texel of its edge): its parallelogram
 // origin + [0, w] texelU + [0, h] texelV, in the patch's plane.
@@ -192,6 +203,17 @@ bool seenPatchCovers(int seen) {
   vec2 ij = vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
   return all(greaterThanEqual(ij, vec2(-0.25))) && all(lessThanEqual(ij, vec2(q.rect.zw) + 0.25));
 }
+
+// Whether region r's eye sees the receiver point x (normal n) of patch `id`.
+bool seesPoint(int r, vec3 x, vec3 n, int id) {
+  vec3 local = uToShooter * (x - uEyes[r]);
+  if (local.z <= 0.0 || dot(n, uEyes[r] - x) <= 0.0) return false;
+  gReceiver = x;
+  return visibleFromShooter(local, uToShooter * n, id, r);
+}
+
+// Sub-point (i, j) of a 4×4 grid over a texel of edges u, v, relative to its centre.
+vec3 subPoint(int i, int j, vec3 u, vec3 v) { return (float(i) - 1.5) * 0.25 * u + (float(j) - 1.5) * 0.25 * v; }
 
 void main() {
   uint entry = gl_WorkGroupID.y * WORK_LIST_WIDTH + gl_WorkGroupID.x;
@@ -212,13 +234,62 @@ void main() {
 #ifdef DIRECTIONAL
   gReceiverArea = posArea[tx].w;
 #endif
+  // Visibility at the texel's centre; in a lamp's shot also at its outer sub-points, and a texel where
+  // they differ because of something farther than a texel away (a shadow or beam edge, not the wall a
+  // floor texel touches) is an edge texel. Where the centre is hidden, a point counts as seen only when its
+  // pixel shows its own patch: the other rules (what the pixel shows lies behind the receiver's plane)
+  // read a crack between a zero-thickness wall and the floor as a view through it, and 20 points a texel
+  // found 3× the cracks (EnergyConservation.NoLightOverAWallIntoTheRoomBehind: 6e-5 of the light).
+  int seenBy = 0;  // bit r: region r's eye sees the receiver's centre
+  bool edge = false;
+  vec3 texelU = patches[tile.z].texelU.xyz, texelV = patches[tile.z].texelV.xyz;
+  float texelSize = max(length(texelU), length(texelV));
   for (int r = 0; r < uRegionCount; ++r) {
     if (!blocksOf(r)) continue;
-    vec3 local = uToShooter * (x - uEyes[r]);
-    if (local.z <= 0.0 || dot(np.xyz, uEyes[r] - x) <= 0.0) continue;
-    if (!visibleFromShooter(local, uToShooter * np.xyz, tile.z, r)) continue;
+    gOccluderGap = 1e30;
+    bool seen = seesPoint(r, x, np.xyz, tile.z);
+    float centreGap = gOccluderGap;
+    for (int c = 0; uLampShot && !edge && c < 4; ++c) {
+      gOccluderGap = 1e30;
+      bool corner = seesPoint(r, x + subPoint((c & 1) != 0 ? 3 : 0, (c & 2) != 0 ? 3 : 0, texelU, texelV), np.xyz, tile.z);
+      edge = seen ? !corner && gOccluderGap > texelSize : corner && gSeenOwn && centreGap > texelSize;
+    }
+    if (!seen) continue;
+    seenBy |= 1 << r;
     e += fromRegionWhole(x, np.xyz, r);
   }
+  // In a lamp's shot, edge texels and receivers within a few of their own texels of the lamp are
+  // resampled at 4×4 points over the texel, whose centre's value is not the texel's mean there. Edge: a
+  // lamp's beam out of its housing lit the door frame's texels whole or not at all (spot-door's lit room
+  // +4 %, the hemisphere buffer +15 %); each point has its own visibility. Near: the walls of a lamp's
+  // tube, a texel from the lamp, gathered 11 % less than their area gets, and the shot's rescale to what
+  // its eyes saw covered handed that to everything outside the tube; visibility stays the centre's. The
+  // outer points' own visibility darkens contact corners (a floor point millimetres from a wall looks up
+  // a pixel showing the wall), hence the occluder's distance above. Lamps only: the reference (and a
+  // lightmap read bilinearly) takes a texel's value at its centre, which a mean over the texel leaves
+  // on coarse atlases, and in every strong shot this cost 2.7× the CPU (openings, seed1).
+  if (edge || uLampShot && seenBy != 0 && gNearest < NEAR_TEXELS * texelSize) {
+    e = vec3(0.0);
+#ifdef DIRECTIONAL
+    gArrival = vec4(0.0);
+#endif
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        vec3 xs = x + subPoint(i, j, texelU, texelV);
+        for (int r = 0; r < uRegionCount; ++r)
+          if (edge ? blocksOf(r) && seesPoint(r, xs, np.xyz, tile.z) && ((seenBy & (1 << r)) != 0 || gSeenOwn)
+                   : (seenBy & (1 << r)) != 0)
+            e += fromRegionWhole(xs, np.xyz, r);
+      }
+    e *= 1.0 / 16.0;
+#ifdef DIRECTIONAL
+    gArrival *= 1.0 / 16.0;
+#endif
+  }
+  e *= uRegionShare;
+#ifdef DIRECTIONAL
+  gArrival *= uRegionShare;
+#endif
   shotGain[tx] = vec4(e, 0.0);
   if (e == vec3(0.0)) return;
 #ifdef DIRECTIONAL

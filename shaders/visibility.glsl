@@ -37,11 +37,18 @@ bool seenPatchCovers(int seen);
 
 // `local`: the receiver relative to the eye; `normal`: its normal; `dir`: pixel p's centre direction (any
 // length), all in shooter coordinates.
+// When the lookup says hidden: how far what hides the receiver is from it (m), in gOccluderGap; whether
+// the pixel shows the receiver's own patch, in gSeenOwn.
+float gOccluderGap = 0.0;
+bool gSeenOwn = false;
+
 bool visibleAt(ivec2 p, ivec2 lo, ivec2 hi, vec3 dir, vec3 local, vec3 normal, int id, int layer) {
   int seenId = texelFetch(uItems, ivec3(p, layer), 0).r;
+  gSeenOwn = seenId == id;
   if (seenId == id) return true;
   float d = texelFetch(uDistances, ivec3(p, layer), 0).r;
   vec3 seen = normalize(dir) * d;
+  gOccluderGap = distance(seen, local);
   float off = dot(normal, seen - local);
 #ifdef SEEN_PATCH_COVERS
   // Behind the plane: the ray crossed it unhindered next to the receiver. In the plane: only a face

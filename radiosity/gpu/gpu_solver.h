@@ -48,7 +48,8 @@ struct SolverParams {
   /// Off: the fixed eye of shooter_layout.h, chosen clear of nearby occluders, which sees more than most of
   /// the region does (a lamp under a ceiling: the ceiling's shots delivered 1.1–1.2× their power).
   bool jitteredEyes = true;
-  /// Stop when the unshot power is at most this fraction of the emitted power, in (0, 1).
+  /// Stop when the unshot power is at most this fraction of the emitted power, or of the power the surfaces
+  /// have reflected so far when that is less (a lamp in a dark housing), in (0, 1).
   double unshotFraction = 0.01;
   /// Stop after this many shots whatever the unshot fraction (>= 1).
   int maxShots = 100000;

@@ -1,6 +1,7 @@
 // node validate_glb.mjs MODULES_DIR FILE.glb...: runs the Khronos glTF validator (npm gltf-validator) on
-// each file; prints one JSON line per file {file, errors, warnings, infos, hints, messages (the first 100)} and exits 1
-// when any file has an error. MODULES_DIR is the node_modules folder setup.sh filled (BUILD_DIR/web/...).
+// each file; prints one JSON line per file {file, errors, warnings, infos, hints, messages (the first
+// 100)} and exits 1 when any file has an error. MODULES_DIR is the node_modules folder setup.sh filled
+// (BUILD_DIR/web/...).
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';

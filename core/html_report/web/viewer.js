@@ -547,12 +547,23 @@ class Viewer {
   render() {
     this.renderer.render(this.scene, this.camera);
     const w = this.canvas.clientWidth, h = this.canvas.clientHeight, v = new THREE.Vector3();
+    const visible = this.portalGroup.visible ? this.meshes.filter((m) => m.visible) : [];
     for (const { label, centre } of this.portalLabels || []) {
       v.copy(centre).project(this.camera);
-      const shown = this.portalGroup.visible && v.z < 1 && Math.abs(v.x) < 1 && Math.abs(v.y) < 1;
+      // A portal behind a wall keeps its label hidden: a label floating on a wall names nothing there.
+      const shown = this.portalGroup.visible && v.z < 1 && Math.abs(v.x) < 1 && Math.abs(v.y) < 1 &&
+        !this.hidden(centre, visible);
       label.style.display = shown ? '' : 'none';
       if (shown) label.style.transform = `translate(${((v.x + 1) / 2) * w}px, ${((1 - v.y) / 2) * h}px) translate(-50%, -50%)`;
     }
+  }
+
+  // Whether a surface among `meshes` stands between the camera and `point` (faces drawn from behind, with
+  // "see in through walls", do not count, as on screen).
+  hidden(point, meshes) {
+    const from = this.camera.position, direction = point.clone().sub(from), distance = direction.length();
+    const ray = new THREE.Raycaster(from, direction.normalize(), 0, distance * 0.98);
+    return ray.intersectObjects(meshes, false).length > 0;
   }
 
   // An exposure for what the camera sees: the 90th percentile of the radiance under a 32 × 24 grid of

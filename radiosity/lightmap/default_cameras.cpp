@@ -65,10 +65,11 @@ struct Spot {
 };
 
 /// How much of the room a camera at `eye` looking along `direction` (horizontal) sees: the mean distance
-/// (up to `extent`; none for a ray that leaves the scene) of a fan of rays across its field of view. A ray
-/// through a door counts as far, but the fan's other rays hit the wall around it, so standing just in
-/// front of a door scores low; looking out of the building scores nothing.
-float openView(const RayScene& rays, glm::vec3 eye, glm::vec3 direction, float extent) {
+/// (up to `extent`) of a fan of rays across its field of view, counting only rays that end on a surface of
+/// the region's own cell. A ray through a door sees the next room, which is not what a camera named after
+/// this one is for: counted as far, an eye just in front of a door looking through it won (every seed
+/// room's camera once showed the room next door); looking out of the building scores nothing.
+float openView(const RayScene& rays, const Region& region, glm::vec3 eye, glm::vec3 direction, float extent) {
   const glm::vec3 side = glm::normalize(glm::cross(direction, glm::vec3(0.0f, 1.0f, 0.0f)));
   float sum = 0.0f;
   int n = 0;
@@ -76,7 +77,9 @@ float openView(const RayScene& rays, glm::vec3 eye, glm::vec3 direction, float e
     for (const float up : {-0.27f, 0.0f, 0.18f}) {
       const glm::vec3 ray = glm::normalize(direction + across * side + glm::vec3(0.0f, up, 0.0f));
       const RayScene::Hit hit = rays.intersect(eye, ray);
-      sum += hit ? std::min(hit.t, extent) : 0.0f;  // the sky shows nothing of the room
+      const bool own =
+          hit && (!region.triangleCell || (*region.triangleCell)[size_t(hit.triangle)] == region.cell);
+      sum += own ? std::min(hit.t, extent) : 0.0f;  // the sky and the next room show nothing of this one
       ++n;
     }
   return sum / float(n);
@@ -116,7 +119,8 @@ std::optional<Spot> standAt(const RayScene& rays, const Scene& scene, const Regi
   Spot spot;
   for (const float sign : {1.0f, -1.0f}) {
     const glm::vec3 direction = sign * axis;
-    const float score = openView(rays, eye, direction, extent) + 0.5f * std::min(nearest, 1.5f) + indoors;
+    const float score =
+        openView(rays, region, eye, direction, extent) + 0.5f * std::min(nearest, 1.5f) + indoors;
     if (score > spot.score) spot = {eye, direction, score};
   }
   return spot;

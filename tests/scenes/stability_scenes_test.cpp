@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/quads.h"
+#include "scenes/buildings.h"
 
 namespace cpgi {
 namespace {
@@ -68,6 +71,11 @@ TEST(StabilityScenes, EveryBuiltinNameBuilds) {
   for (const std::string& name : builtinSceneNames())
     EXPECT_FALSE(makeBuiltinScene(name).scene.triangles.empty());
   EXPECT_THROW(makeBuiltinScene("nope"), std::invalid_argument);
+  // `generate --help` lists these names: every building must be among them.
+  for (const std::string& building : buildingNames())
+    EXPECT_NE(std::find(builtinSceneNames().begin(), builtinSceneNames().end(), building),
+              builtinSceneNames().end())
+        << building;
 }
 
 }  // namespace

@@ -142,6 +142,15 @@ try {
   // 2. Colour by cell, from the overview where every cell shows.
   await page.evaluate(() => { window.cpgiViewer.showView('overview'); });
   const overview = await capture('overview');
+  // A building's outside cell is hidden at first, so that the overview shows the rooms, not a dark box.
+  if (await page.evaluate(() => window.cpgiViewer.outsideCell >= 0)) {
+    check(overview.mean > 0.03, `outside: the overview is black with the outside hidden (mean ${overview.mean.toFixed(3)})`);
+    await page.evaluate(() => { document.getElementById('outside').click(); });
+    const outside = await capture('outside');
+    summary.outside = { hidden: overview.mean, shown: outside.mean, changed: await meanAbsDiff('overview', 'outside') };
+    check(summary.outside.changed > 5, 'outside: the toggle did not change the picture');
+    await page.evaluate(() => { document.getElementById('outside').click(); });
+  }
   await page.evaluate(() => { document.querySelector('input[name=mode][value=cells]').click(); });
   const cells = await capture('cells');
   const cellCount = await page.evaluate(() => window.cpgiViewer.cells.length);

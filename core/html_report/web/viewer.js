@@ -163,6 +163,10 @@ class Viewer {
     this.mode = 'light';
     this.walking = false;
     this.openWalls = true;
+    // A building's outside cell (its exterior walls, roof and ground) hides the rooms from the overview,
+    // and nothing lights it but what leaves through the openings: hidden until asked for.
+    this.outsideCell = this.cells.findIndex((c) => c.name === 'outside');
+    this.showOutside = false;
     this.keys = new Set();
     this.ready = new Promise((resolve, reject) => { this.resolveReady = resolve; this.rejectReady = reject; });
     this.buildDom();
@@ -244,14 +248,15 @@ class Viewer {
       // Portal quads and cell volumes of the glTF: the page draws portals itself, with their light.
       const helper = [mesh, mesh.parent].some((o) => /^(portal:|cellvolume:)/.test(o?.userData.name || ''));
       if (helper) { mesh.visible = false; continue; }
+      mesh.userData.cell = this.cellOfNode(mesh);
       // The atlas is TEXCOORD_1 (uv1); bakes written before it moved there have it as TEXCOORD_0.
       if (this.lightmap && !mesh.geometry.attributes.uv1 && mesh.geometry.attributes.uv)
         mesh.geometry.setAttribute('uv1', mesh.geometry.attributes.uv);
       if (this.lightmap && mesh.geometry.attributes.uv1) {
-        mesh.material = this.lightmapMaterial(this.cellOfNode(mesh));
+        mesh.material = this.lightmapMaterial(mesh.userData.cell);
       } else {
         // No lightmap (a decomposition): the albedo, or the cell's colour, under a simple sky light.
-        const cell = this.cellOfNode(mesh);
+        const cell = mesh.userData.cell;
         mesh.userData.albedo = mesh.material.color ? mesh.material.color.clone() : new THREE.Color(0.8, 0.8, 0.8);
         mesh.userData.cellColour = cellColour(cell);
         mesh.material = new THREE.MeshLambertMaterial({ color: mesh.userData.albedo });
@@ -264,6 +269,7 @@ class Viewer {
       this.scene.add(sun);
     }
     this.meshes = meshes.filter((m) => m.visible);
+    this.setOutside(this.showOutside);
     this.scene.add(root);
     this.bounds = new THREE.Box3().setFromObject(root);
     this.buildPortals();
@@ -395,6 +401,13 @@ class Viewer {
     this.requestRender();
   }
 
+  setOutside(visible) {
+    this.showOutside = visible;
+    for (const m of this.meshes || []) if (this.outsideCell >= 0 && m.userData.cell === this.outsideCell) m.visible = visible;
+    this.syncControls();
+    this.requestRender();
+  }
+
   setPortals(visible) {
     this.portalGroup.visible = visible;
     this.syncControls();
@@ -477,6 +490,9 @@ class Viewer {
     portals.querySelector('input').addEventListener('change', (e) => this.setPortals(e.target.checked));
     const open = add('<label><input id="open-walls" type="checkbox"> see in through walls</label>');
     open.querySelector('input').addEventListener('change', (e) => this.setOpenWalls(e.target.checked));
+    const outside = add('<label><input id="outside" type="checkbox"> the outside</label>');
+    if (this.outsideCell < 0) outside.style.display = 'none';
+    outside.querySelector('input').addEventListener('change', (e) => this.setOutside(e.target.checked));
     const walk = add('<label><input id="walk" type="checkbox"> walk (drag to look, W A S D Q E to move)</label>');
     walk.querySelector('input').addEventListener('change', (e) => this.setWalking(e.target.checked));
     const views = add('view <select id="views"></select>');
@@ -503,6 +519,8 @@ class Viewer {
     if (portals) portals.checked = this.portalGroup.visible;
     const walk = document.getElementById('walk');
     if (walk) walk.checked = this.walking;
+    const outside = document.getElementById('outside');
+    if (outside) outside.checked = this.showOutside;
     const open = document.getElementById('open-walls');
     if (open) open.checked = this.openWalls;
     const legend = document.getElementById('legend');
@@ -529,12 +547,23 @@ class Viewer {
   render() {
     this.renderer.render(this.scene, this.camera);
     const w = this.canvas.clientWidth, h = this.canvas.clientHeight, v = new THREE.Vector3();
+    const visible = this.portalGroup.visible ? this.meshes.filter((m) => m.visible) : [];
     for (const { label, centre } of this.portalLabels || []) {
       v.copy(centre).project(this.camera);
-      const shown = this.portalGroup.visible && v.z < 1 && Math.abs(v.x) < 1 && Math.abs(v.y) < 1;
+      // A portal behind a wall keeps its label hidden: a label floating on a wall names nothing there.
+      const shown = this.portalGroup.visible && v.z < 1 && Math.abs(v.x) < 1 && Math.abs(v.y) < 1 &&
+        !this.hidden(centre, visible);
       label.style.display = shown ? '' : 'none';
       if (shown) label.style.transform = `translate(${((v.x + 1) / 2) * w}px, ${((1 - v.y) / 2) * h}px) translate(-50%, -50%)`;
     }
+  }
+
+  // Whether a surface among `meshes` stands between the camera and `point` (faces drawn from behind, with
+  // "see in through walls", do not count, as on screen).
+  hidden(point, meshes) {
+    const from = this.camera.position, direction = point.clone().sub(from), distance = direction.length();
+    const ray = new THREE.Raycaster(from, direction.normalize(), 0, distance * 0.98);
+    return ray.intersectObjects(meshes, false).length > 0;
   }
 
   // An exposure for what the camera sees: the 90th percentile of the radiance under a 32 × 24 grid of
@@ -558,7 +587,7 @@ class Viewer {
     const ndc = new THREE.Vector2((x / this.canvas.clientWidth) * 2 - 1, 1 - (y / this.canvas.clientHeight) * 2);
     const ray = new THREE.Raycaster();
     ray.setFromCamera(ndc, this.camera);
-    const hit = ray.intersectObjects(this.meshes, false)[0];
+    const hit = ray.intersectObjects(this.meshes.filter((m) => m.visible), false)[0];
     if (!hit || !hit.uv1 || !this.lightmap) return null;
     const lm = this.data.lightmap;
     const tx = Math.min(lm.width - 1, Math.floor(hit.uv1.x * lm.width));

@@ -9,6 +9,7 @@
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/views.h"
 #include "scenes/buildings.h"
+#include "scenes/seed_scenes.h"
 
 namespace cpgi {
 namespace {
@@ -63,6 +64,42 @@ TEST(DefaultCameras, OnePerRoomOfEveryBuildingInsideItsRoomAboveItsFloor) {
       EXPECT_EQ(roomHolding(b, cam.position), int(r))
           << cam.name << " at " << cam.position.x << "," << cam.position.y << "," << cam.position.z;
       expectStandsOnFloor(rays, scene, triangleCell, cam, cells.findCell(cam.name));
+    }
+  }
+}
+
+/// The share of a grid of rays across the camera's field of view whose first surface is one of `cell`'s.
+float shareSeeingCell(const RayScene& rays, const std::vector<int>& triangleCell, const Camera& cam,
+                      int cell) {
+  const glm::vec3 side = glm::normalize(glm::cross(cam.forward, cam.up));
+  const float h = std::tan(0.5f * cam.yfov), w = h * cam.aspect;
+  int own = 0, n = 0;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 7; ++j) {
+      const float x = (float(i) / 8.0f * 2.0f - 1.0f) * w * 0.9f,
+                  y = (float(j) / 6.0f * 2.0f - 1.0f) * h * 0.9f;
+      const RayScene::Hit hit =
+          rays.intersect(cam.position, glm::normalize(cam.forward + x * side + y * cam.up));
+      own += hit && triangleCell[size_t(hit.triangle)] == cell;
+      ++n;
+    }
+  return float(own) / float(n);
+}
+
+// A camera named after a room shows that room: standing just inside a door and looking through it (each
+// seed room's camera once looked into the next room) is what a user choosing "in A" does not want.
+TEST(DefaultCameras, EachLooksAtItsOwnRoomNotThroughADoor) {
+  std::vector<std::pair<std::string, SeedScene>> scenes;
+  for (int level : {1, 2, 3}) scenes.emplace_back("seed" + std::to_string(level), makeSeedScene(level));
+  for (const std::string& name : buildingNames()) scenes.emplace_back(name, makeBuilding(name).seed);
+  for (auto& [name, seed] : scenes) {
+    SCOPED_TRACE(name);
+    seed.scene.cameras.clear();
+    const RayScene rays(seed.scene);
+    const std::vector<int> triangleCell = seed.cells.cellOfTriangle(seed.scene.triangles.size());
+    for (const Camera& cam : defaultCameras(rays, seed.scene, seed.cells)) {
+      const float share = shareSeeingCell(rays, triangleCell, cam, seed.cells.findCell(cam.name));
+      EXPECT_GE(share, 0.6f) << cam.name << " sees its own cell in " << share << " of its view";
     }
   }
 }

@@ -41,6 +41,7 @@
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
@@ -153,7 +154,11 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
   }
   requireLight(in.loaded, o.scene, o.allowDark);
   for (const std::string& w : in.loaded.warnings) ctx.warn(w);
-  if (o.method == "cells") in.graph = resolveCells(o.cells, o.scene, in.loaded, o.decompose, o.load, ctx);
+  if (o.method == "cells") {
+    decomp::DecomposeParams decompose = o.decompose;
+    decompose.memoryLimit = o.atlas.memoryLimit;  // one --max-memory for the whole bake
+    in.graph = resolveCells(o.cells, o.scene, in.loaded, decompose, o.load, ctx);
+  }
   in.onDemand = resolveOnDemand(o, in.loaded.scene, in.graph);
   return in;
 }
@@ -195,22 +200,11 @@ void requireSolveMemory(const BakeOptions& o, const LightmapAtlas& atlas) {
 // up front unless the user bounded the solve with --max-shots (an open scene lets light escape, so an
 // albedo of 1 there would converge: the message says how to go on). A dark scene has nothing to shoot.
 void requireConvergence(const BakeOptions& o, const Scene& scene, const LightmapAtlas& atlas) {
-  constexpr double kMaxBounces = 200.0;
   if (o.maxShotsGiven || o.timeLimit > 0.0 || !scene.hasLight()) return;
-  double weighted = 0.0, area = 0.0;
-  for (size_t i = 0; i < atlas.texelCount(); ++i)
-    if (atlas.patch[i] >= 0) {
-      const glm::vec3& a = atlas.albedo[i];
-      weighted += double(atlas.area[i]) * std::max({a.r, a.g, a.b});
-      area += atlas.area[i];
-    }
-  const double albedo = area > 0.0 ? weighted / area : 0.0;
-  const double bounces = albedo >= 1.0 ? INFINITY : std::log(o.solver.unshotFraction) / std::log(albedo);
-  if (!(bounces > kMaxBounces)) return;
+  const BounceEstimate e = estimateBounces(atlas, o.solver.unshotFraction);
+  if (!e.tooMany()) return;
   std::ostringstream s;
-  s << "mean albedo " << albedo << ": light would bounce "
-    << (std::isinf(bounces) ? std::string("for ever") : "about " + std::to_string(int(bounces)) + " times")
-    << " before `unshot fraction` " << o.solver.unshotFraction
+  s << e.describe() << " before `unshot fraction` " << o.solver.unshotFraction
     << " is unshot; lower the albedo, raise `unshot fraction`, or bound the solve with `maximum shots` N or "
        "`time limit` SECONDS";
   throw InputError(o.scene, s.str());

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -15,6 +17,7 @@
 #include "radiosity/gpu/ambient.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/finite_result.h"
 #include "radiosity/metrics/cell_metrics.h"
 #include "radiosity/metrics/metrics.h"
 
@@ -56,11 +59,12 @@ struct Reference {
   nlohmann::json report;
 };
 
-Reference trace(const CellsToBake& cells, const LightmapAtlas& atlas, const ReferenceParams& params,
-                Context& ctx) {
+Reference trace(const std::string& scene, const CellsToBake& cells, const LightmapAtlas& atlas,
+                const ReferenceParams& params, Context& ctx) {
   const Clock::time_point start = Clock::now();
   Reference r;
   r.result = traceReference(cells.scene, atlas, params, ctx);
+  requireFiniteResult(scene, atlas, r.result.radiosity);
   r.nonEmissive = nonEmissiveArea(atlas);
   r.report = {{"scene_of", cells.source},
               {"texels", atlas.validTexels()},
@@ -71,8 +75,9 @@ Reference trace(const CellsToBake& cells, const LightmapAtlas& atlas, const Refe
   return r;
 }
 
-nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const CellBakeComparison& params,
-                    const EglContext& gl, Context& ctx, std::vector<glm::vec3>& radiosity) {
+nlohmann::json bake(const std::string& scene, const CellsToBake& cells, const LightmapAtlas& atlas,
+                    const CellBakeComparison& params, const EglContext& gl, Context& ctx,
+                    std::vector<glm::vec3>& radiosity) {
   CellSolveParams solve;
   solve.solver = params.solver;
   solve.atlas = params.atlas;
@@ -83,6 +88,9 @@ nlohmann::json bake(const CellsToBake& cells, const LightmapAtlas& atlas, const 
   addAmbient(atlas, solved.residual, glm::dvec3(solved.energy.unshot / 3.0),
              cellChannel(atlas, cells.scene, cells.graph).values, cells.graph, solved.radiosity);
   const double seconds = secondsSince(start);
+  const std::pair<const char*, double> totals[] = {
+      {"emitted", solved.energy.emitted}, {"shot", solved.energy.shot}, {"unshot", solved.energy.unshot}};
+  requireFiniteResult(scene, atlas, solved.radiosity, totals);
   radiosity = std::move(solved.radiosity);
   return {{"source", cells.source},
           {"cells", cells.graph.cells.size()},
@@ -124,19 +132,42 @@ void addErrors(nlohmann::json& side, const std::vector<glm::vec3>& radiosity, co
   side["reference_noise_nonemissive"] = ref.report["noise_nonemissive"];
 }
 
+// The first number of `j` that is inf or NaN, depth first in the order the keys were written, with its
+// path below `path` ("a.rel_rmse_nonemissive").
+std::optional<std::pair<std::string, double>> firstNonFinite(const nlohmann::json& j,
+                                                             const std::string& path) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) return std::pair{path, j.get<double>()};
+  if (!j.is_structured()) return std::nullopt;
+  size_t index = 0;
+  for (auto it = j.begin(); it != j.end(); ++it, ++index) {
+    const std::string key = j.is_object() ? it.key() : std::to_string(index);
+    if (auto found = firstNonFinite(*it, path.empty() ? key : path + "." + key)) return found;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, const CellBakeComparison& params,
-                                Context& ctx) {
+void requireFiniteFigures(const std::string& scene, const nlohmann::json& figures) {
+  const auto bad = firstNonFinite(figures, "");
+  if (!bad) return;
+  throw InputError(scene,
+                   "the bake's figure " + bad->first + " is " + (std::isnan(bad->second) ? "NaN" : "inf") +
+                       ", not a measurement (a relative error over texels the reference left dark?); no "
+                       "figures given");
+}
+
+nlohmann::json compareCellBakes(const std::string& scene, const CellsToBake& a, const CellsToBake& b,
+                                const CellBakeComparison& params, Context& ctx) {
   const LightmapAtlas atlasA = atlasOf(a, params.atlas, ctx), atlasB = atlasOf(b, params.atlas, ctx);
   const bool shared = sameAtlas(atlasA, atlasB);
   const auto gl = std::make_unique<EglContext>(ctx);
 
   std::vector<glm::vec3> radiosityA, radiosityB;
-  nlohmann::json sideA = bake(a, atlasA, params, *gl, ctx, radiosityA);
-  nlohmann::json sideB = bake(b, atlasB, params, *gl, ctx, radiosityB);
+  nlohmann::json sideA = bake(scene, a, atlasA, params, *gl, ctx, radiosityA);
+  nlohmann::json sideB = bake(scene, b, atlasB, params, *gl, ctx, radiosityB);
 
-  const Reference refA = trace(a, atlasA, params.reference, ctx);
+  const Reference refA = trace(scene, a, atlasA, params.reference, ctx);
   nlohmann::json references = nlohmann::json::array({refA.report});
   addErrors(sideA, radiosityA, atlasA, refA, 0);
   addCellErrors(sideA, radiosityA, atlasA, a, refA);
@@ -144,7 +175,7 @@ nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, cons
     addErrors(sideB, radiosityB, atlasB, refA, 0);
     addCellErrors(sideB, radiosityB, atlasB, b, refA);
   } else {
-    const Reference refB = trace(b, atlasB, params.reference, ctx);
+    const Reference refB = trace(scene, b, atlasB, params.reference, ctx);
     references.push_back(refB.report);
     addErrors(sideB, radiosityB, atlasB, refB, 1);
     addCellErrors(sideB, radiosityB, atlasB, b, refB);
@@ -164,6 +195,7 @@ nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, cons
       {"rel_rmse", 100.0 * (sideA["rel_rmse"].get<double>() - sideB["rel_rmse"].get<double>())},
       {"rel_rmse_nonemissive",
        100.0 * (sideA["rel_rmse_nonemissive"].get<double>() - sideB["rel_rmse_nonemissive"].get<double>())}};
+  requireFiniteFigures(scene, out);
   return out;
 }
 

@@ -38,9 +38,15 @@ struct CellBakeComparison {
 /// (seconds, solve_seconds, shots, rounds, unshot_fraction, rel_rmse, rel_rmse_nonemissive,
 /// rel_mean_error, rel_mean_error_nonemissive, reference, reference_noise, reference_noise_nonemissive)
 /// and "difference_points" (100 × (a − b) of rel_rmse and rel_rmse_nonemissive).
-/// Throws InputError when a scene has no surface or a graph is unusable, SystemError without OpenGL.
-nlohmann::json compareCellBakes(const CellsToBake& a, const CellsToBake& b, const CellBakeComparison& params,
-                                Context& ctx);
+/// Throws InputError when a scene has no surface or a graph is unusable, and InputError(scene, ...) when a
+/// bake, a reference or a figure is not finite (as bake and reference refuse to write one: no exit 0 with a
+/// null in the figures); SystemError without OpenGL.
+nlohmann::json compareCellBakes(const std::string& scene, const CellsToBake& a, const CellsToBake& b,
+                                const CellBakeComparison& params, Context& ctx);
+
+/// Throws InputError(scene, ...) naming the first number of `figures` (by its JSON path, e.g.
+/// "a.rel_rmse_nonemissive") that is inf or NaN; nulls put there on purpose pass.
+void requireFiniteFigures(const std::string& scene, const nlohmann::json& figures);
 
 /// The same figures as lines of text for the terminal.
 void printCellBakes(const nlohmann::json& bake);

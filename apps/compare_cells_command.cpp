@@ -91,13 +91,14 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
 
 int runCompare(const CompareOptions& o) {
   LoadedScene loaded = loadScene(o.scene, o.load);
-  const decomp::DecomposeParams& params = o.decompose;
+  decomp::DecomposeParams params = o.decompose;
+  params.memoryLimit = o.bakeParams.atlas.memoryLimit;  // --max-memory (with --bake) or its default
   if (params.voxelSize < 0.0 || params.voxelSize > 10.0)
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   ctx.setProgress(stderrProgress(false));
   const double h = decomp::chooseVoxelSize(loaded.scene, params);
-  const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx);
+  const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx, params.memoryLimit);
   const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);
   const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.load, o.bake, ctx);
 
@@ -175,7 +176,7 @@ int runCompare(const CompareOptions& o) {
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
   if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
   if (o.b == "auto") j["decompose_seconds_b"] = b.decomposeSeconds;
-  if (o.bake) j["bake"] = compareCellBakes(a.bake, b.bake, o.bakeParams, ctx);
+  if (o.bake) j["bake"] = compareCellBakes(o.scene, a.bake, b.bake, o.bakeParams, ctx);
   j["warnings"] = ctx.warnings();
 
   if (o.json) {

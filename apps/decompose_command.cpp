@@ -100,6 +100,7 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
                   "Output folder for cells.glb, cells.json, decomposition.png, report.html")
       ->required();
   addDecomposeOptions(*cmd, o->params);
+  addMemoryOption(*cmd, o->params.memoryLimit);
   addLoadOptions(*cmd, o->load);
   cmd->add_flag(
       "--from-volumes", o->fromVolumes,

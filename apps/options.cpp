@@ -60,6 +60,7 @@ constexpr ParameterFlag kFlags[] = {
     {"boundary", "--boundary"},
     // Reference (radiosity/reference/reference_tracer.h)
     {"samples per texel", "--spp"},
+    {"maximum bounces", "--max-bounces"},
     // Decomposition (decomposition/decompose.h)
     {"voxel size", "--voxel"},
     {"seal radius", "--seal"},
@@ -174,12 +175,17 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
   auto* density = addChecked(cmd, scope, "texel density", atlas.density,
                              "Texels per metre along each patch edge", kPositive);
   tpq->excludes(density);
-  atlas.memoryLimit = defaultMemoryLimit();
+  addMemoryOption(cmd, atlas.memoryLimit, scope);
+}
+
+void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope) {
+  limit = defaultMemoryLimit();
   scoped(cmd.add_option_function<std::string>(
-                flag("maximum memory"), [&atlas](const std::string& text) { atlas.memoryLimit = parseByteSize(text); },
-                help(scope, "Refuse up front a run whose estimated memory passes this (e.g. 8G, 512M; default 75 % "
-                            "of this machine's: " +
-                                formatBytes(double(atlas.memoryLimit)) + ")"))
+                flag("maximum memory"), [&limit](const std::string& text) { limit = parseByteSize(text); },
+                help(scope,
+                     "Refuse up front a run whose estimated memory passes this (e.g. 8G, 512M; default 75 % "
+                     "of this machine's: " +
+                         formatBytes(double(limit)) + ")"))
              ->check(CLI::Validator(
                  [](std::string& text) -> std::string {
                    return parseByteSize(text) > 0 ? "" : "must be a size such as 8G or 512M, got " + printable(text);
@@ -262,6 +268,8 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
 }
 
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
+  // --max-memory is the atlas's option where a command has both; the command copies it here.
+  params.memoryLimit = defaultMemoryLimit();
   addChecked(cmd, scope, "voxel size", params.voxelSize,
              "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))",
              within(0.0, 10.0));
@@ -285,6 +293,14 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
   addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
              within(2, 1 << 20));
+}
+
+CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope) {
+  return addChecked(
+      cmd, scope, "maximum bounces", maxBounces,
+      "Bounces a reference path may take at most (Russian roulette ends most far sooner); giving "
+      "it lets a scene of albedo near 1 be traced, the light past N bounces left out",
+      within(1, 100000));
 }
 
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {

@@ -5,6 +5,7 @@
 // library error back into a line that names the flag the user typed.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -36,6 +37,8 @@ struct OptionScope {
 
 /// --texels-per-quad | --density.
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {});
+/// --max-memory SIZE into `limit` (default: defaultMemoryLimit()); addAtlasOptions adds it for the atlas.
+void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope = {});
 /// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
 /// --strong-regions, --strong-fraction, --region-size, --fixed-eyes.
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
@@ -45,10 +48,13 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient);
 void addTimeLimitOption(CLI::App& cmd, double& seconds);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
-/// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume.
+/// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume; params.memoryLimit
+/// set to the default (commands with --max-memory copy theirs into it).
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
 /// --spp (paths per texel of the reference).
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
+/// --max-bounces (the reference's path depth); returns the option, to tell whether it was given.
+CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope = {});
 /// --strict, --repair (the default, kept for old scripts), --allow-outside-files, --emit MATERIAL=W/m2 and
 /// --albedo MATERIAL=R,G,B (repeatable): every command that loads a scene takes these.
 void addLoadOptions(CLI::App& cmd, LoadOptions& load);

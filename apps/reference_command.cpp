@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
@@ -38,6 +40,7 @@ struct ReferenceOptions {
   ReferenceParams trace{.spp = 1024};
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
+  bool maxBouncesGiven = false;  ///< --max-bounces: the user bounded the paths, light past them left out
   LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;
   ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
@@ -94,6 +97,25 @@ TexelChoice chooseTexels(const ReferenceOptions& o, const LightmapAtlas& atlas, 
   return c;
 }
 
+// Bake's rule for albedo near 1 (radiosity/lightmap/bounce_limit.h), for paths: where light would bounce
+// more than 200 times before 1 % of it is left (bake's default --unshot), the paths' Russian roulette
+// (survival at most 0.95 a bounce, about 20 bounces on average) ends them long before, and the few that
+// run on carry weights growing by ρ/0.95 a bounce: a reference of noise, or at albedo 1 of a B that has no
+// finite value, after minutes of tracing. Refused up front unless --max-bounces bounds the paths (the
+// light past N bounces left out, as a bake's --max-shots leaves the unshot light out).
+void requireBoundedPaths(const ReferenceOptions& o, const Scene& scene, const LightmapAtlas& atlas) {
+  if (o.maxBouncesGiven || !scene.hasLight()) return;
+  constexpr double kShare = 0.01;
+  const BounceEstimate e = estimateBounces(atlas, kShare);
+  if (!e.tooMany()) return;
+  std::ostringstream s;
+  s << e.describe() << " before " << kShare
+    << " of it is left, far beyond the paths' Russian roulette (about 20 bounces): the reference would be "
+       "noise; lower the albedo, or bound the paths with `maximum bounces` N (the light past N bounces "
+       "left out)";
+  throw InputError(o.scene, s.str());
+}
+
 // Step 2: the reference's own figures beside report.json's common keys.
 struct ReferenceFigures {
   double solveSeconds = 0.0, noise = 0.0, noiseNonEmissive = 0.0;
@@ -124,6 +146,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
   report["density"] = o.atlas.texelsPerQuad > 0 ? 0.0f : o.atlas.density;
   report["spp"] = result.spp;
   report["seed"] = o.trace.seed;
+  report["max_bounces"] = o.trace.maxBounces;
   report["rays"] = result.rays;
   report["noise"] = f.noise;
   report["noise_nonemissive"] = f.noiseNonEmissive;
@@ -160,6 +183,7 @@ int runReference(const ReferenceOptions& o) {
   OutputDir out(o.outDir, kLightmapResultNames);
   const QuadSet quads = findQuads(scene);
   const LightmapAtlas atlas = buildAtlas(scene, quads, o.atlas, ctx);
+  requireBoundedPaths(o, scene, atlas);
   const TexelChoice choice = chooseTexels(o, atlas, ctx);
 
   ReferenceFigures f;
@@ -217,6 +241,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       ->required();
   addAtlasOptions(*cmd, opts->atlas);
   addSppOption(*cmd, opts->trace.spp);
+  auto* maxBounces = addMaxBouncesOption(*cmd, opts->trace.maxBounces);
   cmd->add_option("--seed", opts->trace.seed, "Random seed (same seed, same result)")->capture_default_str();
   auto* texels =
       cmd->add_option("--texels", opts->texels,
@@ -226,8 +251,9 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   addLoadOptions(*cmd, opts->load);
   addDarkOption(*cmd, opts->allowDark);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
-  cmd->callback([opts, texels, &selected] {
+  cmd->callback([opts, texels, maxBounces, &selected] {
     opts->texelsGiven = texels->count() > 0;
+    opts->maxBouncesGiven = maxBounces->count() > 0;
     selected = [opts] { return runReference(*opts); };
   });
 }

@@ -209,9 +209,17 @@ void checkMaterials(const std::string& path, const Scene& scene) {
     }
   }
   glm::dvec3 power(0.0);
-  for (const Triangle& t : scene.triangles)
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    const Triangle& t = scene.triangles[i];
+    // Finite corners far apart (±3e38) give an infinite area: every area, form factor and power after it
+    // would be inf or NaN (it read "the scene emits -nan W").
+    if (!std::isfinite(t.area()))
+      throw InputError(path,
+                       "triangle " + std::to_string(i) +
+                           " is too large for float arithmetic (its area overflows; corners near 1e38)");
     if (t.material < scene.materials.size())
       power += glm::dvec3(scene.materials[t.material].emission) * double(t.area());
+  }
   const glm::dvec3 size(scene.bounds().size());
   for (const PunctualLight& l : scene.lights)
     power += l.kind == PunctualLight::Kind::Directional ? glm::dvec3(l.intensity) * glm::dot(size, size)

@@ -17,9 +17,10 @@ double choose2(double n) { return 0.5 * n * (n - 1.0); }
 
 }  // namespace
 
-VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx) {
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit) {
   VoxelizeParams vp;
   vp.voxelSize = voxelSize;
+  vp.memoryLimit = memoryLimit;
   const SolidGrid solid = voxelize(scene, vp, ctx);
   SpaceGrid space = classifySpace(scene, solid, {}, ctx);
   return {solid.frame, std::move(space.space)};

@@ -20,7 +20,7 @@ struct VoxelSpace {
   GridFrame frame;
   std::vector<Space> space;
 };
-VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx);
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit = 0);
 
 /// Labels the inside voxels of `space` by the cells of `graph` over `scene` (the scene the graph's triangle
 /// indices refer to; it must have the same geometry as the one `space` was made from). A cell with a

@@ -60,6 +60,7 @@ EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params,
   VoxelizeParams vp;
   vp.voxelSize = e.voxelSize;
   vp.sealRadius = params.sealRadius;
+  vp.memoryLimit = params.memoryLimit;
   e.solid = voxelize(scene, vp, ctx);
   e.space = classifySpace(scene, e.solid, params.classify, ctx);
   e.distance = distanceToGeometry(e.solid, e.space, ctx);

@@ -12,6 +12,7 @@
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct DecomposeParams {
   double minAutoVoxel = 0.05;       ///< metres: finer than needed for 0.7 m doors at 14 voxels
   double autoVoxelBudget = 4.0e6;   ///< voxels the automatic choice aims at
   double sealRadius = 0.0;          ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
+  uint64_t memoryLimit = 0;         ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
   ClassifyParams classify;
   WatershedParams watershed;
   MergeParams merge;

@@ -1,5 +1,6 @@
 #include "decomposition/voxelize.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include <openvdb/tools/Morphology.h>
 
 #include "core/error.h"
+#include "core/memory_limit.h"
 
 namespace cpgi::decomp {
 namespace {
@@ -33,6 +35,11 @@ class TriangleAdapter {
 
 }  // namespace
 
+double decompositionBytes(double voxels, double voxel, double surfaceArea) {
+  const double band = surfaceArea / (voxel * voxel) * kBandBytesPerSurfaceVoxel;
+  return std::max(voxels * kDecompositionBytesPerVoxel, voxels * kVoxelizeBytesPerVoxel + band);
+}
+
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx) {
   auto timer = ctx.time("voxelize");
   openvdb::initialize();
@@ -55,6 +62,16 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
       << "; the scene's bounds need a voxel of at least about " << std::setprecision(2) << fits << " m";
     throw InputError("voxel size", s.str());
   }
+  // Before OpenVDB's band and the dense grids: a grid the machine cannot hold is one line now, not
+  // std::bad_alloc or the OOM killer minutes into the watershed.
+  double area = 0.0;
+  for (const Triangle& t : scene.triangles) area += double(t.area());
+  std::ostringstream grid;
+  grid << "the decomposition's grid of " << std::ceil(span.x) + 2 * padding + 1 << "x"
+       << std::ceil(span.y) + 2 * padding + 1 << "x" << std::ceil(span.z) + 2 * padding + 1 << " voxels of "
+       << h << " m";
+  requireMemory(decompositionBytes(total, h, area), params.memoryLimit, "voxel size", grid.str(),
+                "give a larger `voxel size` or raise `maximum memory`");
   out.sealVoxels = int(seal);
   const int pad = 2 + out.sealVoxels;
   GridFrame& f = out.frame;

@@ -2,6 +2,7 @@
 // non-manifold and self-intersecting meshes all work: nothing here needs an inside or an outside.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/context.h"
@@ -20,7 +21,30 @@ struct VoxelizeParams {
   /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (the distance transform's
   /// 64-bit working grid, labels, classes), so 250 M voxels is ~10 GB.
   size_t maxVoxels = size_t(250) * 1000 * 1000;
+  /// Bytes the whole decomposition may take (decompositionBytes), checked before the first grid is
+  /// allocated: InputError naming the voxel size when passed. 0: no limit.
+  uint64_t memoryLimit = 0;
 };
+
+/// What one voxel of the grid costs at the decomposition's peak, the assignment of triangles to cells
+/// (decompose.cpp, finishDecomposition): solid and nearest triangle (5 bytes), classes (1), squared distance
+/// (4), watershed basins (4), merged cells (4), cells around the portals (4), and when a triangle sees no
+/// cell the nearest-cell grid (4), its border mask (1) and its breadth-first queue (8, up to 16 with a
+/// vector's spare capacity). The watershed (order 8, queue, flags) and the distance transform (8-byte working
+/// grid) peak lower. Measured: 31–38 bytes a voxel (bench/RESULTS.md, "Memory of the decomposition").
+inline constexpr double kDecompositionBytesPerVoxel = 40.0;
+/// While OpenVDB builds the narrow band (voxelize), only the solid and nearest-triangle grids are dense.
+inline constexpr double kVoxelizeBytesPerVoxel = 5.0;
+/// What the narrow band costs per voxel face of surface (triangle area / voxel²): the unsigned distance
+/// and the nearest-triangle grids (4 + 4 bytes) over a band about three voxels thick, in 8³ leaves that a
+/// slanted surface fills to about a third, and meshToVolume's per-thread copies while it builds them
+/// (measured: about 100 bytes, 200 planes 0.2 m apart at 0.1 m voxels).
+inline constexpr double kBandBytesPerSurfaceVoxel = 120.0;
+
+/// The decomposition's estimated peak for a grid of `voxels` voxels of edge `voxel` metres around
+/// triangles of `surfaceArea` m² in all: the later stages' dense grids, or the narrow band beside the
+/// first dense grids when the surface is large for the volume (many thin layers), whichever is more.
+double decompositionBytes(double voxels, double voxel, double surfaceArea);
 
 struct SolidGrid {
   GridFrame frame;
@@ -36,7 +60,8 @@ struct SolidGrid {
 /// solid when its centre is within half a voxel of a triangle, which makes any plane at least one face-
 /// connected layer thick, so 6-connected empty space cannot leak through it. The grid is the scene's
 /// bounds padded by 2 + seal voxels, so its border is always empty.
-/// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels.
+/// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels, or the decomposition
+/// over it params.memoryLimit.
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx);
 
 }  // namespace cpgi::decomp

@@ -171,6 +171,9 @@ void EglContext::describe() {
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize_);
+  GLint64 storage = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &storage);
+  maxStorageBlockSize_ = storage;
   if (major * 10 + minor < 45) {
     release();
     throw SystemError("EGL: the context is OpenGL " + version_ + ", 4.5 core is needed");

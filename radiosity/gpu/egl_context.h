@@ -4,6 +4,7 @@
 // object's lifetime.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -32,6 +33,8 @@ class EglContext {
   /// How the display was found: "device", "surfaceless" or "software device".
   const std::string& platform() const { return platform_; }
   int maxTextureSize() const { return maxTextureSize_; }
+  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE, bytes: the largest buffer a shader may address (llvmpipe: 128 MiB).
+  int64_t maxStorageBlockSize() const { return maxStorageBlockSize_; }
 
  private:
   EglContext() = default;
@@ -43,6 +46,7 @@ class EglContext {
   bool ownsDisplay_ = true;  // false for a sibling: the first context terminates the display
   std::string renderer_, version_, platform_;
   int maxTextureSize_ = 0;
+  int64_t maxStorageBlockSize_ = 0;
 };
 
 }  // namespace cpgi

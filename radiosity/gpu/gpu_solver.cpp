@@ -8,6 +8,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/memory_limit.h"
 #include "radiosity/gpu/gl.h"
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
@@ -74,7 +75,8 @@ void set(const gl::Program& p, const char* n, const glm::mat3& m) {
 
 GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
 
-void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTexture) {
+void checkParams(const SolverParams& p, const LightmapAtlas& atlas, const EglContext& context) {
+  const int maxTexture = context.maxTextureSize();
   if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
     throw InputError("item buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
@@ -94,6 +96,18 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, int maxTextu
     throw InputError("atlas", "the lightmap atlas (" + std::to_string(atlas.width) + "x" +
                                   std::to_string(atlas.height) + ") exceeds GL_MAX_TEXTURE_SIZE " +
                                   std::to_string(maxTexture) + "; lower the resolution");
+  // Every per-texel buffer (radiosity, residual, incident, ...) is one RGBA32F shader storage block of the
+  // whole atlas. Past the driver's limit a shader reads and writes only part of it (llvmpipe: 128 MiB, 8.4
+  // million texels), or the upload fails with GL_OUT_OF_MEMORY: refused before any buffer is made.
+  const double blockBytes = double(atlas.texelCount()) * sizeof(glm::vec4);
+  const int64_t maxBlock = context.maxStorageBlockSize();
+  if (maxBlock > 0 && blockBytes > double(maxBlock))
+    throw InputError(atlas.sizeParameter,
+                     "the lightmap atlas of " + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+                         " texels needs GPU buffers of " + formatBytes(blockBytes) +
+                         ", more than this driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE " +
+                         formatBytes(double(maxBlock)) + " (" + std::to_string(maxBlock / int64_t(sizeof(glm::vec4))) +
+                         " texels); lower the resolution");
 }
 
 // Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
@@ -815,7 +829,7 @@ namespace {
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
                            const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
                            SolverPrograms& programs) {
-  checkParams(params, atlas, context.maxTextureSize());
+  checkParams(params, atlas, context);
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   if (atlas.patches.empty()) return result;

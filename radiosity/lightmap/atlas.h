@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,9 @@ struct Patch {
 
 struct LightmapAtlas {
   int width = 0, height = 0;
+  /// The parameter that set the resolution ("texels per quad" or "texel density"), for the messages of
+  /// the limits checked later (the GPU's buffer sizes).
+  std::string sizeParameter = "texel density";
   std::vector<Patch> patches;
 
   // Per texel, row-major, width × height.

@@ -3,6 +3,7 @@
 // `cpgi reference` and `cpgi compare-light` run one by one. Bad options exit 1 with one line.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -121,6 +122,32 @@ TEST(CompareCellsBake, BadOptionsFailWithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << bad;
   }
+}
+
+// No exit 0 with a non-finite figure (issue 15, as bake and reference): a lamp of 5e-19 m² (a legal 5e19
+// W) that no reference path finds leaves the reference dark where the bake is lit, so the relative error
+// without lamps is inf. It printed null and exited 0; now one line names the figure and nothing is printed.
+TEST(CompareCellsBake, NonFiniteFigureFailsWithOneLine) {
+  test::TempDir dir;
+  std::ofstream(dir / "tiny.mtl")
+      << "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 1e38 1e38 1e38\n";
+  // A closed box facing in, the speck of a lamp at its centre facing down.
+  std::ofstream(dir / "tiny.obj")
+      << "mtllib tiny.mtl\n"
+         "v -2 -1.5 -2\nv 2 -1.5 -2\nv 2 -1.5 2\nv -2 -1.5 2\n"
+         "v -2 1.5 -2\nv 2 1.5 -2\nv 2 1.5 2\nv -2 1.5 2\n"
+         "v 0 0 0\nv 1e-9 0 0\nv 0 0 1e-9\n"
+         "usemtl wall\nf 4 3 2 1\nf 6 7 8 5\nf 2 6 5 1\nf 3 7 6 2\nf 4 8 7 3\nf 1 5 8 4\n"
+         "usemtl lamp\nf 9 10 11\n";
+  const test::CommandRun r =
+      cpgi(dir, "compare-cells '" + (dir / "tiny.obj") +
+                    "' auto auto --bake --json --texels-per-quad 4 --spp 16 --item-buffer 128");
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  ASSERT_FALSE(r.errLines().empty());
+  const std::string line = r.errLines().back();
+  EXPECT_EQ(line.rfind("cpgi: " + (dir / "tiny.obj") + ": the bake's figure a.", 0), 0u) << r.err;
+  EXPECT_NE(line.find(" is inf, not a measurement"), std::string::npos) << line;
 }
 
 }  // namespace

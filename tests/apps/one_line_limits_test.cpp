@@ -53,6 +53,33 @@ TEST(OneLineLimits, RunsBeyondMaxMemoryAreRefusedUpFront) {
       << bad.err;
 }
 
+// The decomposition's grids too (issue 15, item 3): seed1 at 2 cm is about 2e7 voxels, some 800 MB by
+// decompositionBytes, refused before any grid is allocated by decompose, by a bake that decomposes (one
+// --max-memory for the whole bake) and by compare-cells.
+TEST(OneLineLimits, DecompositionBeyondMaxMemoryIsRefusedUpFront) {
+  test::TempDir dir;
+  const std::string scene = test::quote(dir / "seed1.glb");
+  test::cpgiOrThrow(dir, "generate seed1 --no-cells -o " + scene);
+  const std::string out = test::quote(dir / "out"), flags = " --voxel 0.02 --max-memory 200M";
+  for (const std::string& command :
+       {"decompose " + scene + " -o " + out + flags,
+        "bake " + scene + " -q -o " + out + " --method cells --cells auto" + flags,
+        "compare-cells " + scene + " auto auto --bake" + flags}) {
+    SCOPED_TRACE(command);
+    const test::CommandRun r = test::cpgi(dir, command);
+    EXPECT_EQ(r.status, 1);
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    const std::string line = r.errLines()[0];
+    EXPECT_EQ(line.rfind("cpgi: --voxel: the decomposition's grid of ", 0), 0u) << line;
+    EXPECT_NE(line.find(" voxels of 0.02 m needs about "), std::string::npos) << line;
+    EXPECT_NE(line.find("more than --max-memory 200 MiB; give a larger --voxel or raise --max-memory"),
+              std::string::npos)
+        << line;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "cells.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "lightmap.exr"));
+  }
+}
+
 TEST(OneLineLimits, NodeNameWithNewlinesStaysOnTheWarningsLine) {
   test::TempDir dir;
   test::GlbBuilder g;

@@ -69,5 +69,33 @@ TEST(SolveStop, MaxShotsBoundsTheSolve) {
   EXPECT_GT(double(report["unshot_fraction"]), 0.5);  // albedo 1: the light is all still there
 }
 
+// The reference by the same rule (issue 15): its paths' Russian roulette would end long before the light
+// of a box of albedo near 1 dies out (at 1 it never does), so it is refused up front unless --max-bounces
+// bounds the paths, which the report then records.
+TEST(SolveStop, ReferenceOfAlbedoNearOneNeedsMaxBounces) {
+  test::TempDir dir;
+  for (const float albedo : {1.0f, 0.999f}) {
+    const fs::path scene = writeBox(dir, albedo);
+    const fs::path out = dir.path() / "out";
+    const test::CommandRun r =
+        test::cpgi(dir.path(), "reference " + test::quote(scene) + " -q --texels-per-quad 2 --spp 8 -o " +
+                                   test::quote(out));
+    EXPECT_EQ(r.status, 1) << r.err;
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    EXPECT_NE(r.errLines()[0].find(scene.string() + ": mean albedo "), std::string::npos) << r.err;
+    EXPECT_NE(r.errLines()[0].find(albedo == 1.0f ? "for ever" : "about 4602 times"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.errLines()[0].find("bound the paths with --max-bounces N"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out / "report.json")) << "nothing written";
+  }
+  const fs::path out = dir.path() / "bounded";
+  const test::CommandRun r =
+      test::cpgi(dir.path(), "reference " + test::quote(writeBox(dir, 1.0f)) +
+                                 " -q --texels-per-quad 2 --spp 8 --max-bounces 40 -o " + test::quote(out));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(test::slurp((out / "report.json").string()));
+  EXPECT_EQ(report["max_bounces"], 40);
+}
+
 }  // namespace
 }  // namespace cpgi

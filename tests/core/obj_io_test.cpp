@@ -1,5 +1,7 @@
 // OBJ + MTL: Kd albedo, Ke emission, object names as node paths and as cell tags.
+#include <cmath>
 #include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -66,6 +68,44 @@ TEST(ObjIo, MissingFileAndEmptyObj) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.problem(), "the scene has no triangles");
+  }
+}
+
+// Issue 15, defect 8: a 100,000-vertex polygon took 27 CPU-s to triangulate (the cost grows with its
+// square). Refused before tinyobjloader sees it, naming its line; a circle of 64 still loads.
+TEST(ObjIo, HugePolygonIsRefusedBeforeTriangulation) {
+  test::TempDir dir;
+  auto polygon = [](int n) {
+    std::string text;
+    for (int i = 0; i < n; ++i)
+      text += "v " + std::to_string(std::cos(6.2831853 * i / n)) + " " +
+              std::to_string(std::sin(6.2831853 * i / n)) + " 0\n";
+    text += "f";
+    for (int i = 1; i <= n; ++i) text += " " + std::to_string(i);
+    return text + "\n";
+  };
+  write(dir / "circle.obj", polygon(64));
+  EXPECT_EQ(loadScene(dir / "circle.obj").scene.triangles.size(), 62u);
+  write(dir / "huge.obj", "# a disc\n" + polygon(100000));
+  try {
+    loadScene(dir / "huge.obj");
+    FAIL() << "a 100,000-vertex face was triangulated";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem().rfind("line 100002: a face of 100000 vertices; faces this large", 0), 0u)
+        << e.problem();
+  }
+}
+
+// Finite corners too far apart for float products: refused by name, not as "the scene emits -nan W".
+TEST(ObjIo, TriangleWhoseAreaOverflowsIsRefused) {
+  test::TempDir dir;
+  write(dir / "vast.obj", "v 3e38 0 0\nv -3e38 0 0\nv 0 1 0\nf 1 2 3\n");
+  try {
+    loadScene(dir / "vast.obj");
+    FAIL() << "a triangle of infinite area was loaded";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(),
+              "triangle 0 is too large for float arithmetic (its area overflows; corners near 1e38)");
   }
 }
 

@@ -198,5 +198,30 @@ TEST(Solver, RejectsBadParameters) {
   EXPECT_THROW(solve(s, AtlasParams{.texelsPerQuad = 4}, p), InputError);
 }
 
+// An atlas whose per-texel buffers pass the driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE (llvmpipe: 128 MiB,
+// 8.4 M RGBA32F texels) is refused before any buffer is made, naming the option that set its size
+// (issue 15: --texels-per-quad 1024 ended in GL_OUT_OF_MEMORY after minutes). Only its size is set: the
+// check comes before the per-texel arrays are read.
+TEST(Solver, RefusesAnAtlasBeyondTheStorageBlockLimit) {
+  Context ctx;
+  EglContext context(ctx);
+  ASSERT_GE(context.maxStorageBlockSize(), int64_t(1) << 27);  // the GL 4.3 minimum
+  LightmapAtlas atlas;
+  atlas.sizeParameter = "texels per quad";
+  const int64_t texels = context.maxStorageBlockSize() / 16 + 1;
+  atlas.width = 8192;
+  atlas.height = int((texels + atlas.width - 1) / atlas.width);
+  if (atlas.height > context.maxTextureSize()) GTEST_SKIP() << "the texture limit comes first on this driver";
+  try {
+    solveProgressive(Scene{}, atlas, SolverParams{}, context, ctx);
+    ADD_FAILURE() << "an atlas of " << atlas.texelCount() << " texels was solved";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "texels per quad");
+    EXPECT_NE(e.problem().find("the lightmap atlas of 8192x"), std::string::npos) << e.problem();
+    EXPECT_NE(e.problem().find("more than this driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos)
+        << e.problem();
+  }
+}
+
 }  // namespace
 }  // namespace cpgi

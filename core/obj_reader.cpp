@@ -33,16 +33,22 @@ bool isBlank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-// Throws InputError(where, "<file> line N: ...") for the first bad line.
-void checkNumbers(const std::string& where, const std::string& file, std::string_view text,
-                  const std::vector<NumberedKeyword>& keywords) {
+// Calls visit(line, its number from 1) for each line of text, without its '\n'.
+template <typename Visit>
+void forEachLine(std::string_view text, Visit visit) {
   size_t lineNumber = 0;
   for (size_t start = 0; start < text.size();) {
     size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
+    visit(text.substr(start, end - start), ++lineNumber);
     start = end + 1;
-    ++lineNumber;
+  }
+}
+
+// Throws InputError(where, "<file> line N: ...") for the first bad line.
+void checkNumbers(const std::string& where, const std::string& file, std::string_view text,
+                  const std::vector<NumberedKeyword>& keywords) {
+  forEachLine(text, [&](std::string_view line, size_t lineNumber) {
     size_t at = 0;
     auto nextToken = [&]() -> std::string_view {
       while (at < line.size() && isBlank(line[at])) ++at;
@@ -53,7 +59,7 @@ void checkNumbers(const std::string& where, const std::string& file, std::string
     const std::string_view keyword = nextToken();
     const auto rule = std::find_if(keywords.begin(), keywords.end(),
                                    [&](const NumberedKeyword& k) { return k.name == keyword; });
-    if (rule == keywords.end()) continue;
+    if (rule == keywords.end()) return;
     auto bad = [&](const std::string& problem) {
       return InputError(where, file + "line " + std::to_string(lineNumber) + " '" +
                                    printable(std::string(line), 60) + "': " + problem);
@@ -71,7 +77,7 @@ void checkNumbers(const std::string& where, const std::string& file, std::string
       throw bad(std::string(rule->name) + " takes " + std::to_string(rule->minCount) +
                 (rule->maxCount > rule->minCount ? " to " + std::to_string(rule->maxCount) : std::string()) +
                 " numbers, found " + std::to_string(count));
-  }
+  });
 }
 
 // tinyobjloader's triangulation of a polygon grows with the square of its vertices (a 100,000-vertex face
@@ -80,16 +86,11 @@ void checkNumbers(const std::string& where, const std::string& file, std::string
 void checkFaceSizes(const std::string& path, std::string_view text) {
   constexpr double kMaxSquares = 16384.0 * 16384.0;
   double squares = 0.0;
-  size_t lineNumber = 0, largest = 0, largestLine = 0;
-  for (size_t start = 0; start < text.size();) {
-    size_t end = text.find('\n', start);
-    if (end == std::string_view::npos) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++lineNumber;
+  size_t largest = 0, largestLine = 0;
+  forEachLine(text, [&](std::string_view line, size_t lineNumber) {
     size_t at = 0;
     while (at < line.size() && isBlank(line[at])) ++at;
-    if (at + 1 >= line.size() || line[at] != 'f' || !isBlank(line[at + 1])) continue;
+    if (at + 1 >= line.size() || line[at] != 'f' || !isBlank(line[at + 1])) return;
     size_t vertices = 0;
     for (++at; at < line.size() && line[at] != '#';) {
       while (at < line.size() && isBlank(line[at])) ++at;
@@ -104,7 +105,7 @@ void checkFaceSizes(const std::string& path, std::string_view text) {
                                  std::to_string(largest) +
                                  " vertices; faces this large (the sum of their squared vertex counts past " +
                                  "16384^2) take minutes to triangulate: triangulate them before export");
-  }
+  });
 }
 
 // tinyobjloader's own reader opens any path an mtllib line names; this one goes through the scene's

@@ -2,12 +2,14 @@
 // closed boxes, single triangles.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "core/scene.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::testing {
 
@@ -16,7 +18,8 @@ inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission =
   return uint32_t(scene.materials.size() - 1);
 }
 
-inline void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node = 0) {
+inline void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material,
+                        uint32_t node = 0) {
   Triangle t;
   t.p = {a, b, c};
   const glm::vec3 n = t.geometricNormal();
@@ -45,6 +48,17 @@ inline void addClosedBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t mate
   addRect(scene, lo + X, Z, Y, material);  // x = hi, normal -x
   addRect(scene, lo, Z, X, material);      // y = lo, normal +y
   addRect(scene, lo + Y, X, Z, material);  // y = hi, normal -y
+}
+
+/// Calls visit(t) for every atlas texel t of the patch that holds triangle `triangle`.
+template <typename Visit>
+void forEachTexelOf(const LightmapAtlas& atlas, int triangle, Visit visit) {
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    const int p = atlas.patch[t];
+    if (p < 0) continue;
+    const std::vector<int32_t>& tris = atlas.patches[p].triangles;
+    if (std::find(tris.begin(), tris.end(), triangle) != tris.end()) visit(t);
+  }
 }
 
 }  // namespace cpgi::testing

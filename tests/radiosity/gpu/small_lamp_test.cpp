@@ -70,11 +70,7 @@ PoolError floorPool(bool jitteredEyes) {
   const SolveResult r = solveProgressive(scene, atlas, params, gl, ctx, SolveControls{.readTransfer = true});
   const int floorTriangle = int(scene.triangles.size()) - 1;
   double err = 0.0, ref = 0.0, moment = 0.0, got = 0.0, exactTotal = 0.0;
-  for (size_t t = 0; t < atlas.texelCount(); ++t) {
-    const int p = atlas.patch[t];
-    if (p < 0) continue;
-    const std::vector<int32_t>& tris = atlas.patches[p].triangles;
-    if (std::find(tris.begin(), tris.end(), floorTriangle) == tris.end()) continue;
+  testing::forEachTexelOf(atlas, floorTriangle, [&](size_t t) {
     const glm::vec3 x = atlas.position[t];
     const double exact = exactIrradiance(x.x, x.y), e = r.incident[t].r, a = atlas.area[t];
     err += a * (e - exact) * (e - exact);
@@ -82,7 +78,7 @@ PoolError floorPool(bool jitteredEyes) {
     moment += a * e * x.x;
     got += a * e;
     exactTotal += a * exact;
-  }
+  });
   return PoolError{std::sqrt(err / ref), moment / got, got / exactTotal};
 }
 

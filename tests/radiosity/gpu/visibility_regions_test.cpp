@@ -75,17 +75,13 @@ double floorError(int regions, int strongRegions, bool jittered) {
   const int floorTriangle = int(scene.triangles.size()) - 1;
   double err = 0.0, ref = 0.0;
   size_t texels = 0;
-  for (size_t t = 0; t < atlas.texelCount(); ++t) {
-    const int p = atlas.patch[t];
-    if (p < 0) continue;
-    const std::vector<int32_t>& tris = atlas.patches[p].triangles;
-    if (std::find(tris.begin(), tris.end(), floorTriangle) == tris.end()) continue;
+  testing::forEachTexelOf(atlas, floorTriangle, [&](size_t t) {
     const glm::vec3 x = atlas.position[t];
     const double exact = exactIrradiance(x.x, x.y);
     err += atlas.area[t] * std::pow(r.incident[t].r - exact, 2);
     ref += atlas.area[t] * exact * exact;
     ++texels;
-  }
+  });
   EXPECT_GT(texels, 2000u);
   return std::sqrt(err / ref);
 }

@@ -22,7 +22,7 @@ using test::cpgi;
 using test::quote;
 
 class PunctualLightBakes : public ::testing::Test {
- protected:
+ public:
   static void SetUpTestSuite() {
     dir_ = std::make_unique<test::TempDir>();
     auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
@@ -56,7 +56,8 @@ std::unique_ptr<test::TempDir> PunctualLightBakes::dir_;
 // scene is lit only by the beam's rim on the door wall and what B's far wall returns through the door:
 // the solver's bounces from a small hot spot on a large chart fall 10 % short (the same at unshot 1e-4,
 // so a transport bias, not the stop; the emissive spot-door's A was 0.70).
-TEST_F(PunctualLightBakes, BakeMatchesTheReferencePerCell) {
+void expectBakesMatchTheReferencePerCell() {
+  auto compare = PunctualLightBakes::compare;
   for (const std::string name : {"point-light", "spot-light"})
     for (const std::string method : {"-global", "-cells"}) {
       SCOPED_TRACE(name + method);
@@ -77,7 +78,8 @@ TEST_F(PunctualLightBakes, BakeMatchesTheReferencePerCell) {
 
 // The lights' power counts as emitted: emitted = absorbed + escaped + unshot, nothing created, and every
 // cell of a cells bake balances.
-TEST_F(PunctualLightBakes, ReportCountsTheLightsPowerAsEmitted) {
+void expectTheLightsPowerCountedAsEmitted() {
+  auto report = PunctualLightBakes::report;
   const double lamp = 3.0 * 4.0 * 3.14159265358979 * 8.0;  // point-light: 8 W/sr per channel
   for (const char* method : {"point-light-global", "point-light-cells"}) {
     SCOPED_TRACE(method);
@@ -99,6 +101,13 @@ TEST_F(PunctualLightBakes, ReportCountsTheLightsPowerAsEmitted) {
     EXPECT_NEAR(out, in, 1e-3 * lamp) << c.dump();
     EXPECT_GE(double(c["escaped_w"]), -1e-3 * lamp) << c.dump();
   }
+}
+
+// One test over the fixture's bakes and references (30–50 s): CTest runs every test in its own process,
+// which would make them again for each.
+TEST_F(PunctualLightBakes, MatchTheReferencePerCellAndCountTheLightsPowerAsEmitted) {
+  expectBakesMatchTheReferencePerCell();
+  expectTheLightsPowerCountedAsEmitted();
 }
 
 // A glTF with one grey floor named "floor" and one "shade" quad above it, nothing emissive.

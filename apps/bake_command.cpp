@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -40,6 +41,7 @@
 #include "radiosity/gpu/ambient.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/two_level_solve.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
@@ -75,6 +77,9 @@ struct BakeOptions {
   std::string jobCells;
   bool gather = false;
   double timeLimit = 0.0;      ///< --time-limit: seconds of wall clock from the start, 0 = none
+  /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
+  /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas.
+  float solveDensity = 0.0f;
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -212,12 +217,17 @@ void requireConvergence(const BakeOptions& o, const Scene& scene, const Lightmap
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl,
-                      std::chrono::steady_clock::time_point deadline, Context& ctx) {
+                      std::chrono::steady_clock::time_point deadline, Context& ctx,
+                      std::optional<TwoLevelData>& levels) {
   auto t = ctx.time("solve");
   // The residual, for the ambient term.
-  if (o.method != "cells")
-    return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx,
-                            SolveControls{.readTransfer = !o.noAmbient, .deadline = deadline});
+  const SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
+  if (o.method != "cells" && o.solveDensity > 0.0f) {
+    levels.emplace();
+    return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, TwoLevelParams{o.solveDensity}, o.solver,
+                         gl, ctx, controls, &*levels);
+  }
+  if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
   CellSolveParams params = o.cellParams;
   params.solver = o.solver;
   params.atlas = o.atlas;
@@ -301,7 +311,8 @@ struct BakeFigures {
 };
 
 nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const SolveResult& s,
-                          const EglContext& gl, const BakeFigures& f, const Context& ctx) {
+                          const std::optional<TwoLevelData>& levels, const EglContext& gl, const BakeFigures& f,
+                          const Context& ctx) {
   const bool cells = o.method == "cells";
   LightmapRun run{.method = o.method,
                   .scene = o.scene,
@@ -326,6 +337,15 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["strong_shot_fraction"] = o.solver.strongShotFraction;
   report["region_size"] = o.solver.regionSize;
   report["jittered_eyes"] = o.solver.jitteredEyes;
+  // Two levels (radiosity/gpu/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
+  report["solve_density"] = levels ? nlohmann::json(o.solveDensity) : nlohmann::json(nullptr);
+  report["solve_texels"] = levels ? levels->solveTexels : in.atlas.validTexels();
+  if (levels) {
+    report["lamp_shots"] = levels->lampShots;
+    report["refined_triangles"] = levels->refinedTriangles;
+    report["lamp_solve_s"] = levels->lampSeconds;
+    report["indirect_solve_s"] = levels->solveSeconds;
+  }
   report["renderer"] = gl.renderer();
   report["gl_version"] = gl.version();
   report["egl_platform"] = gl.platform();
@@ -452,6 +472,8 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
 }
 
 int runBake(const BakeOptions& o) {
+  if (o.method == "cells" && o.solveDensity > 0.0f)
+    throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = o.timeLimit > 0.0
@@ -472,7 +494,8 @@ int runBake(const BakeOptions& o) {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   }
-  SolveResult s = solveBake(o, in, *gl, deadline, ctx);
+  std::optional<TwoLevelData> levels;
+  SolveResult s = solveBake(o, in, *gl, deadline, ctx, levels);
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the per-cell figures and the ambient term.
   const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
@@ -500,7 +523,7 @@ int runBake(const BakeOptions& o) {
                   .views;
   }
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const nlohmann::json report = bakeReport(o, in, s, *gl, f, ctx);
+  const nlohmann::json report = bakeReport(o, in, s, levels, *gl, f, ctx);
   writeReport(out, report);
   writeBakeReportPage(out, "bake of " + o.scene, report, in.loaded.scene, cells, in.atlas, s.radiosity);
   out.commit();
@@ -568,6 +591,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);
   addTimeLimitOption(*sub, o->timeLimit);
+  addSolveDensityOption(*sub, o->solveDensity);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {
     o->maxShotsGiven = sub->count("--max-shots") > 0;

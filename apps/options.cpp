@@ -48,6 +48,7 @@ constexpr ParameterFlag kFlags[] = {
     {"no ambient term", "--no-ambient"},
     // Bake only: stop the solve at a wall-clock limit, writing a partial result
     {"time limit", "--time-limit"},
+    {"solve density", "--solve-density"},
     // Views (radiosity/lightmap/views.h)
     {"view size", "--view-size"},
     // compare-light's page (core/html_report/html_report.h)
@@ -61,6 +62,8 @@ constexpr ParameterFlag kFlags[] = {
     // Reference (radiosity/reference/reference_tracer.h)
     {"samples per texel", "--spp"},
     {"maximum bounces", "--max-bounces"},
+    {"cell noise", "--cell-noise"},
+    {"maximum samples per texel", "--max-spp"},
     // Decomposition (decomposition/decompose.h)
     {"voxel size", "--voxel"},
     {"seal radius", "--seal"},
@@ -293,6 +296,22 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
   addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
              within(2, 1 << 20));
+}
+
+void addSolveDensityOption(CLI::App& cmd, float& density) {
+  addChecked(cmd, {}, "solve density", density,
+             "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
+             "the lamps' own shots on the output's; 0: all on the output's atlas (global method)",
+             within(0.0, 10000.0));
+}
+
+void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {
+  addChecked(cmd, scope, "cell noise", target.meanNoise,
+             "Trace the texels of every cell whose mean is noisier than this (relative standard error) again "
+             "with more paths, until none is or --max-spp is reached; 0: off",
+             within(0.0, 1.0));
+  addChecked(cmd, scope, "maximum samples per texel", target.maxSpp,
+             "Paths per texel at most for --cell-noise; 0: 16 x --spp", within(0, 1 << 24));
 }
 
 CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope) {

@@ -27,6 +27,7 @@
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/metrics/texel_sample.h"
+#include "radiosity/reference/noisy_cells.h"
 #include "radiosity/reference/reference_tracer.h"
 
 namespace cpgi::cli {
@@ -41,6 +42,7 @@ struct ReferenceOptions {
   long long texels = 0;  ///< valid texels to trace, a stratified sample (texel_sample.h); see texelsGiven
   bool texelsGiven = false;
   bool maxBouncesGiven = false;  ///< --max-bounces: the user bounded the paths, light past them left out
+  CellNoiseTarget cellNoise;     ///< --cell-noise, --max-spp
   LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;
   ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
@@ -121,7 +123,31 @@ struct ReferenceFigures {
   double solveSeconds = 0.0, noise = 0.0, noiseNonEmissive = 0.0;
   size_t traced = 0;
   std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
+  std::vector<CellNoise> cellNoise;    ///< each cell's noise, after any extra passes
+  int extraPasses = 0;
+  int baseSpp = 0;  ///< paths on every traced texel (--spp rounded up to whole batches)
+  int maxSpp = 0;   ///< paths on the most traced texel
 };
+
+// Each cell's noise, as report.json's "cells_noise"; null where a cell has no lit traced texel.
+nlohmann::json cellNoiseJson(const std::vector<CellNoise>& cells) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json out = nlohmann::json::array();
+  for (const CellNoise& c : cells)
+    out.push_back({{"name", c.name},
+                   {"texels", c.texels},
+                   {"mean_noise", number(c.meanNoise)},
+                   {"texel_noise", number(c.texelNoise)}});
+  return out;
+}
+
+// The noisiest cell's mean, or nullopt when no cell has a figure.
+std::optional<size_t> noisiestCell(const std::vector<CellNoise>& cells) {
+  std::optional<size_t> worst;
+  for (size_t c = 0; c < cells.size(); ++c)
+    if (std::isfinite(cells[c].meanNoise) && (!worst || cells[c].meanNoise > cells[*worst].meanNoise)) worst = c;
+  return worst;
+}
 
 nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loaded, const QuadSet& quads,
                                const LightmapAtlas& atlas, const ReferenceResult& result,
@@ -144,18 +170,26 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
   report["patches"] = atlas.patches.size();
   report["texels_per_quad"] = o.atlas.texelsPerQuad;
   report["density"] = o.atlas.texelsPerQuad > 0 ? 0.0f : o.atlas.density;
-  report["spp"] = result.spp;
+  report["spp"] = f.baseSpp;
   report["seed"] = o.trace.seed;
   report["max_bounces"] = o.trace.maxBounces;
   report["rays"] = result.rays;
   report["noise"] = f.noise;
   report["noise_nonemissive"] = f.noiseNonEmissive;
+  report["cell_noise_target"] = o.cellNoise.meanNoise;
+  report["max_spp"] = f.maxSpp;
+  report["extra_passes"] = f.extraPasses;
+  report["cells_noise"] = cellNoiseJson(f.cellNoise);
   return report;
 }
 
 void printSummary(const ReferenceOptions& o, const ReferenceFigures& f, bool sparse, size_t valid, int spp,
                   double seconds) {
   if (o.quiet) return;
+  if (const std::optional<size_t> worst = noisiestCell(f.cellNoise))
+    std::printf("reference: noisiest cell %s, its mean ±%.2f%% (%zu cells; %d extra passes, up to %d spp)\n",
+                f.cellNoise[*worst].name.c_str(), 100.0 * f.cellNoise[*worst].meanNoise, f.cellNoise.size(),
+                f.extraPasses, f.maxSpp);
   if (sparse)
     std::printf(
         "reference: %zu of %zu texels traced (a sample, marked in lightmap.exr; no baked.glb or views), %d "
@@ -186,29 +220,36 @@ int runReference(const ReferenceOptions& o) {
   requireBoundedPaths(o, scene, atlas);
   const TexelChoice choice = chooseTexels(o, atlas, ctx);
 
-  ReferenceFigures f;
-  const auto solveStart = std::chrono::steady_clock::now();
-  const ReferenceResult result = traceReference(scene, atlas, o.trace, ctx, choice.sample.ranks);
-  f.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
-  requireFiniteResult(o.scene, atlas, result.radiosity);
-  f.noise = relativeStandardError(result, choice.weightedArea);
-  // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
-  // given over the texels that do not emit, where the solvers actually differ.
-  const ExrChannel emissive{"emissive", emissiveMask(atlas)};
-  std::vector<float> reflectorArea = choice.weightedArea;
-  for (size_t i = 0; i < atlas.texelCount(); ++i)
-    if (emissive.values[i] > 0.0f) reflectorArea[i] = 0.0f;
-  f.noiseNonEmissive = relativeStandardError(result, reflectorArea);
-
-  ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
-  for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
   // "cell": each texel's cell of the scene's own graph (or of its automatic rooms, labelled as bake
-  // does), for compare-light's per-cell figures.
+  // does), for compare-light's per-cell figures and the per-cell noise target.
   const RoomLabels rooms = loaded.cells.empty() || loaded.cells.definedByVolumes()
                                ? labelTexelsByRoom(scene, o.scene, atlas, ctx, loaded.cells)
                                : RoomLabels{};
   const ExrChannel cells = rooms.graph.empty() ? cellChannel(atlas, scene, loaded.cells) : rooms.channel;
+
+  ReferenceFigures f;
   f.cellNames = cellNames(rooms.graph.empty() ? loaded.cells : rooms.graph);
+  const ExrChannel emissive{"emissive", emissiveMask(atlas)};
+  // Lamps (B ≥ E, e.g. 100) outweigh lit walls (B ~ 1–10) in Σ a|R|², so the error and noise are also
+  // given over the texels that do not emit, where the solvers actually differ.
+  std::vector<float> reflectorArea = choice.weightedArea;
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (emissive.values[i] > 0.0f) reflectorArea[i] = 0.0f;
+  const auto solveStart = std::chrono::steady_clock::now();
+  RefinedReference refined = traceToCellNoise(scene, atlas, o.trace, choice.sample.ranks, cells.values,
+                                              reflectorArea, f.cellNames, o.cellNoise, ctx);
+  const ReferenceResult& result = refined.result;
+  f.solveSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solveStart).count();
+  f.cellNoise = std::move(refined.cells);
+  f.extraPasses = refined.passes;
+  f.maxSpp = result.spp;
+  f.baseSpp = refined.baseSpp;
+  requireFiniteResult(o.scene, atlas, result.radiosity);
+  f.noise = relativeStandardError(result, choice.weightedArea);
+  f.noiseNonEmissive = relativeStandardError(result, reflectorArea);
+
+  ExrChannel sigma{"stderr", std::vector<float>(atlas.texelCount(), 0.0f)};
+  for (size_t i = 0; i < atlas.texelCount(); ++i) sigma.values[i] = glm::length(result.standardError[i]);
   LightmapOutputs written;
   if (choice.sparse)
     writeSparseLightmap(out, atlas, result.radiosity, {sigma, emissive, cells}, choice.sampleWeight);
@@ -224,7 +265,7 @@ int runReference(const ReferenceOptions& o) {
     writeBakeReportPage(out, "reference of " + o.scene, report, scene, loaded.cells, atlas, result.radiosity,
                         "reference");
   out.commit();
-  printSummary(o, f, choice.sparse, atlas.validTexels(), result.spp, seconds);
+  printSummary(o, f, choice.sparse, atlas.validTexels(), o.trace.spp, seconds);
   return 0;
 }
 
@@ -242,6 +283,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   addAtlasOptions(*cmd, opts->atlas);
   addSppOption(*cmd, opts->trace.spp);
   auto* maxBounces = addMaxBouncesOption(*cmd, opts->trace.maxBounces);
+  addCellNoiseOptions(*cmd, opts->cellNoise);
   cmd->add_option("--seed", opts->trace.seed, "Random seed (same seed, same result)")->capture_default_str();
   auto* texels =
       cmd->add_option("--texels", opts->texels,

@@ -20,14 +20,6 @@ double receive(CellState& s, size_t t, const glm::vec3& e) {
   return (kept.r + kept.g + kept.b) * s.atlas.area[t];
 }
 
-// The scene triangle under texel (i, j) of global patch `P` (a chart may be a grid of quads that the cells
-// cut apart, radiosity/lightmap/quad_grids.h).
-int32_t triangleUnder(const Patch& P, int i, int j) {
-  if (P.quads.empty()) return P.triangles[0];
-  const int tw = P.w / P.grid.x, th = P.h / P.grid.y;
-  return P.triangles[2 * (size_t(j / th) * P.grid.x + size_t(i / tw))];
-}
-
 // The emitters that shoot over the whole scene: those of the solved cells (cells left out of an on-demand
 // bake are dark).
 LightmapAtlas blackReceivers(const LightmapAtlas& global, const std::vector<int>& cellOfTriangle) {
@@ -36,7 +28,7 @@ LightmapAtlas blackReceivers(const LightmapAtlas& global, const std::vector<int>
   for (const Patch& P : global.patches)
     for (int j = 0; j < P.h; ++j)
       for (int i = 0; i < P.w; ++i) {
-        if (cellOfTriangle[size_t(triangleUnder(P, i, j))] < 0)
+        if (cellOfTriangle[size_t(texelTriangle(P, i, j))] < 0)
           black.emission[size_t(P.y + j) * global.width + P.x + i] = glm::vec3(0.0f);
       }
   return black;

@@ -155,6 +155,8 @@ struct SolveConfig : SolverParams {
   double minShotPower = 0.0;
   bool directionalEmission = false;
   const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
+  /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
+  double directEmitted = 0.0;
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
@@ -812,11 +814,19 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
   config.deadline = controls.deadline;
-  // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver).
+  // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver),
+  // or a first shot the caller made (it covers those lights too).
   DirectLight direct;
-  if (!scene.lights.empty()) {
+  if (controls.priorShot) {
+    if (controls.priorShot->irradiance.size() != atlas.texelCount())
+      throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
+    direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
+    config.direct = &direct;
+    config.directEmitted = controls.priorShot->emitted;
+  } else if (!scene.lights.empty()) {
     direct = shootPunctualLights(scene.lights, RayScene(scene), atlas, ctx);
     config.direct = &direct;
+    config.directEmitted = punctualEmitted(scene.lights, direct.directionalLanded);
   }
   const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
   SolverPrograms own;
@@ -853,7 +863,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
         const glm::dvec3 r = glm::dvec3(atlas.albedo[i]) * glm::dvec3(params.direct->irradiance[i]);
         reflected += (r.r + r.g + r.b) * atlas.area[i];
       }
-    e.shot = punctualEmitted(scene.lights, params.direct->directionalLanded);
+    e.shot = params.directEmitted;
     e.emitted += e.shot - reflected;
   }
   auto record = [&](const GpuSelection& s) {

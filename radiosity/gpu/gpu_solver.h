@@ -78,6 +78,13 @@ struct SolverParams {
 
 class SolverPrograms;
 
+/// A first shot made before the solve, elsewhere (radiosity/gpu/two_level_solve.h: the lamps shot on the
+/// output's atlas, the rest solved on a coarser one): the solve starts after it, as after any shot.
+struct PriorShot {
+  std::span<const glm::vec3> irradiance;  ///< per atlas texel, W/m², what it delivered
+  double emitted = 0.0;                   ///< W (R + G + B) its sources emitted, all counted as shot
+};
+
 /// What a caller driving the solver sets, apart from the user's settings: the cell solver
 /// (radiosity/cells/) reads what crosses its portals, stops on a per-patch bound and emits with lobes.
 struct SolveControls {
@@ -94,6 +101,9 @@ struct SolveControls {
   /// and cost and results are those of the plain solver. Lobes without it are an error.
   bool directionalEmission = false;
   std::span<const glm::vec4> emissionLobes = {};
+  /// Start after this shot: ρ × its irradiance unshot, its power emitted and shot. The atlas's emission is
+  /// shot as usual and the scene's punctual lights are not (the prior shot stands for them). Null: none.
+  const PriorShot* priorShot = nullptr;
   /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
   SolverPrograms* programs = nullptr;
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,

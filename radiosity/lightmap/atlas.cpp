@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -33,6 +34,8 @@ void checkParams(const AtlasParams& params) {
   if (params.texelsPerQuad < 0) throw InputError("texels per quad", "must be positive");
   if (params.texelsPerQuad == 0 && !(params.density > 0.0f && std::isfinite(params.density)))
     throw InputError("texel density", "must be a positive number of texels per metre");
+  for (float d : params.triangleDensity)
+    if (!(d > 0.0f && std::isfinite(d))) throw InputError("texel density", "a chart's density must be positive");
   if (params.minTexels < 1 || params.maxTexels < params.minTexels)
     throw InputError("atlas", "texel limits need 1 <= min <= max");
   if (params.padding < 0) throw InputError("atlas", "padding must not be negative");
@@ -184,7 +187,26 @@ std::vector<QuadGrid> splitToFit(const QuadGrid& g, const AtlasParams& params) {
   return parts;
 }
 
+// The params of one chart: `density` the largest of its triangles' when they have their own.
+AtlasParams chartParams(const AtlasParams& params, std::span<const int32_t> triangles) {
+  AtlasParams p = params;
+  p.triangleDensity.clear();
+  if (params.texelsPerQuad > 0 || params.triangleDensity.empty()) return p;
+  float most = 0.0f;
+  for (int32_t t : triangles) most = std::max(most, params.triangleDensity[size_t(t)]);
+  if (most > 0.0f) p.density = most;
+  return p;
+}
+
 }  // namespace
+
+int32_t texelTriangle(const Patch& p, int i, int j) {
+  if (p.triangles.empty()) return -1;
+  if (p.quads.size() <= 1) return p.triangles[0];
+  const int gx = std::max(p.grid.x, 1), gy = std::max(p.grid.y, 1);
+  const size_t q = size_t(std::min(j * gy / p.h, gy - 1)) * size_t(gx) + size_t(std::min(i * gx / p.w, gx - 1));
+  return 2 * q < p.triangles.size() ? p.triangles[2 * q] : p.triangles[0];
+}
 
 size_t LightmapAtlas::validTexels() const {
   return static_cast<size_t>(std::count_if(patch.begin(), patch.end(), [](int32_t p) { return p >= 0; }));
@@ -194,6 +216,8 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
                          const std::vector<uint32_t>& subset) {
   checkParams(params);
   const size_t triangleCount = scene.triangles.size();
+  if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
+    throw InputError("texel density", "per-triangle densities must be one per scene triangle");
   std::vector<uint32_t> chosen = subset;
   if (chosen.empty()) {
     chosen.resize(triangleCount);
@@ -214,10 +238,12 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     for (uint32_t t : chosen)
       for (int i = 0; i < 3; ++i)
         longest = std::max(longest, glm::length(scene.triangles[t].p[(i + 1) % 3] - scene.triangles[t].p[i]));
-    const double wanted = std::ceil(double(longest) * params.density - 1e-3);
+    float density = params.density;
+    for (float d : params.triangleDensity) density = std::max(density, d);
+    const double wanted = std::ceil(double(longest) * density - 1e-3);
     if (wanted > 2.0 * params.maxTexels) {
       std::ostringstream s;
-      s << "atlas: --density " << params.density << " asks for " << wanted << " texels along a "
+      s << "atlas: --density " << density << " asks for " << wanted << " texels along a "
         << longest << " m edge; charts are capped at " << params.maxTexels
         << " texels per edge, so the largest patches get fewer texels per metre";
       ctx.warn(s.str());
@@ -249,7 +275,11 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
       if (quadDone[qi]) continue;
       quadDone[qi] = 1;
       if (gridOfQuad[qi] < 0) continue;  // charted when the grid's first quad comes
-      for (const QuadGrid& g : splitToFit(grids[gridOfQuad[qi]], params)) {
+      std::vector<int32_t> gridTriangles;
+      for (uint32_t q : grids[gridOfQuad[qi]].quads)
+        for (uint32_t qt : quads.quads[q].triangles) gridTriangles.push_back(int32_t(qt));
+      const AtlasParams gridParams = chartParams(params, gridTriangles);
+      for (const QuadGrid& g : splitToFit(grids[gridOfQuad[qi]], gridParams)) {
         Patch gp = p;
         gp.quad = int(g.quads.front());
         gp.grid = g.size;
@@ -261,7 +291,7 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
         const Quad& first = quads.quads[g.quads.front()];
         gp.normal = first.normal;
         gp.area = first.area() * float(g.quads.size());
-        const glm::ivec2 tile = tileTexels(g, params);
+        const glm::ivec2 tile = tileTexels(g, gridParams);
         charts.push_back({int(atlas.patches.size()), tile.x * g.size.x, tile.y * g.size.y});
         chartCorners.push_back(g.corners);
         atlas.patches.push_back(std::move(gp));
@@ -275,7 +305,8 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     p.triangles = {int32_t(tri)};
     p.normal = t.geometricNormal();
     p.area = t.area();
-    const int s = triangleChartSide(t, params);
+    const int32_t only[1] = {int32_t(tri)};
+    const int s = triangleChartSide(t, chartParams(params, only));
     charts.push_back({int(atlas.patches.size()), s, s});
     chartCorners.push_back({});
     atlas.patches.push_back(p);

@@ -40,6 +40,10 @@ struct AtlasParams {
   /// Merge grids of equal coplanar quads into one chart (one shooter) up to this many texels along an
   /// edge; 0: a chart per quad, as the thesis does.
   int mergeTexels = 1024;
+  /// With texelsPerQuad == 0: per scene triangle, the texels per metre of the chart that holds it (a
+  /// merged grid takes its quads' largest), for an atlas whose resolution follows where the light varies
+  /// (radiosity/gpu/two_level_solve.h). Empty: `density` everywhere.
+  std::vector<float> triangleDensity = {};
   /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
   /// before any per-texel array: InputError naming the size option when passed. 0: no limit.
   uint64_t memoryLimit = 0;
@@ -86,6 +90,10 @@ struct LightmapAtlas {
   size_t texelCount() const { return static_cast<size_t>(width) * height; }
   size_t validTexels() const;
 };
+
+/// The scene triangle under texel (i, j) of chart `p` (chart coordinates, 0 ≤ i < w, 0 ≤ j < h): the first
+/// of its quad's two in a merged grid (row-major, each quad w/grid.x × h/grid.y texels), else the chart's.
+int32_t texelTriangle(const Patch& p, int i, int j);
 
 /// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
 /// Deterministic: the same scene and params give the same atlas.

@@ -80,6 +80,39 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
   return out;
 }
 
+std::vector<CellNoise> referenceCellNoise(std::span<const glm::vec3> reference, std::span<const float> sigma,
+                                          std::span<const float> weight, std::span<const float> cell,
+                                          const std::vector<std::string>& names) {
+  const size_t n = reference.size();
+  if (sigma.size() != n || weight.size() != n || cell.size() != n)
+    throw std::invalid_argument("referenceCellNoise: lightmap and channels differ in size");
+  struct Sums {
+    double sum = 0, squares = 0, noise = 0, meanNoise = 0;
+  };
+  std::vector<Sums> s(names.size());
+  std::vector<CellNoise> out(names.size());
+  for (size_t i = 0; i < n; ++i) {
+    const float c = cell[i];
+    const double w = weight[i], sd = sigma[i];
+    if (!std::isfinite(c) || c < 0.0f || size_t(c) >= names.size() || !(w > 0.0)) continue;
+    const glm::dvec3 r(reference[i]);
+    Sums& x = s[size_t(c)];
+    x.sum += w * (r.x + r.y + r.z);
+    x.squares += w * glm::dot(r, r);
+    x.noise += w * sd * sd;
+    x.meanNoise += 3.0 * (w * sd) * (w * sd);
+    ++out[size_t(c)].texels;
+  }
+  for (size_t c = 0; c < names.size(); ++c) {
+    out[c].name = names[c];
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const bool lit = out[c].texels > 0 && s[c].sum > 0.0;
+    out[c].meanNoise = lit ? std::sqrt(s[c].meanNoise) / s[c].sum : nan;
+    out[c].texelNoise = lit ? std::sqrt(s[c].noise / s[c].squares) : nan;
+  }
+  return out;
+}
+
 std::optional<size_t> worstCell(const std::vector<CellError>& cells) {
   std::optional<size_t> worst;
   double most = -1.0;

@@ -44,6 +44,24 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
                                     std::span<const float> cell, std::span<const float> sampleWeight,
                                     size_t validTexels, const std::vector<std::string>& names);
 
+/// A reference's own noise in one cell: what a comparison against it can resolve there.
+struct CellNoise {
+  std::string name;
+  size_t texels = 0;  ///< texels with weight > 0 in this cell
+  /// Relative standard error of the cell's mean (Σ w (R+G+B) / Σ w), from the per-texel noise (√3 |σ| a
+  /// texel, as CellError::ratioError): a bias of three times this is measurable in the cell's ratio.
+  double meanNoise = 0.0;
+  /// sqrt(Σ w σ² / Σ w |R|²), the floor of the cell's relative RMSE (CellError::referenceNoise).
+  double texelNoise = 0.0;
+};
+
+/// Per-cell noise of a reference (`sigma` its per-texel standard error, RGB norm; `weight` area × sample
+/// weight, 0 where not traced). Cells with no weighted texel or a black reference get NaN figures.
+/// Throws std::invalid_argument on size mismatches.
+std::vector<CellNoise> referenceCellNoise(std::span<const glm::vec3> reference, std::span<const float> sigma,
+                                          std::span<const float> weight, std::span<const float> cell,
+                                          const std::vector<std::string>& names);
+
 /// The headline: the cell whose ratio of means is farthest from 1 (in log terms, so ×0.5 and ×2 weigh
 /// alike), among cells with texels and a non-zero reference; nullopt when there is none.
 std::optional<size_t> worstCell(const std::vector<CellError>& cells);

@@ -11,7 +11,7 @@ set(allowed_radiosity/metrics radiosity/metrics)
 set(allowed_radiosity/lightmap core radiosity/lightmap)
 set(allowed_radiosity/gpu core radiosity/lightmap radiosity/gpu)
 set(allowed_radiosity/cells core radiosity/lightmap radiosity/gpu radiosity/cells)
-set(allowed_radiosity/reference core radiosity/lightmap radiosity/reference)
+set(allowed_radiosity/reference core radiosity/lightmap radiosity/metrics radiosity/reference)
 
 set(failures "")
 foreach(library core core/html_report scenes decomposition radiosity/metrics radiosity/lightmap radiosity/gpu

@@ -1,0 +1,136 @@
+#include "radiosity/lightmap/atlas_resample.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cpgi {
+
+namespace {
+
+// Chart coordinates of world point x on patch p: origin + i texelU + j texelV, least squares in its plane.
+glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x) {
+  const glm::vec3 d = x - p.origin;
+  const float uu = glm::dot(p.texelU, p.texelU), vv = glm::dot(p.texelV, p.texelV),
+              uv = glm::dot(p.texelU, p.texelV);
+  const float du = glm::dot(d, p.texelU), dv = glm::dot(d, p.texelV);
+  const float det = uu * vv - uv * uv;
+  if (!(det > 0.0f)) return glm::vec2(0.0f);
+  return glm::vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
+}
+
+// The valid texel of coarse chart `cp` whose centre is nearest chart point `at` (−1 if it has none): for
+// the few points of a loose triangle whose rasterized texels miss them.
+int64_t nearestValidTexel(const LightmapAtlas& coarse, int32_t cp, glm::vec2 at) {
+  const Patch& c = coarse.patches[size_t(cp)];
+  int64_t best = -1;
+  float bestDistance = 0.0f;
+  for (int j = 0; j < c.h; ++j)
+    for (int i = 0; i < c.w; ++i) {
+      const int64_t ct = int64_t(c.y + j) * coarse.width + (c.x + i);
+      if (coarse.patch[size_t(ct)] != cp) continue;
+      const glm::vec2 d = glm::vec2(float(i) + 0.5f, float(j) + 0.5f) - at;
+      if (best < 0 || glm::dot(d, d) < bestDistance) best = ct, bestDistance = glm::dot(d, d);
+    }
+  return best;
+}
+
+}  // namespace
+
+AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse) {
+  if (fine.triangleUV.size() != coarse.triangleUV.size())
+    throw std::invalid_argument("mapAtlas: the atlases are of different scenes");
+  std::vector<int32_t> coarsePatchOf(coarse.triangleUV.size(), -1);
+  for (size_t p = 0; p < coarse.patches.size(); ++p)
+    for (int32_t t : coarse.patches[p].triangles) coarsePatchOf[size_t(t)] = int32_t(p);
+  AtlasMapping m;
+  m.coarsePatch.assign(fine.texelCount(), -1);
+  m.chartPoint.assign(fine.texelCount(), glm::vec2(0.0f));
+  m.coarseTexel.assign(fine.texelCount(), -1);
+  for (const Patch& p : fine.patches)
+    for (int j = 0; j < p.h; ++j)
+      for (int i = 0; i < p.w; ++i) {
+        const size_t t = size_t(p.y + j) * size_t(fine.width) + size_t(p.x + i);
+        if (fine.patch[t] < 0 || &fine.patches[size_t(fine.patch[t])] != &p) continue;
+        const int32_t tri = texelTriangle(p, i, j);
+        const int32_t cp = tri >= 0 ? coarsePatchOf[size_t(tri)] : -1;
+        if (cp < 0) continue;
+        const Patch& c = coarse.patches[size_t(cp)];
+        const glm::vec2 at = chartCoordinates(c, fine.position[t]);
+        m.coarsePatch[t] = cp;
+        m.chartPoint[t] = at;
+        // The coarse texel under the centre; a point just off the chart (float rounding, a loose
+        // triangle's edge) goes to the nearest texel of it.
+        const int ci = std::clamp(int(std::floor(at.x)), 0, c.w - 1),
+                  cj = std::clamp(int(std::floor(at.y)), 0, c.h - 1);
+        int64_t ct = int64_t(c.y + cj) * coarse.width + (c.x + ci);
+        if (coarse.patch[size_t(ct)] != cp) ct = nearestValidTexel(coarse, cp, at);
+        m.coarseTexel[t] = ct;
+      }
+  return m;
+}
+
+std::vector<glm::vec3> downsample(const AtlasMapping& m, const LightmapAtlas& fine,
+                                  const LightmapAtlas& coarse, std::span<const glm::vec3> values) {
+  std::vector<glm::dvec3> sum(coarse.texelCount(), glm::dvec3(0.0));
+  std::vector<double> area(coarse.texelCount(), 0.0);
+  std::vector<glm::dvec3> patchPower(coarse.patches.size(), glm::dvec3(0.0));
+  for (size_t t = 0; t < fine.texelCount(); ++t) {
+    const int64_t c = m.coarseTexel[t];
+    if (c < 0) continue;
+    const glm::dvec3 power = glm::dvec3(values[t]) * double(fine.area[t]);
+    sum[size_t(c)] += power;
+    area[size_t(c)] += fine.area[t];
+    patchPower[size_t(m.coarsePatch[t])] += power;
+  }
+  std::vector<glm::vec3> out(coarse.texelCount(), glm::vec3(0.0f));
+  std::vector<glm::dvec3> coarsePower(coarse.patches.size(), glm::dvec3(0.0));
+  for (size_t c = 0; c < out.size(); ++c)
+    if (area[c] > 0.0) {
+      out[c] = glm::vec3(sum[c] / area[c]);
+      coarsePower[size_t(coarse.patch[c])] += glm::dvec3(out[c]) * double(coarse.area[c]);
+    }
+  // A coarse texel's area is not exactly that of the fine texels whose centres fall in it (a loose
+  // triangle's rasterized edge): each chart is scaled to hold the power its fine texels held.
+  for (size_t c = 0; c < out.size(); ++c) {
+    if (!(area[c] > 0.0)) continue;
+    const size_t p = size_t(coarse.patch[c]);
+    for (int k = 0; k < 3; ++k)
+      if (coarsePower[p][k] > 0.0) out[c][k] = float(out[c][k] * (patchPower[p][k] / coarsePower[p][k]));
+  }
+  return out;
+}
+
+std::vector<glm::vec3> upsample(const AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,
+                                std::span<const glm::vec3> values) {
+  std::vector<glm::vec3> out(fine.texelCount(), glm::vec3(0.0f));
+  for (size_t t = 0; t < fine.texelCount(); ++t) {
+    const int32_t cp = m.coarsePatch[t];
+    if (cp < 0) continue;
+    const Patch& c = coarse.patches[size_t(cp)];
+    // The four coarse texel centres around the point, clamped into the chart; texels of the chart that
+    // are not valid (outside a loose triangle) drop out and the others are renormalised.
+    const glm::vec2 g = m.chartPoint[t] - 0.5f;
+    const int i0 = int(std::floor(g.x)), j0 = int(std::floor(g.y));
+    const float fx = std::clamp(g.x - float(i0), 0.0f, 1.0f), fy = std::clamp(g.y - float(j0), 0.0f, 1.0f);
+    glm::dvec3 sum(0.0);
+    double weight = 0.0;
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di) {
+        const int i = std::clamp(i0 + di, 0, c.w - 1), j = std::clamp(j0 + dj, 0, c.h - 1);
+        const size_t ct = size_t(c.y + j) * size_t(coarse.width) + size_t(c.x + i);
+        if (coarse.patch[ct] != cp) continue;
+        const double w = double(di ? fx : 1.0f - fx) * double(dj ? fy : 1.0f - fy);
+        sum += w * glm::dvec3(values[ct]);
+        weight += w;
+      }
+    if (weight > 0.0) {
+      out[t] = glm::vec3(sum / weight);
+    } else if (m.coarseTexel[t] >= 0) {
+      out[t] = values[size_t(m.coarseTexel[t])];
+    }
+  }
+  return out;
+}
+
+}  // namespace cpgi

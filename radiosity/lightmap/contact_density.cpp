@@ -1,0 +1,50 @@
+#include "radiosity/lightmap/contact_density.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace cpgi {
+
+std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCount) {
+  std::vector<float> density(triangleCount, 0.0f);
+  for (const Patch& p : atlas.patches) {
+    const float edge = std::min(glm::length(p.texelU), glm::length(p.texelV));
+    if (!(edge > 0.0f)) continue;
+    for (int32_t t : p.triangles) density[size_t(t)] = 1.0f / edge;
+  }
+  return density;
+}
+
+std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, float coarse,
+                                  std::span<const float> fine) {
+  std::vector<float> density(scene.triangles.size(), coarse);
+  const float reach = 2.0f / coarse;             // gaps beyond this need no more than the coarse texels
+  const float offset = 1e-5f * rays.diagonal();  // off the surface, as the reference's rays
+  tbb::parallel_for(size_t(0), scene.triangles.size(), [&](size_t i) {
+    const Triangle& t = scene.triangles[i];
+    const glm::vec3 n = t.geometricNormal();
+    if (fine[i] > 0.0f && fine[i] < coarse) density[i] = fine[i];  // never finer than the output
+    if (!(t.area() > 0.0f) || fine[i] <= coarse) return;
+    float longest = 0.0f;
+    for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(t.p[(k + 1) % 3] - t.p[k]));
+    // Points on a barycentric grid about half a coarse texel apart, inset from the edges (a point on an
+    // edge shared with a wall standing on it would find that wall at once).
+    const int steps = std::clamp(int(std::ceil(longest * 2.0f * coarse)), 1, 512);
+    float gap = reach;
+    for (int a = 0; a <= steps; ++a)
+      for (int b = 0; a + b <= steps; ++b) {
+        const float u = (float(a) + 1.0f / 3.0f) / float(steps + 1),
+                    v = (float(b) + 1.0f / 3.0f) / float(steps + 1);
+        if (u + v >= 1.0f) continue;
+        const glm::vec3 p = (1.0f - u - v) * t.p[0] + u * t.p[1] + v * t.p[2];
+        if (const RayScene::Hit hit = rays.intersect(p + offset * n, n, 0.0f, gap))
+          gap = std::min(gap, hit.t);
+      }
+    if (gap < reach) density[i] = std::clamp(2.0f / std::max(gap, 1e-4f), coarse, fine[i]);
+  });
+  return density;
+}
+
+}  // namespace cpgi

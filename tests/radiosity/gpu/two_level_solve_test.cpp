@@ -1,0 +1,98 @@
+// The two-level solve (issue 13): the lamps' shots on the output atlas, the interreflection on a coarser
+// one. It must give the rooms the light a solve at the output's resolution gives, lose none on the way
+// between the atlases, and cost fewer receiver texels.
+#include "radiosity/gpu/two_level_solve.h"
+
+#include <gtest/gtest.h>
+
+#include "core/quads.h"
+#include "tests/radiosity/test_scenes.h"
+
+namespace cpgi {
+namespace {
+
+using testing::addClosedBox;
+using testing::addMaterial;
+using testing::addRect;
+
+// Two 3 × 3 × 2.5 m rooms along x (z up), joined by a 1 × 2 m door in a zero-thickness partition at
+// x = 3; a 0.6 m lamp 1 cm under the first room's ceiling. The second room is lit only through the door.
+Scene twoRooms() {
+  Scene s;
+  const uint32_t grey = addMaterial(s, glm::vec3(0.6f));
+  const uint32_t lamp = addMaterial(s, glm::vec3(0.0f), glm::vec3(50.0f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(6.0f, 3.0f, 2.5f), grey);
+  // The partition's pieces round the door (y 1..2, z 0..2), each with a face into either room.
+  auto piece = [&](glm::vec3 o, glm::vec3 u, glm::vec3 v) {
+    addRect(s, o, v, u, grey);  // faces −x
+    addRect(s, o, u, v, grey);  // faces +x
+  };
+  piece({3, 0, 0}, {0, 1, 0}, {0, 0, 2.5f});
+  piece({3, 2, 0}, {0, 1, 0}, {0, 0, 2.5f});
+  piece({3, 1, 2}, {0, 1, 0}, {0, 0, 0.5f});
+  addRect(s, {1.2f, 1.2f, 2.49f}, {0, 0.6f, 0}, {0.6f, 0, 0}, lamp);
+  return s;
+}
+
+// Area-weighted mean radiosity (R + G + B) of each room's non-emitting texels: x < 3, and x > 3 (the
+// partition's faces by their normals).
+std::array<double, 2> roomMeans(const LightmapAtlas& atlas, const std::vector<glm::vec3>& b) {
+  std::array<double, 2> sum{}, area{};
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0 || atlas.emission[t] != glm::vec3(0.0f)) continue;
+    const glm::vec3 x = atlas.position[t] + 0.01f * atlas.normal[t];
+    const int room = x.x < 3.0f ? 0 : 1;
+    sum[room] += double(b[t].r + b[t].g + b[t].b) * atlas.area[t];
+    area[room] += atlas.area[t];
+  }
+  return {sum[0] / area[0], sum[1] / area[1]};
+}
+
+TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
+  const Scene scene = twoRooms();
+  Context ctx;
+  EglContext gl(ctx);
+  const QuadSet quads = findQuads(scene);
+  const AtlasParams output{.density = 8.0f};
+  const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);
+  SolverParams params;
+  const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
+  TwoLevelData levels;
+  const SolveResult two = solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f},
+                                        params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
+  const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
+  EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
+  EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
+  // Fewer texels for the interreflection: 4 against 8 texels a metre, but the ceiling, with the lamp 1 cm
+  // in front of it, at the output's 8.
+  EXPECT_EQ(levels.lampShots, 1);
+  EXPECT_GE(levels.refinedTriangles, 1u);  // a triangle of the ceiling quad: its chart takes the finer
+  EXPECT_LT(levels.solveTexels * 3, atlas.validTexels() * 2);
+  // The ceiling behind the lamp, shaded from every bounce by it: as dark as at the output's resolution
+  // (the coarse texels smeared the light around it 2 texels in, 40 × the light there on openings).
+  auto behindLamp = [&](const std::vector<glm::vec3>& b) {
+    double sum = 0.0, area = 0.0;
+    for (size_t t = 0; t < atlas.texelCount(); ++t) {
+      const glm::vec3 x = atlas.position[t];
+      if (atlas.patch[t] < 0 || x.z < 2.495f || std::abs(x.x - 1.5f) > 0.25f || std::abs(x.y - 1.5f) > 0.25f)
+        continue;
+      sum += double(b[t].r) * atlas.area[t];
+      area += atlas.area[t];
+    }
+    return sum / area;
+  };
+  const double around = roomMeans(atlas, single.radiosity)[0] / 3.0;
+  EXPECT_NEAR(behindLamp(two.radiosity), behindLamp(single.radiosity), 0.05 * around);
+
+  // Nothing made up or lost between the atlases: one closed scene's books, as a one-level solve's.
+  const EnergyTotals& e = two.energy;
+  EXPECT_NEAR(e.emitted, single.energy.emitted, 1e-4 * e.emitted);
+  EXPECT_LE(e.created, 1e-4 * e.emitted);
+  EXPECT_LT(std::abs(e.escaped()), 0.01 * e.emitted);
+  EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
+  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  ASSERT_EQ(two.residual.size(), atlas.texelCount());
+}
+
+}  // namespace
+}  // namespace cpgi

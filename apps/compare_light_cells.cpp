@@ -24,8 +24,13 @@ std::vector<std::string> readCellNames(const std::string& dir) {
   return names;
 }
 
+namespace {
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
 nlohmann::json cellsJson(const std::vector<CellError>& cells) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json out = nlohmann::json::array();
   for (const CellError& c : cells)
     out.push_back({{"name", c.name},
@@ -35,6 +40,16 @@ nlohmann::json cellsJson(const std::vector<CellError>& cells) {
                    {"rel_rmse", number(c.relRmse)},
                    {"rel_rmse_without_noise", number(c.relRmseWithoutNoise)},
                    {"reference_noise", number(c.referenceNoise)}});
+  return out;
+}
+
+nlohmann::json cellNoiseJson(const std::vector<CellNoise>& cells) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const CellNoise& c : cells)
+    out.push_back({{"name", c.name},
+                   {"texels", c.texels},
+                   {"mean_noise", number(c.meanNoise)},
+                   {"texel_noise", number(c.texelNoise)}});
   return out;
 }
 

@@ -21,6 +21,9 @@ std::vector<std::string> readCellNames(const std::string& dir);
 /// "cells": [{name, texels, ratio_of_means, ratio_error, rel_rmse, reference_noise}], NaN as null.
 nlohmann::json cellsJson(const std::vector<CellError>& cells);
 
+/// A reference's "cells_noise": [{name, texels, mean_noise, texel_noise}], NaN as null.
+nlohmann::json cellNoiseJson(const std::vector<CellNoise>& cells);
+
 /// One line per cell, the worst marked, for compare-light's text output.
 void printCells(const std::vector<CellError>& cells);
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cell_source.h"
+#include "apps/compare_light_cells.h"
 #include "apps/commands.h"
 #include "apps/lightmap_report.h"
 #include "apps/options.h"
@@ -128,18 +129,6 @@ struct ReferenceFigures {
   int baseSpp = 0;  ///< paths on every traced texel (--spp rounded up to whole batches)
   int maxSpp = 0;   ///< paths on the most traced texel
 };
-
-// Each cell's noise, as report.json's "cells_noise"; null where a cell has no lit traced texel.
-nlohmann::json cellNoiseJson(const std::vector<CellNoise>& cells) {
-  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-  nlohmann::json out = nlohmann::json::array();
-  for (const CellNoise& c : cells)
-    out.push_back({{"name", c.name},
-                   {"texels", c.texels},
-                   {"mean_noise", number(c.meanNoise)},
-                   {"texel_noise", number(c.texelNoise)}});
-  return out;
-}
 
 // The noisiest cell's mean, or nullopt when no cell has a figure.
 std::optional<size_t> noisiestCell(const std::vector<CellNoise>& cells) {

@@ -26,7 +26,9 @@ std::vector<std::string> readCellNames(const std::string& dir) {
 
 namespace {
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 }  // namespace
 
@@ -63,8 +65,8 @@ void printCells(const std::vector<CellError>& cells) {
       continue;
     }
     std::printf("  %-24s %7.4f +- %.4f  %8.3f%%  %8.3f%%  %8.3f%%  %6zu%s\n", e.name.c_str(), e.ratioOfMeans,
-                e.ratioError, 100.0 * e.relRmse, 100.0 * e.referenceNoise, 100.0 * e.relRmseWithoutNoise, e.texels,
-                worst && *worst == c ? "  <- worst" : "");
+                e.ratioError, 100.0 * e.relRmse, 100.0 * e.referenceNoise, 100.0 * e.relRmseWithoutNoise,
+                e.texels, worst && *worst == c ? "  <- worst" : "");
   }
 }
 

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cell_source.h"
-#include "apps/compare_light_cells.h"
 #include "apps/commands.h"
+#include "apps/compare_light_cells.h"
 #include "apps/lightmap_report.h"
 #include "apps/options.h"
 #include "apps/report_page.h"
@@ -44,7 +44,7 @@ struct ReferenceOptions {
   bool texelsGiven = false;
   bool maxBouncesGiven = false;  ///< --max-bounces: the user bounded the paths, light past them left out
   CellNoiseTarget cellNoise;     ///< --cell-noise, --max-spp
-  LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
+  LoadOptions load;              ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;
   ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
@@ -134,7 +134,8 @@ struct ReferenceFigures {
 std::optional<size_t> noisiestCell(const std::vector<CellNoise>& cells) {
   std::optional<size_t> worst;
   for (size_t c = 0; c < cells.size(); ++c)
-    if (std::isfinite(cells[c].meanNoise) && (!worst || cells[c].meanNoise > cells[*worst].meanNoise)) worst = c;
+    if (std::isfinite(cells[c].meanNoise) && (!worst || cells[c].meanNoise > cells[*worst].meanNoise))
+      worst = c;
   return worst;
 }
 

@@ -60,11 +60,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
                           const SolverParams& settings, const EglContext& gl, Context& ctx,
                           const SolveControls& controls, TwoLevelData* data) {
   const auto start = std::chrono::steady_clock::now();
-  SolveResult lit = shootLamps(scene, atlas, settings, gl, ctx, controls);
-  const double lampSeconds = seconds(start);
-
-  // Step 2: the coarse atlas, lit by the lamps' light averaged over its texels, its own emission left out
-  // (the lamps have shot): the solve starts after that first shot, with the emitted power of the lamps.
+  // The coarse atlas: its own emission is left out below (the lamps shoot on the output's).
   AtlasParams coarseParams = atlasParams;
   coarseParams.texelsPerQuad = 0;
   coarseParams.density = levels.solveDensity;
@@ -75,7 +71,18 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
     for (float d : coarseParams.triangleDensity) refined += d > levels.solveDensity;
   }
   LightmapAtlas coarse = buildAtlas(scene, quads, coarseParams, ctx);
+  if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
+    SolveResult one = solveProgressive(scene, atlas, settings, gl, ctx, controls);
+    if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds};
+    return one;
+  }
   const AtlasMapping mapping = mapAtlas(atlas, coarse);
+  const auto lampStart = std::chrono::steady_clock::now();
+  SolveResult lit = shootLamps(scene, atlas, settings, gl, ctx, controls);
+  const double lampSeconds = seconds(lampStart);
+
+  // Step 2: the coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that
+  // first shot, with the emitted power of the lamps.
   std::fill(coarse.emission.begin(), coarse.emission.end(), glm::vec3(0.0f));
   const std::vector<glm::vec3> direct = downsample(mapping, atlas, coarse, lit.incident);
   const PriorShot prior{.irradiance = direct, .emitted = lit.energy.emitted};

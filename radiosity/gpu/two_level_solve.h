@@ -35,7 +35,8 @@ struct TwoLevelData {
 /// Solves `atlas` (the output's, built with `atlasParams` from `quads`) in two levels. The result is over
 /// the output atlas: radiosity, and with controls.readTransfer the incident and residual (the coarse
 /// solve's, interpolated); energy is the whole solve's (emitted, shot, received, absorbed, unshot as one
-/// solve's would be); shots count both levels. `data` receives the levels' figures when not null.
+/// solve's would be); shots count both levels. Where the coarse atlas would hold as many texels as the
+/// output's, it is one solve on the output's (data: solveTexels = its texels, no lamp shots counted). `data` receives the levels' figures when not null.
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
                           const SolverParams& settings, const EglContext& gl, Context& ctx,

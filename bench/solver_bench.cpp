@@ -1,7 +1,7 @@
 // Times the GPU solver on the seed scenes (design.md §4) for every resolution and visibility mode and
 // prints one line per run: seconds (setup + shots + read back), shots, texels, unshot fraction,
 // energy escaped. Usage: cpgi_solver_bench [--scenes 1,2,3] [--res 16,32,64,128,0] [--vis hemicube,hemisphere]
-//   [--unshot F] [--max-shots N] [--item-buffer N]   (res 0 = the default density of 10 texels/m)
+//   [--unshot F] [--max-shots N] [--item-buffer N]   (res 0 = the default density of 10 texels/m, dT = T texels/m)
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -54,7 +54,11 @@ int main(int argc, char** argv) {
     const cpgi::QuadSet quads = cpgi::findQuads(seed.scene);
     for (const std::string& r : resolutions) {
       cpgi::AtlasParams ap;
-      ap.texelsPerQuad = std::atoi(r.c_str());
+      // "dT": a density of T texels per metre instead of texels per quad.
+      if (!r.empty() && r[0] == 'd')
+        ap.density = float(std::atof(r.c_str() + 1));
+      else
+        ap.texelsPerQuad = std::atoi(r.c_str());
       const cpgi::LightmapAtlas atlas = cpgi::buildAtlas(seed.scene, quads, ap, ctx);
       for (const std::string& m : modes) {
         cpgi::SolverParams p = base;
@@ -63,7 +67,7 @@ int main(int argc, char** argv) {
         const cpgi::SolveResult res = cpgi::solveProgressive(seed.scene, atlas, p, gl, run);
         const double shotSeconds = res.seconds - res.setupSeconds;
         std::printf("seed%s\t%s\t%s\t%zu\t%dx%d\t%d\t%.4f\t%.4f\t%.2f\t%.2f\t%.1f\n", s.c_str(),
-                    r == "0" ? "density10" : (r + "^2").c_str(), m.c_str(), atlas.validTexels(), atlas.width,
+                    r == "0" ? "density10" : r[0] == 'd' ? ("density" + r.substr(1)).c_str() : (r + "^2").c_str(), m.c_str(), atlas.validTexels(), atlas.width,
                     atlas.height, res.shots, res.unshotFraction,
                     res.energy.emitted > 0 ? res.energy.escaped() / res.energy.emitted : 0.0, res.setupSeconds,
                     res.seconds, res.shots ? 1000.0 * shotSeconds / res.shots : 0.0);

@@ -13,6 +13,7 @@
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/sky_light.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
@@ -814,8 +815,10 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.deadline = controls.deadline;
   // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver).
   DirectLight direct;
-  if (!scene.lights.empty()) {
-    direct = shootPunctualLights(scene.lights, RayScene(scene), atlas, ctx);
+  if (!scene.lights.empty() || scene.sky.lights()) {  // and the sky's (core/sky.h), gathered the same way
+    const RayScene rays(scene);
+    direct = shootPunctualLights(scene.lights, rays, atlas, ctx);
+    addSkyLight(scene.sky, rays, atlas, direct, ctx);
     config.direct = &direct;
   }
   const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());

@@ -47,10 +47,13 @@ TEST(SkyBake, BoxUnderAUniformSkyAgainstTheReference) {
   const test::CommandRun cmp = cpgi(dir, "compare-light '" + dir / "bake" + "' '" + dir / "ref" + "' --json");
   ASSERT_EQ(cmp.status, 0) << cmp.err;
   const nlohmann::json c = nlohmann::json::parse(cmp.out);
-  std::printf("box under a uniform sky: rel_rmse %.4f, rel_mean_error %+.4f\n", c["rel_rmse"].get<double>(),
-              c["rel_mean_error"].get<double>());
-  EXPECT_LT(std::abs(c["rel_mean_error"].get<double>()), 0.03);
-  EXPECT_LT(c["rel_rmse"].get<double>(), 0.15);
+  // The box's room (the automatic decomposition's): its mean, and its RMSE with the reference's own
+  // noise (28 % per texel at 64 paths) taken out. Measured: ratio 1.011, 0.089 without noise.
+  const nlohmann::json& room = c["cells"][0];
+  std::printf("box under a uniform sky: ratio of means %.4f, rel_rmse without noise %.4f\n",
+              room["ratio_of_means"].get<double>(), room["rel_rmse_without_noise"].get<double>());
+  EXPECT_NEAR(room["ratio_of_means"].get<double>(), 1.0, 0.03);
+  EXPECT_LT(room["rel_rmse_without_noise"].get<double>(), 0.15);
 }
 
 TEST(SkyBake, BadSkyValuesFailWithOneLine) {

@@ -444,12 +444,11 @@ void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool 
 }
 
 void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {
-  auto* kind = addChoice(cmd, flag("sky"), sky.kind,
-                         {{"none", Sky::Kind::None},
-                          {"uniform", Sky::Kind::Uniform},
-                          {"cie-overcast", Sky::Kind::CieOvercast}},
-                         "The sky around the scene, seen through its openings: none (black), uniform, or "
-                         "cie-overcast (radiance Lz (1 + 2 cos theta)/3); Y is up");
+  auto* kind = addChoice(
+      cmd, flag("sky"), sky.kind,
+      {{"none", Sky::Kind::None}, {"uniform", Sky::Kind::Uniform}, {"cie-overcast", Sky::Kind::CieOvercast}},
+      "The sky around the scene, seen through its openings: none (black), uniform, or "
+      "cie-overcast (radiance Lz (1 + 2 cos theta)/3); Y is up");
   // Optional values: the library tells "not given" from 0 (a default irradiance, or a zenith radiance).
   auto optionalNumber = [&cmd, kind](std::string_view parameter, std::optional<float>& field,
                                      const std::string& text) {
@@ -488,8 +487,9 @@ void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {
            }
            const std::optional<std::vector<float>> v = parseNumberList(text);
            if (!v || v->size() != 1 || !((*v)[0] >= 0.0f && (*v)[0] <= 1.0f))
-             throw CLI::ValidationError(flag("ground albedo") + ": must be an albedo in [0, 1] or none, got '" +
-                                        printable(text) + "'");
+             throw CLI::ValidationError(flag("ground albedo") +
+                                        ": must be an albedo in [0, 1] or none, got '" + printable(text) +
+                                        "'");
            sky.groundAlbedo = (*v)[0];
          },
          "A or none: the albedo of the ground at infinity below the horizon, lit by the sky and the sun "

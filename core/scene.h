@@ -80,7 +80,8 @@ struct Scene {
   Bounds bounds() const;
   /// Total emitted power, W per channel: Σ emission × area over emissive triangles.
   glm::vec3 emittedPower() const;
-  /// Whether anything lights the scene: an emissive triangle, a punctual light with some intensity, or the sky.
+  /// Whether anything lights the scene: an emissive triangle, a punctual light with some intensity, or the
+  /// sky.
   bool hasLight() const;
 };
 

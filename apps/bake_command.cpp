@@ -67,6 +67,7 @@ struct BakeOptions {
   bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
   LoadOptions load;                   ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;             ///< go on when nothing lights the scene
+  SkyRequest sky;                     ///< --sky, --sun, --ground (core/sky.h); none by default
   ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
   bool maxShotsGiven = false;  ///< --max-shots on the command line (else the solver's default bound)
@@ -157,6 +158,7 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
     auto t = ctx.time("load");
     in.loaded = loadScene(o.scene, o.load);
   }
+  applySky(o.sky, in.loaded.scene);
   requireLight(in.loaded, o.scene, o.allowDark);
   for (const std::string& w : in.loaded.warnings) ctx.warn(w);
   if (o.method == "cells") {
@@ -349,6 +351,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["renderer"] = gl.renderer();
   report["gl_version"] = gl.version();
   report["egl_platform"] = gl.platform();
+  report["sky"] = skyReport(in.loaded.scene);
   report["energy"] = energyReport(s.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   // A bake stopped by --time-limit is valid but partial: what it left unshot is in energy.unshot_w (and
@@ -590,6 +593,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addViewOptions(*sub, o->views);
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);
+  addSkyOptions(*sub, o->sky, true);
   addTimeLimitOption(*sub, o->timeLimit);
   addSolveDensityOption(*sub, o->solveDensity);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");

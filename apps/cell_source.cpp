@@ -42,11 +42,13 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
   decomp::DecomposeParams p = params;
   p.sourceName = scenePath;
-  // The decomposition splits triangles: the scene becomes the split one, with the same lights.
+  // The decomposition splits triangles: the scene becomes the split one, with the same lights and sky.
   auto takeDecomposition = [&](decomp::Decomposition d) {
     std::vector<PunctualLight> lights = std::move(loaded.scene.lights);
+    const Sky sky = loaded.scene.sky;
     loaded.scene = std::move(d.scene);
     loaded.scene.lights = std::move(lights);
+    loaded.scene.sky = sky;
     return std::move(d.graph);
   };
   if (source == "auto") {

@@ -40,4 +40,21 @@ void writeReport(OutputDir& out, const nlohmann::json& report) {
   writeFileAtomically(out.file("report.json"), report.dump(2) + "\n");
 }
 
+nlohmann::json skyReport(const Scene& scene) {
+  const Sky& sky = scene.sky;
+  nlohmann::json sun = nullptr;
+  for (const PunctualLight& l : scene.lights)
+    if (l.kind == PunctualLight::Kind::Directional && l.name == "sun") {
+      const glm::vec3 towards = -l.direction;
+      sun = {{"towards", {towards.x, towards.y, towards.z}}, {"irradiance_w_m2", l.intensity.g}};
+    }
+  if (!sky.lights() && sun.is_null()) return nullptr;
+  return {{"kind", skyKindName(sky.kind)},
+          {"zenith_radiance_w_m2_sr", sky.zenithRadiance},
+          {"horizontal_irradiance_w_m2", horizontalIrradiance(sky.kind, sky.zenithRadiance)},
+          {"ground_radiance_w_m2_sr", sky.groundRadiance},
+          {"gather_rays", sky.gatherRays},
+          {"sun", sun}};
+}
+
 }  // namespace cpgi::cli

@@ -11,6 +11,7 @@
 
 #include "core/context.h"
 #include "core/output_dir.h"
+#include "core/scene.h"
 #include "radiosity/gpu/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
@@ -41,6 +42,11 @@ nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx);
 /// report.json's "energy" of a solve (W over R, G, B): emitted, shot, received, absorbed, unshot, escaped,
 /// created (light a shot made up beyond its power; non-zero is a defect) and worst_shot_gain.
 nlohmann::json energyReport(const EnergyTotals& e);
+
+/// report.json's "sky": null without one, else its kind, zenith radiance and horizontal irradiance,
+/// the ground's radiance, the bake's gather rays and the sun (the directional light named "sun", or null):
+/// the light the scene's surroundings gave, so a bake and a reference can be checked to share it.
+nlohmann::json skyReport(const Scene& scene);
 
 /// The names of a bake's or a reference's result set (OutputDir's resultNames): those of an earlier run
 /// that a new one does not write (views of other cameras, a sampled reference's missing baked.glb) go

@@ -49,6 +49,13 @@ constexpr ParameterFlag kFlags[] = {
     // Bake only: stop the solve at a wall-clock limit, writing a partial result
     {"time limit", "--time-limit"},
     {"solve density", "--solve-density"},
+    // The sky, sun and ground of an open scene (core/sky.h), bake and reference
+    {"sky", "--sky"},
+    {"sky irradiance", "--sky-irradiance"},
+    {"sky zenith", "--sky-zenith"},
+    {"sun", "--sun"},
+    {"ground albedo", "--ground"},
+    {"sky rays", "--sky-rays"},
     // Views (radiosity/lightmap/views.h)
     {"view size", "--view-size"},
     // compare-light's page (core/html_report/html_report.h)
@@ -453,6 +460,63 @@ void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool 
   throw InputError(scenePath,
                    "no light in the scene (no emissive material, no KHR_lights_punctual light); light a "
                    "material with `emit` MATERIAL=W/m2, or pass `dark` for a black result");
+}
+
+void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {
+  auto* kind = addChoice(
+      cmd, flag("sky"), sky.kind,
+      {{"none", Sky::Kind::None}, {"uniform", Sky::Kind::Uniform}, {"cie-overcast", Sky::Kind::CieOvercast}},
+      "The sky around the scene, seen through its openings: none (black), uniform, or "
+      "cie-overcast (radiance Lz (1 + 2 cos theta)/3); Y is up");
+  // Optional values: the library tells "not given" from 0 (a default irradiance, or a zenith radiance).
+  auto optionalNumber = [&cmd, kind](std::string_view parameter, std::optional<float>& field,
+                                     const std::string& text) {
+    return cmd
+        .add_option_function<float>(
+            flag(parameter), [&field](float v) { field = v; }, text)
+        ->check(kFinite)
+        ->check(within(0.0, 1e12))
+        ->needs(kind);
+  };
+  auto* irradiance =
+      optionalNumber("sky irradiance", sky.horizontalIrradiance,
+                     "The sky's irradiance on an open horizontal plane, W/m2 (default 15, about 10,000 lux "
+                     "at 683 lm/W)");
+  optionalNumber("sky zenith", sky.zenithRadiance, "The sky's radiance at the zenith, W/(m2 sr)")
+      ->excludes(irradiance);
+  cmd.add_option_function<std::string>(
+      flag("sun"),
+      [&sky](const std::string& text) {
+        const std::optional<std::vector<float>> v = parseNumberList(text);
+        if (!v || v->size() != 4)
+          throw CLI::ValidationError(flag("sun") + ": '" + printable(text) +
+                                     "' is not X,Y,Z,E (the direction towards the sun, Y up, and its "
+                                     "irradiance in W/m2 on a plane facing it)");
+        sky.towardsSun = glm::vec3((*v)[0], (*v)[1], (*v)[2]);
+        sky.sunIrradiance = (*v)[3];
+      },
+      "X,Y,Z,E: a sun in the direction X,Y,Z (towards it, Y up) giving E W/m2 on a plane facing it, as a "
+      "directional light named sun");
+  cmd.add_option_function<std::string>(
+         flag("ground albedo"),
+         [&sky](const std::string& text) {
+           if (text == "none") {
+             sky.groundAlbedo.reset();
+             return;
+           }
+           const std::optional<std::vector<float>> v = parseNumberList(text);
+           if (!v || v->size() != 1 || !((*v)[0] >= 0.0f && (*v)[0] <= 1.0f))
+             throw CLI::ValidationError(flag("ground albedo") +
+                                        ": must be an albedo in [0, 1] or none, got '" + printable(text) +
+                                        "'");
+           sky.groundAlbedo = (*v)[0];
+         },
+         "A or none: the albedo of the ground at infinity below the horizon, lit by the sky and the sun "
+         "(the scene's own ground, if it has one, hides it)")
+      ->default_str("0.2");
+  if (gatherRays)
+    addChecked(cmd, OptionScope{}, "sky rays", sky.gatherRays,
+               "Directions per texel the first shot gathers the sky and ground from", within(1, 65536));
 }
 
 }  // namespace cpgi::cli

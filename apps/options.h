@@ -68,6 +68,12 @@ void addDarkOption(CLI::App& cmd, bool& allowDark);
 /// Throws InputError(scenePath, ...) naming --emit and --allow-dark when nothing lights the scene, unless
 /// allowDark.
 void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark);
+/// --sky none|uniform|cie-overcast, --sky-irradiance W/m2 | --sky-zenith W/(m2 sr), --sun X,Y,Z,E,
+/// --ground A|none (core/sky.h), and with `gatherRays` (bake) --sky-rays N. Values are checked as they are
+/// parsed; makeSky's own rules when core/sky.h's applySky puts them on the scene (bake and reference
+/// alike, so that both model the same light).
+void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays);
+
 /// --view-size WxH (or W×H) of the view-*.png / .exr pictures: width and height in [16, 8192]; without it
 /// 640 wide at the camera's aspect. A bad size fails at parsing, before any work.
 void addViewOptions(CLI::App& cmd, ViewParams& views);

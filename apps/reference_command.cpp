@@ -45,6 +45,7 @@ struct ReferenceOptions {
   bool maxBouncesGiven = false;  ///< --max-bounces: the user bounded the paths, light past them left out
   CellNoiseTarget cellNoise;     ///< --cell-noise, --max-spp
   LoadOptions load;              ///< --strict, --allow-outside-files, --emit, --albedo
+  SkyRequest sky;                ///< --sky, --sun, --ground: the same light as the bake's (core/sky.h)
   bool allowDark = false;
   ViewParams views;  ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
@@ -161,6 +162,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
   report["texels_per_quad"] = o.atlas.texelsPerQuad;
   report["density"] = o.atlas.texelsPerQuad > 0 ? 0.0f : o.atlas.density;
   report["spp"] = f.baseSpp;
+  report["sky"] = skyReport(loaded.scene);
   report["seed"] = o.trace.seed;
   report["max_bounces"] = o.trace.maxBounces;
   report["rays"] = result.rays;
@@ -199,7 +201,8 @@ int runReference(const ReferenceOptions& o) {
                                      std::to_string(o.texels));
   Context ctx;
   ctx.setProgress(stderrProgress(o.quiet));
-  const LoadedScene loaded = loadScene(o.scene, o.load);
+  LoadedScene loaded = loadScene(o.scene, o.load);
+  applySky(o.sky, loaded.scene);
   requireLight(loaded, o.scene, o.allowDark);
   for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
   const Scene& scene = loaded.scene;
@@ -282,6 +285,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   addViewOptions(*cmd, opts->views);
   addLoadOptions(*cmd, opts->load);
   addDarkOption(*cmd, opts->allowDark);
+  addSkyOptions(*cmd, opts->sky, false);
   cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
   cmd->callback([opts, texels, maxBounces, &selected] {
     opts->texelsGiven = texels->count() > 0;

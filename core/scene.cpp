@@ -27,6 +27,7 @@ glm::vec3 Scene::emittedPower() const {
 }
 
 bool Scene::hasLight() const {
+  if (sky.lights()) return true;
   const glm::vec3 p = emittedPower();
   if (p.r + p.g + p.b > 0.0f) return true;
   for (const PunctualLight& l : lights)

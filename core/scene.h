@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/sky.h"
+
 namespace cpgi {
 
 /// A diffuse material. Units follow design.md §3.
@@ -73,11 +75,13 @@ struct Scene {
   std::vector<std::string> nodePaths;
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;  ///< KHR_lights_punctual point, spot and directional lights
+  Sky sky;  ///< the surroundings' light (core/sky.h): none unless a command is asked for one (--sky)
 
   Bounds bounds() const;
   /// Total emitted power, W per channel: Σ emission × area over emissive triangles.
   glm::vec3 emittedPower() const;
-  /// Whether anything lights the scene: an emissive triangle or a punctual light with some intensity.
+  /// Whether anything lights the scene: an emissive triangle, a punctual light with some intensity, or the
+  /// sky.
   bool hasLight() const;
 };
 

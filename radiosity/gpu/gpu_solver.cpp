@@ -13,6 +13,7 @@
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/sky_light.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
@@ -823,8 +824,8 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
     direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
     config.direct = &direct;
     config.directEmitted = controls.priorShot->emitted;
-  } else if (!scene.lights.empty()) {
-    direct = shootPunctualLights(scene.lights, RayScene(scene), atlas, ctx);
+  } else if (!scene.lights.empty() || scene.sky.lights()) {  // and the sky's (core/sky.h), gathered the same way
+    direct = shootPunctualAndSky(scene, atlas, ctx);
     config.direct = &direct;
     config.directEmitted = punctualEmitted(scene.lights, direct.directionalLanded);
   }

@@ -6,6 +6,7 @@
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/direct_light.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/sky_light.h"
 
 namespace cpgi {
 
@@ -26,9 +27,9 @@ int emitterPatches(const LightmapAtlas& atlas) {
 SolveResult shootLamps(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                        const EglContext& gl, Context& ctx, const SolveControls& controls) {
   const int emitters = emitterPatches(atlas);
-  if (emitters == 0) {  // punctual lights only: their exact shot is the whole first step
+  if (emitters == 0) {  // punctual lights and sky only: their exact shot is the whole first step
     SolveResult r;
-    const DirectLight d = shootPunctualLights(scene.lights, RayScene(scene), atlas, ctx);
+    const DirectLight d = shootPunctualAndSky(scene, atlas, ctx);
     r.incident = d.irradiance;
     r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
     r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));

@@ -20,7 +20,9 @@ namespace cpgi {
 struct DirectLight {
   std::vector<glm::vec3> irradiance;  ///< per atlas texel, W/m²; 0 on padding and skipped patches
   double landed = 0.0;                ///< Σ irradiance × area, W summed over R, G, B
-  double directionalLanded = 0.0;     ///< the part of `landed` from directional lights
+  /// The part of `landed` from sources at infinity, directional lights and the sky (sky_light.h), whose
+  /// power is what the scene intercepts.
+  double directionalLanded = 0.0;
 };
 
 /// The lights' direct irradiance at every valid texel of `atlas`, occluded by `occluders` (build it from

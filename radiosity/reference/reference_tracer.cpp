@@ -239,6 +239,7 @@ class PathTracer {
     glm::vec3 sum(0.0f);
     glm::vec3 x = point.position;
     glm::vec3 n = point.normal;
+    const bool sky = scene_.sky.lights();
     for (int bounce = 0; bounce < params_.maxBounces; ++bounce) {
       const glm::vec3 origin = x + offset_ * n;
       FirstVertexSamples u = first;
@@ -252,7 +253,12 @@ class PathTracer {
       const glm::vec3 dir = sampleCosine(n, u.direction[0], u.direction[1]);
       ++rayCount;
       const RayScene::Hit hit = rays_.intersect(origin, dir);
-      if (!hit) break;
+      if (!hit) {
+        // The path leaves the scene: the sky or the ground at infinity (core/sky.h) lights it. No other
+        // strategy samples the sky, so the cosine-sampled direction's estimate of H is π·L, unweighted.
+        if (sky) sum += throughput * (kPi * skyRadiance(scene_.sky, dir));
+        break;
+      }
       const auto t = static_cast<size_t>(hit.triangle);
       const glm::vec3& ny = surfaces_.normal[t];
       const float cosY = -glm::dot(ny, dir);

@@ -4,7 +4,8 @@
 // cosine-weighted hemisphere sampling, next-event estimation to emissive triangles by area sampling,
 // combined with the BSDF-sampled emitter hits by multiple importance sampling (Veach's power heuristic),
 // next-event estimation to the punctual lights (core/lights.h; a shadow ray each, since no bounce can hit
-// a point), Russian roulette after a few bounces. Surfaces are one-sided like the solver's patches: a ray that
+// a point), Russian roulette after a few bounces, and the sky and ground at infinity
+// (Scene::sky, core/sky.h) where a path leaves the scene. Surfaces are one-sided like the solver's patches: a ray that
 // reaches a triangle's back face sees black.
 #pragma once
 

@@ -1,0 +1,34 @@
+// The sky's share of the first shot (core/sky.h): the irradiance the sky dome and the ground at infinity
+// give every texel, gathered with Embree rays in the texel's cosine-weighted hemisphere, added to the
+// punctual lights' DirectLight. The solver then starts from ρE as unshot radiosity like any first shot
+// (radiosity/gpu/gpu_solver.h); cell by cell, the first shot over the whole scene puts into each room
+// the sky it sees through its openings (radiosity/cells/cell_first_shot.h).
+//
+// Why a gather and not emitter geometry: a dome of patches far outside the scene would shoot through
+// item buffers in which the building is a few pixels across, and the light through a window would hinge
+// on those pixels; a texel's hemisphere, by contrast, sees a window at its true solid angle. The sky is an
+// infinite source, so its power is what the scene intercepts (as a directional light's): every W landed
+// counts as emitted, and what the surfaces reflect back out of the scene is escaped.
+#pragma once
+
+#include "core/context.h"
+#include "core/sky.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/ray_scene.h"
+
+namespace cpgi {
+
+/// Adds the sky's irradiance at every valid texel of `atlas` to `direct` (irradiance, landed and
+/// directionalLanded, since an infinite source emits what lands), occluded by `occluders` (the whole
+/// scene). `sky.gatherRays` directions per texel, a randomly shifted low-discrepancy set (Roberts' R2) per
+/// texel seeded by its index, so the result is the same for every run and thread count. A texel whose
+/// hemisphere is closed (inside a closed building) gets exactly 0. Does nothing when !sky.lights().
+void addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct,
+                 Context& ctx);
+
+/// The whole first shot made on the CPU: the scene's punctual lights (direct_light.h) and its sky, over
+/// a ray scene of all its triangles.
+DirectLight shootPunctualAndSky(const Scene& scene, const LightmapAtlas& atlas, Context& ctx);
+
+}  // namespace cpgi

@@ -1,0 +1,107 @@
+// The sky's first shot (radiosity/lightmap/sky_light.h) against closed forms: an open floor under a
+// uniform sky gets π Lz, under a CIE overcast one 7π Lz / 9; through a hole in a ceiling, π Lz F with F
+// the point-to-square form factor (Lambert's contour formula, inline here: the lightmap library's tests do
+// not link the metrics); a closed box, and the closed seed scene's rooms, get none.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "core/quads.h"
+#include "radiosity/lightmap/sky_light.h"
+#include "scenes/seed_scenes.h"
+#include "tests/radiosity/test_scenes.h"
+#include "tests/radiosity/test_sky_scenes.h"
+
+namespace cpgi {
+namespace {
+
+using testing::addClosedBox;
+using testing::addMaterial;
+using testing::addRect;
+
+constexpr double kPi = std::numbers::pi;
+
+LightmapAtlas atlasOf(const Scene& s, float density) {
+  Context ctx;
+  AtlasParams p;
+  p.density = density;
+  return buildAtlas(s, findQuads(s), p, ctx);
+}
+
+DirectLight gather(const Scene& s, const LightmapAtlas& atlas) {
+  Context ctx;
+  DirectLight d;
+  addSkyLight(s.sky, RayScene(s), atlas, d, ctx);
+  return d;
+}
+
+Sky skyOf(Sky::Kind kind, float zenith, float ground = 0.0f) {
+  Sky sky;
+  sky.kind = kind, sky.zenithRadiance = zenith, sky.groundRadiance = ground;
+  return sky;
+}
+
+// F(point → square above it, facing it): Lambert's contour formula for a receiver of normal +y.
+double formFactorUp(const glm::dvec3& x, const std::array<glm::dvec3, 4>& polygon) {
+  double sum = 0.0;
+  for (size_t i = 0; i < 4; ++i) {
+    const glm::dvec3 a = polygon[i] - x, b = polygon[(i + 1) % 4] - x, c = glm::cross(a, b);
+    sum += std::atan2(glm::length(c), glm::dot(a, b)) * c.y / glm::length(c);
+  }
+  return std::abs(sum) / (2.0 * kPi);
+}
+
+TEST(SkyLight, OpenFloorGetsTheWholeSky) {
+  Scene s;
+  addRect(s, {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, addMaterial(s, glm::vec3(0.5f)));
+  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  for (const auto& [kind, irradiance] :
+       {std::pair{Sky::Kind::Uniform, kPi}, {Sky::Kind::CieOvercast, 7.0 * kPi / 9.0}}) {
+    s.sky = skyOf(kind, 2.0f, 5.0f);  // the ground below the horizon: a floor facing up never sees it
+    const DirectLight d = gather(s, atlas);
+    for (size_t i = 0; i < atlas.texelCount(); ++i) {
+      if (atlas.patch[i] >= 0) {
+        EXPECT_NEAR(d.irradiance[i].g, 2.0 * irradiance, 0.01 * 2.0 * irradiance);
+      }
+    }
+    EXPECT_NEAR(d.landed, 3.0 * 4.0 * 2.0 * irradiance, 0.002 * d.landed);
+    EXPECT_EQ(d.directionalLanded, d.landed);  // an infinite source emits what lands
+  }
+}
+
+TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {
+  Scene s = testing::boxOpenToTheSky(0.5f);
+  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
+  s.sky.gatherRays = 1024;
+  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const DirectLight d = gather(s, atlas);
+  double got = 0.0, want = 0.0;
+  testing::forEachTexelOf(atlas, 0, [&](size_t t) {
+    const double exact = kPi * 3.0 * formFactorUp(glm::dvec3(atlas.position[t]), testing::skyHole());
+    EXPECT_NEAR(d.irradiance[t].r, exact, 0.1 * exact + 0.02) << "texel " << t;
+    got += d.irradiance[t].r * atlas.area[t], want += exact * atlas.area[t];
+  });
+  EXPECT_NEAR(got, want, 0.01 * want);
+  for (int ceiling = 10; ceiling < 18; ++ceiling)  // facing down, it sees only the box
+    testing::forEachTexelOf(atlas, ceiling, [&](size_t t) { EXPECT_EQ(d.irradiance[t], glm::vec3(0.0f)); });
+}
+
+TEST(SkyLight, ClosedScenesGetNoneInside) {
+  Scene box;
+  addClosedBox(box, glm::vec3(0.0f), glm::vec3(2.0f), addMaterial(box, glm::vec3(0.5f)));
+  box.sky = skyOf(Sky::Kind::CieOvercast, 4.0f, 1.0f);
+  const DirectLight closed = gather(box, atlasOf(box, 4.0f));
+  EXPECT_EQ(closed.landed, 0.0);
+
+  // seed1's faces all face into its rooms (its walls have no outer faces): none sees the sky.
+  Scene seed = makeSeedScene(1).scene;
+  seed.sky = box.sky;
+  const LightmapAtlas atlas = atlasOf(seed, 4.0f);
+  const DirectLight d = gather(seed, atlas);
+  EXPECT_EQ(d.landed, 0.0);
+  for (const glm::vec3& e : d.irradiance) EXPECT_EQ(e, glm::vec3(0.0f));
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -26,7 +26,7 @@ TEST(VolumeCellsCommand, RoomsGivenAsVolumesBakeCellByCell) {
   r = cpgi(dir, "info '" + scene + "' --json");
   ASSERT_EQ(r.status, 0) << r.err;
   r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene +
-                    "' --voxel 0.1 --density 4 --unshot 0.05 --item-buffer 128 -q");
+                    "' --voxel 0.1 --density 2 --unshot 0.05 --item-buffer 128 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("in no cell"), std::string::npos) << r.err;
   const json report = json::parse(slurp(dir / "cells/report.json"));

@@ -76,6 +76,8 @@ struct BakeOptions {
   std::string plan;
   int jobRound = 0;
   std::string jobCells;
+  std::string jobFirstShot;  ///< emitter groups to shoot, "0,3,4" or "all"
+  bool jobFirstShotSum = false;
   bool gather = false;
   double timeLimit = 0.0;      ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
@@ -385,7 +387,27 @@ std::vector<std::string> bakeArguments() {
   return args;
 }
 
-// --plan DIR: the cell jobs' plan (first shot included), or one round of some cells (`cpgi cell-job`).
+// "0,3,4": the emitter groups a first-shot job shoots.
+std::vector<int> groupIndices(const std::string& list) {
+  std::vector<int> out;
+  std::istringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) {
+    size_t used = 0;
+    int g = -1;
+    try {
+      g = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || g < 0)
+      throw InputError("--first-shot", "not a list of emitter group numbers: " + list);
+    out.push_back(g);
+  }
+  return out;
+}
+
+// --plan DIR: the cell jobs' plan, or (`cpgi cell-job`) the first shot of some emitter groups, its sum, or
+// one round of some cells.
 int runCellJobStage(const BakeOptions& o) {
   Context ctx;
   ctx.setProgress(stderrProgress(o.quiet));
@@ -409,14 +431,32 @@ int runCellJobStage(const BakeOptions& o) {
     return 0;
   }
   buildBakeAtlas(o, in, ctx);
+  if (!o.jobFirstShot.empty()) {
+    const CellJobPlan plan = readCellJobPlan(o.plan);
+    std::vector<int> groups;
+    if (o.jobFirstShot == "all")
+      for (int g = 0; g < int(plan.firstShotGroups.size()); ++g) groups.push_back(g);
+    else
+      groups = groupIndices(o.jobFirstShot);
+    const EglContext gl(ctx);
+    runFirstShotJobs(o.plan, plan, groups, in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
+    if (!o.quiet) std::cout << o.plan << ": first shot of " << groups.size() << " emitter groups done\n";
+    return 0;
+  }
+  if (o.jobFirstShotSum) {
+    const CellJobPlan plan =
+        sumFirstShotJobs(o.plan, readCellJobPlan(o.plan), in.loaded.scene, in.graph, in.atlas, params, ctx);
+    if (!o.quiet)
+      std::cout << o.plan << ": first shot summed; next: cpgi cell-job " << o.plan << " --round 1\n";
+    return 0;
+  }
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
-  const EglContext gl(ctx);
   const CellJobPlan plan =
-      planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), gl, ctx);
+      planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), ctx);
   if (!o.quiet) {
-    std::cout << o.plan << ": plan of " << plan.cells.size()
-              << " cells, first shot done; next: cpgi cell-job " << o.plan << " --round 1\n";
+    std::cout << o.plan << ": plan of " << plan.cells.size() << " cells and " << plan.firstShotGroups.size()
+              << " emitter groups; next: cpgi cell-job " << o.plan << " --first-shot\n";
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
@@ -506,7 +546,8 @@ int runBake(const BakeOptions& o) {
                                ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx, cells)
                                : RoomLabels{};
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
-  const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
+  const ExrChannel texelCells =
+      rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
   BakeFigures f;
   f.cellNames = cellNames(texelGraph);
   f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
@@ -580,11 +621,13 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addOnDemandOptions(*sub, *o);
   sub->add_option(
       "--plan", o->plan,
-      "With --method cells: do not solve; write the cell jobs' plan (the lamps' first shot and "
-      "every cell's light) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
+      "With --method cells: do not solve; write the cell jobs' plan (cells, portals and the lamps' "
+      "emitter groups) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
   // Set by `cpgi cell-job` (apps/cell_job_command.cpp) on the plan's own arguments; not for users.
   sub->add_option("--job-round", o->jobRound)->group("")->check(CLI::Range(1, 1000000));
   sub->add_option("--job-cells", o->jobCells)->group("");
+  sub->add_option("--job-first-shot", o->jobFirstShot)->group("");
+  sub->add_flag("--job-first-shot-sum", o->jobFirstShotSum)->group("");
   sub->add_flag("--gather", o->gather)->group("");
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);

@@ -1,8 +1,9 @@
-// `cpgi cell-job PLAN (--round R [--cell NAME]... | --status [--json] | --gather) [-q]`: the cell jobs of a
-// plan made by `cpgi bake SCENE -o DIR --method cells --plan PLAN` (radiosity/cells/cell_jobs.h,
-// docs/cell-jobs.md). A round or the gather runs the bake command again on the arguments kept in
-// PLAN/plan.json, so a job takes exactly the plan's scene and options; --status reads only the plan's
-// small files and says which round comes next (what a driver such as cpgi-dask waits on).
+// `cpgi cell-job PLAN (--first-shot [--group G]... | --first-shot-sum | --round R [--cell NAME]... |
+// --status [--json] | --gather) [-q]`: the cell jobs of a plan made by `cpgi bake SCENE -o DIR --method
+// cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather runs the bake
+// command again on the arguments kept in PLAN/plan.json, so a job takes exactly the plan's scene and
+// options; --status reads only the plan's small files and says which step comes next (what a driver such
+// as cpgi-dask waits on).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -22,8 +23,16 @@ struct CellJobOptions {
   std::string plan;
   int round = 0;
   std::vector<std::string> cells;
+  std::vector<int> groups;
+  bool firstShot = false, firstShotSum = false;
   bool status = false, json = false, gather = false, quiet = false;
 };
+
+// What a driver runs next: the first shot's groups, their sum, a round, or the gather.
+const char* nextStep(const CellJobStatus& s) {
+  if (!s.firstShotSummed) return s.firstShotMissing.empty() ? "first-shot-sum" : "first-shot";
+  return s.nextRound == 0 ? "gather" : "round";
+}
 
 int printStatus(const CellJobOptions& o, const CellJobPlan& plan) {
   const CellJobStatus s = cellJobStatus(o.plan, plan);
@@ -38,11 +47,28 @@ int printStatus(const CellJobOptions& o, const CellJobPlan& plan) {
                         {"max_job_seconds", r.maxJobSeconds},
                         {"portal_bytes", r.portalBytes}});
     for (int c : s.missing) missing.push_back(plan.cells[size_t(c)]);
-    std::cout << nlohmann::json{{"cells", plan.cells.size()}, {"emitted_w", plan.emitted},
-                                {"target_w", plan.target},    {"rounds", rounds},
-                                {"next_round", s.nextRound},  {"missing", missing}}
+    const nlohmann::json firstShot = {{"groups", plan.firstShotGroups.size()},
+                                      {"missing_groups", s.firstShotMissing},
+                                      {"summed", s.firstShotSummed}};
+    std::cout << nlohmann::json{{"cells", plan.cells.size()},
+                                {"emitted_w", plan.emitted},
+                                {"target_w", plan.target},
+                                {"first_shot", firstShot},
+                                {"next_step", nextStep(s)},
+                                {"rounds", rounds},
+                                {"next_round", s.firstShotSummed ? s.nextRound : 1},
+                                {"missing", missing}}
                      .dump()
               << "\n";
+    return 0;
+  }
+  if (!s.firstShotSummed) {
+    if (s.firstShotMissing.empty())
+      std::cout << "next: the first shot's sum (cpgi cell-job " << o.plan << " --first-shot-sum)\n";
+    else
+      std::cout << "next: the first shot of " << s.firstShotMissing.size() << " of "
+                << plan.firstShotGroups.size() << " emitter groups (cpgi cell-job " << o.plan
+                << " --first-shot [--group G,...])\n";
     return 0;
   }
   for (const CellJobRoundStatus& r : s.rounds)
@@ -62,6 +88,12 @@ int runThroughBake(const CellJobOptions& o, const CellJobPlan& plan) {
   args.insert(args.end(), {"--plan", o.plan});
   if (o.gather) {
     args.push_back("--gather");
+  } else if (o.firstShot) {
+    std::string list;
+    for (int g : o.groups) list += (list.empty() ? "" : ",") + std::to_string(g);
+    args.insert(args.end(), {"--job-first-shot", list.empty() ? "all" : list});
+  } else if (o.firstShotSum) {
+    args.push_back("--job-first-shot-sum");
   } else {
     args.insert(args.end(), {"--job-round", std::to_string(o.round)});
     std::string list;
@@ -97,18 +129,30 @@ void addCellJobCommand(CLI::App& app, CommandFn& selected) {
                   "A cell of the job (repeatable or comma-separated); default: every cell")
       ->delimiter(',')
       ->needs(round);
+  auto* firstShot =
+      sub->add_flag("--first-shot", o->firstShot,
+                    "Shoot the lamps' emitter groups given over the whole scene (the plan's first shot)");
+  sub->add_option("--group", o->groups,
+                  "With --first-shot: an emitter group (repeatable or comma-separated); default: every group")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 100000000))
+      ->needs(firstShot);
+  auto* firstShotSum = sub->add_flag("--first-shot-sum", o->firstShotSum,
+                                     "Add the emitter groups' shots in order and start round 0 from them");
   auto* status = sub->add_flag("--status", o->status, "Print the finished rounds and the next one");
   sub->add_flag("--json", o->json, "With --status: as one JSON line")->needs(status);
   auto* gather =
       sub->add_flag("--gather", o->gather,
                     "Assemble the lightmap and the bake's other files (its -o folder) from the rounds");
-  round->excludes(status)->excludes(gather);
-  status->excludes(gather);
+  round->excludes(status)->excludes(gather)->excludes(firstShot)->excludes(firstShotSum);
+  status->excludes(gather)->excludes(firstShot)->excludes(firstShotSum);
+  gather->excludes(firstShot)->excludes(firstShotSum);
+  firstShot->excludes(firstShotSum);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] {
     selected = [o] {
-      if (!o->status && !o->gather && o->round == 0)
-        throw InputError("cell-job", "give --round R, --status or --gather");
+      if (!o->status && !o->gather && !o->firstShot && !o->firstShotSum && o->round == 0)
+        throw InputError("cell-job", "give --first-shot, --first-shot-sum, --round R, --status or --gather");
       o->plan = std::filesystem::absolute(o->plan).string();
       const CellJobPlan plan = readCellJobPlan(o->plan);
       // The bake's relative paths (scene, -o) are the plan maker's; a job may start anywhere.

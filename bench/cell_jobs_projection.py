@@ -1,16 +1,24 @@
 #!/usr/bin/python3
 """Projects the wall time of a cell-job bake (docs/cell-jobs.md) on 1..64 workers from one measured run.
 
-    bench/cell_jobs_projection.py PLAN --job-overhead SECONDS [--first-shot S] [--gather S] [--barrier S]
-                                  [--straggle P] [--time-scale F]
+    bench/cell_jobs_projection.py PLAN --job-overhead SECONDS [--plan-seconds S] [--first-shot-overhead S]
+                                  [--sum S | --first-shot S] [--gather S] [--barrier S] [--straggle P]
+                                  [--time-scale F]
 
 Reads every round's cell summaries in PLAN (the binary records of radiosity/cells/cell_job_files.h: each
-cell's measured job seconds and portal bytes) and simulates, per worker count W:
-  - the groups cpgi-dask makes (2 per worker, contiguous runs of texels along a breadth-first walk),
+cell's measured job seconds and portal bytes) and every emitter group's first-shot record (its measured
+seconds), and simulates, per worker count W:
+  - the plan step (--plan-seconds, one worker),
+  - the first shot as cpgi-dask runs it: the emitter groups in batches (2 per worker, contiguous runs by
+    patches), list-scheduled longest first, each batch costing --first-shot-overhead (process, scene,
+    global atlas, EGL) plus its groups' seconds; then their sum (--sum, one worker). With --first-shot S
+    instead, the first shot is S seconds on one worker (the serial plan of before, for comparison),
+  - the groups cpgi-dask makes of the cells (3 per worker, contiguous runs of texels along a breadth-first
+    walk),
   - each round's jobs list-scheduled longest first onto the earliest free worker, each costing the fixed
     per-job overhead (process start, scene load, atlases of the group's cells and their neighbours) plus
     its cells' measured seconds,
-  - a barrier between rounds, the plan's first shot before and the gather after (both on one worker),
+  - a barrier between rounds and the gather after (one worker),
   - stragglers: each job 2x slower with probability 5 % (mean of 20 draws).
 Prints a Markdown table: workers, projected wall, speed-up against 1 worker, efficiency, critical path
 (the slowest single job of each round, summed: no worker count goes below it).
@@ -40,7 +48,24 @@ def read_summary(path):
             "portal_bytes": portal_bytes}
 
 
-def load_partitioner():
+def read_group(path):
+    data = open(path, "rb").read()
+    magic, version, kind, size = struct.unpack_from("<8sIIQ", data, 0)
+    if magic != b"CPGICELL" or version != 1 or kind != 5 or size != len(data) - 32:
+        sys.exit("%s: not a version 1 first-shot group record" % path)
+    group, cell, _, emitted, shots, seconds = struct.unpack_from("<iiQdid", data, 24)
+    return {"group": group, "cell": cell, "shots": shots, "seconds": seconds}
+
+
+def list_schedule(jobs, workers):
+    free = [0.0] * workers
+    for t in sorted(jobs, reverse=True):
+        k = free.index(min(free))
+        free[k] += t
+    return max(free) if jobs else 0.0
+
+
+def load_driver():
     import importlib.machinery
     import importlib.util
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "apps", "cpgi-dask")
@@ -48,7 +73,7 @@ def load_partitioner():
     spec = importlib.util.spec_from_loader("cpgi_dask", loader)
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
-    return module.partition
+    return module
 
 
 def simulate(rounds, groups_of, workers, overhead, barrier, straggle, rng):
@@ -60,22 +85,36 @@ def simulate(rounds, groups_of, workers, overhead, barrier, straggle, rng):
             if rng.random() < straggle:
                 t *= 2.0
             jobs.append(t)
-        free = [0.0] * workers
-        for t in sorted(jobs, reverse=True):
-            k = free.index(min(free))
-            free[k] += t
-        total += max(free) + barrier
+        total += list_schedule(jobs, workers) + barrier
     return total
+
+
+def first_shot_wall(batches, seconds, workers, overhead, straggle, rng):
+    jobs = []
+    for b in batches:
+        t = overhead + sum(seconds[g] for g in b)
+        if rng.random() < straggle:
+            t *= 2.0
+        jobs.append(t)
+    return list_schedule(jobs, workers)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("plan")
     ap.add_argument("--job-overhead", type=float, required=True, help="seconds per job besides its cells")
-    ap.add_argument("--first-shot", type=float, default=0.0)
+    ap.add_argument("--plan-seconds", type=float, default=0.0, help="the plan step (one worker)")
+    ap.add_argument("--first-shot-overhead", type=float, default=0.0,
+                    help="seconds per first-shot job besides its groups' solves")
+    ap.add_argument("--sum", type=float, default=0.0, help="the first shot's sum (one worker)")
+    ap.add_argument("--first-shot", type=float, help="model the first shot as this many seconds on one worker")
     ap.add_argument("--gather", type=float, default=0.0)
+    ap.add_argument("--baseline-first-shot", type=float,
+                    help="speed-up against 1 worker whose first shot is this many seconds in one solve (the "
+                         "emitters shot together cost less than shot group by group)")
     ap.add_argument("--barrier", type=float, default=0.3, help="seconds between rounds (status, scheduling)")
     ap.add_argument("--straggle", type=float, default=0.05)
+    ap.add_argument("--groups-per-worker", type=int, default=3, help="cell groups per worker (cpgi-dask: 3)")
     ap.add_argument("--time-scale", type=float, default=1.0,
                     help="multiplies the measured cell seconds (jobs measured side by side on shared cores run "
                          "slower than one job alone on its machine)")
@@ -93,7 +132,17 @@ def main():
             bytes_ += s["portal_bytes"]
         rounds.append(cells)
         traffic.append(bytes_)
-    partition = load_partitioner()
+    driver = load_driver()
+    partition = driver.partition
+    group_files = sorted(glob.glob(os.path.join(args.plan, "first-shot", "group-*.shot")))
+    emitters = [read_group(f) for f in group_files]
+    group_seconds = [g["seconds"] * args.time_scale for g in emitters]
+    weights = [1 + len(g["patches"]) for g in plan.get("first_shot_groups", [])]
+    if args.first_shot is None and len(weights) != len(emitters):
+        sys.exit("%s: %d emitter groups in plan.json, %d group records" % (args.plan, len(weights), len(emitters)))
+    if emitters:
+        print("first shot: %d emitter groups, %d shots, seconds: sum %.1f, max %.2f" %
+              (len(emitters), sum(g["shots"] for g in emitters), sum(group_seconds), max(group_seconds)))
     cell_seconds = [t for r in rounds for t in r.values()]
     print("%d cells, %d rounds, cell job seconds: sum %.1f, max %.2f, median %.3f; portal traffic per round: "
           "%s kB" % (len(texels), len(rounds), sum(cell_seconds), max(cell_seconds),
@@ -103,13 +152,26 @@ def main():
     print("\n| workers | groups | projected wall (s) | speed-up | efficiency | critical path (s) |")
     print("|---|---|---|---|---|---|")
     for w in (1, 2, 4, 8, 16, 32, 64):
-        groups = partition(texels, neighbours, 2 * w)
+        groups = partition(texels, neighbours, args.groups_per_worker * w)
         rng = random.Random(w)
-        walls = [simulate(rounds, groups, w, args.job_overhead, args.barrier, args.straggle, rng) for _ in range(20)]
-        wall = args.first_shot + args.gather + sum(walls) / len(walls)
-        base = base or wall
+        shot_batches = driver.batches(weights, 2 * w) if weights else []
+        walls = []
+        for _ in range(20):
+            shot = (args.first_shot if args.first_shot is not None else
+                    first_shot_wall(shot_batches, group_seconds, w, args.first_shot_overhead, args.straggle, rng) +
+                    args.sum)
+            walls.append(shot + simulate(rounds, groups, w, args.job_overhead, args.barrier, args.straggle, rng))
+        wall = args.plan_seconds + args.gather + sum(walls) / len(walls)
+        if base is None:
+            base = wall
+            if args.baseline_first_shot is not None:
+                base = min(wall, wall - (sum(walls) / len(walls) - sum(
+                    simulate(rounds, groups, w, args.job_overhead, args.barrier, args.straggle,
+                             random.Random(w)) for _ in range(20)) / 20) + args.baseline_first_shot)
+        shot_critical = (args.first_shot if args.first_shot is not None else
+                         args.first_shot_overhead + max(group_seconds or [0.0]) + args.sum)
         print("| %d | %d | %.1f | %.2f | %.2f | %.1f |" % (w, len(groups), wall, base / wall, base / wall / w,
-                                                          args.first_shot + args.gather + critical))
+                                                          args.plan_seconds + shot_critical + args.gather + critical))
 
 
 if __name__ == "__main__":

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "radiosity/cells/first_shot_groups.h"
+
 namespace cpgi {
 namespace {
 
@@ -18,20 +20,6 @@ double receive(CellState& s, size_t t, const glm::vec3& e) {
   s.pending[t] += s.atlas.albedo[t] * e;
   const glm::dvec3 kept = (glm::dvec3(1.0) - glm::dvec3(s.atlas.albedo[t])) * glm::dvec3(e);
   return (kept.r + kept.g + kept.b) * s.atlas.area[t];
-}
-
-// The emitters that shoot over the whole scene: those of the solved cells (cells left out of an on-demand
-// bake are dark).
-LightmapAtlas blackReceivers(const LightmapAtlas& global, const std::vector<int>& cellOfTriangle) {
-  LightmapAtlas black = global;
-  std::fill(black.albedo.begin(), black.albedo.end(), glm::vec3(0.0f));
-  for (const Patch& P : global.patches)
-    for (int j = 0; j < P.h; ++j)
-      for (int i = 0; i < P.w; ++i) {
-        if (cellOfTriangle[size_t(texelTriangle(P, i, j))] < 0)
-          black.emission[size_t(P.y + j) * global.width + P.x + i] = glm::vec3(0.0f);
-      }
-  return black;
 }
 
 // Per texel of a written cell: the mean irradiance of the global texels over it (a cell texel may sit
@@ -78,28 +66,24 @@ std::vector<glm::vec3> irradianceOfBoundaryCell(const CellState& s, const Lightm
 CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& global,
                                      const std::vector<int>& cellOfTriangle, const SolverParams& settings,
                                      std::vector<CellState>& cells, CellWorkers& workers, Context& ctx) {
-  CellFirstShot shot;
-  shot.absorbed.assign(cells.size(), 0.0);
-  // Black receivers: the solve ends once every emitter region has shot, and the irradiance it read is
-  // the direct light alone. Each emitter shoots all it has: no stop short of that.
-  const LightmapAtlas black = blackReceivers(global, cellOfTriangle);
-  SolverParams first = settings;
-  first.unshotFraction = 1e-12;
-  // Each emitter patch shoots once (black receivers give nothing back to shoot), whatever --max-shots.
-  std::vector<char> emits(black.patches.size(), 0);
-  for (size_t i = 0; i < black.texelCount(); ++i)
-    if (black.patch[i] >= 0 && black.emission[i] != glm::vec3(0.0f)) emits[size_t(black.patch[i])] = 1;
-  const int emitters = int(std::count(emits.begin(), emits.end(), char(1)));
-  first.maxShots = std::max(first.maxShots, emitters + 1);
-  SolveResult direct;
+  const LightmapAtlas receivers = firstShotReceivers(global, cellOfTriangle);
+  const std::vector<FirstShotGroup> groups = firstShotGroups(scene, receivers, cellOfTriangle);
+  std::vector<FirstShotContribution> parts(groups.size());
   {
     auto t = ctx.time("cells: first shot");
-    workers.run(1, ctx, [&](size_t, const EglContext& gl, SolverPrograms& programs, Context& taskCtx) {
-      direct = solveProgressive(scene, black, first, gl, taskCtx,
-                                SolveControls{.readTransfer = true, .programs = &programs});
-    });
+    workers.run(
+        groups.size(), ctx, [&](size_t g, const EglContext& gl, SolverPrograms& programs, Context& taskCtx) {
+          parts[g] = shootFirstShotGroup(scene, receivers, groups, g, settings, gl, programs, taskCtx);
+        });
   }
-  shot.emitted = direct.energy.emitted;
+  return landFirstShot(scene, global, sumFirstShot(parts, global.texelCount()), cells);
+}
+
+CellFirstShot landFirstShot(const Scene& scene, const LightmapAtlas& global, const FirstShotSum& sum,
+                            std::vector<CellState>& cells) {
+  CellFirstShot shot;
+  shot.absorbed.assign(cells.size(), 0.0);
+  shot.emitted = sum.emitted;
   shot.emission.assign(global.texelCount(), glm::vec3(0.0f));
   std::vector<int> globalPatchOfTriangle(scene.triangles.size(), -1);
   for (size_t gp = 0; gp < global.patches.size(); ++gp)
@@ -108,8 +92,8 @@ CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& gl
   for (size_t c = 0; c < cells.size(); ++c) {
     CellState& s = cells[c];
     std::vector<glm::vec3>& e = irradiance[c];
-    e = s.boundary ? irradianceOfBoundaryCell(s, global, globalPatchOfTriangle, direct.incident)
-                   : irradianceOfWrittenCell(s, global, direct.incident, shot.emission);
+    e = s.boundary ? irradianceOfBoundaryCell(s, global, globalPatchOfTriangle, sum.incident)
+                   : irradianceOfWrittenCell(s, global, sum.incident, shot.emission);
     std::fill(s.pending.begin(), s.pending.end(), glm::vec3(0.0f));  // its emitters have shot
     const std::vector<char> portal = portalPatchFlags(s);
     for (size_t t = 0; t < e.size(); ++t) {

@@ -6,7 +6,9 @@
 // room past the next door got 20 % too much of it (issue 11: openings C 1.206 converged, seed3 B 1.109).
 // Shot over the whole scene, where portals are no geometry, the direct light lands where it does in a
 // global solve, and the portals carry only what the surfaces reflect, which is far closer to diffuse.
-// The cost is the global solve's own first shots: one per emitter region, into the global atlas.
+// The cost is the global solve's own first shots: one per emitter region, into the global atlas. They shoot
+// in groups, the emitters of one cell each (first_shot_groups.h), side by side on the bake's workers or as
+// cell jobs on many machines, and the groups' irradiance is added in one fixed order.
 #pragma once
 
 #include <vector>
@@ -15,6 +17,7 @@
 #include "core/scene.h"
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_workers.h"
+#include "radiosity/cells/first_shot_groups.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/gpu/solve_result.h"
 
@@ -30,14 +33,19 @@ struct CellFirstShot {
 };
 
 /// Shoots the emitters of the solved cells and the scene's punctual lights once over the whole scene on
-/// the GPU (into `global` with black receivers, `settings`' visibility), then hands each cell ρ E as
-/// pending light in place of its own emitters' exitance (they have shot): a written cell by its texels'
-/// map (mapCellTexels), a boundary cell (CellState::boundary, a coarser atlas) by the point under each
-/// texel. Portal patches get none; light landing in no solved cell escapes. `cellOfTriangle`: per scene
-/// triangle its cell in the solved graph, or -1 (emitters there are dark).
+/// the GPU (into `global` with black receivers, `settings`' visibility), group by group on `workers`,
+/// then lands the sum in the cells (landFirstShot). `cellOfTriangle`: per scene triangle its cell in the
+/// solved graph, or -1 (emitters there are dark).
 CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& global,
                                      const std::vector<int>& cellOfTriangle, const SolverParams& settings,
                                      std::vector<CellState>& cells, CellWorkers& workers, Context& ctx);
+
+/// Hands each cell ρ E of the groups' summed irradiance as pending light in place of its own emitters'
+/// exitance (they have shot): a written cell by its texels' map (mapCellTexels), a boundary cell
+/// (CellState::boundary, a coarser atlas) by the point under each texel. Portal patches get none; light
+/// landing in no solved cell escapes. CPU only (the cell jobs' first-shot sum runs it).
+CellFirstShot landFirstShot(const Scene& scene, const LightmapAtlas& global, const FirstShotSum& sum,
+                            std::vector<CellState>& cells);
 
 /// The first shot's share of the bookkeeping: each cell emitted what landed in it (the reflected part is in
 /// its pending light already, the rest absorbed at once); what landed nowhere escaped from the cell that

@@ -249,4 +249,37 @@ FirstShotRecord readFirstShot(const std::filesystem::path& file) {
   return r;
 }
 
+void writeFirstShotGroup(const std::filesystem::path& file, int group, int cell, size_t atlasTexels,
+                         const FirstShotContribution& c) {
+  Writer w;
+  w.put(int32_t(group)), w.put(int32_t(cell)), w.put(uint64_t(atlasTexels));
+  w.put(c.emitted), w.put(int32_t(c.shots)), w.put(c.seconds);
+  w.put(uint64_t(c.texels.size()));
+  for (uint32_t t : c.texels) w.put(t);
+  w.putVec3s(c.incident);
+  w.save(file, CellJobRecord::FirstShotGroup);
+}
+
+FirstShotContribution readFirstShotGroup(const std::filesystem::path& file, int group, int cell,
+                                         size_t atlasTexels) {
+  Reader in(file, CellJobRecord::FirstShotGroup);
+  in.expect(in.get<int32_t>() == group, "the shot of another emitter group than its name says");
+  in.expect(in.get<int32_t>() == cell, "the shot of another cell's emitters than the plan's group");
+  in.expect(in.get<uint64_t>() == atlasTexels, "made for another atlas than the plan's");
+  FirstShotContribution c;
+  c.emitted = in.get<double>(), c.shots = in.get<int32_t>(), c.seconds = in.get<double>();
+  const uint64_t n = in.get<uint64_t>();
+  in.expect(n <= atlasTexels, "more texels than the atlas has");
+  c.texels.reserve(n);
+  for (uint64_t k = 0; k < n; ++k) {
+    c.texels.push_back(in.get<uint32_t>());
+    in.expect(c.texels.back() < atlasTexels && (k == 0 || c.texels[k - 1] < c.texels.back()),
+              "a texel outside the atlas or out of order");
+  }
+  c.incident = in.getVec3s();
+  in.expect(c.incident.size() == n, "as many irradiances as texels expected");
+  in.end();
+  return c;
+}
+
 }  // namespace cpgi

@@ -20,16 +20,18 @@
 #include <glm/glm.hpp>
 
 #include "radiosity/cells/cell_round.h"
+#include "radiosity/cells/first_shot_groups.h"
 
 namespace cpgi {
 
 inline constexpr uint32_t kCellJobFormat = 1;
 
 enum class CellJobRecord : uint32_t {
-  CellState = 1,    ///< a cell's own light after a round: kept, carried, radiosity gained
-  PortalLight = 2,  ///< light one cell sends another in a round (every portal between them)
-  Summary = 3,      ///< a cell's round in figures: what the next round's budget and the driver read
-  FirstShot = 4,    ///< the lamps' first shot over the whole scene (the plan)
+  CellState = 1,       ///< a cell's own light after a round: kept, carried, radiosity gained
+  PortalLight = 2,     ///< light one cell sends another in a round (every portal between them)
+  Summary = 3,         ///< a cell's round in figures: what the next round's budget and the driver read
+  FirstShot = 4,       ///< the lamps' first shot over the whole scene, summed and landed in the cells
+  FirstShotGroup = 5,  ///< one emitter group's irradiance over the whole scene (a first-shot job)
 };
 
 /// A cell's round in figures (a CellRound without its per-texel arrays) and the job's own measures.
@@ -62,5 +64,13 @@ CellRoundSummary readSummary(const std::filesystem::path& file, int round, int c
 
 void writeFirstShot(const std::filesystem::path& file, const FirstShotRecord& r);
 FirstShotRecord readFirstShot(const std::filesystem::path& file);
+
+/// Group `group`'s shot (its emitters' cell, -1 for the punctual lights) over a global atlas of
+/// `atlasTexels` texels.
+void writeFirstShotGroup(const std::filesystem::path& file, int group, int cell, size_t atlasTexels,
+                         const FirstShotContribution& c);
+/// Reads it; checks group, cell and atlas size, and that every texel is in the atlas (ascending).
+FirstShotContribution readFirstShotGroup(const std::filesystem::path& file, int group, int cell,
+                                         size_t atlasTexels);
 
 }  // namespace cpgi

@@ -12,7 +12,6 @@
 #include "radiosity/cells/cell_first_shot.h"
 #include "radiosity/cells/cell_job_files.h"
 #include "radiosity/cells/cell_round.h"
-#include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/portal_transfer.h"
 
 namespace cpgi {
@@ -120,6 +119,13 @@ std::vector<glm::vec3> gatherFromFiles(const fs::path& dir, const CellJobPlan& p
   return gatherPending(own, sendsTo(c, ptrs), texels);
 }
 
+void requireFirstShotSummed(const fs::path& dir, const CellJobPlan& plan) {
+  if (!plan.firstShotSummed)
+    throw InputError(
+        (dir / "plan.json").string(),
+        "the first shot is not summed yet (cpgi cell-job PLAN --first-shot, then --first-shot-sum)");
+}
+
 void requireSupported(const CellSolveParams& params) {
   if (params.portals != PortalLight::Diffuse)
     throw InputError("portal light", "cell jobs carry diffuse portal light only for now");
@@ -141,16 +147,27 @@ fs::path cellSummaryFile(const fs::path& dir, int round, int cell) {
 fs::path portalLightFile(const fs::path& dir, int round, int from, int to) {
   return roundDir(dir, round) / (padded(from, "portal-") + padded(to, "-") + ".light");
 }
+fs::path firstShotGroupFile(const fs::path& dir, int group) {
+  return dir / "first-shot" / (padded(group, "group-") + ".shot");
+}
 
 void writeCellJobPlan(const fs::path& dir, const CellJobPlan& plan) {
-  nlohmann::json j = {{"format", "cpgi cell jobs"},      {"version", plan.version},
-                      {"bake_args", plan.bakeArgs},      {"working_dir", plan.workingDir},
-                      {"emitted_w", plan.emitted},       {"target_w", plan.target},
-                      {"max_rounds", plan.maxRounds},    {"global_patches", plan.globalPatches},
+  nlohmann::json j = {{"format", "cpgi cell jobs"},
+                      {"version", plan.version},
+                      {"bake_args", plan.bakeArgs},
+                      {"working_dir", plan.workingDir},
+                      {"first_shot_summed", plan.firstShotSummed},
+                      {"emitted_w", plan.emitted},
+                      {"target_w", plan.target},
+                      {"max_rounds", plan.maxRounds},
+                      {"global_patches", plan.globalPatches},
                       {"cells", nlohmann::json::array()}};
   for (size_t c = 0; c < plan.cells.size(); ++c)
     j["cells"].push_back(
         {{"name", plan.cells[c]}, {"texels", plan.texels[c]}, {"neighbours", plan.neighbours[c]}});
+  j["first_shot_groups"] = nlohmann::json::array();
+  for (const FirstShotGroup& g : plan.firstShotGroups)
+    j["first_shot_groups"].push_back({{"cell", g.cell}, {"patches", g.patches}});
   const fs::path part = dir / "plan.json.part";
   {
     std::ofstream f(part);
@@ -176,6 +193,7 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
                                  std::to_string(kCellJobPlanVersion));
     plan.bakeArgs = j.at("bake_args").get<std::vector<std::string>>();
     plan.workingDir = j.at("working_dir").get<std::string>();
+    plan.firstShotSummed = j.at("first_shot_summed").get<bool>();
     plan.emitted = j.at("emitted_w").get<double>();
     plan.target = j.at("target_w").get<double>();
     plan.maxRounds = j.at("max_rounds").get<int>();
@@ -187,6 +205,11 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
       for (int n : plan.neighbours.back())
         if (n < 0 || n >= int(j.at("cells").size())) throw InputError(file, "a neighbour that is no cell");
     }
+    for (const nlohmann::json& g : j.at("first_shot_groups")) {
+      plan.firstShotGroups.push_back({g.at("cell").get<int>(), g.at("patches").get<std::vector<int>>()});
+      if (plan.firstShotGroups.back().cell >= int(plan.cells.size()))
+        throw InputError(file, "a first-shot group of a cell that is not in the plan");
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, std::string("damaged cell job plan: ") + e.what());
   }
@@ -195,23 +218,16 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
 
 CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGraph& graph,
                          const LightmapAtlas& global, const CellSolveParams& params,
-                         std::vector<std::string> bakeArgs, const EglContext& gl, Context& ctx) {
+                         std::vector<std::string> bakeArgs, Context& ctx) {
   requireSupported(params);
   checkCells(scene, graph, params, ctx);
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
   std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
   linkPortals(graph, cells);  // refuses a degenerate portal now rather than in a job
-  CellWorkers workers(1, gl);
-  const CellFirstShot first =
-      shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
-  SolveResult result = startBookkeeping(graph, cells, global);
-  addFirstShotBookkeeping(first, result);
 
   CellJobPlan plan;
   plan.bakeArgs = std::move(bakeArgs);
   plan.workingDir = fs::current_path().string();
-  plan.emitted = result.energy.emitted;
-  plan.target = params.solver.unshotFraction * plan.emitted;
   plan.maxRounds = params.maxRounds;
   plan.globalPatches = global.patches.size();
   for (size_t c = 0; c < cells.size(); ++c) {
@@ -219,10 +235,83 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
     plan.texels.push_back(cells[c].atlas.texelCount());
     plan.neighbours.push_back(neighboursOf(graph, int(c)));
   }
+  plan.firstShotGroups = firstShotGroups(scene, firstShotReceivers(global, cellOf), cellOf);
   fs::create_directories(dir);
   for (const fs::directory_entry& e : fs::directory_iterator(dir))
     if (e.is_directory() && e.path().filename().string().rfind("round-", 0) == 0) fs::remove_all(e.path());
   fs::remove(dir / "plan.json");
+  fs::remove(dir / "first-shot.cell");
+  fs::remove_all(dir / "first-shot");
+  fs::create_directories(dir / "first-shot");
+  writeCellJobPlan(dir, plan);  // last: its presence marks a complete plan
+  return plan;
+}
+
+namespace {
+
+// The emitter groups of this scene and these cells, which must be the plan's (same scene, same options).
+std::vector<FirstShotGroup> checkedGroups(const fs::path& dir, const CellJobPlan& plan, const Scene& scene,
+                                          const CellGraph& graph, const LightmapAtlas& global,
+                                          LightmapAtlas* receivers) {
+  if (graph.cells.size() != plan.cells.size())
+    throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
+  const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
+  LightmapAtlas black = firstShotReceivers(global, cellOf);
+  std::vector<FirstShotGroup> groups = firstShotGroups(scene, black, cellOf);
+  bool same = groups.size() == plan.firstShotGroups.size();
+  for (size_t g = 0; same && g < groups.size(); ++g)
+    same = groups[g].cell == plan.firstShotGroups[g].cell &&
+           groups[g].patches == plan.firstShotGroups[g].patches;
+  if (!same || global.patches.size() != plan.globalPatches)
+    throw InputError(
+        (dir / "plan.json").string(),
+        "its first-shot groups are not this scene's (another scene or other options than the plan's?)");
+  if (receivers) *receivers = std::move(black);
+  return groups;
+}
+
+}  // namespace
+
+void runFirstShotJobs(const fs::path& dir, const CellJobPlan& plan, const std::vector<int>& run,
+                      const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
+                      const CellSolveParams& params, const EglContext& gl, Context& ctx) {
+  requireSupported(params);
+  LightmapAtlas receivers;
+  const std::vector<FirstShotGroup> groups = checkedGroups(dir, plan, scene, graph, global, &receivers);
+  for (int g : run)
+    if (g < 0 || g >= int(groups.size()))
+      throw InputError("first shot", "no emitter group " + std::to_string(g) + " (the plan has " +
+                                         std::to_string(groups.size()) + ")");
+  SolverPrograms programs;
+  fs::create_directories(dir / "first-shot");
+  for (int g : run) {
+    auto t = ctx.time("cells: first shot");
+    const FirstShotContribution c =
+        shootFirstShotGroup(scene, receivers, groups, size_t(g), params.solver, gl, programs, ctx);
+    writeFirstShotGroup(firstShotGroupFile(dir, g), g, groups[size_t(g)].cell, global.texelCount(), c);
+  }
+}
+
+CellJobPlan sumFirstShotJobs(const fs::path& dir, const CellJobPlan& given, const Scene& scene,
+                             const CellGraph& graph, const LightmapAtlas& global,
+                             const CellSolveParams& params, Context& ctx) {
+  requireSupported(params);
+  const std::vector<FirstShotGroup> groups = checkedGroups(dir, given, scene, graph, global, nullptr);
+  std::vector<FirstShotContribution> parts;
+  for (size_t g = 0; g < groups.size(); ++g)
+    parts.push_back(
+        readFirstShotGroup(firstShotGroupFile(dir, int(g)), int(g), groups[g].cell, global.texelCount()));
+  const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
+  std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
+  const CellFirstShot first = landFirstShot(scene, global, sumFirstShot(parts, global.texelCount()), cells);
+  SolveResult result = startBookkeeping(graph, cells, global);
+  addFirstShotBookkeeping(first, result);
+
+  CellJobPlan plan = given;
+  plan.firstShotSummed = true;
+  plan.emitted = result.energy.emitted;
+  plan.target = params.solver.unshotFraction * plan.emitted;
+  fs::remove_all(roundDir(dir, 0));
   fs::create_directories(roundDir(dir, 0));
   writeFirstShot(dir / "first-shot.cell",
                  FirstShotRecord{first.emitted, first.landed, first.absorbed, first.emission});
@@ -233,7 +322,7 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
     s.figures.kept.clear(), s.figures.carried.clear();
     writeSummary(cellSummaryFile(dir, 0, int(c)), s);
   }
-  writeCellJobPlan(dir, plan);  // last: its presence marks a complete plan
+  writeCellJobPlan(dir, plan);  // last: the plan now says the first shot is summed
   return plan;
 }
 
@@ -246,6 +335,7 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
                                                        " cells, the scene's graph " +
                                                        std::to_string(graph.cells.size()));
   if (round < 1) throw InputError("round", "cell job rounds count from 1");
+  requireFirstShotSummed(dir, plan);
   const double before = round == 1 ? plan.emitted : unshotAfter(dir, plan, round - 1);
   if (!roundNeeded(plan, round, before))
     throw InputError(roundDir(dir, round).string(), "the solve needs no round " + std::to_string(round) +
@@ -311,6 +401,10 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
 
 CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
   CellJobStatus status;
+  for (size_t g = 0; g < plan.firstShotGroups.size(); ++g)
+    if (!fs::exists(firstShotGroupFile(dir, int(g)))) status.firstShotMissing.push_back(int(g));
+  status.firstShotSummed = plan.firstShotSummed;
+  if (!plan.firstShotSummed) return status;
   double unshot = plan.emitted;
   for (int round = 1;; ++round) {
     if (!roundNeeded(plan, round, unshot)) {
@@ -342,6 +436,7 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
                            Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
   requireSupported(params);
+  requireFirstShotSummed(dir, plan);
   if (graph.cells.size() != plan.cells.size())
     throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());

@@ -4,8 +4,11 @@
 // files of the round before and writes only its own, each atomically, so rerunning a job (a lost
 // worker) rewrites the same bytes.
 //
-//   planCellJobs     the set-up of solveCells and the lamps' first shot over the whole scene (GPU);
-//                    writes plan.json, first-shot.cell and round 0: every cell's pending light.
+//   planCellJobs     the set-up of solveCells (CPU): writes plan.json, with the first shot's emitter
+//                    groups (first_shot_groups.h).
+//   runFirstShotJobs some emitter groups shot over the whole scene (GPU), one file per group.
+//   sumFirstShotJobs the groups' files added in their fixed order and landed in the cells (CPU): writes
+//                    first-shot.cell and round 0 (every cell's pending light), then marks the plan summed.
 //   runCellJobs      round R of some cells: each gathers its pending light from round R − 1 (its own
 //                    state and the portal light its neighbours sent it), solves it on the GPU when it holds
 //                    enough (cell_round.h, as solveCells does), and writes its state, the portal light it
@@ -22,26 +25,29 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/cells/first_shot_groups.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {
 
-inline constexpr int kCellJobPlanVersion = 1;
+inline constexpr int kCellJobPlanVersion = 2;
 
 /// plan.json: what every job and the gather need besides the scene and the bake's options.
 struct CellJobPlan {
   int version = kCellJobPlanVersion;
   std::vector<std::string> bakeArgs;  ///< the bake's command line (after "bake"), less --plan
   std::string workingDir;             ///< where the plan was made: the bake's relative paths start there
-  double emitted = 0.0;               ///< W (R + G + B) after the first shot's bookkeeping
-  double target = 0.0;                ///< unshot power at which the rounds stop (W)
+  bool firstShotSummed = false;       ///< the first shot's groups are summed: round 0 is there
+  double emitted = 0.0;               ///< W (R + G + B) after the first shot's bookkeeping (once summed)
+  double target = 0.0;                ///< unshot power at which the rounds stop (W; once summed)
   int maxRounds = 0;
   size_t globalPatches = 0;                  ///< patches of the whole scene's atlas (for roundBudget)
   std::vector<std::string> cells;            ///< graph order
   std::vector<size_t> texels;                ///< per cell, valid texels of its atlas (a job checks its own)
   std::vector<std::vector<int>> neighbours;  ///< per cell, the cells across its portals (ascending)
+  std::vector<FirstShotGroup> firstShotGroups;  ///< the first shot's emitter groups, in summing order
 };
 
 void writeCellJobPlan(const std::filesystem::path& dir, const CellJobPlan& plan);
@@ -53,12 +59,26 @@ std::filesystem::path roundDir(const std::filesystem::path& dir, int round);
 std::filesystem::path cellStateFile(const std::filesystem::path& dir, int round, int cell);
 std::filesystem::path cellSummaryFile(const std::filesystem::path& dir, int round, int cell);
 std::filesystem::path portalLightFile(const std::filesystem::path& dir, int round, int from, int to);
+std::filesystem::path firstShotGroupFile(const std::filesystem::path& dir, int group);
 
-/// Writes the plan into `dir` (created; an earlier plan's rounds there are removed). `params.jobs`,
-/// on-demand cells and directional portals are refused (InputError).
+/// Writes the plan into `dir` (created; an earlier plan's first shot and rounds there are removed).
+/// On-demand cells and directional portals are refused (InputError).
 CellJobPlan planCellJobs(const std::filesystem::path& dir, const Scene& scene, const CellGraph& graph,
                          const LightmapAtlas& global, const CellSolveParams& params,
-                         std::vector<std::string> bakeArgs, const EglContext& gl, Context& ctx);
+                         std::vector<std::string> bakeArgs, Context& ctx);
+
+/// The first shot of emitter groups `groups` (indices into plan.firstShotGroups), one after the other on
+/// `gl`; each writes its group's file. InputError when the scene's groups are not the plan's.
+void runFirstShotJobs(const std::filesystem::path& dir, const CellJobPlan& plan,
+                      const std::vector<int>& groups, const Scene& scene, const CellGraph& graph,
+                      const LightmapAtlas& global, const CellSolveParams& params, const EglContext& gl,
+                      Context& ctx);
+
+/// Adds every group's file in the plan's order, lands the sum in the cells, writes first-shot.cell and
+/// round 0, then plan.json with the emitted and target power (InputError when a group's file is missing).
+CellJobPlan sumFirstShotJobs(const std::filesystem::path& dir, const CellJobPlan& plan, const Scene& scene,
+                             const CellGraph& graph, const LightmapAtlas& global,
+                             const CellSolveParams& params, Context& ctx);
 
 /// Round `round` (>= 1) of `cells` (graph indices): needs round − 1 complete for them and their
 /// neighbours, and the round to be one the solve still needs (InputError otherwise).
@@ -75,6 +95,8 @@ struct CellJobRoundStatus {
   uint64_t portalBytes = 0;
 };
 struct CellJobStatus {
+  std::vector<int> firstShotMissing;       ///< emitter groups whose first-shot file is not there yet
+  bool firstShotSummed = false;            ///< false: the first shot's groups, then its sum, come first
   std::vector<CellJobRoundStatus> rounds;  ///< complete rounds, 1 on
   int nextRound = 1;                       ///< 0: converged (or at --max-rounds): gather
   std::vector<int> missing;                ///< cells whose round nextRound is not done yet

@@ -1,5 +1,6 @@
-// Cell jobs (issue 16): the rounds run one cell per job from files and gathered give solveCells' result bit
-// for bit, on the 4-room office (two storeys joined by a hatch, one lamp); the job files refuse damage.
+// Cell jobs (issue 16): the first shot run one emitter group per job and summed, then the rounds run one
+// cell per job from files and gathered give solveCells' result bit for bit, on the 4-room office (two
+// storeys joined by a hatch, a lamp in two rooms); the job files refuse damage.
 #include "radiosity/cells/cell_jobs.h"
 
 #include <filesystem>
@@ -38,8 +39,17 @@ TEST(CellJobs, OneCellPerJobGivesTheSingleProcessSolve) {
   ASSERT_GE(single.perCell->rounds, 2);
 
   TempDir dir;
-  const CellJobPlan plan = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {"unused"}, gl, ctx);
-  EXPECT_EQ(readCellJobPlan(dir.path).cells, plan.cells);
+  const CellJobPlan made = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {"unused"}, ctx);
+  EXPECT_EQ(readCellJobPlan(dir.path).cells, made.cells);
+  ASSERT_EQ(made.firstShotGroups.size(), 2u);  // two lamps in two rooms: the sum adds two groups
+  EXPECT_THROW(runCellJobs(dir.path, made, 1, {0}, s.scene, s.cells, params, gl, ctx), InputError);
+  for (int g = int(made.firstShotGroups.size()) - 1; g >= 0; --g)  // any order, one group per job
+    runFirstShotJobs(dir.path, made, {g}, s.scene, s.cells, atlas, params, gl, ctx);
+  EXPECT_TRUE(cellJobStatus(dir.path, made).firstShotMissing.empty());
+  EXPECT_FALSE(cellJobStatus(dir.path, made).firstShotSummed);
+  const CellJobPlan plan = sumFirstShotJobs(dir.path, made, s.scene, s.cells, atlas, params, ctx);
+  EXPECT_TRUE(readCellJobPlan(dir.path).firstShotSummed);
+  EXPECT_EQ(readCellJobPlan(dir.path).emitted, plan.emitted);
   for (int round = 1;; ++round) {
     const CellJobStatus status = cellJobStatus(dir.path, plan);
     if (status.nextRound == 0) break;
@@ -113,6 +123,18 @@ TEST(CellJobFiles, DamageIsNamedAndRefused) {
   refused("format 9");
   fs::remove(file);
   refused("cannot read");
+
+  // An emitter group's shot: read back as written, refused for another group or atlas.
+  FirstShotContribution shot;
+  shot.emitted = 3.0, shot.shots = 1;
+  shot.texels = {2, 7}, shot.incident = {glm::vec3(1.0f), glm::vec3(0.5f)};
+  const fs::path group = dir.path / "group-0001.shot";
+  writeFirstShotGroup(group, 1, 4, 10, shot);
+  const FirstShotContribution read = readFirstShotGroup(group, 1, 4, 10);
+  EXPECT_EQ(read.texels, shot.texels);
+  EXPECT_EQ(read.incident, shot.incident);
+  EXPECT_THROW(readFirstShotGroup(group, 2, 4, 10), InputError);
+  EXPECT_THROW(readFirstShotGroup(group, 1, 4, 11), InputError);
 }
 
 }  // namespace

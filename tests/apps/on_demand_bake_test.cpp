@@ -10,6 +10,7 @@
 
 #include "core/image_io.h"
 #include "tests/support/run_cpgi.h"
+#include "tests/support/suite_setup.h"
 
 namespace cpgi {
 namespace {
@@ -33,12 +34,16 @@ Lightmap readLightmap(const std::string& dir) {
 
 class OnDemandBake : public ::testing::Test {
  protected:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void SetUpTestSuite() {
-    dir_ = new test::TempDir;
-    scene_ = *dir_ / "seed1.glb";
-    ASSERT_EQ(cpgi(*dir_, "generate seed1 -o '" + scene_ + "'").status, 0);
-    const test::CommandRun r = bake("whole", "");
-    ASSERT_EQ(r.status, 0) << r.err;
+    setup_.run([] {
+      dir_ = new test::TempDir;
+      scene_ = *dir_ / "seed1.glb";
+      ASSERT_EQ(cpgi(*dir_, "generate seed1 -o '" + scene_ + "'").status, 0);
+      const test::CommandRun r = bake("whole", "");
+      ASSERT_EQ(r.status, 0) << r.err;
+    });
   }
   static void TearDownTestSuite() { delete dir_; }
   static test::CommandRun bake(const std::string& out, const std::string& extra) {

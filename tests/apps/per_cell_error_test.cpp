@@ -17,6 +17,7 @@
 
 #include "core/image_io.h"
 #include "tests/support/run_cpgi.h"
+#include "tests/support/suite_setup.h"
 #include "tests/support/temp_dir.h"
 
 namespace cpgi {
@@ -28,6 +29,8 @@ using test::cpgi;
 // CTest runs every test in a process of its own: each fixture bakes only what its tests compare.
 class OpeningsBakes : public ::testing::Test {
  public:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void bakeAll(const std::vector<std::pair<std::string, std::string>>& bakes) {
     if (!dir_) dir_ = std::make_unique<test::TempDir>();
     auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
@@ -51,23 +54,27 @@ std::unique_ptr<test::TempDir> OpeningsBakes::dir_;
 
 class PerCellError : public OpeningsBakes {
  protected:
-  static void SetUpTestSuite() { bakeAll({{"converged", "--unshot 0.0001"}, {"default", ""}}); }
+  static void SetUpTestSuite() {
+    setup_.run([] { bakeAll({{"converged", "--unshot 0.0001"}, {"default", ""}}); });
+  }
 };
 
 class PerCellPortals : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
-    dir_ = std::make_unique<test::TempDir>();
-    const std::string cells = "--method cells --cells " + test::quote(*dir_ / "openings.glb");
-    bakeAll({{"cells-diffuse", cells + " --portals diffuse"},
-             {"cells-directional", cells + " --portals directional"}});
+    setup_.run([] {
+      dir_ = std::make_unique<test::TempDir>();
+      const std::string cells = "--method cells --cells " + test::quote(*dir_ / "openings.glb");
+      bakeAll({{"cells-diffuse", cells + " --portals diffuse"},
+               {"cells-directional", cells + " --portals directional"}});
+    });
   }
 };
 
 class PerCellHemisphere : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
-    bakeAll({{"hemisphere-converged", "--visibility hemisphere --unshot 0.0001"}});
+    setup_.run([] { bakeAll({{"hemisphere-converged", "--visibility hemisphere --unshot 0.0001"}}); });
   }
 };
 

@@ -12,6 +12,7 @@
 
 #include "tests/support/glb_builder.h"
 #include "tests/support/run_cpgi.h"
+#include "tests/support/suite_setup.h"
 #include "tests/support/temp_dir.h"
 
 namespace cpgi {
@@ -23,18 +24,22 @@ using test::quote;
 
 class PunctualLightBakes : public ::testing::Test {
  public:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void SetUpTestSuite() {
-    dir_ = std::make_unique<test::TempDir>();
-    auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
-    const std::string atlas = " --density 5 -q";
-    for (const char* name : {"point-light", "spot-light"}) {
-      const std::string scene = quote(*dir_ / (std::string(name) + ".glb")), out = *dir_ / name;
-      run(std::string("generate ") + name + " -o " + scene);
-      run("reference " + scene + " -o " + quote(out + "-ref") + atlas + " --spp 512");
-      run("bake " + scene + " -o " + quote(out + "-global") + atlas + " --unshot 0.001");
-      run("bake " + scene + " -o " + quote(out + "-cells") + atlas +
-          " --unshot 0.001 --method cells --cells " + scene);
-    }
+    setup_.run([] {
+      dir_ = std::make_unique<test::TempDir>();
+      auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
+      const std::string atlas = " --density 5 -q";
+      for (const char* name : {"point-light", "spot-light"}) {
+        const std::string scene = quote(*dir_ / (std::string(name) + ".glb")), out = *dir_ / name;
+        run(std::string("generate ") + name + " -o " + scene);
+        run("reference " + scene + " -o " + quote(out + "-ref") + atlas + " --spp 512");
+        run("bake " + scene + " -o " + quote(out + "-global") + atlas + " --unshot 0.001");
+        run("bake " + scene + " -o " + quote(out + "-cells") + atlas +
+            " --unshot 0.001 --method cells --cells " + scene);
+      }
+    });
   }
   static void TearDownTestSuite() { dir_.reset(); }
   static json compare(const std::string& bake, const std::string& reference) {

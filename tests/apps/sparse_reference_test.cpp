@@ -13,6 +13,7 @@
 
 #include "core/image_io.h"
 #include "tests/support/run_cpgi.h"
+#include "tests/support/suite_setup.h"
 #include "tests/support/temp_dir.h"
 
 namespace cpgi {
@@ -27,19 +28,23 @@ constexpr int kSampled = 600;
 /// the tests: the traces are the slow part.
 class SparseReference : public ::testing::Test {
  protected:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void SetUpTestSuite() {
-    dir_ = std::make_unique<test::TempDir>();
-    auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
-    const std::string scene = test::quote(*dir_ / "seed1.glb");
-    const std::string atlas = " --texels-per-quad 8 ";
-    // --cell-noise 0: the same paths on every texel of both (a noisy cell's extra paths would differ
-    // between a full and a sampled reference, whose cells' noise differs).
-    const std::string paths = "--spp 16 --cell-noise 0 -q";
-    run("generate seed1 -o " + scene);
-    run("reference " + scene + " -o " + test::quote(*dir_ / "full") + atlas + paths);
-    run("reference " + scene + " -o " + test::quote(*dir_ / "sparse") + atlas + paths + " --texels " +
-        std::to_string(kSampled));
-    run("bake " + scene + " -o " + test::quote(*dir_ / "bake") + atlas + "--method global -q");
+    setup_.run([] {
+      dir_ = std::make_unique<test::TempDir>();
+      auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
+      const std::string scene = test::quote(*dir_ / "seed1.glb");
+      const std::string atlas = " --texels-per-quad 8 ";
+      // --cell-noise 0: the same paths on every texel of both (a noisy cell's extra paths would differ
+      // between a full and a sampled reference, whose cells' noise differs).
+      const std::string paths = "--spp 16 --cell-noise 0 -q";
+      run("generate seed1 -o " + scene);
+      run("reference " + scene + " -o " + test::quote(*dir_ / "full") + atlas + paths);
+      run("reference " + scene + " -o " + test::quote(*dir_ / "sparse") + atlas + paths + " --texels " +
+          std::to_string(kSampled));
+      run("bake " + scene + " -o " + test::quote(*dir_ / "bake") + atlas + "--method global -q");
+    });
   }
   static void TearDownTestSuite() { dir_.reset(); }
 
@@ -144,9 +149,10 @@ TEST_F(SparseReference, CompareLightEstimatesTheFullComparison) {
 TEST_F(SparseReference, ASampleAsLargeAsTheAtlasIsTheFullReference) {
   const nlohmann::json fullReport = nlohmann::json::parse(test::slurp(at("full") + "/report.json"));
   const std::string out = at("all");
-  const test::CommandRun r = cpgi(*dir_, "reference " + test::quote(at("seed1.glb")) + " -o " +
-                                             test::quote(out) + " --texels-per-quad 8 --spp 16 --cell-noise 0 --texels " +
-                                             std::to_string(fullReport["texels"].get<size_t>() + 1));
+  const test::CommandRun r =
+      cpgi(*dir_, "reference " + test::quote(at("seed1.glb")) + " -o " + test::quote(out) +
+                      " --texels-per-quad 8 --spp 16 --cell-noise 0 --texels " +
+                      std::to_string(fullReport["texels"].get<size_t>() + 1));
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("all are traced"), std::string::npos) << r.err;
   EXPECT_EQ(test::slurp(out + "/lightmap.exr"), test::slurp(at("full") + "/lightmap.exr"));

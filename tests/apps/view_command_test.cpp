@@ -9,6 +9,7 @@
 
 #include "core/image_io.h"
 #include "tests/support/run_cpgi.h"
+#include "tests/support/suite_setup.h"
 
 namespace cpgi {
 namespace {
@@ -19,13 +20,17 @@ using test::quote;
 
 class ViewCommand : public ::testing::Test {
  protected:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void SetUpTestSuite() {
-    dir_ = new test::TempDir;
-    const std::string scene = *dir_ / "seed1.glb";
-    ASSERT_EQ(cpgi(dir_->path(), "generate seed1 -o " + quote(scene)).status, 0);
-    const test::CommandRun r = cpgi(dir_->path(), "bake " + quote(scene) + " -o " + quote(bake()) +
-                                                      " --texels-per-quad 4 --unshot 0.3 -q");
-    ASSERT_EQ(r.status, 0) << r.err;
+    setup_.run([] {
+      dir_ = new test::TempDir;
+      const std::string scene = *dir_ / "seed1.glb";
+      ASSERT_EQ(cpgi(dir_->path(), "generate seed1 -o " + quote(scene)).status, 0);
+      const test::CommandRun r = cpgi(dir_->path(), "bake " + quote(scene) + " -o " + quote(bake()) +
+                                                        " --texels-per-quad 4 --unshot 0.3 -q");
+      ASSERT_EQ(r.status, 0) << r.err;
+    });
   }
   static void TearDownTestSuite() { delete dir_; }
   static std::string bake() { return *dir_ / "bake"; }

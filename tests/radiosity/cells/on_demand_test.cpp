@@ -11,6 +11,7 @@
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
 #include "scenes/seed_scenes.h"
+#include "tests/support/suite_setup.h"
 
 namespace cpgi {
 namespace {
@@ -90,17 +91,21 @@ TEST(CellSelection, CellOfEveryTexelFollowsItsPosition) {
 
 class OnDemandSolve : public ::testing::Test {
  protected:
+  void SetUp() override { setup_.require(); }
+  static inline test::SuiteSetup setup_;
   static void SetUpTestSuite() {
-    seed_ = new SeedScene(makeSeedScene(1));
-    ctx_ = new Context;
-    gl_ = new EglContext(*ctx_);
-    params_ = new CellSolveParams;
-    params_->atlas.texelsPerQuad = 4;
-    params_->solver.unshotFraction = 0.02;
-    params_->solver.itemBuffer = 256;
-    atlas_ = new LightmapAtlas(buildAtlas(seed_->scene, findQuads(seed_->scene), params_->atlas, *ctx_));
-    whole_ = new SolveResult(solveCells(seed_->scene, seed_->cells, *atlas_, *params_, *gl_, *ctx_));
-    cellOfTexel_ = new std::vector<int>(cellOfTexels(*atlas_, seed_->cells, seed_->scene.triangles.size()));
+    setup_.run([] {
+      seed_ = new SeedScene(makeSeedScene(1));
+      ctx_ = new Context;
+      gl_ = new EglContext(*ctx_);
+      params_ = new CellSolveParams;
+      params_->atlas.texelsPerQuad = 4;
+      params_->solver.unshotFraction = 0.02;
+      params_->solver.itemBuffer = 256;
+      atlas_ = new LightmapAtlas(buildAtlas(seed_->scene, findQuads(seed_->scene), params_->atlas, *ctx_));
+      whole_ = new SolveResult(solveCells(seed_->scene, seed_->cells, *atlas_, *params_, *gl_, *ctx_));
+      cellOfTexel_ = new std::vector<int>(cellOfTexels(*atlas_, seed_->cells, seed_->scene.triangles.size()));
+    });
   }
   static void TearDownTestSuite() {
     delete cellOfTexel_, delete whole_, delete atlas_, delete params_, delete gl_, delete ctx_, delete seed_;
@@ -162,7 +167,8 @@ TEST_F(OnDemandSolve, OneRoomWithCoarseNeighbours) {
   EXPECT_FALSE(r.perCell->cells[0].written);
   EXPECT_TRUE(r.perCell->cells[1].written);
   EXPECT_FALSE(r.perCell->cells[2].written);
-  EXPECT_NEAR(r.perCell->cells[1].received, whole_->perCell->cells[1].received, 0.15 * whole_->perCell->cells[1].received);
+  EXPECT_NEAR(r.perCell->cells[1].received, whole_->perCell->cells[1].received,
+              0.15 * whole_->perCell->cells[1].received);
   EXPECT_LT(r.perCell->cells[0].texels, whole_->perCell->cells[0].texels);  // the boundary atlas is coarser
   for (const CellEnergy& c : r.perCell->cells) {
     const double in = c.emitted + c.received;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,15 @@ inline std::vector<SamplePoint> facePoints(const Scene& scene, const std::vector
         points.push_back({f.origin + (i + 0.5f) / k * f.u + (j + 0.5f) / k * f.v,
                           glm::normalize(glm::cross(f.u, f.v)), m.albedo, m.emission});
       }
+  return points;
+}
+
+/// Points on a grey (albedo 0.5) floor at y = 0 facing +y (Y up), at every (x, z) of the two lists.
+inline std::vector<SamplePoint> floorPoints(std::initializer_list<float> xs,
+                                            std::initializer_list<float> zs) {
+  std::vector<SamplePoint> points;
+  for (float x : xs)
+    for (float z : zs) points.push_back({{x, 0.0f, z}, {0, 1, 0}, glm::vec3(0.5f), glm::vec3(0.0f)});
   return points;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/quads.h"
 #include "radiosity/reference/reference_tracer.h"
+#include "tests/radiosity/reference/path_test_scenes.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -27,10 +28,7 @@ TEST(PunctualReference, FloorUnderAPointLampInABlackBoxIsExact) {
   lamp.position = {0.6f, 1.5f, 1.2f};
   lamp.intensity = glm::vec3(2.0f);
   s.lights.push_back(lamp);
-  std::vector<SamplePoint> points;
-  for (float x : {0.3f, 1.0f, 1.7f})
-    for (float z : {0.2f, 1.1f, 1.9f})
-      points.push_back({{x, 0.0f, z}, {0, 1, 0}, glm::vec3(0.5f), glm::vec3(0.0f)});
+  const std::vector<SamplePoint> points = pathtest::floorPoints({0.3f, 1.0f, 1.7f}, {0.2f, 1.1f, 1.9f});
   Context ctx;
   ReferenceParams params;
   params.spp = 16;

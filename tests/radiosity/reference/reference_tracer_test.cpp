@@ -9,8 +9,8 @@
 
 #include "core/error.h"
 #include "core/quads.h"
-#include "tests/radiosity/reference/path_test_scenes.h"
 #include "radiosity/metrics/form_factors.h"
+#include "tests/radiosity/reference/path_test_scenes.h"
 
 namespace cpgi {
 namespace {

@@ -7,6 +7,7 @@
 
 #include "radiosity/metrics/form_factors.h"
 #include "radiosity/reference/reference_tracer.h"
+#include "tests/radiosity/reference/path_test_scenes.h"
 #include "tests/radiosity/test_sky_scenes.h"
 
 namespace cpgi {
@@ -17,10 +18,7 @@ TEST(SkyReference, FloorUnderAHoleInTheCeilingMatchesTheFormFactor) {
   s.sky.kind = Sky::Kind::Uniform;
   s.sky.zenithRadiance = 3.0f;
   s.sky.groundRadiance = 7.0f;  // the hole shows only sky
-  std::vector<SamplePoint> points;
-  for (float x : {0.25f, 1.0f, 1.6f})
-    for (float z : {0.3f, 1.0f, 1.8f})
-      points.push_back({{x, 0.0f, z}, {0, 1, 0}, glm::vec3(0.5f), glm::vec3(0.0f)});
+  const std::vector<SamplePoint> points = pathtest::floorPoints({0.25f, 1.0f, 1.6f}, {0.3f, 1.0f, 1.8f});
   Context ctx;
   ReferenceParams params;
   params.spp = 1024;

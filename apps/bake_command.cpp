@@ -1,12 +1,13 @@
 // `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 // [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient]
-// [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas (design.md §1, §3),
-// over the whole scene at once or cell by cell through portals (radiosity/cells/cell_solver.h); both write
-// the same atlas layout, plus an ambient term for the power the stop left unshot (radiosity/gpu/ambient.h).
-// Writes the lightmap files (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and
-// "cell", lightmap.png, baked.glb with the cells, view-*.png/.exr), report.json and report.html
-// (apps/report_page.h), all or nothing. The options are apps/options.h's.
+// [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas
+// (design.md §1, §3), over the whole scene at once or cell by cell through portals
+// (radiosity/cells/cell_solver.h); both write the same atlas layout, plus an ambient term for the power the
+// stop left unshot (radiosity/gpu/ambient.h). Writes the lightmap files
+// (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and "cell", lightmap.png,
+// baked.glb with the cells, view-*.png/.exr), report.json and report.html (apps/report_page.h), all or
+// nothing. The options are apps/options.h's.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -79,10 +80,13 @@ struct BakeOptions {
   std::string jobFirstShot;  ///< emitter groups to shoot, "0,3,4" or "all"
   bool jobFirstShotSum = false;
   bool gather = false;
-  double timeLimit = 0.0;      ///< --time-limit: seconds of wall clock from the start, 0 = none
+  double timeLimit = 0.0;  ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
   /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas.
   float solveDensity = 0.0f;
+  /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
+  /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
+  float lampCoarsening = RefinedLampParams{}.coarsening;
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -228,8 +232,10 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContex
   const SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
   if (o.method != "cells" && o.solveDensity > 0.0f) {
     levels.emplace();
-    return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, TwoLevelParams{o.solveDensity}, o.solver,
-                         gl, ctx, controls, &*levels);
+    TwoLevelParams twoLevels{.solveDensity = o.solveDensity};
+    twoLevels.lamps.coarsening = o.lampCoarsening;
+    return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
+                         &*levels);
   }
   if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
   CellSolveParams params = o.cellParams;
@@ -315,8 +321,8 @@ struct BakeFigures {
 };
 
 nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const SolveResult& s,
-                          const std::optional<TwoLevelData>& levels, const EglContext& gl, const BakeFigures& f,
-                          const Context& ctx) {
+                          const std::optional<TwoLevelData>& levels, const EglContext& gl,
+                          const BakeFigures& f, const Context& ctx) {
   const bool cells = o.method == "cells";
   LightmapRun run{.method = o.method,
                   .scene = o.scene,
@@ -347,8 +353,12 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   if (levels) {
     report["lamp_shots"] = levels->lampShots;
     report["refined_triangles"] = levels->refinedTriangles;
+    report["lamp_coarsening"] = o.lampCoarsening;
+    report["lamp_coarse_texels"] = levels->lampCoarseTexels;
+    report["lamp_refined_texels"] = levels->lampRefinedTexels;
     report["lamp_solve_s"] = levels->lampSeconds;
     report["indirect_solve_s"] = levels->solveSeconds;
+    report["indirect_item_buffer"] = levels->indirectItemBuffer;
   }
   report["renderer"] = gl.renderer();
   report["gl_version"] = gl.version();
@@ -639,6 +649,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addSkyOptions(*sub, o->sky, true);
   addTimeLimitOption(*sub, o->timeLimit);
   addSolveDensityOption(*sub, o->solveDensity);
+  addLampCoarseningOption(*sub, o->lampCoarsening);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {
     o->maxShotsGiven = sub->count("--max-shots") > 0;

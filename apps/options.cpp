@@ -49,6 +49,7 @@ constexpr ParameterFlag kFlags[] = {
     // Bake only: stop the solve at a wall-clock limit, writing a partial result
     {"time limit", "--time-limit"},
     {"solve density", "--solve-density"},
+    {"lamp coarsening", "--lamp-coarsening"},
     // The sky, sun and ground of an open scene (core/sky.h), bake and reference
     {"sky", "--sky"},
     {"sky irradiance", "--sky-irradiance"},
@@ -198,7 +199,9 @@ void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope) {
                          formatBytes(double(limit)) + ")"))
              ->check(CLI::Validator(
                  [](std::string& text) -> std::string {
-                   return parseByteSize(text) > 0 ? "" : "must be a size such as 8G or 512M, got " + printable(text);
+                   return parseByteSize(text) > 0
+                              ? ""
+                              : "must be a size such as 8G or 512M, got " + printable(text);
                  },
                  "SIZE")),
          scope);
@@ -284,7 +287,8 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
              "Voxel edge, metres, in (0, 10]; 0 = from the scene: max(0.05, cbrt(bounds volume / 4e6))",
              within(0.0, 10.0));
   addChecked(cmd, scope, "seal radius", params.sealRadius,
-             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel wide", within(0.0, 1.0));
+             "Closing radius, metres, in [0, 1]: seals cracks up to ~2 seal + 1 voxel wide",
+             within(0.0, 1.0));
   addChecked(cmd, scope, "saddle ratio", params.merge.saddleRatio,
              "Merge two basins when saddle / smaller peak exceeds this (higher keeps more portals)",
              within(0.0, 1.0));
@@ -306,10 +310,20 @@ void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
 }
 
 void addSolveDensityOption(CLI::App& cmd, float& density) {
-  addChecked(cmd, {}, "solve density", density,
-             "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
-             "the lamps' own shots on the output's; 0: all on the output's atlas (global method)",
-             within(0.0, 10000.0));
+  addChecked(
+      cmd, {}, "solve density", density,
+      "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
+      "the lamps' own shots on the output's; 0: all on the output's atlas (global method)",
+      within(0.0, 10000.0));
+}
+
+void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
+  addChecked(
+      cmd, {}, "lamp coarsening", coarsening,
+      "With --solve-density: the lamps shoot first on an atlas this many times coarser than the output's "
+      "(at least 10 texels per metre), then again at the output's texels only where that shot's light has "
+      "an edge, a penumbra or a bend; 1: at every output texel",
+      within(1.0, 1000.0));
 }
 
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {

@@ -17,9 +17,9 @@
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/reference/noisy_cells.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/views.h"
+#include "radiosity/reference/noisy_cells.h"
 
 namespace cpgi::cli {
 
@@ -56,7 +56,10 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
 /// --solve-density (bake: the indirect light on a coarser atlas, radiosity/gpu/two_level_solve.h).
 void addSolveDensityOption(CLI::App& cmd, float& density);
-/// --cell-noise and --max-spp (more paths for the reference's noisy cells, radiosity/reference/noisy_cells.h).
+/// --lamp-coarsening (bake, with --solve-density: radiosity/gpu/refined_lamp_shot.h).
+void addLampCoarseningOption(CLI::App& cmd, float& coarsening);
+/// --cell-noise and --max-spp (more paths for the reference's noisy cells,
+/// radiosity/reference/noisy_cells.h).
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope = {});
 /// --max-bounces (the reference's path depth); returns the option, to tell whether it was given.
 CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope = {});

@@ -19,6 +19,15 @@ layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
 // What this shot gave each receiver texel (0 where it gave nothing), so that rescale_shot.comp can take
 // back a shot that delivered more than its power.
 layout(std430, binding = 21) writeonly buffer ShotGain { vec4 shotGain[]; };
+// Per texel: bit 31 set where it does not receive (uMasked: a lamp's shot refined at some texels only),
+// the low bits what the lamps' shots found there (uWriteFlags; LampFlag in solve_result.h).
+layout(std430, binding = 23) buffer TexelFlags { uint texelFlags[]; };
+uniform bool uMasked;
+uniform bool uWriteFlags;
+#define NOT_RECEIVING 0x80000000u
+#define LAMP_EDGE 1u
+#define LAMP_NEAR 2u
+#define LAMP_PARTLY_SEEN 4u
 
 uniform int uShooter;
 uniform int uRegionCount;
@@ -228,6 +237,10 @@ void main() {
   int tx = texel(t);
   vec4 np = normalPatch[tx];
   if (int(np.w) != tile.z) return;
+  if (uMasked && (texelFlags[tx] & NOT_RECEIVING) != 0u) {
+    shotGain[tx] = vec4(0.0);  // rescale_shot.comp reads it for every texel of a listed tile
+    return;
+  }
   vec3 x = posArea[tx].xyz;
   gReceiver = x;
   vec3 e = vec3(0.0);
@@ -241,11 +254,13 @@ void main() {
   // read a crack between a zero-thickness wall and the floor as a view through it, and 20 points a texel
   // found 3× the cracks (EnergyConservation.NoLightOverAWallIntoTheRoomBehind: 6e-5 of the light).
   int seenBy = 0;  // bit r: region r's eye sees the receiver's centre
+  int shooting = 0;  // bit r: region r shoots something
   bool edge = false;
   vec3 texelU = patches[tile.z].texelU.xyz, texelV = patches[tile.z].texelV.xyz;
   float texelSize = max(length(texelU), length(texelV));
   for (int r = 0; r < uRegionCount; ++r) {
     if (!blocksOf(r)) continue;
+    shooting |= 1 << r;
     gOccluderGap = 1e30;
     bool seen = seesPoint(r, x, np.xyz, tile.z);
     float centreGap = gOccluderGap;
@@ -268,7 +283,13 @@ void main() {
   // a pixel showing the wall), hence the occluder's distance above. Lamps only: the reference (and a
   // lightmap read bilinearly) takes a texel's value at its centre, which a mean over the texel leaves
   // on coarse atlases, and in every strong shot this cost 2.7× the CPU (openings, seed1).
-  if (edge || uLampShot && seenBy != 0 && gNearest < NEAR_TEXELS * texelSize) {
+  bool near = uLampShot && seenBy != 0 && gNearest < NEAR_TEXELS * texelSize;
+  if (uWriteFlags && uLampShot) {
+    uint found = (edge ? LAMP_EDGE : 0u) | (near ? LAMP_NEAR : 0u) |
+                 (seenBy != 0 && seenBy != shooting ? LAMP_PARTLY_SEEN : 0u);
+    if (found != 0u) texelFlags[tx] |= found;
+  }
+  if (edge || near) {
     e = vec3(0.0);
 #ifdef DIRECTIONAL
     gArrival = vec4(0.0);

@@ -13,8 +13,8 @@
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
-#include "radiosity/lightmap/sky_light.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/sky_light.h"
 
 namespace cpgi {
 namespace {
@@ -39,55 +39,96 @@ struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 && sizeof(GpuSelection) == 80);
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 &&
+              sizeof(GpuSelection) == 80);
 
-constexpr int kTile = 8;         // receiver work groups are kTile × kTile texels
-constexpr int kMaxRegions = 4;   // per chart edge; common.glsl's MAX_REGIONS is its square
-constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
-constexpr int kCoverageStride = 4;  // shot_coverage.comp's STRIDE
+constexpr int kTile = 8;                         // receiver work groups are kTile × kTile texels
+constexpr uint32_t kNotReceiving = 0x80000000u;  // receive.comp's texel flag: SolveControls::receivers
+constexpr int kMaxRegions = 4;                   // per chart edge; common.glsl's MAX_REGIONS is its square
+constexpr GLuint kListHeader = 16;               // count + 3 dispatch arguments, in bytes
+constexpr int kCoverageStride = 4;               // shot_coverage.comp's STRIDE
 
 // Shader-storage binding points (shaders/*.comp).
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
-enum Ssbo : GLuint { kPatches = 0, kStats = 1, kVisible = 2, kTiles = 3, kTileList = 4, kPatchList = 5,
-                     kRegions = 6, kPending = 7, kSelection = 8, kPosArea = 9, kNormalPatch = 10, kAlbedo = 11,
-                     kRadiosity = 12, kResidual = 13, kIncident = 14, kNodes = 15,
-                     kTileStats = 16, kEmissionLobes = 17, kArrivals = 18, kNodeLobes = 19, kEyes = 20, kShotGain = 21, kCoverage = 22 };
+enum Ssbo : GLuint {
+  kPatches = 0,
+  kStats = 1,
+  kVisible = 2,
+  kTiles = 3,
+  kTileList = 4,
+  kPatchList = 5,
+  kRegions = 6,
+  kPending = 7,
+  kSelection = 8,
+  kPosArea = 9,
+  kNormalPatch = 10,
+  kAlbedo = 11,
+  kRadiosity = 12,
+  kResidual = 13,
+  kIncident = 14,
+  kNodes = 15,
+  kTileStats = 16,
+  kEmissionLobes = 17,
+  kArrivals = 18,
+  kNodeLobes = 19,
+  kEyes = 20,
+  kShotGain = 21,
+  kCoverage = 22,
+  kTexelFlags = 23
+};
 
 struct Face {
   glm::vec3 right, up, forward;
 };
 // The hemicube in shooter coordinates (z = shooter normal); must match visibility.glsl.
 constexpr Face kFaces[5] = {
-    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},   {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}},
-    {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+    {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},   {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
+    {{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+    {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
 };
 
 // glm matrices are column-major; these are uploaded so that `M * v` in GLSL gives dot(row_i, v).
-glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return glm::transpose(glm::mat3(a, b, c)); }
+glm::mat3 rowsOf(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  return glm::transpose(glm::mat3(a, b, c));
+}
 
-GLint loc(const gl::Program& p, const char* name) { return glGetUniformLocation(p.get(), name); }
-void set(const gl::Program& p, const char* n, int v) { glProgramUniform1i(p.get(), loc(p, n), v); }
-void setU(const gl::Program& p, const char* n, GLuint v) { glProgramUniform1ui(p.get(), loc(p, n), v); }
-void set(const gl::Program& p, const char* n, float v) { glProgramUniform1f(p.get(), loc(p, n), v); }
-void set(const gl::Program& p, const char* n, glm::vec3 v) { glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z); }
+GLint loc(const gl::Program& p, const char* name) {
+  return glGetUniformLocation(p.get(), name);
+}
+void set(const gl::Program& p, const char* n, int v) {
+  glProgramUniform1i(p.get(), loc(p, n), v);
+}
+void setU(const gl::Program& p, const char* n, GLuint v) {
+  glProgramUniform1ui(p.get(), loc(p, n), v);
+}
+void set(const gl::Program& p, const char* n, float v) {
+  glProgramUniform1f(p.get(), loc(p, n), v);
+}
+void set(const gl::Program& p, const char* n, glm::vec3 v) {
+  glProgramUniform3f(p.get(), loc(p, n), v.x, v.y, v.z);
+}
 void set(const gl::Program& p, const char* n, const glm::mat3& m) {
   glProgramUniformMatrix3fv(p.get(), loc(p, n), 1, GL_FALSE, &m[0][0]);
 }
 
-GLuint groups(size_t n, size_t size) { return static_cast<GLuint>((n + size - 1) / size); }
+GLuint groups(size_t n, size_t size) {
+  return static_cast<GLuint>((n + size - 1) / size);
+}
 
 void checkParams(const SolverParams& p, const LightmapAtlas& atlas, const EglContext& context) {
   const int maxTexture = context.maxTextureSize();
   if (p.itemBuffer < 16 || p.itemBuffer % 2 != 0 || p.itemBuffer > maxTexture ||
       (p.visibility == Visibility::Hemicube && p.itemBuffer / 2 * 3 > maxTexture))
     throw InputError("item buffer", "must be even, at least 16 and fit GL_MAX_TEXTURE_SIZE (" +
-                                          std::to_string(maxTexture) + ")");
-  if (p.neighbourhood < 0 || p.neighbourhood > 4) throw InputError("item-buffer neighbourhood", "must be in 0..4");
+                                        std::to_string(maxTexture) + ")");
+  if (p.neighbourhood < 0 || p.neighbourhood > 4)
+    throw InputError("item-buffer neighbourhood", "must be in 0..4");
   if (!(p.unshotFraction > 0.0 && p.unshotFraction < 1.0))
     throw InputError("unshot fraction", "must be a fraction in (0, 1)");
   if (p.maxShots < 1) throw InputError("maximum shots", "must be at least 1");
   if (!(p.farField >= 1.0f)) throw InputError("far-field ratio", "must be at least 1");
-  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions) throw InputError("solver", "visibility regions per edge must be in 1..4");
+  if (p.maxRegions < 1 || p.maxRegions > kMaxRegions)
+    throw InputError("solver", "visibility regions per edge must be in 1..4");
   if (p.strongShotRegions < 0 || p.strongShotRegions > kMaxRegions)
     throw InputError("solver", "visibility regions per edge of a strong shot must be in 0..4");
   if (!(p.strongShotFraction >= 0.0 && p.strongShotFraction <= 1.0))
@@ -103,12 +144,12 @@ void checkParams(const SolverParams& p, const LightmapAtlas& atlas, const EglCon
   const double blockBytes = double(atlas.texelCount()) * sizeof(glm::vec4);
   const int64_t maxBlock = context.maxStorageBlockSize();
   if (maxBlock > 0 && blockBytes > double(maxBlock))
-    throw InputError(atlas.sizeParameter,
-                     "the lightmap atlas of " + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
-                         " texels needs GPU buffers of " + formatBytes(blockBytes) +
-                         ", more than this driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE " +
-                         formatBytes(double(maxBlock)) + " (" + std::to_string(maxBlock / int64_t(sizeof(glm::vec4))) +
-                         " texels); lower the resolution");
+    throw InputError(
+        atlas.sizeParameter,
+        "the lightmap atlas of " + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+            " texels needs GPU buffers of " + formatBytes(blockBytes) +
+            ", more than this driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE " + formatBytes(double(maxBlock)) +
+            " (" + std::to_string(maxBlock / int64_t(sizeof(glm::vec4))) + " texels); lower the resolution");
 }
 
 // Per-pass wall times when SolverParams::profilePasses is set: glFinish, then charge the time since the
@@ -155,7 +196,10 @@ struct SolveConfig : SolverParams {
   bool readTransfer = false;
   double minShotPower = 0.0;
   bool directionalEmission = false;
-  const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
+  const DirectLight* direct = nullptr;         ///< punctual lights' first shot, already done (addDirectLight)
+  std::span<const uint8_t> receivers = {};     ///< SolveControls::receivers
+  std::span<const float> patchShotScale = {};  ///< SolveControls::patchShotScale
+  bool readLampFlags = false;
   /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
   double directEmitted = 0.0;
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
@@ -173,8 +217,10 @@ ProgramDefines programDefines(const SolveConfig& params) {
 struct SolverPrograms::Set {
   explicit Set(const ProgramDefines& d) {
     const bool hemisphere = std::find(d.item.begin(), d.item.end(), "HEMISPHERE") != d.item.end();
-    item = hemisphere ? buildProgram({"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese", "item.frag"}, d.item)
-                      : buildProgram({"item.vert", "item.frag"}, d.item);
+    item =
+        hemisphere
+            ? buildProgram({"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese", "item.frag"}, d.item)
+            : buildProgram({"item.vert", "item.frag"}, d.item);
     compact = buildProgram({"compact.comp"});
     finish = buildProgram({"finish_lists.comp"});
     pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
@@ -208,11 +254,21 @@ class Solver {
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
          const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
-      : scene_(scene), atlas_(atlas), params_(params), itemProgram_(programs.item),
-        compactProgram_(programs.compact), finishProgram_(programs.finish), pyramidProgram_(programs.pyramid),
-        receiveProgram_(programs.receive), statsProgram_(programs.stats), tileStatsProgram_(programs.tileStats),
-        selectProgram_(programs.select), pickEyesProgram_(programs.pickEyes),
-        rescaleProgram_(programs.rescale), coverageProgram_(programs.coverage), clock_(params.profilePasses) {
+      : scene_(scene),
+        atlas_(atlas),
+        params_(params),
+        itemProgram_(programs.item),
+        compactProgram_(programs.compact),
+        finishProgram_(programs.finish),
+        pyramidProgram_(programs.pyramid),
+        receiveProgram_(programs.receive),
+        statsProgram_(programs.stats),
+        tileStatsProgram_(programs.tileStats),
+        selectProgram_(programs.select),
+        pickEyesProgram_(programs.pickEyes),
+        rescaleProgram_(programs.rescale),
+        coverageProgram_(programs.coverage),
+        clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
       // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
@@ -386,13 +442,15 @@ class Solver {
   Coverage readCoverage(int regions) {
     const size_t perRegion = coverageColumns();
     std::vector<glm::vec4> columns(size_t(regions) * perRegion);
-    glGetNamedBufferSubData(coverage_.get(), 0, GLsizeiptr(columns.size() * sizeof(glm::vec4)), columns.data());
+    glGetNamedBufferSubData(coverage_.get(), 0, GLsizeiptr(columns.size() * sizeof(glm::vec4)),
+                            columns.data());
     Coverage weighted{0.0, 0.0};
     double power = 0.0;
     for (int r = 0; r < regions; ++r) {
       GpuNode top{};
       glGetNamedBufferSubData(nodes_.get(), GLintptr(topNode_[r] * sizeof(GpuNode)), sizeof top, &top);
-      const double p = double(top.centreArea.w) * (double(top.radiosityRadius.r) + top.radiosityRadius.g + top.radiosityRadius.b);
+      const double p = double(top.centreArea.w) *
+                       (double(top.radiosityRadius.r) + top.radiosityRadius.g + top.radiosityRadius.b);
       glm::dvec3 sum(0.0);
       for (size_t x = 0; x < perRegion; ++x) sum += glm::dvec3(columns[r * perRegion + x]);
       if (!(p > 0.0) || !(sum.z > 0.0)) continue;
@@ -405,6 +463,14 @@ class Solver {
   }
 
   std::vector<glm::vec3> readRadiosity() const { return readImage(radiosity_); }
+  std::vector<uint8_t> readLampFlags() const {
+    std::vector<uint32_t> words(atlas_.texelCount());
+    glGetNamedBufferSubData(texelFlags_.get(), 0, GLsizeiptr(words.size() * 4), words.data());
+    gl::check("read back");
+    std::vector<uint8_t> flags(words.size());
+    for (size_t i = 0; i < words.size(); ++i) flags[i] = uint8_t(words[i] & 0xFFu);
+    return flags;
+  }
   std::vector<glm::vec3> readResidual() const { return readImage(residual_); }
   std::vector<glm::vec3> readIncident() const { return readImage(incident_); }
   std::vector<glm::vec4> readArrivals() const {
@@ -415,6 +481,16 @@ class Solver {
   }
 
  private:
+  // Whether the kTile × kTile tile at (x, y) of chart p holds a texel that receives (tiles that do not
+  // are left out of every shot's work list: compact.comp).
+  bool receivesIn(const Patch& p, int x, int y) const {
+    if (params_.receivers.empty()) return true;
+    for (int j = y; j < std::min(y + kTile, p.h); ++j)
+      for (int i = x; i < std::min(x + kTile, p.w); ++i)
+        if (params_.receivers[size_t(p.y + j) * size_t(atlas_.width) + size_t(p.x + i)]) return true;
+    return false;
+  }
+
   // The region table (common.glsl, Region) of one shooter; fills levelNodes_ (nodes per level over all
   // regions) and returns the highest level.
   int uploadRegions(const ShooterLayout& l, const Patch& p, int replicas) {
@@ -460,7 +536,8 @@ class Solver {
       size_t n = 0;
       for (const glm::ivec4& c : l.rects) {
         const glm::ivec2 size(c.z - c.x, c.w - c.y);
-        for (int k = 1, top = topLevel(size); k <= top; ++k) n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
+        for (int k = 1, top = topLevel(size); k <= top; ++k)
+          n += size_t(levelDims(size, k).x) * levelDims(size, k).y;
       }
       most = std::max(most, n);
     }
@@ -579,6 +656,14 @@ class Solver {
     texels(incident_, incident, kIncident);
     shotGain_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShotGain, shotGain_.get());
+    // receive.comp's per-texel word: bit 31 set where the texel does not receive (SolveControls::receivers),
+    // the low bits what the lamps' shots found there (LampFlag).
+    const bool flags = !params_.receivers.empty() || params_.readLampFlags;
+    std::vector<uint32_t> texelFlags(flags ? n : 1, 0u);
+    if (!params_.receivers.empty())
+      for (size_t i = 0; i < n; ++i) texelFlags[i] = params_.receivers[i] ? 0u : kNotReceiving;
+    texelFlags_ = gl::makeBuffer(texelFlags.size() * 4, texelFlags.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTexelFlags, texelFlags_.get());
 
     const size_t np = atlas_.patches.size();
     std::vector<GpuPatch> patches(np);
@@ -594,7 +679,8 @@ class Solver {
           if (atlas_.patch[t] == int(i) && atlas_.emission[t] != glm::vec3(0.0f)) pending[i] = 1;
         }
       for (int y = 0; y < p.h; y += kTile)
-        for (int x = 0; x < p.w; x += kTile) tiles.push_back({p.x + x, p.y + y, int(i), 0});
+        for (int x = 0; x < p.w; x += kTile)
+          tiles.push_back({p.x + x, p.y + y, int(i), receivesIn(p, x, y) ? 0 : 1});
       patches[i].rect = {p.x, p.y, p.w, p.h};
       patches[i].tiles = {int(firstTile_[i]), int(tiles.size() - firstTile_[i]), 0, 0};
       patches[i].origin = glm::vec4(p.origin, 0.0f);
@@ -624,7 +710,8 @@ class Solver {
     ssbo(pending_, kPending, np * 4, pending.data());
     ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
     ssbo(eyes_, kEyes, kMaxRegions * kMaxRegions * sizeof(glm::vec4), nullptr);
-    ssbo(coverage_, kCoverage, kMaxRegions * kMaxRegions * size_t(params_.itemBuffer) * sizeof(glm::vec4), nullptr);
+    ssbo(coverage_, kCoverage, kMaxRegions * kMaxRegions * size_t(params_.itemBuffer) * sizeof(glm::vec4),
+         nullptr);
     const GLuint zero = 0;
     glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
@@ -660,9 +747,11 @@ class Solver {
       const Triangle& tri = scene_.triangles[t];
       if (!(tri.area() > 0.0f)) continue;
       // The side a receiver is on: its patch's normal (what receive.comp and shot_coverage.comp test).
-      const glm::vec3 n = patchOf[t] >= 0 ? atlas_.patches[patchOf[t]].normal
-                                          : glm::normalize(glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]));
-      for (const glm::vec3& q : tri.p) positions.push_back(q), normals.push_back(n), ids.push_back(patchOf[t]);
+      const glm::vec3 n = patchOf[t] >= 0
+                              ? atlas_.patches[patchOf[t]].normal
+                              : glm::normalize(glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]));
+      for (const glm::vec3& q : tri.p)
+        positions.push_back(q), normals.push_back(n), ids.push_back(patchOf[t]);
     }
     vertexCount_ = GLsizei(positions.size());
     positionBuffer_ = gl::makeBuffer(positions.size() * sizeof(glm::vec3), positions.data(), 0);
@@ -746,6 +835,8 @@ class Solver {
     set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
     set(receiveProgram_, "uPlaneSlack", eyeOffset_);
     set(receiveProgram_, "uFarField", params_.farField);
+    set(receiveProgram_, "uMasked", int(!params_.receivers.empty()));
+    set(receiveProgram_, "uWriteFlags", int(params_.readLampFlags));
     setU(compactProgram_, "uTiles", GLuint(tileCount_));
     setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
     set(selectProgram_, "uPatches", int(atlas_.patches.size()));
@@ -755,23 +846,30 @@ class Solver {
   const LightmapAtlas& atlas_;
   SolveConfig params_;
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
-      &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_, &coverageProgram_;
-  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_, nodeLobes_;
+      &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_,
+      &coverageProgram_;
+  gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_,
+      nodeLobes_;
   gl::Buffer coverage_;  ///< per region and sampled item-buffer column: (covered, open, total) weight
   std::vector<int32_t> topNode_;  ///< per region of the last shot, its top pyramid node
   Coverage lastCoverage_;
-  gl::Buffer shotGain_;  ///< per texel, what the last shot gave it (rescale_shot.comp)
+  gl::Buffer shotGain_;            ///< per texel, what the last shot gave it (rescale_shot.comp)
+  gl::Buffer texelFlags_;          ///< per texel, receive.comp's flags (one word when unused)
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
   gl::Texture items_, distances_, depth_;
-  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_, selection_, eyes_;
+  gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_,
+      selection_, eyes_;
   std::array<size_t, kMaxLevels + 2> levelNodes_{};
   gl::Buffer tileStats_;
-  std::vector<size_t> firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
+  std::vector<size_t>
+      firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
   gl::Buffer positionBuffer_, idBuffer_, normalBuffer_;
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
   std::vector<ShooterLayout> layouts_, strongLayouts_;  // strongLayouts_ empty when it would be layouts_
-  int strongRegions() const { return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions; }
+  int strongRegions() const {
+    return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions;
+  }
   std::vector<ShooterLayout> allLayouts() const {
     std::vector<ShooterLayout> all = layouts_;
     all.insert(all.end(), strongLayouts_.begin(), strongLayouts_.end());
@@ -785,7 +883,9 @@ class Solver {
   float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
 };
 
-double channelSum(const glm::vec4& v) { return double(v.r) + double(v.g) + double(v.b); }
+double channelSum(const glm::vec4& v) {
+  return double(v.r) + double(v.g) + double(v.b);
+}
 
 std::string formatStatus(int shots, double fraction, double eta) {
   char buf[96];
@@ -800,11 +900,13 @@ std::string formatStatus(int shots, double fraction, double eta) {
 
 namespace {
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
-                           SolverPrograms& programs);
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
+                           Context& ctx, SolverPrograms& programs);
 }  // namespace
 
-const char* visibilityName(Visibility v) { return v == Visibility::Hemisphere ? "hemisphere" : "hemicube"; }
+const char* visibilityName(Visibility v) {
+  return v == Visibility::Hemisphere ? "hemisphere" : "hemicube";
+}
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                              const EglContext& context, Context& ctx, const SolveControls& controls) {
@@ -815,6 +917,13 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
   config.deadline = controls.deadline;
+  if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
+    throw InputError("solver", "receivers need one flag per atlas texel");
+  if (!controls.receivers.empty() && controls.patchShotScale.size() != atlas.patches.size())
+    throw InputError("solver", "a solve at some receivers needs one shot scale per patch");
+  config.receivers = controls.receivers;
+  config.patchShotScale = controls.patchShotScale;
+  config.readLampFlags = controls.readLampFlags;
   // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver),
   // or a first shot the caller made (it covers those lights too).
   DirectLight direct;
@@ -824,7 +933,8 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
     direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
     config.direct = &direct;
     config.directEmitted = controls.priorShot->emitted;
-  } else if (!scene.lights.empty() || scene.sky.lights()) {  // and the sky's (core/sky.h), gathered the same way
+  } else if (!scene.lights.empty() ||
+             scene.sky.lights()) {  // and the sky's (core/sky.h), gathered the same way
     direct = shootPunctualAndSky(scene, atlas, ctx);
     config.direct = &direct;
     config.directEmitted = punctualEmitted(scene.lights, direct.directionalLanded);
@@ -838,8 +948,8 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
 namespace {
 
 SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context, Context& ctx,
-                           SolverPrograms& programs) {
+                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
+                           Context& ctx, SolverPrograms& programs) {
   checkParams(params, atlas, context);
   SolveResult result;
   result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -899,7 +1009,8 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
     e.shot += shotPower;
     result.shooters.push_back(sel.winner);
-    sel = solver.shoot(sel.winner, shotPower >= params.strongShotFraction * e.emitted, sel.winnerPending != 0);
+    sel =
+        solver.shoot(sel.winner, shotPower >= params.strongShotFraction * e.emitted, sel.winnerPending != 0);
     ++result.shots;
     record(sel);
     // A shot whose eyes see nothing open delivers what they see covered (shot_coverage.comp); no shot
@@ -913,31 +1024,48 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     // beyond float rounding.
     double gained = e.received - receivedBefore;
     if (shotPower > 0.0) e.worstShotGain = std::max(e.worstShotGain, gained / shotPower);
+    if (!params.patchShotScale.empty()) {  // some receivers only: the scale of a shot that saw them all
+      const float scale = params.patchShotScale[size_t(result.shooters.back())];
+      if (scale != 1.0f) {
+        sel = solver.rescaleLastShot(result.shooters.back(), scale);
+        result.history.pop_back();
+        record(sel);
+      }
+      result.shotScales.push_back(scale);
+      continue;
+    }
     // The tolerance covers float sums and the emission lobes' normalisation (+1.1e-3 measured).
     constexpr double kTolerance = 2e-3;
     const auto& seen = solver.lastCoverage();
     const double closedBelow = 1e-3;  // open share under which the view counts as closed
-    const double target = seen.open < closedBelow ? shotPower * std::min(seen.covered, 1.0)
-                                                  : std::min(gained, shotPower * std::min(seen.covered + seen.open, 1.0));
+    const double target = seen.open < closedBelow
+                              ? shotPower * std::min(seen.covered, 1.0)
+                              : std::min(gained, shotPower * std::min(seen.covered + seen.open, 1.0));
+    float scale = 1.0f;
     if (gained > 0.0 && std::abs(gained - target) > kTolerance * shotPower) {
-      sel = solver.rescaleLastShot(result.shooters.back(), float(target / gained));
+      scale = float(target / gained);
+      sel = solver.rescaleLastShot(result.shooters.back(), scale);
       result.history.pop_back();
       record(sel);
       gained = e.received - receivedBefore;
     }
     if (gained > shotPower * (1.0 + kTolerance)) e.created += gained - shotPower;
     result.history.back() = e;
+    result.shotScales.push_back(scale);
 
     const double elapsed = since(shootStart), now = unshotShare();
     if (elapsed - lastReport > 0.25) {
       // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
       double eta = -1.0;
-      if (firstShot < 0 && !sel.winnerPending) firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
+      if (firstShot < 0 && !sel.winnerPending)
+        firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
       if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
         const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
-        if (rate < 0.0) eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+        if (rate < 0.0)
+          eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
       }
-      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      const double progress =
+          std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
       ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
       lastReport = elapsed;
     }
@@ -945,8 +1073,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   result.energy = e;
   if (e.created > 1e-4 * e.emitted) {
     char note[160];
-    std::snprintf(note, sizeof note, "the solve created %.3g W of light (%.2f%% of the emitted; worst shot received %.3fx its power)",
-                  e.created, 100.0 * e.created / e.emitted, e.worstShotGain);
+    std::snprintf(
+        note, sizeof note,
+        "the solve created %.3g W of light (%.2f%% of the emitted; worst shot received %.3fx its power)",
+        e.created, 100.0 * e.created / e.emitted, e.worstShotGain);
     ctx.warn(note);
   }
   result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
@@ -957,6 +1087,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     result.radiosity = solver.readRadiosity();
     if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
     if (params.directionalEmission) result.arrivals = solver.readArrivals();
+    if (params.readLampFlags) result.lampFlags = solver.readLampFlags();
   }
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (atlas.patch[i] < 0) {

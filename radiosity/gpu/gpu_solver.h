@@ -104,6 +104,15 @@ struct SolveControls {
   /// Start after this shot: ρ × its irradiance unshot, its power emitted and shot. The atlas's emission is
   /// shot as usual and the scene's punctual lights are not (the prior shot stands for them). Null: none.
   const PriorShot* priorShot = nullptr;
+  /// Receive only at the texels flagged here (one per atlas texel, non-zero: receives; empty: every texel):
+  /// a lamp's shot evaluated at the output's texels only where a coarser shot found its light varying
+  /// (radiosity/gpu/refined_lamp_shot.h). Such a shot's sums over part of its receivers cannot check what it
+  /// delivered, so it needs `patchShotScale`: per patch, the factor that patch's shots are scaled by instead
+  /// of the solver's own check (SolveResult::shotScales of the coarser shot).
+  std::span<const uint8_t> receivers = {};
+  std::span<const float> patchShotScale = {};
+  /// Also read back what the lamps' shots found at each texel (SolveResult::lampFlags).
+  bool readLampFlags = false;
   /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
   SolverPrograms* programs = nullptr;
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,

@@ -4,6 +4,7 @@
 // solver adds its own details beside them.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,13 +33,13 @@ struct EnergyTotals {
 /// Watts summed over R, G, B. For every cell: emitted + received = absorbed + sent + unshot + escaped.
 struct CellEnergy {
   std::string name;
-  double emitted = 0.0;   ///< by its own emitters
-  double received = 0.0;  ///< injected by neighbours through its portals
-  double absorbed = 0.0;  ///< by its surfaces (portals excluded)
-  double sent = 0.0;      ///< collected on its portals and handed to the neighbours
-  double unshot = 0.0;    ///< left at the end: residual plus received light not yet solved
-  double escaped = 0.0;   ///< shot but caught by no receiver (form-factor error)
-  double created = 0.0;   ///< Σ EnergyTotals::created of its solves (non-zero is a defect)
+  double emitted = 0.0;        ///< by its own emitters
+  double received = 0.0;       ///< injected by neighbours through its portals
+  double absorbed = 0.0;       ///< by its surfaces (portals excluded)
+  double sent = 0.0;           ///< collected on its portals and handed to the neighbours
+  double unshot = 0.0;         ///< left at the end: residual plus received light not yet solved
+  double escaped = 0.0;        ///< shot but caught by no receiver (form-factor error)
+  double created = 0.0;        ///< Σ EnergyTotals::created of its solves (non-zero is a defect)
   double worstShotGain = 0.0;  ///< the largest EnergyTotals::worstShotGain of its solves
   int solves = 0, shots = 0;
   size_t texels = 0;     ///< valid texels of its atlas, portals included
@@ -57,6 +58,14 @@ struct CellSolveData {
   std::vector<CellEnergy> cells;
   std::vector<PortalEnergy> portals;
   size_t maxCellTexels = 0;
+};
+
+/// What a lamp's shot found at a receiver texel (receive.comp's LAMP_* bits): its value there is not one
+/// that a coarser texel's neighbours would interpolate.
+enum LampFlag : uint8_t {
+  kLampEdge = 1,        ///< a shadow or beam edge crosses the texel
+  kLampNear = 2,        ///< within two of its texels of the lamp
+  kLampPartlySeen = 4,  ///< some of the lamp's eyes see its centre and some do not (a penumbra)
 };
 
 struct SolveResult {
@@ -78,7 +87,11 @@ struct SolveResult {
   std::vector<glm::vec4> arrivals;
   std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
   std::vector<int> shooters;          ///< the patch of every shot, in order
-  double setupSeconds = 0.0;          ///< programs and textures
+  /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gpu_solver.cpp).
+  std::vector<float> shotScales;
+  /// With SolveControls::readLampFlags, per atlas texel, LampFlag bits of what the lamps' shots found there.
+  std::vector<uint8_t> lampFlags;
+  double setupSeconds = 0.0;  ///< programs and textures
 
   /// A cell-by-cell solve (cell_solver.h): rounds, per-cell and per-portal energy.
   std::optional<CellSolveData> perCell;

@@ -1,60 +1,27 @@
 #include "radiosity/gpu/two_level_solve.h"
 
+#include <algorithm>
 #include <chrono>
 
+#include "radiosity/gpu/refined_lamp_shot.h"
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
-#include "radiosity/lightmap/direct_light.h"
 #include "radiosity/lightmap/ray_scene.h"
-#include "radiosity/lightmap/sky_light.h"
 
 namespace cpgi {
 
 namespace {
-
-int emitterPatches(const LightmapAtlas& atlas) {
-  std::vector<char> emits(atlas.patches.size(), 0);
-  for (size_t t = 0; t < atlas.texelCount(); ++t)
-    if (atlas.patch[t] >= 0 && atlas.emission[t] != glm::vec3(0.0f)) emits[size_t(atlas.patch[t])] = 1;
-  int n = 0;
-  for (char e : emits) n += e;
-  return n;
-}
-
-// Step 1: the lamps' shots on the output atlas (emitter patches shoot before any reflector, so the first
-// N shots are theirs; the punctual lights are shot inside on the CPU). What they leave is the direct light:
-// `incident` its irradiance, `radiosity` E + ρ × it, `residual` the light still to reflect.
-SolveResult shootLamps(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                       const EglContext& gl, Context& ctx, const SolveControls& controls) {
-  const int emitters = emitterPatches(atlas);
-  if (emitters == 0) {  // punctual lights and sky only: their exact shot is the whole first step
-    SolveResult r;
-    const DirectLight d = shootPunctualAndSky(scene, atlas, ctx);
-    r.incident = d.irradiance;
-    r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
-    r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
-    for (size_t t = 0; t < atlas.texelCount(); ++t)
-      if (atlas.patch[t] >= 0) {
-        r.residual[t] = atlas.albedo[t] * d.irradiance[t];
-        r.radiosity[t] = atlas.emission[t] + r.residual[t];
-      }
-    r.energy.emitted = r.energy.shot = punctualEmitted(scene.lights, d.directionalLanded);
-    return r;
-  }
-  SolverParams lamps = settings;
-  lamps.maxShots = emitters;
-  lamps.unshotFraction = 1e-12;  // every lamp shoots, whatever the stop
-  SolveControls c = controls;
-  c.readTransfer = true;
-  c.minShotPower = 0.0;
-  return solveProgressive(scene, atlas, lamps, gl, ctx, c);
-}
 
 double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
 }  // namespace
+
+int indirectItemBuffer(int itemBuffer, float solveDensity) {
+  const int scaled = int(float(itemBuffer) * std::min(solveDensity / 10.0f, 1.0f));
+  return std::clamp(scaled - scaled % 2, std::min(itemBuffer, 64), itemBuffer);
+}
 
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
@@ -74,12 +41,15 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   LightmapAtlas coarse = buildAtlas(scene, quads, coarseParams, ctx);
   if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
     SolveResult one = solveProgressive(scene, atlas, settings, gl, ctx, controls);
-    if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds};
+    if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer};
     return one;
   }
   const AtlasMapping mapping = mapAtlas(atlas, coarse);
   const auto lampStart = std::chrono::steady_clock::now();
-  SolveResult lit = shootLamps(scene, atlas, settings, gl, ctx, controls);
+  // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies.
+  RefinedLampData lampData;
+  SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, gl, ctx,
+                                      controls, &lampData);
   const double lampSeconds = seconds(lampStart);
 
   // Step 2: the coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that
@@ -91,7 +61,9 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   c.readTransfer = true;
   c.priorShot = &prior;
   const auto coarseStart = std::chrono::steady_clock::now();
-  SolveResult indirect = solveProgressive(scene, coarse, settings, gl, ctx, c);
+  SolverParams indirectSettings = settings;
+  indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
+  SolveResult indirect = solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
   const double coarseSeconds = seconds(coarseStart);
 
   // Step 3: the coarse solve's own irradiance (its incident less the lamps' light it started from) back
@@ -119,7 +91,15 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   out.history.insert(out.history.end(), indirect.history.begin(), indirect.history.end());
   out.setupSeconds = lit.setupSeconds + indirect.setupSeconds;
   out.seconds = seconds(start);
-  if (data) *data = {coarse.validTexels(), refined, lit.shots, lampSeconds, coarseSeconds};
+  if (data)
+    *data = {coarse.validTexels(),
+             refined,
+             lit.shots,
+             lampSeconds,
+             coarseSeconds,
+             lampData.coarseTexels,
+             lampData.refinedTexels,
+             indirectSettings.itemBuffer};
   return out;
 }
 

@@ -101,36 +101,123 @@ std::vector<glm::vec3> downsample(const AtlasMapping& m, const LightmapAtlas& fi
   return out;
 }
 
+BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t) {
+  BilinearTaps taps;
+  const int32_t cp = m.coarsePatch[t];
+  if (cp < 0) return taps;
+  const Patch& c = coarse.patches[size_t(cp)];
+  const glm::vec2 g = m.chartPoint[t] - 0.5f;
+  auto texelAt = [&](int i, int j) { return int64_t(c.y + j) * coarse.width + (c.x + i); };
+  // The 2 × 2 centres around the point, moved inside the chart at its edges, so that the outer half
+  // texel is extrapolated along the slope of the two nearest centres rather than held at the last one
+  // (light falling steeply towards a corner near a lamp).
+  {
+    const int nx = std::min(c.w, 2), ny = std::min(c.h, 2);
+    const int i0 = std::clamp(int(std::floor(g.x)), 0, c.w - nx),
+              j0 = std::clamp(int(std::floor(g.y)), 0, c.h - ny);
+    const double fx = std::clamp(double(g.x) - i0, -0.5, 1.5), fy = std::clamp(double(g.y) - j0, -0.5, 1.5);
+    bool valid = true;
+    for (int dj = 0; dj < ny; ++dj)
+      for (int di = 0; di < nx; ++di) {
+        const int64_t ct = texelAt(i0 + di, j0 + dj);
+        valid = valid && coarse.patch[size_t(ct)] == cp;
+        taps.texel[size_t(taps.count)] = ct;
+        taps.weight[size_t(taps.count)] = (nx == 1 ? 1.0
+                                           : di    ? fx
+                                                   : 1.0 - fx) *
+                                          (ny == 1 ? 1.0
+                                           : dj    ? fy
+                                                   : 1.0 - fy);
+        ++taps.count;
+      }
+    if (valid) return taps;
+    taps = BilinearTaps{};
+  }
+  // A loose triangle's chart with empty texels: the four centres around the point clamped into the
+  // chart, those that are not valid dropped and the others renormalised.
+  const int i0 = int(std::floor(g.x)), j0 = int(std::floor(g.y));
+  const float fx = std::clamp(g.x - float(i0), 0.0f, 1.0f), fy = std::clamp(g.y - float(j0), 0.0f, 1.0f);
+  double weight = 0.0;
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const int i = std::clamp(i0 + di, 0, c.w - 1), j = std::clamp(j0 + dj, 0, c.h - 1);
+      const int64_t ct = int64_t(c.y + j) * coarse.width + (c.x + i);
+      if (coarse.patch[size_t(ct)] != cp) continue;
+      const double w = double(di ? fx : 1.0f - fx) * double(dj ? fy : 1.0f - fy);
+      taps.texel[size_t(taps.count)] = ct;
+      taps.weight[size_t(taps.count)] = w;
+      ++taps.count;
+      weight += w;
+    }
+  if (weight > 0.0) {
+    for (int k = 0; k < taps.count; ++k) taps.weight[size_t(k)] /= weight;
+  } else if (m.coarseTexel[t] >= 0) {
+    taps = BilinearTaps{};
+    taps.texel[0] = m.coarseTexel[t];
+    taps.weight[0] = 1.0;
+    taps.count = 1;
+  } else {
+    taps.count = 0;
+  }
+  return taps;
+}
+
 std::vector<glm::vec3> upsample(const AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,
                                 std::span<const glm::vec3> values) {
   std::vector<glm::vec3> out(fine.texelCount(), glm::vec3(0.0f));
   for (size_t t = 0; t < fine.texelCount(); ++t) {
-    const int32_t cp = m.coarsePatch[t];
-    if (cp < 0) continue;
-    const Patch& c = coarse.patches[size_t(cp)];
-    // The four coarse texel centres around the point, clamped into the chart; texels of the chart that
-    // are not valid (outside a loose triangle) drop out and the others are renormalised.
-    const glm::vec2 g = m.chartPoint[t] - 0.5f;
-    const int i0 = int(std::floor(g.x)), j0 = int(std::floor(g.y));
-    const float fx = std::clamp(g.x - float(i0), 0.0f, 1.0f), fy = std::clamp(g.y - float(j0), 0.0f, 1.0f);
+    const BilinearTaps taps = bilinearTaps(m, coarse, t);
     glm::dvec3 sum(0.0);
-    double weight = 0.0;
-    for (int dj = 0; dj < 2; ++dj)
-      for (int di = 0; di < 2; ++di) {
-        const int i = std::clamp(i0 + di, 0, c.w - 1), j = std::clamp(j0 + dj, 0, c.h - 1);
-        const size_t ct = size_t(c.y + j) * size_t(coarse.width) + size_t(c.x + i);
-        if (coarse.patch[ct] != cp) continue;
-        const double w = double(di ? fx : 1.0f - fx) * double(dj ? fy : 1.0f - fy);
-        sum += w * glm::dvec3(values[ct]);
-        weight += w;
-      }
-    if (weight > 0.0) {
-      out[t] = glm::vec3(sum / weight);
-    } else if (m.coarseTexel[t] >= 0) {
-      out[t] = values[size_t(m.coarseTexel[t])];
-    }
+    for (int k = 0; k < taps.count; ++k)
+      sum += taps.weight[size_t(k)] * glm::dvec3(values[size_t(taps.texel[size_t(k)])]);
+    out[t] = glm::max(glm::vec3(sum), glm::vec3(0.0f));  // extrapolated at an edge: never below 0
   }
   return out;
+}
+
+std::vector<uint8_t> texelsToRefine(const AtlasMapping& m, const LightmapAtlas& fine,
+                                    const LightmapAtlas& coarse, std::span<const glm::vec3> values,
+                                    std::span<const uint8_t> flags, float tolerance, float floor) {
+  // Per coarse texel, whether interpolation next to it is off by more than the tolerance: linear
+  // interpolation between centres h apart misses by f'' h² / 8 at most, and the second difference
+  // along a chart axis is f'' h².
+  auto sum = [&](size_t c) { return values[c].r + values[c].g + values[c].b; };
+  std::vector<uint8_t> bent(coarse.texelCount(), 0);
+  for (size_t p = 0; p < coarse.patches.size(); ++p) {
+    const Patch& c = coarse.patches[p];
+    auto at = [&](int i, int j) -> int64_t {
+      if (i < 0 || j < 0 || i >= c.w || j >= c.h) return -1;
+      const int64_t t = int64_t(c.y + j) * coarse.width + (c.x + i);
+      return coarse.patch[size_t(t)] == int32_t(p) ? t : -1;
+    };
+    for (int j = 0; j < c.h; ++j)
+      for (int i = 0; i < c.w; ++i) {
+        const int64_t t = at(i, j);
+        if (t < 0) continue;
+        const float v = sum(size_t(t));
+        float miss = 0.0f;
+        for (const glm::ivec2 d : {glm::ivec2(1, 0), glm::ivec2(0, 1)}) {
+          const int64_t a = at(i - d.x, j - d.y), b = at(i + d.x, j + d.y);
+          if (a >= 0 && b >= 0)
+            miss = std::max(miss, std::abs(sum(size_t(a)) + sum(size_t(b)) - 2.0f * v) / 8.0f);
+          // At a chart's edge the outer half texel is extrapolated from this centre and the next: the
+          // same second difference, one texel in, tells how far it misses.
+          else if (a >= 0 || b >= 0) {
+            const glm::ivec2 in = a >= 0 ? -d : d;
+            const int64_t next = at(i + in.x, j + in.y), beyond = at(i + 2 * in.x, j + 2 * in.y);
+            if (beyond >= 0)
+              miss = std::max(miss, std::abs(v + sum(size_t(beyond)) - 2.0f * sum(size_t(next))) / 8.0f);
+          }
+        }
+        bent[size_t(t)] = miss > tolerance * (v + floor) || (!flags.empty() && flags[size_t(t)] != 0);
+      }
+  }
+  std::vector<uint8_t> refine(fine.texelCount(), 0);
+  for (size_t t = 0; t < fine.texelCount(); ++t) {
+    const BilinearTaps taps = bilinearTaps(m, coarse, t);
+    for (int k = 0; k < taps.count; ++k) refine[t] = refine[t] || bent[size_t(taps.texel[size_t(k)])];
+  }
+  return refine;
 }
 
 }  // namespace cpgi

@@ -5,6 +5,7 @@
 // kept exactly), up by bilinear interpolation between coarse texel centres within the chart.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -33,10 +34,31 @@ AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse);
 std::vector<glm::vec3> downsample(const AtlasMapping& m, const LightmapAtlas& fine,
                                   const LightmapAtlas& coarse, std::span<const glm::vec3> values);
 
-/// Per fine texel, `values` (per coarse texel) interpolated bilinearly between the centres of the valid
-/// coarse texels of its chart around its centre (nearest valid ones where the chart's edge or a loose
-/// triangle's empty corner leaves fewer than four); 0 on fine padding.
+/// Per fine texel, `values` (per coarse texel) interpolated bilinearly between the centres of the coarse
+/// texels of its chart around its centre, extrapolated (never below 0) in the half texel beyond the outer
+/// centres, the nearest valid ones where a loose triangle's empty corner leaves fewer than four; 0 on fine
+/// padding.
 std::vector<glm::vec3> upsample(const AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,
                                 std::span<const glm::vec3> values);
+
+/// The coarse texels upsample() interpolates fine texel `t` from and their weights (summing to 1; one
+/// below 0 where the point lies beyond the chart's outer centres and is extrapolated): up to four valid
+/// texels of its chart around its centre, or the one its centre falls in where none of those is valid;
+/// none on fine padding.
+struct BilinearTaps {
+  std::array<int64_t, 4> texel{};
+  std::array<double, 4> weight{};
+  int count = 0;
+};
+BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t);
+
+/// Per fine texel, 1 where `values` (per coarse texel) cannot be interpolated to it: a coarse texel it
+/// would be interpolated from is one where linear interpolation misses by more than `tolerance` × (its
+/// value + `floor`) in R + G + B, judged by the second difference along its chart's axes (a shadow's or a
+/// beam's edge, a steep fall-off near a lamp), or is flagged non-zero in `flags` (per coarse texel; empty:
+/// none). 0 elsewhere and on padding.
+std::vector<uint8_t> texelsToRefine(const AtlasMapping& m, const LightmapAtlas& fine,
+                                    const LightmapAtlas& coarse, std::span<const glm::vec3> values,
+                                    std::span<const uint8_t> flags, float relative, float floor);
 
 }  // namespace cpgi

@@ -77,15 +77,66 @@ TEST(AtlasResample, DownsampleKeepsThePowerAndUpsampleIsExactOnLinearLight) {
     const glm::vec2 g = a.mapping.chartPoint[t];
     const bool inside =
         c.quads.size() > 0 && g.x >= 0.5f && g.y >= 0.5f && g.x <= c.w - 0.5f && g.y <= c.h - 0.5f;
-    if (inside) {
-      ++interior;
+    interior += inside;
+    if (c.quads.size() > 0) {
+      // Between the centres and in the half texel beyond the outer ones (extrapolated): exact.
       EXPECT_NEAR(back[t].x, light(a.fine.position[t]).x, 1e-4f) << "fine texel " << t;
     } else {
-      // Near a chart's edge the nearest centres are held: within the light's change over a coarse texel.
+      // The loose triangle's empty corners: nearest valid centres, within the light's change over a
+      // coarse texel.
       EXPECT_NEAR(back[t].x, light(a.fine.position[t]).x, 0.5f * 0.2f + 1e-4f) << "fine texel " << t;
     }
   }
   EXPECT_GT(interior, 1000);
+}
+
+// Light with a step at x = 2 (a shadow's edge) and linear elsewhere, given at the coarse texel
+// centres: only fine texels interpolated across the step, or from a flagged coarse texel, are refined.
+TEST(AtlasResample, RefinesOnlyWhereTheCoarseLightStepsOrIsFlagged) {
+  const TwoAtlases a;
+  auto light = [](glm::vec3 x) {
+    return glm::vec3(x.x < 2.0f ? 1.0f : 0.2f) * (1.0f + 0.5f * x.y + 0.3f * x.z);
+  };
+  std::vector<glm::vec3> atCentres(a.coarse.texelCount(), glm::vec3(0.0f));
+  for (size_t c = 0; c < a.coarse.texelCount(); ++c)
+    if (a.coarse.patch[c] >= 0) atCentres[c] = light(a.coarse.position[c]);
+  // One flagged coarse texel on the floor, far from the step.
+  std::vector<uint8_t> flags(a.coarse.texelCount(), 0);
+  size_t flagged = 0;
+  for (size_t c = 0; c < a.coarse.texelCount(); ++c)
+    if (a.coarse.patch[c] >= 0 && a.coarse.normal[c].z > 0.5f &&
+        glm::distance(a.coarse.position[c], {0.7f, 1.3f, 0.0f}) < 0.1f)
+      flagged = c, flags[c] = 1;
+  ASSERT_NE(flags[flagged], 0);
+  const std::vector<uint8_t> refine =
+      texelsToRefine(a.mapping, a.fine, a.coarse, atCentres, flags, 0.01f, 0.0f);
+  size_t refined = 0, valid = 0;
+  for (size_t t = 0; t < a.fine.texelCount(); ++t) {
+    if (a.fine.patch[t] < 0) {
+      EXPECT_EQ(refine[t], 0);
+      continue;
+    }
+    ++valid;
+    refined += refine[t];
+    const glm::vec3 x = a.fine.position[t];
+    // The coarse texels either side of the step are bent; fine texels interpolated from them are up to a
+    // coarse texel beyond their centres.
+    const bool nearStep = std::abs(x.x - 2.0f) < 0.3f + 1e-3f;
+    const bool nearFlag = glm::distance(x, a.coarse.position[flagged]) < 0.2f * 1.5f;
+    if (!nearStep && !nearFlag) {
+      EXPECT_EQ(refine[t], 0) << "smooth light at " << x.x << ", " << x.y << ", " << x.z;
+    }
+    // Across the step on walls, floor and ceiling (not the loose triangle at x = 2, which lies on it).
+    if (std::abs(x.x - 2.0f) < 0.05f && std::abs(a.fine.normal[t].x) < 0.5f) {
+      EXPECT_EQ(refine[t], 1);
+    }
+  }
+  for (size_t t = 0; t < a.fine.texelCount(); ++t) {
+    if (a.mapping.coarseTexel[t] == int64_t(flagged)) {
+      EXPECT_EQ(refine[t], 1);
+    }
+  }
+  EXPECT_LT(refined * 5, valid);
 }
 
 }  // namespace

@@ -1,0 +1,187 @@
+// What one reflector shot gathers at each receiving patch, against the same shot computed independently
+// (Embree rays from every receiver texel to N² stratified points per shooter texel): where a shot's light
+// goes missing, or goes where it should not. Nothing emits; the shooter's texels hold an unshot radiosity
+// of 1 W/m², or with --lit X,Y,Z what a downward-facing point lamp there gives them (a wall lit by a
+// ceiling lamp: bright in a band, dark at the top); the solver shoots once, and the figures are what its
+// receive pass gathered before the shot was scaled to what its eyes saw covered (gpu_solver.cpp).
+//
+//   cpgi_shot_probe SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R]
+//                   [--far-field F] [--lit X,Y,Z]
+//
+// SCENE_NAME is a built-in scene (cpgi generate's names); PATCH an atlas patch index (-1 lists them).
+// --regions sets both the ordinary and the strong shots' regions per edge.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+
+#include "core/context.h"
+#include "core/quads.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "scenes/stability_scenes.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unshot radiosity at y (normal n) as lit by a downward-facing point lamp at `lamp` (relative units), or 1.
+struct Lighting {
+  bool lit = false;
+  glm::vec3 lamp{0.0f};
+  float at(const glm::vec3& y, const glm::vec3& n) const {
+    if (!lit) return 1.0f;
+    const glm::vec3 d = lamp - y;
+    const float r2 = glm::dot(d, d), r = std::sqrt(r2);
+    return std::max(0.0f, glm::dot(n, d) / r) * std::max(0.0f, d.y / r) / r2;
+  }
+};
+
+// Irradiance at receiver texel t from the shooter's texels (unit radiosity), by `points`² stratified points
+// per shooter texel, with visibility by rays.
+double exactIrradiance(const cpgi::LightmapAtlas& atlas, const cpgi::RayScene& rays,
+                       const std::vector<size_t>& shooter, const cpgi::Patch& sp, const Lighting& light,
+                       size_t t, int points) {
+  const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
+  double sum = 0.0;
+  for (size_t s : shooter) {
+    const double a = atlas.area[s] / double(points * points);
+    for (int j = 0; j < points; ++j)
+      for (int i = 0; i < points; ++i) {
+        const glm::vec3 y = atlas.position[s] + ((i + 0.5f) / points - 0.5f) * sp.texelU +
+                            ((j + 0.5f) / points - 0.5f) * sp.texelV;
+        glm::vec3 v = y - x;
+        const float r2 = glm::dot(v, v);
+        const float r = std::sqrt(r2);
+        v /= r;
+        const float ci = glm::dot(n, v), cs = -glm::dot(sp.normal, v);
+        if (ci <= 0.0f || cs <= 0.0f) continue;
+        const float eps = 1e-4f * rays.diagonal();
+        if (rays.occluded(x + n * eps, v, 0.0f, r - 2.0f * eps)) continue;
+        const float b = light.at(y, sp.normal);
+        sum += b * a * ci * cs / (kPi * r2);
+      }
+  }
+  return sum;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr,
+                 "usage: %s SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R] "
+                 "[--far-field F] [--lit X,Y,Z]\n",
+                 argv[0]);
+    return 1;
+  }
+  float density = 10.0f, farField = 2.0f;
+  int points = 4, regions = 2;
+  bool hemisphere = false;
+  Lighting light;
+  for (int i = 3; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--density") && i + 1 < argc)
+      density = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--points") && i + 1 < argc)
+      points = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--regions") && i + 1 < argc)
+      regions = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--far-field") && i + 1 < argc)
+      farField = std::stof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--lit") && i + 1 < argc) {
+      light.lit = std::sscanf(argv[++i], "%f,%f,%f", &light.lamp.x, &light.lamp.y, &light.lamp.z) == 3;
+      if (!light.lit) return std::fprintf(stderr, "--lit takes X,Y,Z\n"), 1;
+    } else if (!std::strcmp(argv[i], "--hemisphere"))
+      hemisphere = true;
+  }
+  try {
+    cpgi::Context ctx;
+    cpgi::Scene scene = cpgi::makeBuiltinScene(argv[1]).scene;
+    for (auto& m : scene.materials) m.emission = glm::vec3(0.0f);
+    const cpgi::QuadSet quads = cpgi::findQuads(scene);
+    cpgi::AtlasParams ap;
+    ap.density = density;
+    const cpgi::LightmapAtlas atlas = cpgi::buildAtlas(scene, quads, ap, ctx);
+    const int shooterPatch = std::stoi(argv[2]);
+    if (shooterPatch < 0 || size_t(shooterPatch) >= atlas.patches.size()) {
+      for (size_t p = 0; p < atlas.patches.size(); ++p) {
+        const auto& q = atlas.patches[p];
+        std::printf("patch %zu: %s, normal %.2f %.2f %.2f, %.2f m², %dx%d texels\n", p,
+                    scene.nodePaths[scene.triangles[q.triangles[0]].node].c_str(), q.normal.x, q.normal.y,
+                    q.normal.z, q.area, q.w, q.h);
+      }
+      return 0;
+    }
+    const cpgi::Patch& sp = atlas.patches[size_t(shooterPatch)];
+    std::vector<size_t> shooter;
+    std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
+    double power = 0.0;
+    for (size_t t = 0; t < atlas.texelCount(); ++t)
+      if (atlas.patch[t] == shooterPatch) {
+        shooter.push_back(t);
+        const float b = light.at(atlas.position[t], atlas.normal[t]);
+        prior[t] = glm::vec3(b) / glm::max(atlas.albedo[t], glm::vec3(1e-3f));
+        power += 3.0 * b * atlas.area[t];
+      }
+    cpgi::EglContext gl(ctx);
+    cpgi::SolverParams sp2;
+    sp2.visibility = hemisphere ? cpgi::Visibility::Hemisphere : cpgi::Visibility::Hemicube;
+    sp2.maxShots = 1;
+    sp2.maxRegions = regions;
+    sp2.strongShotFraction =
+        1.0;  // an ordinary shot's layout (the shot is under its whole power by rounding only)
+    sp2.strongShotRegions = regions;
+    sp2.unshotFraction = 1e-6;
+    sp2.farField = farField;
+    cpgi::SolveControls controls;
+    controls.readTransfer = true;
+    cpgi::PriorShot ps;
+    ps.irradiance = prior;
+    ps.emitted = power;
+    controls.priorShot = &ps;
+    const cpgi::SolveResult r = cpgi::solveProgressive(scene, atlas, sp2, gl, ctx, controls);
+
+    const cpgi::RayScene rays(scene);
+    std::vector<double> exact(atlas.texelCount(), 0.0);
+    tbb::parallel_for(size_t(0), atlas.texelCount(), [&](size_t t) {
+      if (atlas.patch[t] >= 0 && atlas.patch[t] != shooterPatch)
+        exact[t] = exactIrradiance(atlas, rays, shooter, sp, light, t, points);
+    });
+    // What the receive pass gathered, before the solver scaled the shot to its eyes' covered share.
+    const double scale = r.shotScales.empty() ? 1.0 : double(r.shotScales[0]);
+    std::vector<double> bakeP(atlas.patches.size(), 0.0), exactP(atlas.patches.size(), 0.0),
+        absP(atlas.patches.size(), 0.0);
+    double bakeAll = 0.0, exactAll = 0.0;
+    for (size_t t = 0; t < atlas.texelCount(); ++t) {
+      if (atlas.patch[t] < 0 || atlas.patch[t] == shooterPatch) continue;
+      const glm::vec3 in = r.incident[t];
+      const double b = (in.x + in.y + in.z) / 3.0 * atlas.area[t] / scale, e = exact[t] * atlas.area[t];
+      bakeP[size_t(atlas.patch[t])] += b;
+      exactP[size_t(atlas.patch[t])] += e;
+      absP[size_t(atlas.patch[t])] += std::abs(b - e);
+      bakeAll += b;
+      exactAll += e;
+    }
+    const double shot = power / 3.0;
+    std::printf(
+        "shot %.4f W (per channel); gathered %.4f (%.4f of it), by rays %.4f (%.4f); then scaled by %.4f\n",
+        shot, bakeAll, bakeAll / shot, exactAll, exactAll / shot, scale);
+    for (size_t p = 0; p < atlas.patches.size(); ++p) {
+      if (exactP[p] < 1e-4 * shot && bakeP[p] < 1e-4 * shot) continue;
+      const auto& q = atlas.patches[p];
+      std::printf("  %3zu %-22s n %+.0f %+.0f %+.0f  bake %.4f exact %.4f  ratio %.3f  |diff| %.4f\n", p,
+                  scene.nodePaths[scene.triangles[q.triangles[0]].node].c_str(), q.normal.x, q.normal.y,
+                  q.normal.z, bakeP[p], exactP[p], exactP[p] > 0 ? bakeP[p] / exactP[p] : 0.0, absP[p]);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -2,11 +2,12 @@
 // (Embree rays from every receiver texel to N² stratified points per shooter texel): where a shot's light
 // goes missing, or goes where it should not. Nothing emits; the shooter's texels hold an unshot radiosity
 // of 1 W/m², or with --lit X,Y,Z what a downward-facing point lamp there gives them (a wall lit by a
-// ceiling lamp: bright in a band, dark at the top); the solver shoots once, and the figures are what its
-// receive pass gathered before the shot was scaled to what its eyes saw covered (gpu_solver.cpp).
+// ceiling lamp: bright in a band, dark at the top), or with --residual-from the radiosity a bake of the
+// scene left there (its lightmap.exr, at the same density); the solver shoots once, and the figures are what
+// its receive pass gathered before the shot was scaled to what its eyes saw covered (gpu_solver.cpp).
 //
 //   cpgi_shot_probe SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R]
-//                   [--far-field F] [--lit X,Y,Z]
+//                   [--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR]
 //
 // SCENE_NAME is a built-in scene (cpgi generate's names); PATCH an atlas patch index (-1 lists them).
 // --regions sets both the ordinary and the strong shots' regions per edge.
@@ -20,6 +21,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/context.h"
+#include "core/image_io.h"
 #include "core/quads.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
@@ -46,8 +48,8 @@ struct Lighting {
 // Irradiance at receiver texel t from the shooter's texels (unit radiosity), by `points`² stratified points
 // per shooter texel, with visibility by rays.
 double exactIrradiance(const cpgi::LightmapAtlas& atlas, const cpgi::RayScene& rays,
-                       const std::vector<size_t>& shooter, const cpgi::Patch& sp, const Lighting& light,
-                       size_t t, int points) {
+                       const std::vector<size_t>& shooter, const cpgi::Patch& sp,
+                       const std::vector<float>& unshot, size_t t, int points) {
   const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
   double sum = 0.0;
   for (size_t s : shooter) {
@@ -64,7 +66,7 @@ double exactIrradiance(const cpgi::LightmapAtlas& atlas, const cpgi::RayScene& r
         if (ci <= 0.0f || cs <= 0.0f) continue;
         const float eps = 1e-4f * rays.diagonal();
         if (rays.occluded(x + n * eps, v, 0.0f, r - 2.0f * eps)) continue;
-        const float b = light.at(y, sp.normal);
+        const float b = unshot[s];
         sum += b * a * ci * cs / (kPi * r2);
       }
   }
@@ -77,7 +79,7 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R] "
-                 "[--far-field F] [--lit X,Y,Z]\n",
+                 "[--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR]\n",
                  argv[0]);
     return 1;
   }
@@ -85,6 +87,7 @@ int main(int argc, char** argv) {
   int points = 4, regions = 2;
   bool hemisphere = false;
   Lighting light;
+  std::string bakeDir;
   for (int i = 3; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--density") && i + 1 < argc)
       density = std::stof(argv[++i]);
@@ -97,7 +100,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lit") && i + 1 < argc) {
       light.lit = std::sscanf(argv[++i], "%f,%f,%f", &light.lamp.x, &light.lamp.y, &light.lamp.z) == 3;
       if (!light.lit) return std::fprintf(stderr, "--lit takes X,Y,Z\n"), 1;
-    } else if (!std::strcmp(argv[i], "--hemisphere"))
+    } else if (!std::strcmp(argv[i], "--residual-from") && i + 1 < argc)
+      bakeDir = argv[++i];
+    else if (!std::strcmp(argv[i], "--hemisphere"))
       hemisphere = true;
   }
   try {
@@ -120,12 +125,22 @@ int main(int argc, char** argv) {
     }
     const cpgi::Patch& sp = atlas.patches[size_t(shooterPatch)];
     std::vector<size_t> shooter;
+    std::vector<float> unshot(atlas.texelCount(), 0.0f);
+    std::vector<glm::vec3> fromBake;
+    if (!bakeDir.empty()) {
+      const cpgi::ImageRGB lightmap = cpgi::readExr(bakeDir + "/lightmap.exr");
+      if (size_t(lightmap.width) * lightmap.height != atlas.texelCount())
+        return std::fprintf(stderr, "%s: not this atlas\n", bakeDir.c_str()), 1;
+      fromBake = lightmap.pixels;
+    }
     std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
     double power = 0.0;
     for (size_t t = 0; t < atlas.texelCount(); ++t)
       if (atlas.patch[t] == shooterPatch) {
         shooter.push_back(t);
-        const float b = light.at(atlas.position[t], atlas.normal[t]);
+        const float b = fromBake.empty() ? light.at(atlas.position[t], atlas.normal[t])
+                                         : (fromBake[t].x + fromBake[t].y + fromBake[t].z) / 3.0f;
+        unshot[t] = b;
         prior[t] = glm::vec3(b) / glm::max(atlas.albedo[t], glm::vec3(1e-3f));
         power += 3.0 * b * atlas.area[t];
       }
@@ -151,7 +166,7 @@ int main(int argc, char** argv) {
     std::vector<double> exact(atlas.texelCount(), 0.0);
     tbb::parallel_for(size_t(0), atlas.texelCount(), [&](size_t t) {
       if (atlas.patch[t] >= 0 && atlas.patch[t] != shooterPatch)
-        exact[t] = exactIrradiance(atlas, rays, shooter, sp, light, t, points);
+        exact[t] = exactIrradiance(atlas, rays, shooter, sp, unshot, t, points);
     });
     // What the receive pass gathered, before the solver scaled the shot to its eyes' covered share.
     const double scale = r.shotScales.empty() ? 1.0 : double(r.shotScales[0]);

@@ -21,6 +21,10 @@ struct PatchStats {
 struct Node {
   vec4 centreArea;      // area-weighted centre (m), area (m²; 0: no texel of the shooter)
   vec4 radiosityRadius; // mean unshot radiosity (rgb, W/m²), bounding radius around the centre (m)
+  // Where its unshot power lies, in texels from its region's corner along texelU and texelV: the mean
+  // (xy) and the variance (zw) of the power over its texels (each texel uniform over its square); by
+  // area where it holds no power.
+  vec4 moments;
 };
 
 #define MAX_REGIONS 16

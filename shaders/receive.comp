@@ -97,49 +97,23 @@ vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   return emitted(unshot * (area * ci * cs / (PI * r2 * r2)), lobe, v, n);
 }
 
-// A far piece, node `at` of level k of region r's pyramid (`size` texels), by 2×2 Gauss points: the point
-// form's error falls from O((R/r)²) to O((R/r)⁴), which is what lets uFarField be as small as 2. Each point
-// takes the mean radiosity of the child (quadrant) it lies in, scaled so that the four keep the node's
-// power. With the node's mean at all four, a shot from a lamp-lit wall gathered 0.94–0.97 of its power
-// where rays give 1.00 (bench/shot_probe.cpp; 0.976–0.990 now), and the shot's rescale to its power handed
-// the difference to every receiver, rooms behind doors included (openings' room C: +3.3 % → +0.3 %).
-// num / den for den >= 0 (0 where den is 0). llvmpipe divides by multiplying with the reciprocal, which
-// is flushed to zero past 2^126 (a 1e38 W/m² lamp's shot gathered nothing), hence the exponent apart.
-float ratio(float num, float den) {
-  if (!(den > 0.0)) return 0.0;
-  int e;
-  float m = frexp(den, e);  // den = m 2^e, m in [0.5, 1)
-  return ldexp(num, -e) / m;
-}
-
-vec3 nodePiece(vec3 x, vec3 n, int r, int k, ivec2 at, Node p, ivec2 size, vec4 l) {
-  const float g = 0.5773502692;  // 1/√3
-  vec3 hu = 0.5 * g * float(size.x) * uTexelU, hv = 0.5 * g * float(size.y) * uTexelV;
-  vec3 c = p.centreArea.xyz;
+// A far piece of region r's pyramid by four points at its power's mean ± its standard deviation along
+// each of the chart's axes, a quarter of its power at each: the two-point rule of the power's own
+// distribution, which for a uniform node is the 2×2 Gauss rule (its error O((R/r)⁴) is what lets uFarField
+// be as small as 2). With Gauss points over the node's area at its mean radiosity, the shot of a wall
+// that a lamp lights in a band, or a beam in a ring round a door, gathered 0.94–0.97 of its power where
+// rays give 1.00 (bench/shot_probe.cpp), and the shot's rescale to its power handed the difference to every
+// receiver alike, rooms behind doors included (openings' room C +3 %).
+vec3 nodePiece(vec3 x, vec3 n, int r, Node p, vec4 l) {
+  PatchInfo s = patches[uShooter];
+  vec2 at = vec2(regions[r].rect.xy - s.rect.xy) + p.moments.xy;  // chart texels
+  vec2 sd = sqrt(p.moments.zw);
+  vec3 c = s.origin.xyz + at.x * uTexelU + at.y * uTexelV;
+  vec3 hu = sd.x * uTexelU, hv = sd.y * uTexelV;
   float a = 0.25 * p.centreArea.w;
-  vec3 mean = p.radiosityRadius.rgb;
-  ivec4 rect = regions[r].rect;
-  ivec2 below = k <= 1 ? rect.zw - rect.xy : levelDims(rect, k - 1);
-  int base = k <= 1 ? 0 : regions[r].levelOffset[k - 1];
-  vec3 rad[4];
-  vec3 total = vec3(0.0);
-  for (int q = 0; q < 4; ++q) {
-    ivec2 child = min(2 * at + ivec2(q & 1, q >> 1), below - 1);
-    vec3 b = mean;
-    if (k < 1) {  // a region of one texel: its root is that texel
-    } else if (k == 1) {
-      int t = texel(rect.xy + child);
-      if (int(normalPatch[t].w) == uShooter) b = residual[t].rgb;
-    } else {
-      Node ch = nodes[base + child.y * below.x + child.x];
-      if (ch.centreArea.w > 0.0) b = ch.radiosityRadius.rgb;
-    }
-    rad[q] = b;
-    total += 0.25 * b;  // quarters, so that the sum cannot overflow where the radiosities do not
-  }
-  vec3 keep = vec3(ratio(mean.x, total.x), ratio(mean.y, total.y), ratio(mean.z, total.z));
-  return point(x, n, c - hu - hv, a, rad[0] * keep, l) + point(x, n, c + hu - hv, a, rad[1] * keep, l) +
-         point(x, n, c - hu + hv, a, rad[2] * keep, l) + point(x, n, c + hu + hv, a, rad[3] * keep, l);
+  vec3 rad = p.radiosityRadius.rgb;
+  return point(x, n, c - hu - hv, a, rad, l) + point(x, n, c + hu - hv, a, rad, l) +
+         point(x, n, c - hu + hv, a, rad, l) + point(x, n, c + hu + hv, a, rad, l);
 }
 
 bool far(vec3 x, vec3 c, float radius, vec4 lobe) {
@@ -207,9 +181,8 @@ vec3 fromRegion(vec3 x, vec3 n, int r) {
     if (p.centreArea.w <= 0.0) continue;
     vec4 lobe = nodeLobeAt(index);
     if (k < top && far(x, p.centreArea.xyz, p.radiosityRadius.w, lobe)) {
-      ivec2 lo = rect.xy + (at << k);
       noteNearest(x, p.centreArea.xyz, p.radiosityRadius.w);
-      sum += nodePiece(x, n, r, k, at, p, min(lo + (1 << k), rect.zw) - lo, lobe);
+      sum += nodePiece(x, n, r, p, lobe);
       continue;
     }
     ivec2 below = k == 1 ? rect.zw - rect.xy : levelDims(rect, k - 1);
@@ -229,7 +202,7 @@ vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
   vec4 lobe = nodeLobeAt(rootIndex);
   if (!far(x, root.centreArea.xyz, root.radiosityRadius.w, lobe)) return fromRegion(x, n, r);
   noteNearest(x, root.centreArea.xyz, root.radiosityRadius.w);
-  return nodePiece(x, n, r, regions[r].top.x, ivec2(0), root, regions[r].rect.zw - regions[r].rect.xy, lobe);
+  return nodePiece(x, n, r, root, lobe);
 }
 
 vec3 gReceiver = vec3(0.0);  // the receiver texel's position (m), set by main()

@@ -1,6 +1,7 @@
 // One level of the shooter's residual pyramid (common.glsl, Node), from the texels (level 1) or the
-// level below: per node the area, the area-weighted centre, the mean unshot radiosity and a bounding
-// radius. Receivers far from a node take it as one piece; nearer ones descend (receive.comp), so a
+// level below: per node the area, the area-weighted centre, the mean unshot radiosity, a bounding
+// radius and where the power lies (its mean and variance along the chart's axes, receive.comp's far
+// pieces). Receivers far from a node take it as one piece; nearer ones descend (receive.comp), so a
 // receiver next to a large shooter pays for the few texels near it, not for the whole chart.
 #include "common.glsl"
 #include "atlas_buffers.glsl"
@@ -34,6 +35,10 @@ void main() {
   // The node's lobe: the moment-matched mixture of its texels' (or children's, which gives the same).
   LobeMix lobes = LobeMix(vec4(0.0), vec4(0.0));
 #endif
+  // Moments about the node's corner (texels), by power and by area: Σ w, Σ w u, Σ w v, Σ w (u² + v²) per
+  // axis kept apart below.
+  vec4 byPower = vec4(0.0), byArea = vec4(0.0);  // Σw, Σw u, Σw v, unused
+  vec2 squarePower = vec2(0.0), squareArea = vec2(0.0);  // Σw u², Σw v² (about the node's corner)
   if (uLevel == 1) {
     ivec2 lo = rect.xy + 2 * node, hi = min(lo + 2, rect.zw);
     for (int y = lo.y; y < hi.y; ++y)
@@ -44,6 +49,14 @@ void main() {
         power += residual[t].rgb * pa.w;
         moment += pa.xyz * pa.w;
         area += pa.w;
+        // A texel is uniform over [i, i + 1]: mean i + ½, second moment (i + ½)² + 1/12.
+        vec2 uv = vec2(x - lo.x, y - lo.y) + 0.5;
+        vec3 own = residual[t].rgb;
+        float w = (own.r + own.g + own.b) * pa.w;
+        byPower += w * vec4(1.0, uv, 0.0);
+        squarePower += w * (uv * uv + 1.0 / 12.0);
+        byArea += pa.w * vec4(1.0, uv, 0.0);
+        squareArea += pa.w * (uv * uv + 1.0 / 12.0);
 #ifdef DIRECTIONAL
         vec3 b = residual[t].rgb;
         lobes = addLobe(lobes, emissionLobe[t], uShooterNormal, (b.r + b.g + b.b) * pa.w);
@@ -66,6 +79,14 @@ void main() {
         power += c.radiosityRadius.rgb * c.centreArea.w;
         moment += c.centreArea.xyz * c.centreArea.w;
         area += c.centreArea.w;
+        // The child's moments about this node's corner (parallel axes: no large squares to cancel).
+        vec2 m = c.moments.xy - vec2(2 * node << (uLevel - 1));
+        vec3 own = c.radiosityRadius.rgb;
+        float w = (own.r + own.g + own.b) * c.centreArea.w;
+        byPower += w * vec4(1.0, m, 0.0);
+        squarePower += w * (m * m + c.moments.zw);
+        byArea += c.centreArea.w * vec4(1.0, m, 0.0);
+        squareArea += c.centreArea.w * (m * m + c.moments.zw);
 #ifdef DIRECTIONAL
         vec3 b = c.radiosityRadius.rgb;
         lobes = addLobe(lobes, nodeLobe[base + y * below.x + x], uShooterNormal, (b.r + b.g + b.b) * c.centreArea.w);
@@ -81,6 +102,11 @@ void main() {
   Node n;
   n.centreArea = vec4(area > 0.0 ? moment / area : vec3(0.0), area);
   n.radiosityRadius = vec4(area > 0.0 ? power / area : vec3(0.0), radius);
+  vec4 sums = byPower.x > 0.0 ? byPower : byArea;
+  vec2 squares = byPower.x > 0.0 ? squarePower : squareArea;
+  vec2 mean = sums.x > 0.0 ? sums.yz / sums.x : vec2(0.0);
+  vec2 variance = sums.x > 0.0 ? max(squares / sums.x - mean * mean, vec2(0.0)) : vec2(0.0);
+  n.moments = vec4(vec2(node << uLevel) + mean, variance);
   nodes[regions[r].levelOffset[uLevel] + g] = n;
 #ifdef DIRECTIONAL
   nodeLobe[regions[r].levelOffset[uLevel] + g] = mixedLobe(lobes, uShooterNormal);

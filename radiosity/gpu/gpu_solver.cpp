@@ -28,7 +28,7 @@ struct GpuStats {
   glm::vec4 unshot, incident, absorbed;
 };
 struct GpuNode {
-  glm::vec4 centreArea, radiosityRadius;
+  glm::vec4 centreArea, radiosityRadius, moments;
 };
 constexpr int kMaxLevels = 14;  // MAX_LEVELS: pyramids of charts up to 2^14 texels on an edge
 struct GpuRegion {
@@ -39,7 +39,7 @@ struct GpuSelection {
   int32_t winner, winnerPending, pad0, pad1;
   glm::vec4 winnerUnshot, unshot, incident, absorbed;
 };
-static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 32 && sizeof(GpuRegion) == 96 &&
+static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 48 && sizeof(GpuRegion) == 96 &&
               sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;                         // receiver work groups are kTile × kTile texels
@@ -1041,8 +1041,15 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double target = seen.open < closedBelow
                               ? shotPower * std::min(seen.covered, 1.0)
                               : std::min(gained, shotPower * std::min(seen.covered + seen.open, 1.0));
+    // Over the target by anything beyond float rounding, the shot is scaled back: with far pieces at their
+    // power's moments shots land within the tolerance of their power, and those a little over it added
+    // up (0.23 % of the light made in two closed rooms,
+    // EnergyConservation.ZeroThicknessPartitionLosesNoLight). Not with emission lobes, whose normalisation is
+    // what the tolerance is for and whose arrival moments the rescale does not scale.
+    const double overTolerance = params.directionalEmission ? kTolerance : 1e-5;
     float scale = 1.0f;
-    if (gained > 0.0 && std::abs(gained - target) > kTolerance * shotPower) {
+    if (gained > 0.0 &&
+        (gained - target > overTolerance * shotPower || target - gained > kTolerance * shotPower)) {
       scale = float(target / gained);
       sel = solver.rescaleLastShot(result.shooters.back(), scale);
       result.history.pop_back();

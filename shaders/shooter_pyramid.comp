@@ -35,10 +35,10 @@ void main() {
   // The node's lobe: the moment-matched mixture of its texels' (or children's, which gives the same).
   LobeMix lobes = LobeMix(vec4(0.0), vec4(0.0));
 #endif
-  // Moments about the node's corner (texels), by power and by area: Σ w, Σ w u, Σ w v, Σ w (u² + v²) per
-  // axis kept apart below.
-  vec4 byPower = vec4(0.0), byArea = vec4(0.0);  // Σw, Σw u, Σw v, unused
-  vec2 squarePower = vec2(0.0), squareArea = vec2(0.0);  // Σw u², Σw v² (about the node's corner)
+  // Moments about the node's corner in texels, weighted by power and, for a node without any, by area:
+  // (Σw, Σw u, Σw v) and (Σw u², Σw v²).
+  vec4 byPower = vec4(0.0), byArea = vec4(0.0);
+  vec2 squarePower = vec2(0.0), squareArea = vec2(0.0);
   if (uLevel == 1) {
     ivec2 lo = rect.xy + 2 * node, hi = min(lo + 2, rect.zw);
     for (int y = lo.y; y < hi.y; ++y)

@@ -3,6 +3,7 @@
 // These scenes are where the solver used to make light up (a lamp near the surface it faces, light
 // through a door at a coarse item buffer) or lose it in a closed room (columns beside the drawn eyes, a
 // zero-thickness partition) (issue 11).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>

@@ -66,6 +66,7 @@ struct BakeOptions {
   CellSolveParams cellParams;         ///< portals, maxRounds, jobs; its atlas and solver are the two above
   decomp::DecomposeParams decompose;  ///< for --cells auto
   bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
+  double ambientShare = kDefaultAmbientShare;  ///< global method: the stop per cell (ambientShares)
   LoadOptions load;                   ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;             ///< go on when nothing lights the scene
   SkyRequest sky;                     ///< --sky, --sun, --ground (core/sky.h); none by default
@@ -224,7 +225,11 @@ void requireConvergence(const BakeOptions& o, const Scene& scene, const Lightmap
 }
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
-SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContext& gl,
+// A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
+// `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/gpu/ambient.h,
+// ambientShares).
+SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
+                      const ExrChannel& texelCells, const EglContext& gl,
                       std::chrono::steady_clock::time_point deadline, Context& ctx,
                       std::optional<TwoLevelData>& levels) {
   auto t = ctx.time("solve");
@@ -237,7 +242,15 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const EglContex
     return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
                          &*levels);
   }
-  if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
+  if (o.method != "cells") {
+    SolveControls perCell = controls;
+    if (o.ambientShare > 0.0)
+      perCell.acceptStop = [&](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+        const std::vector<double> shares = ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity);
+        return *std::max_element(shares.begin(), shares.end()) <= o.ambientShare;
+      };
+    return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, perCell);
+  }
   CellSolveParams params = o.cellParams;
   params.solver = o.solver;
   params.atlas = o.atlas;
@@ -317,6 +330,7 @@ struct BakeFigures {
   std::vector<std::string> views;
   std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
   glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
+  std::vector<double> ambientShares;   ///< per cell of cellNames (and one for no cell), ambientShares
   double seconds = 0.0;
 };
 
@@ -366,6 +380,13 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["sky"] = skyReport(in.loaded.scene);
   report["energy"] = energyReport(s.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
+  // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
+  report["ambient_share_target"] = o.method == "cells" || levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
+  report["stop_checks"] = s.stopChecks;
+  nlohmann::json shares = nlohmann::json::object();
+  for (size_t c = 0; c < f.ambientShares.size(); ++c)
+    shares[c < f.cellNames.size() ? f.cellNames[c] : std::string("(no cell)")] = f.ambientShares[c];
+  report["ambient_share"] = shares;
   // A bake stopped by --time-limit is valid but partial: what it left unshot is in energy.unshot_w (and
   // spread by the ambient term unless --no-ambient).
   report["time_limit_s"] = o.timeLimit > 0.0 ? nlohmann::json(o.timeLimit) : nlohmann::json(nullptr);
@@ -547,10 +568,9 @@ int runBake(const BakeOptions& o) {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   }
-  std::optional<TwoLevelData> levels;
-  SolveResult s = solveBake(o, in, *gl, deadline, ctx, levels);
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
-  // scene without any is labelled by its automatic rooms, for the per-cell figures and the ambient term.
+  // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
+  // the ambient term.
   const CellGraph& cells = o.method == "cells" ? in.graph : in.loaded.cells;
   const RoomLabels rooms = cells.empty() || cells.definedByVolumes()
                                ? labelTexelsByRoom(in.loaded.scene, o.scene, in.atlas, ctx, cells)
@@ -558,7 +578,10 @@ int runBake(const BakeOptions& o) {
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells =
       rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
+  std::optional<TwoLevelData> levels;
+  SolveResult s = solveBake(o, in, texelGraph, texelCells, *gl, deadline, ctx, levels);
   BakeFigures f;
+  if (!s.residual.empty()) f.ambientShares = ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity);
   f.cellNames = cellNames(texelGraph);
   f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
   const std::pair<const char*, double> totals[] = {{"emitted", s.energy.emitted},
@@ -642,7 +665,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);
-  addAmbientOption(*sub, o->noAmbient);
+  addAmbientOption(*sub, o->noAmbient, o->ambientShare);
   addViewOptions(*sub, o->views);
   addLoadOptions(*sub, o->load);
   addDarkOption(*sub, o->allowDark);

@@ -46,6 +46,7 @@ constexpr ParameterFlag kFlags[] = {
     {"region size", "--region-size"},
     // Ambient term (radiosity/gpu/ambient.h), bake only
     {"no ambient term", "--no-ambient"},
+    {"ambient share", "--ambient-share"},
     // Bake only: stop the solve at a wall-clock limit, writing a partial result
     {"time limit", "--time-limit"},
     {"solve density", "--solve-density"},
@@ -252,9 +253,14 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
          scope);
 }
 
-void addAmbientOption(CLI::App& cmd, bool& noAmbient) {
+void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
   cmd.add_flag(flag("no ambient term"), noAmbient,
                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
+  addChecked(cmd, OptionScope{}, "ambient share", ambientShare,
+             "Global method: at the unshot stop, shoot on until in every cell (room) the ambient term would be "
+             "at most this share of its light, so that a room lit through doors is not left mostly to the "
+             "flat estimate (0: the unshot stop alone)",
+             within(0.0, 1.0));
 }
 
 void addTimeLimitOption(CLI::App& cmd, double& seconds) {

@@ -4,12 +4,20 @@
 
 namespace cpgi {
 
-glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
-                      const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
-                      std::vector<glm::vec3>& radiosity) {
+namespace {
+
+// The ambient irradiance per cell (the last entry: texels in no cell, or every texel without cells), each
+// texel's entry, and the mean over the scene.
+struct CellAmbient {
+  std::vector<glm::dvec3> irradiance;
+  std::vector<size_t> texelEntry;
+  glm::dvec3 mean{0.0};
+};
+
+CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
+                        const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph) {
   const size_t n = atlas.texelCount();
-  if (radiosity.size() != n || (!residual.empty() && residual.size() != n))
-    throw std::invalid_argument("addAmbient: not one value per atlas texel");
+  if (!residual.empty() && residual.size() != n) throw std::invalid_argument("ambient: not one residual per atlas texel");
   const bool byCell = !graph.cells.empty() && texelCell.size() == n;
   // Cells 0..K-1, and K for texels in no cell (or every texel without cells).
   const size_t k = byCell ? graph.cells.size() : 0, count = k + 1;
@@ -30,7 +38,11 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
     if (!residual.empty()) unshot[c] += a * glm::dvec3(residual[i]);
     total += a;
   }
-  if (!(total > 0.0)) return glm::dvec3(0.0);
+  CellAmbient out;
+  out.irradiance.assign(count, glm::dvec3(0.0));
+  out.texelEntry.resize(n);
+  for (size_t i = 0; i < n; ++i) out.texelEntry[i] = cellOf(i);
+  if (!(total > 0.0)) return out;
   for (size_t c = 0; c < count; ++c) {
     if (area[c] > 0.0) albedo[c] /= area[c];
     if (residual.empty()) unshot[c] = unshotPower * (area[c] / total);
@@ -56,6 +68,8 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
   // The series: what leaves (unshot, then each bounce's reflection) lands by `transfer`, is absorbed or
   // reflected again. `landed` sums the power each cell's surfaces receive, all bounces.
   std::vector<glm::dvec3> leaving = unshot, landed(count, glm::dvec3(0.0));
+  double unshotSum = 0.0;
+  for (const glm::dvec3& u : unshot) unshotSum += u.r + u.g + u.b;
   for (int bounce = 0; bounce < 1000; ++bounce) {
     std::vector<glm::dvec3> arriving(count, glm::dvec3(0.0));
     double left = 0.0;
@@ -66,17 +80,45 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
       leaving[c] = albedo[c] * arriving[c];
       left += leaving[c].r + leaving[c].g + leaving[c].b;
     }
-    if (left <= 1e-9 * (unshotPower.r + unshotPower.g + unshotPower.b + 1e-30)) break;
+    if (left <= 1e-9 * (unshotSum + 1e-30)) break;
   }
-  std::vector<glm::dvec3> irradiance(count, glm::dvec3(0.0));
-  glm::dvec3 mean(0.0);
   for (size_t c = 0; c < count; ++c) {
-    if (area[c] > 0.0) irradiance[c] = landed[c] / area[c];
-    mean += landed[c] / total;
+    if (area[c] > 0.0) out.irradiance[c] = landed[c] / area[c];
+    out.mean += landed[c] / total;
   }
-  for (size_t i = 0; i < n; ++i)
-    if (atlas.patch[i] >= 0) radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * irradiance[cellOf(i)]);
-  return mean;
+  return out;
+}
+
+}  // namespace
+
+glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
+                      const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
+                      std::vector<glm::vec3>& radiosity) {
+  if (radiosity.size() != atlas.texelCount()) throw std::invalid_argument("addAmbient: not one value per atlas texel");
+  const CellAmbient a = cellAmbient(atlas, residual, unshotPower, texelCell, graph);
+  for (size_t i = 0; i < radiosity.size(); ++i)
+    if (atlas.patch[i] >= 0)
+      radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]]);
+  return a.mean;
+}
+
+std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
+                                  std::span<const float> texelCell, const CellGraph& graph,
+                                  const std::vector<glm::vec3>& radiosity) {
+  if (radiosity.size() != atlas.texelCount() || residual.size() != atlas.texelCount())
+    throw std::invalid_argument("ambientShares: not one value per atlas texel");
+  const CellAmbient a = cellAmbient(atlas, residual, glm::dvec3(0.0), texelCell, graph);
+  std::vector<double> ambient(a.irradiance.size(), 0.0), light(a.irradiance.size(), 0.0);
+  for (size_t i = 0; i < radiosity.size(); ++i) {
+    if (atlas.patch[i] < 0 || atlas.emission[i] != glm::vec3(0.0f)) continue;  // lamps: their own light
+    const glm::dvec3 add = glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]];
+    const double w = atlas.area[i];
+    ambient[a.texelEntry[i]] += w * (add.r + add.g + add.b);
+    light[a.texelEntry[i]] += w * (add.r + add.g + add.b + radiosity[i].r + radiosity[i].g + radiosity[i].b);
+  }
+  std::vector<double> share(ambient.size(), 0.0);
+  for (size_t c = 0; c < share.size(); ++c) share[c] = light[c] > 0.0 ? ambient[c] / light[c] : 0.0;
+  return share;
 }
 
 }  // namespace cpgi

@@ -203,6 +203,7 @@ struct SolveConfig : SolverParams {
   /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
   double directEmitted = 0.0;
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  const std::function<bool(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)>* acceptStop = nullptr;
 };
 
 ProgramDefines programDefines(const SolveConfig& params) {
@@ -917,6 +918,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
   config.deadline = controls.deadline;
+  if (controls.acceptStop) config.acceptStop = &controls.acceptStop;
   if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
     throw InputError("solver", "receivers need one flag per atlas texel");
   if (!controls.receivers.empty() && controls.patchShotScale.size() != atlas.patches.size())
@@ -999,8 +1001,14 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double scale = std::min(e.emitted, e.received - e.absorbed);
     return scale > 0.0 ? e.unshot / scale : 1.0;
   };
+  double stopAt = params.unshotFraction;
   while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
-    if (unshotShare() <= params.unshotFraction) break;
+    if (unshotShare() <= stopAt) {
+      if (!params.acceptStop) break;
+      ++result.stopChecks;
+      if ((*params.acceptStop)(solver.readRadiosity(), solver.readResidual())) break;
+      stopAt = unshotShare() * kStopRecheck;
+    }
     if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
     if (std::chrono::steady_clock::now() >= params.deadline) {
       result.timedOut = true;

@@ -87,6 +87,10 @@ struct PriorShot {
 
 /// What a caller driving the solver sets, apart from the user's settings: the cell solver
 /// (radiosity/cells/) reads what crosses its portals, stops on a per-patch bound and emits with lobes.
+/// SolveControls::acceptStop: the unshot share at which a refused stop is asked again, as a fraction of
+/// the share it was refused at.
+inline constexpr double kStopRecheck = 0.7;
+
 struct SolveControls {
   /// Also read back every texel's received irradiance and unshot residual (SolveResult::incident,
   /// ::residual): what a cell solve hands on through its portals (radiosity/cells/cell_solver.h).
@@ -115,6 +119,11 @@ struct SolveControls {
   bool readLampFlags = false;
   /// Programs compiled by an earlier solve on this context (identical results); null: compiled for this one.
   SolverPrograms* programs = nullptr;
+  /// Asked each time the unshot share reaches the stop (SolverParams::unshotFraction), with the radiosity
+  /// and the unshot residual so far (per atlas texel): true stops; false shoots on and asks again once the
+  /// share has fallen to kStopRecheck of what it was (SolveResult::stopChecks counts the asks). The bake's
+  /// stop per cell (radiosity/gpu/ambient.h, ambientShares). Empty: stop.
+  std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)> acceptStop;
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

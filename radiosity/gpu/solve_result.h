@@ -77,6 +77,9 @@ struct SolveResult {
   /// Stopped at SolveControls::deadline (a cell solve: CellSolveParams::deadline) before its target: a
   /// valid but partial result.
   bool timedOut = false;
+  /// How often SolveControls::acceptStop was asked (0 without it); it refused all but the last of them
+  /// unless another bound stopped the solve first.
+  int stopChecks = 0;
 
   // A solve of one atlas (gpu_solver.h):
   /// With SolveControls::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;

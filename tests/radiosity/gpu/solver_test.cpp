@@ -171,6 +171,40 @@ TEST(Solver, EnergyBookkeepingAtEveryShot) {
   EXPECT_GT(r.result.history.back().absorbed, 0.5 * emitted);
 }
 
+// SolveControls::acceptStop is asked at the unshot stop with the radiosity and residual so far; refused,
+// the solve shoots on and asks again once the unshot share has fallen to kStopRecheck of it.
+TEST(Solver, ARefusedStopShootsOnAndAsksAgain) {
+  Scene s;
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 1.5f, 1.0f), addMaterial(s, glm::vec3(0.6f)));
+  addRect(s, glm::vec3(0.8f, 0.5f, 0.99f), glm::vec3(0, 0.4f, 0), glm::vec3(0.4f, 0, 0),
+          addMaterial(s, glm::vec3(0.0f), glm::vec3(10.0f)));
+  Context ctx;
+  EglContext gl(ctx);
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.texelsPerQuad = 8}, ctx);
+  SolverParams params;
+  params.unshotFraction = 0.05;
+  const SolveResult plain = solveProgressive(s, atlas, params, gl, ctx);
+  std::vector<double> asked;  // the unshot power (W, the residual summed over the atlas) at each ask
+  SolveControls controls;
+  controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+    EXPECT_EQ(radiosity.size(), atlas.texelCount());
+    double unshot = 0.0;
+    for (size_t i = 0; i < residual.size(); ++i)
+      if (atlas.patch[i] >= 0) unshot += double(residual[i].r + residual[i].g + residual[i].b) * atlas.area[i];
+    asked.push_back(unshot);
+    return asked.size() == 3;
+  };
+  const SolveResult refused = solveProgressive(s, atlas, params, gl, ctx, controls);
+  EXPECT_EQ(plain.stopChecks, 0);
+  ASSERT_EQ(refused.stopChecks, 3);
+  ASSERT_EQ(asked.size(), 3u);
+  EXPECT_NEAR(asked[0], plain.energy.unshot, 1e-3 * plain.energy.unshot);  // first asked where plain stopped
+  EXPECT_LE(asked[1], kStopRecheck * asked[0] * 1.001);
+  EXPECT_LE(asked[2], kStopRecheck * asked[1] * 1.001);
+  EXPECT_GT(refused.shots, plain.shots);
+  EXPECT_NEAR(refused.energy.unshot, asked[2], 1e-3 * asked[2]);
+}
+
 TEST(Solver, Deterministic) {
   Scene s;
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 1.5f, 1.0f), addMaterial(s, glm::vec3(0.7f)));

@@ -15,11 +15,15 @@ namespace cpgi::cli {
 CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
                             Context& ctx) {
   if (cellsFile.cells.empty()) throw InputError(name, "has no cell:/portal: nodes");
+  // The centroid to the millimetre and the side the triangle faces: the two faces of a zero-thickness
+  // partition share their centroids, and by centroid alone both went to one room, which then had the
+  // partition twice and the other none (openings: a third of room B's light escaped through the hole).
   auto key = [](const Triangle& t) {
     const glm::ivec3 k = glm::ivec3(glm::round(t.centroid() * 1000.0f));
-    return std::tuple{k.x, k.y, k.z};
+    const glm::ivec3 side = glm::ivec3(glm::round(t.geometricNormal() * 8.0f));
+    return std::tuple{k.x, k.y, k.z, side.x, side.y, side.z};
   };
-  std::map<std::tuple<int, int, int>, int> cellAt;
+  std::map<std::tuple<int, int, int, int, int, int>, int> cellAt;
   const std::vector<int> otherCell = cellsFile.cells.cellOfTriangle(cellsFile.scene.triangles.size());
   for (size_t t = 0; t < cellsFile.scene.triangles.size(); ++t)
     cellAt[key(cellsFile.scene.triangles[t])] = otherCell[t];

@@ -15,9 +15,10 @@
 namespace cpgi::cli {
 
 /// The cells of `cellsFile` (another file of the same scene, e.g. a decompose output's cells.glb or the
-/// hand-made scene) over `scene`'s triangles, matched by centroid to the millimetre, so a different
-/// triangle order does not matter. Triangles of `scene` found in no cell of the file stay in none (a
-/// warning in ctx naming `name`). Throws InputError when the file has no cells.
+/// hand-made scene) over `scene`'s triangles, matched by centroid to the millimetre and by the side they
+/// face (the two faces of a zero-thickness wall share a centroid), so a different triangle order does not
+/// matter. Triangles of `scene` found in no cell of the file stay in none (a warning in ctx naming
+/// `name`). Throws InputError when the file has no cells.
 CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
                             Context& ctx);
 

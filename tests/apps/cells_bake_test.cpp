@@ -19,6 +19,25 @@ using CliRun = test::CommandRun;
 using test::cpgi;
 using test::slurp;
 
+// Cells from another file of the same scene (a copy here, as a decompose output's cells.glb would be) are
+// matched to the scene's triangles by centroid and facing side: by centroid alone the two faces of
+// openings' zero-thickness B|C partition both went to one room, and through the hole left in the other
+// B let 7.8 W of its 28.5 escape and C 1.0 W of 2.6, in closed rooms, without a word.
+TEST(CellsBake, CellsFromAnotherFileKeepEachFaceOfAThinWallInItsRoom) {
+  test::TempDir dir;
+  const std::string scene = dir / "openings.glb", cells = dir / "cells.glb";
+  ASSERT_EQ(cpgi(dir, "generate openings -o '" + scene + "'").status, 0);
+  std::filesystem::copy_file(scene, cells);
+  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --cells '" + cells +
+                                 "' --density 5 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("not in the cells file"), std::string::npos) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  ASSERT_EQ(report["cell_energy"].size(), 3u);
+  for (const auto& c : report["cell_energy"])
+    EXPECT_LT(c["escaped_w"].get<double>(), 0.01 * c["absorbed_w"].get<double>()) << c.dump();
+}
+
 TEST(CellsBake, Seed1AgainstGlobalAndReference) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

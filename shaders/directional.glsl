@@ -20,28 +20,23 @@ float lobeFactor(vec4 lobe, vec3 n, vec3 omega, float blur2) {
   return (1.0 - a) + a * exp(-dot(d, d) / (2.0 * sigma2)) / (2.0 * sigma2 * c2 * c2);
 }
 
-// The lobe seen from a receiver through a shooter piece of `area` (m²) at v from it is averaged over the
-// piece, not sampled at its centre: a piece stands for emission in a spread of directions, per axis about
-// area / 12 in the shooter's plane, i.e. area / (12 h²) in gnomonic units with h = |n_s·v| the receiver's
-// height over the shooter's plane. Without it a beam narrower than the spacing of the shooter's points
-// lit a receiver fully or not at all (hot and black texels near a portal). The receiver texel's own
-// footprint, used before, averaged over the receiver instead, which neither the reference nor a lightmap
-// read at texel centres does: at a reveal beside its portal, the clamped footprint put 2× the light on
-// the texels along the shared edge (EmissionLobes.AimedEmitterLightsTheWallBesideItAsIntegrated).
-float pieceBlur(vec3 v, vec3 ns, float area) {
-  float h = dot(ns, v);
-  return min(area / (12.0 * max(h * h, 1e-12)), 1.0);
+// The lobe seen by a receiver texel of area `area` (m²) at v from the shooter point (receiver normal n,
+// shooter normal ns) is averaged over the texel, not sampled at its centre: a beam narrower than the texel
+// would otherwise light it fully or not at all (hot and black texels near a portal). The texel's angular
+// variance per axis, A cos θr / 12 r², in gnomonic units (stretched by about 1 / cos³θs), at most 0.1: a
+// per-receiver width keeps each receiver's share right only while the lobe stays well inside the
+// hemisphere, where the 1 / cos⁴θ of the gnomonic map is small.
+float receiverBlur(vec3 v, vec3 n, vec3 ns, float area) {
+  float r2 = dot(v, v);
+  float cr = abs(dot(n, v)) * inversesqrt(r2), cs = max(abs(dot(ns, v)) * inversesqrt(r2), 0.1);
+  return min(area * cr / (12.0 * r2 * cs * cs * cs), 0.1);
 }
 
-// Can a piece of this radius (m), at d from the receiver, stand for its texels as one disk or a few points?
+// Can a piece of this radius (m) at squared distance r2 stand for its texels as one disk or a few points?
 // Only if its lobe is wider than the piece seen from there: a narrow lobe (a beam through a door) would
-// otherwise be emitted from the piece's centre instead of from where each texel sends it. Seen from d, the
-// piece spans about radius / |n·d| in the lobe's gnomonic units (pieceBlur); against radius / |d| the
-// pieces a reveal takes beside its portal, at grazing angles, counted as resolved and the far corner under
-// a 70° lobe was 10–15 % off (EmissionLobes.AimedEmitterLightsTheWallBesideItAsIntegrated).
-bool lobeResolvesPiece(vec4 lobe, vec3 n, vec3 d, float radius) {
-  float h = dot(n, d);
-  return !(dot(lobe.xyz, n) > 0.0) || lobe.w * h * h >= radius * radius;
+// otherwise be emitted from the piece's centre instead of from where each texel sends it.
+bool lobeResolvesPiece(vec4 lobe, vec3 n, float r2, float radius) {
+  return !(dot(lobe.xyz, n) > 0.0) || lobe.w * r2 >= radius * radius;
 }
 
 // A power-weighted mixture of lobes of one planar shooter (normal n), replaced by the lobe with the same

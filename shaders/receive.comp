@@ -45,15 +45,17 @@ uniform float uFarField;
 #ifdef DIRECTIONAL
 #include "directional.glsl"
 vec4 gArrival = vec4(0.0);  // this receiver's arrival moments (noteArrival), stored by main()
+float gReceiverArea = 0.0;  // this receiver texel's area (m²), set by main()
 uniform bool uShooterLobes;  // false: every texel of this shooter is Lambertian, skip the lobes
 #endif
 
-// The directional hook of the kernels below: the contribution f of a shooter piece of `area` at
-// receiver + v, scaled by the piece's emission lobe towards the receiver, and its direction noted. Without
+// The directional hook of the kernels below: the contribution f of a shooter piece at receiver + v,
+// scaled by the piece's emission lobe towards the receiver, and its direction noted. Without
 // DIRECTIONAL, f itself.
-vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n, float area) {
+vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
 #ifdef DIRECTIONAL
-  if (uShooterLobes) f *= lobeFactor(lobe, uShooterNormal, -normalize(v), pieceBlur(v, uShooterNormal, area));
+  if (uShooterLobes)
+    f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
   noteArrival(gArrival, v, n, f);
 #endif
   return f;
@@ -81,7 +83,7 @@ vec3 disk(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return emitted(unshot * (area * ci * cs / (r2 * (PI * r2 + area))), lobe, v, n, area);
+  return emitted(unshot * (area * ci * cs / (r2 * (PI * r2 + area))), lobe, v, n);
 }
 
 // The same piece seen from afar (r > uFarField × its radius): the "+ A" of the disk formula only keeps
@@ -92,7 +94,7 @@ vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
   float r2 = dot(v, v);
   float ci = dot(n, v), cs = -dot(uShooterNormal, v);
   if (ci <= 0.0 || cs <= 0.0 || r2 <= 0.0) return vec3(0.0);
-  return emitted(unshot * (area * ci * cs / (PI * r2 * r2)), lobe, v, n, area);
+  return emitted(unshot * (area * ci * cs / (PI * r2 * r2)), lobe, v, n);
 }
 
 // A far piece of region r's pyramid by four points at its power's mean ± its standard deviation along
@@ -118,7 +120,7 @@ bool far(vec3 x, vec3 c, float radius, vec4 lobe) {
   vec3 d = c - x;
   float f = uFarField * radius;
 #ifdef DIRECTIONAL
-  if (!lobeResolvesPiece(lobe, uShooterNormal, d, radius)) return false;
+  if (!lobeResolvesPiece(lobe, uShooterNormal, dot(d, d), radius)) return false;
 #endif
   return dot(d, d) > f * f;
 }
@@ -248,6 +250,9 @@ void main() {
   vec3 x = posArea[tx].xyz;
   gReceiver = x;
   vec3 e = vec3(0.0);
+#ifdef DIRECTIONAL
+  gReceiverArea = posArea[tx].w;
+#endif
   // Visibility at the texel's centre; in a lamp's shot also at its outer sub-points, and a texel where
   // they differ because of something farther than a texel away (a shadow or beam edge, not the wall a
   // floor texel touches) is an edge texel. Where the centre is hidden, a point counts as seen only when its

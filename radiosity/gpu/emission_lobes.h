@@ -37,7 +37,7 @@ glm::vec4 arrivalMoment(const glm::vec3& omega, const glm::vec3& nFar, float wei
 glm::vec4 fitEmissionLobe(const glm::vec4& moments, const glm::vec3& n, float minWidth);
 
 /// f(ω) for unit ω leaving a surface of unit normal n (0 behind it), the lobe's σ² widened by blur2 (the
-/// solver widens it by the extent of the shooter piece it evaluates). Must match shaders/directional.glsl.
+/// solver widens it by the receiver texel's footprint). Must match shaders/directional.glsl.
 float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::vec3& omega, float blur2 = 0.0f);
 
 /// Lobes for every texel of an atlas from per-texel moments (zero moments → Lambertian), with the atlas's

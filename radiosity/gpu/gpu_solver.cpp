@@ -1077,10 +1077,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
       if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
         const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
         if (rate < 0.0)
-          eta = (std::log(params.unshotFraction) - std::log(now)) / rate * elapsed / result.shots;
+          eta = (std::log(stopAt) - std::log(now)) / rate * elapsed / result.shots;
       }
-      const double progress =
-          std::clamp(std::log(std::max(now, 1e-12)) / std::log(params.unshotFraction), 0.0, 1.0);
+      // Towards the current stop: past a refused one (acceptStop), the next ask.
+      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(stopAt), 0.0, 1.0);
       ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
       lastReport = elapsed;
     }

@@ -65,6 +65,7 @@ constexpr ParameterFlag kFlags[] = {
     // Cells (radiosity/cells/)
     {"cell graph", "--cells"},
     {"portal light", "--portals"},
+    {"portal lobe width", "--lobe-width"},
     {"maximum rounds", "--max-rounds"},
     {"jobs", "--jobs"},
     {"boundary", "--boundary"},
@@ -278,6 +279,10 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
                         "Lambertian area light) or directional (keeps the directions the light arrived "
                         "with)")),
          scope);
+  addChecked(cmd, scope, "portal lobe width", cells.lobeMinWidth,
+             "With --portals directional: the narrowest lobe a portal texel re-emits, as the standard "
+             "deviation of sin θ (about radians when small); arrivals spread wider keep their own spread",
+             within(1e-3, 0.45));
   addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
              "With --method cells: solve rounds (syncs) at most", within(1, 100000));
   addChecked(cmd, scope, "jobs", cells.jobs,

@@ -43,8 +43,13 @@ struct CellSolveParams {
   PortalLight portals = PortalLight::Diffuse;
   /// Directional portals: the narrowest lobe, as the standard deviation per axis of sin θ (≈ radians when
   /// narrow), in (0, 0.45]. A collimated beam gets this width, so that receivers, sampled at texel
-  /// centres, do not alias it; a wider arrival keeps its own width.
-  float lobeMinWidth = 0.05f;
+  /// centres, do not alias it; a wider arrival keeps its own width. What crosses a portal is reflected
+  /// light (the lamps' direct light is shot over the whole scene first), never a thin beam, and the fit
+  /// puts the arrivals' spread into a Lambertian share beside the narrowest lobe: at 0.05 openings' room C
+  /// read 0.960 (11.8 % per texel) at the default stop and 0.956 converged, at 0.1 / 0.15 / 0.2 / 0.3
+  /// 0.969 / 0.977 / 0.987 / 1.016 (9.3 / 8.3 / 8.5 / 12.4 %), 0.985 (6.7 %) converged at 0.2, room B
+  /// 4.9 % → 3.7 % (bench/RESULTS.md, `bake --lobe-width`).
+  float lobeMinWidth = 0.2f;
   /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
   /// (radiosity/cells/cell_workers.h). Any value gives the same result as 1.
   int jobs = 1;

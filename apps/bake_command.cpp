@@ -67,10 +67,10 @@ struct BakeOptions {
   decomp::DecomposeParams decompose;  ///< for --cells auto
   bool noAmbient = false;             ///< leave out the ambient term (radiosity/gpu/ambient.h)
   double ambientShare = kDefaultAmbientShare;  ///< global method: the stop per cell (ambientShares)
-  LoadOptions load;                   ///< --strict, --allow-outside-files, --emit, --albedo
-  bool allowDark = false;             ///< go on when nothing lights the scene
-  SkyRequest sky;                     ///< --sky, --sun, --ground (core/sky.h); none by default
-  ViewParams views;                   ///< --view-size; each picture exposed for what its camera sees
+  LoadOptions load;                            ///< --strict, --allow-outside-files, --emit, --albedo
+  bool allowDark = false;                      ///< go on when nothing lights the scene
+  SkyRequest sky;                              ///< --sky, --sun, --ground (core/sky.h); none by default
+  ViewParams views;                            ///< --view-size; each picture exposed for what its camera sees
   bool quiet = false;
   bool maxShotsGiven = false;  ///< --max-shots on the command line (else the solver's default bound)
   // Cell jobs (radiosity/cells/cell_jobs.h, docs/cell-jobs.md): --plan DIR prepares them instead of
@@ -245,8 +245,10 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
   if (o.method != "cells") {
     SolveControls perCell = controls;
     if (o.ambientShare > 0.0)
-      perCell.acceptStop = [&](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
-        const std::vector<double> shares = ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity);
+      perCell.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
+                               const std::vector<glm::vec3>& residual) {
+        const std::vector<double> shares =
+            ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity);
         return *std::max_element(shares.begin(), shares.end()) <= o.ambientShare;
       };
     return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, perCell);
@@ -381,7 +383,8 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["energy"] = energyReport(s.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
-  report["ambient_share_target"] = o.method == "cells" || levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
+  report["ambient_share_target"] =
+      o.method == "cells" || levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
   report["stop_checks"] = s.stopChecks;
   nlohmann::json shares = nlohmann::json::object();
   for (size_t c = 0; c < f.ambientShares.size(); ++c)
@@ -581,7 +584,8 @@ int runBake(const BakeOptions& o) {
   std::optional<TwoLevelData> levels;
   SolveResult s = solveBake(o, in, texelGraph, texelCells, *gl, deadline, ctx, levels);
   BakeFigures f;
-  if (!s.residual.empty()) f.ambientShares = ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity);
+  if (!s.residual.empty())
+    f.ambientShares = ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity);
   f.cellNames = cellNames(texelGraph);
   f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
   const std::pair<const char*, double> totals[] = {{"emitted", s.energy.emitted},

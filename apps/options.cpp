@@ -257,11 +257,12 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
 void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
   cmd.add_flag(flag("no ambient term"), noAmbient,
                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
-  addChecked(cmd, OptionScope{}, "ambient share", ambientShare,
-             "Global method: at the unshot stop, shoot on until in every cell (room) the ambient term would be "
-             "at most this share of its light, so that a room lit through doors is not left mostly to the "
-             "flat estimate (0: the unshot stop alone)",
-             within(0.0, 1.0));
+  addChecked(
+      cmd, OptionScope{}, "ambient share", ambientShare,
+      "Global method: at the unshot stop, shoot on until in every cell (room) the ambient term would be "
+      "at most this share of its light, so that a room lit through doors is not left mostly to the "
+      "flat estimate (0: the unshot stop alone)",
+      within(0.0, 1.0));
 }
 
 void addTimeLimitOption(CLI::App& cmd, double& seconds) {

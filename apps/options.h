@@ -43,7 +43,8 @@ void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope = {});
 /// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
 /// --strong-regions, --strong-fraction, --region-size, --fixed-eyes.
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
-/// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term) and --ambient-share (bake: the stop per cell).
+/// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term) and --ambient-share (bake: the stop per
+/// cell).
 void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare);
 /// bake's `--time-limit SECONDS` (0: none).
 void addTimeLimitOption(CLI::App& cmd, double& seconds);

@@ -15,9 +15,11 @@ struct CellAmbient {
 };
 
 CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
-                        const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph) {
+                        const glm::dvec3& unshotPower, std::span<const float> texelCell,
+                        const CellGraph& graph) {
   const size_t n = atlas.texelCount();
-  if (!residual.empty() && residual.size() != n) throw std::invalid_argument("ambient: not one residual per atlas texel");
+  if (!residual.empty() && residual.size() != n)
+    throw std::invalid_argument("ambient: not one residual per atlas texel");
   const bool byCell = !graph.cells.empty() && texelCell.size() == n;
   // Cells 0..K-1, and K for texels in no cell (or every texel without cells).
   const size_t k = byCell ? graph.cells.size() : 0, count = k + 1;
@@ -94,7 +96,8 @@ CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>
 glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                       const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
                       std::vector<glm::vec3>& radiosity) {
-  if (radiosity.size() != atlas.texelCount()) throw std::invalid_argument("addAmbient: not one value per atlas texel");
+  if (radiosity.size() != atlas.texelCount())
+    throw std::invalid_argument("addAmbient: not one value per atlas texel");
   const CellAmbient a = cellAmbient(atlas, residual, unshotPower, texelCell, graph);
   for (size_t i = 0; i < radiosity.size(); ++i)
     if (atlas.patch[i] >= 0)

@@ -203,7 +203,8 @@ struct SolveConfig : SolverParams {
   /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
   double directEmitted = 0.0;
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  const std::function<bool(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)>* acceptStop = nullptr;
+  const std::function<bool(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)>* acceptStop =
+      nullptr;
 };
 
 ProgramDefines programDefines(const SolveConfig& params) {
@@ -1076,8 +1077,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
         firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
       if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
         const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
-        if (rate < 0.0)
-          eta = (std::log(stopAt) - std::log(now)) / rate * elapsed / result.shots;
+        if (rate < 0.0) eta = (std::log(stopAt) - std::log(now)) / rate * elapsed / result.shots;
       }
       // Towards the current stop: past a refused one (acceptStop), the next ask.
       const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(stopAt), 0.0, 1.0);

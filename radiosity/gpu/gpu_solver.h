@@ -123,7 +123,8 @@ struct SolveControls {
   /// and the unshot residual so far (per atlas texel): true stops; false shoots on and asks again once the
   /// share has fallen to kStopRecheck of what it was (SolveResult::stopChecks counts the asks). The bake's
   /// stop per cell (radiosity/gpu/ambient.h, ambientShares). Empty: stop.
-  std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)> acceptStop;
+  std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
+      acceptStop;
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

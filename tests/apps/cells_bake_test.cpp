@@ -28,8 +28,8 @@ TEST(CellsBake, CellsFromAnotherFileKeepEachFaceOfAThinWallInItsRoom) {
   const std::string scene = dir / "openings.glb", cells = dir / "cells.glb";
   ASSERT_EQ(cpgi(dir, "generate openings -o '" + scene + "'").status, 0);
   std::filesystem::copy_file(scene, cells);
-  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --cells '" + cells +
-                                 "' --density 5 -q");
+  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --cells '" +
+                                 cells + "' --density 5 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.err.find("not in the cells file"), std::string::npos) << r.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));

@@ -141,7 +141,8 @@ TEST_F(PerCellError, TheDefaultStopLeavesNoRoomMostlyToTheAmbientTerm) {
   EXPECT_GE(perCell["stop_checks"].get<int>(), 2);  // refused at least once
   EXPECT_GT(perCell["shots"].get<int>(), global["shots"].get<int>());
   ASSERT_EQ(perCell["ambient_share"].size(), 4u);  // A, B, C and texels in no cell
-  for (const auto& [cell, share] : perCell["ambient_share"].items()) EXPECT_LE(share.get<double>(), 0.1) << cell;
+  for (const auto& [cell, share] : perCell["ambient_share"].items())
+    EXPECT_LE(share.get<double>(), 0.1) << cell;
   EXPECT_GT(global["ambient_share"]["C"].get<double>(), 0.15);
   EXPECT_EQ(global["stop_checks"], 0);
 }

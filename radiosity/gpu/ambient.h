@@ -26,14 +26,14 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
                       const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
                       std::vector<glm::vec3>& radiosity);
 
+/// bake --ambient-share's default (bench/RESULTS.md, "The default stop per room").
+inline constexpr double kDefaultAmbientShare = 0.1;
+
 /// Per cell of `graph` (and a last entry for texels in no cell; one entry in all without cells), the share
 /// of its reflectors' light (area-weighted, R + G + B, lamps left out) that the ambient term of `residual`
 /// would be: ρ E / (B + ρ E). A progressive solve's stop per cell (bake): 1 % unshot in the whole scene
 /// left a fifth of the light of a room two openings from the lamp to the ambient term, which is flat over
-/// the room (openings, room C: 5.7 % per texel at the default stop, 4.0 % converged).
-/// bake --ambient-share's default.
-inline constexpr double kDefaultAmbientShare = 0.1;
-
+/// the room (openings, room C: 5.7 % per texel at the default stop, 4.2 % with the stop per cell).
 std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                                   std::span<const float> texelCell, const CellGraph& graph,
                                   const std::vector<glm::vec3>& radiosity);

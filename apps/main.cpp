@@ -5,9 +5,11 @@
 
 #include "apps/commands.h"
 #include "apps/options.h"
+#include "core/crash_report.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  cpgi::installCrashReport("cpgi");
   CLI::App app{"cpgi: cell-portal global illumination (radiosity baking for indoor scenes)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cpgi 0.1.0");

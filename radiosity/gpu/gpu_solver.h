@@ -124,7 +124,7 @@ struct SolveControls {
   /// share has fallen to kStopRecheck of what it was (SolveResult::stopChecks counts the asks). The bake's
   /// stop per cell (radiosity/gpu/ambient.h, ambientShares). Empty: stop.
   std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
-      acceptStop;
+      acceptStop = {};
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

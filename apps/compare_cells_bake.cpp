@@ -82,6 +82,7 @@ nlohmann::json bake(const std::string& scene, const CellsToBake& cells, const Li
   solve.solver = params.solver;
   solve.atlas = params.atlas;
   solve.maxRounds = params.maxRounds;
+  solve.portals = params.portals;
   const Clock::time_point start = Clock::now();
   SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
   // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/gpu/ambient.h).
@@ -186,6 +187,7 @@ nlohmann::json compareCellBakes(const std::string& scene, const CellsToBake& a, 
                         {"unshot_target", params.solver.unshotFraction},
                         {"item_buffer", params.solver.itemBuffer},
                         {"visibility", visibilityName(params.solver.visibility)},
+                        {"portals", portalLightName(params.portals)},
                         {"renderer", gl->renderer()},
                         {"same_atlas", shared},
                         {"references", references},
@@ -205,8 +207,8 @@ void printCellBakes(const nlohmann::json& bake) {
     std::printf("bake: %dx%d texels per quad", tpq, tpq);
   else
     std::printf("bake: %g texels per metre", bake["density"].get<double>());
-  std::printf(", unshot %g, --method cells, %s\n", bake["unshot_target"].get<double>(),
-              bake["renderer"].get<std::string>().c_str());
+  std::printf(", unshot %g, --method cells, %s portals, %s\n", bake["unshot_target"].get<double>(),
+              bake["portals"].get<std::string>().c_str(), bake["renderer"].get<std::string>().c_str());
   for (const auto& r : bake["references"])
     std::printf("reference on %s's atlas: %zu texels, %d spp, %.1f s, noise %.3f%% (%.3f%% without lamps)\n",
                 r["scene_of"].get<std::string>().c_str(), r["texels"].get<size_t>(), r["spp"].get<int>(),

@@ -10,6 +10,7 @@
 #include "core/cell_graph.h"
 #include "core/context.h"
 #include "core/scene.h"
+#include "radiosity/cells/cell_solver.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/reference/reference_tracer.h"
@@ -28,6 +29,7 @@ struct CellBakeComparison {
   AtlasParams atlas;
   SolverParams solver;  ///< unshotFraction is the whole scene's target, as in `bake --method cells`
   int maxRounds = 64;
+  PortalLight portals = PortalLight::Directional;  ///< as `bake --method cells` by default (kBakePortalLight)
   ReferenceParams reference;
 };
 

@@ -139,5 +139,35 @@ TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   }
 }
 
+// The command line's cells bakes default to directional portals (apps/options.h, kBakePortalLight). A plan
+// of cell jobs, whose files carry no directions, takes diffuse portals when --portals is not given, says
+// so, and hands --portals diffuse to every job; --portals directional is refused in one line.
+TEST(CellsBake, DefaultPortalsAreDirectionalAndAPlanTakesDiffuseAndSaysSo) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const std::string cells = " --method cells --cells '" + scene + "' --texels-per-quad 4 --unshot 0.05 -q";
+  const CliRun bake = cpgi(dir, "bake '" + scene + "' -o '" + (dir / "out") + "'" + cells);
+  ASSERT_EQ(bake.status, 0) << bake.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "out/report.json"))["portal_mode"], "directional");
+
+  const CliRun plan = cpgi(
+      dir, "bake '" + scene + "' -o '" + (dir / "jobs") + "'" + cells + " --plan '" + (dir / "plan") + "'");
+  ASSERT_EQ(plan.status, 0) << plan.err;
+  EXPECT_NE(plan.err.find("carry diffuse portal light only"), std::string::npos) << plan.err;
+  const auto args =
+      nlohmann::json::parse(slurp(dir / "plan/plan.json"))["bake_args"].get<std::vector<std::string>>();
+  const auto at = std::find(args.begin(), args.end(), "--portals");
+  ASSERT_NE(at, args.end());
+  ASSERT_NE(at + 1, args.end());
+  EXPECT_EQ(*(at + 1), "diffuse");
+
+  const CliRun refused = cpgi(dir, "bake '" + scene + "' -o '" + (dir / "jobs") + "'" + cells +
+                                       " --portals directional --plan '" + (dir / "plan2") + "'");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_NE(refused.err.find("diffuse portal light only"), std::string::npos) << refused.err;
+}
+
 }  // namespace
 }  // namespace cpgi

@@ -491,27 +491,13 @@ int runCellJobStage(const BakeOptions& o) {
   }
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
-  std::vector<std::string> args = bakeArguments();
-  // The job files carry no directions: a plan made with the bake's default portal light (directional)
-  // takes diffuse portals, says so, and writes --portals diffuse into the jobs' arguments; an explicit
-  // --portals directional is refused by planCellJobs.
-  const bool portalsGiven = std::any_of(args.begin(), args.end(), [](const std::string& a) {
-    return a == "--portals" || a.rfind("--portals=", 0) == 0;
-  });
-  if (!portalsGiven && params.portals != PortalLight::Diffuse) {
-    params.portals = PortalLight::Diffuse;
-    args.insert(args.end(), {"--portals", "diffuse"});
-    ctx.warn(
-        "--plan: the cell jobs carry diffuse portal light only (no directions in their files): baking "
-        "with --portals diffuse, not the default directional");
-  }
-  const CellJobPlan plan = planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, args, ctx);
-  if (!o.quiet)
+  const CellJobPlan plan =
+      planCellJobs(o.plan, in.loaded.scene, in.graph, in.atlas, params, bakeArguments(), ctx);
+  if (!o.quiet) {
     std::cout << o.plan << ": plan of " << plan.cells.size() << " cells and " << plan.firstShotGroups.size()
               << " emitter groups; next: cpgi cell-job " << o.plan << " --first-shot\n";
-  // Even with -q (cpgi-dask plans with it): a plan has no report to keep them, and one of them says its
-  // portal light is not the bake's default.
-  for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
+    for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
+  }
   return 0;
 }
 

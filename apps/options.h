@@ -50,12 +50,12 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare);
 void addTimeLimitOption(CLI::App& cmd, double& seconds);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
-/// The portal light of the command line's cells bakes (bake, compare-cells --bake) unless --portals says
-/// otherwise: directional. The library's default stays the thesis's diffuse portal, which the cell jobs
-/// need (their files carry no directions). Measured at the default stop (density 10, per cell against
-/// `cpgi reference --texels 4000 --spp 4096`, ratio of means and per-texel RMSE without the reference's
-/// noise): openings' room C, lit through an interior window, 0.965 (21.3 %) diffuse, 0.987 (8.5 %)
-/// directional; seed1–3 and spot-door within 0.01 either way; 1.2–1.4× the CPU seconds.
+/// The portal light of the command line's cells bakes (bake, its cell jobs, compare-cells --bake) unless
+/// --portals says otherwise: directional. The library's default stays the thesis's diffuse portal. Measured
+/// at the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`, ratio of
+/// means and per-texel RMSE without the reference's noise): openings' room C, lit through an interior window,
+/// 0.965 (21.3 %) diffuse, 0.987 (8.5 %) directional; seed1–3 and spot-door within 0.01 either way; 1.2–1.4×
+/// the CPU seconds.
 inline constexpr PortalLight kBakePortalLight = PortalLight::Directional;
 /// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume; params.memoryLimit
 /// set to the default (commands with --max-memory copy theirs into it).

@@ -45,7 +45,10 @@ struct CellState {
   std::vector<int> portalPatch;                       ///< per CellScene::portals entry
   std::vector<glm::vec3> pending;                     ///< exitance to shoot at the next solve (W/m²)
   std::vector<glm::vec3> carried;  ///< the part of `pending` already counted in the radiosity
-  bool boundary = false;           ///< an on-demand boundary cell: coarse atlas, texels not written
+  /// Directional portals: per texel, the arrival moments of `pending` (radiosity/gpu/emission_lobes.h),
+  /// fitted into its emission lobes at the next solve; empty with diffuse portals.
+  std::vector<glm::vec4> pendingMoments;
+  bool boundary = false;  ///< an on-demand boundary cell: coarse atlas, texels not written
 };
 
 /// Per patch of `s.atlas`, 1 for a portal patch.

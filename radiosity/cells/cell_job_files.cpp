@@ -27,10 +27,12 @@ class Writer {
   void put(const T& v) {
     bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
   }
-  void putVec3s(const std::vector<glm::vec3>& v) {
+  template <class V>
+  void putVecs(const std::vector<V>& v) {
     put(uint64_t(v.size()));
-    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(glm::vec3));
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(V));
   }
+  void putVec3s(const std::vector<glm::vec3>& v) { putVecs(v); }
   // Written next to `file` and renamed over it: a reader sees the whole record or none.
   uint64_t save(const std::filesystem::path& file, CellJobRecord kind) const {
     std::string out(kMagic, 8);
@@ -91,14 +93,16 @@ class Reader {
     at_ += sizeof(T);
     return v;
   }
-  std::vector<glm::vec3> getVec3s() {
+  template <class V>
+  std::vector<V> getVecs() {
     const uint64_t n = get<uint64_t>();
-    if (n > (bytes_.size() - at_) / sizeof(glm::vec3)) fail("an array longer than the file");
-    std::vector<glm::vec3> v(n);
-    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(glm::vec3));
-    at_ += n * sizeof(glm::vec3);
+    if (n > (bytes_.size() - at_) / sizeof(V)) fail("an array longer than the file");
+    std::vector<V> v(n);
+    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(V));
+    at_ += n * sizeof(V);
     return v;
   }
+  std::vector<glm::vec3> getVec3s() { return getVecs<glm::vec3>(); }
   void end() const {
     if (at_ != bytes_.size()) fail("bytes left over after the record");
   }
@@ -155,6 +159,7 @@ void writeCellState(const std::filesystem::path& file, int round, const CellRoun
   Writer w;
   w.put(int32_t(round)), w.put(int32_t(r.cell)), w.put(uint8_t(r.solved));
   w.putVec3s(r.kept), w.putVec3s(r.carried), w.putVec3s(r.radiosity);
+  w.putVecs(r.keptMoments);
   w.save(file, CellJobRecord::CellState);
 }
 
@@ -166,7 +171,10 @@ CellRound readCellState(const std::filesystem::path& file, int round, int cell) 
   in.expect(r.cell == cell, "of another cell");
   r.solved = in.get<uint8_t>() != 0;
   r.kept = in.getVec3s(), r.carried = in.getVec3s(), r.radiosity = in.getVec3s();
+  r.keptMoments = in.getVecs<glm::vec4>();
   in.expect(r.carried.size() == r.kept.size(), "carried and kept light of different sizes");
+  in.expect(r.keptMoments.empty() || r.keptMoments.size() == r.kept.size(),
+            "kept light and its moments of different sizes");
   in.end();
   return r;
 }
@@ -182,6 +190,7 @@ uint64_t writePortalLight(const std::filesystem::path& file, int round, const Ce
     putSendFigures(w, s);
     w.put(uint64_t(s.exitance.size()));
     for (const auto& [t, e] : s.exitance) w.put(t), w.put(e);
+    w.putVecs(s.moments);
   }
   return w.save(file, CellJobRecord::PortalLight);
 }
@@ -200,6 +209,9 @@ std::vector<PortalSend> readPortalLight(const std::filesystem::path& file, int r
       in.expect(t >= 0, "a negative texel");
       s.exitance.push_back({t, in.get<glm::vec3>()});
     }
+    s.moments = in.getVecs<glm::vec4>();
+    in.expect(s.moments.empty() || s.moments.size() == s.exitance.size(),
+              "exitance and its moments of different sizes");
   }
   in.end();
   return sends;

@@ -24,7 +24,7 @@
 
 namespace cpgi {
 
-inline constexpr uint32_t kCellJobFormat = 1;
+inline constexpr uint32_t kCellJobFormat = 2;  ///< 2: directional portals' moments
 
 enum class CellJobRecord : uint32_t {
   CellState = 1,       ///< a cell's own light after a round: kept, carried, radiosity gained

@@ -94,9 +94,10 @@ bool roundNeeded(const CellJobPlan& plan, int round, double unshotBefore) {
 }
 
 // Cell `c`'s pending light for round `round`: its own state and the portal light its neighbours sent it
-// in round − 1. `carried` receives the part already in the radiosity.
-std::vector<glm::vec3> gatherFromFiles(const fs::path& dir, const CellJobPlan& plan, int round, int c,
-                                       size_t texels, std::vector<glm::vec3>& carried) {
+// in round − 1, into s.pending, s.pendingMoments (directional portals) and s.carried (the part already in
+// the radiosity).
+void gatherFromFiles(const fs::path& dir, const CellJobPlan& plan, int round, int c, CellState& s) {
+  const size_t texels = s.pending.size();
   const CellRound own = readCellState(cellStateFile(dir, round - 1, c), round - 1, c);
   if (own.kept.size() != texels)
     throw InputError(cellStateFile(dir, round - 1, c).string(),
@@ -109,14 +110,18 @@ std::vector<glm::vec3> gatherFromFiles(const fs::path& dir, const CellJobPlan& p
       arriving.insert(arriving.end(), std::make_move_iterator(in.begin()), std::make_move_iterator(in.end()));
     }
   std::vector<const PortalSend*> ptrs;
-  for (const PortalSend& s : arriving) {
-    for (const auto& [t, e] : s.exitance)
+  for (const PortalSend& send : arriving) {
+    for (const auto& [t, e] : send.exitance)
       if (size_t(t) >= texels)
-        throw InputError(portalLightFile(dir, round - 1, s.from, c).string(), "a texel outside the cell");
-    ptrs.push_back(&s);
+        throw InputError(portalLightFile(dir, round - 1, send.from, c).string(), "a texel outside the cell");
+    ptrs.push_back(&send);
   }
-  carried = own.carried;
-  return gatherPending(own, sendsTo(c, ptrs), texels);
+  if (!own.keptMoments.empty() && own.keptMoments.size() != texels)
+    throw InputError(cellStateFile(dir, round - 1, c).string(), "holds moments for another number of texels");
+  const std::vector<const PortalSend*> sorted = sendsTo(c, ptrs);
+  s.carried = own.carried;
+  s.pending = gatherPending(own, sorted, texels);
+  s.pendingMoments = gatherPendingMoments(own, sorted, texels);
 }
 
 void requireFirstShotSummed(const fs::path& dir, const CellJobPlan& plan) {
@@ -127,8 +132,6 @@ void requireFirstShotSummed(const fs::path& dir, const CellJobPlan& plan) {
 }
 
 void requireSupported(const CellSolveParams& params) {
-  if (params.portals != PortalLight::Diffuse)
-    throw InputError("portal light", "cell jobs carry diffuse portal light only for now");
   if (!params.boundaryCells.empty() || params.partOfGraph)
     throw InputError("cells", "cell jobs bake the whole cell graph (no on-demand cells)");
 }
@@ -363,7 +366,7 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
     cells = buildCellAtlases(scene, sub.graph, params, localIndex, ctx);
   }
   const std::vector<PortalLink> links = linkPortals(sub.graph, cells);
-  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params, cells);
+  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
   SolverPrograms programs;
   controls.programs = &programs;
   fs::create_directories(roundDir(dir, round));
@@ -375,7 +378,7 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
       throw InputError((dir / "plan.json").string(),
                        "cell " + plan.cells[size_t(c)] + " has " + std::to_string(s.atlas.texelCount()) +
                            " texels here, " + std::to_string(plan.texels[size_t(c)]) + " in the plan");
-    s.pending = gatherFromFiles(dir, plan, round, c, s.pending.size(), s.carried);
+    gatherFromFiles(dir, plan, round, c, s);
     CellRound r;
     if (cellSolvesRound(s, plan.target)) {
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
@@ -441,8 +444,7 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
     throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
   std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
-  for (size_t c = 0; c < cells.size(); ++c)
-    cells[c].pending = gatherFromFiles(dir, plan, 1, int(c), cells[c].pending.size(), cells[c].carried);
+  for (size_t c = 0; c < cells.size(); ++c) gatherFromFiles(dir, plan, 1, int(c), cells[c]);
   SolveResult result = startBookkeeping(graph, cells, global);
   const FirstShotRecord shot = readFirstShot(dir / "first-shot.cell");
   if (shot.absorbed.size() != cells.size() || shot.emission.size() != global.texelCount())
@@ -462,9 +464,7 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
       r.radiosity = std::move(states[c].radiosity);
       addCellRound(r, cells[c], graph, result);
     }
-    for (size_t c = 0; c < cells.size(); ++c)
-      cells[c].pending =
-          gatherFromFiles(dir, plan, round + 1, int(c), cells[c].pending.size(), cells[c].carried);
+    for (size_t c = 0; c < cells.size(); ++c) gatherFromFiles(dir, plan, round + 1, int(c), cells[c]);
   }
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -62,7 +62,7 @@ std::filesystem::path portalLightFile(const std::filesystem::path& dir, int roun
 std::filesystem::path firstShotGroupFile(const std::filesystem::path& dir, int group);
 
 /// Writes the plan into `dir` (created; an earlier plan's first shot and rounds there are removed).
-/// On-demand cells and directional portals are refused (InputError).
+/// On-demand cells are refused (InputError).
 CellJobPlan planCellJobs(const std::filesystem::path& dir, const Scene& scene, const CellGraph& graph,
                          const LightmapAtlas& global, const CellSolveParams& params,
                          std::vector<std::string> bakeArgs, Context& ctx);

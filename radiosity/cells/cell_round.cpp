@@ -32,6 +32,13 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
     send.arriving += (double(e.r) + e.g + e.b) * to.area[tt];
   }
   send.watts = sent.r + sent.g + sent.b;
+  // Directional portals: the moments go along in world coordinates (the far side's normal is this side's
+  // negated, as the moments assume), weighted like the exitance they describe.
+  if (!solved.arrivals.empty()) {
+    const float weight = (send.scale.r + send.scale.g + send.scale.b) / 3.0f;
+    send.moments.reserve(link.texels.size());
+    for (const auto& [tt, ft] : link.texels) send.moments.push_back(solved.arrivals[ft] * weight);
+  }
   return send;
 }
 
@@ -66,6 +73,17 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   r.kept = solved.residual;
   r.carried = solved.residual;
   r.keptPower = cellPower(r.kept, s.atlas);
+  // A texel's residual is the part of its pending exitance it did not shoot (portal texels have albedo 0
+  // and gain none), so its moments are the pending ones scaled by the same share.
+  if (!s.pendingMoments.empty()) {
+    r.keptMoments.assign(s.pendingMoments.size(), glm::vec4(0.0f));
+    for (size_t i = 0; i < r.keptMoments.size(); ++i) {
+      const float pending = s.pending[i].r + s.pending[i].g + s.pending[i].b;
+      const float left = r.kept[i].r + r.kept[i].g + r.kept[i].b;
+      if (s.pendingMoments[i].w > 0.0f && pending > 0.0f && left > 0.0f)
+        r.keptMoments[i] = s.pendingMoments[i] * std::min(left / pending, 1.0f);
+    }
+  }
   if (!s.boundary) {
     r.radiosity.resize(s.atlas.texelCount());
     for (size_t t = 0; t < r.radiosity.size(); ++t) r.radiosity[t] = solved.radiosity[t] - s.carried[t];
@@ -93,6 +111,7 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
   r.cell = int(c);
   r.kept = s.pending;
   r.carried = s.carried;
+  r.keptMoments = s.pendingMoments;
   r.keptPower = cellPower(r.kept, s.atlas);
   return r;
 }
@@ -112,6 +131,27 @@ std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<con
   }
   if (!ownAdded) addOwn();
   return pending;
+}
+
+std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,
+                                            const std::vector<const PortalSend*>& arriving, size_t texels) {
+  bool any = !own.keptMoments.empty();
+  for (const PortalSend* send : arriving) any = any || !send->moments.empty();
+  if (!any) return {};
+  std::vector<glm::vec4> moments(texels, glm::vec4(0.0f));
+  bool ownAdded = false;
+  auto addOwn = [&] {
+    for (size_t i = 0; i < own.keptMoments.size() && i < texels; ++i) moments[i] += own.keptMoments[i];
+    ownAdded = true;
+  };
+  if (!own.solved) addOwn();
+  for (const PortalSend* send : arriving) {
+    if (!ownAdded && send->from > own.cell) addOwn();
+    for (size_t k = 0; k < send->moments.size() && k < send->exitance.size(); ++k)
+      moments[size_t(send->exitance[k].first)] += send->moments[k];
+  }
+  if (!ownAdded) addOwn();
+  return moments;
 }
 
 std::vector<const PortalSend*> sendsTo(int to, const std::vector<const PortalSend*>& sends) {

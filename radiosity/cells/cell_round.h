@@ -32,6 +32,9 @@ struct PortalSend {
   int from = -1, to = -1;  ///< graph cells
   /// (texel of the receiving cell's atlas, exitance W/m²) to add to its pending light, in link order.
   std::vector<std::pair<int32_t, glm::vec3>> exitance;
+  /// Directional portals: the arrival moments that go with each `exitance` entry (same order, world
+  /// coordinates, weighted like the exitance); empty with diffuse portals.
+  std::vector<glm::vec4> moments;
   glm::vec3 scale{0.0f};  ///< exitance = sending side's irradiance × scale (power through the opening kept)
   double watts = 0.0;     ///< power collected on the sending side (W, R + G + B)
   double arriving = 0.0;  ///< power of `exitance` over the receiving texels (W, R + G + B)
@@ -39,14 +42,15 @@ struct PortalSend {
 
 /// What one cell's round leaves: its own share of the next round's pending light and what it sends.
 struct CellRound {
-  int cell = -1;                     ///< graph cell
-  bool solved = false;               ///< false: it waited (too little pending light), its pending light kept
-  bool timedOut = false;             ///< its solve stopped at the bake's --time-limit (not in job files)
-  std::vector<glm::vec3> kept;       ///< per cell texel: its own share of the next pending light (W/m²)
-  std::vector<glm::vec3> carried;    ///< per cell texel: the part of `kept` already in the radiosity
-  std::vector<glm::vec3> radiosity;  ///< per cell texel: radiosity gained this round (solved cells only)
-  std::vector<PortalSend> sends;     ///< solved cells only, in link order (portal, then A→B before B→A)
-  double keptPower = 0.0;            ///< power of `kept` (W, R + G + B)
+  int cell = -1;                   ///< graph cell
+  bool solved = false;             ///< false: it waited (too little pending light), its pending light kept
+  bool timedOut = false;           ///< its solve stopped at the bake's --time-limit (not in job files)
+  std::vector<glm::vec3> kept;     ///< per cell texel: its own share of the next pending light (W/m²)
+  std::vector<glm::vec3> carried;  ///< per cell texel: the part of `kept` already in the radiosity
+  std::vector<glm::vec4> keptMoments;  ///< directional portals: per cell texel, the moments of `kept`
+  std::vector<glm::vec3> radiosity;    ///< per cell texel: radiosity gained this round (solved cells only)
+  std::vector<PortalSend> sends;       ///< solved cells only, in link order (portal, then A→B before B→A)
+  double keptPower = 0.0;              ///< power of `kept` (W, R + G + B)
   // The solve's figures (SolveResult), for the bookkeeping.
   int shots = 0;
   double seconds = 0.0, shot = 0.0, received = 0.0, escaped = 0.0, created = 0.0, worstShotGain = 0.0;
@@ -85,6 +89,10 @@ CellRound waitingCellRound(size_t c, const CellState& s);
 /// (from, portal).
 std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<const PortalSend*>& arriving,
                                      size_t texels);
+/// The same for the arrival moments (directional portals): empty when neither `own` nor any send has
+/// moments.
+std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,
+                                            const std::vector<const PortalSend*>& arriving, size_t texels);
 
 /// The power unshot after a round: per cell in order, its kept power then the power arriving at it (sorted by
 /// sender and portal). `keptPower` per graph cell; `sends` every send of the round (any order).

@@ -88,7 +88,7 @@ SolveResult solveLabelled(const std::string& label, const std::function<SolveRes
 std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
                                   const std::vector<CellState>& cells, const std::vector<size_t>& active,
                                   const std::vector<PortalLink>& links, const SolverParams& settings,
-                                  const SolveControls& controls, PortalTransfer& transfer,
+                                  const SolveControls& controls, const PortalTransfer& transfer,
                                   CellWorkers& workers, Context& ctx) {
   std::vector<SolveResult> solvedOf(cells.size());
   std::vector<CellRound> round(cells.size());
@@ -109,25 +109,13 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
           round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells);
         });
   }
-  // The portal model's own bookkeeping, in the order it has always had: the waiting cells, then the
-  // solved ones in cell order.
   for (size_t c = 0; c < cells.size(); ++c)
-    if (round[c].cell < 0) {
-      round[c] = waitingCellRound(c, cells[c]);
-      transfer.keepPending(c);
-    }
-  for (size_t c : active) {
-    transfer.keepUnshot(c, cells[c], round[c].kept);
-    size_t k = 0;
-    for (const PortalLink& link : links)
-      if (link.from == int(c)) transfer.send(link, solvedOf[c], round[c].sends[k++].scale);
-  }
+    if (round[c].cell < 0) round[c] = waitingCellRound(c, cells[c]);
   return round;
 }
 
 // The round's gathered light becomes every cell's pending; returns the power now unshot everywhere.
-double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& round,
-                PortalTransfer& transfer) {
+double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& round) {
   std::vector<const PortalSend*> sends;
   std::vector<double> kept(cells.size());
   for (size_t c = 0; c < cells.size(); ++c) {
@@ -135,10 +123,11 @@ double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& rou
     for (const PortalSend& s : round[c].sends) sends.push_back(&s);
   }
   for (size_t c = 0; c < cells.size(); ++c) {
-    cells[c].pending = gatherPending(round[c], sendsTo(int(c), sends), cells[c].pending.size());
+    const std::vector<const PortalSend*> arriving = sendsTo(int(c), sends);
+    cells[c].pending = gatherPending(round[c], arriving, cells[c].pending.size());
+    cells[c].pendingMoments = gatherPendingMoments(round[c], arriving, cells[c].pending.size());
     cells[c].carried = round[c].carried;
   }
-  transfer.endRound();
   return roundUnshot(kept, sends);
 }
 
@@ -206,7 +195,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   if (unassigned > 0 && !params.partOfGraph)
     ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
   const std::vector<PortalLink> links = linkPortals(graph, cells);
-  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params, cells);
+  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
   CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
 
   const CellFirstShot first =
@@ -227,7 +216,6 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     }
     ++rounds;
     const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
-    transfer->beginRound();
     const std::vector<size_t> active = activeCells(cells, target);
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =
@@ -236,7 +224,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
       addCellRound(round[c], cells[c], graph, result);
       result.timedOut = result.timedOut || round[c].timedOut;
     }
-    unshot = endRound(cells, round, *transfer);
+    unshot = endRound(cells, round);
     done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction),
                       0.0, 1.0);
     ctx.progress("cells", done, "round " + std::to_string(rounds));

@@ -10,7 +10,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 "$cpgi" generate office-small -o office.glb >/dev/null
-options=(--cells office.glb --density 2 --portals diffuse)  # the jobs carry diffuse portal light only
+options=(--cells office.glb --density 2)
 "$cpgi" bake office.glb -o single --method cells "${options[@]}" -q
 "$dask" office.glb -o distributed --workers 2 --lose-worker 2 "${options[@]}" | tee dask.log
 grep -q "^cpgi-dask: killed worker" dask.log || { echo "FAIL: no worker was lost"; exit 1; }

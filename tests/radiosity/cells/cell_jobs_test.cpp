@@ -27,11 +27,13 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-TEST(CellJobs, OneCellPerJobGivesTheSingleProcessSolve) {
+// Every step as its own job from files, against solveCells with the same parameters: bit for bit.
+void expectJobsGiveTheSingleProcessSolve(PortalLight portals) {
   const SeedScene s = makeBuiltinScene("office-small");
   Context ctx;
   EglContext gl(ctx);
   CellSolveParams params;
+  params.portals = portals;
   params.atlas.texelsPerQuad = 6;
   params.solver.itemBuffer = 256;
   const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), params.atlas, ctx);
@@ -73,6 +75,17 @@ TEST(CellJobs, OneCellPerJobGivesTheSingleProcessSolve) {
   EXPECT_THROW(
       runCellJobs(dir.path, plan, gathered.perCell->rounds + 1, {0}, s.scene, s.cells, params, gl, ctx),
       InputError);
+}
+
+TEST(CellJobs, OneCellPerJobGivesTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Diffuse);
+}
+
+// Directional portals: the arrival moments go through the files with the light (the state's kept
+// moments, the portal light's moments per texel). Dropped there, the lobes would be Lambertian and the
+// rooms lit through the hatch and doors would differ from the single process.
+TEST(CellJobs, DirectionalPortalsGiveTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Directional);
 }
 
 TEST(CellJobFiles, DamageIsNamedAndRefused) {

@@ -116,20 +116,38 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
   return r;
 }
 
+namespace {
+
+// Calls addOwn() once and addSend(send) for each of `arriving` in the solver's order: a waiting cell's own
+// share first, otherwise by sending cell with its own share at its own index.
+template <class AddOwn, class AddSend>
+void inSolverOrder(const CellRound& own, const std::vector<const PortalSend*>& arriving, AddOwn addOwn,
+                   AddSend addSend) {
+  bool ownAdded = !own.solved;
+  if (ownAdded) addOwn();
+  for (const PortalSend* send : arriving) {
+    if (!ownAdded && send->from > own.cell) {
+      addOwn();
+      ownAdded = true;
+    }
+    addSend(*send);
+  }
+  if (!ownAdded) addOwn();
+}
+
+}  // namespace
+
 std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<const PortalSend*>& arriving,
                                      size_t texels) {
   std::vector<glm::vec3> pending(texels, glm::vec3(0.0f));
-  bool ownAdded = false;
-  auto addOwn = [&] {
-    for (size_t i = 0; i < own.kept.size() && i < texels; ++i) pending[i] += own.kept[i];
-    ownAdded = true;
-  };
-  if (!own.solved) addOwn();
-  for (const PortalSend* send : arriving) {
-    if (!ownAdded && send->from > own.cell) addOwn();
-    for (const auto& [t, e] : send->exitance) pending[size_t(t)] += e;
-  }
-  if (!ownAdded) addOwn();
+  inSolverOrder(
+      own, arriving,
+      [&] {
+        for (size_t i = 0; i < own.kept.size() && i < texels; ++i) pending[i] += own.kept[i];
+      },
+      [&](const PortalSend& send) {
+        for (const auto& [t, e] : send.exitance) pending[size_t(t)] += e;
+      });
   return pending;
 }
 
@@ -139,18 +157,15 @@ std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,
   for (const PortalSend* send : arriving) any = any || !send->moments.empty();
   if (!any) return {};
   std::vector<glm::vec4> moments(texels, glm::vec4(0.0f));
-  bool ownAdded = false;
-  auto addOwn = [&] {
-    for (size_t i = 0; i < own.keptMoments.size() && i < texels; ++i) moments[i] += own.keptMoments[i];
-    ownAdded = true;
-  };
-  if (!own.solved) addOwn();
-  for (const PortalSend* send : arriving) {
-    if (!ownAdded && send->from > own.cell) addOwn();
-    for (size_t k = 0; k < send->moments.size() && k < send->exitance.size(); ++k)
-      moments[size_t(send->exitance[k].first)] += send->moments[k];
-  }
-  if (!ownAdded) addOwn();
+  inSolverOrder(
+      own, arriving,
+      [&] {
+        for (size_t i = 0; i < own.keptMoments.size() && i < texels; ++i) moments[i] += own.keptMoments[i];
+      },
+      [&](const PortalSend& send) {
+        for (size_t k = 0; k < send.moments.size() && k < send.exitance.size(); ++k)
+          moments[size_t(send.exitance[k].first)] += send.moments[k];
+      });
   return moments;
 }
 

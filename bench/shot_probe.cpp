@@ -7,7 +7,12 @@
 // its receive pass gathered before the shot was scaled to what its eyes saw covered (gpu_solver.cpp).
 //
 //   cpgi_shot_probe SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R]
-//                   [--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR]
+//                   [--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR] [--draws N] [--texels P]
+//
+// --draws N: the same shot N times with the eyes of shots 1..N of a solve (SolveControls::
+// firstShotNumber), each before its scaling, averaged: what a receiver gets on average over the eyes'
+// draws (per draw the scale also averaged), against the rays. --texels P: also each texel of receiving
+// patch P, as "T x y z gathered rays" lines.
 //
 // SCENE_NAME is a built-in scene (cpgi generate's names); PATCH an atlas patch index (-1 lists them).
 // --regions sets both the ordinary and the strong shots' regions per edge.
@@ -64,8 +69,13 @@ double exactIrradiance(const cpgi::LightmapAtlas& atlas, const cpgi::RayScene& r
         v /= r;
         const float ci = glm::dot(n, v), cs = -glm::dot(sp.normal, v);
         if (ci <= 0.0f || cs <= 0.0f) continue;
+        // Both ends off their surfaces, and the ray between those: along v from x lifted by eps the
+        // ray met the shooter's own plane short of y at grazing angles (seed1: B's ceiling seen from A's
+        // floor through the door read 0.42 of the light there at its far end).
         const float eps = 1e-4f * rays.diagonal();
-        if (rays.occluded(x + n * eps, v, 0.0f, r - 2.0f * eps)) continue;
+        const glm::vec3 from = x + n * eps, to = y + sp.normal * eps;
+        const float length = glm::distance(from, to);
+        if (length > eps && rays.occluded(from, (to - from) / length, 0.0f, length - eps)) continue;
         const float b = unshot[s];
         sum += b * a * ci * cs / (kPi * r2);
       }
@@ -79,12 +89,12 @@ int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr,
                  "usage: %s SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R] "
-                 "[--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR]\n",
+                 "[--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR] [--draws N] [--texels P]\n",
                  argv[0]);
     return 1;
   }
   float density = 10.0f, farField = 2.0f;
-  int points = 4, regions = 2;
+  int points = 4, regions = 2, draws = 1, texelsOf = -1;
   bool hemisphere = false;
   Lighting light;
   std::string bakeDir;
@@ -95,6 +105,10 @@ int main(int argc, char** argv) {
       points = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--regions") && i + 1 < argc)
       regions = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--texels") && i + 1 < argc)
+      texelsOf = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--draws") && i + 1 < argc)
+      draws = std::max(1, std::stoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--far-field") && i + 1 < argc)
       farField = std::stof(argv[++i]);
     else if (!std::strcmp(argv[i], "--lit") && i + 1 < argc) {
@@ -160,7 +174,16 @@ int main(int argc, char** argv) {
     ps.irradiance = prior;
     ps.emitted = power;
     controls.priorShot = &ps;
-    const cpgi::SolveResult r = cpgi::solveProgressive(scene, atlas, sp2, gl, ctx, controls);
+    // Each draw's irradiance before its scaling, averaged over the draws; the scales averaged beside it.
+    std::vector<glm::dvec3> gathered(atlas.texelCount(), glm::dvec3(0.0));
+    double scale = 0.0;
+    for (int d = 0; d < draws; ++d) {
+      controls.firstShotNumber = uint32_t(d);
+      const cpgi::SolveResult r = cpgi::solveProgressive(scene, atlas, sp2, gl, ctx, controls);
+      const double s = r.shotScales.empty() ? 1.0 : double(r.shotScales[0]);
+      scale += s / draws;
+      for (size_t t = 0; t < atlas.texelCount(); ++t) gathered[t] += glm::dvec3(r.incident[t]) / (s * draws);
+    }
 
     const cpgi::RayScene rays(scene);
     std::vector<double> exact(atlas.texelCount(), 0.0);
@@ -169,24 +192,29 @@ int main(int argc, char** argv) {
         exact[t] = exactIrradiance(atlas, rays, shooter, sp, unshot, t, points);
     });
     // What the receive pass gathered, before the solver scaled the shot to its eyes' covered share.
-    const double scale = r.shotScales.empty() ? 1.0 : double(r.shotScales[0]);
     std::vector<double> bakeP(atlas.patches.size(), 0.0), exactP(atlas.patches.size(), 0.0),
         absP(atlas.patches.size(), 0.0);
     double bakeAll = 0.0, exactAll = 0.0;
     for (size_t t = 0; t < atlas.texelCount(); ++t) {
       if (atlas.patch[t] < 0 || atlas.patch[t] == shooterPatch) continue;
-      const glm::vec3 in = r.incident[t];
-      const double b = (in.x + in.y + in.z) / 3.0 * atlas.area[t] / scale, e = exact[t] * atlas.area[t];
+      const glm::dvec3 in = gathered[t];
+      const double b = (in.x + in.y + in.z) / 3.0 * atlas.area[t], e = exact[t] * atlas.area[t];
       bakeP[size_t(atlas.patch[t])] += b;
       exactP[size_t(atlas.patch[t])] += e;
       absP[size_t(atlas.patch[t])] += std::abs(b - e);
       bakeAll += b;
       exactAll += e;
     }
+    if (texelsOf >= 0)  // --texels P: "T x y z gathered rays" per texel of receiving patch P
+      for (size_t t = 0; t < atlas.texelCount(); ++t)
+        if (atlas.patch[t] == texelsOf)
+          std::printf("T %.3f %.3f %.3f %.6f %.6f\n", atlas.position[t].x, atlas.position[t].y,
+                      atlas.position[t].z, (gathered[t].x + gathered[t].y + gathered[t].z) / 3.0, exact[t]);
     const double shot = power / 3.0;
     std::printf(
-        "shot %.4f W (per channel); gathered %.4f (%.4f of it), by rays %.4f (%.4f); then scaled by %.4f\n",
-        shot, bakeAll, bakeAll / shot, exactAll, exactAll / shot, scale);
+        "shot %.4f W (per channel); gathered %.4f (%.4f of it), by rays %.4f (%.4f); then scaled by %.4f "
+        "(mean over %d draws)\n",
+        shot, bakeAll, bakeAll / shot, exactAll, exactAll / shot, scale, draws);
     for (size_t p = 0; p < atlas.patches.size(); ++p) {
       if (exactP[p] < 1e-4 * shot && bakeP[p] < 1e-4 * shot) continue;
       const auto& q = atlas.patches[p];

@@ -202,6 +202,7 @@ struct SolveConfig : SolverParams {
   bool readLampFlags = false;
   /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
   double directEmitted = 0.0;
+  uint32_t firstShotNumber = 0;  ///< SolveControls::firstShotNumber
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   const std::function<bool(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)>* acceptStop =
       nullptr;
@@ -438,6 +439,7 @@ class Solver {
   }
 
   void reportPasses(Context& ctx) const { clock_.report(ctx); }
+  void countShotsFrom(uint32_t n) { shotCount_ = n; }
 
   size_t coverageColumns() const { return size_t(itemSize_ + kCoverageStride - 1) / kCoverageStride; }
 
@@ -919,6 +921,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
   config.deadline = controls.deadline;
+  config.firstShotNumber = controls.firstShotNumber;
   if (controls.acceptStop) config.acceptStop = &controls.acceptStop;
   if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
     throw InputError("solver", "receivers need one flag per atlas texel");
@@ -963,6 +966,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
   Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission), emissionLobes);
+  solver.countShotsFrom(params.firstShotNumber);
   result.setupSeconds = since(start);
   ctx.addTiming("solve: setup", result.setupSeconds);
 

@@ -125,6 +125,9 @@ struct SolveControls {
   /// stop per cell (radiosity/gpu/ambient.h, ambientShares). Empty: stop.
   std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
       acceptStop = {};
+  /// The number the shots count from in the eyes' draw and the item buffer's turn (jitteredEyes): 0 for a
+  /// solve; bench/shot_probe.cpp averages one shot over many draws with it.
+  uint32_t firstShotNumber = 0;
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

@@ -118,11 +118,17 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
 
 namespace {
 
-// Calls addOwn() once and addSend(send) for each of `arriving` in the solver's order: a waiting cell's own
-// share first, otherwise by sending cell with its own share at its own index.
-template <class AddOwn, class AddSend>
-void inSolverOrder(const CellRound& own, const std::vector<const PortalSend*>& arriving, AddOwn addOwn,
-                   AddSend addSend) {
+// Per texel, `ownShare` and each send's entries added in the solver's order: a waiting cell's own share
+// first, otherwise by sending cell with its own share at its own index. `entry(send, k)` is what a send's
+// k-th exitance entry adds (at that entry's texel), for k below `count(send)`.
+template <class T, class Count, class Entry>
+std::vector<T> gatherInSolverOrder(const CellRound& own, const std::vector<T>& ownShare,
+                                   const std::vector<const PortalSend*>& arriving, size_t texels, Count count,
+                                   Entry entry) {
+  std::vector<T> sum(texels, T(0.0f));
+  auto addOwn = [&] {
+    for (size_t i = 0; i < ownShare.size() && i < texels; ++i) sum[i] += ownShare[i];
+  };
   bool ownAdded = !own.solved;
   if (ownAdded) addOwn();
   for (const PortalSend* send : arriving) {
@@ -130,25 +136,19 @@ void inSolverOrder(const CellRound& own, const std::vector<const PortalSend*>& a
       addOwn();
       ownAdded = true;
     }
-    addSend(*send);
+    for (size_t k = 0; k < count(*send); ++k) sum[size_t(send->exitance[k].first)] += entry(*send, k);
   }
   if (!ownAdded) addOwn();
+  return sum;
 }
 
 }  // namespace
 
 std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<const PortalSend*>& arriving,
                                      size_t texels) {
-  std::vector<glm::vec3> pending(texels, glm::vec3(0.0f));
-  inSolverOrder(
-      own, arriving,
-      [&] {
-        for (size_t i = 0; i < own.kept.size() && i < texels; ++i) pending[i] += own.kept[i];
-      },
-      [&](const PortalSend& send) {
-        for (const auto& [t, e] : send.exitance) pending[size_t(t)] += e;
-      });
-  return pending;
+  return gatherInSolverOrder(
+      own, own.kept, arriving, texels, [](const PortalSend& s) { return s.exitance.size(); },
+      [](const PortalSend& s, size_t k) { return s.exitance[k].second; });
 }
 
 std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,
@@ -156,17 +156,10 @@ std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,
   bool any = !own.keptMoments.empty();
   for (const PortalSend* send : arriving) any = any || !send->moments.empty();
   if (!any) return {};
-  std::vector<glm::vec4> moments(texels, glm::vec4(0.0f));
-  inSolverOrder(
-      own, arriving,
-      [&] {
-        for (size_t i = 0; i < own.keptMoments.size() && i < texels; ++i) moments[i] += own.keptMoments[i];
-      },
-      [&](const PortalSend& send) {
-        for (size_t k = 0; k < send.moments.size() && k < send.exitance.size(); ++k)
-          moments[size_t(send.exitance[k].first)] += send.moments[k];
-      });
-  return moments;
+  return gatherInSolverOrder(
+      own, own.keptMoments, arriving, texels,
+      [](const PortalSend& s) { return std::min(s.moments.size(), s.exitance.size()); },
+      [](const PortalSend& s, size_t k) { return s.moments[k]; });
 }
 
 std::vector<const PortalSend*> sendsTo(int to, const std::vector<const PortalSend*>& sends) {

@@ -163,6 +163,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
   report["density"] = o.atlas.texelsPerQuad > 0 ? 0.0f : o.atlas.density;
   report["spp"] = f.baseSpp;
   report["sky"] = skyReport(loaded.scene);
+  report["texel_value"] = o.trace.texelMean ? "mean" : "centre";
   report["seed"] = o.trace.seed;
   report["max_bounces"] = o.trace.maxBounces;
   report["rays"] = result.rays;
@@ -282,6 +283,10 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
       cmd->add_option("--texels", opts->texels,
                       "Trace only N valid texels, a stratified sample chosen from --seed, for compare-light "
                       "(lightmap.exr marks them; no baked.glb or views). Default: every texel");
+  cmd->add_flag(
+      "--texel-centre", [opts](int64_t) { opts->trace.texelMean = false; },
+      "Take each texel's value at its centre instead of its mean over the texel (the default: a texel's "
+      "power over its area, as in the bake's books)");
   addViewOptions(*cmd, opts->views);
   addLoadOptions(*cmd, opts->load);
   addDarkOption(*cmd, opts->allowDark);

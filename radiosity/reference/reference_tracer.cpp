@@ -407,7 +407,10 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
             const SamplePoint& point = points[i];
             const uint64_t stream = streams.empty() ? uint64_t(i) : streams[i];
             Pcg32 rng(splitmix64(params.seed ^ splitmix64(stream)));
+            // The light choice is made once at the centre; a start elsewhere in the footprint keeps it
+            // unbiased, since MIS weighs each path by the same choice's probabilities.
             const LightSelection firstLights = tracer.lightsAt(point.position, point.normal);
+            const bool spread = point.footprintU != glm::vec3(0.0f) || point.footprintV != glm::vec3(0.0f);
             glm::dvec3 sum(0.0), sumSquares(0.0);
             for (int b = 0; b < batches; ++b) {
               const float lightShift[3] = {rng.uniform(), rng.uniform(), rng.uniform()};
@@ -417,7 +420,12 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
                 FirstVertexSamples first;
                 r3Point(uint64_t(s), lightShift, first.light);
                 r2Point(uint64_t(s), directionShift, first.direction);
-                batchSum += glm::dvec3(tracer.reflected(point, firstLights, first, rng, localRays));
+                SamplePoint start = point;
+                if (spread) {
+                  const float a = rng.uniform() - 0.5f, b = rng.uniform() - 0.5f;
+                  start.position += a * point.footprintU + b * point.footprintV;
+                }
+                batchSum += glm::dvec3(tracer.reflected(start, firstLights, first, rng, localRays));
               }
               const glm::dvec3 batchMean = batchSum / double(perBatch);
               sum += batchMean;
@@ -449,7 +457,13 @@ ReferenceResult traceReference(const Scene& scene, const LightmapAtlas& atlas, c
     if (atlas.patch[i] < 0) continue;
     const bool chosen = ranks.empty() || (next < ranks.size() && ranks[next] == rank);
     if (chosen) {
-      points.push_back({atlas.position[i], atlas.normal[i], atlas.albedo[i], atlas.emission[i]});
+      SamplePoint point{atlas.position[i], atlas.normal[i], atlas.albedo[i], atlas.emission[i]};
+      const Patch& patch = atlas.patches[size_t(atlas.patch[i])];
+      if (params.texelMean) {  // a loose triangle's valid squares lie inside it too
+        point.footprintU = patch.texelU;
+        point.footprintV = patch.texelV;
+      }
+      points.push_back(point);
       texels.push_back(i);
       streams.push_back(rank);
       if (!ranks.empty()) ++next;

@@ -27,6 +27,9 @@ struct SamplePoint {
   glm::vec3 normal{0.0f};    ///< unit, the side light is gathered from
   glm::vec3 albedo{0.0f};    ///< ρ in [0, 1]
   glm::vec3 emission{0.0f};  ///< E, W/m²
+  /// The edges of the surface part the point stands for: paths start uniformly over the parallelogram
+  /// position ± ½·footprintU ± ½·footprintV, so the estimate is B's mean over it. Zero: the point itself.
+  glm::vec3 footprintU{0.0f}, footprintV{0.0f};
 };
 
 struct ReferenceParams {
@@ -39,6 +42,11 @@ struct ReferenceParams {
   uint64_t seed = 0x5eedu;  ///< with the point's index, fixes each point's random sequence
   /// Ray origins are pushed this far off surfaces (metres); ≤ 0 → 1e-5 × scene diagonal.
   float rayOffset = 0.0f;
+  /// Over an atlas: each texel's mean over its part of the patch (paths start all over it), which is the
+  /// texel's value in the solver's books (its power ÷ its area) and what the bake stores where the light
+  /// changes inside a texel (a lamp's shadow or beam edge, shaders/receive.comp). False: B at the texel's
+  /// centre, which across a penumbra's knee differs from the mean by more than any solver error there.
+  bool texelMean = true;
 };
 
 struct ReferenceResult {
@@ -56,7 +64,8 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
                                const ReferenceParams& params, Context& ctx,
                                std::span<const uint64_t> streams = {});
 
-/// The same over the valid texels of an atlas (texel sample point, normal, albedo, emission); results
+/// The same over the valid texels of an atlas (texel sample point, normal, albedo, emission, and with
+/// params.texelMean its footprint); results
 /// are indexed like the atlas texels, padding texels left at 0. `ranks` (increasing, as
 /// TexelSample::ranks) traces only those valid texels and leaves the others at 0; empty traces all. A
 /// texel draws from the stream of its rank either way, so it gets the same value whichever others are

@@ -62,7 +62,7 @@ struct BakeOptions {
   int depth = 0;               ///< with `around`: portals away from the point's cell
   BoundaryMode boundary = BoundaryMode::Coarse;
   AtlasParams atlas;
-  SolverParams solver;
+  SolverParams solver{.lampRays = kBakeLampRays};
   /// portals (kBakePortalLight unless --portals), maxRounds, jobs; its atlas and solver are the two above
   CellSolveParams cellParams = [] {
     CellSolveParams p;
@@ -368,6 +368,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["strong_shot_fraction"] = o.solver.strongShotFraction;
   report["region_size"] = o.solver.regionSize;
   report["jittered_eyes"] = o.solver.jitteredEyes;
+  report["lamp_rays"] = o.solver.lampRays;
   // Two levels (radiosity/gpu/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
   report["solve_density"] = levels ? nlohmann::json(o.solveDensity) : nlohmann::json(nullptr);
   report["solve_texels"] = levels ? levels->solveTexels : in.atlas.validTexels();

@@ -27,7 +27,9 @@ struct CellsToBake {
 
 struct CellBakeComparison {
   AtlasParams atlas;
-  SolverParams solver;  ///< unshotFraction is the whole scene's target, as in `bake --method cells`
+  /// unshotFraction is the whole scene's target, as in `bake --method cells`; lampRays as bake's
+  /// (kBakeLampRays)
+  SolverParams solver{.lampRays = 64};
   int maxRounds = 64;
   PortalLight portals = PortalLight::Directional;  ///< as `bake --method cells` by default (kBakePortalLight)
   ReferenceParams reference;

@@ -44,6 +44,7 @@ constexpr ParameterFlag kFlags[] = {
     {"strong-shot regions", "--strong-regions"},
     {"strong-shot fraction", "--strong-fraction"},
     {"region size", "--region-size"},
+    {"lamp rays", "--lamp-rays"},
     // Ambient term (radiosity/gpu/ambient.h), bake only
     {"no ambient term", "--no-ambient"},
     {"ambient share", "--ambient-share"},
@@ -246,6 +247,18 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
              "Share of the emitted power that makes a shot strong", within(0.0, 1.0));
   addChecked(cmd, scope, "region size", solver.regionSize,
              "Metres per visibility region along a shooter's edge", within(0.01f, 1000.0f));
+  addChecked(cmd, scope, "lamp rays", solver.lampRays,
+             "Shadow rays per texel and lamp for the lamps' first shot on the CPU (4x in penumbrae), a "
+             "multiple of 4; 0: the lamps shoot through item buffers like every other patch",
+             CLI::Validator(
+                 [](std::string& text) {
+                   char* end = nullptr;
+                   const long n = std::strtol(text.c_str(), &end, 10);
+                   return *end == '\0' && n >= 0 && n <= 4096 && n % 4 == 0
+                              ? std::string()
+                              : "must be 0 or a multiple of 4 up to 4096, got " + text;
+                 },
+                 "0, 4, 8, ... 4096"));
   scoped(cmd.add_flag_callback(
              flag("fixed eyes"), [&solver] { solver.jitteredEyes = false; },
              help(scope,

@@ -6,7 +6,11 @@ namespace cpgi {
 
 SolveResult DiffusePortals::solve(size_t, const CellState& s, const SolverParams& settings,
                                   SolveControls controls, const EglContext& gl, Context& ctx) const {
-  return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);
+  // A cell's atlas emits what arrived at it (its lamps shot first, over the whole scene:
+  // cell_first_shot.h), so nothing in it is a lamp to shoot by rays.
+  SolverParams own = settings;
+  own.lampRays = 0;
+  return solveProgressive(s.cs.scene, s.atlas, own, gl, ctx, controls);
 }
 
 SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverParams& settings,

@@ -97,7 +97,8 @@ TEST(Bake, BadOptionsFailWithOneLine) {
   // Checked by the parser (CLI11 adds its "Run with --help" line): the first line names the option.
   for (const std::string& args :
        {std::string("--visibility cube"), std::string("--texels-per-quad 8 --density 4"),
-        std::string("--unshot 2"), std::string("--regions 0"), std::string("--regions 5")}) {
+        std::string("--unshot 2"), std::string("--regions 0"), std::string("--regions 5"),
+        std::string("--lamp-rays 6"), std::string("--lamp-rays -4")}) {
     const BakeRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' " + args);
     EXPECT_EQ(r.status, 1) << args;
     const std::string option = args.substr(0, args.find(' '));

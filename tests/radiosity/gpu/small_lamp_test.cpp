@@ -10,6 +10,7 @@
 
 #include "core/quads.h"
 #include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/lightmap/lamp_light.h"
 #include "radiosity/metrics/form_factors.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -56,7 +57,17 @@ struct PoolError {
   double powerRatio = 0.0;  // what the floor received ÷ the closed form's total
 };
 
-PoolError floorPool(bool jitteredEyes) {
+// The closed form's mean over a texel of edge `size` centred at (x, y): 8×8 points (the bake's texel is
+// its mean over the texel, as the reference's).
+double exactMeanIrradiance(double x, double y, double size) {
+  double sum = 0.0;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i)
+      sum += exactIrradiance(x + ((i + 0.5) / 8 - 0.5) * size, y + ((j + 0.5) / 8 - 0.5) * size);
+  return sum / 64.0;
+}
+
+PoolError floorPool(bool jitteredEyes, int lampRays = 0) {
   Scene scene;
   addHousing(scene, false);
   const uint32_t black = addMaterial(scene, glm::vec3(0.0f));
@@ -67,12 +78,14 @@ PoolError floorPool(bool jitteredEyes) {
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.density = 20.0f}, ctx);
   SolverParams params;
   params.jitteredEyes = jitteredEyes;
+  params.lampRays = lampRays;
   const SolveResult r = solveProgressive(scene, atlas, params, gl, ctx, SolveControls{.readTransfer = true});
   const int floorTriangle = int(scene.triangles.size()) - 1;
   double err = 0.0, ref = 0.0, moment = 0.0, got = 0.0, exactTotal = 0.0;
   testing::forEachTexelOf(atlas, floorTriangle, [&](size_t t) {
     const glm::vec3 x = atlas.position[t];
-    const double exact = exactIrradiance(x.x, x.y), e = r.incident[t].r, a = atlas.area[t];
+    const double exact = lampRays > 0 ? exactMeanIrradiance(x.x, x.y, 1.0 / 20.0) : exactIrradiance(x.x, x.y);
+    const double e = r.incident[t].r, a = atlas.area[t];
     err += a * (e - exact) * (e - exact);
     ref += a * exact * exact;
     moment += a * e * x.x;
@@ -95,6 +108,43 @@ TEST(SmallLamp, BeamOutOfAHousingHasTheLampsPenumbra) {
   // 25 mm (spot-door: its beam 35 mm across a door frame).
   EXPECT_LT(std::abs(spread.centreX), 0.005);
   EXPECT_NEAR(spread.powerRatio, 1.0, 0.03);
+}
+
+TEST(SmallLamp, RaysGiveTheBeamOfTheClosedForm) {
+  // The lamp shot by rays (lamp_light.h): every point of it seen alike, the pool's penumbra within a few
+  // per cent of the closed form per texel where the eyes leave 9 %. Measured: 0.043 at 64 rays.
+  const PoolError rays = floorPool(true, 64), spread = floorPool(true);
+  EXPECT_LT(rays.relRmse, 0.06) << "item buffers: " << spread.relRmse;
+  EXPECT_LT(std::abs(rays.centreX), 0.002);
+  EXPECT_NEAR(rays.powerRatio, 1.0, 0.01);
+}
+
+TEST(SmallLamp, RaysOnTheTubeWallsMakeNoLight) {
+  // Closed, the tube and its cap take the whole of the lamp's power, most of it within a texel of the
+  // lamp where F is steep: no more than the lamp emits, and not much less.
+  Scene scene;
+  addHousing(scene, true);
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.density = 10.0f}, ctx);
+  const std::vector<char> lamps = lampPatches(scene, atlas);
+  ASSERT_EQ(std::count(lamps.begin(), lamps.end(), 1), 1);
+  const LampLight a = shootLampsByRays(scene, RayScene(scene), atlas, lamps, 16, ctx);
+  const double power = 3.0 * (2 * kHalf) * (2 * kHalf);  // unit exitance in R, G and B
+  EXPECT_NEAR(a.emitted, power, 1e-6 * power);
+  EXPECT_LE(a.landed, power * (1.0 + 1e-6));
+  EXPECT_GT(a.landed, 0.97 * power);
+  // Deterministic: the same rays whatever the threads.
+  const LampLight b = shootLampsByRays(scene, RayScene(scene), atlas, lamps, 16, ctx);
+  EXPECT_EQ(a.irradiance, b.irradiance);
+  // In the solver: the lamp's light is shot before the first shot, its books balance.
+  EglContext gl(ctx);
+  SolverParams params;
+  params.lampRays = 16;
+  const SolveResult r = solveProgressive(scene, atlas, params, gl, ctx);
+  EXPECT_EQ(r.shots, 0) << "black walls: nothing is left to shoot";
+  EXPECT_NEAR(r.energy.emitted, power, 1e-4 * power);
+  EXPECT_LE(r.energy.received, r.energy.shot * (1.0 + 1e-6));
+  EXPECT_NEAR(r.energy.absorbed, a.landed, 1e-4 * power);
 }
 
 TEST(SmallLamp, TubeWallsGatherTheLampsPower) {

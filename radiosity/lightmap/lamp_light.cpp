@@ -93,6 +93,28 @@ struct TexelLamp {
   Seen seen = Seen::None;
 };
 
+/// From `origin` (off a receiver of normal n) to the lamp's point y: the point-to-point kernel cosθ cosθ' /
+/// r², 0 where either side faces away, and whether a shadow ray (traced only when the kernel is not 0) finds
+/// y.
+struct RayToLamp {
+  double kernel = 0.0;
+  bool seen = false;
+};
+
+RayToLamp rayToLamp(const Lamp& lamp, const RayScene& occluders, float offset, const glm::vec3& origin,
+                    const glm::vec3& n, const glm::vec3& y, uint64_t& rays) {
+  const glm::vec3 d = y - origin;
+  const float r2 = glm::dot(d, d);
+  if (!(r2 > 0.0f)) return {};
+  const float r = std::sqrt(r2);
+  const glm::vec3 w = d / r;
+  const float cosX = glm::dot(n, w), cosY = -glm::dot(lamp.normal, w);
+  if (cosX <= 0.0f || cosY <= 0.0f) return {};
+  ++rays;
+  const float far = r * (1.0f - 1e-4f) - offset;  // short of the lamp, which must not hide itself
+  return {double(cosX) * cosY / r2, !(far > 0.0f && occluders.occluded(origin, w, 0.0f, far))};
+}
+
 /// `side` × `side` points over the texel, `perPoint` rays to the lamp from each. The points sit at their
 /// squares' centres, where F's mean is a smooth function's (random points there added 0.2–0.3 points of
 /// per-texel error on the walls next to seed1's lamps), or with `jitter` anywhere in them: in a penumbra,
@@ -116,20 +138,12 @@ TexelLamp seeLamp(const Lamp& lamp, const RayScene& occluders, float offset, con
     for (int k = 0; k < perPoint; ++k) {
       const glm::vec3 y =
           lamp.at(fraction(shiftA + float(k) * 0.7548776662f), fraction(shiftB + float(k) * 0.5698402910f));
-      const glm::vec3 d = y - origin;
-      const float r2 = glm::dot(d, d);
-      if (!(r2 > 0.0f)) continue;
-      const float r = std::sqrt(r2);
-      const glm::vec3 w = d / r;
-      const float cosX = glm::dot(n, w), cosY = -glm::dot(lamp.normal, w);
-      if (cosX <= 0.0f || cosY <= 0.0f) continue;
-      const double kernel = double(cosX) * cosY / r2;
-      weighted += kernel;
+      const RayToLamp ray = rayToLamp(lamp, occluders, offset, origin, n, y, rays);
+      if (!(ray.kernel > 0.0)) continue;
+      weighted += ray.kernel;
       ++tried;
-      ++rays;
-      const float far = r * (1.0f - 1e-4f) - offset;
-      if (far > 0.0f && occluders.occluded(origin, w, 0.0f, far)) continue;
-      visible += kernel;
+      if (!ray.seen) continue;
+      visible += ray.kernel;
       ++seen;
     }
     if (weighted > 0.0) out.formFactor += share * f * float(visible / weighted);
@@ -153,17 +167,8 @@ float penumbraFormFactor(const Lamp& lamp, const RayScene& occluders, float offs
     const glm::vec3 x =
         centre + (fraction(s1 + float(k) * a1) - 0.5f) * u + (fraction(s2 + float(k) * a2) - 0.5f) * v;
     const glm::vec3 y = lamp.at(fraction(s3 + float(k) * a3), fraction(s4 + float(k) * a4));
-    const glm::vec3 origin = x + offset * n, d = y - origin;
-    const float r2 = glm::dot(d, d);
-    if (!(r2 > 0.0f)) continue;
-    const float r = std::sqrt(r2);
-    const glm::vec3 w = d / r;
-    const float cosX = glm::dot(n, w), cosY = -glm::dot(lamp.normal, w);
-    if (cosX <= 0.0f || cosY <= 0.0f) continue;
-    ++rays;
-    const float far = r * (1.0f - 1e-4f) - offset;
-    if (far > 0.0f && occluders.occluded(origin, w, 0.0f, far)) continue;
-    sum += double(cosX) * cosY / r2;
+    const RayToLamp ray = rayToLamp(lamp, occluders, offset, x + offset * n, n, y, rays);
+    if (ray.seen) sum += ray.kernel;
   }
   return float(sum * lampArea / (std::numbers::pi * double(count)));
 }

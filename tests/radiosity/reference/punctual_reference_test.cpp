@@ -19,12 +19,18 @@ using testing::addMaterial;
 using testing::addRect;
 using testing::forEachTexelOf;
 
-TEST(PunctualReference, FloorUnderAPointLampInABlackBoxIsExact) {
+// A black 2 m box whose floor (y = 0, its last two triangles) is grey, albedo 0.5; material 0 is black.
+Scene greyFloorInABlackBox() {
   Scene s;
   const uint32_t black = addMaterial(s, glm::vec3(0.0f)), grey = addMaterial(s, glm::vec3(0.5f));
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f), black);
   s.triangles.erase(s.triangles.begin() + 8, s.triangles.begin() + 10);  // the black floor (y = 0) ...
   addRect(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 0}, grey);                     // ... made grey
+  return s;
+}
+
+TEST(PunctualReference, FloorUnderAPointLampInABlackBoxIsExact) {
+  Scene s = greyFloorInABlackBox();
   PunctualLight lamp;
   lamp.position = {0.6f, 1.5f, 1.2f};
   lamp.intensity = glm::vec3(2.0f);
@@ -66,13 +72,9 @@ TEST(PunctualReference, WhiteFurnaceWithAPointLamp) {
 // A point lamp's hard shadow edge across the floor's texels: each texel's value is B's mean over the texel
 // (its power over its area), not B at its centre, which reads a texel a quarter lit as dark.
 TEST(PunctualReference, ATexelAcrossAShadowEdgeIsItsMeanOverTheTexel) {
-  Scene s;
-  const uint32_t black = addMaterial(s, glm::vec3(0.0f)), grey = addMaterial(s, glm::vec3(0.5f));
-  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f), black);
-  s.triangles.erase(s.triangles.begin() + 8, s.triangles.begin() + 10);  // the black floor (y = 0) ...
-  addRect(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 0}, grey);                     // ... made grey
+  Scene s = greyFloorInABlackBox();
   const int floorTriangle = int(s.triangles.size()) - 1;
-  addRect(s, {0, 0.75f, 0}, {1.1f, 0, 0}, {0, 0, 2}, black);  // a blind over x < 1.1, edge under the lamp
+  addRect(s, {0, 0.75f, 0}, {1.1f, 0, 0}, {0, 0, 2}, 0);  // a black blind over x < 1.1, edge under the lamp
   PunctualLight lamp;
   lamp.position = {1.1f, 1.5f, 1.0f};
   lamp.intensity = glm::vec3(2.0f);

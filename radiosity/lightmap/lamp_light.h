@@ -8,11 +8,14 @@
 // per texel see a lamp's every point alike, and cost texels × lamps × rays: a few million rays on the
 // seed scenes, under a second on two cores.
 //
-// Estimate per texel and lamp (both at once over the texel's footprint, so that its value is its mean, as
-// the reference's, radiosity/reference/reference_tracer.h): 2×2 jittered points over the texel, each with
-// the lamp's contour form factor F there and `rays` / 4 stratified points on the lamp; the seen share is
-// Σ V k / Σ k with k the point-to-point kernel cosθ cosθ' / r², exact wherever the lamp is wholly seen or
-// wholly hidden. Where the rays disagree (a penumbra) the texel is traced again with 4× the rays.
+// Estimate per texel and lamp, over the texel's footprint so that its value is its mean, as the
+// reference's (radiosity/reference/reference_tracer.h): 2×2 points at the centres of the texel's quarters
+// (8×8 within three texels of the lamp, where F is steep), each with the lamp's contour form factor F there
+// and `rays` / 4 points on the lamp (Roberts' R2); the seen share is Σ V k / Σ k with k the point-to-point
+// kernel cosθ cosθ' / r², exact wherever the lamp is wholly seen or wholly hidden. A penumbra (the rays
+// disagreed, or a neighbour saw the lamp otherwise) is traced again with 4× the rays, each from its own
+// point of the texel to its own point of the lamp on a joint 4-D low-discrepancy set (area sampling).
+// Measured in bench/RESULTS.md ("The lamps' first shot by rays").
 #pragma once
 
 #include <vector>

@@ -248,7 +248,7 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
   addChecked(cmd, scope, "region size", solver.regionSize,
              "Metres per visibility region along a shooter's edge", within(0.01f, 1000.0f));
   addChecked(cmd, scope, "lamp rays", solver.lampRays,
-             "Shadow rays per texel and lamp for the lamps' first shot on the CPU (4x in penumbrae), a "
+             "Shadow rays per texel and lamp for the lamps' first shot on the CPU (16x in penumbrae), a "
              "multiple of 4; 0: the lamps shoot through item buffers like every other patch",
              CLI::Validator(
                  [](std::string& text) {

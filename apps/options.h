@@ -58,12 +58,12 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {
 /// the CPU seconds.
 inline constexpr PortalLight kBakePortalLight = PortalLight::Directional;
 /// The lamps' first shot of the command line's bakes (bake, its cell jobs' first shot, compare-cells --bake)
-/// unless --lamp-rays says otherwise: 64 shadow rays per texel and lamp (radiosity/lightmap/lamp_light.h).
-/// The library's default stays item buffers for every shot, as the thesis. Measured at the default stop
-/// (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`): spot-door's rooms 0.973 / 1.013
-/// (13.4 / 9.7 % per texel) with item buffers, 1.006 / 0.999 (7.4 / 1.8 %) with 64 rays; seed3's B 1.023 →
-/// 0.993; the other seed cells within 0.002; 1.05–1.3× the CPU seconds; on the 108-room office's 36 lamps
-/// the lamps' shot costs about what their item buffers do (256 rays: 2–4×).
+/// unless --lamp-rays says otherwise: 64 shadow rays per texel and lamp, 16× in penumbrae
+/// (radiosity/lightmap/lamp_light.h). The library's default stays item buffers for every shot, as the thesis.
+/// Measured at the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`):
+/// spot-door's rooms 0.973 / 1.013 (13.4 / 9.7 % per texel) with item buffers, 1.016 / 0.996 (3.7 / 0.5 %)
+/// with rays; seed3's B 1.023 → 0.984; the other seed cells within 0.002; 1.2–1.35× the CPU seconds; on the
+/// 108-room office's 36 lamps the lamps' shot costs 1.5× their item-buffer shots (256 rays: 5×).
 inline constexpr int kBakeLampRays = 64;
 /// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume; params.memoryLimit
 /// set to the default (commands with --max-memory copy theirs into it).

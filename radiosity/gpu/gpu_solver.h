@@ -72,7 +72,7 @@ struct SolverParams {
   int strongShotRegions = 4;
   double strongShotFraction = 0.002;
   /// > 0: the lamps (patches whose material emits) shoot first on the CPU, by this many shadow rays per
-  /// texel and lamp, 4× in penumbrae (radiosity/lightmap/lamp_light.h), and not through item buffers. 0: item
+  /// texel and lamp, 16× in penumbrae (radiosity/lightmap/lamp_light.h), and not through item buffers. 0: item
   /// buffers, as every other shot. A multiple of 4.
   int lampRays = 0;
   /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).

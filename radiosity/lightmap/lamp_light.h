@@ -13,7 +13,7 @@
 // (8×8 within three texels of the lamp, where F is steep), each with the lamp's contour form factor F there
 // and `rays` / 4 points on the lamp (Roberts' R2); the seen share is Σ V k / Σ k with k the point-to-point
 // kernel cosθ cosθ' / r², exact wherever the lamp is wholly seen or wholly hidden. A penumbra (the rays
-// disagreed, or a neighbour saw the lamp otherwise) is traced again with 4× the rays, each from its own
+// disagreed, or a neighbour saw the lamp otherwise) is traced again with 16× the rays, each from its own
 // point of the texel to its own point of the lamp on a joint 4-D low-discrepancy set (area sampling).
 // Measured in bench/RESULTS.md ("The lamps' first shot by rays").
 #pragma once
@@ -42,7 +42,7 @@ struct LampLight {
 std::vector<char> lampPatches(const Scene& scene, const LightmapAtlas& atlas);
 
 /// Shoots the lamps flagged in `lamps` (one per patch) to every valid texel of `atlas`, occluded by
-/// `occluders` (the whole scene). `rays` per texel and lamp (a multiple of 4, ≥ 4), 4× in penumbrae. A lamp
+/// `occluders` (the whole scene). `rays` per texel and lamp (a multiple of 4, ≥ 4), 16× in penumbrae. A lamp
 /// whose texels would gather more than it emits (texels next to it) is scaled back to its power: no light
 /// is made up. Deterministic: each texel draws from its own index, whatever the thread count.
 LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas,

@@ -962,7 +962,8 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
       !controls.directionalEmission) {
     const std::vector<char> flagged = lampPatches(scene, atlas);
     if (std::find(flagged.begin(), flagged.end(), 1) != flagged.end()) {
-      lamps = shootLampsByRays(scene, RayScene(scene), atlas, flagged, settings.lampRays, ctx);
+      lamps =
+          shootLampsByRays(scene, RayScene(scene), atlas, flagged, settings.lampRays, ctx, controls.deadline);
       if (direct.irradiance.empty()) direct.irradiance.assign(atlas.texelCount(), glm::vec3(0.0f));
       for (size_t i = 0; i < direct.irradiance.size(); ++i) direct.irradiance[i] += lamps.irradiance[i];
       config.direct = &direct;

@@ -315,7 +315,8 @@ std::vector<char> lampPatches(const Scene& scene, const LightmapAtlas& atlas) {
 }
 
 LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas,
-                           const std::vector<char>& shoot, int rays, Context& ctx) {
+                           const std::vector<char>& shoot, int rays, Context& ctx,
+                           std::chrono::steady_clock::time_point deadline) {
   if (rays < 4 || rays % 4 != 0)
     throw std::invalid_argument("shootLampsByRays: rays must be a multiple of 4");
   if (shoot.size() != atlas.patches.size())
@@ -325,10 +326,6 @@ LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const 
   out.irradiance.assign(atlas.texelCount(), glm::vec3(0.0f));
   out.shot.assign(atlas.patches.size(), 0);
   const std::vector<Lamp> lamps = lampsOf(scene, atlas, shoot);
-  for (const Lamp& lamp : lamps) {
-    out.shot[size_t(lamp.patch)] = 1;
-    out.emitted += lamp.power;
-  }
   if (lamps.empty()) return out;
   // Points on a texel sample F where it is steep next to a lamp (a housing's walls): those texels can
   // gather more than the lamp emits (spot-door's tube +1 % at 8×8 points). The far texels' estimate is
@@ -336,7 +333,10 @@ LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const 
   // ones alone pass the power: no light is made up. Lamp by lamp, in texel order: the same sums, and so
   // the same result, whatever the threads.
   for (size_t k = 0; k < lamps.size(); ++k) {
+    if (std::chrono::steady_clock::now() >= deadline) break;
     const Lamp& lamp = lamps[k];
+    out.shot[size_t(lamp.patch)] = 1;
+    out.emitted += lamp.power;
     ctx.progress("lamps", double(k) / double(lamps.size()),
                  "lamp " + std::to_string(k + 1) + " of " + std::to_string(lamps.size()) + " by rays");
     const OneLamp one = shootOne(lamp, k, occluders, atlas, rays);

@@ -18,6 +18,7 @@
 // Measured in bench/RESULTS.md ("The lamps' first shot by rays").
 #pragma once
 
+#include <chrono>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -44,8 +45,12 @@ std::vector<char> lampPatches(const Scene& scene, const LightmapAtlas& atlas);
 /// Shoots the lamps flagged in `lamps` (one per patch) to every valid texel of `atlas`, occluded by
 /// `occluders` (the whole scene). `rays` per texel and lamp (a multiple of 4, ≥ 4), 16× in penumbrae. A lamp
 /// whose texels would gather more than it emits (texels next to it) is scaled back to its power: no light
-/// is made up. Deterministic: each texel draws from its own index, whatever the thread count.
-LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas,
-                           const std::vector<char>& lamps, int rays, Context& ctx);
+/// is made up. Deterministic: each texel draws from its own index, whatever the thread count. At `deadline`
+/// (checked before each lamp) the lamps not yet shot are left out of `shot`, for the caller to leave unshot
+/// (a bake's --time-limit: a partial result).
+LampLight shootLampsByRays(
+    const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas, const std::vector<char>& lamps,
+    int rays, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -4,6 +4,7 @@
 // or a few texels, cut its beam with a hard edge; and the default stop weighed the unshot power against
 // the emitted power, of which 99 % is absorbed in the tube at once, so it stopped after the lamp's shot.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -137,6 +138,12 @@ TEST(SmallLamp, RaysOnTheTubeWallsMakeNoLight) {
   // Deterministic: the same rays whatever the threads.
   const LampLight b = shootLampsByRays(scene, RayScene(scene), atlas, lamps, 16, ctx);
   EXPECT_EQ(a.irradiance, b.irradiance);
+  // Past a deadline no lamp is shot, and none counts as shot (the solve leaves it unshot: a partial result).
+  const LampLight late =
+      shootLampsByRays(scene, RayScene(scene), atlas, lamps, 16, ctx, std::chrono::steady_clock::now());
+  EXPECT_EQ(std::count(late.shot.begin(), late.shot.end(), 1), 0);
+  EXPECT_EQ(late.emitted, 0.0);
+  EXPECT_EQ(late.landed, 0.0);
   // In the solver: the lamp's light is shot before the first shot, its books balance.
   EglContext gl(ctx);
   SolverParams params;

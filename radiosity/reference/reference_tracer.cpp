@@ -422,8 +422,8 @@ ReferenceResult traceReference(const Scene& scene, std::span<const SamplePoint> 
                 r2Point(uint64_t(s), directionShift, first.direction);
                 SamplePoint start = point;
                 if (spread) {
-                  const float a = rng.uniform() - 0.5f, b = rng.uniform() - 0.5f;
-                  start.position += a * point.footprintU + b * point.footprintV;
+                  const float du = rng.uniform() - 0.5f, dv = rng.uniform() - 0.5f;
+                  start.position += du * point.footprintU + dv * point.footprintV;
                 }
                 batchSum += glm::dvec3(tracer.reflected(start, firstLights, first, rng, localRays));
               }

@@ -4,13 +4,13 @@
 // receive from the portal (a) through it, as the truth: the ray from the texel through a portal point
 // continues into the source cell and takes the radiance it meets, and (b) from the portal re-emitting its
 // irradiance per portal texel as a Lambertian, as the moment-fitted lobe of radiosity/gpu/emission_lobes.h,
-// or as a histogram of arrival directions in equal-area bins of the projected disk. Only the first pass
+// or as a histogram of arrival directions in radiosity/gpu/emission_bins.h's bins. Only the first pass
 // through the portal; no interreflection in the destination. Prints, per destination surface orientation
 // and per band of distance from the portal plane, the ratio of each model to the truth, and the per-texel
 // RMSE relative to the destination's mean.
 //
 //   cpgi_portal_oracle SCENE BAKE_DIR PORTAL_NAME SOURCE_CELL [--density D] [--portal-texel M]
-//                      [--arrival-rays N] [--portal-points K] [--lobe-width W] [--rings R] [--sectors S]
+//                      [--arrival-rays N] [--portal-points K] [--lobe-width W]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +25,7 @@
 #include "core/image_io.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
+#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/emission_lobes.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
@@ -44,28 +45,12 @@ glm::vec3 radiosityAt(const LightmapAtlas& atlas, const ImageRGB& bake, const Sc
   return bake.pixels[size_t(j) * size_t(atlas.width) + size_t(i)];
 }
 
-/// Equal-area bins of the projected disk (|u| ≤ 1) in the frame (t1, t2): rings at √(k/R), S sectors.
-struct DiskBins {
-  int rings = 4, sectors = 8;
-  glm::vec3 n, t1, t2;
-  int count() const { return rings * sectors; }
-  int of(const glm::vec3& omega) const {
-    const float a = glm::dot(omega, t1), b = glm::dot(omega, t2);
-    const float r2 = std::min(a * a + b * b, 0.999999f);
-    const int ring = std::min(int(r2 * float(rings)), rings - 1);
-    float phi = std::atan2(b, a);
-    if (phi < 0.0f) phi += 2.0f * kPi;
-    const int sector = std::min(int(phi / (2.0f * kPi) * float(sectors)), sectors - 1);
-    return ring * sectors + sector;
-  }
-};
-
 struct PortalTexel {
   glm::vec3 centre;
   glm::vec3 irradiance{0.0f};  ///< from the source side, RGB
   glm::vec4 moments{0.0f};
   glm::vec4 lobe{0.0f};
-  std::vector<float> bins;  ///< f per bin (mean 1)
+  ArrivalBins bins{};  ///< irradiance per arrival bin
 };
 
 }  // namespace
@@ -76,17 +61,20 @@ int main(int argc, char** argv) {
     return 1;
   }
   float density = 10.0f, portalTexel = 0.1f, lobeWidth = 0.2f;
-  int arrivalRays = 4096, portalPoints = 4, rings = 4, sectors = 8;
+  int arrivalRays = 4096, portalPoints = 4;
   for (int a = 5; a + 1 < argc; a += 2) {
     const std::string o = argv[a];
     const float v = std::stof(argv[a + 1]);
-    if (o == "--density") density = v;
-    else if (o == "--portal-texel") portalTexel = v;
-    else if (o == "--arrival-rays") arrivalRays = int(v);
-    else if (o == "--portal-points") portalPoints = int(v);
-    else if (o == "--lobe-width") lobeWidth = v;
-    else if (o == "--rings") rings = int(v);
-    else if (o == "--sectors") sectors = int(v);
+    if (o == "--density")
+      density = v;
+    else if (o == "--portal-texel")
+      portalTexel = v;
+    else if (o == "--arrival-rays")
+      arrivalRays = int(v);
+    else if (o == "--portal-points")
+      portalPoints = int(v);
+    else if (o == "--lobe-width")
+      lobeWidth = v;
     else {
       std::fprintf(stderr, "unknown option %s\n", o.c_str());
       return 1;
@@ -117,10 +105,7 @@ int main(int argc, char** argv) {
     const int n1 = std::max(1, int(std::round(glm::length(e1) / portalTexel)));
     const int n2 = std::max(1, int(std::round(glm::length(e2) / portalTexel)));
     const float texelArea = portal->area / float(n1 * n2);
-    DiskBins bins;
-    bins.rings = rings, bins.sectors = sectors, bins.n = nOut;
-    bins.t1 = glm::normalize(e1 - glm::dot(e1, nOut) * nOut);
-    bins.t2 = glm::cross(nOut, bins.t1);
+    const BinFrame bins = binFrame(nOut);
     std::vector<PortalTexel> texels(size_t(n1 * n2));
     const float eps = 1e-4f * rays.diagonal();
     tbb::parallel_for(0, n1 * n2, [&](int k) {
@@ -129,8 +114,6 @@ int main(int argc, char** argv) {
       pt.centre = o + (float(i) + 0.5f) / float(n1) * e1 + (float(j) + 0.5f) / float(n2) * e2;
       std::mt19937 rng(1234u + unsigned(k));
       std::uniform_real_distribution<float> U(0.0f, 1.0f);
-      std::vector<double> binPower(size_t(bins.count()), 0.0);
-      double total = 0.0;
       for (int s = 0; s < arrivalRays; ++s) {
         const glm::vec3 y = o + (float(i) + U(rng)) / float(n1) * e1 + (float(j) + U(rng)) / float(n2) * e2;
         // Cosine-weighted direction into the source side (−nOut), stratified-ish by random.
@@ -146,13 +129,9 @@ int main(int argc, char** argv) {
         const float w = (b.r + b.g + b.b) / float(arrivalRays);
         const glm::vec3 omega = -d;  // the light travels into dest
         pt.moments += arrivalMoment(omega, nOut, w);
-        binPower[size_t(bins.of(omega))] += w;
-        total += w;
+        pt.bins[size_t(arrivalBin(bins, omega))] += w;
       }
       pt.lobe = fitEmissionLobe(pt.moments, nOut, lobeWidth);
-      pt.bins.assign(size_t(bins.count()), 1.0f);
-      if (total > 0)
-        for (int b = 0; b < bins.count(); ++b) pt.bins[size_t(b)] = float(binPower[size_t(b)] / total * bins.count());
     });
 
     // Destination texels.
@@ -196,7 +175,7 @@ int main(int argc, char** argv) {
           const float cs = std::max(cy, 0.1f);
           const float blur = std::min(atlas.area[t] * cx / (12.0f * r2 * cs * cs * cs), 0.1f);
           sum[3] += m * g * emissionLobeFactor(pt.lobe, nOut, omega, blur);
-          sum[4] += m * g * pt.bins[size_t(bins.of(omega))];
+          sum[4] += m * g * binnedEmissionFactor(pt.bins, bins, omega);
         }
       }
       got[q] = sum;
@@ -211,7 +190,7 @@ int main(int argc, char** argv) {
       const size_t t = receivers[q];
       const glm::vec3 n = atlas.normal[t];
       const float dist = std::abs(glm::dot(atlas.position[t] - portal->corners[0], nOut));
-      std::string orient = std::abs(n.x) > 0.9f ? (n.x > 0 ? "+x" : "-x")
+      std::string orient = std::abs(n.x) > 0.9f   ? (n.x > 0 ? "+x" : "-x")
                            : std::abs(n.y) > 0.9f ? (n.y > 0 ? "+y" : "-y")
                                                   : (n.z > 0 ? "+z" : "-z");
       char band[64];
@@ -231,7 +210,7 @@ int main(int argc, char** argv) {
         sq[size_t(m)] += d * d * atlas.area[receivers[q]];
       }
     std::printf("portal %s: %dx%d texels of %.3f m², %zu receivers; %d bins\n", portal->name.c_str(), n1, n2,
-                texelArea, receivers.size(), bins.count());
+                texelArea, receivers.size(), kArrivalBins);
     std::printf("%-12s", "group");
     for (int m = 1; m < kModels; ++m) std::printf(" %10s", names[m]);
     std::printf("  (ratio to truth)\n");

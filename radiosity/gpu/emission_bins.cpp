@@ -1,0 +1,91 @@
+#include "radiosity/gpu/emission_bins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace cpgi {
+namespace {
+
+constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
+
+// A small counter-based generator: the same rays for the same seed on every machine and thread.
+struct SplitMix {
+  uint64_t state;
+  float next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return float(z >> 40) * (1.0f / 16777216.0f);
+  }
+};
+
+}  // namespace
+
+BinFrame binFrame(const glm::vec3& n) {
+  const glm::vec3 helper = std::abs(n.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  const glm::vec3 t1 = glm::normalize(glm::cross(helper, n));
+  return {n, t1, glm::cross(n, t1)};
+}
+
+int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
+  const float a = glm::dot(omega, frame.t1), b = glm::dot(omega, frame.t2);
+  const float r2 = std::clamp(a * a + b * b, 0.0f, 1.0f);
+  const int ring = std::min(int(r2 * float(kBinRings)), kBinRings - 1);
+  float phi = std::atan2(b, a);
+  if (phi < 0.0f) phi += kTwoPi;
+  const int sector = std::min(int(phi * (float(kBinSectors) / kTwoPi)), kBinSectors - 1);
+  return ring * kBinSectors + sector;
+}
+
+float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
+  if (!(glm::dot(omega, frame.n) > 0.0f)) return 0.0f;
+  double total = 0.0;
+  for (float w : bins) total += std::max(w, 0.0f);
+  if (!(total > 0.0)) return 1.0f;
+  return float(std::max(bins[size_t(arrivalBin(frame, omega))], 0.0f) * double(kArrivalBins) / total);
+}
+
+int64_t texelAtHit(const LightmapAtlas& atlas, int32_t triangle, float u, float v) {
+  if (triangle < 0 || size_t(triangle) >= atlas.triangleUV.size()) return -1;
+  const auto& uv = atlas.triangleUV[size_t(triangle)];
+  if (uv[0] == glm::vec2(0.0f) && uv[1] == glm::vec2(0.0f) && uv[2] == glm::vec2(0.0f)) return -1;
+  const glm::vec2 p = (1.0f - u - v) * uv[0] + u * uv[1] + v * uv[2];
+  const int i = std::clamp(int(p.x * float(atlas.width)), 0, atlas.width - 1);
+  const int j = std::clamp(int(p.y * float(atlas.height)), 0, atlas.height - 1);
+  const size_t t = size_t(j) * size_t(atlas.width) + size_t(i);
+  return atlas.patch[t] >= 0 ? int64_t(t) : -1;
+}
+
+ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
+                             const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
+                             int rayCount, uint32_t seed, const ExitanceToward& exitance) {
+  ArrivalBins bins{};
+  if (rayCount <= 0) return bins;
+  const BinFrame far = binFrame(-facing);
+  SplitMix rng{uint64_t(seed) * 0x2545F4914F6CDD1Dull + 1};
+  // Stratified over the point (√N × √N cells) and, per ray, over the disk: cosine weighting makes the
+  // estimate of the irradiance (1/N) Σ M, M the exitance met.
+  const int side = std::max(1, int(std::sqrt(double(rayCount))));
+  const float offset = 1e-4f * rays.diagonal();
+  for (int k = 0; k < rayCount; ++k) {
+    const int cell = k % (side * side);
+    const float su = (float(cell % side) + rng.next()) / float(side);
+    const float sv = (float(cell / side) + rng.next()) / float(side);
+    const glm::vec3 y = origin + su * edgeU + sv * edgeV;
+    const float r = std::sqrt(rng.next()), phi = kTwoPi * rng.next();
+    const glm::vec3 d = glm::normalize(r * std::cos(phi) * far.t1 + r * std::sin(phi) * far.t2 +
+                                       std::sqrt(std::max(0.0f, 1.0f - r * r)) * facing);
+    const RayScene::Hit hit = rays.intersect(y, d, offset);
+    if (!hit) continue;
+    const int64_t t = texelAtHit(atlas, hit.triangle, hit.u, hit.v);
+    if (t < 0) continue;
+    const glm::vec3 omega = -d;  // the light travels from the hit towards the point, and on
+    const float m = exitance(size_t(t), omega);
+    if (m > 0.0f) bins[size_t(arrivalBin(far, omega))] += m / float(rayCount);
+  }
+  return bins;
+}
+
+}  // namespace cpgi

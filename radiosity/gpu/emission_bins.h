@@ -1,0 +1,62 @@
+// Binned directional emission, for portals whose light is more concentrated than one lobe can say: a
+// portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f piecewise constant over kArrivalBins
+// bins of equal area on the projected disk (u = ω_t, |u| = sin θ; rings at √(k / rings), equal sectors).
+// Equal areas there are equal projected solid angles, so f normalised to mean 1 over the bins gives
+// ∫ f cos θ dω = π exactly: the exitance, hence the bookkeeping, does not depend on the shape.
+//
+// Why bins and not the moment-fitted lobe (emission_lobes.h): through openings' narrow door the lobe gave
+// the wall beside it 0.79 of the light and the far part 1.12 (bench/portal_oracle.cpp), the gradient a
+// cells bake showed there; 8 × 16 bins give 0.97–1.02 on both of that scene's portals (bench/RESULTS.md).
+//
+// The bins are found by rays (traceArrivalBins): from a point of the portal into the sending cell, each
+// ray takes the exitance the texel it hits shot towards the portal, so the shape is exact in expectation
+// whatever the solver's shooter pieces were.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+
+#include <glm/glm.hpp>
+
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/ray_scene.h"
+
+namespace cpgi {
+
+inline constexpr int kBinRings = 8, kBinSectors = 16, kArrivalBins = kBinRings * kBinSectors;
+using ArrivalBins = std::array<float, kArrivalBins>;
+
+/// The tangent frame the bins of a surface of unit normal n are laid out in; a function of n alone, so
+/// the two sides of a portal (normals n and −n seen from the far side) agree. Must match
+/// shaders/directional.glsl.
+struct BinFrame {
+  glm::vec3 n, t1, t2;
+};
+BinFrame binFrame(const glm::vec3& n);
+
+/// The bin of unit direction ω leaving the surface (ω · n > 0).
+int arrivalBin(const BinFrame& frame, const glm::vec3& omega);
+
+/// f(ω) of bins holding any non-negative weights (normalised here to mean 1): 0 behind the surface, 1 for
+/// all-zero bins (a Lambertian).
+float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
+
+/// Per texel of `atlas` and a direction of travel ω (unit), the exitance (R + G + B, W/m²) it sent
+/// towards ω: its Lambertian shot, or that times its own emission shape.
+using ExitanceToward = std::function<float(size_t texel, const glm::vec3& omega)>;
+
+/// Irradiance per arrival bin (R + G + B, W/m²) at the parallelogram origin + [0,1]·edgeU + [0,1]·edgeV of
+/// a surface of unit normal `facing` (towards where the light comes from), by `rayCount` cosine-weighted
+/// rays from points stratified over it; the bins are those of the far side (normal −facing), on which the
+/// light travels on. A ray that hits nothing or a texel outside the atlas brings nothing. Deterministic
+/// for a given `seed`.
+ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
+                             const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
+                             int rayCount, uint32_t seed, const ExitanceToward& exitance);
+
+/// The atlas texel under a ray's hit on scene triangle `triangle` at barycentrics (u, v), or -1 when the
+/// triangle has no chart or the texel is padding.
+int64_t texelAtHit(const LightmapAtlas& atlas, int32_t triangle, float u, float v);
+
+}  // namespace cpgi

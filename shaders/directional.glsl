@@ -7,6 +7,29 @@
 layout(std430, binding = 17) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
 layout(std430, binding = 18) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
 layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
+// Binned emission (radiosity/gpu/emission_bins.h): a texel whose lobe is (0, 0, 0, −(k + 1)) emits with f
+// per bin from emissionLobe[k …], four bins a vec4 after the texels' lobes (llvmpipe allows a compute
+// shader 16 storage blocks, all taken), f normalised to mean 1 over equal-area bins of the projected disk.
+#define BIN_RINGS 8
+#define BIN_SECTORS 16
+
+#ifdef BINNED
+// f(ω) of the bins at emissionLobe[first …] for unit ω leaving a surface of normal n (ω · n > 0); the frame as binFrame.
+float binnedFactor(int first, vec3 n, vec3 omega) {
+  vec3 helper = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+  vec3 t1 = normalize(cross(helper, n));
+  vec3 t2 = cross(n, t1);
+  float a = dot(omega, t1), b = dot(omega, t2);
+  int ring = min(int(clamp(a * a + b * b, 0.0, 1.0) * float(BIN_RINGS)), BIN_RINGS - 1);
+  float phi = atan(b, a);
+  if (phi < 0.0) phi += 2.0 * PI;
+  int sector = min(int(phi * (float(BIN_SECTORS) / (2.0 * PI))), BIN_SECTORS - 1);
+  int bin = ring * BIN_SECTORS + sector;
+  vec4 four = emissionLobe[first + (bin >> 2)];
+  int c = bin & 3;
+  return c == 0 ? four.x : c == 1 ? four.y : c == 2 ? four.z : four.w;
+}
+#endif
 
 // f(ω) for unit ω leaving a surface of normal n: (1 − a) + a exp(−|s − s0|² / 2σ²) / (2σ² cos⁴θ),
 // s = ω_t / cos θ; lobe = (s0 + a n, σ²). `blur2` widens σ² (still normalised): the receiver's footprint.
@@ -34,19 +57,24 @@ float receiverBlur(vec3 v, vec3 n, vec3 ns, float area) {
 
 // Can a piece of this radius (m) at squared distance r2 stand for its texels as one disk or a few points?
 // Only if its lobe is wider than the piece seen from there: a narrow lobe (a beam through a door) would
-// otherwise be emitted from the piece's centre instead of from where each texel sends it.
+// otherwise be emitted from the piece's centre instead of from where each texel sends it. A node holding
+// binned texels (mixedLobe: (n, −1)) never does, a binned texel always (its bins are wider than it).
 bool lobeResolvesPiece(vec4 lobe, vec3 n, float r2, float radius) {
   return !(dot(lobe.xyz, n) > 0.0) || lobe.w * r2 >= radius * radius;
 }
 
 // A power-weighted mixture of lobes of one planar shooter (normal n), replaced by the lobe with the same
 // weight, mean and variance: still normalised. `sum` = (Σ P a s0, Σ P a), `second` = (Σ P a σ², Σ P a |s0|²,
-// Σ P, 0). Mixing the mixed lobes of groups (pyramid children) gives the same lobe as mixing all texels.
+// Σ P, 1 if any is binned). Mixing the mixed lobes of groups (pyramid children) gives the same lobe as mixing all texels.
 struct LobeMix {
   vec4 sum;
   vec4 second;
 };
 LobeMix addLobe(LobeMix mix, vec4 lobe, vec3 n, float power) {
+  if (lobe.w < 0.0) {  // binned (a texel's slot, or a node already holding some): no moments to mix
+    mix.second.w = 1.0;
+    return mix;
+  }
   float a = dot(lobe.xyz, n);
   vec3 s0 = lobe.xyz - a * n;
   float pa = power * max(a, 0.0);
@@ -55,6 +83,7 @@ LobeMix addLobe(LobeMix mix, vec4 lobe, vec3 n, float power) {
   return mix;
 }
 vec4 mixedLobe(LobeMix mix, vec3 n) {
+  if (mix.second.w > 0.0) return vec4(n, -1.0);
   if (!(mix.sum.w > 0.0) || !(mix.second.z > 0.0)) return vec4(0.0);
   vec3 s0 = mix.sum.xyz / mix.sum.w;
   float sigma2 = mix.second.x / mix.sum.w + 0.5 * max(mix.second.y / mix.sum.w - dot(s0, s0), 0.0);

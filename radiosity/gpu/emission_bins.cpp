@@ -47,6 +47,15 @@ float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const
   return float(std::max(bins[size_t(arrivalBin(frame, omega))], 0.0f) * double(kArrivalBins) / total);
 }
 
+ArrivalBins normalisedEmissionBins(const ArrivalBins& bins) {
+  double total = 0.0;
+  for (float w : bins) total += std::max(w, 0.0f);
+  ArrivalBins f;
+  for (size_t b = 0; b < f.size(); ++b)
+    f[b] = total > 0.0 ? float(std::max(bins[b], 0.0f) * double(kArrivalBins) / total) : 1.0f;
+  return f;
+}
+
 int64_t texelAtHit(const LightmapAtlas& atlas, int32_t triangle, float u, float v) {
   if (triangle < 0 || size_t(triangle) >= atlas.triangleUV.size()) return -1;
   const auto& uv = atlas.triangleUV[size_t(triangle)];

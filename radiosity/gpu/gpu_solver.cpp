@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 
 #include "core/error.h"
 #include "core/memory_limit.h"
+#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/gl.h"
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
@@ -197,6 +199,7 @@ struct SolveConfig : SolverParams {
   bool readTransfer = false;
   double minShotPower = 0.0;
   bool directionalEmission = false;
+  std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
   const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
   /// Per patch, 1 for a lamp whose first shot is in `direct` (lamp_light.h): its emission is not unshot.
   const std::vector<char>* shotLamps = nullptr;
@@ -215,6 +218,9 @@ ProgramDefines programDefines(const SolveConfig& params) {
   ProgramDefines d;
   if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
   if (params.directionalEmission) d.receive.push_back("DIRECTIONAL"), d.pyramid.push_back("DIRECTIONAL");
+  // Binned emission in programs of its own: the lobes' programs stay as they were, whose float rounding a
+  // receiver's lamp-shot resampling decision is sensitive to (EmissionLobes' wall beside an emitter).
+  if (params.directionalEmission && !params.emissionBins.empty()) d.receive.push_back("BINNED");
   return d;
 }
 
@@ -244,9 +250,12 @@ struct SolverPrograms::Set {
 SolverPrograms::SolverPrograms() = default;
 SolverPrograms::~SolverPrograms() = default;
 
-const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, bool directionalEmission) {
+const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, bool directionalEmission,
+                                               bool binnedEmission) {
   SolveConfig config{settings};
   config.directionalEmission = directionalEmission;
+  const float oneBin = 1.0f;
+  if (binnedEmission) config.emissionBins = std::span<const float>(&oneBin, 1);
   const ProgramDefines defines = programDefines(config);
   std::unique_ptr<Set>& set = sets_[defines.key()];
   if (!set) set = std::make_unique<Set>(defines);
@@ -730,16 +739,31 @@ class Solver {
     glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
 
-  // Per-texel emission lobes (Lambertian when none are given) and zeroed arrival moments.
+  // Per-texel emission lobes (Lambertian when none are given), binned texels' bins after them (a binned
+  // lobe's slot turned into where its bins start, shaders/directional.glsl) and zeroed arrival moments.
   void uploadDirectional(const std::vector<glm::vec4>* lobes) {
     const size_t n = atlas_.texelCount();
     if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
-    const std::vector<glm::vec4> lambertian(lobes ? 0 : n, glm::vec4(0.0f));
+    const std::span<const float> bins = params_.emissionBins;
+    if (bins.size() % kArrivalBins != 0) throw InputError("solver", "emission bins must come in whole slots");
+    const size_t slots = bins.size() / kArrivalBins, perSlot = kArrivalBins / 4;
+    if (n + slots * perSlot >= (size_t(1) << 24))
+      throw InputError("solver", "too many texels and emission bins for the lobes' float indices");
+    std::vector<glm::vec4> data(n + slots * perSlot, glm::vec4(0.0f));
     hasLobes_.assign(atlas_.patches.size(), 0);
     if (lobes)
-      for (size_t i = 0; i < n; ++i)
-        if (atlas_.patch[i] >= 0 && (*lobes)[i] != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
-    emissionLobes_ = gl::makeBuffer(n * sizeof(glm::vec4), lobes ? lobes->data() : lambertian.data());
+      for (size_t i = 0; i < n; ++i) {
+        glm::vec4 lobe = (*lobes)[i];
+        if (lobe.w < 0.0f) {
+          const size_t slot = size_t(-lobe.w) - 1;
+          if (slot >= slots) throw InputError("solver", "a binned emission lobe names a slot past the bins");
+          lobe.w = -float(n + slot * perSlot + 1);
+        }
+        data[i] = lobe;
+        if (atlas_.patch[i] >= 0 && lobe != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
+      }
+    if (!bins.empty()) std::memcpy(&data[n], bins.data(), bins.size() * sizeof(float));
+    emissionLobes_ = gl::makeBuffer(data.size() * sizeof(glm::vec4), data.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kEmissionLobes, emissionLobes_.get());
     arrivals_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
     const float zero = 0.0f;
@@ -930,6 +954,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.readTransfer = controls.readTransfer;
   config.minShotPower = controls.minShotPower;
   config.directionalEmission = controls.directionalEmission;
+  config.emissionBins = controls.emissionBins;
   config.deadline = controls.deadline;
   config.firstShotNumber = controls.firstShotNumber;
   if (controls.acceptStop) config.acceptStop = &controls.acceptStop;
@@ -991,7 +1016,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission), emissionLobes);
+  Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission, !params.emissionBins.empty()), emissionLobes);
   // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
   // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
   const auto rayShots =

@@ -109,6 +109,9 @@ struct SolveControls {
   /// and cost and results are those of the plain solver. Lobes without it are an error.
   bool directionalEmission = false;
   std::span<const glm::vec4> emissionLobes = {};
+  /// Binned emission (radiosity/gpu/emission_bins.h) for the texels whose lobe is binnedLobe(slot): slot
+  /// after slot, kArrivalBins factors f each, normalised to mean 1 (normalisedEmissionBins).
+  std::span<const float> emissionBins = {};
   /// Start after this shot: ρ × its irradiance unshot, its power emitted and shot. The atlas's emission is
   /// shot as usual and the scene's punctual lights are not (the prior shot stands for them). Null: none.
   const PriorShot* priorShot = nullptr;
@@ -150,7 +153,7 @@ class SolverPrograms {
   struct Set;  // gpu_solver.cpp
   /// The programs for `settings` with or without directional emission (their #defines: visibility mode,
   /// ...), compiled at first use.
-  const Set& get(const SolverParams& settings, bool directionalEmission);
+  const Set& get(const SolverParams& settings, bool directionalEmission, bool binnedEmission = false);
 
  private:
   std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines

@@ -67,6 +67,7 @@ constexpr ParameterFlag kFlags[] = {
     {"cell graph", "--cells"},
     {"portal light", "--portals"},
     {"portal lobe width", "--lobe-width"},
+    {"portal bin rays", "--portal-rays"},
     {"maximum rounds", "--max-rounds"},
     {"jobs", "--jobs"},
     {"boundary", "--boundary"},
@@ -287,16 +288,21 @@ void addTimeLimitOption(CLI::App& cmd, double& seconds) {
 
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
   scoped(addChoice(cmd, flag("portal light"), cells.portals,
-                   {{"diffuse", PortalLight::Diffuse}, {"directional", PortalLight::Directional}},
+                   {{"diffuse", PortalLight::Diffuse},
+                    {"directional", PortalLight::Directional},
+                    {"binned", PortalLight::Binned}},
                    help(scope,
                         "Portal light with --method cells: diffuse (re-emits the irradiance as a "
-                        "Lambertian area light) or directional (keeps the directions the light arrived "
-                        "with)")),
+                        "Lambertian area light), directional (keeps the directions the light arrived "
+                        "with, as one lobe) or binned (keeps them in 8 x 16 bins found by rays)")),
          scope);
   addChecked(cmd, scope, "portal lobe width", cells.lobeMinWidth,
              "With --portals directional: the narrowest lobe a portal texel re-emits, as the standard "
              "deviation of sin θ (about radians when small); arrivals spread wider keep their own spread",
              within(1e-3, 0.45));
+  addChecked(cmd, scope, "portal bin rays", cells.portalBinRays,
+             "With --portals binned: rays per portal texel that find the directions its light arrived from",
+             within(64, 1048576));
   addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
              "With --method cells: solve rounds (syncs) at most", within(1, 100000));
   addChecked(cmd, scope, "jobs", cells.jobs,

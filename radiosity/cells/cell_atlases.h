@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {
@@ -48,6 +50,9 @@ struct CellState {
   /// Directional portals: per texel, the arrival moments of `pending` (radiosity/gpu/emission_lobes.h),
   /// fitted into its emission lobes at the next solve; empty with diffuse portals.
   std::vector<glm::vec4> pendingMoments;
+  /// Binned portals: per texel holding pending light that crossed a portal, its arrival bins
+  /// (radiosity/gpu/emission_bins.h), weighted so that they sum to its pending exitance's R + G + B.
+  std::map<int32_t, ArrivalBins> pendingBins;
   bool boundary = false;  ///< an on-demand boundary cell: coarse atlas, texels not written
 };
 

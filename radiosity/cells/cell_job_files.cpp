@@ -139,6 +139,23 @@ CellRound getFigures(Reader& in) {
   return r;
 }
 
+// Binned portals' bins per texel: count, then (texel, bins) in texel order.
+void putTexelBins(Writer& w, const std::map<int32_t, ArrivalBins>& bins) {
+  w.put(uint64_t(bins.size()));
+  for (const auto& [t, b] : bins) w.put(t), w.put(b);
+}
+
+std::map<int32_t, ArrivalBins> getTexelBins(Reader& in) {
+  std::map<int32_t, ArrivalBins> bins;
+  const uint64_t n = in.get<uint64_t>();
+  for (uint64_t k = 0; k < n; ++k) {
+    const int32_t t = in.get<int32_t>();
+    in.expect(t >= 0, "bins for a negative texel");
+    bins[t] = in.get<ArrivalBins>();
+  }
+  return bins;
+}
+
 void putSendFigures(Writer& w, const PortalSend& s) {
   w.put(int32_t(s.portal)), w.put(int32_t(s.from)), w.put(int32_t(s.to));
   w.put(s.scale);
@@ -160,6 +177,7 @@ void writeCellState(const std::filesystem::path& file, int round, const CellRoun
   w.put(int32_t(round)), w.put(int32_t(r.cell)), w.put(uint8_t(r.solved));
   w.putVec3s(r.kept), w.putVec3s(r.carried), w.putVec3s(r.radiosity);
   w.putVecs(r.keptMoments);
+  putTexelBins(w, r.keptBins);
   w.save(file, CellJobRecord::CellState);
 }
 
@@ -172,6 +190,7 @@ CellRound readCellState(const std::filesystem::path& file, int round, int cell) 
   r.solved = in.get<uint8_t>() != 0;
   r.kept = in.getVec3s(), r.carried = in.getVec3s(), r.radiosity = in.getVec3s();
   r.keptMoments = in.getVecs<glm::vec4>();
+  r.keptBins = getTexelBins(in);
   in.expect(r.carried.size() == r.kept.size(), "carried and kept light of different sizes");
   in.expect(r.keptMoments.empty() || r.keptMoments.size() == r.kept.size(),
             "kept light and its moments of different sizes");
@@ -191,6 +210,7 @@ uint64_t writePortalLight(const std::filesystem::path& file, int round, const Ce
     w.put(uint64_t(s.exitance.size()));
     for (const auto& [t, e] : s.exitance) w.put(t), w.put(e);
     w.putVecs(s.moments);
+    w.putVecs(s.bins);
   }
   return w.save(file, CellJobRecord::PortalLight);
 }
@@ -212,6 +232,9 @@ std::vector<PortalSend> readPortalLight(const std::filesystem::path& file, int r
     s.moments = in.getVecs<glm::vec4>();
     in.expect(s.moments.empty() || s.moments.size() == s.exitance.size(),
               "exitance and its moments of different sizes");
+    s.bins = in.getVecs<ArrivalBins>();
+    in.expect(s.bins.empty() || s.bins.size() == s.exitance.size(),
+              "exitance and its bins of different sizes");
   }
   in.end();
   return sends;

@@ -24,7 +24,7 @@
 
 namespace cpgi {
 
-inline constexpr uint32_t kCellJobFormat = 2;  ///< 2: directional portals' moments
+inline constexpr uint32_t kCellJobFormat = 3;  ///< 2: directional portals' moments; 3: binned portals' bins
 
 enum class CellJobRecord : uint32_t {
   CellState = 1,       ///< a cell's own light after a round: kept, carried, radiosity gained

@@ -122,6 +122,10 @@ void gatherFromFiles(const fs::path& dir, const CellJobPlan& plan, int round, in
   s.carried = own.carried;
   s.pending = gatherPending(own, sorted, texels);
   s.pendingMoments = gatherPendingMoments(own, sorted, texels);
+  for (const auto& [t, b] : own.keptBins)
+    if (size_t(t) >= texels)
+      throw InputError(cellStateFile(dir, round - 1, c).string(), "bins for a texel outside the cell");
+  s.pendingBins = gatherPendingBins(own, sorted);
 }
 
 void requireFirstShotSummed(const fs::path& dir, const CellJobPlan& plan) {
@@ -384,7 +388,7 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
       auto t = ctx.time("cells: solve");
       const SolveResult solved = transfer->solve(k, s, settings, controls, gl, ctx);
-      r = cellRoundOf(k, s, solved, links, cells);
+      r = cellRoundOf(k, s, solved, links, cells, transfer->binRays());
     } else {
       r = waitingCellRound(k, s);
     }

@@ -1,7 +1,11 @@
 #include "radiosity/cells/cell_round.h"
 
 #include <algorithm>
+#include <bit>
+#include <memory>
 #include <tuple>
+
+#include <tbb/parallel_for.h>
 
 namespace cpgi {
 namespace {
@@ -12,7 +16,7 @@ glm::dvec3 texelPower(const glm::vec3& v, float area) {
 
 // One link's send: the irradiance collected on the sending side becomes exitance on the far side.
 PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveResult& solved,
-                       const std::vector<CellState>& cells) {
+                       const std::vector<CellState>& cells, const RayScene* rays, int binRays) {
   const LightmapAtlas& to = cells[link.to].atlas;
   glm::dvec3 sent(0.0), arrived(0.0);
   for (const auto& [tt, ft] : link.texels) arrived += texelPower(solved.incident[ft], to.area[tt]);
@@ -39,6 +43,12 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
     send.moments.reserve(link.texels.size());
     for (const auto& [tt, ft] : link.texels) send.moments.push_back(solved.arrivals[ft] * weight);
   }
+  if (rays && binRays > 0) {
+    std::vector<float> weights;
+    weights.reserve(send.exitance.size());
+    for (const auto& [tt, e] : send.exitance) weights.push_back(e.r + e.g + e.b);
+    send.bins = portalArrivalBins(s, solved, *rays, link, weights, binRays);
+  }
   return send;
 }
 
@@ -63,8 +73,45 @@ SolverParams roundBudget(const SolverParams& settings, double target, double uns
   return round;
 }
 
+std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
+                                           const RayScene& rays, const PortalLink& link,
+                                           const std::vector<float>& weights, int rayCount) {
+  const LightmapAtlas& a = s.atlas;
+  // What texel t shot in this solve towards ω (R + G + B, W/m²): its pending exitance (the atlas's
+  // emission) and what it gained, less what it left unshot; a binned emitter (a portal of this cell
+  // re-emitting its neighbour's light) shapes it by its own bins.
+  const ExitanceToward shotToward = [&](size_t t, const glm::vec3& omega) {
+    const glm::vec3 shot = a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t];
+    float m = std::max(shot.r + shot.g + shot.b, 0.0f);
+    if (m > 0.0f)
+      if (auto own = s.pendingBins.find(int32_t(t)); own != s.pendingBins.end())
+        m *= binnedEmissionFactor(own->second, binFrame(a.normal[t]), omega);
+    return m;
+  };
+  std::vector<ArrivalBins> bins(link.texels.size());
+  tbb::parallel_for(size_t(0), link.texels.size(), [&](size_t k) {
+    const size_t ft = size_t(link.texels[k].second);
+    const Patch& p = a.patches[size_t(a.patch[ft])];
+    const int i = int(ft % size_t(a.width)) - p.x, j = int(ft / size_t(a.width)) - p.y;
+    const glm::vec3 origin = p.origin + float(i) * p.texelU + float(j) * p.texelV;
+    // Seeded by where the texel is, not by any index: a cell job's graph numbers its portals its own way.
+    uint32_t seed = 0x811C9DC5u;
+    for (int axis = 0; axis < 3; ++axis) seed = (seed ^ std::bit_cast<uint32_t>(origin[axis])) * 0x01000193u;
+    ArrivalBins b =
+        traceArrivalBins(rays, a, origin, p.texelU, p.texelV, a.normal[ft], rayCount, seed, shotToward);
+    double sum = 0.0;
+    for (float w : b) sum += w;
+    const float w = k < weights.size() ? weights[k] : 0.0f;
+    // No ray met the light the solve delivered (a sliver the rays missed): spread it as a Lambertian.
+    for (float& x : b) x = sum > 0.0 ? float(double(x) * w / sum) : w / float(kArrivalBins);
+    bins[k] = b;
+  });
+  return bins;
+}
+
 CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
-                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells) {
+                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells,
+                      int binRays) {
   CellRound r;
   r.cell = int(c);
   r.solved = true;
@@ -74,7 +121,15 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   r.carried = solved.residual;
   r.keptPower = cellPower(r.kept, s.atlas);
   // A texel's residual is the part of its pending exitance it did not shoot (portal texels have albedo 0
-  // and gain none), so its moments are the pending ones scaled by the same share.
+  // and gain none), so its moments (and bins) are the pending ones scaled by the same share.
+  for (const auto& [t, bins] : s.pendingBins) {
+    const float pending = s.pending[size_t(t)].r + s.pending[size_t(t)].g + s.pending[size_t(t)].b;
+    const float left = r.kept[size_t(t)].r + r.kept[size_t(t)].g + r.kept[size_t(t)].b;
+    if (!(pending > 0.0f && left > 0.0f)) continue;
+    ArrivalBins kept = bins;
+    for (float& x : kept) x *= std::min(left / pending, 1.0f);
+    r.keptBins.emplace(t, kept);
+  }
   if (!s.pendingMoments.empty()) {
     r.keptMoments.assign(s.pendingMoments.size(), glm::vec4(0.0f));
     for (size_t i = 0; i < r.keptMoments.size(); ++i) {
@@ -89,9 +144,13 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
     for (size_t t = 0; t < r.radiosity.size(); ++t) r.radiosity[t] = solved.radiosity[t] - s.carried[t];
   }
   double collected = 0.0;
+  std::unique_ptr<RayScene> rays;
+  if (binRays > 0 &&
+      std::any_of(links.begin(), links.end(), [&](const PortalLink& l) { return l.from == int(c); }))
+    rays = std::make_unique<RayScene>(s.cs.scene);
   for (const PortalLink& link : links) {
     if (link.from != int(c)) continue;
-    r.sends.push_back(sendThrough(link, s, solved, cells));
+    r.sends.push_back(sendThrough(link, s, solved, cells, rays.get(), binRays));
     collected += r.sends.back().watts;
   }
   r.shots = solved.shots;
@@ -112,6 +171,7 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
   r.kept = s.pending;
   r.carried = s.carried;
   r.keptMoments = s.pendingMoments;
+  r.keptBins = s.pendingBins;
   r.keptPower = cellPower(r.kept, s.atlas);
   return r;
 }
@@ -149,6 +209,31 @@ std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<con
   return gatherInSolverOrder(
       own, own.kept, arriving, texels, [](const PortalSend& s) { return s.exitance.size(); },
       [](const PortalSend& s, size_t k) { return s.exitance[k].second; });
+}
+
+std::map<int32_t, ArrivalBins> gatherPendingBins(const CellRound& own,
+                                                 const std::vector<const PortalSend*>& arriving) {
+  // In the solver's order, as gatherInSolverOrder, so that jobs and one process add the same floats.
+  std::map<int32_t, ArrivalBins> sum;
+  auto add = [&](int32_t t, const ArrivalBins& b) {
+    ArrivalBins& into = sum.try_emplace(t, ArrivalBins{}).first->second;
+    for (size_t i = 0; i < b.size(); ++i) into[i] += b[i];
+  };
+  auto addOwn = [&] {
+    for (const auto& [t, b] : own.keptBins) add(t, b);
+  };
+  bool ownAdded = !own.solved;
+  if (ownAdded) addOwn();
+  for (const PortalSend* send : arriving) {
+    if (!ownAdded && send->from > own.cell) {
+      addOwn();
+      ownAdded = true;
+    }
+    for (size_t k = 0; k < std::min(send->bins.size(), send->exitance.size()); ++k)
+      add(send->exitance[k].first, send->bins[k]);
+  }
+  if (!ownAdded) addOwn();
+  return sum;
 }
 
 std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_atlases.h"
+#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/gpu/solve_result.h"
 
@@ -35,6 +37,9 @@ struct PortalSend {
   /// Directional portals: the arrival moments that go with each `exitance` entry (same order, world
   /// coordinates, weighted like the exitance); empty with diffuse portals.
   std::vector<glm::vec4> moments;
+  /// Binned portals: the arrival bins that go with each `exitance` entry (same order), found by rays in
+  /// the sending cell and summing to the entry's R + G + B; empty otherwise.
+  std::vector<ArrivalBins> bins;
   glm::vec3 scale{0.0f};  ///< exitance = sending side's irradiance × scale (power through the opening kept)
   double watts = 0.0;     ///< power collected on the sending side (W, R + G + B)
   double arriving = 0.0;  ///< power of `exitance` over the receiving texels (W, R + G + B)
@@ -47,10 +52,11 @@ struct CellRound {
   bool timedOut = false;           ///< its solve stopped at the bake's --time-limit (not in job files)
   std::vector<glm::vec3> kept;     ///< per cell texel: its own share of the next pending light (W/m²)
   std::vector<glm::vec3> carried;  ///< per cell texel: the part of `kept` already in the radiosity
-  std::vector<glm::vec4> keptMoments;  ///< directional portals: per cell texel, the moments of `kept`
-  std::vector<glm::vec3> radiosity;    ///< per cell texel: radiosity gained this round (solved cells only)
-  std::vector<PortalSend> sends;       ///< solved cells only, in link order (portal, then A→B before B→A)
-  double keptPower = 0.0;              ///< power of `kept` (W, R + G + B)
+  std::vector<glm::vec4> keptMoments;       ///< directional portals: per cell texel, the moments of `kept`
+  std::map<int32_t, ArrivalBins> keptBins;  ///< binned portals: per texel with bins, those of `kept`
+  std::vector<glm::vec3> radiosity;  ///< per cell texel: radiosity gained this round (solved cells only)
+  std::vector<PortalSend> sends;     ///< solved cells only, in link order (portal, then A→B before B→A)
+  double keptPower = 0.0;            ///< power of `kept` (W, R + G + B)
   // The solve's figures (SolveResult), for the bookkeeping.
   int shots = 0;
   double seconds = 0.0, shot = 0.0, received = 0.0, escaped = 0.0, created = 0.0, worstShotGain = 0.0;
@@ -77,8 +83,19 @@ SolverParams roundBudget(const SolverParams& settings, double target, double uns
 /// residual kept, its radiosity gained, and through each of `links` leaving it, the irradiance collected
 /// on the sending side as exitance on the far side, rescaled so that the power through the opening is
 /// exactly what arrived (the charts of the two sides may differ). Indices are those of `cells`.
+/// `binRays` > 0 (binned portals): each send's entries get their arrival bins by that many rays per
+/// sending texel into the cell (portalArrivalBins).
 CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
-                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells);
+                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells,
+                      int binRays = 0);
+
+/// Per entry of `link.texels`, the arrival bins at its sending texel by `rays` rays into cell `s`, each
+/// taking the exitance the texel it meets shot in `solved` (what it held pending, plus what it gained,
+/// less what it left unshot), shaped by that texel's own bins where it has any; scaled to sum to
+/// `weights[k]`. Deterministic: the rays of a texel depend on where it is only.
+std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
+                                           const RayScene& rays, const PortalLink& link,
+                                           const std::vector<float>& weights, int rayCount);
 
 /// Cell `c`'s round when it waits: its pending light kept, nothing sent.
 CellRound waitingCellRound(size_t c, const CellState& s);
@@ -89,6 +106,10 @@ CellRound waitingCellRound(size_t c, const CellState& s);
 /// (from, portal).
 std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<const PortalSend*>& arriving,
                                      size_t texels);
+/// The same for the arrival bins (binned portals), per texel that has any.
+std::map<int32_t, ArrivalBins> gatherPendingBins(const CellRound& own,
+                                                 const std::vector<const PortalSend*>& arriving);
+
 /// The same for the arrival moments (directional portals): empty when neither `own` nor any send has
 /// moments.
 std::vector<glm::vec4> gatherPendingMoments(const CellRound& own,

@@ -33,6 +33,9 @@ void checkCells(const Scene& scene, const CellGraph& graph, const CellSolveParam
   if (params.portals == PortalLight::Directional &&
       !(params.lobeMinWidth > 0.0f && params.lobeMinWidth <= 0.45f))
     throw InputError("solver", "the narrowest portal lobe must be in (0, 0.45]");
+  if (params.portals == PortalLight::Binned &&
+      !(params.portalBinRays >= 64 && params.portalBinRays <= 1 << 20))
+    throw InputError("solver", "rays per portal texel for binned portals must be in [64, 1048576]");
 }
 
 // The result before the first round: every cell's name, emitted power and texels.
@@ -106,7 +109,7 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
               label,
               [&](Context& cellCtx) { return transfer.solve(c, cells[c], settings, own, context, cellCtx); },
               taskCtx);
-          round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells);
+          round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays());
         });
   }
   for (size_t c = 0; c < cells.size(); ++c)
@@ -126,6 +129,7 @@ double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& rou
     const std::vector<const PortalSend*> arriving = sendsTo(int(c), sends);
     cells[c].pending = gatherPending(round[c], arriving, cells[c].pending.size());
     cells[c].pendingMoments = gatherPendingMoments(round[c], arriving, cells[c].pending.size());
+    cells[c].pendingBins = gatherPendingBins(round[c], arriving);
     cells[c].carried = round[c].carried;
   }
   return roundUnshot(kept, sends);
@@ -182,7 +186,7 @@ std::string cellList(const CellGraph& graph, const std::vector<size_t>& active) 
 }  // namespace
 
 const char* portalLightName(PortalLight p) {
-  return p == PortalLight::Directional ? "directional" : "diffuse";
+  return p == PortalLight::Directional ? "directional" : p == PortalLight::Binned ? "binned" : "diffuse";
 }
 
 SolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,

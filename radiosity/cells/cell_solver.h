@@ -28,7 +28,9 @@ namespace cpgi {
 /// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
 /// directional (the light keeps the directions it arrived with; radiosity/gpu/emission_lobes.h). One
 /// PortalTransfer class per model (radiosity/cells/portal_transfer.h).
-enum class PortalLight { Diffuse, Directional };
+/// Binned: the directions kept in 8 × 16 bins found by rays in the sending cell (radiosity/gpu/emission_bins.h),
+/// for light more concentrated than one lobe can say.
+enum class PortalLight { Diffuse, Directional, Binned };
 const char* portalLightName(PortalLight p);
 
 struct CellSolveParams {
@@ -50,6 +52,8 @@ struct CellSolveParams {
   /// 0.969 / 0.977 / 0.987 / 1.016 (9.3 / 8.3 / 8.5 / 12.4 %), 0.985 (6.7 %) converged at 0.2, room B
   /// 4.9 % → 3.7 % (bench/RESULTS.md, `bake --lobe-width`).
   float lobeMinWidth = 0.2f;
+  /// Binned portals: rays per sending portal texel that find its arrival bins (>= 64).
+  int portalBinRays = 2048;
   /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
   /// (radiosity/cells/cell_workers.h). Any value gives the same result as 1.
   int jobs = 1;

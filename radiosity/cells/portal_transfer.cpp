@@ -1,5 +1,6 @@
 #include "radiosity/cells/portal_transfer.h"
 
+#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/emission_lobes.h"
 
 namespace cpgi {
@@ -24,8 +25,31 @@ SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverPa
   return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);
 }
 
+SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams& settings,
+                                 SolveControls controls, const EglContext& gl, Context& ctx) const {
+  // Texels with bins emit by them; the rest (reflectors, and everything before light crossed a portal)
+  // as Lambertians.
+  std::vector<glm::vec4> lobes(s.atlas.texelCount(), glm::vec4(0.0f));
+  std::vector<float> bins;
+  bins.reserve(s.pendingBins.size() * kArrivalBins);
+  for (const auto& [t, b] : s.pendingBins) {
+    double sum = 0.0;
+    for (float w : b) sum += w;
+    if (!(sum > 0.0) || size_t(t) >= lobes.size()) continue;
+    lobes[size_t(t)] = binnedLobe(int(bins.size() / kArrivalBins));
+    const ArrivalBins f = normalisedEmissionBins(b);
+    bins.insert(bins.end(), f.begin(), f.end());
+  }
+  controls.directionalEmission = true;
+  controls.emissionLobes = lobes;
+  controls.emissionBins = bins;
+  return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);
+}
+
 std::unique_ptr<PortalTransfer> makePortalTransfer(const CellSolveParams& params) {
   switch (params.portals) {
+    case PortalLight::Binned:
+      return std::make_unique<BinnedPortals>(params.portalBinRays);
     case PortalLight::Directional:
       return std::make_unique<DirectionalPortals>(params.lobeMinWidth);
     case PortalLight::Diffuse:

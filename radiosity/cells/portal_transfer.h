@@ -5,6 +5,8 @@
 //  - DiffusePortals (the thesis): a Lambertian area light; nothing travels along.
 //  - DirectionalPortals: the arrival moments travel with the exitance (cell_round.h) and become emission
 //    lobes (radiosity/gpu/emission_lobes.h), so light keeps the direction it crossed the opening in.
+//  - BinnedPortals: arrival bins found by rays in the sending cell travel with the exitance and are
+//    emitted as they are (radiosity/gpu/emission_bins.h).
 // A new portal model is one more class here and one more case in makePortalTransfer.
 #pragma once
 
@@ -29,6 +31,8 @@ class PortalTransfer {
   /// `controls`. Called side by side for distinct cells within a round.
   virtual SolveResult solve(size_t c, const CellState& s, const SolverParams& settings,
                             SolveControls controls, const EglContext& gl, Context& ctx) const = 0;
+  /// Rays per sending portal texel for the sends' arrival bins (cellRoundOf); 0: the model has none.
+  virtual int binRays() const { return 0; }
 };
 
 /// The thesis's portal: the irradiance reaching the opening is re-emitted as a Lambertian area light.
@@ -51,6 +55,20 @@ class DirectionalPortals : public PortalTransfer {
 
  private:
   float lobeMinWidth_;
+};
+
+/// Light keeps the directions it arrived in, binned: per texel, the arrival bins of what is pending
+/// (CellState::pendingBins) are its emission at each solve; each send's bins are found by rays in the
+/// sending cell (cell_round.h: portalArrivalBins), in the single process and the cell jobs alike.
+class BinnedPortals : public PortalTransfer {
+ public:
+  explicit BinnedPortals(int rays) : rays_(rays) {}
+  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
+                    const EglContext& gl, Context& ctx) const override;
+  int binRays() const override { return rays_; }
+
+ private:
+  int rays_;
 };
 
 /// The model `params.portals` names (its parameters checked by solveCells).

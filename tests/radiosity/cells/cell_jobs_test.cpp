@@ -88,6 +88,13 @@ TEST(CellJobs, DirectionalPortalsGiveTheSingleProcessSolve) {
   expectJobsGiveTheSingleProcessSolve(PortalLight::Directional);
 }
 
+// Binned portals: the bins go through the files too (the state's kept bins, the portal light's bins per
+// texel), and each send's rays depend on the portal and texel only, so the jobs' bins are the single
+// process's.
+TEST(CellJobs, BinnedPortalsGiveTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Binned);
+}
+
 TEST(CellJobFiles, DamageIsNamedAndRefused) {
   TempDir dir;
   fs::create_directories(dir.path);

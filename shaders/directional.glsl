@@ -14,20 +14,33 @@ layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyra
 #define BIN_SECTORS 16
 
 #ifdef BINNED
-// f(ω) of the bins at emissionLobe[first …] for unit ω leaving a surface of normal n (ω · n > 0); the frame as binFrame.
-float binnedFactor(int first, vec3 n, vec3 omega) {
-  vec3 helper = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
-  vec3 t1 = normalize(cross(helper, n));
-  vec3 t2 = cross(n, t1);
-  float a = dot(omega, t1), b = dot(omega, t2);
+#define BIN_VEC4 (BIN_RINGS * BIN_SECTORS / 4)
+// A pyramid node holding binned texels has the lobe (n, −(node + 1)) and the power-weighted mean of its
+// texels' bins (a Lambertian's all ones) at nodeLobe[uNodeBins + node · BIN_VEC4 …]. It stands for them
+// whole only beyond BIN_FAR of its radii, where it looks smaller than about a third of the narrowest
+// bins (the rings near the horizon are 7–10° wide): without node bins every receiver took a binned portal
+// texel by texel, and openings' cells bake took 1.5× the time.
+uniform int uNodeBins;
+uniform vec3 uBinT1, uBinT2;  // the shooter's binFrame (receive.comp only), set from the CPU's
+#define BIN_FAR 10.0
+
+// The bin of unit ω leaving the shooter (ω · n > 0), as arrivalBin of its binFrame.
+int binOf(vec3 omega) {
+  float a = dot(omega, uBinT1), b = dot(omega, uBinT2);
   int ring = min(int(clamp(a * a + b * b, 0.0, 1.0) * float(BIN_RINGS)), BIN_RINGS - 1);
   float phi = atan(b, a);
   if (phi < 0.0) phi += 2.0 * PI;
   int sector = min(int(phi * (float(BIN_SECTORS) / (2.0 * PI))), BIN_SECTORS - 1);
-  int bin = ring * BIN_SECTORS + sector;
-  vec4 four = emissionLobe[first + (bin >> 2)];
-  int c = bin & 3;
-  return c == 0 ? four.x : c == 1 ? four.y : c == 2 ? four.z : four.w;
+  return ring * BIN_SECTORS + sector;
+}
+float component(vec4 four, int c) { return c == 0 ? four.x : c == 1 ? four.y : c == 2 ? four.z : four.w; }
+
+// f(ω) of a binned texel's lobe (0, 0, 0, −(first + 1)) or a binned node's (n, −(node + 1)), n the
+// shooter's normal.
+float binnedFactor(vec4 lobe, vec3 n, vec3 omega) {
+  int bin = binOf(omega), k = int(-lobe.w) - 1;
+  if (dot(lobe.xyz, n) > 0.5) return component(nodeLobe[uNodeBins + k * BIN_VEC4 + (bin >> 2)], bin & 3);
+  return component(emissionLobe[k + (bin >> 2)], bin & 3);
 }
 #endif
 
@@ -58,8 +71,11 @@ float receiverBlur(vec3 v, vec3 n, vec3 ns, float area) {
 // Can a piece of this radius (m) at squared distance r2 stand for its texels as one disk or a few points?
 // Only if its lobe is wider than the piece seen from there: a narrow lobe (a beam through a door) would
 // otherwise be emitted from the piece's centre instead of from where each texel sends it. A node holding
-// binned texels (mixedLobe: (n, −1)) never does, a binned texel always (its bins are wider than it).
+// binned texels only from far off (BIN_FAR), a binned texel always (its bins are wider than it).
 bool lobeResolvesPiece(vec4 lobe, vec3 n, float r2, float radius) {
+#ifdef BINNED
+  if (lobe.w < 0.0) return !(dot(lobe.xyz, n) > 0.5) || r2 >= BIN_FAR * BIN_FAR * radius * radius;
+#endif
   return !(dot(lobe.xyz, n) > 0.0) || lobe.w * r2 >= radius * radius;
 }
 

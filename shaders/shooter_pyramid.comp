@@ -16,6 +16,57 @@ uniform int uLevel;          // >= 1
 uniform int uRegionCount;
 uniform float uTexelRadius;  // half the longer diagonal of one texel, m
 
+#ifdef BINNED
+// The node's bins (directional.glsl): its texels' or children's, weighted by power (a Lambertian's all
+// ones; by area where there is no power), summed in a fixed order.
+void mixNodeBins(int self, int r, ivec2 node) {
+  int out0 = uNodeBins + self * BIN_VEC4;
+  for (int q = 0; q < BIN_VEC4; ++q) nodeLobe[out0 + q] = vec4(0.0);
+  float total = 0.0, totalArea = 0.0;
+  ivec4 rect = regions[r].rect;
+  ivec2 below = uLevel == 1 ? rect.zw - rect.xy : levelDims(rect, uLevel - 1);
+  int base = uLevel == 1 ? 0 : regions[r].levelOffset[uLevel - 1];
+  ivec2 lo = 2 * node, hi = min(lo + 2, below);
+  for (int pass = 0; pass < 2; ++pass)  // by power; again by area when the node has none
+    for (int y = lo.y; y < hi.y; ++y)
+      for (int x = lo.x; x < hi.x; ++x) {
+        vec4 lobe;
+        float w, area;
+        if (uLevel == 1) {
+          int t = texel(rect.xy + ivec2(x, y));
+          if (int(normalPatch[t].w) != uShooter) continue;
+          vec3 b = residual[t].rgb;
+          area = posArea[t].w;
+          w = (b.r + b.g + b.b) * area;
+          lobe = emissionLobe[t];
+        } else {
+          int c = base + y * below.x + x;
+          Node child = nodes[c];
+          vec3 b = child.radiosityRadius.rgb;
+          area = child.centreArea.w;
+          w = (b.r + b.g + b.b) * area;
+          lobe = nodeLobe[c];
+        }
+        if (pass == 1) {
+          if (total > 0.0) continue;
+          w = area;
+        }
+        if (!(w > 0.0)) continue;
+        if (pass == 0) total += w;
+        else totalArea += w;
+        bool binned = lobe.w < 0.0;
+        int k = int(-lobe.w) - 1;
+        int from = uLevel == 1 ? k : uNodeBins + k * BIN_VEC4;
+        for (int q = 0; q < BIN_VEC4; ++q) {
+          vec4 f = !binned ? vec4(1.0) : uLevel == 1 ? emissionLobe[from + q] : nodeLobe[from + q];
+          nodeLobe[out0 + q] += w * f;
+        }
+      }
+  float sum = total > 0.0 ? total : totalArea;
+  for (int q = 0; q < BIN_VEC4; ++q) nodeLobe[out0 + q] = sum > 0.0 ? nodeLobe[out0 + q] / sum : vec4(1.0);
+}
+#endif
+
 void main() {
   int g = int(gl_GlobalInvocationID.x), r = 0;
   for (; r < uRegionCount; ++r) {
@@ -109,6 +160,13 @@ void main() {
   n.moments = vec4(vec2(node << uLevel) + mean, variance);
   nodes[regions[r].levelOffset[uLevel] + g] = n;
 #ifdef DIRECTIONAL
-  nodeLobe[regions[r].levelOffset[uLevel] + g] = mixedLobe(lobes, uShooterNormal);
+  int self = regions[r].levelOffset[uLevel] + g;
+  nodeLobe[self] = mixedLobe(lobes, uShooterNormal);
+#ifdef BINNED
+  if (lobes.second.w > 0.0) {
+    nodeLobe[self] = vec4(uShooterNormal, -float(self + 1));
+    mixNodeBins(self, r, node);
+  }
+#endif
 #endif
 }

@@ -218,9 +218,12 @@ ProgramDefines programDefines(const SolveConfig& params) {
   ProgramDefines d;
   if (params.visibility == Visibility::Hemisphere) d.item = d.receive = {"HEMISPHERE"};
   if (params.directionalEmission) d.receive.push_back("DIRECTIONAL"), d.pyramid.push_back("DIRECTIONAL");
-  // Binned emission in programs of its own: the lobes' programs stay as they were, whose float rounding a
-  // receiver's lamp-shot resampling decision is sensitive to (EmissionLobes' wall beside an emitter).
-  if (params.directionalEmission && !params.emissionBins.empty()) d.receive.push_back("BINNED");
+  // Binned emission in programs of its own, used for binned shooters only: in every shot the larger
+  // program cost openings' cells bake 1.3× the CPU (directional portals on it: 52 → 69 CPU s), and the
+  // lobes' programs stay as they were, whose float rounding a lamp shot's resampling decision is
+  // sensitive to (EmissionLobes' wall beside an emitter).
+  if (params.directionalEmission && !params.emissionBins.empty())
+    d.receive.push_back("BINNED"), d.pyramid.push_back("BINNED");
   return d;
 }
 
@@ -267,8 +270,10 @@ namespace {
 class Solver {
  public:
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
+  // `binned`: the programs for binned shooters (SolveConfig::emissionBins), null without bins.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-         const SolverPrograms::Set& programs, const std::vector<glm::vec4>* emissionLobes)
+         const SolverPrograms::Set& programs, const SolverPrograms::Set* binned,
+         const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene),
         atlas_(atlas),
         params_(params),
@@ -283,6 +288,8 @@ class Solver {
         pickEyesProgram_(programs.pickEyes),
         rescaleProgram_(programs.rescale),
         coverageProgram_(programs.coverage),
+        binnedPyramid_(binned ? &binned->pyramid : nullptr),
+        binnedReceive_(binned ? &binned->receive : nullptr),
         clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
@@ -350,13 +357,16 @@ class Solver {
 
     // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
     const int levels = uploadRegions(l, p, replicas);
-    set(pyramidProgram_, "uShooter", shooter);
-    set(pyramidProgram_, "uRegionCount", baseRegions);  // replicas share their region's pyramid
-    set(pyramidProgram_, "uTexelRadius", l.texelRadius);
-    if (params_.directionalEmission) set(pyramidProgram_, "uShooterNormal", l.normal);
-    glUseProgram(pyramidProgram_.get());
+    const bool binnedShot = binnedReceive_ && hasBins_[shooter];
+    const gl::Program& pyramidProgram = binnedShot ? *binnedPyramid_ : pyramidProgram_;
+    const gl::Program& receiveProgram = binnedShot ? *binnedReceive_ : receiveProgram_;
+    set(pyramidProgram, "uShooter", shooter);
+    set(pyramidProgram, "uRegionCount", baseRegions);  // replicas share their region's pyramid
+    set(pyramidProgram, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission) set(pyramidProgram, "uShooterNormal", l.normal);
+    glUseProgram(pyramidProgram.get());
     for (int k = 1; k <= levels; ++k) {
-      set(pyramidProgram_, "uLevel", k);
+      set(pyramidProgram, "uLevel", k);
       glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
@@ -403,18 +413,23 @@ class Solver {
     clock_.mark("visible lists");
 
     // Gather.
-    set(receiveProgram_, "uShooter", shooter);
-    set(receiveProgram_, "uRegionCount", regions);
-    set(receiveProgram_, "uRegionShare", 1.0f / float(replicas));
-    set(receiveProgram_, "uLampShot", int(lamp));
-    glProgramUniform3fv(receiveProgram_.get(), loc(receiveProgram_, "uEyes"), regions, &eyes[0].x);
-    set(receiveProgram_, "uToShooter", toShooter);
-    set(receiveProgram_, "uShooterNormal", l.normal);
-    if (params_.directionalEmission) set(receiveProgram_, "uShooterLobes", int(hasLobes_[shooter]));
-    set(receiveProgram_, "uTexelU", p.texelU);
-    set(receiveProgram_, "uTexelV", p.texelV);
-    set(receiveProgram_, "uTexelRadius", l.texelRadius);
-    glUseProgram(receiveProgram_.get());
+    set(receiveProgram, "uShooter", shooter);
+    set(receiveProgram, "uRegionCount", regions);
+    set(receiveProgram, "uRegionShare", 1.0f / float(replicas));
+    set(receiveProgram, "uLampShot", int(lamp));
+    glProgramUniform3fv(receiveProgram.get(), loc(receiveProgram, "uEyes"), regions, &eyes[0].x);
+    set(receiveProgram, "uToShooter", toShooter);
+    set(receiveProgram, "uShooterNormal", l.normal);
+    if (params_.directionalEmission) set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
+    if (binnedShot) {  // the shooter's bin frame, as the CPU lays its bins out
+      const BinFrame frame = binFrame(l.normal);
+      set(receiveProgram, "uBinT1", frame.t1);
+      set(receiveProgram, "uBinT2", frame.t2);
+    }
+    set(receiveProgram, "uTexelU", p.texelU);
+    set(receiveProgram, "uTexelV", p.texelV);
+    set(receiveProgram, "uTexelRadius", l.texelRadius);
+    glUseProgram(receiveProgram.get());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -751,6 +766,7 @@ class Solver {
       throw InputError("solver", "too many texels and emission bins for the lobes' float indices");
     std::vector<glm::vec4> data(n + slots * perSlot, glm::vec4(0.0f));
     hasLobes_.assign(atlas_.patches.size(), 0);
+    hasBins_.assign(atlas_.patches.size(), 0);
     if (lobes)
       for (size_t i = 0; i < n; ++i) {
         glm::vec4 lobe = (*lobes)[i];
@@ -761,6 +777,7 @@ class Solver {
         }
         data[i] = lobe;
         if (atlas_.patch[i] >= 0 && lobe != glm::vec4(0.0f)) hasLobes_[atlas_.patch[i]] = 1;
+        if (atlas_.patch[i] >= 0 && lobe.w < 0.0f) hasBins_[atlas_.patch[i]] = 1;
       }
     if (!bins.empty()) std::memcpy(&data[n], bins.data(), bins.size() * sizeof(float));
     emissionLobes_ = gl::makeBuffer(data.size() * sizeof(glm::vec4), data.data());
@@ -769,8 +786,16 @@ class Solver {
     const float zero = 0.0f;
     glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
-    nodeLobes_ = gl::makeBuffer(maxPyramidNodes() * sizeof(glm::vec4), nullptr);
+    // Binned: each node's bins after one lobe per node (shaders/directional.glsl, uNodeBins).
+    const size_t nodes = maxPyramidNodes();
+    nodeLobes_ = gl::makeBuffer(nodes * (bins.empty() ? 1 : 1 + perSlot) * sizeof(glm::vec4), nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodeLobes, nodeLobes_.get());
+    if (!bins.empty()) {
+      if (nodes * (1 + perSlot) >= (size_t(1) << 24))
+        throw InputError("solver", "too many pyramid nodes for binned emission's float indices");
+      set(*binnedPyramid_, "uNodeBins", int(nodes));
+      set(*binnedReceive_, "uNodeBins", int(nodes));
+    }
   }
 
   void uploadGeometry() {
@@ -868,13 +893,18 @@ class Solver {
     for (const gl::Program* p :
          {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_, &rescaleProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
-    set(receiveProgram_, "uItemSize", itemSize_);
+    if (binnedPyramid_) set(*binnedPyramid_, "uAtlasWidth", atlas_.width);
+    for (const gl::Program* receive : {&receiveProgram_, binnedReceive_}) {
+      if (!receive) continue;
+      set(*receive, "uAtlasWidth", atlas_.width);
+      set(*receive, "uItemSize", itemSize_);
+      set(*receive, "uNeighbourhood", params_.neighbourhood);
+      set(*receive, "uPlaneSlack", eyeOffset_);
+      set(*receive, "uFarField", params_.farField);
+      set(*receive, "uMasked", int(!params_.receivers.empty()));
+      set(*receive, "uWriteFlags", int(params_.readLampFlags));
+    }
     set(coverageProgram_, "uItemSize", itemSize_);
-    set(receiveProgram_, "uNeighbourhood", params_.neighbourhood);
-    set(receiveProgram_, "uPlaneSlack", eyeOffset_);
-    set(receiveProgram_, "uFarField", params_.farField);
-    set(receiveProgram_, "uMasked", int(!params_.receivers.empty()));
-    set(receiveProgram_, "uWriteFlags", int(params_.readLampFlags));
     setU(compactProgram_, "uTiles", GLuint(tileCount_));
     setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
     set(selectProgram_, "uPatches", int(atlas_.patches.size()));
@@ -886,6 +916,7 @@ class Solver {
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
       &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_,
       &coverageProgram_;
+  const gl::Program *binnedPyramid_, *binnedReceive_;  ///< for binned shooters; null without bins
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_,
       nodeLobes_;
   gl::Buffer coverage_;  ///< per region and sampled item-buffer column: (covered, open, total) weight
@@ -894,6 +925,7 @@ class Solver {
   gl::Buffer shotGain_;            ///< per texel, what the last shot gave it (rescale_shot.comp)
   gl::Buffer texelFlags_;          ///< per texel, receive.comp's flags (one word when unused)
   std::vector<uint8_t> hasLobes_;  ///< directional: per patch, whether any of its texels has a lobe
+  std::vector<uint8_t> hasBins_;   ///< binned: per patch, whether any of its texels is binned
   gl::Texture items_, distances_, depth_;
   gl::Buffer patches_, stats_, visible_, tiles_, tileList_, patchList_, regions_, nodes_, pending_,
       selection_, eyes_;
@@ -1016,7 +1048,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   auto since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
   };
-  Solver solver(scene, atlas, params, programs.get(params, params.directionalEmission, !params.emissionBins.empty()), emissionLobes);
+  const SolverPrograms::Set& base = programs.get(params, params.directionalEmission);
+  const SolverPrograms::Set* binned =
+      params.directionalEmission && !params.emissionBins.empty() ? &programs.get(params, true, true) : nullptr;
+  Solver solver(scene, atlas, params, base, binned, emissionLobes);
   // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
   // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
   const auto rayShots =

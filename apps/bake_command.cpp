@@ -1,4 +1,4 @@
-// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional]
+// `cpgi bake SCENE -o DIR [--method global|cells] [--cells FILE|auto] [--portals diffuse|directional|binned]
 // [--max-rounds N] [--only-cells A,B | --around X,Y,Z [--depth K]] [--boundary coarse|dark] [--jobs N]
 // [atlas options] [solver options] [decomposition options for --cells auto] [--no-ambient]
 // [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas

@@ -31,7 +31,7 @@ struct CellBakeComparison {
   /// (kBakeLampRays)
   SolverParams solver{.lampRays = 64};
   int maxRounds = 64;
-  PortalLight portals = PortalLight::Directional;  ///< as `bake --method cells` by default (kBakePortalLight)
+  PortalLight portals = PortalLight::Binned;  ///< as `bake --method cells` by default (kBakePortalLight)
   ReferenceParams reference;
 };
 

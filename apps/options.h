@@ -51,12 +51,13 @@ void addTimeLimitOption(CLI::App& cmd, double& seconds);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
 /// The portal light of the command line's cells bakes (bake, its cell jobs, compare-cells --bake) unless
-/// --portals says otherwise: directional. The library's default stays the thesis's diffuse portal. Measured
-/// at the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`, ratio of
-/// means and per-texel RMSE without the reference's noise): openings' room C, lit through an interior window,
-/// 0.965 (21.3 %) diffuse, 0.987 (8.5 %) directional; seed1–3 and spot-door within 0.01 either way; 1.2–1.4×
-/// the CPU seconds.
-inline constexpr PortalLight kBakePortalLight = PortalLight::Directional;
+/// --portals says otherwise: binned. The library's default stays the thesis's diffuse portal. Measured at
+/// the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`, ratio of means
+/// and per-texel RMSE without the reference's noise; bench/RESULTS.md, session 17): openings' room C, lit
+/// through a narrow door, 0.965 (21.3 %) diffuse, 0.984 (8.4 %) directional, 1.006 (4.5 %) binned; the
+/// rooms behind doors in seed1–3 3.4–3.6 % binned where one lobe gave 4.2–4.8 %; 1.04–1.25× the wall
+/// seconds of one lobe (seed2, seed3 1.04–1.06×, seed1 1.19×, openings 1.25×).
+inline constexpr PortalLight kBakePortalLight = PortalLight::Binned;
 /// The lamps' first shot of the command line's bakes (bake, its cell jobs' first shot, compare-cells --bake)
 /// unless --lamp-rays says otherwise: 64 shadow rays per texel and lamp, 16× in penumbrae
 /// (radiosity/lightmap/lamp_light.h). The library's default stays item buffers for every shot, as the thesis.

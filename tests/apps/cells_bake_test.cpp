@@ -139,17 +139,17 @@ TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   }
 }
 
-// The command line's cells bakes default to directional portals (apps/options.h, kBakePortalLight), and so
+// The command line's cells bakes default to binned portals (apps/options.h, kBakePortalLight), and so
 // do the cell jobs of a plan made with the same options: run one after another by `cpgi cell-job`, they
 // give the single-process bake texel for texel.
-TEST(CellsBake, DefaultPortalsAreDirectionalAlsoAsCellJobs) {
+TEST(CellsBake, DefaultPortalsAreBinnedAlsoAsCellJobs) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   const std::string cells = " --method cells --cells '" + scene + "' --texels-per-quad 4 --unshot 0.05 -q";
   const CliRun bake = cpgi(dir, "bake '" + scene + "' -o '" + (dir / "single") + "'" + cells);
   ASSERT_EQ(bake.status, 0) << bake.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "single/report.json"))["portal_mode"], "directional");
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "single/report.json"))["portal_mode"], "binned");
 
   const std::string plan = "'" + (dir / "plan") + "'";
   for (const std::string& step :
@@ -168,7 +168,7 @@ TEST(CellsBake, DefaultPortalsAreDirectionalAlsoAsCellJobs) {
   }
   const CliRun gather = cpgi(dir, "cell-job " + plan + " --gather -q");
   ASSERT_EQ(gather.status, 0) << gather.err;
-  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "jobs/report.json"))["portal_mode"], "directional");
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "jobs/report.json"))["portal_mode"], "binned");
   const CliRun same = cpgi(dir, "compare-light '" + (dir / "jobs") + "' '" + (dir / "single") + "' --json");
   ASSERT_EQ(same.status, 0) << same.err;
   EXPECT_EQ(nlohmann::json::parse(same.out)["rel_rmse"].get<double>(), 0.0);

@@ -44,6 +44,12 @@ TEST(Options, FlagsSetTheLibrariesFields) {
   EXPECT_DOUBLE_EQ(decompose.voxelSize, 0.2);
   EXPECT_DOUBLE_EQ(decompose.sealRadius, 0.1);
   EXPECT_FLOAT_EQ(atlas.density, 4.0f);
+  CellSolveParams binned;
+  ASSERT_TRUE(
+      parse("--portals binned --portal-rays 512", [&](CLI::App& app) { addCellOptions(app, binned); }));
+  EXPECT_EQ(binned.portals, PortalLight::Binned);
+  EXPECT_EQ(binned.portalBinRays, 512);
+  EXPECT_FALSE(parse("--portal-rays 8", [&](CLI::App& app) { addCellOptions(app, binned); }));
   SolverParams other;
   EXPECT_FALSE(parse("--visibility cube", [&](CLI::App& app) { addSolverOptions(app, other); }));
   CellSolveParams spot;

@@ -178,6 +178,23 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
 
 namespace {
 
+// `addOwn()` and `addSend(send)` for each of `arriving` in the solver's order: a waiting cell's own share
+// first, otherwise by sending cell with its own share at its own index.
+template <class Own, class Send>
+void inSolverOrder(const CellRound& own, const std::vector<const PortalSend*>& arriving, Own addOwn,
+                   Send addSend) {
+  bool ownAdded = !own.solved;
+  if (ownAdded) addOwn();
+  for (const PortalSend* send : arriving) {
+    if (!ownAdded && send->from > own.cell) {
+      addOwn();
+      ownAdded = true;
+    }
+    addSend(*send);
+  }
+  if (!ownAdded) addOwn();
+}
+
 // Per texel, `ownShare` and each send's entries added in the solver's order: a waiting cell's own share
 // first, otherwise by sending cell with its own share at its own index. `entry(send, k)` is what a send's
 // k-th exitance entry adds (at that entry's texel), for k below `count(send)`.
@@ -186,19 +203,14 @@ std::vector<T> gatherInSolverOrder(const CellRound& own, const std::vector<T>& o
                                    const std::vector<const PortalSend*>& arriving, size_t texels, Count count,
                                    Entry entry) {
   std::vector<T> sum(texels, T(0.0f));
-  auto addOwn = [&] {
-    for (size_t i = 0; i < ownShare.size() && i < texels; ++i) sum[i] += ownShare[i];
-  };
-  bool ownAdded = !own.solved;
-  if (ownAdded) addOwn();
-  for (const PortalSend* send : arriving) {
-    if (!ownAdded && send->from > own.cell) {
-      addOwn();
-      ownAdded = true;
-    }
-    for (size_t k = 0; k < count(*send); ++k) sum[size_t(send->exitance[k].first)] += entry(*send, k);
-  }
-  if (!ownAdded) addOwn();
+  inSolverOrder(
+      own, arriving,
+      [&] {
+        for (size_t i = 0; i < ownShare.size() && i < texels; ++i) sum[i] += ownShare[i];
+      },
+      [&](const PortalSend& send) {
+        for (size_t k = 0; k < count(send); ++k) sum[size_t(send.exitance[k].first)] += entry(send, k);
+      });
   return sum;
 }
 
@@ -213,26 +225,21 @@ std::vector<glm::vec3> gatherPending(const CellRound& own, const std::vector<con
 
 std::map<int32_t, ArrivalBins> gatherPendingBins(const CellRound& own,
                                                  const std::vector<const PortalSend*>& arriving) {
-  // In the solver's order, as gatherInSolverOrder, so that jobs and one process add the same floats.
+  // In the solver's order, so that jobs and one process add the same floats.
   std::map<int32_t, ArrivalBins> sum;
   auto add = [&](int32_t t, const ArrivalBins& b) {
     ArrivalBins& into = sum.try_emplace(t, ArrivalBins{}).first->second;
     for (size_t i = 0; i < b.size(); ++i) into[i] += b[i];
   };
-  auto addOwn = [&] {
-    for (const auto& [t, b] : own.keptBins) add(t, b);
-  };
-  bool ownAdded = !own.solved;
-  if (ownAdded) addOwn();
-  for (const PortalSend* send : arriving) {
-    if (!ownAdded && send->from > own.cell) {
-      addOwn();
-      ownAdded = true;
-    }
-    for (size_t k = 0; k < std::min(send->bins.size(), send->exitance.size()); ++k)
-      add(send->exitance[k].first, send->bins[k]);
-  }
-  if (!ownAdded) addOwn();
+  inSolverOrder(
+      own, arriving,
+      [&] {
+        for (const auto& [t, b] : own.keptBins) add(t, b);
+      },
+      [&](const PortalSend& send) {
+        for (size_t k = 0; k < std::min(send.bins.size(), send.exitance.size()); ++k)
+          add(send.exitance[k].first, send.bins[k]);
+      });
   return sum;
 }
 

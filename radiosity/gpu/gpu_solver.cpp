@@ -560,10 +560,14 @@ class Solver {
     return k;
   }
 
-  // Nodes the largest shooter's pyramids need (levels 1 and up, all regions).
-  size_t maxPyramidNodes() const {
+  // Nodes the largest shooter's pyramids need (levels 1 and up, all regions); of the patches flagged in
+  // `only` when given.
+  size_t maxPyramidNodes(const std::vector<uint8_t>* only = nullptr) const {
     size_t most = 0;
-    for (const ShooterLayout& l : allLayouts()) {
+    const std::vector<ShooterLayout> all = allLayouts();
+    for (size_t i = 0; i < all.size(); ++i) {
+      if (only && !(*only)[i % layouts_.size()]) continue;
+      const ShooterLayout& l = all[i];
       size_t n = 0;
       for (const glm::ivec4& c : l.rects) {
         const glm::ivec2 size(c.z - c.x, c.w - c.y);
@@ -786,13 +790,14 @@ class Solver {
     const float zero = 0.0f;
     glClearNamedBufferData(arrivals_.get(), GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kArrivals, arrivals_.get());
-    // Binned: each node's bins after one lobe per node (shaders/directional.glsl, uNodeBins).
-    const size_t nodes = maxPyramidNodes();
-    nodeLobes_ = gl::makeBuffer(nodes * (bins.empty() ? 1 : 1 + perSlot) * sizeof(glm::vec4), nullptr);
+    // Binned: after one lobe per node, the bins of the nodes of a binned shooter (shaders/directional.glsl,
+    // uNodeBins), sized for the largest binned shooter only (portals, not a merged floor).
+    const size_t nodes = maxPyramidNodes(), binNodes = bins.empty() ? 0 : maxPyramidNodes(&hasBins_);
+    nodeLobes_ = gl::makeBuffer((nodes + binNodes * perSlot) * sizeof(glm::vec4), nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodeLobes, nodeLobes_.get());
     if (!bins.empty()) {
-      if (nodes * (1 + perSlot) >= (size_t(1) << 24))
-        throw InputError("solver", "too many pyramid nodes for binned emission's float indices");
+      if (binNodes >= (size_t(1) << 24) || nodes + binNodes * perSlot >= (size_t(1) << 31))
+        throw InputError("solver", "a binned shooter too large for binned emission's indices");
       set(*binnedPyramid_, "uNodeBins", int(nodes));
       set(*binnedReceive_, "uNodeBins", int(nodes));
     }

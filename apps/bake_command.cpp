@@ -71,7 +71,7 @@ struct BakeOptions {
   }();
   decomp::DecomposeParams decompose;           ///< for --cells auto
   bool noAmbient = false;                      ///< leave out the ambient term (radiosity/gpu/ambient.h)
-  double ambientShare = kDefaultAmbientShare;  ///< global method: the stop per cell (ambientShares)
+  double ambientShare = kDefaultAmbientShare;  ///< the stop per cell (ambientShares; cells: round_stop.h)
   LoadOptions load;                            ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;                      ///< go on when nothing lights the scene
   SkyRequest sky;                              ///< --sky, --sun, --ground (core/sky.h); none by default
@@ -229,6 +229,15 @@ void requireConvergence(const BakeOptions& o, const Scene& scene, const Lightmap
   throw InputError(o.scene, s.str());
 }
 
+// The cells' parameters of a bake, its cell jobs and their gather alike: the same stop per cell and solver.
+CellSolveParams cellSolveParams(const BakeOptions& o) {
+  CellSolveParams params = o.cellParams;
+  params.maxAmbientShare = o.ambientShare;
+  params.solver = o.solver;
+  params.atlas = o.atlas;
+  return params;
+}
+
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 // A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
 // `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/gpu/ambient.h,
@@ -258,9 +267,7 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
       };
     return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, perCell);
   }
-  CellSolveParams params = o.cellParams;
-  params.solver = o.solver;
-  params.atlas = o.atlas;
+  CellSolveParams params = cellSolveParams(o);
   params.deadline = deadline;
   if (o.gather) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
@@ -389,8 +396,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["energy"] = energyReport(s.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
-  report["ambient_share_target"] =
-      o.method == "cells" || levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
+  report["ambient_share_target"] = levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
   report["stop_checks"] = s.stopChecks;
   nlohmann::json shares = nlohmann::json::object();
   for (size_t c = 0; c < f.ambientShares.size(); ++c)
@@ -455,9 +461,7 @@ int runCellJobStage(const BakeOptions& o) {
   if (!o.onlyCells.empty() || !o.around.empty())
     throw InputError("--plan", "cell jobs bake the whole cell graph: leave out --only-cells and --around");
   BakeInput in = loadBakeInput(o, ctx);
-  CellSolveParams params = o.cellParams;
-  params.solver = o.solver;
-  params.atlas = o.atlas;
+  const CellSolveParams params = cellSolveParams(o);
   if (o.jobRound > 0) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
     std::vector<int> run;

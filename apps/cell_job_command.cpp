@@ -41,6 +41,7 @@ int printStatus(const CellJobOptions& o, const CellJobPlan& plan) {
     for (const CellJobRoundStatus& r : s.rounds)
       rounds.push_back({{"round", r.round},
                         {"unshot_w", r.unshot},
+                        {"target_w", r.target},
                         {"solved_cells", r.solved},
                         {"shots", r.shots},
                         {"job_seconds", r.jobSeconds},

@@ -83,6 +83,7 @@ nlohmann::json bake(const std::string& scene, const CellsToBake& cells, const Li
   solve.atlas = params.atlas;
   solve.maxRounds = params.maxRounds;
   solve.portals = params.portals;
+  solve.maxAmbientShare = kDefaultAmbientShare;  // `cpgi bake`'s stop per cell
   const Clock::time_point start = Clock::now();
   SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
   // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/gpu/ambient.h).

@@ -273,9 +273,9 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
   addChecked(
       cmd, OptionScope{}, "ambient share", ambientShare,
-      "Global method: at the unshot stop, shoot on until in every cell (room) the ambient term would be "
-      "at most this share of its light, so that a room lit through doors is not left mostly to the "
-      "flat estimate (0: the unshot stop alone)",
+      "At the unshot stop, shoot on (cells: run more rounds) until in every cell (room) the ambient term "
+      "would be at most this share of its light, so that a room lit through doors is not left mostly to "
+      "the flat estimate (0: the unshot stop alone)",
       within(0.0, 1.0));
 }
 

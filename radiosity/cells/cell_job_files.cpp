@@ -122,7 +122,7 @@ class Reader {
 void putFigures(Writer& w, const CellRound& r) {
   w.put(int32_t(r.cell));
   w.put(uint8_t(r.solved));
-  w.put(r.keptPower);
+  w.put(r.keptPower), w.put(r.keptRgb), w.put(r.reflectorGain);
   w.put(int32_t(r.shots));
   for (double v : {r.seconds, r.shot, r.received, r.escaped, r.created, r.worstShotGain, r.absorbed})
     w.put(v);
@@ -133,6 +133,8 @@ CellRound getFigures(Reader& in) {
   r.cell = in.get<int32_t>();
   r.solved = in.get<uint8_t>() != 0;
   r.keptPower = in.get<double>();
+  r.keptRgb = in.get<glm::dvec3>();
+  r.reflectorGain = in.get<double>();
   r.shots = in.get<int32_t>();
   for (double* v : {&r.seconds, &r.shot, &r.received, &r.escaped, &r.created, &r.worstShotGain, &r.absorbed})
     *v = in.get<double>();
@@ -159,7 +161,7 @@ std::map<int32_t, ArrivalBins> getTexelBins(Reader& in) {
 void putSendFigures(Writer& w, const PortalSend& s) {
   w.put(int32_t(s.portal)), w.put(int32_t(s.from)), w.put(int32_t(s.to));
   w.put(s.scale);
-  w.put(s.watts), w.put(s.arriving);
+  w.put(s.watts), w.put(s.arriving), w.put(s.arrivingRgb);
 }
 
 PortalSend getSendFigures(Reader& in) {
@@ -167,6 +169,7 @@ PortalSend getSendFigures(Reader& in) {
   s.portal = in.get<int32_t>(), s.from = in.get<int32_t>(), s.to = in.get<int32_t>();
   s.scale = in.get<glm::vec3>();
   s.watts = in.get<double>(), s.arriving = in.get<double>();
+  s.arrivingRgb = in.get<glm::dvec3>();
   return s;
 }
 

@@ -24,7 +24,9 @@
 
 namespace cpgi {
 
-inline constexpr uint32_t kCellJobFormat = 3;  ///< 2: directional portals' moments; 3: binned portals' bins
+/// 2: directional portals' moments; 3: binned portals' bins; 4: the figures of the stop per cell
+/// (round_stop.h)
+inline constexpr uint32_t kCellJobFormat = 4;
 
 enum class CellJobRecord : uint32_t {
   CellState = 1,       ///< a cell's own light after a round: kept, carried, radiosity gained

@@ -13,6 +13,7 @@
 #include "radiosity/cells/cell_job_files.h"
 #include "radiosity/cells/cell_round.h"
 #include "radiosity/cells/portal_transfer.h"
+#include "radiosity/cells/round_stop.h"
 
 namespace cpgi {
 namespace fs = std::filesystem;
@@ -89,8 +90,27 @@ double unshotAfter(const fs::path& dir, const CellJobPlan& plan, int round,
   return unshot;
 }
 
-bool roundNeeded(const CellJobPlan& plan, int round, double unshotBefore) {
-  return plan.emitted > 0.0 && unshotBefore > plan.target && round <= plan.maxRounds;
+// The rounds' stop as solveCells keeps it (round_stop.h), from the plan's figures.
+RoundStop planStop(const CellJobPlan& plan) {
+  return RoundStop(plan.target, plan.maxAmbientShare, plan.stopSurfaces, plan.openings);
+}
+
+// Whether round `round` runs, after rounds that left `unshotBefore` W unshot (`stop` fed their figures):
+// the test of solveCells's loop, in its order.
+bool roundNeeded(const CellJobPlan& plan, int round, double unshotBefore, RoundStop& stop) {
+  return plan.emitted > 0.0 && round <= plan.maxRounds && stop.another(unshotBefore);
+}
+
+// Round `round` (>= 1) from its summaries into `stop`; returns the power unshot after it.
+double addRoundToStop(const fs::path& dir, const CellJobPlan& plan, int round, RoundStop& stop,
+                      std::vector<CellRoundSummary>* summaries = nullptr) {
+  std::vector<CellRoundSummary> all;
+  const double unshot = unshotAfter(dir, plan, round, &all);
+  std::vector<const CellRound*> figures;
+  for (const CellRoundSummary& s : all) figures.push_back(&s.figures);
+  stop.addRound(figures);
+  if (summaries) *summaries = std::move(all);
+  return unshot;
 }
 
 // Cell `c`'s pending light for round `round`: its own state and the portal light its neighbours sent it
@@ -169,9 +189,19 @@ void writeCellJobPlan(const fs::path& dir, const CellJobPlan& plan) {
                       {"max_rounds", plan.maxRounds},
                       {"global_patches", plan.globalPatches},
                       {"cells", nlohmann::json::array()}};
-  for (size_t c = 0; c < plan.cells.size(); ++c)
-    j["cells"].push_back(
-        {{"name", plan.cells[c]}, {"texels", plan.texels[c]}, {"neighbours", plan.neighbours[c]}});
+  for (size_t c = 0; c < plan.cells.size(); ++c) {
+    const CellStopSurfaces& s = plan.stopSurfaces[c];
+    j["cells"].push_back({{"name", plan.cells[c]},
+                          {"texels", plan.texels[c]},
+                          {"neighbours", plan.neighbours[c]},
+                          {"area_m2", s.area},
+                          {"albedo_area_m2", {s.albedoArea.r, s.albedoArea.g, s.albedoArea.b}},
+                          {"reflector_albedo_area_m2",
+                           {s.reflectorAlbedoArea.r, s.reflectorAlbedoArea.g, s.reflectorAlbedoArea.b}}});
+  }
+  j["max_ambient_share"] = plan.maxAmbientShare;
+  j["openings"] = nlohmann::json::array();
+  for (const AmbientOpening& o : plan.openings) j["openings"].push_back({o.a, o.b, o.area});
   j["first_shot_groups"] = nlohmann::json::array();
   for (const FirstShotGroup& g : plan.firstShotGroups)
     j["first_shot_groups"].push_back({{"cell", g.cell}, {"patches", g.patches}});
@@ -211,6 +241,23 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
       plan.neighbours.push_back(c.at("neighbours").get<std::vector<int>>());
       for (int n : plan.neighbours.back())
         if (n < 0 || n >= int(j.at("cells").size())) throw InputError(file, "a neighbour that is no cell");
+      CellStopSurfaces s;
+      s.area = c.at("area_m2").get<double>();
+      const auto rgb = [&](const char* key) {
+        const std::vector<double> v = c.at(key).get<std::vector<double>>();
+        if (v.size() != 3) throw InputError(file, std::string(key) + " is not three numbers");
+        return glm::dvec3(v[0], v[1], v[2]);
+      };
+      s.albedoArea = rgb("albedo_area_m2");
+      s.reflectorAlbedoArea = rgb("reflector_albedo_area_m2");
+      plan.stopSurfaces.push_back(s);
+    }
+    plan.maxAmbientShare = j.at("max_ambient_share").get<double>();
+    for (const nlohmann::json& o : j.at("openings")) {
+      const AmbientOpening opening{o.at(0).get<size_t>(), o.at(1).get<size_t>(), o.at(2).get<double>()};
+      if (opening.a >= plan.cells.size() || opening.b >= plan.cells.size())
+        throw InputError(file, "an opening between cells that are not in the plan");
+      plan.openings.push_back(opening);
     }
     for (const nlohmann::json& g : j.at("first_shot_groups")) {
       plan.firstShotGroups.push_back({g.at("cell").get<int>(), g.at("patches").get<std::vector<int>>()});
@@ -241,7 +288,10 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
     plan.cells.push_back(graph.cells[c].name);
     plan.texels.push_back(cells[c].atlas.texelCount());
     plan.neighbours.push_back(neighboursOf(graph, int(c)));
+    plan.stopSurfaces.push_back(cellStopSurfaces(cells[c]));
   }
+  plan.maxAmbientShare = params.maxAmbientShare;
+  plan.openings = cellOpenings(graph);
   plan.firstShotGroups = firstShotGroups(scene, firstShotReceivers(global, cellOf), cellOf);
   fs::create_directories(dir);
   for (const fs::directory_entry& e : fs::directory_iterator(dir))
@@ -343,13 +393,21 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
                                                        std::to_string(graph.cells.size()));
   if (round < 1) throw InputError("round", "cell job rounds count from 1");
   requireFirstShotSummed(dir, plan);
-  const double before = round == 1 ? plan.emitted : unshotAfter(dir, plan, round - 1);
-  if (!roundNeeded(plan, round, before))
+  // The rounds before, replayed from their summaries: the unshot power and the stop's target now.
+  RoundStop stop = planStop(plan);
+  double before = plan.emitted;
+  bool needed = true;
+  for (int r = 1; r <= round && needed; ++r) {
+    needed = roundNeeded(plan, r, before, stop);
+    if (needed && r < round) before = addRoundToStop(dir, plan, r, stop);
+  }
+  if (!needed)
     throw InputError(roundDir(dir, round).string(), "the solve needs no round " + std::to_string(round) +
                                                         " (converged, or past the maximum rounds): gather");
   SolveControls controls;
   controls.readTransfer = true;
-  const SolverParams settings = roundBudget(params.solver, plan.target, before, controls, plan.globalPatches);
+  const SolverParams settings =
+      roundBudget(params.solver, stop.target(), before, plan.emitted, controls, plan.globalPatches);
 
   // The cells run, their neighbours (whose atlases the portal links need) and the neighbours' neighbours:
   // a cell's atlas holds a patch for each of its portals, so a neighbour's is the whole graph's only when
@@ -384,7 +442,7 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
                            " texels here, " + std::to_string(plan.texels[size_t(c)]) + " in the plan");
     gatherFromFiles(dir, plan, round, c, s);
     CellRound r;
-    if (cellSolvesRound(s, plan.target)) {
+    if (cellSolvesRound(s, stop.target())) {
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
       auto t = ctx.time("cells: solve");
       const SolveResult solved = transfer->solve(k, s, settings, controls, gl, ctx);
@@ -413,8 +471,9 @@ CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
   status.firstShotSummed = plan.firstShotSummed;
   if (!plan.firstShotSummed) return status;
   double unshot = plan.emitted;
+  RoundStop stop = planStop(plan);
   for (int round = 1;; ++round) {
-    if (!roundNeeded(plan, round, unshot)) {
+    if (!roundNeeded(plan, round, unshot, stop)) {
       status.nextRound = 0;
       return status;
     }
@@ -423,8 +482,9 @@ CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
       if (!fs::exists(cellSummaryFile(dir, round, int(c)))) status.missing.push_back(int(c));
     if (!status.missing.empty()) return status;
     std::vector<CellRoundSummary> summaries;
-    unshot = unshotAfter(dir, plan, round, &summaries);
     CellJobRoundStatus r;
+    r.target = stop.target();
+    unshot = addRoundToStop(dir, plan, round, stop, &summaries);
     r.round = round;
     r.unshot = unshot;
     for (const CellRoundSummary& s : summaries) {
@@ -456,11 +516,12 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
   addFirstShotBookkeeping(CellFirstShot{shot.absorbed, shot.landed, shot.emitted, shot.emission}, result);
   double unshot = plan.emitted;
   int& rounds = result.perCell->rounds;
-  while (roundNeeded(plan, rounds + 1, unshot)) {
+  RoundStop stop = planStop(plan);
+  while (roundNeeded(plan, rounds + 1, unshot, stop)) {
     const int round = ++rounds;
     std::vector<CellRound> states(cells.size());
     std::vector<CellRoundSummary> summaries;
-    unshot = unshotAfter(dir, plan, round, &summaries);
+    unshot = addRoundToStop(dir, plan, round, stop, &summaries);
     std::vector<const PortalSend*> sends;
     for (size_t c = 0; c < cells.size(); ++c) {
       states[c] = readCellState(cellStateFile(dir, round, int(c)), round, int(c));
@@ -470,6 +531,7 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
     }
     for (size_t c = 0; c < cells.size(); ++c) gatherFromFiles(dir, plan, round + 1, int(c), cells[c]);
   }
+  result.stopChecks = stop.checks();
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -26,13 +26,14 @@
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/cells/first_shot_groups.h"
+#include "radiosity/cells/round_stop.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {
 
-inline constexpr int kCellJobPlanVersion = 2;
+inline constexpr int kCellJobPlanVersion = 3;  ///< 3: the stop per cell's figures (round_stop.h)
 
 /// plan.json: what every job and the gather need besides the scene and the bake's options.
 struct CellJobPlan {
@@ -48,6 +49,11 @@ struct CellJobPlan {
   std::vector<size_t> texels;                ///< per cell, valid texels of its atlas (a job checks its own)
   std::vector<std::vector<int>> neighbours;  ///< per cell, the cells across its portals (ascending)
   std::vector<FirstShotGroup> firstShotGroups;  ///< the first shot's emitter groups, in summing order
+  /// The stop per cell (radiosity/cells/round_stop.h): its share (0: the target alone), each cell's
+  /// surfaces and the openings between cells, so that the driver decides it from the summaries alone.
+  double maxAmbientShare = 0.0;
+  std::vector<CellStopSurfaces> stopSurfaces;  ///< per cell
+  std::vector<AmbientOpening> openings;
 };
 
 void writeCellJobPlan(const std::filesystem::path& dir, const CellJobPlan& plan);
@@ -90,6 +96,7 @@ void runCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, int 
 struct CellJobRoundStatus {
   int round = 0;
   double unshot = 0.0;  ///< W after it
+  double target = 0.0;  ///< the unshot power (W) it was run towards (lowered by the stop per cell)
   int solved = 0, shots = 0;
   double jobSeconds = 0.0, maxJobSeconds = 0.0;  ///< Σ and max over cells
   uint64_t portalBytes = 0;

@@ -34,6 +34,7 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
     const glm::vec3 e = solved.incident[ft] * send.scale;
     send.exitance.push_back({tt, e});
     send.arriving += (double(e.r) + e.g + e.b) * to.area[tt];
+    send.arrivingRgb += texelPower(e, to.area[tt]);
   }
   send.watts = sent.r + sent.g + sent.b;
   // Directional portals: the moments go along in world coordinates (the far side's normal is this side's
@@ -61,15 +62,34 @@ double cellPower(const std::vector<glm::vec3>& exitance, const LightmapAtlas& at
   return sum;
 }
 
+glm::dvec3 cellPowerRgb(const std::vector<glm::vec3>& exitance, const LightmapAtlas& atlas) {
+  glm::dvec3 sum(0.0);
+  for (size_t i = 0; i < exitance.size(); ++i)
+    if (atlas.patch[i] >= 0) sum += texelPower(exitance[i], atlas.area[i]);
+  return sum;
+}
+
+std::vector<char> reflectorTexels(const CellState& s) {
+  const std::vector<char> onPortal = portalPatchFlags(s);
+  std::vector<char> reflector(s.atlas.texelCount(), 0);
+  for (size_t t = 0; t < reflector.size(); ++t) {
+    const int p = s.atlas.patch[t];
+    if (p < 0 || onPortal[size_t(p)]) continue;
+    reflector[t] = !s.cs.scene.materials[s.atlas.patches[size_t(p)].material].isEmitter();
+  }
+  return reflector;
+}
+
 bool cellSolvesRound(const CellState& s, double target) {
   return cellPower(s.pending, s.atlas) > 1e-6 * target;
 }
 
-SolverParams roundBudget(const SolverParams& settings, double target, double unshot, SolveControls& controls,
-                         size_t globalPatches) {
+SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
+                         SolveControls& controls, size_t globalPatches) {
   SolverParams round = settings;
   round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
   controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
+  controls.strongShotPower = settings.strongShotFraction * emitted;
   return round;
 }
 
@@ -120,6 +140,7 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   r.kept = solved.residual;
   r.carried = solved.residual;
   r.keptPower = cellPower(r.kept, s.atlas);
+  r.keptRgb = cellPowerRgb(r.kept, s.atlas);
   // A texel's residual is the part of its pending exitance it did not shoot (portal texels have albedo 0
   // and gain none), so its moments (and bins) are the pending ones scaled by the same share.
   for (const auto& [t, bins] : s.pendingBins) {
@@ -142,6 +163,10 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   if (!s.boundary) {
     r.radiosity.resize(s.atlas.texelCount());
     for (size_t t = 0; t < r.radiosity.size(); ++t) r.radiosity[t] = solved.radiosity[t] - s.carried[t];
+    const std::vector<char> reflector = reflectorTexels(s);
+    for (size_t t = 0; t < r.radiosity.size(); ++t)
+      if (reflector[t])
+        r.reflectorGain += (double(r.radiosity[t].r) + r.radiosity[t].g + r.radiosity[t].b) * s.atlas.area[t];
   }
   double collected = 0.0;
   std::unique_ptr<RayScene> rays;
@@ -173,6 +198,7 @@ CellRound waitingCellRound(size_t c, const CellState& s) {
   r.keptMoments = s.pendingMoments;
   r.keptBins = s.pendingBins;
   r.keptPower = cellPower(r.kept, s.atlas);
+  r.keptRgb = cellPowerRgb(r.kept, s.atlas);
   return r;
 }
 

@@ -43,6 +43,7 @@ struct PortalSend {
   glm::vec3 scale{0.0f};  ///< exitance = sending side's irradiance × scale (power through the opening kept)
   double watts = 0.0;     ///< power collected on the sending side (W, R + G + B)
   double arriving = 0.0;  ///< power of `exitance` over the receiving texels (W, R + G + B)
+  glm::dvec3 arrivingRgb{0.0};  ///< the same per channel (W), for the receiving cell's stop (round_stop.h)
 };
 
 /// What one cell's round leaves: its own share of the next round's pending light and what it sends.
@@ -57,6 +58,10 @@ struct CellRound {
   std::vector<glm::vec3> radiosity;  ///< per cell texel: radiosity gained this round (solved cells only)
   std::vector<PortalSend> sends;     ///< solved cells only, in link order (portal, then A→B before B→A)
   double keptPower = 0.0;            ///< power of `kept` (W, R + G + B)
+  glm::dvec3 keptRgb{0.0};           ///< the same per channel (W), for the stop (round_stop.h)
+  /// Σ area × (R + G + B) of `radiosity` over the cell's own texels that do not emit (W): its reflectors'
+  /// light gained this round, for the stop.
+  double reflectorGain = 0.0;
   // The solve's figures (SolveResult), for the bookkeeping.
   int shots = 0;
   double seconds = 0.0, shot = 0.0, received = 0.0, escaped = 0.0, created = 0.0, worstShotGain = 0.0;
@@ -65,6 +70,10 @@ struct CellRound {
 
 /// Σ (R + G + B) × area over the valid texels of `atlas` (W).
 double cellPower(const std::vector<glm::vec3>& exitance, const LightmapAtlas& atlas);
+/// Σ exitance × area over the valid texels of `atlas` per channel (W).
+glm::dvec3 cellPowerRgb(const std::vector<glm::vec3>& exitance, const LightmapAtlas& atlas);
+/// Per texel of `s.atlas`, 1 where it is the cell's own (not a portal's) and its material does not emit.
+std::vector<char> reflectorTexels(const CellState& s);
 
 /// Whether a cell holding `s.pending` solves in a round of the scene's target unshot power `target` (W):
 /// a cell holding a negligible share waits (its light stays pending, counted as unshot).
@@ -75,9 +84,10 @@ bool cellSolvesRound(const CellState& s, double target);
 /// (`unshot`: the power unshot everywhere before the round, the emitted power before the first), or as
 /// soon as no patch holds more than its share of it (half the budget over the scene's `globalPatches`).
 /// A cell lit only through a door must not be solved to the scene's fraction of its own small input: a
-/// room of many small patches would then take more shots than the whole scene.
-SolverParams roundBudget(const SolverParams& settings, double target, double unshot, SolveControls& controls,
-                         size_t globalPatches);
+/// room of many small patches would then take more shots than the whole scene. For the same reason a
+/// shot is strong (more eyes) by the scene's `emitted` power (W), not by the cell's input.
+SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
+                         SolveControls& controls, size_t globalPatches);
 
 /// Cell `c`'s round after its solve `solved` (of `s`, its pending light as the atlas's emission): its
 /// residual kept, its radiosity gained, and through each of `links` leaving it, the irradiance collected

@@ -12,6 +12,7 @@
 #include "radiosity/cells/cell_round.h"
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/portal_transfer.h"
+#include "radiosity/cells/round_stop.h"
 
 namespace cpgi {
 namespace {
@@ -213,14 +214,16 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   int& rounds = result.perCell->rounds;
   double unshot = emitted;
   double done = 0.0;  // the "cells" progress: unshot power on a log scale from all to the target
-  while (emitted > 0.0 && unshot > target && rounds < params.maxRounds) {
+  RoundStop stop = roundStop(cells, graph, target, params.maxAmbientShare);
+  while (emitted > 0.0 && rounds < params.maxRounds && stop.another(unshot)) {
     if (std::chrono::steady_clock::now() >= params.deadline) {
       result.timedOut = true;
       break;
     }
     ++rounds;
-    const SolverParams settings = roundBudget(params.solver, target, unshot, controls, global.patches.size());
-    const std::vector<size_t> active = activeCells(cells, target);
+    const SolverParams settings =
+        roundBudget(params.solver, stop.target(), unshot, emitted, controls, global.patches.size());
+    const std::vector<size_t> active = activeCells(cells, stop.target());
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =
         solveRound(graph, rounds, cells, active, links, settings, controls, *transfer, workers, ctx);
@@ -229,10 +232,12 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
       result.timedOut = result.timedOut || round[c].timedOut;
     }
     unshot = endRound(cells, round);
+    stop.addRound(inGraphOrder(round));
     done = std::clamp(std::log(std::max(unshot / emitted, 1e-12)) / std::log(params.solver.unshotFraction),
                       0.0, 1.0);
     ctx.progress("cells", done, "round " + std::to_string(rounds));
   }
+  result.stopChecks = stop.checks();
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -68,6 +68,10 @@ struct CellSolveParams {
   /// flight stays pending, counted as unshot, and the result has SolveResult::timedOut. The direct step
   /// (the emitters' first shot) always runs.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// The stop per cell (radiosity/cells/round_stop.h): at the unshot target, rounds go on while in some
+  /// cell the ambient term would be more than this share of its light (bake --ambient-share); 0: the
+  /// target alone.
+  double maxAmbientShare = 0.0;
 };
 
 /// Solves the scene cell by cell into `global` (an atlas of the whole scene); the result's perCell holds

@@ -4,6 +4,47 @@
 
 namespace cpgi {
 
+std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
+                                      const std::vector<AmbientOpening>& openings) {
+  const size_t count = rooms.size();
+  std::vector<double> portals(count, 0.0);
+  std::vector<glm::dvec3> albedo(count, glm::dvec3(0.0));
+  for (size_t c = 0; c < count; ++c)
+    if (rooms[c].area > 0.0) albedo[c] = rooms[c].albedoArea / rooms[c].area;
+  for (const AmbientOpening& o : openings) portals[o.a] += o.area, portals[o.b] += o.area;
+  // transfer[c][d]: the share of the power leaving room c's surfaces that lands in room d.
+  std::vector<std::vector<double>> transfer(count, std::vector<double>(count, 0.0));
+  for (size_t c = 0; c < count; ++c) transfer[c][c] = 1.0;
+  for (const AmbientOpening& o : openings)
+    for (const auto& [from, to] : {std::pair{o.a, o.b}, std::pair{o.b, o.a}}) {
+      const double enclosure = rooms[from].area + portals[from];
+      if (!(enclosure > 0.0)) continue;
+      transfer[from][to] += o.area / enclosure;
+      transfer[from][from] -= o.area / enclosure;
+    }
+  // The series: what leaves (unshot, then each bounce's reflection) lands by `transfer`, is absorbed or
+  // reflected again.
+  std::vector<glm::dvec3> leaving(count), landed(count, glm::dvec3(0.0));
+  double unshotSum = 0.0;
+  for (size_t c = 0; c < count; ++c) {
+    leaving[c] = rooms[c].unshot;
+    unshotSum += leaving[c].r + leaving[c].g + leaving[c].b;
+  }
+  for (int bounce = 0; bounce < 1000; ++bounce) {
+    std::vector<glm::dvec3> arriving(count, glm::dvec3(0.0));
+    double left = 0.0;
+    for (size_t c = 0; c < count; ++c)
+      for (size_t d = 0; d < count; ++d) arriving[d] += leaving[c] * transfer[c][d];
+    for (size_t c = 0; c < count; ++c) {
+      landed[c] += arriving[c];
+      leaving[c] = albedo[c] * arriving[c];
+      left += leaving[c].r + leaving[c].g + leaving[c].b;
+    }
+    if (left <= 1e-9 * (unshotSum + 1e-30)) break;
+  }
+  return landed;
+}
+
 namespace {
 
 // The ambient irradiance per cell (the last entry: texels in no cell, or every texel without cells), each
@@ -45,45 +86,16 @@ CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>
   out.texelEntry.resize(n);
   for (size_t i = 0; i < n; ++i) out.texelEntry[i] = cellOf(i);
   if (!(total > 0.0)) return out;
-  for (size_t c = 0; c < count; ++c) {
-    if (area[c] > 0.0) albedo[c] /= area[c];
-    if (residual.empty()) unshot[c] = unshotPower * (area[c] / total);
-  }
-  // transfer[c][d]: the share of the power leaving cell c's surfaces that lands in cell d.
-  std::vector<std::vector<double>> transfer(count, std::vector<double>(count, 0.0));
-  std::vector<double> portals(count, 0.0);
+  std::vector<AmbientRoom> rooms(count);
+  for (size_t c = 0; c < count; ++c)
+    rooms[c] =
+        AmbientRoom{area[c], albedo[c], residual.empty() ? unshotPower * (area[c] / total) : unshot[c]};
+  std::vector<AmbientOpening> openings;
   if (byCell)
     for (const PortalQuad& p : graph.portals)
       if (p.cellA >= 0 && p.cellB >= 0 && size_t(p.cellA) < k && size_t(p.cellB) < k)
-        portals[p.cellA] += p.area, portals[p.cellB] += p.area;
-  for (size_t c = 0; c < count; ++c) transfer[c][c] = 1.0;
-  if (byCell)
-    for (const PortalQuad& p : graph.portals) {
-      if (p.cellA < 0 || p.cellB < 0 || size_t(p.cellA) >= k || size_t(p.cellB) >= k) continue;
-      for (const auto& [from, to] : {std::pair{p.cellA, p.cellB}, std::pair{p.cellB, p.cellA}}) {
-        const double enclosure = area[from] + portals[from];
-        if (!(enclosure > 0.0)) continue;
-        transfer[from][to] += p.area / enclosure;
-        transfer[from][from] -= p.area / enclosure;
-      }
-    }
-  // The series: what leaves (unshot, then each bounce's reflection) lands by `transfer`, is absorbed or
-  // reflected again. `landed` sums the power each cell's surfaces receive, all bounces.
-  std::vector<glm::dvec3> leaving = unshot, landed(count, glm::dvec3(0.0));
-  double unshotSum = 0.0;
-  for (const glm::dvec3& u : unshot) unshotSum += u.r + u.g + u.b;
-  for (int bounce = 0; bounce < 1000; ++bounce) {
-    std::vector<glm::dvec3> arriving(count, glm::dvec3(0.0));
-    double left = 0.0;
-    for (size_t c = 0; c < count; ++c)
-      for (size_t d = 0; d < count; ++d) arriving[d] += leaving[c] * transfer[c][d];
-    for (size_t c = 0; c < count; ++c) {
-      landed[c] += arriving[c];
-      leaving[c] = albedo[c] * arriving[c];
-      left += leaving[c].r + leaving[c].g + leaving[c].b;
-    }
-    if (left <= 1e-9 * (unshotSum + 1e-30)) break;
-  }
+        openings.push_back(AmbientOpening{size_t(p.cellA), size_t(p.cellB), p.area});
+  const std::vector<glm::dvec3> landed = ambientLanded(rooms, openings);
   for (size_t c = 0; c < count; ++c) {
     if (area[c] > 0.0) out.irradiance[c] = landed[c] / area[c];
     out.mean += landed[c] / total;

@@ -18,6 +18,25 @@
 
 namespace cpgi {
 
+/// A room as the ambient term sees it: its surfaces' area (m²), Σ ρ × area over them (m², RGB) and the
+/// power still unshot in it (W, RGB).
+struct AmbientRoom {
+  double area = 0.0;
+  glm::dvec3 albedoArea{0.0};
+  glm::dvec3 unshot{0.0};
+};
+/// An opening of `area` m² between rooms `a` and `b` (indices into the rooms).
+struct AmbientOpening {
+  size_t a = 0, b = 0;
+  double area = 0.0;
+};
+
+/// Per room, the power its surfaces receive (W, RGB) from every room's unshot power, all bounces: what
+/// leaves a room's surfaces lands in it, or through each opening in the next, a share
+/// A_opening / (A_room + A_openings), and is absorbed or reflected by the room's mean albedo.
+std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
+                                      const std::vector<AmbientOpening>& openings);
+
 /// Adds ρ_i × (its cell's ambient irradiance) to every valid texel of `radiosity` (per atlas texel,
 /// W/m²). `residual`: the unshot radiosity per texel (W/m²), or empty to spread `unshotPower` (W per
 /// channel) by area; `texelCell`: per texel its cell in `graph` (radiosity/lightmap/cell_channel.h), or

@@ -198,6 +198,7 @@ struct ProgramDefines {
 struct SolveConfig : SolverParams {
   bool readTransfer = false;
   double minShotPower = 0.0;
+  double strongShotPower = 0.0;
   bool directionalEmission = false;
   std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
   const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
@@ -990,6 +991,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   SolveConfig config{settings};
   config.readTransfer = controls.readTransfer;
   config.minShotPower = controls.minShotPower;
+  config.strongShotPower = controls.strongShotPower;
   config.directionalEmission = controls.directionalEmission;
   config.emissionBins = controls.emissionBins;
   config.deadline = controls.deadline;
@@ -1117,8 +1119,9 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
     e.shot += shotPower;
     result.shooters.push_back(sel.winner);
-    sel =
-        solver.shoot(sel.winner, shotPower >= params.strongShotFraction * e.emitted, sel.winnerPending != 0);
+    const double strongAt =
+        params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
+    sel = solver.shoot(sel.winner, shotPower >= strongAt, sel.winnerPending != 0);
     ++result.shots;
     record(sel);
     // A shot whose eyes see nothing open delivers what they see covered (shot_coverage.comp); no shot

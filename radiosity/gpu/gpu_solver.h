@@ -103,6 +103,12 @@ struct SolveControls {
   /// patch rather than a fraction of the input, so a cell solve lit through a door stops where a solve of
   /// the whole scene would leave such small patches unshot (radiosity/cells/cell_solver.h). 0: off.
   double minShotPower = 0.0;
+  /// > 0: a shot is strong (SolverParams::strongShotRegions) when it carries at least this power (W, R + G
+  /// + B) rather than strongShotFraction of the solve's own emitted power. A cell solve lit through a
+  /// door measures its shots against the whole scene's light, as a global solve would: against its own
+  /// small input nearly every shot was strong, 16 item buffers each, and spot-door's cells took 3× a
+  /// global solve's time per shot (radiosity/cells/cell_round.h, roundBudget).
+  double strongShotPower = 0.0;
   /// Directional emission (radiosity/gpu/emission_lobes.h): shooters emit with the per-texel lobes of
   /// `emissionLobes` (one per atlas texel; zero or none = Lambertian), and every texel accumulates the
   /// direction moments of what it receives (SolveResult::arrivals). Off: the passes are built without it

@@ -28,17 +28,21 @@ struct TempDir {
 };
 
 // Every step as its own job from files, against solveCells with the same parameters: bit for bit.
-void expectJobsGiveTheSingleProcessSolve(PortalLight portals) {
+void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientShare = 0.0) {
   const SeedScene s = makeBuiltinScene("office-small");
   Context ctx;
   EglContext gl(ctx);
   CellSolveParams params;
   params.portals = portals;
+  params.maxAmbientShare = maxAmbientShare;
   params.atlas.texelsPerQuad = 6;
   params.solver.itemBuffer = 256;
   const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), params.atlas, ctx);
   const SolveResult single = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
   ASSERT_GE(single.perCell->rounds, 2);
+  if (maxAmbientShare > 0.0) {
+    ASSERT_GE(single.stopChecks, 2);  // refused at least once
+  }
 
   TempDir dir;
   const CellJobPlan made = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {"unused"}, ctx);
@@ -62,6 +66,7 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals) {
   const SolveResult gathered = gatherCellJobs(dir.path, plan, s.scene, s.cells, atlas, params, ctx);
   EXPECT_EQ(gathered.perCell->rounds, single.perCell->rounds);
   EXPECT_EQ(gathered.shots, single.shots);
+  EXPECT_EQ(gathered.stopChecks, single.stopChecks);
   ASSERT_EQ(gathered.radiosity.size(), single.radiosity.size());
   size_t differ = 0;
   for (size_t i = 0; i < single.radiosity.size(); ++i) differ += gathered.radiosity[i] != single.radiosity[i];
@@ -93,6 +98,12 @@ TEST(CellJobs, DirectionalPortalsGiveTheSingleProcessSolve) {
 // process's.
 TEST(CellJobs, BinnedPortalsGiveTheSingleProcessSolve) {
   expectJobsGiveTheSingleProcessSolve(PortalLight::Binned);
+}
+
+// The stop per cell (round_stop.h) decided by the driver from the plan and the summaries alone: the
+// same rounds, each towards the same lowered target, as the single process.
+TEST(CellJobs, StopPerCellGivesTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Binned, 0.02);
 }
 
 TEST(CellJobFiles, DamageIsNamedAndRefused) {

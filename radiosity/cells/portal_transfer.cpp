@@ -41,6 +41,7 @@ SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams&
     bins.insert(bins.end(), f.begin(), f.end());
   }
   controls.directionalEmission = true;
+  controls.arrivalMoments = false;  // the bins are traced after the solve (cell_round.h)
   controls.emissionLobes = lobes;
   controls.emissionBins = bins;
   return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);

@@ -200,6 +200,7 @@ struct SolveConfig : SolverParams {
   double minShotPower = 0.0;
   double strongShotPower = 0.0;
   bool directionalEmission = false;
+  bool arrivalMoments = true;                ///< SolveControls::arrivalMoments
   std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
   const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
   /// Per patch, 1 for a lamp whose first shot is in `direct` (lamp_light.h): its emission is not unshot.
@@ -271,10 +272,12 @@ namespace {
 class Solver {
  public:
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
-  // `binned`: the programs for binned shooters (SolveConfig::emissionBins), null without bins.
+  // `binned`: the programs for binned shooters (SolveConfig::emissionBins), null without bins. `plain`:
+  // the programs without directional emission for shooters with no lobe, null where every shot must note
+  // the arrival moments.
   Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
          const SolverPrograms::Set& programs, const SolverPrograms::Set* binned,
-         const std::vector<glm::vec4>* emissionLobes)
+         const SolverPrograms::Set* plain, const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene),
         atlas_(atlas),
         params_(params),
@@ -291,6 +294,8 @@ class Solver {
         coverageProgram_(programs.coverage),
         binnedPyramid_(binned ? &binned->pyramid : nullptr),
         binnedReceive_(binned ? &binned->receive : nullptr),
+        plainPyramid_(plain ? &plain->pyramid : nullptr),
+        plainReceive_(plain ? &plain->receive : nullptr),
         clock_(params.profilePasses) {
     layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
     if (strongRegions() != params.maxRegions)
@@ -359,12 +364,17 @@ class Solver {
     // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
     const int levels = uploadRegions(l, p, replicas);
     const bool binnedShot = binnedReceive_ && hasBins_[shooter];
-    const gl::Program& pyramidProgram = binnedShot ? *binnedPyramid_ : pyramidProgram_;
-    const gl::Program& receiveProgram = binnedShot ? *binnedReceive_ : receiveProgram_;
+    const bool plainShot = plainReceive_ && !hasLobes_[shooter];
+    const gl::Program& pyramidProgram = binnedShot  ? *binnedPyramid_
+                                        : plainShot ? *plainPyramid_
+                                                    : pyramidProgram_;
+    const gl::Program& receiveProgram = binnedShot  ? *binnedReceive_
+                                        : plainShot ? *plainReceive_
+                                                    : receiveProgram_;
     set(pyramidProgram, "uShooter", shooter);
     set(pyramidProgram, "uRegionCount", baseRegions);  // replicas share their region's pyramid
     set(pyramidProgram, "uTexelRadius", l.texelRadius);
-    if (params_.directionalEmission) set(pyramidProgram, "uShooterNormal", l.normal);
+    if (params_.directionalEmission && !plainShot) set(pyramidProgram, "uShooterNormal", l.normal);
     glUseProgram(pyramidProgram.get());
     for (int k = 1; k <= levels; ++k) {
       set(pyramidProgram, "uLevel", k);
@@ -421,7 +431,7 @@ class Solver {
     glProgramUniform3fv(receiveProgram.get(), loc(receiveProgram, "uEyes"), regions, &eyes[0].x);
     set(receiveProgram, "uToShooter", toShooter);
     set(receiveProgram, "uShooterNormal", l.normal);
-    if (params_.directionalEmission) set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
+    if (params_.directionalEmission && !plainShot) set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
     if (binnedShot) {  // the shooter's bin frame, as the CPU lays its bins out
       const BinFrame frame = binFrame(l.normal);
       set(receiveProgram, "uBinT1", frame.t1);
@@ -899,8 +909,9 @@ class Solver {
     for (const gl::Program* p :
          {&receiveProgram_, &tileStatsProgram_, &pyramidProgram_, &pickEyesProgram_, &rescaleProgram_})
       set(*p, "uAtlasWidth", atlas_.width);
-    if (binnedPyramid_) set(*binnedPyramid_, "uAtlasWidth", atlas_.width);
-    for (const gl::Program* receive : {&receiveProgram_, binnedReceive_}) {
+    for (const gl::Program* p : {binnedPyramid_, plainPyramid_})
+      if (p) set(*p, "uAtlasWidth", atlas_.width);
+    for (const gl::Program* receive : {&receiveProgram_, binnedReceive_, plainReceive_}) {
       if (!receive) continue;
       set(*receive, "uAtlasWidth", atlas_.width);
       set(*receive, "uItemSize", itemSize_);
@@ -923,6 +934,7 @@ class Solver {
       &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_,
       &coverageProgram_;
   const gl::Program *binnedPyramid_, *binnedReceive_;  ///< for binned shooters; null without bins
+  const gl::Program *plainPyramid_, *plainReceive_;    ///< for shooters with no lobe; null: not used
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_,
       nodeLobes_;
   gl::Buffer coverage_;  ///< per region and sampled item-buffer column: (covered, open, total) weight
@@ -993,6 +1005,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.minShotPower = controls.minShotPower;
   config.strongShotPower = controls.strongShotPower;
   config.directionalEmission = controls.directionalEmission;
+  config.arrivalMoments = controls.arrivalMoments;
   config.emissionBins = controls.emissionBins;
   config.deadline = controls.deadline;
   config.firstShotNumber = controls.firstShotNumber;
@@ -1058,7 +1071,9 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   const SolverPrograms::Set& base = programs.get(params, params.directionalEmission);
   const SolverPrograms::Set* binned =
       params.directionalEmission && !params.emissionBins.empty() ? &programs.get(params, true, true) : nullptr;
-  Solver solver(scene, atlas, params, base, binned, emissionLobes);
+  const SolverPrograms::Set* plain =
+      params.directionalEmission && !params.arrivalMoments ? &programs.get(params, false) : nullptr;
+  Solver solver(scene, atlas, params, base, binned, plain, emissionLobes);
   // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
   // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
   const auto rayShots =
@@ -1203,14 +1218,14 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     auto t = ctx.time("solve: read back");
     result.radiosity = solver.readRadiosity();
     if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
-    if (params.directionalEmission) result.arrivals = solver.readArrivals();
+    if (params.directionalEmission && params.arrivalMoments) result.arrivals = solver.readArrivals();
     if (params.readLampFlags) result.lampFlags = solver.readLampFlags();
   }
   for (size_t i = 0; i < result.radiosity.size(); ++i)
     if (atlas.patch[i] < 0) {
       result.radiosity[i] = glm::vec3(0.0f);
       if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
-      if (params.directionalEmission) result.arrivals[i] = glm::vec4(0.0f);
+      if (!result.arrivals.empty()) result.arrivals[i] = glm::vec4(0.0f);
     }
   ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
   result.seconds = since(start);

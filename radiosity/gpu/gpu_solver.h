@@ -115,6 +115,11 @@ struct SolveControls {
   /// and cost and results are those of the plain solver. Lobes without it are an error.
   bool directionalEmission = false;
   std::span<const glm::vec4> emissionLobes = {};
+  /// With directional emission, whether the receivers accumulate the direction moments of what they
+  /// receive (SolveResult::arrivals; directional portals carry them). Binned portals trace their bins
+  /// instead, so without the moments the shooters with no lobe shoot with the plain programs: in
+  /// spot-door's cells bake every reflector shot cost 1.6× the plain one for moments nobody read.
+  bool arrivalMoments = true;
   /// Binned emission (radiosity/gpu/emission_bins.h) for the texels whose lobe is binnedLobe(slot): slot
   /// after slot, kArrivalBins factors f each, normalised to mean 1 (normalisedEmissionBins).
   std::span<const float> emissionBins = {};

@@ -68,7 +68,8 @@ class PerCellPortals : public OpeningsBakes {
       dir_ = std::make_unique<test::TempDir>();
       const std::string cells = "--method cells --cells " + test::quote(*dir_ / "openings.glb");
       bakeAll({{"cells-diffuse", cells + " --portals diffuse"},
-               {"cells-directional", cells + " --portals directional"}});
+               {"cells-directional", cells + " --portals directional"},
+               {"cells-binned-converged", cells + " --unshot 0.0001"}});
     });
   }
 };
@@ -157,6 +158,18 @@ TEST_F(PerCellPortals, RoomsLitThroughPortalsMatchTheReference) {
       const double ratio = c["ratio_of_means"], err = c["ratio_error"];
       EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << bake << " " << c.dump();
     }
+  }
+}
+
+// Converged with the cells bake's default portals (binned), every room within 3 % (+ 2σ): no early stop
+// hides a bias of the portals. The thesis's Lambertian portals do not reach it in C (0.960 at density 10,
+// bench/RESULTS.md): the light that crossed the interior window in line with the narrow door leaves C
+// again more than it should when a portal re-emits it evenly; one lobe per texel reads 0.983.
+TEST_F(PerCellPortals, ConvergedBinnedPortalsMatchTheReference) {
+  const nlohmann::json j = compare("cells-binned-converged");
+  for (const nlohmann::json& c : j["cells"]) {
+    const double ratio = c["ratio_of_means"], err = c["ratio_error"];
+    EXPECT_NEAR(ratio, 1.0, 0.03 + 2.0 * err) << c.dump();
   }
 }
 

@@ -34,6 +34,9 @@ uniform int uRegionCount;
 uniform bool uLampShot;  // an emitter's own shot: edge and near receivers are resampled (main())
 uniform float uRegionShare;  // 1 / replicas: the share of each entry's eye when regions are replicated
 uniform vec3 uEyes[MAX_REGIONS];
+// Where each region's chart texel (0, 0) samples (m): the shooter's origin moved to the region's corner,
+// so that a far piece finds its power's mean without reading the patch and region tables.
+uniform vec3 uRegionOrigins[MAX_REGIONS];
 uniform mat3 uToShooter;
 uniform vec3 uShooterNormal;
 uniform vec3 uTexelU, uTexelV;  // the shooter's texel edges (m)
@@ -110,10 +113,8 @@ vec3 point(vec3 x, vec3 n, vec3 c, float area, vec3 unshot, vec4 lobe) {
 // rays give 1.00 (bench/shot_probe.cpp), and the shot's rescale to its power handed the difference to every
 // receiver alike, rooms behind doors included (openings' room C +3 %).
 vec3 nodePiece(vec3 x, vec3 n, int r, Node p, vec4 l) {
-  PatchInfo s = patches[uShooter];
-  vec2 at = vec2(regions[r].rect.xy - s.rect.xy) + p.moments.xy;  // chart texels
   vec2 sd = sqrt(p.moments.zw);
-  vec3 c = s.origin.xyz + at.x * uTexelU + at.y * uTexelV;
+  vec3 c = uRegionOrigins[r] + p.moments.x * uTexelU + p.moments.y * uTexelV;
   vec3 hu = sd.x * uTexelU, hv = sd.y * uTexelV;
   float a = 0.25 * p.centreArea.w;
   vec3 rad = p.radiosityRadius.rgb;

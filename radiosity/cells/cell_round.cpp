@@ -90,6 +90,7 @@ SolverParams roundBudget(const SolverParams& settings, double target, double uns
   round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
   controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
   controls.strongShotPower = settings.strongShotFraction * emitted;
+  controls.emittersAreLamps = false;  // a cell's emitters are its portals; its lamps shot first, globally
   return round;
 }
 

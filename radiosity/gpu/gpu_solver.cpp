@@ -199,6 +199,7 @@ struct SolveConfig : SolverParams {
   bool readTransfer = false;
   double minShotPower = 0.0;
   double strongShotPower = 0.0;
+  bool emittersAreLamps = true;  ///< SolveControls::emittersAreLamps
   bool directionalEmission = false;
   bool arrivalMoments = true;                ///< SolveControls::arrivalMoments
   std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
@@ -400,7 +401,7 @@ class Solver {
     const GLuint zero = 0;
     glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
-    clock_.mark("item buffers");
+    clock_.mark(lamp ? "item buffers (lamp shots)" : "item buffers");
     set(coverageProgram_, "uToShooter", toShooter);
     glUseProgram(coverageProgram_.get());
     glDispatchCompute(groups(coverageColumns(), 16), GLuint(regions), 1);
@@ -429,6 +430,13 @@ class Solver {
     set(receiveProgram, "uRegionShare", 1.0f / float(replicas));
     set(receiveProgram, "uLampShot", int(lamp));
     glProgramUniform3fv(receiveProgram.get(), loc(receiveProgram, "uEyes"), regions, &eyes[0].x);
+    std::vector<glm::vec3> regionOrigins;
+    for (int r = 0; r < regions; ++r) {
+      const glm::ivec4 c = l.rects[size_t(r % baseRegions)];
+      regionOrigins.push_back(p.origin + float(c.x) * p.texelU + float(c.y) * p.texelV);
+    }
+    glProgramUniform3fv(receiveProgram.get(), loc(receiveProgram, "uRegionOrigins"), regions,
+                        &regionOrigins[0].x);
     set(receiveProgram, "uToShooter", toShooter);
     set(receiveProgram, "uShooterNormal", l.normal);
     if (params_.directionalEmission && !plainShot) set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
@@ -444,7 +452,7 @@ class Solver {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    clock_.mark("receive");
+    clock_.mark(lamp ? "receive (lamp shots)" : "receive");
 
     runTileStats(0, tileCount_, shooter, true);
     runStats(shooter);
@@ -1004,6 +1012,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   config.readTransfer = controls.readTransfer;
   config.minShotPower = controls.minShotPower;
   config.strongShotPower = controls.strongShotPower;
+  config.emittersAreLamps = controls.emittersAreLamps;
   config.directionalEmission = controls.directionalEmission;
   config.arrivalMoments = controls.arrivalMoments;
   config.emissionBins = controls.emissionBins;
@@ -1136,7 +1145,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     result.shooters.push_back(sel.winner);
     const double strongAt =
         params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
-    sel = solver.shoot(sel.winner, shotPower >= strongAt, sel.winnerPending != 0);
+    sel = solver.shoot(sel.winner, shotPower >= strongAt, sel.winnerPending != 0 && params.emittersAreLamps);
     ++result.shots;
     record(sel);
     // A shot whose eyes see nothing open delivers what they see covered (shot_coverage.comp); no shot

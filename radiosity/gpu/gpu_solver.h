@@ -109,6 +109,11 @@ struct SolveControls {
   /// small input nearly every shot was strong, 16 item buffers each, and spot-door's cells took 3× a
   /// global solve's time per shot (radiosity/cells/cell_round.h, roundBudget).
   double strongShotPower = 0.0;
+  /// Whether the emitters' own shots are a lamp's (resampled at beam edges and near the emitter, with
+  /// jittered eyes per strong region: receive.comp, uLampShot). A cell solve's emitters are its portals,
+  /// re-emitting what its neighbours sent, which a global solve carries by plain reflector shots; shot as
+  /// lamps, they cost seed1's cells bake 2.4× the CPU for no gain in any cell (issue 11, session 21).
+  bool emittersAreLamps = true;
   /// Directional emission (radiosity/gpu/emission_lobes.h): shooters emit with the per-texel lobes of
   /// `emissionLobes` (one per atlas texel; zero or none = Lambertian), and every texel accumulates the
   /// direction moments of what it receives (SolveResult::arrivals). Off: the passes are built without it

@@ -73,12 +73,17 @@ std::vector<double> RoundStop::shares() const {
   for (size_t c = 0; c < cells_.size(); ++c)
     rooms[c] = AmbientRoom{cells_[c].area, cells_[c].albedoArea, unshot_[c]};
   const std::vector<glm::dvec3> landed = ambientLanded(rooms, openings_);
+  std::vector<double> ambient(cells_.size(), 0.0), light(cells_.size(), 0.0), area(cells_.size(), 0.0);
   for (size_t c = 0; c < cells_.size(); ++c) {
-    if (!cells_[c].written || !(cells_[c].area > 0.0)) continue;
+    if (!(cells_[c].area > 0.0)) continue;
     const glm::dvec3 added = cells_[c].reflectorAlbedoArea * (landed[c] / cells_[c].area);
-    const double ambient = added.r + added.g + added.b, light = ambient + light_[c];
-    share[c] = light > 0.0 ? ambient / light : 0.0;
+    ambient[c] = added.r + added.g + added.b;
+    light[c] = ambient[c] + light_[c];
+    area[c] = cells_[c].area;
   }
+  share = ambientShareOfLitCells(ambient, light, area);
+  for (size_t c = 0; c < cells_.size(); ++c)
+    if (!cells_[c].written) share[c] = 0.0;  // a boundary cell: nobody sees it
   return share;
 }
 

@@ -123,16 +123,32 @@ std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<
   if (radiosity.size() != atlas.texelCount() || residual.size() != atlas.texelCount())
     throw std::invalid_argument("ambientShares: not one value per atlas texel");
   const CellAmbient a = cellAmbient(atlas, residual, glm::dvec3(0.0), texelCell, graph);
-  std::vector<double> ambient(a.irradiance.size(), 0.0), light(a.irradiance.size(), 0.0);
+  const size_t cells = a.irradiance.size();
+  std::vector<double> ambient(cells, 0.0), light(cells, 0.0), area(cells, 0.0);
   for (size_t i = 0; i < radiosity.size(); ++i) {
     if (atlas.patch[i] < 0 || atlas.emission[i] != glm::vec3(0.0f)) continue;  // lamps: their own light
     const glm::dvec3 add = glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]];
     const double w = atlas.area[i];
     ambient[a.texelEntry[i]] += w * (add.r + add.g + add.b);
     light[a.texelEntry[i]] += w * (add.r + add.g + add.b + radiosity[i].r + radiosity[i].g + radiosity[i].b);
+    area[a.texelEntry[i]] += w;
   }
+  return ambientShareOfLitCells(ambient, light, area);
+}
+
+std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
+                                           const std::vector<double>& light,
+                                           const std::vector<double>& area) {
+  if (light.size() != ambient.size() || area.size() != ambient.size())
+    throw std::invalid_argument("ambientShareOfLitCells: not one value per cell");
+  double allLight = 0.0, allArea = 0.0;
+  for (size_t c = 0; c < light.size(); ++c)
+    if (area[c] > 0.0) allLight += light[c], allArea += area[c];
   std::vector<double> share(ambient.size(), 0.0);
-  for (size_t c = 0; c < share.size(); ++c) share[c] = light[c] > 0.0 ? ambient[c] / light[c] : 0.0;
+  if (!(allLight > 0.0)) return share;
+  const double litPerArea = kNegligibleCellLight * allLight / allArea;
+  for (size_t c = 0; c < share.size(); ++c)
+    if (area[c] > 0.0 && light[c] > litPerArea * area[c]) share[c] = ambient[c] / light[c];
   return share;
 }
 

@@ -48,11 +48,23 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
 /// bake --ambient-share's default (bench/RESULTS.md, "The default stop per room").
 inline constexpr double kDefaultAmbientShare = 0.1;
 
+/// A cell lit at less than this share of the scene's light per m² (its cells' together) holds no stop per
+/// cell (ambientShares, RoundStop: share 0): its light is a leak's, black at any exposure of the scene.
+/// Held to --ambient-share, thin-wall's closed room B, lit only by what crosses a zero-thickness wall,
+/// ran the global bake to 2.7e-6 unshot (142 shots, not 38; issue 11, session 21).
+inline constexpr double kNegligibleCellLight = 1e-4;
+
+/// Per cell, ambient[c] / light[c] (W, the cell's light with the ambient term in it), or 0 where the cell's
+/// light per m² of area[c] is below kNegligibleCellLight × Σ light / Σ area, or there is none.
+std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
+                                           const std::vector<double>& light, const std::vector<double>& area);
+
 /// Per cell of `graph` (and a last entry for texels in no cell; one entry in all without cells), the share
 /// of its reflectors' light (area-weighted, R + G + B, lamps left out) that the ambient term of `residual`
 /// would be: ρ E / (B + ρ E). A progressive solve's stop per cell (bake): 1 % unshot in the whole scene
 /// left a fifth of the light of a room two openings from the lamp to the ambient term, which is flat over
 /// the room (openings, room C: 5.7 % per texel at the default stop, 4.2 % with the stop per cell).
+/// A cell lit at a leak's level counts 0 (kNegligibleCellLight).
 std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                                   std::span<const float> texelCell, const CellGraph& graph,
                                   const std::vector<glm::vec3>& radiosity);

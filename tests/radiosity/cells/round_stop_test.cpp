@@ -94,6 +94,41 @@ TEST(RoundStop, ABoundaryCellNeverHoldsTheStop) {
   EXPECT_FALSE(stop.another(0.5));
 }
 
+TEST(RoundStop, ACellLitOnlyByALeakNeverHoldsTheStop) {
+  // Cell 1 has 3e-5 of cell 0's light per m², nearly all of it the ambient term's: a closed room behind a
+  // wall, lit by what crosses it. Held to the share, the rounds went on to 1e-6 of the light.
+  RoundStop stop(1.0, 0.1, {greyCell(1.0, 0.5), greyCell(1.0, 0.5)}, {});
+  CellRound lit, leak;
+  lit.cell = 0, leak.cell = 1;
+  lit.reflectorGain = 100.0;
+  leak.reflectorGain = 1e-4;
+  leak.keptRgb = glm::dvec3(1e-3);
+  stop.addRound({&lit, &leak});
+  EXPECT_EQ(stop.shares()[1], 0.0);
+  EXPECT_FALSE(stop.another(0.5));
+  // The same cell lit at 4e-3 of cell 0's light per m² is a dark room, and holds it.
+  leak.reflectorGain = 0.1;
+  leak.keptRgb = glm::dvec3(0.1);
+  RoundStop dim(1.0, 0.1, {greyCell(1.0, 0.5), greyCell(1.0, 0.5)}, {});
+  dim.addRound({&lit, &leak});
+  EXPECT_GT(dim.shares()[1], 0.1);
+  EXPECT_TRUE(dim.another(0.5));
+}
+
+TEST(AmbientShareOfLitCells, PerSquareMetreAgainstTheWholeScene) {
+  // The scene: 101 W over 21 m². Cell 1 at 2e-5 W/m², under 1e-4 of its 4.8 W/m² (a leak); cell 2 at
+  // 0.1 W/m² (dim, kept); cell 3 without area.
+  const std::vector<double> share =
+      ambientShareOfLitCells({10.0, 1e-4, 0.5, 1.0}, {100.0, 2e-4, 1.0, 1.0}, {1.0, 10.0, 10.0, 0.0});
+  ASSERT_EQ(share.size(), 4u);
+  EXPECT_DOUBLE_EQ(share[0], 0.1);
+  EXPECT_EQ(share[1], 0.0);
+  EXPECT_DOUBLE_EQ(share[2], 0.5);
+  EXPECT_EQ(share[3], 0.0);
+  EXPECT_EQ(ambientShareOfLitCells({0.0}, {0.0}, {1.0})[0], 0.0);  // nothing lit at all
+  EXPECT_THROW(ambientShareOfLitCells({0.0}, {0.0, 1.0}, {1.0}), std::invalid_argument);
+}
+
 // Mean radiosity (R + G + B) over the texels of cell `cell` that do not emit.
 double cellMean(const LightmapAtlas& a, const ExrChannel& cells, int cell, const std::vector<glm::vec3>& b) {
   double sum = 0.0, area = 0.0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "scenes/furniture.h"
 #include "scenes/scene_builder.h"
 
 namespace cpgi {
@@ -130,6 +131,9 @@ class BuildingMaker {
   }
   /// Exterior openings are left solid: the same building with its doors and windows shut.
   bool closedOutside = false;
+  /// false: no 0.6 m emissive panel under each room's ceiling (the lights come as `lights` instead).
+  bool panelLamps = true;
+  std::vector<PunctualLight> lights;
 
   void opening(const std::string& name, Box3 box, int axis, const std::string& a, const std::string& b) {
     if (closedOutside && (a == "outside" || b == "outside")) return;
@@ -149,13 +153,15 @@ class BuildingMaker {
       const Box3& box = r.boxes.front();
       const glm::vec3 c = box.centre();
       const float half = 0.3f;
-      b_.rect(1, box.hi.y - 0.01f, -1, {c.z - half, c.x - half}, {c.z + half, c.x + half}, lamp_,
-              b_.node(r.name + "/lamp"));
+      if (panelLamps)
+        b_.rect(1, box.hi.y - 0.01f, -1, {c.z - half, c.x - half}, {c.z + half, c.x + half}, lamp_,
+                b_.node(r.name + "/lamp"));
       out_.seed.scene.cameras.push_back(lookAt(r.name, {box.lo.x + 0.4f, box.lo.y + 1.6f, box.lo.z + 0.4f},
                                                {box.hi.x, box.lo.y + 0.8f, box.hi.z}));
       names.push_back(r.name);
     }
     names.push_back("outside");
+    for (const PunctualLight& l : lights) out_.seed.scene.lights.push_back(l);
     CellGraph& cells = out_.seed.cells;
     cellsFromNodePaths(out_.seed.scene, names, cells);
     for (size_t r = 0; r < out_.rooms.size(); ++r)
@@ -300,9 +306,10 @@ void spiralTreads(BuildingMaker& m, glm::vec2 centre, int steps, float rise, flo
 
 }  // namespace
 
-Building makeTwoStoreyHouse(bool spiral, bool closedOutside) {
-  BuildingMaker m;
-  m.closedOutside = closedOutside;
+namespace {
+
+// The two-storey house's shell, rooms, openings and stair into `m`.
+void twoStoreyHouse(BuildingMaker& m, bool spiral) {
   houseShell(m, 10.0f, 8.0f, 2, 1.0f, 1.0f);
   const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey;
   m.room("hall", {box(0.2f, 0, 0.2f, 3.4f, H, 7.8f)});
@@ -338,6 +345,23 @@ Building makeTwoStoreyHouse(bool spiral, bool closedOutside) {
     m.massing.added.push_back(box(c.x - 0.1f, 0, c.y - 0.1f, c.x + 0.1f, y2, c.y + 0.1f));
     spiralTreads(m, c, steps, rise, 0.1f, 0.95f);
   }
+}
+
+}  // namespace
+
+Building makeTwoStoreyHouse(bool spiral, bool closedOutside) {
+  BuildingMaker m;
+  m.closedOutside = closedOutside;
+  twoStoreyHouse(m, spiral);
+  return m.finish();
+}
+
+Building makeFurnishedHouse() {
+  BuildingMaker m;
+  m.panelLamps = false;
+  twoStoreyHouse(m, true);
+  SceneBuilder b(m.scene());
+  furnishSpiralHouse(b, m.lights);
   return m.finish();
 }
 
@@ -412,9 +436,9 @@ Building makePorchHouse() {
 }
 
 const std::vector<std::string>& buildingNames() {
-  static const std::vector<std::string> names = {"house-open",          "house-stair",  "house-spiral",
-                                                 "open-plan",           "porch",        "house-stair-closed",
-                                                 "house-spiral-closed", "house-gallery"};
+  static const std::vector<std::string> names = {"house-open",          "house-stair",   "house-spiral",
+                                                 "open-plan",           "porch",         "house-stair-closed",
+                                                 "house-spiral-closed", "house-gallery", "house-furnished"};
   return names;
 }
 
@@ -427,6 +451,7 @@ Building makeBuilding(const std::string& name) {
   if (name == "open-plan") return makeOpenPlanHouse();
   if (name == "house-gallery") return makeGalleryHouse();
   if (name == "porch") return makePorchHouse();
+  if (name == "house-furnished") return makeFurnishedHouse();
   throw std::invalid_argument("unknown building '" + name + "'");
 }
 

@@ -53,6 +53,9 @@ Building makeOpenHouse();
 /// `closedOutside` every exterior door and window is shut (the stair alone, as older decompositions saw
 /// a house whose doors were closed by hand).
 Building makeTwoStoreyHouse(bool spiral, bool closedOutside = false);
+/// The spiral house furnished as a real model comes (~34k triangles: furniture, books, a balustrade,
+/// terrain), lit by KHR_lights_punctual point lights and a spot instead of emissive panels.
+Building makeFurnishedHouse();
 /// Two storeys: a double-height living room overlooked by the upper gallery above a 1 m balustrade along
 /// their whole shared wall (4.7 × 1.5 m open), the gallery reached from the hall by the straight stair.
 Building makeGalleryHouse();
@@ -62,7 +65,7 @@ Building makeOpenPlanHouse();
 Building makePorchHouse();
 
 /// "house-open", "house-stair", "house-spiral", "open-plan", "porch", "house-stair-closed",
-/// "house-spiral-closed", "house-gallery".
+/// "house-spiral-closed", "house-gallery", "house-furnished".
 const std::vector<std::string>& buildingNames();
 /// Throws std::invalid_argument for a name not in buildingNames().
 Building makeBuilding(const std::string& name);

@@ -29,6 +29,16 @@ void SceneBuilder::quad(glm::vec3 o, glm::vec3 u, glm::vec3 v, uint32_t material
   scene_.triangles.push_back(b);
 }
 
+void SceneBuilder::triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node) {
+  Triangle t;
+  t.p = {a, b, c};
+  const glm::vec3 n = t.geometricNormal();
+  t.n = {n, n, n};
+  t.material = material;
+  t.node = node;
+  scene_.triangles.push_back(t);
+}
+
 uint32_t SceneBuilder::rect(int axis, float at, float sign, glm::vec2 lo, glm::vec2 hi, uint32_t material,
                             uint32_t node, float maxCell) {
   const uint32_t first = static_cast<uint32_t>(scene_.triangles.size());

@@ -48,6 +48,8 @@ class SceneBuilder {
 
   /// One quad from its origin and two edges; the normal is normalize(u × v).
   void quad(glm::vec3 origin, glm::vec3 u, glm::vec3 v, uint32_t material, uint32_t node);
+  /// One flat triangle; its normal follows the winding a → b → c.
+  void triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node);
 
  private:
   Scene& scene_;

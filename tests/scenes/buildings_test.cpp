@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <set>
+
+#include "core/scene_io.h"
 
 namespace cpgi {
 namespace {
@@ -72,6 +77,37 @@ TEST(Buildings, OpeningsPierceTheirWallsAndTheStairHoleIsInTheFloor) {
       hits += segmentHits(t, c - glm::vec3(0, 0.2f, 0), c + glm::vec3(0, 0.2f, 0));
     EXPECT_EQ(hits, 0);
   }
+}
+
+// The furnished house stands in for the architect's model of issue 12: as large, lit only by punctual
+// lights, and clean enough that a strict load (no zero-area or duplicate triangle) accepts it.
+TEST(Buildings, TheFurnishedHouseIsARealModelsSizeLitByPunctualLightsAndLoadsStrictly) {
+  const Building b = makeFurnishedHouse();
+  const Scene& scene = b.seed.scene;
+  EXPECT_GE(scene.triangles.size(), 30'000u);
+  EXPECT_GE(scene.lights.size(), 6u);
+  EXPECT_EQ(scene.emittedPower(), glm::vec3(0.0f));  // no emissive surface in use
+  EXPECT_TRUE(scene.hasLight());
+  // Furniture in every room, under its room's node.
+  for (const BuildingRoom& r : b.rooms) {
+    bool furnished = false;
+    const std::string suffix = r.name + "/furniture";
+    for (const std::string& node : scene.nodePaths)
+      furnished |= node.size() >= suffix.size() &&
+                   node.compare(node.size() - suffix.size(), suffix.size(), suffix) == 0;
+    EXPECT_TRUE(furnished) << r.name;
+  }
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("cpgi-house-furnished-" + std::to_string(::getpid()) + ".glb"))
+                               .string();
+  writeGltf(path, scene);
+  LoadOptions strict;
+  strict.strict = true;
+  const LoadedScene loaded = loadScene(path, strict);
+  std::filesystem::remove(path);
+  EXPECT_EQ(loaded.scene.triangles.size(), scene.triangles.size());
+  EXPECT_EQ(loaded.scene.lights.size(), scene.lights.size());
+  EXPECT_TRUE(loaded.warnings.empty());
 }
 
 }  // namespace

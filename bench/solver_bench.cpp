@@ -2,6 +2,7 @@
 // prints one line per run: seconds (setup + shots + read back), shots, texels, unshot fraction,
 // energy escaped. Usage: cpgi_solver_bench [--scenes 1,2,3] [--res 16,32,64,128,0] [--vis hemicube,hemisphere]
 //   [--unshot F] [--max-shots N] [--item-buffer N]   (res 0 = the default density of 10 texels/m, dT = T texels/m)
+//   A scene is a seed number or a .glb/.gltf/.obj file (loaded as `cpgi bake` loads it).
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/quads.h"
+#include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "scenes/seed_scenes.h"
@@ -50,7 +52,12 @@ int main(int argc, char** argv) {
   std::printf("# renderer: %s\n", gl.renderer().c_str());
   std::printf("scene\tres\tvisibility\ttexels\tatlas\tshots\tunshot\tescaped\tsetup_s\tsolve_s\tms_per_shot\n");
   for (const std::string& s : scenes) {
-    const cpgi::SeedScene seed = cpgi::makeSeedScene(std::atoi(s.c_str()));
+    const bool file = s.find('.') != std::string::npos;
+    cpgi::SeedScene seed;
+    if (file)
+      seed.scene = cpgi::loadScene(s).scene;
+    else
+      seed = cpgi::makeSeedScene(std::atoi(s.c_str()));
     const cpgi::QuadSet quads = cpgi::findQuads(seed.scene);
     for (const std::string& r : resolutions) {
       cpgi::AtlasParams ap;
@@ -66,7 +73,7 @@ int main(int argc, char** argv) {
         cpgi::Context run;
         const cpgi::SolveResult res = cpgi::solveProgressive(seed.scene, atlas, p, gl, run);
         const double shotSeconds = res.seconds - res.setupSeconds;
-        std::printf("seed%s\t%s\t%s\t%zu\t%dx%d\t%d\t%.4f\t%.4f\t%.2f\t%.2f\t%.1f\n", s.c_str(),
+        std::printf("%s%s\t%s\t%s\t%zu\t%dx%d\t%d\t%.4f\t%.4f\t%.2f\t%.2f\t%.1f\n", file ? "" : "seed", s.c_str(),
                     r == "0" ? "density10" : r[0] == 'd' ? ("density" + r.substr(1)).c_str() : (r + "^2").c_str(), m.c_str(), atlas.validTexels(), atlas.width,
                     atlas.height, res.shots, res.unshotFraction,
                     res.energy.emitted > 0 ? res.energy.escaped() / res.energy.emitted : 0.0, res.setupSeconds,

@@ -1,4 +1,5 @@
 #include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/solve_estimate.h"
 
 #include <algorithm>
 #include <array>
@@ -1116,8 +1117,8 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   // bake's size here (apps/bake_command.cpp).
   ctx.progress("solve", 0.0, formatStatus(0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
   double lastReport = -1.0;
-  double firstLog = 0.0;  // log of the unshot fraction after the first reflector shot, for the ETA
-  int firstShot = -1;
+  SolveEstimate estimate;  // the ETA, from the shots after the lamps' (radiosity/gpu/solve_estimate.h)
+  bool reflecting = false;
   // The stop weighs the unshot power against the light the surfaces reflect when that is less than what
   // the lamps emit: a lamp in a black housing sends 1 % of its power out and the rest is absorbed at
   // once, so 1 % of the emitted power was the whole of the rooms' light, and the solve stopped after the
@@ -1198,13 +1199,9 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     const double elapsed = since(shootStart), now = unshotShare();
     if (elapsed - lastReport > 0.25) {
       // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
-      double eta = -1.0;
-      if (firstShot < 0 && !sel.winnerPending)
-        firstShot = result.shots, firstLog = std::log(std::max(now, 1e-12));
-      if (firstShot >= 0 && result.shots > firstShot + 2 && now > 0.0) {
-        const double rate = (std::log(now) - firstLog) / double(result.shots - firstShot);
-        if (rate < 0.0) eta = (std::log(stopAt) - std::log(now)) / rate * elapsed / result.shots;
-      }
+      if (!reflecting && !sel.winnerPending) reflecting = true;
+      if (reflecting) estimate.add({result.shots, now, elapsed});
+      const double eta = estimate.secondsLeft(stopAt);
       // Towards the current stop: past a refused one (acceptStop), the next ask.
       const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(stopAt), 0.0, 1.0);
       ctx.progress("solve", progress, formatStatus(result.shots, now, eta));

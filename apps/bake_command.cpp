@@ -88,8 +88,9 @@ struct BakeOptions {
   bool gather = false;
   double timeLimit = 0.0;  ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
-  /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas.
-  float solveDensity = 0.0f;
+  /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas;
+  /// kAutoSolveDensity: chosen by autoSolveDensity.
+  float solveDensity = kAutoSolveDensity;
   /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
   /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
   float lampCoarsening = RefinedLampParams{}.coarsening;
@@ -238,6 +239,24 @@ CellSolveParams cellSolveParams(const BakeOptions& o) {
   return params;
 }
 
+// --solve-density auto: one level up to this many output texels. Each shot costs about its receivers'
+// texels and a solve's shots grow with its patches, so a large atlas is where two levels pay: the
+// furnished house's 282 000 texels baked in 37 min in one level and in 11–12 min in two at 5 texels a
+// metre (bench/RESULTS.md, "The furnished house"); seed1–3 at the default density (11 000–60 000
+// texels) stay as they were.
+constexpr size_t kAutoTwoLevelTexels = 100'000;
+
+// The solve density of a bake: the option's, or with auto half the output's density (at most 5 texels
+// a metre: RESULTS.md, "Two levels") once the output has more than kAutoTwoLevelTexels texels. 0: one
+// level (and always for cells, whose solves are on their own atlases).
+float chosenSolveDensity(const BakeOptions& o, const LightmapAtlas& atlas) {
+  if (o.method == "cells") return 0.0f;
+  if (o.solveDensity != kAutoSolveDensity) return o.solveDensity;
+  if (atlas.validTexels() <= kAutoTwoLevelTexels) return 0.0f;
+  constexpr float kAutoMost = 5.0f;
+  return o.atlas.texelsPerQuad > 0 ? kAutoMost : std::min(kAutoMost, o.atlas.density / 2.0f);
+}
+
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 // A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
 // `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/gpu/ambient.h,
@@ -249,9 +268,9 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
   auto t = ctx.time("solve");
   // The residual, for the ambient term.
   const SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
-  if (o.method != "cells" && o.solveDensity > 0.0f) {
+  if (const float solveDensity = chosenSolveDensity(o, in.atlas); solveDensity > 0.0f) {
     levels.emplace();
-    TwoLevelParams twoLevels{.solveDensity = o.solveDensity};
+    TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = o.lampCoarsening;
     return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
                          &*levels);
@@ -377,7 +396,10 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["jittered_eyes"] = o.solver.jitteredEyes;
   report["lamp_rays"] = o.solver.lampRays;
   // Two levels (radiosity/gpu/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
-  report["solve_density"] = levels ? nlohmann::json(o.solveDensity) : nlohmann::json(nullptr);
+  report["solve_density"] =
+      levels ? nlohmann::json(chosenSolveDensity(o, in.atlas)) : nlohmann::json(nullptr);
+  report["solve_density_option"] =
+      o.solveDensity == kAutoSolveDensity ? nlohmann::json("auto") : nlohmann::json(o.solveDensity);
   report["solve_texels"] = levels ? levels->solveTexels : in.atlas.validTexels();
   if (levels) {
     report["lamp_shots"] = levels->lampShots;
@@ -559,7 +581,7 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
 }
 
 int runBake(const BakeOptions& o) {
-  if (o.method == "cells" && o.solveDensity > 0.0f)
+  if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
     throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -341,11 +342,25 @@ void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
 }
 
 void addSolveDensityOption(CLI::App& cmd, float& density) {
-  addChecked(
-      cmd, {}, "solve density", density,
-      "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
-      "the lamps' own shots on the output's; 0: all on the output's atlas (global method)",
-      within(0.0, 10000.0));
+  cmd.add_option_function<std::string>(
+         "--solve-density",
+         [&density](const std::string& given) {
+           if (given == "auto") {
+             density = kAutoSolveDensity;
+             return;
+           }
+           char* end = nullptr;
+           const double d = std::strtod(given.c_str(), &end);
+           if (end == given.c_str() || *end != '\0' || !std::isfinite(d) || d < 0.0 || d > 10000.0)
+             throw CLI::ValidationError("--solve-density",
+                                        "must be auto or texels per metre in [0, 10000], not " + given);
+           density = float(d);
+         },
+         "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
+         "the lamps' own shots on the output's; 0: all on the output's atlas; auto (the default): half the "
+         "output's density (at most 5) when the output has more than 100 000 texels, else 0 (global method)")
+      ->type_name("auto|T")
+      ->default_str("auto");
 }
 
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {

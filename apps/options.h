@@ -71,7 +71,9 @@ inline constexpr int kBakeLampRays = 64;
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
 /// --spp (paths per texel of the reference).
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
-/// --solve-density (bake: the indirect light on a coarser atlas, radiosity/gpu/two_level_solve.h).
+/// --solve-density (bake: the indirect light on a coarser atlas, radiosity/gpu/two_level_solve.h):
+/// texels per metre, 0 for one level, or "auto" (kAutoSolveDensity, the default).
+inline constexpr float kAutoSolveDensity = -1.0f;
 void addSolveDensityOption(CLI::App& cmd, float& density);
 /// --lamp-coarsening (bake, with --solve-density: radiosity/gpu/refined_lamp_shot.h).
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening);

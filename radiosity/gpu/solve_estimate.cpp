@@ -6,8 +6,12 @@
 namespace cpgi {
 
 namespace {
-// Fewer shots than this since the first reflector shot say nothing about the decay.
-constexpr int kMinShots = 3;
+// Fewer shots than this since the first reflector shot say nothing about the decay (the house's first
+// hundred shots: k from 0 to 1 and back).
+constexpr int kMinShots = 20;
+// The most the rate may be taken to slow: at k = 1 an early window's estimate runs away (the house after
+// 143 shots: 1.7e6 s), and from 0.75 up the house's estimates were no better.
+constexpr double kMostSlowing = 0.75;
 }  // namespace
 
 void SolveEstimate::add(const SolveSample& s) {
@@ -37,15 +41,15 @@ double SolveEstimate::shotsLeft(double stop) const {
   const double dropRecent = logUnshotAt(first + nh - 1.0) - std::log(last.unshot);
   const double dropBefore = logUnshotAt(first + nq - 1.0) - logUnshotAt(first + nh - 1.0);
   if (!(dropRecent > 0.0)) return -1.0;
-  auto g = [](double n, double k) { return k > 0.999 ? std::log(n) : std::pow(n, 1.0 - k) / (1.0 - k); };
+  auto g = [](double n, double k) { return std::pow(n, 1.0 - k) / (1.0 - k); };
   auto ratio = [&](double k) { return (g(nh, k) - g(nq, k)) / (g(nm, k) - g(nh, k)); };
   const double measured = std::max(dropBefore, 0.0) / dropRecent;
-  double lo = 0.0, hi = 1.0;  // ratio grows with k: 0.5 at k = 0, about 1 at k = 1
+  double lo = 0.0, hi = kMostSlowing;  // ratio grows with k: 0.5 at k = 0, about 1 at k = 1
   for (int i = 0; i < 40; ++i) (ratio((lo + hi) / 2.0) < measured ? lo : hi) = (lo + hi) / 2.0;
   const double k = (lo + hi) / 2.0;
   const double c = dropRecent / (g(nm, k) - g(nh, k));
   const double target = g(nm, k) + std::log(last.unshot / stop) / c;
-  const double total = k > 0.999 ? std::exp(target) : std::pow(target * (1.0 - k), 1.0 / (1.0 - k));
+  const double total = std::pow(target * (1.0 - k), 1.0 / (1.0 - k));
   return std::max(total - nm, 0.0);
 }
 

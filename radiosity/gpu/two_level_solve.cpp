@@ -32,6 +32,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   AtlasParams coarseParams = atlasParams;
   coarseParams.texelsPerQuad = 0;
   coarseParams.density = levels.solveDensity;
+  coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
   size_t refined = 0;
   if (levels.refineContacts) {
     const std::vector<float> fine = outputDensity(atlas, scene.triangles.size());

@@ -1,6 +1,7 @@
 #include "radiosity/lightmap/atlas.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <span>
@@ -260,7 +261,18 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   int maxQuads = 1;
   if (params.mergeTexels > 0)
     maxQuads = std::max(1, params.mergeTexels / (params.texelsPerQuad > 0 ? params.texelsPerQuad : params.minTexels));
-  const std::vector<QuadGrid> grids = findQuadGrids(quads, wholeQuad, scene, maxQuads);
+  // Quads at different densities are different grids (the float's bits: densities are compared exactly).
+  std::vector<uint32_t> densityGroup;
+  if (params.texelsPerQuad == 0 && !params.triangleDensity.empty()) {
+    densityGroup.resize(quads.quads.size());
+    for (size_t qi = 0; qi < quads.quads.size(); ++qi) {
+      const auto& qt = quads.quads[qi].triangles;
+      densityGroup[qi] =
+          std::bit_cast<uint32_t>(std::max(params.triangleDensity[qt[0]], params.triangleDensity[qt[1]]));
+    }
+  }
+  const std::vector<QuadGrid> grids =
+      findQuadGrids(quads, wholeQuad, scene, maxQuads, densityGroup.empty() ? nullptr : &densityGroup);
   std::vector<int> gridOfQuad(quads.quads.size(), -1);
   for (size_t g = 0; g < grids.size(); ++g) gridOfQuad[grids[g].quads.front()] = int(g);
   std::vector<char> quadDone(quads.quads.size(), 0);

@@ -1,16 +1,24 @@
 #include "radiosity/lightmap/contact_density.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <tbb/parallel_for.h>
 
 namespace cpgi {
 
+namespace {
+// Probe points (half a coarse texel apart: 4 to a coarse texel) that must find something close.
+constexpr int kContactPoints = 4;
+}  // namespace
+
 std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCount) {
   std::vector<float> density(triangleCount, 0.0f);
   for (const Patch& p : atlas.patches) {
-    const float edge = std::min(glm::length(p.texelU), glm::length(p.texelV));
+    // The coarser axis: a long thin strip (a 12 m rail 2 cm deep) has the minimum of 2 texels across it,
+    // 100 a metre, which asked of its whole length is 1 200 texels where the output has 120.
+    const float edge = std::max(glm::length(p.texelU), glm::length(p.texelV));
     if (!(edge > 0.0f)) continue;
     for (int32_t t : p.triangles) density[size_t(t)] = 1.0f / edge;
   }
@@ -32,16 +40,22 @@ std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, floa
     // Points on a barycentric grid about half a coarse texel apart, inset from the edges (a point on an
     // edge shared with a wall standing on it would find that wall at once).
     const int steps = std::clamp(int(std::ceil(longest * 2.0f * coarse)), 1, 512);
-    float gap = reach;
+    // The gap is the largest of the nearest kContactPoints hits: an occluder smaller than a coarse texel
+    // (a chair's leg on a floor) shades less than the texel the coarse solve smears it over.
+    std::array<float, kContactPoints> nearest;
+    nearest.fill(reach);
     for (int a = 0; a <= steps; ++a)
       for (int b = 0; a + b <= steps; ++b) {
         const float u = (float(a) + 1.0f / 3.0f) / float(steps + 1),
                     v = (float(b) + 1.0f / 3.0f) / float(steps + 1);
         if (u + v >= 1.0f) continue;
         const glm::vec3 p = (1.0f - u - v) * t.p[0] + u * t.p[1] + v * t.p[2];
-        if (const RayScene::Hit hit = rays.intersect(p + offset * n, n, 0.0f, gap))
-          gap = std::min(gap, hit.t);
+        if (const RayScene::Hit hit = rays.intersect(p + offset * n, n, 0.0f, nearest.back())) {
+          nearest.back() = hit.t;
+          std::sort(nearest.begin(), nearest.end());
+        }
       }
+    const float gap = nearest.back();
     if (gap < reach) density[i] = std::clamp(2.0f / std::max(gap, 1e-4f), coarse, fine[i]);
   });
   return density;

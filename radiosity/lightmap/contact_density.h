@@ -15,8 +15,8 @@
 
 namespace cpgi {
 
-/// Per scene triangle, the output atlas's texel density there (texels per metre, from its chart's
-/// texel edges; 0 for a triangle it does not hold).
+/// Per scene triangle, the output atlas's texel density there (texels per metre along its chart's
+/// coarser texel edge; 0 for a triangle it does not hold).
 std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCount);
 
 /// Per scene triangle, `coarse`, or where something lies within 2 / coarse metres in front of it (a ray

@@ -74,18 +74,20 @@ bool blocked(const Segment& s, const std::vector<Segment>& standing) {
 }  // namespace
 
 std::vector<QuadGrid> findQuadGrids(const QuadSet& quads, const std::vector<char>& usable, const Scene& scene,
-                                    int maxQuads) {
+                                    int maxQuads, const std::vector<uint32_t>* group) {
   const size_t n = quads.quads.size();
   maxQuads = std::max(maxQuads, 1);
-  // Planes: material, normal and offset, snapped. Each plane's first quad sets the axis u turns towards.
-  std::map<std::tuple<uint32_t, Key, int64_t>, std::vector<uint32_t>> planes;
+  // Planes: material (and group), normal and offset, snapped. Each plane's first quad sets the axis u
+  // turns towards.
+  std::map<std::tuple<uint32_t, uint32_t, Key, int64_t>, std::vector<uint32_t>> planes;
   for (uint32_t q = 0; q < n; ++q) {
     if (!usable[q]) continue;
     const Quad& quad = quads.quads[q];
     const uint32_t material = scene.triangles[quad.triangles[0]].material;
     const glm::vec3 nrm = glm::normalize(quad.normal);
     const Key nk{std::llround(nrm.x * 1e4), std::llround(nrm.y * 1e4), std::llround(nrm.z * 1e4)};
-    planes[{material, nk, std::llround(glm::dot(nrm, quad.corners[0]) / kSnap)}].push_back(q);
+    const uint32_t g = group ? (*group)[q] : 0;
+    planes[{material, g, nk, std::llround(glm::dot(nrm, quad.corners[0]) / kSnap)}].push_back(q);
   }
   std::vector<int> gridOf(n, -1);
   std::vector<QuadGrid> grids;

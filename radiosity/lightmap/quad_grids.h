@@ -28,8 +28,10 @@ struct QuadGrid {
 /// Greedy maximal rectangles of equal quads (same material, plane and edges, neighbours' corners within
 /// 0.1 mm) among the quads with `usable[q]` set, at most `maxQuads` along either edge. Every usable quad
 /// lands in exactly one grid (a lone quad is a 1×1 grid), in its own orientation when alone. Deterministic:
-/// grids come in the order of their first quad.
+/// grids come in the order of their first quad. With `group` (one entry per quad), only quads of the same
+/// group merge: quads solved at another texel density (AtlasParams::triangleDensity) must not take a
+/// whole grid with them.
 std::vector<QuadGrid> findQuadGrids(const QuadSet& quads, const std::vector<char>& usable, const Scene& scene,
-                                    int maxQuads);
+                                    int maxQuads, const std::vector<uint32_t>* group = nullptr);
 
 }  // namespace cpgi

@@ -19,9 +19,10 @@ namespace cpgi {
 /// coarser texel edge; 0 for a triangle it does not hold).
 std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCount);
 
-/// Per scene triangle, `coarse`, or where something lies within 2 / coarse metres in front of it (a ray
-/// along its normal from points about half a coarse texel apart), 2 / that gap, at most `fine` of the
-/// triangle (and never below `coarse`, unless `fine` is: never finer than the output).
+/// Per scene triangle, `coarse`, or where something lies within 2 / coarse metres in front of it (rays
+/// along its normal from points about half a coarse texel apart, at least 4 of them hitting: about a
+/// coarse texel's area), 2 / that gap (the 4th nearest hit), at most `fine` of the triangle (and never
+/// below `coarse`, unless `fine` is: never finer than the output).
 std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, float coarse,
                                   std::span<const float> fine);
 

@@ -89,7 +89,7 @@ struct BakeOptions {
   double timeLimit = 0.0;  ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
   /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas;
-  /// kAutoSolveDensity: chosen by autoSolveDensity.
+  /// kAutoSolveDensity: chosen by chosenSolveDensity.
   float solveDensity = kAutoSolveDensity;
   /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
   /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
@@ -239,11 +239,11 @@ CellSolveParams cellSolveParams(const BakeOptions& o) {
   return params;
 }
 
-// --solve-density auto: one level up to this many output texels. Each shot costs about its receivers'
-// texels and a solve's shots grow with its patches, so a large atlas is where two levels pay: the
-// furnished house's 282 000 texels baked in 37 min in one level and in 11–12 min in two at 5 texels a
-// metre (bench/RESULTS.md, "The furnished house"); seed1–3 at the default density (11 000–60 000
-// texels) stay as they were.
+// --solve-density auto: one level up to this many output texels. A large atlas is where two levels pay
+// (fewer receiver texels and half the item buffer per shot of the interreflection): the furnished
+// house's 282 000 texels baked in 37 min in one level and in 11–12 min in two at 5 texels a metre
+// (bench/RESULTS.md, "The furnished house"); seed1–3 at the default density, under this, stay as they
+// were.
 constexpr size_t kAutoTwoLevelTexels = 100'000;
 
 // The solve density of a bake: the option's, or with auto half the output's density (at most 5 texels

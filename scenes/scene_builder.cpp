@@ -29,14 +29,18 @@ void SceneBuilder::quad(glm::vec3 o, glm::vec3 u, glm::vec3 v, uint32_t material
   scene_.triangles.push_back(b);
 }
 
-void SceneBuilder::triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node) {
+Triangle flatTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node) {
   Triangle t;
   t.p = {a, b, c};
   const glm::vec3 n = t.geometricNormal();
   t.n = {n, n, n};
   t.material = material;
   t.node = node;
-  scene_.triangles.push_back(t);
+  return t;
+}
+
+void SceneBuilder::triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node) {
+  scene_.triangles.push_back(flatTriangle(a, b, c, material, node));
 }
 
 uint32_t SceneBuilder::rect(int axis, float at, float sign, glm::vec2 lo, glm::vec2 hi, uint32_t material,

@@ -9,6 +9,9 @@
 
 namespace cpgi {
 
+/// One flat-shaded triangle: its corners in order, their normals all the winding's.
+Triangle flatTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material, uint32_t node);
+
 class SceneBuilder {
  public:
   explicit SceneBuilder(Scene& scene) : scene_(scene) {}

@@ -10,6 +10,7 @@
 
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
+#include "scenes/scene_builder.h"
 
 namespace cpgi::testing {
 
@@ -20,13 +21,7 @@ inline uint32_t addMaterial(Scene& scene, glm::vec3 albedo, glm::vec3 emission =
 
 inline void addTriangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material,
                         uint32_t node = 0) {
-  Triangle t;
-  t.p = {a, b, c};
-  const glm::vec3 n = t.geometricNormal();
-  t.n = {n, n, n};
-  t.material = material;
-  t.node = node;
-  scene.triangles.push_back(t);
+  scene.triangles.push_back(flatTriangle(a, b, c, material, node));
   if (scene.nodePaths.size() <= node) scene.nodePaths.resize(node + 1, "node");
 }
 

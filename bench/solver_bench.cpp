@@ -1,7 +1,7 @@
 // Times the GPU solver on the seed scenes (design.md §4) for every resolution and visibility mode and
 // prints one line per run: seconds (setup + shots + read back), shots, texels, unshot fraction,
 // energy escaped. Usage: cpgi_solver_bench [--scenes 1,2,3] [--res 16,32,64,128,0] [--vis hemicube,hemisphere]
-//   [--unshot F] [--max-shots N] [--item-buffer N] [--min-texels N]   (res 0 = the default density of 10 texels/m, dT = T texels/m)
+//   [--unshot F] [--max-shots N] [--item-buffer N] [--min-texels N] [--cull 0|1]   (res 0 = the default density of 10 texels/m, dT = T texels/m)
 //   A scene is a seed number or a .glb/.gltf/.obj file (loaded as `cpgi bake` loads it).
 #include <cstdio>
 #include <cstdlib>
@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     else if (key == "--regions") base.maxRegions = std::atoi(value.c_str());
     else if (key == "--neighbourhood") base.neighbourhood = std::atoi(value.c_str());
     else if (key == "--profile") base.profilePasses = value == "1";
+    else if (key == "--cull") base.cullItemBuffers = value == "1";
     else if (key == "--min-texels") minTexels = std::atoi(value.c_str());
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());

@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <map>
 
 #include "core/error.h"
 #include "core/memory_limit.h"
 #include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/gl.h"
+#include "radiosity/gpu/item_mesh.h"
 #include "radiosity/gpu/shader_library.h"
 #include "radiosity/gpu/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
@@ -78,7 +80,13 @@ enum Ssbo : GLuint {
   kEyes = 20,
   kShotGain = 21,
   kCoverage = 22,
-  kTexelFlags = 23
+  kTexelFlags = 23,
+  kItemPositions = 24,  // shaders/item_cull.comp
+  kItemIndices = 25,
+  kFaceMasks = 26,
+  kChunkSlots = 27,
+  kFaceIndices = 28,
+  kFaceDraws = 29
 };
 
 struct Face {
@@ -118,6 +126,8 @@ void set(const gl::Program& p, const char* n, const glm::mat3& m) {
 GLuint groups(size_t n, size_t size) {
   return static_cast<GLuint>((n + size - 1) / size);
 }
+
+constexpr size_t kCullChunk = 32;  // triangles per invocation of item_cull.comp (its CHUNK)
 
 void checkParams(const SolverParams& p, const LightmapAtlas& atlas, const EglContext& context) {
   const int maxTexture = context.maxTextureSize();
@@ -250,7 +260,10 @@ struct SolverPrograms::Set {
     pickEyes = buildProgram({"pick_eyes.comp"});
     rescale = buildProgram({"rescale_shot.comp"});
     coverage = buildProgram({"shot_coverage.comp"}, d.item);
+    for (int pass = 0; pass < 3; ++pass)
+      cull[pass] = buildProgram({"item_cull.comp"}, {"PASS " + std::to_string(pass)});
   }
+  gl::Program cull[3];  ///< item_cull.comp's passes
   gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select, pickEyes, rescale, coverage;
 };
 
@@ -294,6 +307,7 @@ class Solver {
         pickEyesProgram_(programs.pickEyes),
         rescaleProgram_(programs.rescale),
         coverageProgram_(programs.coverage),
+        cullPrograms_{&programs.cull[0], &programs.cull[1], &programs.cull[2]},
         binnedPyramid_(binned ? &binned->pyramid : nullptr),
         binnedReceive_(binned ? &binned->receive : nullptr),
         plainPyramid_(plain ? &plain->pyramid : nullptr),
@@ -401,6 +415,7 @@ class Solver {
 
     const GLuint zero = 0;
     glClearNamedBufferData(visible_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    if (culled()) cullItemFaces(std::span(eyes).first(size_t(regions)), toShooter);
     for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
     clock_.mark(lamp ? "item buffers (lamp shots)" : "item buffers");
     set(coverageProgram_, "uToShooter", toShooter);
@@ -630,6 +645,45 @@ class Solver {
     return s;
   }
 
+  // Per hemicube face, the triangles that may show in it from any of `eyes` (shaders/item_cull.comp), as
+  // the index lists and draw commands renderItemBuffer draws.
+  void cullItemFaces(std::span<const glm::vec3> eyes, const glm::mat3& toShooter) {
+    // The planes a·local > b beyond which item.vert's projection clips, in shooter coordinates; from every
+    // eye at once, a·(toShooter p) > b + max over the eyes of a·(toShooter eye).
+    std::array<glm::vec4, 26> planes;
+    float scale = 0.0f;
+    for (const glm::vec3& e : eyes) scale = std::max(scale, glm::length(toShooter * e));
+    auto plane = [&](glm::vec3 a, float b) {
+      float most = -std::numeric_limits<float>::infinity();
+      for (const glm::vec3& e : eyes) most = std::max(most, glm::dot(a, toShooter * e));
+      return glm::vec4(a, b + most);
+    };
+    planes[0] = plane(glm::vec3(0, 0, -1), 0.0f);  // behind the shooter: gl_ClipDistance[0] < 0
+    for (size_t f = 0; f < 5; ++f) {
+      const glm::vec3 r = kFaces[f].right, u = kFaces[f].up, w = kFaces[f].forward;
+      // y as item.vert has it: v.y on the top face, 2 v.y − w on the half side faces.
+      const glm::vec3 y = f == 0 ? u : 2.0f * u - w;
+      planes[1 + 5 * f] = plane(r - w, 0.0f);   // x > w
+      planes[2 + 5 * f] = plane(-r - w, 0.0f);  // x < −w
+      planes[3 + 5 * f] = plane(y - w, 0.0f);   // y > w
+      planes[4 + 5 * f] = plane(-y - w, 0.0f);  // y < −w
+      planes[5 + 5 * f] = plane(-w, -near_);    // w < near
+    }
+    const GLuint chunks = groups(size_t(triangleCount_), kCullChunk);
+    for (int pass = 0; pass < 3; ++pass) {
+      const gl::Program& p = *cullPrograms_[size_t(pass)];
+      if (pass == 0) {
+        set(p, "uToShooter", toShooter);
+        glProgramUniform4fv(p.get(), loc(p, "uPlanes"), GLsizei(planes.size()), &planes[0].x);
+        set(p, "uScale", scale + near_);
+      }
+      glUseProgram(p.get());
+      glDispatchCompute(pass == 1 ? 5 : groups(chunks, 64), 1, 1);
+      glMemoryBarrier(pass < 2 ? GL_SHADER_STORAGE_BARRIER_BIT
+                               : GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+  }
+
   void renderItemBuffer(int layer, const glm::vec3& eye, const glm::mat3& toShooter) {
     glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT0, items_.get(), 0, layer);
     glNamedFramebufferTextureLayer(fbo_.get(), GL_COLOR_ATTACHMENT1, distances_.get(), 0, layer);
@@ -649,8 +703,9 @@ class Solver {
     if (params_.visibility == Visibility::Hemisphere) {
       glViewport(0, 0, itemSize_, itemSize_);
       glPatchParameteri(GL_PATCH_VERTICES, 3);
-      glDrawArrays(GL_PATCHES, 0, vertexCount_);
+      glDrawElements(GL_PATCHES, indexCount_, GL_UNSIGNED_INT, nullptr);
     } else {
+      if (culled()) glBindBuffer(GL_DRAW_INDIRECT_BUFFER, faceDraws_.get());
       const int f = itemSize_, half = f / 2;
       for (int i = 0; i < 5; ++i) {
         set(itemProgram_, "uFace", rowsOf(kFaces[i].right, kFaces[i].up, kFaces[i].forward));
@@ -659,7 +714,11 @@ class Solver {
           glViewport(0, 0, f, f);
         else
           glViewport(0, f + (i - 1) * half, f, half);
-        glDrawArrays(GL_TRIANGLES, 0, vertexCount_);
+        if (culled())
+          glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(uintptr_t(i) * 5 * sizeof(GLuint)));
+        else
+          glDrawElements(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr);
       }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -824,30 +883,34 @@ class Solver {
   }
 
   void uploadGeometry() {
-    // Patch ID per triangle; triangles outside the atlas occlude as -2 (never a receiver's ID).
-    std::vector<int32_t> patchOf(scene_.triangles.size(), -2);
-    for (size_t i = 0; i < atlas_.patches.size(); ++i)
-      for (int32_t t : atlas_.patches[i].triangles)
-        if (t >= 0) patchOf[t] = int32_t(i);
-    std::vector<glm::vec3> positions, normals;
-    std::vector<int32_t> ids;
-    for (size_t t = 0; t < scene_.triangles.size(); ++t) {
-      const Triangle& tri = scene_.triangles[t];
-      if (!(tri.area() > 0.0f)) continue;
-      // The side a receiver is on: its patch's normal (what receive.comp and shot_coverage.comp test).
-      const glm::vec3 n = patchOf[t] >= 0
-                              ? atlas_.patches[patchOf[t]].normal
-                              : glm::normalize(glm::cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]));
-      for (const glm::vec3& q : tri.p)
-        positions.push_back(q), normals.push_back(n), ids.push_back(patchOf[t]);
-    }
-    vertexCount_ = GLsizei(positions.size());
-    positionBuffer_ = gl::makeBuffer(positions.size() * sizeof(glm::vec3), positions.data(), 0);
-    idBuffer_ = gl::makeBuffer(ids.size() * 4, ids.data(), 0);
-    normalBuffer_ = gl::makeBuffer(normals.size() * sizeof(glm::vec3), normals.data(), 0);
+    const ItemMesh mesh = buildItemMesh(scene_, atlas_);
+    indexCount_ = GLsizei(mesh.indices.size());
+    positionBuffer_ = gl::makeBuffer(mesh.positions.size() * sizeof(glm::vec3), mesh.positions.data(), 0);
+    idBuffer_ = gl::makeBuffer(mesh.patches.size() * 4, mesh.patches.data(), 0);
+    normalBuffer_ = gl::makeBuffer(mesh.normals.size() * sizeof(glm::vec3), mesh.normals.data(), 0);
+    indexBuffer_ = gl::makeBuffer(mesh.indices.size() * 4, mesh.indices.data(), 0);
+    triangleCount_ = indexCount_ / 3;
     GLuint vao = 0;
     glCreateVertexArrays(1, &vao);
     vao_ = gl::VertexArray(vao);
+    if (!culled()) {
+      glVertexArrayElementBuffer(vao, indexBuffer_.get());
+    } else {  // the hemicube's faces draw the culled lists (cullItemFaces)
+      const size_t chunks = groups(size_t(triangleCount_), kCullChunk);
+      auto ssbo = [](gl::Buffer& b, Ssbo binding, size_t bytes) {
+        b = gl::makeBuffer(std::max<size_t>(bytes, 4), nullptr);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, b.get());
+      };
+      ssbo(faceMasks_, kFaceMasks, size_t(triangleCount_) * 4);
+      ssbo(chunkSlots_, kChunkSlots, 5 * chunks * 4);
+      ssbo(faceIndices_, kFaceIndices, 5 * size_t(indexCount_) * 4);
+      ssbo(faceDraws_, kFaceDraws, 5 * 5 * 4);
+      if (indexCount_ > 0) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kItemPositions, positionBuffer_.get());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kItemIndices, indexBuffer_.get());
+      }
+      glVertexArrayElementBuffer(vao, faceIndices_.get());
+    }
     glVertexArrayVertexBuffer(vao, 0, positionBuffer_.get(), 0, sizeof(glm::vec3));
     glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao, 0, 0);
@@ -934,6 +997,10 @@ class Solver {
     setU(compactProgram_, "uTiles", GLuint(tileCount_));
     setU(compactProgram_, "uPatches", GLuint(atlas_.patches.size()));
     set(selectProgram_, "uPatches", int(atlas_.patches.size()));
+    for (const gl::Program* p : cullPrograms_) {
+      setU(*p, "uTriangles", GLuint(triangleCount_));
+      setU(*p, "uIndexCount", GLuint(indexCount_));
+    }
   }
 
   const Scene& scene_;
@@ -942,6 +1009,7 @@ class Solver {
   const gl::Program &itemProgram_, &compactProgram_, &finishProgram_, &pyramidProgram_, &receiveProgram_,
       &statsProgram_, &tileStatsProgram_, &selectProgram_, &pickEyesProgram_, &rescaleProgram_,
       &coverageProgram_;
+  std::array<const gl::Program*, 3> cullPrograms_;     ///< item_cull.comp's passes
   const gl::Program *binnedPyramid_, *binnedReceive_;  ///< for binned shooters; null without bins
   const gl::Program *plainPyramid_, *plainReceive_;    ///< for shooters with no lobe; null: not used
   gl::Buffer posArea_, normalPatch_, albedo_, radiosity_, residual_, incident_, emissionLobes_, arrivals_,
@@ -960,10 +1028,12 @@ class Solver {
   gl::Buffer tileStats_;
   std::vector<size_t>
       firstTile_;  // per patch, then the total: its tiles are [firstTile_[p], firstTile_[p + 1])
-  gl::Buffer positionBuffer_, idBuffer_, normalBuffer_;
+  gl::Buffer positionBuffer_, idBuffer_, normalBuffer_, indexBuffer_;
+  gl::Buffer faceMasks_, chunkSlots_, faceIndices_, faceDraws_;  ///< item_cull.comp's, hemicube only
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
   std::vector<ShooterLayout> layouts_, strongLayouts_;  // strongLayouts_ empty when it would be layouts_
+  bool culled() const { return params_.visibility == Visibility::Hemicube && params_.cullItemBuffers; }
   int strongRegions() const {
     return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions;
   }
@@ -973,7 +1043,7 @@ class Solver {
     return all;
   }
   PassClock clock_;
-  GLsizei vertexCount_ = 0;
+  GLsizei indexCount_ = 0, triangleCount_ = 0;
   size_t tileCount_ = 0;
   uint32_t shotCount_ = 0;  ///< shots so far, the seed of the eyes' draw
   int itemSize_ = 0;

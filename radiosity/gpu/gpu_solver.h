@@ -75,6 +75,10 @@ struct SolverParams {
   /// texel and lamp, 16× in penumbrae (radiosity/lightmap/lamp_light.h), and not through item buffers. 0: item
   /// buffers, as every other shot. A multiple of 4.
   int lampRays = 0;
+  /// Hemicube: each shot lists per face the triangles that may show in it (shaders/item_cull.comp) and
+  /// draws only those, bit-identical to drawing every triangle into every face (off: that), which on
+  /// llvmpipe took 1.8× as long (bench/RESULTS.md, "Item buffers drawn indexed and culled").
+  bool cullItemBuffers = true;
   /// Wait for the GPU after every pass and record per-pass times in the Context ("solve: receive", ...).
   /// Costs some speed on a real GPU; on llvmpipe the passes run synchronously anyway.
   bool profilePasses = false;

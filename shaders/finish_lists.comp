@@ -9,7 +9,9 @@ void main() {
   tileArgs[0] = min(tileCount, WORK_LIST_WIDTH);
   tileArgs[1] = (tileCount + WORK_LIST_WIDTH - 1u) / WORK_LIST_WIDTH;
   tileArgs[2] = 1u;
-  patchArgs[0] = min(patchCount, WORK_LIST_WIDTH);
-  patchArgs[1] = (patchCount + WORK_LIST_WIDTH - 1u) / WORK_LIST_WIDTH;
+  // patch_stats.comp: 64 patches per work group.
+  uint patchGroups = (patchCount + 63u) / 64u;
+  patchArgs[0] = min(patchGroups, WORK_LIST_WIDTH);
+  patchArgs[1] = (patchGroups + WORK_LIST_WIDTH - 1u) / WORK_LIST_WIDTH;
   patchArgs[2] = 1u;
 }

@@ -1187,8 +1187,12 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   // bake's size here (apps/bake_command.cpp).
   ctx.progress("solve", 0.0, formatStatus(0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
   double lastReport = -1.0;
-  SolveEstimate estimate;  // the ETA, from the shots after the lamps' (radiosity/gpu/solve_estimate.h)
+  const double strongAt =
+      params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
+  // The ETA, from the shots after the lamps' (radiosity/gpu/solve_estimate.h).
+  SolveEstimate estimate(strongAt);
   bool reflecting = false;
+  double lastShotEnd = 0.0;
   // The stop weighs the unshot power against the light the surfaces reflect when that is less than what
   // the lamps emit: a lamp in a black housing sends 1 % of its power out and the rest is absorbed at
   // once, so 1 % of the emitted power was the whole of the rooms' light, and the solve stopped after the
@@ -1212,11 +1216,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
       break;
     }
     const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
+    const bool strong = shotPower >= strongAt, reflectorShot = reflecting;
     e.shot += shotPower;
     result.shooters.push_back(sel.winner);
-    const double strongAt =
-        params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
-    sel = solver.shoot(sel.winner, shotPower >= strongAt, sel.winnerPending != 0 && params.emittersAreLamps);
+    sel = solver.shoot(sel.winner, strong, sel.winnerPending != 0 && params.emittersAreLamps);
     ++result.shots;
     record(sel);
     // A shot whose eyes see nothing open delivers what they see covered (shot_coverage.comp); no shot
@@ -1267,9 +1270,10 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
     result.shotScales.push_back(scale);
 
     const double elapsed = since(shootStart), now = unshotShare();
+    if (reflectorShot) estimate.addShot(strong, elapsed - lastShotEnd, shotPower, now);
+    lastShotEnd = elapsed;
+    if (!reflecting && !sel.winnerPending) reflecting = true;
     if (elapsed - lastReport > 0.25) {
-      // Unshot power decays roughly geometrically once the emitters are done: extrapolate in log space.
-      if (!reflecting && !sel.winnerPending) reflecting = true;
       if (reflecting) estimate.add({result.shots, now, elapsed});
       const double eta = estimate.secondsLeft(stopAt);
       // Towards the current stop: past a refused one (acceptStop), the next ask.

@@ -40,6 +40,34 @@ TEST(SolveEstimate, ExtrapolatesHowTheDecaySlows) {
   }
 }
 
+// The first shots are strong (a fifth of a second each, seen from 16 eyes) while the largest patch carries
+// at least the strong power, the rest weak (0.05 s): the time left is the strong shots left at their cost
+// and the others at the weak ones', not all of them at the last shots' rate (1 200 s here, against 316).
+TEST(SolveEstimate, CountsTheStrongShotsLeftAtTheirCostAndTheRestAtTheWeakOnes) {
+  const double stop = 0.01, strongCost = 0.2, weakCost = 0.05;
+  auto unshot = [](double n) { return 0.5 * std::exp(-0.05 * std::sqrt(n + 1.0)); };
+  const double strongPower = 2.0 * unshot(200.0);  // the largest patch holds twice the share, in W
+  const double total = std::pow(std::log(0.5 / stop) / 0.05, 2.0) - 1.0;  // 6 118 shots
+  auto truth = [&](int n) {
+    const double strongLeft = std::max(200.0 - n, 0.0);
+    return strongLeft * strongCost + (total - n - strongLeft) * weakCost;
+  };
+  SolveEstimate e(strongPower);
+  double seconds = 0.0;
+  for (int n = 1; n <= 400; ++n) {
+    const double power = 2.0 * unshot(n - 1.0);
+    const bool strong = power >= strongPower;
+    seconds += strong ? strongCost : weakCost;
+    e.addShot(strong, strong ? strongCost : weakCost, power, unshot(n));
+    e.add({n, unshot(n), seconds});
+    if (n == 100) {  // no weak shot yet: their cost guessed from the strong ones' (0.3x)
+      EXPECT_NEAR(e.secondsLeft(stop), truth(n), 0.25 * truth(n)) << "after " << n << " shots";
+    } else if (n == 400) {
+      EXPECT_NEAR(e.secondsLeft(stop), truth(n), 0.05 * truth(n)) << "after " << n << " shots";
+    }
+  }
+}
+
 TEST(SolveEstimate, SaysNothingBeforeTwentyShotsOrWhileTheShareDoesNotFall) {
   SolveEstimate e;
   EXPECT_LT(e.shotsLeft(0.01), 0.0);

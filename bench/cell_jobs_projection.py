@@ -35,24 +35,29 @@ sys.dont_write_bytecode = True  # apps/cpgi-dask is loaded for its partition(); 
 
 
 def read_summary(path):
+    # format 4 (radiosity/cells/cell_job_files.cpp putFigures/putSendFigures): round, cell, solved, kept power,
+    # kept RGB, reflector gain, shots, 7 doubles; sends; job seconds, portal bytes
     data = open(path, "rb").read()
     magic, version, kind, size = struct.unpack_from("<8sIIQ", data, 0)
-    if magic != b"CPGICELL" or version != 1 or kind != 3 or size != len(data) - 32:
-        sys.exit("%s: not a version 1 cell summary" % path)
-    p = struct.unpack_from("<iiBdi7d", data, 24)
-    at = 24 + struct.calcsize("<iiBdi7d")
+    if magic != b"CPGICELL" or version != 4 or kind != 3 or size != len(data) - 32:
+        sys.exit("%s: not a version 4 cell summary" % path)
+    fmt = "<iiBd3ddi7d"
+    p = struct.unpack_from(fmt, data, 24)
+    at = 24 + struct.calcsize(fmt)
     (sends,) = struct.unpack_from("<I", data, at)
-    at += 4 + sends * struct.calcsize("<iii3fdd")
+    at += 4 + sends * struct.calcsize("<iii3fdd3d")
     seconds, portal_bytes = struct.unpack_from("<dQ", data, at)
-    return {"round": p[0], "cell": p[1], "solved": p[2], "shots": p[4], "seconds": seconds,
+    if at + 16 != 24 + size:
+        sys.exit("%s: summary layout not understood" % path)
+    return {"round": p[0], "cell": p[1], "solved": p[2], "shots": p[8], "seconds": seconds,
             "portal_bytes": portal_bytes}
 
 
 def read_group(path):
     data = open(path, "rb").read()
     magic, version, kind, size = struct.unpack_from("<8sIIQ", data, 0)
-    if magic != b"CPGICELL" or version != 1 or kind != 5 or size != len(data) - 32:
-        sys.exit("%s: not a version 1 first-shot group record" % path)
+    if magic != b"CPGICELL" or version != 4 or kind != 5 or size != len(data) - 32:
+        sys.exit("%s: not a version 4 first-shot group record" % path)
     group, cell, _, emitted, shots, seconds = struct.unpack_from("<iiQdid", data, 24)
     return {"group": group, "cell": cell, "shots": shots, "seconds": seconds}
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -383,9 +384,55 @@ CellJobPlan sumFirstShotJobs(const fs::path& dir, const CellJobPlan& given, cons
   return plan;
 }
 
-void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
-                 const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                 const EglContext& gl, Context& ctx) {
+namespace {
+
+// What a round of some cells is solved on: the cells kept, their atlases and portal links. A one-shot
+// job builds it for its own cells and the two rings around them; a server for the whole graph, once.
+struct JobCells {
+  SubGraph sub;
+  std::vector<CellState> cells;  ///< sub order
+  std::vector<PortalLink> links;
+};
+
+JobCells buildJobCells(const Scene& scene, const CellGraph& graph, const std::vector<int>& keep,
+                       const CellSolveParams& params, Context& ctx) {
+  JobCells j;
+  j.sub = subGraph(graph, keep);
+  {
+    auto t = ctx.time("cells: atlases");
+    std::vector<int32_t> localIndex;
+    j.cells = buildCellAtlases(scene, j.sub.graph, params, localIndex, ctx);
+  }
+  j.links = linkPortals(j.sub.graph, j.cells);
+  return j;
+}
+
+// The cells run, their neighbours (whose atlases the portal links need) and the neighbours' neighbours:
+// a cell's atlas holds a patch for each of its portals, so a neighbour's is the whole graph's only when
+// every cell across its portals is there too.
+std::vector<int> cellsAround(const CellJobPlan& plan, const std::vector<int>& run) {
+  std::vector<int> keep = run;
+  for (int ring = 0; ring < 2; ++ring) {
+    const std::vector<int> inner = keep;
+    for (int c : inner)
+      keep.insert(keep.end(), plan.neighbours[size_t(c)].begin(), plan.neighbours[size_t(c)].end());
+    std::sort(keep.begin(), keep.end());
+    keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  }
+  return keep;
+}
+
+// How round `round` solves: towards which unshot power, with which budget.
+struct RoundSettings {
+  double target = 0.0;
+  SolverParams settings;
+  SolveControls controls;
+};
+
+// Refuses a round the plan cannot run yet or needs no more, then replays the rounds before from their
+// summaries: the unshot power and the stop's target now.
+RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int round, const CellGraph& graph,
+                            const CellSolveParams& params) {
   requireSupported(params);
   if (graph.cells.size() != plan.cells.size())
     throw InputError((dir / "plan.json").string(), "the plan has " + std::to_string(plan.cells.size()) +
@@ -393,7 +440,6 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
                                                        std::to_string(graph.cells.size()));
   if (round < 1) throw InputError("round", "cell job rounds count from 1");
   requireFirstShotSummed(dir, plan);
-  // The rounds before, replayed from their summaries: the unshot power and the stop's target now.
   RoundStop stop = planStop(plan);
   double before = plan.emitted;
   bool needed = true;
@@ -404,64 +450,91 @@ void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const 
   if (!needed)
     throw InputError(roundDir(dir, round).string(), "the solve needs no round " + std::to_string(round) +
                                                         " (converged, or past the maximum rounds): gather");
-  SolveControls controls;
-  controls.readTransfer = true;
-  const SolverParams settings =
-      roundBudget(params.solver, stop.target(), before, plan.emitted, controls, plan.globalPatches);
+  RoundSettings s;
+  s.target = stop.target();
+  s.controls.readTransfer = true;
+  s.settings = roundBudget(params.solver, s.target, before, plan.emitted, s.controls, plan.globalPatches);
+  return s;
+}
 
-  // The cells run, their neighbours (whose atlases the portal links need) and the neighbours' neighbours:
-  // a cell's atlas holds a patch for each of its portals, so a neighbour's is the whole graph's only when
-  // every cell across its portals is there too.
-  std::vector<int> keep = run;
-  for (int ring = 0; ring < 2; ++ring) {
-    const std::vector<int> inner = keep;
-    for (int c : inner)
-      keep.insert(keep.end(), plan.neighbours[size_t(c)].begin(), plan.neighbours[size_t(c)].end());
-    std::sort(keep.begin(), keep.end());
-    keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
-  }
-  const SubGraph sub = subGraph(graph, keep);
-  std::vector<CellState> cells;
-  {
-    auto t = ctx.time("cells: atlases");
-    std::vector<int32_t> localIndex;
-    cells = buildCellAtlases(scene, sub.graph, params, localIndex, ctx);
-  }
-  const std::vector<PortalLink> links = linkPortals(sub.graph, cells);
-  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
-  SolverPrograms programs;
-  controls.programs = &programs;
+// Round `round` of the cells `run` (graph indices, each kept in `j`): gathers, solves or waits, and
+// writes each cell's files, its summary last.
+void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
+                   JobCells& j, RoundSettings r, const PortalTransfer& transfer, SolverPrograms& programs,
+                   const EglContext& gl, Context& ctx) {
+  r.controls.programs = &programs;
   fs::create_directories(roundDir(dir, round));
   for (int c : run) {
     const auto start = std::chrono::steady_clock::now();
-    const size_t k = size_t(sub.subOf[size_t(c)]);
-    CellState& s = cells[k];
+    const size_t k = size_t(j.sub.subOf[size_t(c)]);
+    CellState& s = j.cells[k];
     if (s.atlas.texelCount() != plan.texels[size_t(c)])
       throw InputError((dir / "plan.json").string(),
                        "cell " + plan.cells[size_t(c)] + " has " + std::to_string(s.atlas.texelCount()) +
                            " texels here, " + std::to_string(plan.texels[size_t(c)]) + " in the plan");
+    // Everything of the state a round reads is set here from the files (pending light, carried part,
+    // moments, bins, and for a solve the emission from the pending light), as solveCells sets it each
+    // round: a served cell keeps nothing of an earlier job but its atlas.
     gatherFromFiles(dir, plan, round, c, s);
-    CellRound r;
-    if (cellSolvesRound(s, stop.target())) {
+    CellRound cr;
+    if (cellSolvesRound(s, r.target)) {
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
       auto t = ctx.time("cells: solve");
-      const SolveResult solved = transfer->solve(k, s, settings, controls, gl, ctx);
-      r = cellRoundOf(k, s, solved, links, cells, transfer->binRays());
+      const SolveResult solved = transfer.solve(k, s, r.settings, r.controls, gl, ctx);
+      cr = cellRoundOf(k, s, solved, j.links, j.cells, transfer.binRays());
     } else {
-      r = waitingCellRound(k, s);
+      cr = waitingCellRound(k, s);
     }
-    toGraphIndices(r, sub);
-    writeCellState(cellStateFile(dir, round, c), round, r);
+    toGraphIndices(cr, j.sub);
+    writeCellState(cellStateFile(dir, round, c), round, cr);
     CellRoundSummary summary;
     summary.round = round;
     for (int n : plan.neighbours[size_t(c)])
-      summary.portalBytes += writePortalLight(portalLightFile(dir, round, c, n), round, r, n);
-    summary.figures = std::move(r);
+      summary.portalBytes += writePortalLight(portalLightFile(dir, round, c, n), round, cr, n);
+    summary.figures = std::move(cr);
     summary.figures.kept.clear(), summary.figures.carried.clear(), summary.figures.radiosity.clear();
     for (PortalSend& send : summary.figures.sends) send.exitance.clear();
     summary.jobSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writeSummary(cellSummaryFile(dir, round, c), summary);  // last: the job for this cell is done
   }
+}
+
+}  // namespace
+
+void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
+                 const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
+                 const EglContext& gl, Context& ctx) {
+  const RoundSettings settings = roundSettings(dir, plan, round, graph, params);
+  JobCells cells = buildJobCells(scene, graph, cellsAround(plan, run), params, ctx);
+  const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
+  SolverPrograms programs;
+  solveJobCells(dir, plan, round, run, cells, settings, *transfer, programs, gl, ctx);
+}
+
+struct CellJobServer::Kept {
+  const CellGraph& graph;
+  CellSolveParams params;
+  JobCells cells;
+  std::unique_ptr<PortalTransfer> transfer;
+  SolverPrograms programs;
+};
+
+CellJobServer::CellJobServer(const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
+                             Context& ctx) {
+  requireSupported(params);
+  std::vector<int> all(graph.cells.size());
+  for (size_t c = 0; c < all.size(); ++c) all[c] = int(c);
+  // SolverPrograms neither copies nor moves: the aggregate is built in place.
+  kept_.reset(
+      new Kept{graph, params, buildJobCells(scene, graph, all, params, ctx), makePortalTransfer(params), {}});
+}
+
+CellJobServer::~CellJobServer() = default;
+
+void CellJobServer::runRound(const fs::path& dir, const CellJobPlan& plan, int round,
+                             const std::vector<int>& run, const EglContext& gl, Context& ctx) {
+  const RoundSettings settings = roundSettings(dir, plan, round, kept_->graph, kept_->params);
+  solveJobCells(dir, plan, round, run, kept_->cells, settings, *kept_->transfer, kept_->programs, gl, ctx);
 }
 
 CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {

@@ -13,11 +13,14 @@
 //                    state and the portal light its neighbours sent it), solves it on the GPU when it holds
 //                    enough (cell_round.h, as solveCells does), and writes its state, the portal light it
 //                    sends each neighbour and its summary (last: its presence marks the job done).
+//   CellJobServer    runCellJobs for one job after another in one process, the cells' atlases, the GPU
+//                    programs and the EGL context kept between them (`cpgi cell-job PLAN --serve`).
 //   cellJobStatus    which round comes next, from plan.json and the summaries alone (cheap).
 //   gatherCellJobs   every round applied in order, as solveCells applies them: the same SolveResult.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -91,6 +94,27 @@ CellJobPlan sumFirstShotJobs(const std::filesystem::path& dir, const CellJobPlan
 void runCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, int round,
                  const std::vector<int>& cells, const Scene& scene, const CellGraph& graph,
                  const CellSolveParams& params, const EglContext& gl, Context& ctx);
+
+/// Round jobs served by one long-lived process (`cpgi cell-job PLAN --serve`, docs/cell-jobs.md): the whole
+/// graph's cell atlases and portal links are built once, and the portal model and the solver's compiled
+/// programs are kept between jobs, so that a job costs its cells' work and files alone. A served round of
+/// some cells writes the bytes runCellJobs writes (the job seconds aside): a cell's atlas and links are the
+/// whole graph's in both, and each job starts from its cells' atlases as built. `graph` must outlive it.
+class CellJobServer {
+ public:
+  CellJobServer(const Scene& scene, const CellGraph& graph, const CellSolveParams& params, Context& ctx);
+  ~CellJobServer();
+  CellJobServer(const CellJobServer&) = delete;
+  CellJobServer& operator=(const CellJobServer&) = delete;
+
+  /// As runCellJobs, on the kept cells.
+  void runRound(const std::filesystem::path& dir, const CellJobPlan& plan, int round,
+                const std::vector<int>& cells, const EglContext& gl, Context& ctx);
+
+ private:
+  struct Kept;
+  std::unique_ptr<Kept> kept_;
+};
 
 /// One finished round in figures.
 struct CellJobRoundStatus {

@@ -1,10 +1,14 @@
 // Cell jobs (issue 16): the first shot run one emitter group per job and summed, then the rounds run one
 // cell per job from files and gathered give solveCells' result bit for bit, on the 4-room office (two
-// storeys joined by a hatch, a lamp in two rooms); the job files refuse damage.
+// storeys joined by a hatch, a lamp in two rooms), also when one server process runs the round jobs one
+// after another (CellJobServer); the job files refuse damage.
 #include "radiosity/cells/cell_jobs.h"
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -27,8 +31,37 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
 };
 
-// Every step as its own job from files, against solveCells with the same parameters: bit for bit.
-void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientShare = 0.0) {
+std::string fileBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Every file of a round but the summaries (which also record the job's seconds): name → bytes.
+std::map<std::string, std::string> roundLight(const fs::path& dir, int round) {
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(roundDir(dir, round)))
+    if (e.path().extension() != ".summary") files[e.path().filename().string()] = fileBytes(e.path());
+  return files;
+}
+
+// Round `round` of every cell, one cell a job, last cell first: each job its own process's work
+// (runCellJobs), or one server's after another (CellJobServer: its atlases, programs and the cells' state
+// kept from the jobs before, of this round and the rounds before).
+void runRound(const fs::path& dir, const CellJobPlan& plan, int round, const SeedScene& s,
+              const CellSolveParams& params, CellJobServer* server, const EglContext& gl, Context& ctx) {
+  for (int c = int(plan.cells.size()) - 1; c >= 0; --c) {  // any order within a round
+    if (server)
+      server->runRound(dir, plan, round, {c}, gl, ctx);
+    else
+      runCellJobs(dir, plan, round, {c}, s.scene, s.cells, params, gl, ctx);
+  }
+}
+
+// Every step as its own job from files, against solveCells with the same parameters: bit for bit. With
+// `served`, the rounds run on one CellJobServer, and each round's first cell runs again at the end of the
+// round (a job rerun after a lost worker), rewriting the same state and portal light.
+void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientShare = 0.0,
+                                         bool served = false) {
   const SeedScene s = makeBuiltinScene("office-small");
   Context ctx;
   EglContext gl(ctx);
@@ -56,12 +89,18 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientS
   const CellJobPlan plan = sumFirstShotJobs(dir.path, made, s.scene, s.cells, atlas, params, ctx);
   EXPECT_TRUE(readCellJobPlan(dir.path).firstShotSummed);
   EXPECT_EQ(readCellJobPlan(dir.path).emitted, plan.emitted);
+  std::optional<CellJobServer> server;
+  if (served) server.emplace(s.scene, s.cells, params, ctx);
   for (int round = 1;; ++round) {
     const CellJobStatus status = cellJobStatus(dir.path, plan);
     if (status.nextRound == 0) break;
     ASSERT_EQ(status.nextRound, round);
-    for (int c = int(plan.cells.size()) - 1; c >= 0; --c)  // any order within a round
-      runCellJobs(dir.path, plan, round, {c}, s.scene, s.cells, params, gl, ctx);
+    runRound(dir.path, plan, round, s, params, server ? &*server : nullptr, gl, ctx);
+    if (server) {
+      const std::map<std::string, std::string> written = roundLight(dir.path, round);
+      server->runRound(dir.path, plan, round, {int(plan.cells.size()) - 1}, gl, ctx);
+      EXPECT_EQ(roundLight(dir.path, round), written) << "round " << round << " rerun";
+    }
   }
   const SolveResult gathered = gatherCellJobs(dir.path, plan, s.scene, s.cells, atlas, params, ctx);
   EXPECT_EQ(gathered.perCell->rounds, single.perCell->rounds);
@@ -104,6 +143,17 @@ TEST(CellJobs, BinnedPortalsGiveTheSingleProcessSolve) {
 // same rounds, each towards the same lowered target, as the single process.
 TEST(CellJobs, StopPerCellGivesTheSingleProcessSolve) {
   expectJobsGiveTheSingleProcessSolve(PortalLight::Binned, 0.02);
+}
+
+// Jobs served one after another by one process (`cpgi cell-job PLAN --serve`), with the binned portals of
+// the bake's default and with the directional ones (moments through the files): the single process's
+// solve. A served cell that kept anything of the job before (its pending light, its emission, another
+// atlas than the whole graph's) would differ.
+TEST(CellJobs, ServedJobsGiveTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Binned, 0.0, true);
+}
+TEST(CellJobs, ServedDirectionalJobsGiveTheSingleProcessSolve) {
+  expectJobsGiveTheSingleProcessSolve(PortalLight::Directional, 0.0, true);
 }
 
 TEST(CellJobFiles, DamageIsNamedAndRefused) {

@@ -24,6 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/cell_job_serve.h"
 #include "apps/cell_source.h"
 #include "apps/commands.h"
 #include "apps/lightmap_report.h"
@@ -85,6 +86,7 @@ struct BakeOptions {
   std::string jobCells;
   std::string jobFirstShot;  ///< emitter groups to shoot, "0,3,4" or "all"
   bool jobFirstShotSum = false;
+  bool jobServe = false;  ///< round jobs from stdin until it ends (apps/cell_job_serve.h)
   bool gather = false;
   double timeLimit = 0.0;  ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
@@ -484,6 +486,11 @@ int runCellJobStage(const BakeOptions& o) {
     throw InputError("--plan", "cell jobs bake the whole cell graph: leave out --only-cells and --around");
   BakeInput in = loadBakeInput(o, ctx);
   const CellSolveParams params = cellSolveParams(o);
+  if (o.jobServe) {
+    const EglContext gl(ctx);
+    return serveCellJobs(o.plan, readCellJobPlan(o.plan).bakeArgs, in.loaded.scene, in.graph, params, gl, ctx,
+                         std::cin, std::cout);
+  }
   if (o.jobRound > 0) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
     std::vector<int> run;
@@ -697,6 +704,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("--job-cells", o->jobCells)->group("");
   sub->add_option("--job-first-shot", o->jobFirstShot)->group("");
   sub->add_flag("--job-first-shot-sum", o->jobFirstShotSum)->group("");
+  sub->add_flag("--job-serve", o->jobServe)->group("");
   sub->add_flag("--gather", o->gather)->group("");
   addAtlasOptions(*sub, o->atlas);
   addSolverOptions(*sub, o->solver);

@@ -1,9 +1,9 @@
 // `cpgi cell-job PLAN (--first-shot [--group G]... | --first-shot-sum | --round R [--cell NAME]... |
-// --status [--json] | --gather) [-q]`: the cell jobs of a plan made by `cpgi bake SCENE -o DIR --method
-// cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather runs the bake
-// command again on the arguments kept in PLAN/plan.json, so a job takes exactly the plan's scene and
+// --serve | --status [--json] | --gather) [-q]`: the cell jobs of a plan made by `cpgi bake SCENE -o DIR
+// --method cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather runs the
+// bake command again on the arguments kept in PLAN/plan.json, so a job takes exactly the plan's scene and
 // options; --status reads only the plan's small files and says which step comes next (what a driver such
-// as cpgi-dask waits on).
+// as cpgi-dask waits on); --serve runs round jobs read from stdin in one process (apps/cell_job_serve.h).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -24,7 +24,7 @@ struct CellJobOptions {
   int round = 0;
   std::vector<std::string> cells;
   std::vector<int> groups;
-  bool firstShot = false, firstShotSum = false;
+  bool firstShot = false, firstShotSum = false, serve = false;
   bool status = false, json = false, gather = false, quiet = false;
 };
 
@@ -89,6 +89,8 @@ int runThroughBake(const CellJobOptions& o, const CellJobPlan& plan) {
   args.insert(args.end(), {"--plan", o.plan});
   if (o.gather) {
     args.push_back("--gather");
+  } else if (o.serve) {
+    args.push_back("--job-serve");
   } else if (o.firstShot) {
     std::string list;
     for (int g : o.groups) list += (list.empty() ? "" : ",") + std::to_string(g);
@@ -140,6 +142,10 @@ void addCellJobCommand(CLI::App& app, CommandFn& selected) {
       ->needs(firstShot);
   auto* firstShotSum = sub->add_flag("--first-shot-sum", o->firstShotSum,
                                      "Add the emitter groups' shots in order and start round 0 from them");
+  auto* serve = sub->add_flag(
+      "--serve", o->serve,
+      "Run round jobs read from stdin, one JSON request a line ({\"round\": R, \"cells\": [...]}), "
+      "answering one line each on stdout, keeping the scene, EGL context and atlases between them");
   auto* status = sub->add_flag("--status", o->status, "Print the finished rounds and the next one");
   sub->add_flag("--json", o->json, "With --status: as one JSON line")->needs(status);
   auto* gather =
@@ -149,11 +155,13 @@ void addCellJobCommand(CLI::App& app, CommandFn& selected) {
   status->excludes(gather)->excludes(firstShot)->excludes(firstShotSum);
   gather->excludes(firstShot)->excludes(firstShotSum);
   firstShot->excludes(firstShotSum);
+  serve->excludes(round)->excludes(status)->excludes(gather)->excludes(firstShot)->excludes(firstShotSum);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o] {
     selected = [o] {
-      if (!o->status && !o->gather && !o->firstShot && !o->firstShotSum && o->round == 0)
-        throw InputError("cell-job", "give --first-shot, --first-shot-sum, --round R, --status or --gather");
+      if (!o->status && !o->gather && !o->firstShot && !o->firstShotSum && !o->serve && o->round == 0)
+        throw InputError("cell-job",
+                         "give --first-shot, --first-shot-sum, --round R, --serve, --status or --gather");
       o->plan = std::filesystem::absolute(o->plan).string();
       const CellJobPlan plan = readCellJobPlan(o->plan);
       // The bake's relative paths (scene, -o) are the plan maker's; a job may start anywhere.

@@ -1,0 +1,99 @@
+#include "apps/cell_job_serve.h"
+
+#include <chrono>
+#include <istream>
+#include <optional>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "radiosity/cells/cell_jobs.h"
+#include "radiosity/cells/cell_selection.h"
+
+namespace cpgi::cli {
+namespace {
+
+struct ServeRequest {
+  int round = 0;
+  std::string cells;  ///< "A,B" (cellsByName's list), empty: every cell
+  nlohmann::json id;  ///< echoed in the answer (null: none)
+};
+
+ServeRequest parseRequest(const std::string& line) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::exception&) {
+    throw InputError("request", "not one JSON object a line: " + line.substr(0, 80));
+  }
+  if (!j.is_object()) throw InputError("request", "not a JSON object: " + line.substr(0, 80));
+  ServeRequest r;
+  r.id = j.value("id", nlohmann::json());
+  if (!j.contains("round") || !j["round"].is_number_integer() || j["round"].get<int>() < 1)
+    throw InputError("request", "\"round\" must be a round number (1, 2, ...)");
+  r.round = j["round"].get<int>();
+  if (j.contains("cells")) {
+    if (!j["cells"].is_array() || j["cells"].empty())
+      throw InputError("request", "\"cells\" must be a list of cell names");
+    for (const nlohmann::json& name : j["cells"]) {
+      if (!name.is_string()) throw InputError("request", "\"cells\" must be a list of cell names");
+      r.cells += (r.cells.empty() ? "" : ",") + name.get<std::string>();
+    }
+  }
+  return r;
+}
+
+void answer(std::ostream& out, nlohmann::json a, const nlohmann::json& id) {
+  if (!id.is_null()) a["id"] = id;
+  out << a.dump() << "\n" << std::flush;  // the client waits on this line
+}
+
+std::vector<int> requestedCells(const CellGraph& graph, const std::string& list) {
+  if (!list.empty()) return cellsByName(graph, list, "cells");
+  std::vector<int> all(graph.cells.size());
+  for (size_t c = 0; c < all.size(); ++c) all[c] = int(c);
+  return all;
+}
+
+}  // namespace
+
+int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
+                  const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
+                  const EglContext& gl, Context& ctx, std::istream& in, std::ostream& out) {
+  std::optional<CellJobServer> server;  // built at the first request: a server may start before the sum
+  for (std::string line; std::getline(in, line);) {
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    nlohmann::json id;
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      const ServeRequest request = parseRequest(line);
+      id = request.id;
+      // plan.json is re-read for every job: the first shot's sum rewrites it (summed, target power).
+      const CellJobPlan plan = readCellJobPlan(dir);
+      if (plan.bakeArgs != bakeArgs) {
+        answer(
+            out,
+            {{"ok", false},
+             {"error", (dir / "plan.json").string() + ": the plan was made again with other bake arguments "
+                                                      "than this server's; start a new one"}},
+            id);
+        return 1;
+      }
+      const std::vector<int> cells = requestedCells(graph, request.cells);
+      if (!server) server.emplace(scene, graph, params, ctx);
+      server->runRound(dir, plan, request.round, cells, gl, ctx);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      answer(out, {{"ok", true}, {"round", request.round}, {"cells", cells.size()}, {"seconds", seconds}},
+             id);
+    } catch (const InputError& e) {
+      answer(out, {{"ok", false}, {"error", e.what()}}, id);
+    } catch (const std::exception& e) {
+      answer(out, {{"ok", false}, {"error", e.what()}}, id);
+      throw;  // the GPU or the disk failed: the server's state is not to be trusted; main reports it
+    }
+  }
+  return 0;
+}
+
+}  // namespace cpgi::cli

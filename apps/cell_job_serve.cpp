@@ -17,10 +17,11 @@ namespace {
 struct ServeRequest {
   int round = 0;
   std::string cells;  ///< "A,B" (cellsByName's list), empty: every cell
-  nlohmann::json id;  ///< echoed in the answer (null: none)
 };
 
-ServeRequest parseRequest(const std::string& line) {
+// `id` (echoed in the answer; null: none) is set as soon as the line is a JSON object, so that a refused
+// request is answered with it too.
+ServeRequest parseRequest(const std::string& line, nlohmann::json& id) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(line);
@@ -29,7 +30,7 @@ ServeRequest parseRequest(const std::string& line) {
   }
   if (!j.is_object()) throw InputError("request", "not a JSON object: " + line.substr(0, 80));
   ServeRequest r;
-  r.id = j.value("id", nlohmann::json());
+  id = j.value("id", nlohmann::json());
   if (!j.contains("round") || !j["round"].is_number_integer() || j["round"].get<int>() < 1)
     throw InputError("request", "\"round\" must be a round number (1, 2, ...)");
   r.round = j["round"].get<int>();
@@ -67,8 +68,7 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
     nlohmann::json id;
     try {
       const auto start = std::chrono::steady_clock::now();
-      const ServeRequest request = parseRequest(line);
-      id = request.id;
+      const ServeRequest request = parseRequest(line, id);
       // plan.json is re-read for every job: the first shot's sum rewrites it (summed, target power).
       const CellJobPlan plan = readCellJobPlan(dir);
       if (plan.bakeArgs != bakeArgs) {

@@ -35,13 +35,13 @@ answer() {
 }
 ok() { [ "$(echo "$1" | field 's["ok"]')" = True ] || fail "job not done: $1"; }
 # The light files of a round (every file but the summaries, which also record the job's seconds).
-light_sums() { (cd "plan/round-$(printf %04d "$1")" && md5sum $(ls | grep -v '\.summary$' | grep -v '\.part$')); }
+light_sums() { (cd "plan/round-$(printf %04d "$1")" && md5sum $(ls | grep -v '\.summary$' | grep -v '\.part-')); }
 
 start_server
-# A request for a round the plan is not at yet is refused; the server goes on.
-request 3 "${cells[0]}"
+# A request for a round the plan is not at yet is refused, with its id; the server goes on.
+echo "{\"round\": 3, \"cells\": [\"${cells[0]}\"], \"id\": \"early\"}" >&"${SERVER[1]}"
 refused=$(answer)
-[ "$(echo "$refused" | field 's["ok"]')" = False ] || fail "round 3 before round 1 was run: $refused"
+[ "$(echo "$refused" | field 's["ok"], s["id"]')" = "False early" ] || fail "round 3 before round 1: $refused"
 echo "refused as it should be: $refused"
 
 round=1

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -429,10 +430,25 @@ struct RoundSettings {
   SolveControls controls;
 };
 
-// Refuses a round the plan cannot run yet or needs no more, then replays the rounds before from their
-// summaries: the unshot power and the stop's target now.
+// The stop replayed from the summaries of rounds 1..through, as solveCells's loop left it before asking
+// about round through + 1. Finished rounds do not change (a rerun writes the same figures), so a server keeps
+// it from job to job and reads only the rounds it has not replayed, for as long as the plan starts the same.
+struct StopReplay {
+  double emitted = 0.0, target = 0.0;  ///< the plan's, at the start of the replay
+  RoundStop stop;
+  double before = 0.0;  ///< W unshot after round `through` (the emitted power for 0)
+  int through = 0;
+};
+
+StopReplay startReplay(const CellJobPlan& plan) {
+  return {plan.emitted, plan.target, planStop(plan), plan.emitted, 0};
+}
+
+// Refuses a round the plan cannot run yet or needs no more, then replays the rounds before it from their
+// summaries, on from `replay` when it is of this plan and not past them (else from the start; `replay` is
+// left at round − 1): the unshot power and the stop's target now.
 RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int round, const CellGraph& graph,
-                            const CellSolveParams& params) {
+                            const CellSolveParams& params, std::optional<StopReplay>& replay) {
   requireSupported(params);
   if (graph.cells.size() != plan.cells.size())
     throw InputError((dir / "plan.json").string(), "the plan has " + std::to_string(plan.cells.size()) +
@@ -440,20 +456,23 @@ RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int ro
                                                        std::to_string(graph.cells.size()));
   if (round < 1) throw InputError("round", "cell job rounds count from 1");
   requireFirstShotSummed(dir, plan);
-  RoundStop stop = planStop(plan);
-  double before = plan.emitted;
+  const bool reusable = replay && replay->emitted == plan.emitted && replay->target == plan.target &&
+                        replay->through <= round - 1;
+  StopReplay r = reusable ? *replay : startReplay(plan);  // replay is only set once the rounds were read
   bool needed = true;
-  for (int r = 1; r <= round && needed; ++r) {
-    needed = roundNeeded(plan, r, before, stop);
-    if (needed && r < round) before = addRoundToStop(dir, plan, r, stop);
+  for (; r.through < round - 1 && needed; ++r.through) {
+    needed = roundNeeded(plan, r.through + 1, r.before, r.stop);
+    if (needed) r.before = addRoundToStop(dir, plan, r.through + 1, r.stop);
   }
-  if (!needed)
+  if (needed) replay = r;
+  RoundStop stop = r.stop;  // asking about `round` may lower the target: the replay stays before it
+  if (!needed || !roundNeeded(plan, round, r.before, stop))
     throw InputError(roundDir(dir, round).string(), "the solve needs no round " + std::to_string(round) +
                                                         " (converged, or past the maximum rounds): gather");
   RoundSettings s;
   s.target = stop.target();
   s.controls.readTransfer = true;
-  s.settings = roundBudget(params.solver, s.target, before, plan.emitted, s.controls, plan.globalPatches);
+  s.settings = roundBudget(params.solver, s.target, r.before, plan.emitted, s.controls, plan.globalPatches);
   return s;
 }
 
@@ -504,7 +523,8 @@ void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, cons
 void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
                  const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
                  const EglContext& gl, Context& ctx) {
-  const RoundSettings settings = roundSettings(dir, plan, round, graph, params);
+  std::optional<StopReplay> replay;
+  const RoundSettings settings = roundSettings(dir, plan, round, graph, params, replay);
   JobCells cells = buildJobCells(scene, graph, cellsAround(plan, run), params, ctx);
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
   SolverPrograms programs;
@@ -517,6 +537,7 @@ struct CellJobServer::Kept {
   JobCells cells;
   std::unique_ptr<PortalTransfer> transfer;
   SolverPrograms programs;
+  std::optional<StopReplay> replay;
 };
 
 CellJobServer::CellJobServer(const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
@@ -525,15 +546,15 @@ CellJobServer::CellJobServer(const Scene& scene, const CellGraph& graph, const C
   std::vector<int> all(graph.cells.size());
   for (size_t c = 0; c < all.size(); ++c) all[c] = int(c);
   // SolverPrograms neither copies nor moves: the aggregate is built in place.
-  kept_.reset(
-      new Kept{graph, params, buildJobCells(scene, graph, all, params, ctx), makePortalTransfer(params), {}});
+  kept_.reset(new Kept{
+      graph, params, buildJobCells(scene, graph, all, params, ctx), makePortalTransfer(params), {}, {}});
 }
 
 CellJobServer::~CellJobServer() = default;
 
 void CellJobServer::runRound(const fs::path& dir, const CellJobPlan& plan, int round,
                              const std::vector<int>& run, const EglContext& gl, Context& ctx) {
-  const RoundSettings settings = roundSettings(dir, plan, round, kept_->graph, kept_->params);
+  const RoundSettings settings = roundSettings(dir, plan, round, kept_->graph, kept_->params, kept_->replay);
   solveJobCells(dir, plan, round, run, kept_->cells, settings, *kept_->transfer, kept_->programs, gl, ctx);
 }
 

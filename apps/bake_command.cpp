@@ -488,8 +488,14 @@ int runCellJobStage(const BakeOptions& o) {
   const CellSolveParams params = cellSolveParams(o);
   if (o.jobServe) {
     const EglContext gl(ctx);
-    return serveCellJobs(o.plan, readCellJobPlan(o.plan).bakeArgs, in.loaded.scene, in.graph, params, gl, ctx,
-                         std::cin, std::cout);
+    bool atlasBuilt = false;  // rounds need only the cells' atlases; the first shot the whole scene's
+    const auto globalAtlas = [&]() -> const LightmapAtlas& {
+      if (!atlasBuilt) buildBakeAtlas(o, in, ctx);
+      atlasBuilt = true;
+      return in.atlas;
+    };
+    return serveCellJobs(o.plan, readCellJobPlan(o.plan).bakeArgs, in.loaded.scene, in.graph, params,
+                         globalAtlas, gl, ctx, std::cin, std::cout);
   }
   if (o.jobRound > 0) {
     const CellJobPlan plan = readCellJobPlan(o.plan);

@@ -1,6 +1,7 @@
 #include "apps/cell_job_serve.h"
 
 #include <chrono>
+#include <functional>
 #include <istream>
 #include <optional>
 #include <ostream>
@@ -15,9 +16,23 @@ namespace cpgi::cli {
 namespace {
 
 struct ServeRequest {
-  int round = 0;
-  std::string cells;  ///< "A,B" (cellsByName's list), empty: every cell
+  int round = 0;               ///< a round job, or 0: a first-shot job
+  std::string cells;           ///< "A,B" (cellsByName's list), empty: every cell
+  std::vector<int> firstShot;  ///< with round 0: the emitter groups to shoot
 };
+
+// {"first_shot": [G, ...]}: emitter group numbers, at least one.
+std::vector<int> firstShotGroups(const nlohmann::json& j) {
+  if (!j.is_array() || j.empty())
+    throw InputError("request", "\"first_shot\" must be a list of emitter groups");
+  std::vector<int> groups;
+  for (const nlohmann::json& g : j) {
+    if (!g.is_number_integer() || g.get<int>() < 0)
+      throw InputError("request", "\"first_shot\" must be a list of emitter groups");
+    groups.push_back(g.get<int>());
+  }
+  return groups;
+}
 
 // `id` (echoed in the answer; null: none) is set as soon as the line is a JSON object, so that a refused
 // request is answered with it too.
@@ -31,6 +46,12 @@ ServeRequest parseRequest(const std::string& line, nlohmann::json& id) {
   if (!j.is_object()) throw InputError("request", "not a JSON object: " + line.substr(0, 80));
   ServeRequest r;
   id = j.value("id", nlohmann::json());
+  if (j.contains("first_shot") == j.contains("round"))
+    throw InputError("request", "give either \"round\" (and \"cells\") or \"first_shot\"");
+  if (j.contains("first_shot")) {
+    r.firstShot = firstShotGroups(j["first_shot"]);
+    return r;
+  }
   if (!j.contains("round") || !j["round"].is_number_integer() || j["round"].get<int>() < 1)
     throw InputError("request", "\"round\" must be a round number (1, 2, ...)");
   r.round = j["round"].get<int>();
@@ -61,7 +82,8 @@ std::vector<int> requestedCells(const CellGraph& graph, const std::string& list)
 
 int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
                   const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const EglContext& gl, Context& ctx, std::istream& in, std::ostream& out) {
+                  const std::function<const LightmapAtlas&()>& globalAtlas, const EglContext& gl,
+                  Context& ctx, std::istream& in, std::ostream& out) {
   std::optional<CellJobServer> server;  // built at the first request: a server may start before the sum
   for (std::string line; std::getline(in, line);) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -80,12 +102,18 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
             id);
         return 1;
       }
-      const std::vector<int> cells = requestedCells(graph, request.cells);
-      if (!server) server.emplace(scene, graph, params, ctx);
-      server->runRound(dir, plan, request.round, cells, gl, ctx);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      answer(out, {{"ok", true}, {"round", request.round}, {"cells", cells.size()}, {"seconds", seconds}},
-             id);
+      nlohmann::json done = {{"ok", true}};
+      if (request.round == 0) {
+        runFirstShotJobs(dir, plan, request.firstShot, scene, graph, globalAtlas(), params, gl, ctx);
+        done["first_shot"] = request.firstShot;
+      } else {
+        const std::vector<int> cells = requestedCells(graph, request.cells);
+        if (!server) server.emplace(scene, graph, params, ctx);
+        server->runRound(dir, plan, request.round, cells, gl, ctx);
+        done["round"] = request.round, done["cells"] = cells.size();
+      }
+      done["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      answer(out, done, id);
     } catch (const InputError& e) {
       answer(out, {{"ok", false}, {"error", e.what()}}, id);
     } catch (const std::exception& e) {

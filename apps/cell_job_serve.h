@@ -1,11 +1,13 @@
-// `cpgi cell-job PLAN --serve`: round jobs of one plan, one request a line on stdin, one answer a line on
-// stdout, in one process that keeps the scene, the EGL context, the cells' atlases and the compiled GPU
-// programs between jobs (radiosity/cells/cell_jobs.h, CellJobServer; docs/cell-jobs.md). What a driver
-// such as cpgi-dask keeps per worker, so that a job no longer pays a process start, a scene load and
-// llvmpipe's shader set-up.
+// `cpgi cell-job PLAN --serve`: round jobs (and first-shot jobs) of one plan, one request a line on stdin,
+// one answer a line on stdout, in one process that keeps the scene, the EGL context, the cells' atlases and
+// the compiled GPU programs between jobs (radiosity/cells/cell_jobs.h, CellJobServer; docs/cell-jobs.md).
+// What a driver such as cpgi-dask keeps per worker, so that a job no longer pays a process start, a scene
+// load and llvmpipe's shader set-up.
 //
 //   request  {"round": R, "cells": ["A", "B"], "id": ANY}     cells: default every cell; id: echoed
+//            {"first_shot": [G, ...], "id": ANY}              emitter groups of the lamps' first shot
 //   answer   {"ok": true, "round": R, "cells": 2, "seconds": 1.25, "id": ANY}
+//            {"ok": true, "first_shot": [G, ...], "seconds": 3.5, "id": ANY}
 //            {"ok": false, "error": "one line", "id": ANY}
 //
 // A refused job (InputError: a file missing or damaged, a round not needed) is answered and the server
@@ -14,6 +16,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -23,13 +26,16 @@
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/egl_context.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
 
-/// Serves round jobs of the plan in `dir`, made with `bakeArgs`, on `scene` and `graph` (loaded from those
-/// arguments), until `in` ends. Returns the exit status.
+/// Serves round and first-shot jobs of the plan in `dir`, made with `bakeArgs`, on `scene` and `graph`
+/// (loaded from those arguments), until `in` ends. `globalAtlas`: the whole scene's atlas, asked for at the
+/// first first-shot job only. Returns the exit status.
 int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
                   const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const EglContext& gl, Context& ctx, std::istream& in, std::ostream& out);
+                  const std::function<const LightmapAtlas&()>& globalAtlas, const EglContext& gl,
+                  Context& ctx, std::istream& in, std::ostream& out);
 
 }  // namespace cpgi::cli

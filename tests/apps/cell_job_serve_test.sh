@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# `cpgi cell-job PLAN --serve` (issue 16): round jobs answered one line each by one long-lived process give
-# the single-process cells bake bit for bit (lightmap.exr byte for byte) on the 4-room office-small; a
-# server killed (SIGKILL) during a job of round 2 leaves the round unfinished, and a new server reruns it to
-# the same state and portal-light bytes; a refused request is answered and the server goes on.
+# `cpgi cell-job PLAN --serve` (issue 16): first-shot and round jobs answered one line each by one
+# long-lived process give the single-process cells bake bit for bit (lightmap.exr byte for byte) on the
+# 4-room office-small; a server killed (SIGKILL) during a job of round 2 leaves the round unfinished, and a
+# new server reruns it to the same state and portal-light bytes; a refused request is answered and the
+# server goes on.
 #   cell_job_serve_test.sh CPGI
 set -euo pipefail
 cpgi=$1
@@ -15,8 +16,6 @@ fail() { echo "FAIL: $*"; exit 1; }
 options=(--cells office.glb --density 2)
 "$cpgi" bake office.glb -o single --method cells "${options[@]}" -q
 "$cpgi" bake office.glb -o served --method cells "${options[@]}" --plan plan -q
-"$cpgi" cell-job plan --first-shot -q
-"$cpgi" cell-job plan --first-shot-sum -q
 
 status() { "$cpgi" cell-job plan --status --json; }
 field() { python3 -c "import json, sys; s = json.load(sys.stdin); print($1)"; }
@@ -38,6 +37,11 @@ ok() { [ "$(echo "$1" | field 's["ok"]')" = True ] || fail "job not done: $1"; }
 light_sums() { (cd "plan/round-$(printf %04d "$1")" && md5sum $(ls | grep -v '\.summary$' | grep -v '\.part-')); }
 
 start_server
+# The lamps' first shot, one emitter group a request, last group first (it needs no summed plan).
+groups=$(python3 -c "import json; print(len(json.load(open('plan/plan.json'))['first_shot_groups']))")
+for ((g = groups - 1; g >= 0; --g)); do echo "{\"first_shot\": [$g]}" >&"${SERVER[1]}"; ok "$(answer)"; done
+[ "$(status | field 's["next_step"]')" = first-shot-sum ] || fail "served first shot left groups missing"
+"$cpgi" cell-job plan --first-shot-sum -q
 # A request for a round the plan is not at yet is refused, with its id; the server goes on.
 echo "{\"round\": 3, \"cells\": [\"${cells[0]}\"], \"id\": \"early\"}" >&"${SERVER[1]}"
 refused=$(answer)

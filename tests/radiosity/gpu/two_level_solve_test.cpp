@@ -48,13 +48,19 @@ std::array<double, 2> roomMeans(const LightmapAtlas& atlas, const std::vector<gl
   return {sum[0] / area[0], sum[1] / area[1]};
 }
 
-TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
+// The two rooms on an output atlas of 8 texels a metre, and a GL context to solve them.
+struct TwoRoomsAtlas {
   const Scene scene = twoRooms();
   Context ctx;
-  EglContext gl(ctx);
+  EglContext gl{ctx};
   const QuadSet quads = findQuads(scene);
   const AtlasParams output{.density = 8.0f};
   const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);
+};
+
+TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, gl, quads, output, atlas] = r;
   SolverParams params;
   const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
   TwoLevelData levels;
@@ -98,12 +104,8 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
 // on the output atlas themselves. The reflectors' light must not be shot twice: it was, through
 // `emitters` reflector shots after the rays' lamp shot, seed3's lamp rooms 28 % and 19 % too bright.
 TEST(TwoLevelSolve, LampsShotByRaysElsewhereAreShotOnceHere) {
-  const Scene scene = twoRooms();
-  Context ctx;
-  EglContext gl(ctx);
-  const QuadSet quads = findQuads(scene);
-  const AtlasParams output{.density = 8.0f};
-  const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, gl, quads, output, atlas] = r;
   SolverParams params;
   params.lampRays = 64;
   const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);

@@ -61,6 +61,7 @@ EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params,
   vp.voxelSize = e.voxelSize;
   vp.sealRadius = params.sealRadius;
   vp.memoryLimit = params.memoryLimit;
+  vp.outsideMargin = params.outsideMargin;
   e.solid = voxelize(scene, vp, ctx);
   e.space = classifySpace(scene, e.solid, params.classify, ctx);
   e.distance = distanceToGeometry(e.solid, e.space, ctx);
@@ -119,7 +120,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
              " voxel faces join two cells outside any portal");
   out.space = std::move(space);
 
-  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
+  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, out.outsideCell, params.assign, ctx);
   out.inputTriangles = scene.triangles.size();
   out.scene = std::move(assigned.scene);
   out.splitTriangles = assigned.splitTriangles;

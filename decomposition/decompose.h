@@ -36,6 +36,8 @@ struct DecomposeParams {
   double autoVoxelBudget = 4.0e6;   ///< voxels the automatic choice aims at
   double sealRadius = 0.0;          ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
   uint64_t memoryLimit = 0;         ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
+  /// Metres of open space kept around the covered part of the scene, see VoxelizeParams::outsideMargin.
+  double outsideMargin = VoxelizeParams().outsideMargin;
   ClassifyParams classify;
   WatershedParams watershed;
   MergeParams merge;

@@ -24,6 +24,16 @@ struct VoxelizeParams {
   /// Bytes the whole decomposition may take (decompositionBytes), checked before the first grid is
   /// allocated: InputError naming the voxel size when passed. 0: no limit.
   uint64_t memoryLimit = 0;
+  /// Open space kept around the covered part of the scene, metres (see coverHeight); beyond it, across
+  /// the horizontal, the grid stops: open ground there (a terrain, a plaza) is outside whatever stands on
+  /// it, and voxels over it would only enlarge the outside. Infinite (or when no column is covered): the
+  /// grid spans the scene's bounds. At least the portals' search range (0.6 m) beyond an exterior door.
+  double outsideMargin = 2.0;
+  /// A column of the grid (x, z; y is up) is covered when at least this much empty height, metres, lies
+  /// between its lowest and highest solid voxel: a floor under a ceiling, a porch under its roof. A
+  /// terrain, a slab or a wall alone never is. Rooms are always covered; a space open to the sky is
+  /// reached from the grid's top and is outside anyway.
+  double coverHeight = 1.0;
 };
 
 /// What one voxel of the grid costs at the decomposition's peak, the assignment of triangles to cells
@@ -59,7 +69,8 @@ struct SolidGrid {
 /// Rasterises every triangle by OpenVDB's meshToVolume (unsigned distance, 2-voxel band); a voxel is
 /// solid when its centre is within half a voxel of a triangle, which makes any plane at least one face-
 /// connected layer thick, so 6-connected empty space cannot leak through it. The grid is the scene's
-/// bounds padded by 2 + seal voxels, so its border is always empty.
+/// bounds padded by 2 + seal voxels, cut across the horizontal to params.outsideMargin around the covered
+/// columns: its border is empty except where open ground (a terrain) runs through the cut.
 /// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels, or the decomposition
 /// over it params.memoryLimit.
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx);

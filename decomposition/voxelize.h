@@ -18,8 +18,8 @@ struct VoxelizeParams {
   /// closing (dilate r, erode r, face neighbours) fills every gap at most 2r voxels across, i.e. cracks up
   /// to about (2r + 1) voxels wide once the half-voxel thickening of each face is counted.
   double sealRadius = 0.0;
-  /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (the distance transform's
-  /// 64-bit working grid, labels, classes), so 250 M voxels is ~10 GB.
+  /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (kDecompositionBytesPerVoxel),
+  /// so 250 M voxels is ~10 GB; voxel indices fit in 32 bits.
   size_t maxVoxels = size_t(250) * 1000 * 1000;
   /// Bytes the whole decomposition may take (decompositionBytes), checked before the first grid is
   /// allocated: InputError naming the voxel size when passed. 0: no limit.
@@ -40,8 +40,8 @@ struct VoxelizeParams {
 /// (decompose.cpp, finishDecomposition): solid and nearest triangle (5 bytes), classes (1), squared distance
 /// (4), watershed basins (4), merged cells (4), cells around the portals (4), and when a triangle sees no
 /// cell the nearest-cell grid (4), its border mask (1) and its breadth-first queue (8, up to 16 with a
-/// vector's spare capacity). The watershed (order 8, queue, flags) and the distance transform (8-byte working
-/// grid) peak lower. Measured: 31–38 bytes a voxel (bench/RESULTS.md, "Memory of the decomposition").
+/// vector's spare capacity). The watershed (order 4, queue, flags) and the distance transform (in place on
+/// its output) peak lower. Measured: 31–38 bytes a voxel (bench/RESULTS.md, "Memory of the decomposition").
 inline constexpr double kDecompositionBytesPerVoxel = 40.0;
 /// While OpenVDB builds the narrow band (voxelize), only the solid and nearest-triangle grids are dense.
 inline constexpr double kVoxelizeBytesPerVoxel = 5.0;

@@ -36,13 +36,23 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
   cls.resize(f.count());
   for (size_t i = 0; i < cls.size(); ++i) cls[i] = solid.solid[i] ? Space::Solid : kUnset;
 
-  // Calls visit(j) for every unset face neighbour j of voxel i.
-  auto forUnsetNeighbours = [&](size_t i, auto&& visit) {
+  // Calls visit(j) for every unset face neighbour j of voxel i, which may lie on the grid's border.
+  auto forUnsetNeighboursOfBorder = [&](size_t i, auto&& visit) {
     const glm::ivec3 c = f.coord(i);
     for (const auto& d : kFaceNeighbours) {
       const glm::ivec3 n(c.x + d[0], c.y + d[1], c.z + d[2]);
       if (!f.contains(n)) continue;
       const size_t j = f.index(n);
+      if (cls[j] == kUnset) visit(j);
+    }
+  };
+  // The same for a voxel off the border, by index offsets. Once the border is classified (solid or
+  // outside, below), every unset voxel is off it.
+  const ptrdiff_t sy = f.dims.x, sz = ptrdiff_t(f.dims.x) * f.dims.y;
+  const ptrdiff_t offsets[6] = {-1, 1, -sy, sy, -sz, sz};
+  auto forUnsetNeighbours = [&](size_t i, auto&& visit) {
+    for (ptrdiff_t o : offsets) {
+      const size_t j = size_t(ptrdiff_t(i) + o);
       if (cls[j] == kUnset) visit(j);
     }
   };
@@ -56,9 +66,12 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
         const size_t i = f.index(x, y, z);
         if (cls[i] == kUnset) cls[i] = Space::Outside, front.push_back(i);
       }
+  auto toOutside = [&](size_t j) { cls[j] = Space::Outside, next.push_back(j); };
+  for (size_t i : front) forUnsetNeighboursOfBorder(i, toOutside);
+  std::swap(front, next);
   while (!front.empty()) {
     next.clear();
-    for (size_t i : front) forUnsetNeighbours(i, [&](size_t j) { cls[j] = Space::Outside, next.push_back(j); });
+    for (size_t i : front) forUnsetNeighbours(i, toOutside);
     std::swap(front, next);
   }
 

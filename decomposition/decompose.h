@@ -101,8 +101,7 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& params);
 /// to the cell it faces (split on portal planes), per-cell statistics. `names` holds one name per cell of
 /// `cells`; `space` and `distance` are those of `solid`.
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance,
-                                  const CellLabels& cells, const std::vector<std::string>& names,
-                                  Context& ctx);
+                                  std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
+                                  const std::vector<std::string>& names, Context& ctx);
 
 }  // namespace cpgi::decomp

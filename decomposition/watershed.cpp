@@ -72,14 +72,15 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   auto label = [&](size_t i, int b) {
     out.basin[i] = b;
     ++out.volume[size_t(b)];
-    const float di = metres(i);
     for (ptrdiff_t o : offsets) {
-      const int nb = out.basin[size_t(ptrdiff_t(i) + o)];
+      const size_t j = size_t(ptrdiff_t(i) + o);
+      const int nb = out.basin[j];
       if (nb < 0 || nb == b) continue;
       const int lo = std::min(nb, b), hi = std::max(nb, b);
       BasinContact& c = contacts[(uint64_t(uint32_t(lo)) << 32) | uint32_t(hi)];
       c.a = lo, c.b = hi;
-      c.saddle = std::max(c.saddle, std::min(di, metres(size_t(ptrdiff_t(i) + o))));
+      // The lower of the two distances, converted once it is known to be needed.
+      c.saddle = std::max(c.saddle, metres(distance.d2[i] < distance.d2[j] ? i : j));
       ++c.faces;
     }
   };

@@ -69,7 +69,7 @@ GridFrame cropToCovered(const GridFrame& f, const ColumnRange& covered, double m
                         glm::ivec3& offset) {
   offset = glm::ivec3(0);
   if (covered.empty() || !std::isfinite(marginVoxels)) return f;
-  const int margin = int(std::ceil(marginVoxels));
+  const int margin = int(std::clamp(std::ceil(marginVoxels), 0.0, double(std::max(f.dims.x, f.dims.z))));
   const glm::ivec2 lo = glm::max(covered.lo - margin, glm::ivec2(0));
   const glm::ivec2 hi = glm::min(covered.hi + margin, glm::ivec2(f.dims.x, f.dims.z) - 1);
   offset = glm::ivec3(lo.x, 0, lo.y);

@@ -414,10 +414,10 @@ struct BakeFigures {
 nlohmann::json autoDensityReport(const BakeOptions& o, const BakeInput& in) {
   if (!in.autoDensity) return nullptr;
   const AutoDensityParams& p = o.autoDensity;
-  std::map<float, size_t> texels;
+  std::map<double, size_t> texels;  // by texels per metre along the chart's coarser axis, to 0.1
   for (const Patch& patch : in.atlas.patches) {
-    const float edge = std::max(glm::length(patch.texelU), glm::length(patch.texelV));
-    if (edge > 0.0f) texels[std::round(10.0f / edge) / 10.0f] += size_t(patch.w) * size_t(patch.h);
+    const double edge = std::max(glm::length(patch.texelU), glm::length(patch.texelV));
+    if (edge > 0.0) texels[std::round(10.0 / edge) / 10.0] += size_t(patch.w) * size_t(patch.h);
   }
   nlohmann::json byDensity = nlohmann::json::array();
   for (const auto& [density, count] : texels) byDensity.push_back({{"density", density}, {"texels", count}});

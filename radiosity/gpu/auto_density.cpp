@@ -39,6 +39,7 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
         ++contactTriangles;
       }
   }
+  evenOverSurfaces(scene, density);
   if (data)
     *data = {pilot.validTexels(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
              contactTriangles};

@@ -1,7 +1,10 @@
 #include "radiosity/lightmap/light_density.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <numeric>
 #include <stdexcept>
 
 namespace cpgi {
@@ -63,7 +66,51 @@ float quadNeed(const QuadSums& q, float tolerance) {
   return float(std::sqrt(std::sqrt(q.bend / q.area) / (8.0 * tolerance * std::sqrt(q.light / q.area))));
 }
 
+// Union-find over triangles, with path halving.
+struct Surfaces {
+  std::vector<uint32_t> parent;
+  explicit Surfaces(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(uint32_t a, uint32_t b) { parent[find(a)] = find(b); }
+};
+
+// Whether two triangles lie in one plane (normals within 0.5°, each's corners within 1 mm of the
+// other's plane) and share a material.
+bool sameSurface(const Triangle& a, const Triangle& b) {
+  if (a.material != b.material) return false;
+  const glm::vec3 na = a.geometricNormal(), nb = b.geometricNormal();
+  if (glm::dot(na, nb) < 0.99996f) return false;
+  for (const glm::vec3& p : b.p)
+    if (std::abs(glm::dot(p - a.p[0], na)) > 1e-3f) return false;
+  return true;
+}
+
 }  // namespace
+
+void evenOverSurfaces(const Scene& scene, std::vector<float>& density) {
+  const size_t n = std::min(scene.triangles.size(), density.size());
+  Surfaces surfaces(n);
+  // Triangles meeting at a corner (positions to 0.1 mm) join when they lie on one surface.
+  std::map<std::array<int64_t, 3>, std::vector<uint32_t>> atCorner;
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!(density[t] > 0.0f)) continue;
+    for (const glm::vec3& p : scene.triangles[t].p)
+      atCorner[{std::llround(p.x * 1e4), std::llround(p.y * 1e4), std::llround(p.z * 1e4)}].push_back(t);
+  }
+  for (const auto& [corner, triangles] : atCorner)
+    for (size_t i = 1; i < triangles.size(); ++i)
+      for (size_t j = 0; j < i; ++j)
+        if (surfaces.find(triangles[i]) != surfaces.find(triangles[j]) &&
+            sameSurface(scene.triangles[triangles[i]], scene.triangles[triangles[j]]))
+          surfaces.join(triangles[i], triangles[j]);
+  std::vector<float> most(n, 0.0f);
+  for (uint32_t t = 0; t < n; ++t) most[surfaces.find(t)] = std::max(most[surfaces.find(t)], density[t]);
+  for (uint32_t t = 0; t < n; ++t)
+    if (density[t] > 0.0f) density[t] = most[surfaces.find(t)];
+}
 
 std::vector<float> lightDensity(const LightmapAtlas& pilot, std::span<const glm::vec3> light, size_t triangleCount,
                                 const LightDensityParams& params) {

@@ -111,3 +111,28 @@ TEST(LightDensity, RefusesAPilotLightOfTheWrongSize) {
 
 }  // namespace
 }  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+TEST(LightDensity, OneFlatSurfaceGetsOneDensity) {
+  Scene s;
+  const uint32_t grey = testing::addMaterial(s, glm::vec3(0.5f)), red = testing::addMaterial(s, glm::vec3(0.7f, 0.1f, 0.1f));
+  // A floor of two quads side by side (z = 0), a wall standing on the first's edge, a red quad beside the
+  // second in the floor's plane, and a grey quad in the plane but apart from the rest.
+  testing::addRect(s, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, grey);     // 0, 1
+  testing::addRect(s, {1, 0, 0}, {1, 0, 0}, {0, 1, 0}, grey);     // 2, 3
+  testing::addRect(s, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, grey);     // 4, 5: the wall x = 0
+  testing::addRect(s, {2, 0, 0}, {1, 0, 0}, {0, 1, 0}, red);      // 6, 7
+  testing::addRect(s, {5, 0, 0}, {1, 0, 0}, {0, 1, 0}, grey);     // 8, 9
+  std::vector<float> density = {4, 4, 20, 20, 6, 6, 4, 4, 5, 5};
+  evenOverSurfaces(s, density);
+  EXPECT_EQ(density, (std::vector<float>{20, 20, 20, 20, 6, 6, 4, 4, 5, 5}));
+  // Triangles not in the atlas stay out.
+  std::vector<float> partly = {4, 4, 20, 20, 0, 0, 4, 4, 5, 5};
+  evenOverSurfaces(s, partly);
+  EXPECT_EQ(partly[4], 0.0f);
+}
+
+}  // namespace
+}  // namespace cpgi

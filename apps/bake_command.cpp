@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -41,6 +42,7 @@
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/ambient.h"
+#include "radiosity/gpu/auto_density.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/gpu/two_level_solve.h"
@@ -96,6 +98,9 @@ struct BakeOptions {
   /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
   /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
   float lampCoarsening = RefinedLampParams{}.coarsening;
+  /// --density auto: the output's texels per metre chosen per surface (radiosity/gpu/auto_density.h).
+  bool densityAuto = false;
+  AutoDensityParams autoDensity;
 };
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -165,6 +170,7 @@ struct BakeInput {
   OnDemand onDemand;
   QuadSet quads;
   LightmapAtlas atlas;
+  std::optional<AutoDensityData> autoDensity;  ///< with --density auto
 };
 
 BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
@@ -185,11 +191,23 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
   return in;
 }
 
-void buildBakeAtlas(const BakeOptions& o, BakeInput& in, Context& ctx) {
+// `gl`: with --density auto, for the pilot's shot of the lamps (else unused, and may be null).
+void buildBakeAtlas(const BakeOptions& o, BakeInput& in, const EglContext* gl, Context& ctx) {
   {
     auto t = ctx.time("atlas");
     in.quads = findQuads(in.loaded.scene);
-    in.atlas = buildAtlas(in.loaded.scene, in.quads, o.atlas, ctx);
+  }
+  AtlasParams params = o.atlas;
+  if (o.densityAuto) {
+    auto t = ctx.time("auto density");
+    AutoDensityData data;
+    params.triangleDensity =
+        chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, *gl, ctx, {}, &data);
+    in.autoDensity = data;
+  }
+  {
+    auto t = ctx.time("atlas");
+    in.atlas = buildAtlas(in.loaded.scene, in.quads, params, ctx);
   }
   if (in.atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
   if (!in.loaded.scene.hasLight()) ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
@@ -254,9 +272,33 @@ constexpr size_t kAutoTwoLevelTexels = 100'000;
 float chosenSolveDensity(const BakeOptions& o, const LightmapAtlas& atlas) {
   if (o.method == "cells") return 0.0f;
   if (o.solveDensity != kAutoSolveDensity) return o.solveDensity;
-  if (atlas.validTexels() <= kAutoTwoLevelTexels) return 0.0f;
   constexpr float kAutoMost = 5.0f;
+  // --density auto: the output is fine only where the lamps' light needs it; the bounced light never does.
+  if (o.densityAuto) return kAutoMost;
+  if (atlas.validTexels() <= kAutoTwoLevelTexels) return 0.0f;
   return o.atlas.texelsPerQuad > 0 ? kAutoMost : std::min(kAutoMost, o.atlas.density / 2.0f);
+}
+
+// Where the light leaving each cell's surfaces lands, or leaves the scene, for the ambient term and the
+// stop per cell (radiosity/gpu/ambient_transfer.h): the portals' areas alone kept the outside's light in
+// it. Empty (the portals' areas) with --no-ambient.
+AmbientTransfer bakeAmbientTransfer(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
+                                    const ExrChannel& texelCells, Context& ctx) {
+  if (o.noAmbient) return {};
+  auto t = ctx.time("ambient transfer");
+  const RayScene rays(in.loaded.scene);
+  return measureAmbientTransfer(in.atlas, rays, texelCells.values, texelGraph.cells.size());
+}
+
+// Per entry of the transfer, the share of the light leaving its surfaces that leaves the scene.
+std::vector<double> escapeShares(const AmbientTransfer& transfer) {
+  std::vector<double> escape;
+  for (const std::vector<double>& row : transfer.share) {
+    double landed = 0.0;
+    for (double v : row) landed += v;
+    escape.push_back(std::max(0.0, 1.0 - landed));
+  }
+  return escape;
 }
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -264,7 +306,7 @@ float chosenSolveDensity(const BakeOptions& o, const LightmapAtlas& atlas) {
 // `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/gpu/ambient.h,
 // ambientShares).
 SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
-                      const ExrChannel& texelCells, const EglContext& gl,
+                      const ExrChannel& texelCells, const AmbientTransfer& transfer, const EglContext& gl,
                       std::chrono::steady_clock::time_point deadline, Context& ctx,
                       std::optional<TwoLevelData>& levels) {
   auto t = ctx.time("solve");
@@ -283,7 +325,7 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
       perCell.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
                                const std::vector<glm::vec3>& residual) {
         const std::vector<double> shares =
-            ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity);
+            ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity, &transfer);
         return *std::max_element(shares.begin(), shares.end()) <= o.ambientShare;
       };
     return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, perCell);
@@ -303,11 +345,11 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
 // added to `s.radiosity` on the texels of `texelCells` that are written. Returns the mean ambient
 // irradiance (W/m², RGB; 0 with --no-ambient).
 glm::dvec3 addBakeAmbient(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
-                          const ExrChannel& texelCells, SolveResult& s) {
+                          const ExrChannel& texelCells, const AmbientTransfer& transfer, SolveResult& s) {
   if (o.noAmbient) return glm::dvec3(0.0);
   const std::vector<glm::vec3> unlit = s.radiosity;
   const glm::dvec3 ambient = addAmbient(in.atlas, s.residual, glm::dvec3(s.energy.unshot / 3.0),
-                                        texelCells.values, texelGraph, s.radiosity);
+                                        texelCells.values, texelGraph, s.radiosity, &transfer);
   if (in.onDemand.active && s.perCell) {  // the cells an on-demand bake does not write stay black
     std::vector<uint8_t> written(texelGraph.cells.size(), 0);
     for (const CellEnergy& c : s.perCell->cells)
@@ -366,8 +408,32 @@ struct BakeFigures {
   std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
   glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
   std::vector<double> ambientShares;   ///< per cell of cellNames (and one for no cell), ambientShares
+  std::vector<double> ambientEscape;  ///< per entry of ambientShares, the share of its light leaving the scene
   double seconds = 0.0;
 };
+
+// --density auto's choice: its settings, the pilot, and the output's texels by the density they got.
+nlohmann::json autoDensityReport(const BakeOptions& o, const BakeInput& in) {
+  if (!in.autoDensity) return nullptr;
+  const AutoDensityParams& p = o.autoDensity;
+  std::map<double, size_t> texels;  // by texels per metre along the chart's coarser axis, to 0.1
+  for (const Patch& patch : in.atlas.patches) {
+    const double edge = std::max(glm::length(patch.texelU), glm::length(patch.texelV));
+    if (edge > 0.0) texels[std::round(10.0 / edge) / 10.0] += size_t(patch.w) * size_t(patch.h);
+  }
+  nlohmann::json byDensity = nlohmann::json::array();
+  for (const auto& [density, count] : texels) byDensity.push_back({{"density", density}, {"texels", count}});
+  return {{"pilot_density", p.pilotDensity},
+          {"min_density", p.light.minDensity},
+          {"max_density", p.light.maxDensity},
+          {"tolerance", p.light.tolerance},
+          {"floor_share", p.light.floorShare},
+          {"contacts", p.contacts},
+          {"pilot_texels", in.autoDensity->pilotTexels},
+          {"pilot_s", in.autoDensity->pilotSeconds},
+          {"contact_triangles", in.autoDensity->contactTriangles},
+          {"chart_texels_by_density", byDensity}};
+}
 
 nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const SolveResult& s,
                           const std::optional<TwoLevelData>& levels, const EglContext& gl,
@@ -413,6 +479,9 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
     report["indirect_solve_s"] = levels->solveSeconds;
     report["indirect_item_buffer"] = levels->indirectItemBuffer;
   }
+  report["density_option"] = o.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
+  report["auto_density"] = autoDensityReport(o, in);
+  if (o.densityAuto) report["atlas"]["density"] = "auto";
   report["renderer"] = gl.renderer();
   report["gl_version"] = gl.version();
   report["egl_platform"] = gl.platform();
@@ -426,6 +495,10 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   for (size_t c = 0; c < f.ambientShares.size(); ++c)
     shares[c < f.cellNames.size() ? f.cellNames[c] : std::string("(no cell)")] = f.ambientShares[c];
   report["ambient_share"] = shares;
+  nlohmann::json escape = nlohmann::json::object();
+  for (size_t c = 0; c < f.ambientEscape.size(); ++c)
+    escape[c < f.cellNames.size() ? f.cellNames[c] : std::string("(no cell)")] = f.ambientEscape[c];
+  report["ambient_escape"] = escape;
   // A bake stopped by --time-limit is valid but partial: what it left unshot is in energy.unshot_w (and
   // spread by the ambient term unless --no-ambient).
   report["time_limit_s"] = o.timeLimit > 0.0 ? nlohmann::json(o.timeLimit) : nlohmann::json(nullptr);
@@ -490,7 +563,7 @@ int runCellJobStage(const BakeOptions& o) {
     const EglContext gl(ctx);
     bool atlasBuilt = false;  // rounds need only the cells' atlases; the first shot the whole scene's
     const auto globalAtlas = [&]() -> const LightmapAtlas& {
-      if (!atlasBuilt) buildBakeAtlas(o, in, ctx);
+      if (!atlasBuilt) buildBakeAtlas(o, in, nullptr, ctx);  // cells: --density auto was refused
       atlasBuilt = true;
       return in.atlas;
     };
@@ -509,7 +582,7 @@ int runCellJobStage(const BakeOptions& o) {
     if (!o.quiet) std::cout << o.plan << ": round " << o.jobRound << " of " << run.size() << " cells done\n";
     return 0;
   }
-  buildBakeAtlas(o, in, ctx);
+  buildBakeAtlas(o, in, nullptr, ctx);  // cells: --density auto was refused
   if (!o.jobFirstShot.empty()) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
     std::vector<int> groups;
@@ -596,6 +669,8 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
 int runBake(const BakeOptions& o) {
   if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
     throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
+  if (o.method == "cells" && o.densityAuto)
+    throw InputError("--density", "auto works with --method global only for now; give cells a density");
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = o.timeLimit > 0.0
@@ -607,15 +682,17 @@ int runBake(const BakeOptions& o) {
   ctx.setProgress(withBakeNotes(stderrProgress(o.quiet), o, start, sizeLine));
   BakeInput in = loadBakeInput(o, ctx);
   OutputDir out(o.output, kLightmapResultNames);
-  buildBakeAtlas(o, in, ctx);
+  std::unique_ptr<EglContext> gl;
+  auto openGl = [&] {
+    auto t = ctx.time("egl");
+    gl = std::make_unique<EglContext>(ctx);
+  };
+  if (o.densityAuto) openGl();  // the pilot shoots the lamps before the atlas is laid out
+  buildBakeAtlas(o, in, gl.get(), ctx);
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
   *sizeLine = bakeSizeLine(o, in);
-  std::unique_ptr<EglContext> gl;
-  {
-    auto t = ctx.time("egl");
-    gl = std::make_unique<EglContext>(ctx);
-  }
+  if (!gl) openGl();
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
   // the ambient term.
@@ -626,13 +703,16 @@ int runBake(const BakeOptions& o) {
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells =
       rooms.graph.empty() ? cellChannel(in.atlas, in.loaded.scene, cells) : rooms.channel;
+  const AmbientTransfer transfer = bakeAmbientTransfer(o, in, texelGraph, texelCells, ctx);
   std::optional<TwoLevelData> levels;
-  SolveResult s = solveBake(o, in, texelGraph, texelCells, *gl, deadline, ctx, levels);
+  SolveResult s = solveBake(o, in, texelGraph, texelCells, transfer, *gl, deadline, ctx, levels);
   BakeFigures f;
   if (!s.residual.empty())
-    f.ambientShares = ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity);
+    f.ambientShares =
+        ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity, &transfer);
   f.cellNames = cellNames(texelGraph);
-  f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, s);
+  f.ambientEscape = escapeShares(transfer);
+  f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, transfer, s);
   const std::pair<const char*, double> totals[] = {{"emitted", s.energy.emitted},
                                                    {"shot", s.energy.shot},
                                                    {"received", s.energy.received},
@@ -712,7 +792,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   sub->add_flag("--job-first-shot-sum", o->jobFirstShotSum)->group("");
   sub->add_flag("--job-serve", o->jobServe)->group("");
   sub->add_flag("--gather", o->gather)->group("");
-  addAtlasOptions(*sub, o->atlas);
+  addAtlasOptions(*sub, o->atlas, {}, &o->densityAuto);
   addSolverOptions(*sub, o->solver);
   addDecomposeOptions(*sub, o->decompose);
   addAmbientOption(*sub, o->noAmbient, o->ambientShare);
@@ -723,6 +803,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addTimeLimitOption(*sub, o->timeLimit);
   addSolveDensityOption(*sub, o->solveDensity);
   addLampCoarseningOption(*sub, o->lampCoarsening);
+  addDensityToleranceOption(*sub, o->autoDensity.light.tolerance);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {
     o->maxShotsGiven = sub->count("--max-shots") > 0;

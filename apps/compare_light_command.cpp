@@ -1,6 +1,6 @@
 // `cpgi compare-light A_DIR B_DIR`: the accuracy of lightmap A against lightmap B (the reference) on the
-// same atlas, in the metric of design.md §5; with --report DIR, also report.html with the error per texel
-// and per cell.
+// same atlas, or with --scene on B's (A read at B's texels: compare_light_resample.h), in the metric of
+// design.md §5; with --report DIR, also report.html with the error per texel and per cell.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +14,7 @@
 
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
+#include "apps/compare_light_resample.h"
 #include "apps/options.h"
 #include "apps/report_page.h"
 #include "core/error.h"
@@ -33,6 +34,7 @@ struct CompareLightOptions {
   bool json = false;
   std::string report;  ///< a folder for report.html with the error heat map, or empty
   std::string bench;   ///< with `report`: bench results for its speed-against-accuracy chart, or empty
+  std::string scene;   ///< A read at B's texels through this scene when their atlases differ, or empty
 };
 
 struct Lightmap {
@@ -67,6 +69,13 @@ Lightmap readLightmap(const std::string& dir) {
   return map;
 }
 
+bool sameAtlas(const Lightmap& a, const Lightmap& b) {
+  if (a.rgb.width != b.rgb.width || a.rgb.height != b.rgb.height) return false;
+  for (size_t i = 0; i < a.area.size(); ++i)
+    if (std::abs(a.area[i] - b.area[i]) > 1e-4f * std::max(a.area[i], b.area[i])) return false;
+  return true;
+}
+
 /// The reference's own noise over the texels compared, with their weights: sqrt(Σ w σ² / Σ w |R|²) (the
 /// metric of reference_tracer.h's relativeStandardError), when B carries its per-texel error.
 std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> weight) {
@@ -95,19 +104,23 @@ void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures
 
 int runCompareLight(const CompareLightOptions& o) {
   const nlohmann::json bench = o.bench.empty() ? nlohmann::json(nullptr) : readBenchResults(o.bench);
-  const Lightmap a = readLightmap(o.a), b = readLightmap(o.b);
+  Lightmap a = readLightmap(o.a);
+  const Lightmap b = readLightmap(o.b);
   if (!a.sampleWeight.empty())
     throw InputError(o.a,
                      "is a sparse reference (cpgi reference --texels traces a sample of texels), not a "
                      "lightmap to test; give it as B, the reference");
-  if (a.rgb.width != b.rgb.width || a.rgb.height != b.rgb.height)
-    throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" + std::to_string(b.rgb.height) +
-                              " but " + o.a + "'s is " + std::to_string(a.rgb.width) + "x" +
-                              std::to_string(a.rgb.height) + "; bake both with the same atlas options");
-  for (size_t i = 0; i < a.area.size(); ++i)
-    if (std::abs(a.area[i] - b.area[i]) > 1e-4f * std::max(a.area[i], b.area[i]))
-      throw InputError(
-          o.b, "texel areas differ from " + o.a + "'s: not the same atlas (same scene and atlas options?)");
+  if (!sameAtlas(a, b)) {
+    if (o.scene.empty())
+      throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" + std::to_string(b.rgb.height) +
+                                " but " + o.a + "'s is " + std::to_string(a.rgb.width) + "x" +
+                                std::to_string(a.rgb.height) + " or its texel areas differ; bake both with the " +
+                                "same atlas options, or give --scene to read A at B's texels");
+    a.rgb = sampleOnReferenceAtlas(o.scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
+    a.area = b.area;
+    a.emissive.clear();
+    a.cell.clear();
+  }
 
   // Against a sparse reference, the metric's sums run over its traced texels, each weighted by the number
   // of texels it stands for (texel_sample.h): unbiased estimates of the sums over every texel.
@@ -221,6 +234,10 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
                   "With --report: also chart speed against accuracy from this results.json of "
                   "bench/speed_accuracy.py")
       ->needs(cmd->get_option("--report"));
+  cmd->add_option("--scene", opts->scene,
+                  "When A's atlas is not B's (another density, or --density auto): the scene both were made "
+                  "from; A is read at B's texel centres as an engine reads A's baked.glb (bilinear), B's "
+                  "atlas rebuilt from the scene with the options its report.json records");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

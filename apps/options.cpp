@@ -53,6 +53,7 @@ constexpr ParameterFlag kFlags[] = {
     {"time limit", "--time-limit"},
     {"solve density", "--solve-density"},
     {"lamp coarsening", "--lamp-coarsening"},
+    {"density tolerance", "--density-tolerance"},
     // The sky, sun and ground of an open scene (core/sky.h), bake and reference
     {"sky", "--sky"},
     {"sky irradiance", "--sky-irradiance"},
@@ -183,13 +184,37 @@ std::string userMessage(const InputError& e) {
   return flagOf(e.where()) + ": " + problem;
 }
 
-void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope) {
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool* densityAuto) {
   auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
                                     help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
                          ->check(within(1, 4096)),
                      scope);
-  auto* density = addChecked(cmd, scope, "texel density", atlas.density,
-                             "Texels per metre along each patch edge", kPositive);
+  CLI::Option* density = nullptr;
+  if (!densityAuto) {
+    density = addChecked(cmd, scope, "texel density", atlas.density, "Texels per metre along each patch edge",
+                         kPositive);
+  } else {
+    density = scoped(cmd.add_option_function<std::string>(
+                            flag("texel density"),
+                            [&atlas, densityAuto](const std::string& given) {
+                              *densityAuto = given == "auto";
+                              if (*densityAuto) return;
+                              char* end = nullptr;
+                              const double d = std::strtod(given.c_str(), &end);
+                              if (end == given.c_str() || *end != '\0' || !std::isfinite(d) || !(d > 0.0) ||
+                                  d > 1e6)
+                                throw CLI::ValidationError(flag("texel density"),
+                                                           "must be auto or texels per metre above 0, not " +
+                                                               printable(given));
+                              atlas.density = float(d);
+                            },
+                            help(scope, "Texels per metre along each patch edge, or auto: more where a "
+                                        "first shot of the lamps finds shadow and beam edges and near "
+                                        "contacts, fewer where the light is flat"))
+                         ->type_name("T|auto")
+                         ->default_str(std::to_string(int(atlas.density))),
+                     scope);
+  }
   tpq->excludes(density);
   addMemoryOption(cmd, atlas.memoryLimit, scope);
 }
@@ -370,6 +395,13 @@ void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
       "(at least 10 texels per metre), then again at the output's texels only where that shot's light has "
       "an edge, a penumbra or a bend; 1: at every output texel",
       within(1.0, 1000.0));
+}
+
+void addDensityToleranceOption(CLI::App& cmd, float& tolerance) {
+  addChecked(cmd, {}, "density tolerance", tolerance,
+             "With --density auto: the RMS miss of the lightmap's interpolation allowed over a quad, a share of "
+             "its light (smaller: more texels where the lamps' light bends or has edges)",
+             within(1e-4, 1.0));
 }
 
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {

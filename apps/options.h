@@ -36,8 +36,9 @@ struct OptionScope {
   CLI::Option* needs = nullptr;
 };
 
-/// --texels-per-quad | --density.
-void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {});
+/// --texels-per-quad | --density; with `densityAuto`, --density also takes "auto" and sets it
+/// (bake: radiosity/gpu/auto_density.h).
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {}, bool* densityAuto = nullptr);
 /// --max-memory SIZE into `limit` (default: defaultMemoryLimit()); addAtlasOptions adds it for the atlas.
 void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope = {});
 /// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
@@ -75,6 +76,8 @@ void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
 /// texels per metre, 0 for one level, or "auto" (kAutoSolveDensity, the default).
 inline constexpr float kAutoSolveDensity = -1.0f;
 void addSolveDensityOption(CLI::App& cmd, float& density);
+/// --density-tolerance (bake, with --density auto: radiosity/lightmap/light_density.h).
+void addDensityToleranceOption(CLI::App& cmd, float& tolerance);
 /// --lamp-coarsening (bake, with --solve-density: radiosity/gpu/refined_lamp_shot.h).
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening);
 /// --cell-noise and --max-spp (more paths for the reference's noisy cells,

@@ -100,7 +100,8 @@ const PortalQuad* crossedPortal(const Triangle& tri, const std::map<int, double>
 }  // namespace
 
 Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::vector<int32_t>& cell,
-                           const std::vector<PortalQuad>& portals, const AssignParams& params, Context& ctx) {
+                           const std::vector<PortalQuad>& portals, int outsideCell, const AssignParams& params,
+                           Context& ctx) {
   auto timer = ctx.time("assign");
   Assignment out;
   out.scene.materials = scene.materials;
@@ -113,7 +114,7 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
 
   auto labelAt = [&](const glm::vec3& p) -> int {
     const glm::ivec3 v = f.voxelOf(p);
-    return f.contains(v) ? cell[f.index(v)] : -1;
+    return f.contains(v) ? cell[f.index(v)] : outsideCell;
   };
   auto nearestAt = [&](const glm::vec3& p) -> int {
     const glm::ivec3 v = glm::clamp(f.voxelOf(p), glm::ivec3(0), f.dims - 1);

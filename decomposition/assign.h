@@ -37,8 +37,11 @@ struct Assignment {
 
 /// For each triangle, samples step along its normal (1 to 3 voxels) to the first labelled voxel; the
 /// back side is tried when the front finds none (wrong winding, outside walls: up to backSearch deep),
-/// and the nearest labelled voxel when neither does. Run after fitPortals, with its relabelled cells.
+/// and the nearest labelled voxel when neither does. A sample beyond the grid is in `outsideCell` (the
+/// grid stops in open space, voxelize.h; -1 when the outside is no cell). Run after fitPortals, with its
+/// relabelled cells.
 Assignment assignTriangles(const Scene& scene, const GridFrame& frame, const std::vector<int32_t>& cell,
-                           const std::vector<PortalQuad>& portals, const AssignParams& params, Context& ctx);
+                           const std::vector<PortalQuad>& portals, int outsideCell, const AssignParams& params,
+                           Context& ctx);
 
 }  // namespace cpgi::decomp

@@ -30,49 +30,61 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
   SpaceGrid out;
   const GridFrame& f = solid.frame;
   out.frame = f;
-  constexpr uint8_t kUnset = 255;
-  std::vector<uint8_t> cls(f.count(), kUnset);
-  for (size_t i = 0; i < cls.size(); ++i)
-    if (solid.solid[i]) cls[i] = uint8_t(Space::Solid);
+  // Classes are written straight into the output; two values past Space's mark what is not judged yet.
+  constexpr Space kUnset = Space(255), kPending = Space(254);
+  std::vector<Space>& cls = out.space;
+  cls.resize(f.count());
+  for (size_t i = 0; i < cls.size(); ++i) cls[i] = solid.solid[i] ? Space::Solid : kUnset;
 
-  // Breadth-first fill from the voxels in `queue`: every unset face neighbour gets `value` and joins the
-  // queue, which ends up holding the whole component.
-  std::vector<size_t> queue;
-  auto fill = [&](uint8_t value) {
-    for (size_t head = 0; head < queue.size(); ++head) {
-      const glm::ivec3 c = f.coord(queue[head]);
-      for (const auto& d : kFaceNeighbours) {
-        const glm::ivec3 n(c.x + d[0], c.y + d[1], c.z + d[2]);
-        if (!f.contains(n)) continue;
-        const size_t j = f.index(n);
-        if (cls[j] != kUnset) continue;
-        cls[j] = value;
-        queue.push_back(j);
-      }
+  // Calls visit(j) for every unset face neighbour j of voxel i, which may lie on the grid's border.
+  auto forUnsetNeighboursOfBorder = [&](size_t i, auto&& visit) {
+    const glm::ivec3 c = f.coord(i);
+    for (const auto& d : kFaceNeighbours) {
+      const glm::ivec3 n(c.x + d[0], c.y + d[1], c.z + d[2]);
+      if (!f.contains(n)) continue;
+      const size_t j = f.index(n);
+      if (cls[j] == kUnset) visit(j);
+    }
+  };
+  // The same for a voxel off the border, by index offsets. Once the border is classified (solid or
+  // outside, below), every unset voxel is off it.
+  const ptrdiff_t sy = f.dims.x, sz = ptrdiff_t(f.dims.x) * f.dims.y;
+  const ptrdiff_t offsets[6] = {-1, 1, -sy, sy, -sz, sz};
+  auto forUnsetNeighbours = [&](size_t i, auto&& visit) {
+    for (ptrdiff_t o : offsets) {
+      const size_t j = size_t(ptrdiff_t(i) + o);
+      if (cls[j] == kUnset) visit(j);
     }
   };
 
-  queue.clear();
+  // The outside, front by front from the grid's border: only the front is held, not the whole outside.
+  std::vector<size_t> front, next;
   for (int z = 0; z < f.dims.z; ++z)
     for (int y = 0; y < f.dims.y; ++y)
       for (int x = 0; x < f.dims.x; ++x) {
         if (x > 0 && y > 0 && z > 0 && x < f.dims.x - 1 && y < f.dims.y - 1 && z < f.dims.z - 1) continue;
         const size_t i = f.index(x, y, z);
-        if (cls[i] == kUnset) cls[i] = uint8_t(Space::Outside), queue.push_back(i);
+        if (cls[i] == kUnset) cls[i] = Space::Outside, front.push_back(i);
       }
-  fill(uint8_t(Space::Outside));
+  auto toOutside = [&](size_t j) { cls[j] = Space::Outside, next.push_back(j); };
+  for (size_t i : front) forUnsetNeighboursOfBorder(i, toOutside);
+  std::swap(front, next);
+  while (!front.empty()) {
+    next.clear();
+    for (size_t i : front) forUnsetNeighbours(i, toOutside);
+    std::swap(front, next);
+  }
 
   // Components first, judged afterwards (in parallel: the winding number visits every triangle).
   const double minVoxels = params.minComponentVolume / f.voxelVolume();
-  constexpr uint8_t kPending = 254;
   std::vector<std::vector<size_t>> components;
   for (size_t i = 0; i < cls.size(); ++i) {
     if (cls[i] != kUnset) continue;
-    queue.clear();
-    queue.push_back(i);
+    // Breadth-first: the component ends up whole in its own list.
+    std::vector<size_t>& component = components.emplace_back(1, i);
     cls[i] = kPending;
-    fill(kPending);
-    components.push_back(queue);
+    for (size_t head = 0; head < component.size(); ++head)
+      forUnsetNeighbours(component[head], [&](size_t j) { cls[j] = kPending, component.push_back(j); });
   }
   std::vector<char> isInside(components.size(), 0);
   tbb::parallel_for(size_t(0), components.size(), [&](size_t k) {
@@ -101,13 +113,11 @@ SpaceGrid classifySpace(const Scene& scene, const SolidGrid& solid, const Classi
   for (size_t k = 0; k < components.size(); ++k) {
     const Space s = isInside[k] ? Space::Inside : Space::Void;
     (isInside[k] ? out.insideComponents : out.voidComponents) += 1;
-    for (size_t v : components[k]) cls[v] = uint8_t(s);
+    for (size_t v : components[k]) cls[v] = s;
   }
 
-  out.space.resize(cls.size());
-  for (size_t i = 0; i < cls.size(); ++i) {
-    out.space[i] = Space(cls[i]);
-    switch (out.space[i]) {
+  for (const Space s : cls) {
+    switch (s) {
       case Space::Solid: ++out.solidVoxels; break;
       case Space::Inside: ++out.insideVoxels; break;
       case Space::Outside: ++out.outsideVoxels; break;

@@ -24,7 +24,8 @@ struct SpaceGrid {
   int voidComponents = 0;    ///< enclosed components judged void
 };
 
-/// Floods the outside from the grid's border (always empty, see voxelize), then splits the rest of the
+/// Floods the outside from the grid's border (empty but where open ground runs through it, see
+/// voxelize), then splits the rest of the
 /// empty space into 6-connected components. A component is void when it lies inside a closed outward-
 /// facing solid (generalized winding number > 1/2 at the median of three of its voxels) or when most of its
 /// voxels next to the surface lie behind their nearest triangle; inside otherwise. Rooms built of wall

@@ -1,5 +1,6 @@
 #include "decomposition/decompose.h"
 
+#include <climits>
 #include <cmath>
 #include <sstream>
 
@@ -61,6 +62,7 @@ EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params,
   vp.voxelSize = e.voxelSize;
   vp.sealRadius = params.sealRadius;
   vp.memoryLimit = params.memoryLimit;
+  vp.outsideMargin = params.outsideMargin;
   e.solid = voxelize(scene, vp, ctx);
   e.space = classifySpace(scene, e.solid, params.classify, ctx);
   e.distance = distanceToGeometry(e.solid, e.space, ctx);
@@ -76,8 +78,9 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   // The watershed runs over all empty space, the outside included (its basin grows from the grid's
   // border); interior cells meet the outside at exterior doors and open windows.
   const DistanceGrid& distance = empty.distance;
-  const WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
-  const CellLabels cells = mergeBasins(basins, params.merge, ctx);
+  WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
+  const int basinCount = basins.basinCount();
+  CellLabels cells = mergeBasins(std::move(basins), params.merge, ctx);
   std::vector<std::string> names;
   for (int c = 0; c < cells.cellCount(); ++c)
     names.push_back(c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c));
@@ -88,26 +91,25 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
                   : "no room larger than the minimum cell volume") +
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
   Decomposition out =
-      finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
+      finishDecomposition(scene, params, solid, std::move(space.space), distance, std::move(cells), names, ctx);
   out.voxelChoice = std::move(empty.voxelChoice);
-  out.basins = basins.basinCount();
+  out.basins = basinCount;
   return out;
 }
 
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance,
-                                  const CellLabels& cells, const std::vector<std::string>& names,
-                                  Context& ctx) {
+                                  std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
+                                  const std::vector<std::string>& names, Context& ctx) {
   Decomposition out;
   const double h = solid.frame.voxel;
   out.frame = solid.frame;
   out.sealedVoxels = solid.sealedVoxels;
   out.enclosed = cells.roomCount() > 0;
   out.outsideCell = cells.outsideCell;
-  PortalSet portals = fitPortals(cells, distance, params.portals, ctx);
+  const std::vector<float> peaks = cells.peak;
+  PortalSet portals = fitPortals(std::move(cells), distance, params.portals, ctx);
   out.voxelCell = std::move(portals.cell);
   out.leakingFaces = portals.leakingFaces;
-  const std::vector<float>& peaks = cells.peak;
   std::vector<PortalQuad> quads;
   for (FittedPortal& fp : portals.portals) {
     fp.quad.name = "portal:" + names[size_t(fp.quad.cellA)] + ":" + names[size_t(fp.quad.cellB)];
@@ -119,7 +121,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
              " voxel faces join two cells outside any portal");
   out.space = std::move(space);
 
-  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, params.assign, ctx);
+  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, out.outsideCell, params.assign, ctx);
   out.inputTriangles = scene.triangles.size();
   out.scene = std::move(assigned.scene);
   out.splitTriangles = assigned.splitTriangles;
@@ -138,15 +140,26 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
     const int c = assigned.cellOfTriangle[t];
     if (c >= 0 && c < cellCount) out.graph.cells[size_t(c)].triangles.push_back(uint32_t(t));
   }
+  // Each cell's voxels and their extent in voxel coordinates, walked in storage order (no division per
+  // voxel), then its bounds from the extreme voxels' cubes.
+  std::vector<glm::ivec3> lowest(size_t(cellCount), glm::ivec3(INT32_MAX)), highest(size_t(cellCount), glm::ivec3(-1));
+  const GridFrame& f = out.frame;
+  size_t i = 0;
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y)
+      for (int x = 0; x < f.dims.x; ++x, ++i) {
+        const int c = out.voxelCell[i];
+        if (c < 0 || c >= cellCount) continue;
+        ++out.cellStats[size_t(c)].voxels;
+        lowest[size_t(c)] = glm::min(lowest[size_t(c)], glm::ivec3(x, y, z));
+        highest[size_t(c)] = glm::max(highest[size_t(c)], glm::ivec3(x, y, z));
+      }
   const glm::vec3 half(float(0.5 * h));
-  for (size_t i = 0; i < out.voxelCell.size(); ++i) {
-    const int c = out.voxelCell[i];
-    if (c < 0 || c >= cellCount) continue;
-    CellStats& s = out.cellStats[size_t(c)];
-    ++s.voxels;
-    const glm::vec3 p = out.frame.centre(i);
-    s.bounds.extend(p - half), s.bounds.extend(p + half);
-  }
+  for (int c = 0; c < cellCount; ++c)
+    if (out.cellStats[size_t(c)].voxels > 0) {
+      Bounds& b = out.cellStats[size_t(c)].bounds;
+      b.extend(f.centre(lowest[size_t(c)]) - half), b.extend(f.centre(highest[size_t(c)]) + half);
+    }
   for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
   out.graph.portals = std::move(quads);
 

@@ -36,6 +36,8 @@ struct DecomposeParams {
   double autoVoxelBudget = 4.0e6;   ///< voxels the automatic choice aims at
   double sealRadius = 0.0;          ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
   uint64_t memoryLimit = 0;         ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
+  /// Metres of open space kept around the covered part of the scene, see VoxelizeParams::outsideMargin.
+  double outsideMargin = VoxelizeParams().outsideMargin;
   ClassifyParams classify;
   WatershedParams watershed;
   MergeParams merge;
@@ -99,8 +101,7 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& params);
 /// to the cell it faces (split on portal planes), per-cell statistics. `names` holds one name per cell of
 /// `cells`; `space` and `distance` are those of `solid`.
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance,
-                                  const CellLabels& cells, const std::vector<std::string>& names,
-                                  Context& ctx);
+                                  std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
+                                  const std::vector<std::string>& names, Context& ctx);
 
 }  // namespace cpgi::decomp

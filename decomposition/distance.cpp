@@ -9,16 +9,23 @@
 namespace cpgi::decomp {
 namespace {
 
-constexpr int64_t kFar = int64_t(1) << 40;
+// Squared distances are computed in 64 bits along a line and stored in the grid's 32 bits between the
+// passes; kFar (no solid voxel on the lines so far) is the largest stored value, and finite squared
+// distances saturate just below it (past 65 535 voxels, more than any grid the decomposition allows).
+constexpr uint32_t kFar = std::numeric_limits<uint32_t>::max();
+constexpr int64_t kFarLine = int64_t(1) << 40;
 
 // One pass of the 1D squared distance transform along a line of n samples with the given stride:
-// d[i] = min_j (f[j] + (i - j)²). v/z/buf are scratch of size n, n + 1, n.
-void transformLine(int64_t* data, int n, size_t stride, std::vector<int>& v, std::vector<double>& z,
+// d[i] = min_j (f[j] + (i - j)²). v/z/f are scratch of size n + 1, n + 2, n.
+void transformLine(uint32_t* data, int n, size_t stride, std::vector<int>& v, std::vector<double>& z,
                    std::vector<int64_t>& f) {
-  for (int i = 0; i < n; ++i) f[i] = data[size_t(i) * stride];
+  for (int i = 0; i < n; ++i) {
+    const uint32_t d = data[size_t(i) * stride];
+    f[size_t(i)] = d == kFar ? kFarLine : int64_t(d);
+  }
   int k = -1;
   for (int q = 0; q < n; ++q) {
-    if (f[q] >= kFar) continue;
+    if (f[q] >= kFarLine) continue;
     while (k >= 0) {
       const int p = v[k];
       const double s = (double(f[q] + int64_t(q) * q) - double(f[p] + int64_t(p) * p)) / (2.0 * (q - p));
@@ -37,7 +44,7 @@ void transformLine(int64_t* data, int n, size_t stride, std::vector<int>& v, std
   for (int q = 0; q < n; ++q) {
     while (z[j + 1] < q) ++j;
     const int64_t dq = q - v[j];
-    data[size_t(q) * stride] = f[v[j]] + dq * dq;
+    data[size_t(q) * stride] = uint32_t(std::min<int64_t>(f[v[j]] + dq * dq, int64_t(kFar) - 1));
   }
 }
 
@@ -46,7 +53,11 @@ void transformLine(int64_t* data, int n, size_t stride, std::vector<int>& v, std
 DistanceGrid distanceToGeometry(const SolidGrid& solid, const SpaceGrid& space, Context& ctx) {
   auto timer = ctx.time("distance");
   const GridFrame& f = solid.frame;
-  std::vector<int64_t> d(f.count());
+  DistanceGrid out;
+  out.frame = f;
+  // Transformed in place: solid voxels are the sources, every other voxel starts far.
+  std::vector<uint32_t>& d = out.d2;
+  d.resize(f.count());
   for (size_t i = 0; i < d.size(); ++i) d[i] = solid.solid[i] ? 0 : kFar;
 
   const int nx = f.dims.x, ny = f.dims.y, nz = f.dims.z;
@@ -64,13 +75,10 @@ DistanceGrid distanceToGeometry(const SolidGrid& solid, const SpaceGrid& space, 
   pass(nx * nz, ny, sy, [&](int line) { return size_t(line % nx) + size_t(line / nx) * sz; });
   pass(nx * ny, nz, sz, [&](int line) { return size_t(line); });
 
-  DistanceGrid out;
-  out.frame = f;
-  out.d2.assign(f.count(), 0);
+  // Only inside and outside voxels keep their distance.
   for (size_t i = 0; i < d.size(); ++i) {
-    if (space.space[i] != Space::Inside && space.space[i] != Space::Outside) continue;
-    out.d2[i] = uint32_t(std::min<int64_t>(d[i], std::numeric_limits<uint32_t>::max()));
-    out.maxD2 = std::max(out.maxD2, out.d2[i]);
+    if (space.space[i] != Space::Inside && space.space[i] != Space::Outside) d[i] = 0;
+    out.maxD2 = std::max(out.maxD2, d[i]);
   }
   ctx.progress("distance", 1.0);
   return out;

@@ -29,7 +29,7 @@ struct Candidate {
 
 }  // namespace
 
-CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params, Context& ctx) {
+CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Context& ctx) {
   auto timer = ctx.time("merge");
   const GridFrame& f = basins.frame;
   const double h = f.voxel;
@@ -115,29 +115,35 @@ CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params,
   };
   CellLabels out;
   out.frame = f;
-  out.cell.assign(f.count(), -1);
   out.cellOfBasin.assign(size_t(count), -1);
   std::vector<int> cellOfGroup(size_t(count), -1);
   for (int b = 0; b < count; ++b)
     if (root(b) != outsideRoot && !kept(root(b))) ++out.droppedBasins;
   // Rooms numbered by their lowest voxel, the outside last.
-  for (int pass = 0; pass < 2; ++pass)
-    for (size_t i = 0; i < out.cell.size(); ++i) {
-      const int b = basins.basin[i];
-      if (b < 0) continue;
-      const int r = root(b);
-      if ((r == outsideRoot) != (pass == 1) || !kept(r)) continue;
-      if (cellOfGroup[size_t(r)] < 0) {
-        cellOfGroup[size_t(r)] = out.cellCount();
-        out.peak.push_back(groups[size_t(r)].peak);
-        out.volume.push_back(0);
-        if (r == outsideRoot) out.outsideCell = cellOfGroup[size_t(r)];
-      }
-      const int c = cellOfGroup[size_t(r)];
-      out.cell[i] = c;
-      ++out.volume[size_t(c)];
-    }
-  for (int b = 0; b < count; ++b) out.cellOfBasin[size_t(b)] = cellOfGroup[size_t(root(b))];
+  std::vector<int> rootOf(static_cast<size_t>(count));
+  for (int b = 0; b < count; ++b) rootOf[size_t(b)] = root(b);
+  for (size_t i = 0; i < basins.basin.size(); ++i) {
+    const int b = basins.basin[i];
+    if (b < 0) continue;
+    const int r = rootOf[size_t(b)];
+    if (r == outsideRoot || !kept(r) || cellOfGroup[size_t(r)] >= 0) continue;
+    cellOfGroup[size_t(r)] = out.cellCount();
+    out.peak.push_back(groups[size_t(r)].peak);
+    out.volume.push_back(0);
+  }
+  if (outsideRoot >= 0 && kept(outsideRoot)) {
+    out.outsideCell = cellOfGroup[size_t(outsideRoot)] = out.cellCount();
+    out.peak.push_back(groups[size_t(outsideRoot)].peak);
+    out.volume.push_back(0);
+  }
+  for (int b = 0; b < count; ++b) out.cellOfBasin[size_t(b)] = cellOfGroup[size_t(rootOf[size_t(b)])];
+  // The basins' labels become the cells', in place.
+  out.cell = std::move(basins.basin);
+  for (int32_t& label : out.cell) {
+    if (label < 0) continue;
+    label = out.cellOfBasin[size_t(label)];
+    if (label >= 0) ++out.volume[size_t(label)];
+  }
   ctx.progress("merge", 1.0);
   return out;
 }

@@ -52,7 +52,8 @@ struct CellLabels {
 /// are numbered by their lowest voxel index, so the numbering does not depend on the merge order; the
 /// outside (the group of the watershed's outside marker) comes last, and only when it meets a room or
 /// when there is no room at all. Against the outside the rules use the room's own volume and peak.
-/// Run after floodWatershed.
-CellLabels mergeBasins(const WatershedLabels& basins, const MergeParams& params, Context& ctx);
+/// Run after floodWatershed. `basins` is taken by value: its per-voxel labels become the cells' (move it
+/// in to spare a copy of the grid).
+CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Context& ctx);
 
 }  // namespace cpgi::decomp

@@ -420,12 +420,12 @@ void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const s
 
 }  // namespace
 
-PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params,
+PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const PortalParams& params,
                      Context& ctx) {
   auto timer = ctx.time("portals");
   const GridFrame& f = cells.frame;
   PortalSet out;
-  out.cell = cells.cell;
+  out.cell = std::move(cells.cell);
   // Each cell's deepest voxel, to tell the sides of a section portal apart.
   std::vector<size_t> deepest(size_t(cells.cellCount()), 0);
   for (size_t i = 0; i < out.cell.size(); ++i) {

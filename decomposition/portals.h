@@ -47,8 +47,9 @@ struct PortalSet {
 /// Splits the faces between each pair of cells into connected openings (faces within one voxel of each
 /// other) and fits one quad to each: to the interface's plane when its faces are crossed along one axis
 /// (doors, windows), else across the narrowest closed section near it (sections.h: the hole a stair
-/// climbs through), whose two cells are then relabelled by side. Run after mergeBasins.
-PortalSet fitPortals(const CellLabels& cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx);
+/// climbs through), whose two cells are then relabelled by side. Run after mergeBasins. `cells` is taken
+/// by value: its labels become PortalSet::cell (move it in to spare a copy of the grid).
+PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx);
 
 /// Counts voxel faces between different cells that cross no portal joining those cells (see PortalSet).
 size_t countLeakingFaces(const GridFrame& frame, const std::vector<int32_t>& cell,

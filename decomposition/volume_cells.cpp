@@ -224,7 +224,7 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   cells.cell = std::move(label);
   timer.reset();
   Decomposition out =
-      finishDecomposition(scene, params, solid, std::move(space.space), distance, cells, names, ctx);
+      finishDecomposition(scene, params, solid, std::move(space.space), distance, std::move(cells), names, ctx);
   out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -32,6 +33,51 @@ class TriangleAdapter {
   const Scene& scene_;
   const GridFrame& frame_;
 };
+
+// The index range [lo, hi] of the grid's columns (x, z) that are covered: at least `gapVoxels` empty
+// voxels between the lowest and the highest solid voxel of the column. Empty (lo > hi) when none is.
+struct ColumnRange {
+  glm::ivec2 lo{std::numeric_limits<int>::max()}, hi{std::numeric_limits<int>::min()};
+  bool empty() const { return lo.x > hi.x; }
+};
+
+ColumnRange coveredColumns(const openvdb::MaskGrid& solid, const GridFrame& f, int gapVoxels) {
+  struct Column {
+    int lowest = std::numeric_limits<int>::max(), highest = std::numeric_limits<int>::min(), solid = 0;
+  };
+  std::vector<Column> columns(size_t(f.dims.x) * size_t(f.dims.z));
+  for (auto it = solid.cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    if (!f.contains({c.x(), c.y(), c.z()})) continue;
+    Column& col = columns[size_t(c.z()) * size_t(f.dims.x) + size_t(c.x())];
+    col.lowest = std::min(col.lowest, c.y()), col.highest = std::max(col.highest, c.y());
+    ++col.solid;
+  }
+  ColumnRange out;
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int x = 0; x < f.dims.x; ++x) {
+      const Column& col = columns[size_t(z) * size_t(f.dims.x) + size_t(x)];
+      if (col.solid == 0 || col.highest - col.lowest + 1 - col.solid < gapVoxels) continue;
+      out.lo = glm::min(out.lo, glm::ivec2(x, z)), out.hi = glm::max(out.hi, glm::ivec2(x, z));
+    }
+  return out;
+}
+
+// The part of the grid `f` to keep: across the horizontal, the covered columns grown by `marginVoxels`
+// (clamped to the grid), the whole height; `offset` gets the kept part's first voxel in `f`.
+GridFrame cropToCovered(const GridFrame& f, const ColumnRange& covered, double marginVoxels,
+                        glm::ivec3& offset) {
+  offset = glm::ivec3(0);
+  if (covered.empty() || !std::isfinite(marginVoxels)) return f;
+  const int margin = int(std::clamp(std::ceil(marginVoxels), 0.0, double(std::max(f.dims.x, f.dims.z))));
+  const glm::ivec2 lo = glm::max(covered.lo - margin, glm::ivec2(0));
+  const glm::ivec2 hi = glm::min(covered.hi + margin, glm::ivec2(f.dims.x, f.dims.z) - 1);
+  offset = glm::ivec3(lo.x, 0, lo.y);
+  GridFrame kept = f;
+  kept.origin = f.origin + f.voxel * glm::dvec3(offset);
+  kept.dims = glm::ivec3(hi.x - lo.x + 1, f.dims.y, hi.y - lo.y + 1);
+  return kept;
+}
 
 }  // namespace
 
@@ -107,17 +153,21 @@ SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ct
     out.sealedVoxels = size_t(solidMask.activeVoxelCount() - std::min(before, solidMask.activeVoxelCount()));
   }
 
+  // Open ground far from the building: cut off before any dense grid is made.
+  glm::ivec3 offset;
+  f = cropToCovered(f, coveredColumns(solidMask, f, int(std::ceil(params.coverHeight / h))),
+                    params.outsideMargin / h, offset);
   ctx.addTiming("voxelize.mask_seal", timer.elapsed() - udfSeconds);
   out.solid.assign(f.count(), 0);
   out.nearestTriangle.assign(f.count(), -1);
   for (auto it = solidMask.cbeginValueOn(); it; ++it) {
     const openvdb::Coord c = it.getCoord();
-    const glm::ivec3 v(c.x(), c.y(), c.z());
+    const glm::ivec3 v = glm::ivec3(c.x(), c.y(), c.z()) - offset;
     if (f.contains(v)) out.solid[f.index(v)] = 1;
   }
   for (auto it = indexGrid.cbeginValueOn(); it; ++it) {
     const openvdb::Coord c = it.getCoord();
-    const glm::ivec3 v(c.x(), c.y(), c.z());
+    const glm::ivec3 v = glm::ivec3(c.x(), c.y(), c.z()) - offset;
     if (f.contains(v)) out.nearestTriangle[f.index(v)] = *it;
   }
   ctx.progress("voxelize", 1.0);

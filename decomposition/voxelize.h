@@ -18,20 +18,30 @@ struct VoxelizeParams {
   /// closing (dilate r, erode r, face neighbours) fills every gap at most 2r voxels across, i.e. cracks up
   /// to about (2r + 1) voxels wide once the half-voxel thickening of each face is counted.
   double sealRadius = 0.0;
-  /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (the distance transform's
-  /// 64-bit working grid, labels, classes), so 250 M voxels is ~10 GB.
+  /// Refuse grids larger than this: the pipeline peaks at ~40 bytes per voxel (kDecompositionBytesPerVoxel),
+  /// so 250 M voxels is ~10 GB; voxel indices fit in 32 bits.
   size_t maxVoxels = size_t(250) * 1000 * 1000;
   /// Bytes the whole decomposition may take (decompositionBytes), checked before the first grid is
   /// allocated: InputError naming the voxel size when passed. 0: no limit.
   uint64_t memoryLimit = 0;
+  /// Open space kept around the covered part of the scene, metres (see coverHeight); beyond it, across
+  /// the horizontal, the grid stops: open ground there (a terrain, a plaza) is outside whatever stands on
+  /// it, and voxels over it would only enlarge the outside. Infinite (or when no column is covered): the
+  /// grid spans the scene's bounds. At least the portals' search range (0.6 m) beyond an exterior door.
+  double outsideMargin = 2.0;
+  /// A column of the grid (x, z; y is up) is covered when at least this much empty height, metres, lies
+  /// between its lowest and highest solid voxel: a floor under a ceiling, a porch under its roof. A
+  /// terrain, a slab or a wall alone never is. Rooms are always covered; a space open to the sky is
+  /// reached from the grid's top and is outside anyway.
+  double coverHeight = 1.0;
 };
 
 /// What one voxel of the grid costs at the decomposition's peak, the assignment of triangles to cells
 /// (decompose.cpp, finishDecomposition): solid and nearest triangle (5 bytes), classes (1), squared distance
 /// (4), watershed basins (4), merged cells (4), cells around the portals (4), and when a triangle sees no
 /// cell the nearest-cell grid (4), its border mask (1) and its breadth-first queue (8, up to 16 with a
-/// vector's spare capacity). The watershed (order 8, queue, flags) and the distance transform (8-byte working
-/// grid) peak lower. Measured: 31–38 bytes a voxel (bench/RESULTS.md, "Memory of the decomposition").
+/// vector's spare capacity). The watershed (order 4, queue, flags) and the distance transform (in place on
+/// its output) peak lower. Measured: 31–38 bytes a voxel (bench/RESULTS.md, "Memory of the decomposition").
 inline constexpr double kDecompositionBytesPerVoxel = 40.0;
 /// While OpenVDB builds the narrow band (voxelize), only the solid and nearest-triangle grids are dense.
 inline constexpr double kVoxelizeBytesPerVoxel = 5.0;
@@ -59,7 +69,8 @@ struct SolidGrid {
 /// Rasterises every triangle by OpenVDB's meshToVolume (unsigned distance, 2-voxel band); a voxel is
 /// solid when its centre is within half a voxel of a triangle, which makes any plane at least one face-
 /// connected layer thick, so 6-connected empty space cannot leak through it. The grid is the scene's
-/// bounds padded by 2 + seal voxels, so its border is always empty.
+/// bounds padded by 2 + seal voxels, cut across the horizontal to params.outsideMargin around the covered
+/// columns: its border is empty except where open ground (a terrain) runs through the cut.
 /// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels, or the decomposition
 /// over it params.memoryLimit.
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx);

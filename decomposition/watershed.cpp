@@ -2,33 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace cpgi::decomp {
 namespace {
 
 // Labels every empty voxel of the grid's border as basin 0, the outside (no contacts: nothing else is
-// labelled yet), and returns the border's mask.
-std::vector<char> markOutside(const DistanceGrid& distance, WatershedLabels& out) {
+// labelled yet).
+void markOutside(const DistanceGrid& distance, WatershedLabels& out) {
   const GridFrame& f = distance.frame;
-  std::vector<char> border(f.count(), 0);
   for (int z = 0; z < f.dims.z; ++z)
     for (int y = 0; y < f.dims.y; ++y) {
       const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
-      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1)))
-        border[f.index(x, y, z)] = 1;
+      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1))) {
+        const size_t i = f.index(x, y, z);
+        if (!distance.d2[i]) continue;
+        if (out.outsideBasin < 0) {
+          out.outsideBasin = 0;
+          out.peak.push_back(0.0f);
+          out.volume.push_back(0);
+        }
+        out.basin[i] = 0;
+        ++out.volume[0];
+      }
     }
-  for (size_t i = 0; i < border.size(); ++i) {
-    if (!border[i] || !distance.d2[i]) continue;
-    if (out.outsideBasin < 0) {
-      out.outsideBasin = 0;
-      out.peak.push_back(0.0f);
-      out.volume.push_back(0);
-    }
-    out.basin[i] = 0;
-    ++out.volume[0];
-  }
-  return border;
 }
 
 }  // namespace
@@ -45,18 +44,21 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   const double step = params.levelStep > 0.0 ? params.levelStep : 0.5;
   auto levelOf = [&](uint32_t d2) { return int(std::sqrt(double(d2)) / step); };
   const int levels = levelOf(distance.maxD2) + 1;
-  // The border layer is the outside marker, not flooded level by level.
-  const std::vector<char> border = markOutside(distance, out);
-  auto flooded = [&](size_t i) { return distance.d2[i] && !border[i]; };
+  // The border layer is the outside marker, not flooded level by level: every other empty voxel is
+  // still unlabelled.
+  markOutside(distance, out);
+  auto flooded = [&](size_t i) { return distance.d2[i] && out.basin[i] < 0; };
   std::vector<size_t> start(size_t(levels) + 1, 0);
   for (size_t i = 0; i < n; ++i)
     if (flooded(i)) ++start[size_t(levels - 1 - levelOf(distance.d2[i])) + 1];
   for (int l = 0; l < levels; ++l) start[size_t(l) + 1] += start[size_t(l)];
-  std::vector<size_t> order(start.back());
+  // 32-bit voxel indices (voxelize's limit keeps grids far below 2³²): half the memory of size_t.
+  if (n > std::numeric_limits<uint32_t>::max()) throw std::length_error("watershed: more than 2^32 voxels");
+  std::vector<uint32_t> order(start.back());
   {
     std::vector<size_t> fillAt(start.begin(), start.end() - 1);
     for (size_t i = 0; i < n; ++i)
-      if (flooded(i)) order[fillAt[size_t(levels - 1 - levelOf(distance.d2[i]))]++] = i;
+      if (flooded(i)) order[fillAt[size_t(levels - 1 - levelOf(distance.d2[i]))]++] = uint32_t(i);
   }
 
   // Only voxels off the border are flooded, so face neighbours of a flooded voxel are in range.
@@ -70,14 +72,15 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   auto label = [&](size_t i, int b) {
     out.basin[i] = b;
     ++out.volume[size_t(b)];
-    const float di = metres(i);
     for (ptrdiff_t o : offsets) {
-      const int nb = out.basin[size_t(ptrdiff_t(i) + o)];
+      const size_t j = size_t(ptrdiff_t(i) + o);
+      const int nb = out.basin[j];
       if (nb < 0 || nb == b) continue;
       const int lo = std::min(nb, b), hi = std::max(nb, b);
       BasinContact& c = contacts[(uint64_t(uint32_t(lo)) << 32) | uint32_t(hi)];
       c.a = lo, c.b = hi;
-      c.saddle = std::max(c.saddle, std::min(di, metres(size_t(ptrdiff_t(i) + o))));
+      // The lower of the two distances, converted once it is known to be needed.
+      c.saddle = std::max(c.saddle, metres(distance.d2[i] < distance.d2[j] ? i : j));
       ++c.faces;
     }
   };

@@ -8,9 +8,6 @@ std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
                                       const std::vector<AmbientOpening>& openings) {
   const size_t count = rooms.size();
   std::vector<double> portals(count, 0.0);
-  std::vector<glm::dvec3> albedo(count, glm::dvec3(0.0));
-  for (size_t c = 0; c < count; ++c)
-    if (rooms[c].area > 0.0) albedo[c] = rooms[c].albedoArea / rooms[c].area;
   for (const AmbientOpening& o : openings) portals[o.a] += o.area, portals[o.b] += o.area;
   // transfer[c][d]: the share of the power leaving room c's surfaces that lands in room d.
   std::vector<std::vector<double>> transfer(count, std::vector<double>(count, 0.0));
@@ -22,6 +19,18 @@ std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
       transfer[from][to] += o.area / enclosure;
       transfer[from][from] -= o.area / enclosure;
     }
+  return ambientLandedByShares(rooms, transfer);
+}
+
+std::vector<glm::dvec3> ambientLandedByShares(const std::vector<AmbientRoom>& rooms,
+                                              const std::vector<std::vector<double>>& transfer) {
+  const size_t count = rooms.size();
+  if (transfer.size() != count) throw std::invalid_argument("ambientLandedByShares: not one transfer row per room");
+  std::vector<glm::dvec3> albedo(count, glm::dvec3(0.0));
+  for (size_t c = 0; c < count; ++c) {
+    if (transfer[c].size() != count) throw std::invalid_argument("ambientLandedByShares: not one share per room");
+    if (rooms[c].area > 0.0) albedo[c] = rooms[c].albedoArea / rooms[c].area;
+  }
   // The series: what leaves (unshot, then each bounce's reflection) lands by `transfer`, is absorbed or
   // reflected again.
   std::vector<glm::dvec3> leaving(count), landed(count, glm::dvec3(0.0));
@@ -57,7 +66,7 @@ struct CellAmbient {
 
 CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                         const glm::dvec3& unshotPower, std::span<const float> texelCell,
-                        const CellGraph& graph) {
+                        const CellGraph& graph, const AmbientTransfer* measured) {
   const size_t n = atlas.texelCount();
   if (!residual.empty() && residual.size() != n)
     throw std::invalid_argument("ambient: not one residual per atlas texel");
@@ -95,7 +104,9 @@ CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>
     for (const PortalQuad& p : graph.portals)
       if (p.cellA >= 0 && p.cellB >= 0 && size_t(p.cellA) < k && size_t(p.cellB) < k)
         openings.push_back(AmbientOpening{size_t(p.cellA), size_t(p.cellB), p.area});
-  const std::vector<glm::dvec3> landed = ambientLanded(rooms, openings);
+  const bool useMeasured = measured && measured->share.size() == count;
+  const std::vector<glm::dvec3> landed =
+      useMeasured ? ambientLandedByShares(rooms, measured->share) : ambientLanded(rooms, openings);
   for (size_t c = 0; c < count; ++c) {
     if (area[c] > 0.0) out.irradiance[c] = landed[c] / area[c];
     out.mean += landed[c] / total;
@@ -107,10 +118,10 @@ CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>
 
 glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                       const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
-                      std::vector<glm::vec3>& radiosity) {
+                      std::vector<glm::vec3>& radiosity, const AmbientTransfer* measured) {
   if (radiosity.size() != atlas.texelCount())
     throw std::invalid_argument("addAmbient: not one value per atlas texel");
-  const CellAmbient a = cellAmbient(atlas, residual, unshotPower, texelCell, graph);
+  const CellAmbient a = cellAmbient(atlas, residual, unshotPower, texelCell, graph, measured);
   for (size_t i = 0; i < radiosity.size(); ++i)
     if (atlas.patch[i] >= 0)
       radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]]);
@@ -119,10 +130,10 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
 
 std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                                   std::span<const float> texelCell, const CellGraph& graph,
-                                  const std::vector<glm::vec3>& radiosity) {
+                                  const std::vector<glm::vec3>& radiosity, const AmbientTransfer* measured) {
   if (radiosity.size() != atlas.texelCount() || residual.size() != atlas.texelCount())
     throw std::invalid_argument("ambientShares: not one value per atlas texel");
-  const CellAmbient a = cellAmbient(atlas, residual, glm::dvec3(0.0), texelCell, graph);
+  const CellAmbient a = cellAmbient(atlas, residual, glm::dvec3(0.0), texelCell, graph, measured);
   const size_t cells = a.irradiance.size();
   std::vector<double> ambient(cells, 0.0), light(cells, 0.0), area(cells, 0.0);
   for (size_t i = 0; i < radiosity.size(); ++i) {

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "core/cell_graph.h"
+#include "radiosity/gpu/ambient_transfer.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {
@@ -36,14 +37,20 @@ struct AmbientOpening {
 /// A_opening / (A_room + A_openings), and is absorbed or reflected by the room's mean albedo.
 std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
                                       const std::vector<AmbientOpening>& openings);
+/// The same with the shares given: transfer[c][d] of what leaves room c's surfaces lands in room d, the
+/// rest of each row leaves the scene (AmbientTransfer::share, measured by rays).
+std::vector<glm::dvec3> ambientLandedByShares(const std::vector<AmbientRoom>& rooms,
+                                              const std::vector<std::vector<double>>& transfer);
 
 /// Adds ρ_i × (its cell's ambient irradiance) to every valid texel of `radiosity` (per atlas texel,
 /// W/m²). `residual`: the unshot radiosity per texel (W/m²), or empty to spread `unshotPower` (W per
 /// channel) by area; `texelCell`: per texel its cell in `graph` (radiosity/lightmap/cell_channel.h), or
-/// empty, or a graph without cells: one cell. Returns the mean ambient irradiance over the scene (W/m², RGB).
+/// empty, or a graph without cells: one cell. `measured` (its cells those of `graph` and one for no cell):
+/// the light's ways between the cells and out of the scene, instead of the portals' areas. Returns the mean
+/// ambient irradiance over the scene (W/m², RGB).
 glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                       const glm::dvec3& unshotPower, std::span<const float> texelCell, const CellGraph& graph,
-                      std::vector<glm::vec3>& radiosity);
+                      std::vector<glm::vec3>& radiosity, const AmbientTransfer* measured = nullptr);
 
 /// bake --ambient-share's default (bench/RESULTS.md, "The default stop per room").
 inline constexpr double kDefaultAmbientShare = 0.1;
@@ -67,6 +74,7 @@ std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
 /// A cell lit at a leak's level counts 0 (kNegligibleCellLight).
 std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
                                   std::span<const float> texelCell, const CellGraph& graph,
-                                  const std::vector<glm::vec3>& radiosity);
+                                  const std::vector<glm::vec3>& radiosity,
+                                  const AmbientTransfer* measured = nullptr);
 
 }  // namespace cpgi

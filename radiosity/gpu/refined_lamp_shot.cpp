@@ -31,6 +31,10 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
                           const SolverParams& settings, const EglContext& gl, Context& ctx,
                           SolveControls controls) {
   SolverParams lamps = settings;
+  // The emitters' own shots, through item buffers: with lampRays the solver shoots the lamps by rays
+  // first and then `emitters` reflectors, whose light the coarse solve shot again (seed3 two-level: the
+  // lamps "shot" 676 W of 600 emitted, rooms A and B +28 % and +19 %, 74 W created).
+  lamps.lampRays = 0;
   lamps.maxShots = emitters;
   lamps.unshotFraction = 1e-12;  // every lamp shoots, whatever the stop
   controls.readTransfer = true;

@@ -9,28 +9,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "radiosity/lightmap/lightmap_sampling.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
-
-namespace {
-
-/// Bilinear lookup at atlas coordinates in [0,1]² (texel centres at (i+½)/width), clamped at the border.
-glm::vec3 sampleBilinear(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap, glm::vec2 uv) {
-  const float x = uv.x * float(atlas.width) - 0.5f, y = uv.y * float(atlas.height) - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
-  const float tx = x - fx, ty = y - fy;
-  auto at = [&](int i, int j) {
-    i = std::clamp(i, 0, atlas.width - 1);
-    j = std::clamp(j, 0, atlas.height - 1);
-    return lightmap[size_t(j) * atlas.width + i];
-  };
-  const int i = int(fx), j = int(fy);
-  return (1.0f - ty) * ((1.0f - tx) * at(i, j) + tx * at(i + 1, j)) +
-         ty * ((1.0f - tx) * at(i, j + 1) + tx * at(i + 1, j + 1));
-}
-
-}  // namespace
 
 float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap) {
   std::vector<std::pair<float, float>> radianceArea;  // (luminance-ish radiance, area)
@@ -77,7 +59,7 @@ ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtla
     const auto& uv = atlas.triangleUV[t];
     if (uv[0] == uv[1] && uv[1] == uv[2]) return glm::vec3(0.0f);  // not in this atlas
     const glm::vec2 at = (1.0f - hit.u - hit.v) * uv[0] + hit.u * uv[1] + hit.v * uv[2];
-    return sampleBilinear(atlas, lightmap, at) / std::numbers::pi_v<float>;
+    return sampleBilinear(atlas.width, atlas.height, lightmap, at) / std::numbers::pi_v<float>;
   };
 
   tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {

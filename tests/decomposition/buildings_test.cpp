@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "core/scene_io.h"
@@ -228,6 +229,65 @@ TEST(Buildings, TwoStoreyHouseAtFiveCentimetres) {
   const Scored s = decomposeBuilding(b, 0.05);
   expectRoomsAndFrontDoor(b, s, 0.05);
   expectStairPortal(b, s);
+}
+
+// The open house on a terrain of 1 m quads reaching 15 m past it on every side (as an architect's export
+// brings), flush with the house's apron at y = 0 and leaving it out; its triangles are node "terrain".
+Scene onTerrain(const Building& b) {
+  Scene scene = b.seed.scene;
+  const uint32_t node = uint32_t(scene.nodePaths.size());
+  scene.nodePaths.push_back("terrain");
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  for (int x = -16; x < 26; ++x)
+    for (int z = -16; z < 24; ++z) {
+      if (x >= -1 && x < 11 && z >= -1 && z < 9) continue;  // the apron, x in [-1, 11], z in [-1, 9]
+      const glm::vec3 p00(x, 0, z), p10(x + 1, 0, z), p11(x + 1, 0, z + 1), p01(x, 0, z + 1);
+      scene.triangles.push_back({{p00, p11, p10}, {n, n, n}, 0, node});  // wound to face up
+      scene.triangles.push_back({{p00, p01, p11}, {n, n, n}, 0, node});
+    }
+  return scene;
+}
+
+TEST(Buildings, OpenGroundAroundAHouseIsCutOffWithoutChangingItsCells) {
+  // Beyond a margin round the covered part of the scene the grid stops: the terrain far from the house
+  // is outside whatever stands on it. The house's cells, portals and triangles are those of the whole
+  // grid (outsideMargin infinite), and the terrain past the cut still goes to the outside cell.
+  const Building b = makeOpenHouse();
+  const Scene scene = onTerrain(b);
+  DecomposeParams p;
+  p.voxelSize = 0.1;
+  Context ctx;
+  const Decomposition cut = decompose(scene, p, ctx);
+  p.outsideMargin = std::numeric_limits<double>::infinity();
+  const Decomposition whole = decompose(scene, p, ctx);
+  // 42 × 40 m of terrain, 10 × 8 m of house: the cut grid keeps the house and 2 m round it.
+  EXPECT_LT(double(cut.frame.count()), 0.25 * double(whole.frame.count()));
+  EXPECT_GE(double(cut.frame.dims.x) * cut.frame.voxel, 10.0 + 2 * 2.0);
+
+  ASSERT_EQ(cut.graph.cells.size(), whole.graph.cells.size());
+  ASSERT_EQ(cut.graph.portals.size(), whole.graph.portals.size());
+  ASSERT_GE(cut.outsideCell, 0);
+  EXPECT_EQ(cut.outsideCell, whole.outsideCell);
+  for (size_t k = 0; k < cut.graph.portals.size(); ++k)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_LE(glm::length(cut.graph.portals[k].corners[size_t(c)] - whole.graph.portals[k].corners[size_t(c)]),
+                float(p.voxelSize))
+          << cut.graph.portals[k].name;
+  // Every room's voxels, voxel for voxel: the two grids share their lattice.
+  for (size_t c = 0; c < cut.graph.cells.size(); ++c)
+    if (int(c) != cut.outsideCell) {
+      EXPECT_EQ(cut.cellStats[c].voxels, whole.cellStats[c].voxels) << c;
+    }
+  EXPECT_EQ(cut.leakingFaces, 0u);
+  EXPECT_EQ(cut.fallbackTriangles, whole.fallbackTriangles);
+  for (size_t c = 0; c < cut.graph.cells.size(); ++c)
+    EXPECT_EQ(cut.graph.cells[c].triangles, whole.graph.cells[c].triangles) << c;
+  const uint32_t terrain = uint32_t(scene.nodePaths.size() - 1);
+  size_t terrainOutside = 0, terrainTriangles = 0;
+  for (uint32_t t : cut.graph.cells[size_t(cut.outsideCell)].triangles)
+    terrainOutside += cut.scene.triangles[t].node == terrain;
+  for (const Triangle& t : cut.scene.triangles) terrainTriangles += t.node == terrain;
+  EXPECT_EQ(terrainOutside, terrainTriangles);
 }
 
 }  // namespace

@@ -1,0 +1,21 @@
+// compare-light across atlases (`--scene`): lightmap A, baked on an atlas of its own (another density, or
+// one that follows the light), read at the texels of reference B as an engine reads A's baked.glb.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image_io.h"
+
+namespace cpgi::cli {
+
+/// A's lightmap (`aImage`, from `aDir`/lightmap.exr) at each texel centre of B's atlas: B's atlas is
+/// rebuilt from `scenePath` with the atlas options in `bDir`/report.json and must give B's texel areas
+/// (`bArea`, its width × height); A's coordinates per triangle come from `aDir`/baked.glb, matched to
+/// the scene's triangles by their corners. Throws InputError naming the file when the scene does not
+/// give B's atlas or A's baked.glb lacks a triangle B's texels lie on.
+ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
+                                const std::string& bDir, const std::vector<float>& bArea, int bWidth,
+                                int bHeight);
+
+}  // namespace cpgi::cli

@@ -1,0 +1,88 @@
+// End to end (issue 13 item 2): `bake --density auto` lays the output atlas out from a first shot of the
+// lamps, records its choice in report.json, and its lightmap is judged against a fixed-density one with
+// `compare-light --scene`, which reads it at the other's texels as an engine would.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/run_cpgi.h"
+
+namespace cpgi {
+namespace {
+
+using nlohmann::json;
+using test::cpgi;
+using test::slurp;
+
+constexpr const char* kQuick = " --item-buffer 128 --unshot 0.05 -q";
+
+TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "auto" + "' --density auto" + kQuick);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json a = json::parse(slurp(dir / "auto/report.json"));
+  EXPECT_EQ(a["density_option"], "auto");
+  EXPECT_EQ(a["atlas"]["density"], "auto");
+  const json& choice = a["auto_density"];
+  EXPECT_GT(choice["pilot_texels"].get<size_t>(), 0u);
+  const double least = choice["min_density"].get<double>();
+  size_t charted = 0;
+  double finest = 0.0, coarsest = 1e9;
+  for (const json& d : choice["chart_texels_by_density"]) {
+    charted += d["texels"].get<size_t>();
+    finest = std::max(finest, d["density"].get<double>());
+    coarsest = std::min(coarsest, d["density"].get<double>());
+  }
+  // Charts keep at least 2 texels an edge, so a small one may read finer than the most asked.
+  EXPECT_GE(coarsest, least - 0.05);
+  EXPECT_GT(finest, coarsest) << "seed1's light is not flat everywhere";
+  EXPECT_GE(charted, a["texels"].get<size_t>());
+  // Two levels, and no light made up on the way.
+  EXPECT_EQ(a["solve_density"], 5.0);
+  const json& e = a["energy"];
+  EXPECT_GT(e["escaped_w"].get<double>(), -1e-3 * e["emitted_w"].get<double>());
+
+  ASSERT_EQ(cpgi(dir, "bake '" + scene + "' -o '" + dir / "fixed" + "' --density 8" + kQuick).status, 0);
+  // Different atlases: refused without the scene, which says how to go on.
+  r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--scene"), std::string::npos) << r.err;
+  r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json cmp = json::parse(r.out);
+  ASSERT_EQ(cmp["cells"].size(), 3u);
+  for (const json& c : cmp["cells"]) {
+    EXPECT_NEAR(c["ratio_of_means"].get<double>(), 1.0, 0.05) << c["name"];
+    EXPECT_LT(c["rel_rmse"].get<double>(), 0.15) << c["name"];
+  }
+  // An auto atlas cannot be rebuilt from its report, so it is no B for another atlas.
+  r = cpgi(dir, "compare-light '" + dir / "fixed" + "' '" + dir / "auto" + "' --scene '" + scene + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("auto"), std::string::npos) << r.err;
+  // Another scene does not give B's atlas.
+  const std::string other = dir / "seed2.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed2 -o '" + other + "'").status, 0);
+  r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --scene '" + other + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("seed2.glb"), std::string::npos) << r.err;
+}
+
+TEST(AutoDensity, RefusedWhereItDoesNotApply) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  for (const std::string& options : {"--density auto --method cells --cells '" + scene + "'",
+                                    std::string("--density auto --texels-per-quad 8"), std::string("--density abc"),
+                                    std::string("--density -2"), std::string("--density nan")}) {
+    const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' -q " + options);
+    EXPECT_EQ(r.status, 1) << options;
+    EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json")) << options;
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -429,6 +429,7 @@ nlohmann::json autoDensityReport(const BakeOptions& o, const BakeInput& in) {
           {"tolerance", p.light.tolerance},
           {"floor_share", p.light.floorShare},
           {"contacts", p.contacts},
+          {"max_contact_density", p.maxContactDensity},
           {"pilot_texels", in.autoDensity->pilotTexels},
           {"pilot_s", in.autoDensity->pilotSeconds},
           {"contact_triangles", in.autoDensity->contactTriangles},

@@ -27,11 +27,10 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
   if (params.contacts) {
     // A contact's edge in the bounced light is sharp (a lamp 1 cm under a ceiling: 200 texels a metre
     // by the gap), but weaker than a lamp's shadow: asked of the whole 4 × 4 m ceiling of seed1's lamp
-    // rooms, the light's 40 a metre were 88 % of the output's texels. The pilot's density, the fixed
-    // default's, is the most a contact asks.
+    // rooms, the light's 40 a metre were 88 % of the output's texels. params.maxContactDensity caps it.
     std::vector<float> most(density.size(), 0.0f);
     for (size_t t = 0; t < density.size(); ++t)
-      if (density[t] > 0.0f) most[t] = std::min(params.light.maxDensity, params.pilotDensity);
+      if (density[t] > 0.0f) most[t] = std::min(params.light.maxDensity, params.maxContactDensity);
     const std::vector<float> contact = contactDensity(scene, RayScene(scene), params.light.minDensity, most);
     for (size_t t = 0; t < density.size(); ++t)
       if (contact[t] > density[t] && density[t] > 0.0f) {

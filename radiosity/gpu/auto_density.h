@@ -23,8 +23,11 @@ struct AutoDensityParams {
   float pilotDensity = 10.0f;
   LightDensityParams light = {};
   /// Surfaces with something closer than 2 / light.minDensity in front of them get about half the gap
-  /// per texel, up to pilotDensity, for the bounced light's contact shadow.
+  /// per texel, up to maxContactDensity, for the bounced light's contact shadow.
   bool contacts = true;
+  /// The most texels per metre a contact asks. seed3's room C (a lamp 1 cm under the ceiling, 16 columns
+  /// on the floor) against a 64² reference: rel RMSE 4.92 % at 10 (the pilot's), 3.59 % at 20.
+  float maxContactDensity = 20.0f;
 };
 
 struct AutoDensityData {

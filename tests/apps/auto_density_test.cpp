@@ -1,6 +1,7 @@
 // End to end (issue 13 item 2): `bake --density auto` lays the output atlas out from a first shot of the
 // lamps, records its choice in report.json, and its lightmap is judged against a fixed-density one with
 // `compare-light --scene`, which reads it at the other's texels as an engine would.
+#include <cmath>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -40,6 +41,14 @@ TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   EXPECT_GE(coarsest, least - 0.05);
   EXPECT_GT(finest, coarsest) << "seed1's light is not flat everywhere";
   EXPECT_GE(charted, a["texels"].get<size_t>());
+  // The ceilings of rooms A and C, which no lamp lights, are shaded by the lamp hung 1 cm under each
+  // from every bounce: the contact asks its most of both whole 4 × 4 m ceilings, (4 × 20)² texels each.
+  const double contact = choice["max_contact_density"].get<double>();
+  EXPECT_EQ(contact, 20.0);
+  size_t atContact = 0;
+  for (const json& d : choice["chart_texels_by_density"])
+    if (std::abs(d["density"].get<double>() - contact) < 0.05) atContact += d["texels"].get<size_t>();
+  EXPECT_GE(atContact, 2u * 80u * 80u);
   // Two levels, and no light made up on the way.
   EXPECT_EQ(a["solve_density"], 5.0);
   const json& e = a["energy"];

@@ -311,7 +311,14 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
                       std::optional<TwoLevelData>& levels) {
   auto t = ctx.time("solve");
   // The residual, for the ambient term.
-  const SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
+  SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
+  if (o.method != "cells" && o.ambientShare > 0.0)
+    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
+                              const std::vector<glm::vec3>& residual) {
+      const std::vector<double> shares =
+          ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity, &transfer);
+      return *std::max_element(shares.begin(), shares.end()) <= o.ambientShare;
+    };
   if (const float solveDensity = chosenSolveDensity(o, in.atlas); solveDensity > 0.0f) {
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
@@ -319,17 +326,7 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
     return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
                          &*levels);
   }
-  if (o.method != "cells") {
-    SolveControls perCell = controls;
-    if (o.ambientShare > 0.0)
-      perCell.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
-                               const std::vector<glm::vec3>& residual) {
-        const std::vector<double> shares =
-            ambientShares(in.atlas, residual, texelCells.values, texelGraph, radiosity, &transfer);
-        return *std::max_element(shares.begin(), shares.end()) <= o.ambientShare;
-      };
-    return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, perCell);
-  }
+  if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
   CellSolveParams params = cellSolveParams(o);
   params.deadline = deadline;
   if (o.gather) {
@@ -408,7 +405,8 @@ struct BakeFigures {
   std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
   glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
   std::vector<double> ambientShares;   ///< per cell of cellNames (and one for no cell), ambientShares
-  std::vector<double> ambientEscape;  ///< per entry of ambientShares, the share of its light leaving the scene
+  std::vector<double>
+      ambientEscape;  ///< per entry of ambientShares, the share of its light leaving the scene
   double seconds = 0.0;
 };
 

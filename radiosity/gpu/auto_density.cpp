@@ -20,8 +20,8 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
   pilotParams.triangleDensity.clear();
   const LightmapAtlas pilot = buildAtlas(scene, quads, pilotParams, ctx);
   // The direct light alone: what bounces is smooth but for the contacts, found by rays below.
-  const SolveResult lit = shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{}, settings, gl,
-                                            ctx, controls);
+  const SolveResult lit =
+      shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{}, settings, gl, ctx, controls);
   std::vector<float> density = lightDensity(pilot, lit.incident, scene.triangles.size(), params.light);
   size_t contactTriangles = 0;
   if (params.contacts) {
@@ -40,7 +40,8 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
   }
   evenOverSurfaces(scene, density);
   if (data)
-    *data = {pilot.validTexels(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+    *data = {pilot.validTexels(),
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
              contactTriangles};
   return density;
 }

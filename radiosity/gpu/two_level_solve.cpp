@@ -16,6 +16,21 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
+// The output's radiosity were the coarse solve to stop at `coarseRadiosity`: the lamps' own at the
+// output's texels, and what the coarse texels gained beyond the lamps' light they started from (ρ × the
+// direct light there), interpolated.
+std::vector<glm::vec3> outputRadiosity(const AtlasMapping& mapping, const LightmapAtlas& atlas,
+                                       const LightmapAtlas& coarse,
+                                       const std::vector<glm::vec3>& lampRadiosity,
+                                       const std::vector<glm::vec3>& direct,
+                                       const std::vector<glm::vec3>& coarseRadiosity) {
+  std::vector<glm::vec3> gained = coarseRadiosity;
+  for (size_t t = 0; t < gained.size(); ++t) gained[t] -= coarse.albedo[t] * direct[t];
+  std::vector<glm::vec3> out = upsample(mapping, atlas, coarse, gained);
+  for (size_t t = 0; t < out.size(); ++t) out[t] += lampRadiosity[t];
+  return out;
+}
+
 }  // namespace
 
 int indirectItemBuffer(int itemBuffer, float solveDensity) {
@@ -49,8 +64,10 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   const auto lampStart = std::chrono::steady_clock::now();
   // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies.
   RefinedLampData lampData;
+  SolveControls lampControls = controls;
+  lampControls.acceptStop = {};  // the stop is the interreflection's, asked below
   SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, gl, ctx,
-                                      controls, &lampData);
+                                      lampControls, &lampData);
   const double lampSeconds = seconds(lampStart);
 
   // Step 2: the coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that
@@ -61,6 +78,11 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   SolveControls c = controls;
   c.readTransfer = true;
   c.priorShot = &prior;
+  if (controls.acceptStop)
+    c.acceptStop = [&](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+      return controls.acceptStop(outputRadiosity(mapping, atlas, coarse, lit.radiosity, direct, radiosity),
+                                 upsample(mapping, atlas, coarse, residual));
+    };
   const auto coarseStart = std::chrono::steady_clock::now();
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
@@ -86,6 +108,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   out.energy.created += lit.energy.created;
   out.energy.worstShotGain = std::max(out.energy.worstShotGain, lit.energy.worstShotGain);
   out.unshotFraction = indirect.unshotFraction;
+  out.stopChecks = indirect.stopChecks;
   out.timedOut = lit.timedOut || indirect.timedOut;
   out.shooters = lit.shooters;
   out.history = lit.history;

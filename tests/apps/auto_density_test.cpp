@@ -59,7 +59,8 @@ TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("--scene"), std::string::npos) << r.err;
-  r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
+  r = cpgi(dir,
+           "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const json cmp = json::parse(r.out);
   ASSERT_EQ(cmp["cells"].size(), 3u);
@@ -83,9 +84,10 @@ TEST(AutoDensity, RefusedWhereItDoesNotApply) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  for (const std::string& options : {"--density auto --method cells --cells '" + scene + "'",
-                                    std::string("--density auto --texels-per-quad 8"), std::string("--density abc"),
-                                    std::string("--density -2"), std::string("--density nan")}) {
+  for (const std::string& options :
+       {"--density auto --method cells --cells '" + scene + "'",
+        std::string("--density auto --texels-per-quad 8"), std::string("--density abc"),
+        std::string("--density -2"), std::string("--density nan")}) {
     const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' -q " + options);
     EXPECT_EQ(r.status, 1) << options;
     EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;

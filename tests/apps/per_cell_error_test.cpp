@@ -74,6 +74,16 @@ class PerCellPortals : public OpeningsBakes {
   }
 };
 
+class PerCellTwoLevels : public OpeningsBakes {
+ protected:
+  static void SetUpTestSuite() {
+    setup_.run([] {
+      bakeAll({{"two-levels", "--solve-density 2.5"},
+               {"two-levels-unshot-stop-only", "--solve-density 2.5 --ambient-share 0"}});
+    });
+  }
+};
+
 class PerCellHemisphere : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
@@ -146,6 +156,27 @@ TEST_F(PerCellError, TheDefaultStopLeavesNoRoomMostlyToTheAmbientTerm) {
     EXPECT_LE(share.get<double>(), 0.1) << cell;
   EXPECT_GT(global["ambient_share"]["C"].get<double>(), 0.15);
   EXPECT_EQ(global["stop_checks"], 0);
+}
+
+// The interreflection solved on a coarser atlas (--solve-density, as --density auto does) stops per cell
+// too: asked on the output's texels, the coarse solve's light interpolated onto them. Its unshot stop
+// alone left room C to the ambient term as the one-level solve's did.
+TEST_F(PerCellTwoLevels, TheStopPerCellHoldsInTwoLevels) {
+  auto report = [](const std::string& bake) {
+    return nlohmann::json::parse(test::slurp(*dir_ / (bake + "/report.json")));
+  };
+  const nlohmann::json perCell = report("two-levels"), global = report("two-levels-unshot-stop-only");
+  ASSERT_EQ(perCell["solve_density"], 2.5);
+  EXPECT_GE(perCell["stop_checks"].get<int>(), 2);
+  EXPECT_GT(perCell["shots"].get<int>(), global["shots"].get<int>());
+  for (const auto& [cell, share] : perCell["ambient_share"].items())
+    EXPECT_LE(share.get<double>(), 0.1) << cell;
+  EXPECT_GT(global["ambient_share"]["C"].get<double>(), 0.15);
+  EXPECT_EQ(global["stop_checks"], 0);
+  for (const nlohmann::json& c : compare("two-levels")["cells"]) {
+    const double ratio = c["ratio_of_means"], err = c["ratio_error"];
+    EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << c.dump();
+  }
 }
 
 // Cell by cell at the default stop, with either portal model, every room within 5 % (+ 2σ). On 45483fb:

@@ -171,6 +171,8 @@ struct BakeInput {
   QuadSet quads;
   LightmapAtlas atlas;
   std::optional<AutoDensityData> autoDensity;  ///< with --density auto
+  /// With --density auto: per scene triangle, the texels per metre of the output's atlas and the cells'.
+  std::vector<float> triangleDensity;
 };
 
 BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
@@ -191,20 +193,23 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
   return in;
 }
 
-// `gl`: with --density auto, for the pilot's shot of the lamps (else unused, and may be null).
+// `gl`: with --density auto, for the pilot's shot of the lamps (unused, and may be null, when
+// in.triangleDensity holds a plan's densities already).
 void buildBakeAtlas(const BakeOptions& o, BakeInput& in, const EglContext* gl, Context& ctx) {
   {
     auto t = ctx.time("atlas");
     in.quads = findQuads(in.loaded.scene);
   }
-  AtlasParams params = o.atlas;
-  if (o.densityAuto) {
+  if (o.densityAuto && in.triangleDensity.empty()) {
+    if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
     auto t = ctx.time("auto density");
     AutoDensityData data;
-    params.triangleDensity =
+    in.triangleDensity =
         chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, *gl, ctx, {}, &data);
     in.autoDensity = data;
   }
+  AtlasParams params = o.atlas;
+  params.triangleDensity = in.triangleDensity;
   {
     auto t = ctx.time("atlas");
     in.atlas = buildAtlas(in.loaded.scene, in.quads, params, ctx);
@@ -251,12 +256,23 @@ void requireConvergence(const BakeOptions& o, const Scene& scene, const Lightmap
 }
 
 // The cells' parameters of a bake, its cell jobs and their gather alike: the same stop per cell and solver.
-CellSolveParams cellSolveParams(const BakeOptions& o) {
+CellSolveParams cellSolveParams(const BakeOptions& o, const BakeInput& in) {
   CellSolveParams params = o.cellParams;
   params.maxAmbientShare = o.ambientShare;
   params.solver = o.solver;
   params.atlas = o.atlas;
+  params.atlas.triangleDensity = in.triangleDensity;
   return params;
+}
+
+// With --density auto, a cell job's texel densities are those its plan recorded: every job lays its
+// atlases out alike, and a pilot of its own could choose otherwise (another machine's GPU).
+void usePlannedDensities(const BakeOptions& o, BakeInput& in) {
+  if (!o.densityAuto) return;
+  in.triangleDensity = readCellJobPlan(o.plan).triangleDensity;
+  if (in.triangleDensity.size() != in.loaded.scene.triangles.size())
+    throw InputError((std::filesystem::path(o.plan) / "plan.json").string(),
+                     "holds no texel density per triangle of " + o.scene + "; make the plan again");
 }
 
 // --solve-density auto: one level up to this many output texels. A large atlas is where two levels pay
@@ -327,7 +343,7 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
                          &*levels);
   }
   if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
-  CellSolveParams params = cellSolveParams(o);
+  CellSolveParams params = cellSolveParams(o, in);
   params.deadline = deadline;
   if (o.gather) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
@@ -557,12 +573,14 @@ int runCellJobStage(const BakeOptions& o) {
   if (!o.onlyCells.empty() || !o.around.empty())
     throw InputError("--plan", "cell jobs bake the whole cell graph: leave out --only-cells and --around");
   BakeInput in = loadBakeInput(o, ctx);
-  const CellSolveParams params = cellSolveParams(o);
+  const bool planStep = !o.jobServe && o.jobRound <= 0 && o.jobFirstShot.empty() && !o.jobFirstShotSum;
+  if (!planStep) usePlannedDensities(o, in);
+  CellSolveParams params = cellSolveParams(o, in);
   if (o.jobServe) {
     const EglContext gl(ctx);
     bool atlasBuilt = false;  // rounds need only the cells' atlases; the first shot the whole scene's
     const auto globalAtlas = [&]() -> const LightmapAtlas& {
-      if (!atlasBuilt) buildBakeAtlas(o, in, nullptr, ctx);  // cells: --density auto was refused
+      if (!atlasBuilt) buildBakeAtlas(o, in, nullptr, ctx);  // with the plan's densities
       atlasBuilt = true;
       return in.atlas;
     };
@@ -581,7 +599,10 @@ int runCellJobStage(const BakeOptions& o) {
     if (!o.quiet) std::cout << o.plan << ": round " << o.jobRound << " of " << run.size() << " cells done\n";
     return 0;
   }
-  buildBakeAtlas(o, in, nullptr, ctx);  // cells: --density auto was refused
+  std::unique_ptr<EglContext> pilotGl;  // the plan step's pilot, with --density auto
+  if (planStep && o.densityAuto) pilotGl = std::make_unique<EglContext>(ctx);
+  buildBakeAtlas(o, in, pilotGl.get(), ctx);
+  params.atlas.triangleDensity = in.triangleDensity;  // the plan step's pilot chose them just now
   if (!o.jobFirstShot.empty()) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
     std::vector<int> groups;
@@ -668,8 +689,6 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
 int runBake(const BakeOptions& o) {
   if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
     throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
-  if (o.method == "cells" && o.densityAuto)
-    throw InputError("--density", "auto works with --method global only for now; give cells a density");
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
   const auto deadline = o.timeLimit > 0.0
@@ -686,7 +705,8 @@ int runBake(const BakeOptions& o) {
     auto t = ctx.time("egl");
     gl = std::make_unique<EglContext>(ctx);
   };
-  if (o.densityAuto) openGl();  // the pilot shoots the lamps before the atlas is laid out
+  if (o.gather) usePlannedDensities(o, in);
+  if (o.densityAuto && in.triangleDensity.empty()) openGl();  // the pilot shoots before the atlas is laid out
   buildBakeAtlas(o, in, gl.get(), ctx);
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);

@@ -106,6 +106,17 @@ void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtla
     }
 }
 
+// A cell's atlas settings: the scene's per-triangle densities (bake --density auto) carried over to the
+// cell scene's triangles, so that its charts are the whole scene's; its portals take the plain density.
+AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs) {
+  AtlasParams p = params;
+  if (params.triangleDensity.empty()) return p;
+  p.triangleDensity.assign(cs.scene.triangles.size(), params.density);
+  for (size_t i = 0; i < cs.ownTriangles; ++i)
+    p.triangleDensity[i] = params.triangleDensity.at(cs.globalTriangle[i]);
+  return p;
+}
+
 std::vector<CellState> buildCellAtlases(const Scene& scene, const CellGraph& graph,
                                         const CellSolveParams& params, std::vector<int32_t>& localIndex,
                                         Context& ctx) {
@@ -120,8 +131,8 @@ std::vector<CellState> buildCellAtlases(const Scene& scene, const CellGraph& gra
     CellState& s = cells[c];
     s.cs = makeCellScene(scene, graph, int(c));
     for (size_t i = 0; i < s.cs.ownTriangles; ++i) localIndex[s.cs.globalTriangle[i]] = int32_t(i);
-    s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene), s.boundary ? params.boundaryAtlas : params.atlas,
-                         cellCtx[c]);
+    s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene),
+                         cellAtlasParams(s.boundary ? params.boundaryAtlas : params.atlas, s.cs), cellCtx[c]);
     s.patchOfTriangle = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
     for (size_t k = 0; k < s.cs.portals.size(); ++k)
       s.portalPatch.push_back(s.patchOfTriangle[s.cs.ownTriangles + 2 * k]);

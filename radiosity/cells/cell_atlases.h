@@ -67,6 +67,10 @@ struct PortalLink {
   std::vector<std::pair<int32_t, int32_t>> texels;
 };
 
+/// `params` for cell scene `cs`'s atlas: per-triangle densities (AtlasParams::triangleDensity, one per
+/// scene triangle) carried to its own triangles; its portals get `params.density`.
+AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs);
+
 /// Every cell's scene and atlas (cells side by side), its own emitters pending. Boundary cells
 /// (CellSolveParams::boundaryCells) get params.boundaryAtlas. `localIndex` receives, per scene triangle,
 /// its index in its cell's scene (-1 for none).

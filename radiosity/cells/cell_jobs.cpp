@@ -207,6 +207,7 @@ void writeCellJobPlan(const fs::path& dir, const CellJobPlan& plan) {
   j["first_shot_groups"] = nlohmann::json::array();
   for (const FirstShotGroup& g : plan.firstShotGroups)
     j["first_shot_groups"].push_back({{"cell", g.cell}, {"patches", g.patches}});
+  j["triangle_density"] = plan.triangleDensity;
   const fs::path part = dir / "plan.json.part";
   {
     std::ofstream f(part);
@@ -266,6 +267,9 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
       if (plan.firstShotGroups.back().cell >= int(plan.cells.size()))
         throw InputError(file, "a first-shot group of a cell that is not in the plan");
     }
+    plan.triangleDensity = j.at("triangle_density").get<std::vector<float>>();
+    for (float d : plan.triangleDensity)
+      if (!(d >= 0.0f && d < 1e6f)) throw InputError(file, "a triangle density that is not a density");
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, std::string("damaged cell job plan: ") + e.what());
   }
@@ -295,6 +299,7 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
   plan.maxAmbientShare = params.maxAmbientShare;
   plan.openings = cellOpenings(graph);
   plan.firstShotGroups = firstShotGroups(scene, firstShotReceivers(global, cellOf), cellOf);
+  plan.triangleDensity = params.atlas.triangleDensity;
   fs::create_directories(dir);
   for (const fs::directory_entry& e : fs::directory_iterator(dir))
     if (e.is_directory() && e.path().filename().string().rfind("round-", 0) == 0) fs::remove_all(e.path());

@@ -36,7 +36,8 @@
 
 namespace cpgi {
 
-inline constexpr int kCellJobPlanVersion = 3;  ///< 3: the stop per cell's figures (round_stop.h)
+/// 3: the stop per cell's figures (round_stop.h); 4: the texel densities of bake --density auto
+inline constexpr int kCellJobPlanVersion = 4;
 
 /// plan.json: what every job and the gather need besides the scene and the bake's options.
 struct CellJobPlan {
@@ -57,6 +58,10 @@ struct CellJobPlan {
   double maxAmbientShare = 0.0;
   std::vector<CellStopSurfaces> stopSurfaces;  ///< per cell
   std::vector<AmbientOpening> openings;
+  /// bake --density auto: per scene triangle the texels per metre its pilot chose (AtlasParams::
+  /// triangleDensity), which every job's atlases follow rather than shooting a pilot of their own. Empty:
+  /// the bake's fixed density.
+  std::vector<float> triangleDensity;
 };
 
 void writeCellJobPlan(const std::filesystem::path& dir, const CellJobPlan& plan);

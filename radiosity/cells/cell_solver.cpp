@@ -249,6 +249,7 @@ AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
     coarse.texelsPerQuad = std::max(2, atlas.texelsPerQuad / 2);
   else
     coarse.density = atlas.density / 2.0f;
+  for (float& d : coarse.triangleDensity) d /= 2.0f;
   return coarse;
 }
 

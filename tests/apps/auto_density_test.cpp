@@ -80,13 +80,47 @@ TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   EXPECT_NE(r.err.find("seed2.glb"), std::string::npos) << r.err;
 }
 
+// Cells lay their atlases out by the densities of the whole scene's pilot (their charts are the global
+// atlas's, else the bake warns), and cell jobs take them from the plan rather than shooting pilots of their
+// own: plan, first shot, rounds and gather give the single-process bake's lightmap byte for byte.
+TEST(AutoDensity, CellsAndCellJobsFollowTheWholeScenesPilot) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const std::string cells = " --method cells --cells '" + scene + "' --density auto" + std::string(kQuick);
+  test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "one" + "'" + cells);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("charted differently"), std::string::npos) << r.err;
+  const json one = json::parse(slurp(dir / "one/report.json"));
+  EXPECT_EQ(one["density_option"], "auto");
+  EXPECT_GT(one["auto_density"]["pilot_texels"].get<size_t>(), 0u);
+
+  const std::string plan = "'" + dir / "plan" + "'";
+  r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "jobs" + "'" + cells + " --plan " + plan);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(slurp(dir / "plan/plan.json"))["triangle_density"].size(),
+            one["triangles"].get<size_t>());
+  ASSERT_EQ(cpgi(dir, "cell-job " + plan + " --first-shot -q").status, 0);
+  ASSERT_EQ(cpgi(dir, "cell-job " + plan + " --first-shot-sum -q").status, 0);
+  for (int round = 1;; ++round) {
+    r = cpgi(dir, "cell-job " + plan + " --status --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    if (json::parse(r.out)["next_step"] != "round") break;
+    ASSERT_LT(round, 64);
+    r = cpgi(dir, "cell-job " + plan + " --round " + std::to_string(round) + " -q");
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  r = cpgi(dir, "cell-job " + plan + " --gather -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "jobs/lightmap.exr"), slurp(dir / "one/lightmap.exr"));
+}
+
 TEST(AutoDensity, RefusedWhereItDoesNotApply) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   for (const std::string& options :
-       {"--density auto --method cells --cells '" + scene + "'",
-        std::string("--density auto --texels-per-quad 8"), std::string("--density abc"),
+       {std::string("--density auto --texels-per-quad 8"), std::string("--density abc"),
         std::string("--density -2"), std::string("--density nan")}) {
     const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' -q " + options);
     EXPECT_EQ(r.status, 1) << options;

@@ -5,10 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -102,6 +105,23 @@ void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures
   writeComparisonReportPage(o.report, o.a, figures, a.rgb, b.rgb, b.area, weight, bench);
 }
 
+// The scene B's (else A's) report.json names, when that file is there: the atlases differ (a bake at
+// --density auto against a reference at a fixed density) and the user gave no --scene.
+std::string recordedScene(const std::string& bDir, const std::string& aDir) {
+  for (const std::string& dir : {bDir, aDir}) {
+    std::ifstream f(std::filesystem::path(dir) / "report.json");
+    const nlohmann::json report = nlohmann::json::parse(f, nullptr, false);
+    if (!report.is_object()) continue;
+    for (const char* key : {"scene_file", "scene"})
+      if (report.contains(key) && report[key].is_string()) {
+        const std::string path = report[key].get<std::string>();
+        std::error_code error;
+        if (!path.empty() && std::filesystem::is_regular_file(path, error)) return path;
+      }
+  }
+  return "";
+}
+
 int runCompareLight(const CompareLightOptions& o) {
   const nlohmann::json bench = o.bench.empty() ? nlohmann::json(nullptr) : readBenchResults(o.bench);
   Lightmap a = readLightmap(o.a);
@@ -111,12 +131,20 @@ int runCompareLight(const CompareLightOptions& o) {
                      "is a sparse reference (cpgi reference --texels traces a sample of texels), not a "
                      "lightmap to test; give it as B, the reference");
   if (!sameAtlas(a, b)) {
-    if (o.scene.empty())
-      throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" + std::to_string(b.rgb.height) +
-                                " but " + o.a + "'s is " + std::to_string(a.rgb.width) + "x" +
-                                std::to_string(a.rgb.height) + " or its texel areas differ; bake both with the " +
-                                "same atlas options, or give --scene to read A at B's texels");
-    a.rgb = sampleOnReferenceAtlas(o.scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
+    std::string scene = o.scene;
+    if (scene.empty()) {
+      scene = recordedScene(o.b, o.a);
+      if (scene.empty())
+        throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" +
+                                  std::to_string(b.rgb.height) + " but " + o.a + "'s is " +
+                                  std::to_string(a.rgb.width) + "x" + std::to_string(a.rgb.height) +
+                                  " or its texel areas differ, and the scene " +
+                                  "their reports name is not there; give --scene to read A at B's texels");
+      if (!o.json)
+        std::cerr << "compare-light: the atlases differ; " << o.a << " is read at " << o.b
+                  << "'s texels through " << scene << "\n";
+    }
+    a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
     a.area = b.area;
     a.emissive.clear();
     a.cell.clear();
@@ -237,7 +265,8 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("--scene", opts->scene,
                   "When A's atlas is not B's (another density, or --density auto): the scene both were made "
                   "from; A is read at B's texel centres as an engine reads A's baked.glb (bilinear), B's "
-                  "atlas rebuilt from the scene with the options its report.json records");
+                  "atlas rebuilt from the scene with the options its report.json records (default: the scene "
+                  "B's or A's report.json names, when that file is there)");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

@@ -1,6 +1,19 @@
 #include "apps/lightmap_report.h"
 
+#include <filesystem>
+#include <system_error>
+
 namespace cpgi::cli {
+
+namespace {
+
+std::string absoluteScenePath(const std::string& scene) {
+  std::error_code error;
+  const std::filesystem::path path = std::filesystem::absolute(scene, error);
+  return error ? scene : path.lexically_normal().string();
+}
+
+}  // namespace
 
 nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx) {
   const LightmapAtlas& atlas = *run.atlas;
@@ -8,6 +21,8 @@ nlohmann::json lightmapReport(const LightmapRun& run, const Context& ctx) {
   for (const Context::Timing& t : ctx.timings()) timings[t.stage] = timings.value(t.stage, 0.0) + t.seconds;
   return {{"method", run.method},
           {"scene", run.scene},
+          // The scene as a path from anywhere: compare-light rebuilds an atlas from it.
+          {"scene_file", absoluteScenePath(run.scene)},
           {"seconds", run.seconds},
           {"solve_seconds", run.solveSeconds},
           {"texels", atlas.validTexels()},

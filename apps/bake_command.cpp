@@ -98,8 +98,9 @@ struct BakeOptions {
   /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
   /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
   float lampCoarsening = RefinedLampParams{}.coarsening;
-  /// --density auto: the output's texels per metre chosen per surface (radiosity/gpu/auto_density.h).
-  bool densityAuto = false;
+  /// --density auto (the default; a number or --texels-per-quad fixes the density): the output's texels
+  /// per metre chosen per surface (radiosity/gpu/auto_density.h).
+  bool densityAuto = true;
   AutoDensityParams autoDensity;
 };
 

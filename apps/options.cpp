@@ -194,26 +194,28 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool*
     density = addChecked(cmd, scope, "texel density", atlas.density, "Texels per metre along each patch edge",
                          kPositive);
   } else {
-    density = scoped(cmd.add_option_function<std::string>(
-                            flag("texel density"),
-                            [&atlas, densityAuto](const std::string& given) {
-                              *densityAuto = given == "auto";
-                              if (*densityAuto) return;
-                              char* end = nullptr;
-                              const double d = std::strtod(given.c_str(), &end);
-                              if (end == given.c_str() || *end != '\0' || !std::isfinite(d) || !(d > 0.0) ||
-                                  d > 1e6)
-                                throw CLI::ValidationError(flag("texel density"),
-                                                           "must be auto or texels per metre above 0, not " +
-                                                               printable(given));
-                              atlas.density = float(d);
-                            },
-                            help(scope, "Texels per metre along each patch edge, or auto: more where a "
-                                        "first shot of the lamps finds shadow and beam edges and near "
-                                        "contacts, fewer where the light is flat"))
-                         ->type_name("T|auto")
-                         ->default_str(std::to_string(int(atlas.density))),
-                     scope);
+    density = scoped(
+        cmd.add_option_function<std::string>(
+               flag("texel density"),
+               [&atlas, densityAuto](const std::string& given) {
+                 *densityAuto = given == "auto";
+                 if (*densityAuto) return;
+                 char* end = nullptr;
+                 const double d = std::strtod(given.c_str(), &end);
+                 if (end == given.c_str() || *end != '\0' || !std::isfinite(d) || !(d > 0.0) || d > 1e6)
+                   throw CLI::ValidationError(
+                       flag("texel density"),
+                       "must be auto or texels per metre above 0, not " + printable(given));
+                 atlas.density = float(d);
+               },
+               help(scope,
+                    "Texels per metre along each patch edge, or auto (the default): more where a "
+                    "first shot of the lamps finds shadow and beam edges and near "
+                    "contacts, fewer where the light is flat"))
+            ->type_name("T|auto")
+            ->default_str(*densityAuto ? "auto" : std::to_string(int(atlas.density))),
+        scope);
+    tpq->each([densityAuto](const std::string&) { *densityAuto = false; });  // a fixed resolution
   }
   tpq->excludes(density);
   addMemoryOption(cmd, atlas.memoryLimit, scope);
@@ -398,10 +400,11 @@ void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
 }
 
 void addDensityToleranceOption(CLI::App& cmd, float& tolerance) {
-  addChecked(cmd, {}, "density tolerance", tolerance,
-             "With --density auto: the RMS miss of the lightmap's interpolation allowed over a quad, a share of "
-             "its light (smaller: more texels where the lamps' light bends or has edges)",
-             within(1e-4, 1.0));
+  addChecked(
+      cmd, {}, "density tolerance", tolerance,
+      "With --density auto: the RMS miss of the lightmap's interpolation allowed over a quad, a share of "
+      "its light (smaller: more texels where the lamps' light bends or has edges)",
+      within(1e-4, 1.0));
 }
 
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {

@@ -15,6 +15,7 @@ That installs it for Debian's /usr/bin/python3 (hence the first line), not for a
   bench/plot_speed_accuracy.py out/bench/results.csv [-o DIR] [--scenes seed1,seed3]
 """
 import argparse
+import ast
 import csv
 import json
 import os
@@ -26,6 +27,7 @@ STYLE = {
     "global-hemisphere": ("tab:orange", "s"),
     "cells-diffuse": ("tab:green", "^"),
     "cells-directional": ("tab:red", "D"),
+    "cells-binned": ("tab:purple", "v"),
 }
 NUMERIC = ("seconds", "seconds_min", "seconds_max", "solve_seconds", "rel_rmse", "rel_rmse_nonemissive",
            "rel_mean_error", "rel_mean_error_nonemissive", "reference_noise", "reference_noise_nonemissive")
@@ -49,6 +51,11 @@ def read_rows(path):
         for key in NUMERIC:
             value = r.get(key)
             r[key] = float(value) if value not in (None, "") else None
+        # speed_accuracy.py --truth: per cell against one reference (a dict; the CSV holds its repr).
+        cells = r.get("truth_cells")
+        if isinstance(cells, str) and cells:
+            cells = ast.literal_eval(cells)
+        r["truth_worst_cell"] = max(cells.values()) if isinstance(cells, dict) and cells else None
     return rows
 
 
@@ -57,8 +64,11 @@ def resolution_label(res):
 
 
 def plot_scene(plt, ticker, scene, rows, out):
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharex=True)
-    for ax, (key, noise_key, what) in zip(axes, PANELS):
+    panels = PANELS
+    if any(r.get("truth_worst_cell") is not None for r in rows):
+        panels = PANELS + (("truth_worst_cell", None, "worst cell against the truth reference"),)
+    fig, axes = plt.subplots(1, len(panels), figsize=(6 * len(panels), 5), sharex=True)
+    for ax, (key, noise_key, what) in zip(axes, panels):
         plotted = [r for r in rows if r.get(key) is not None and r["seconds"] is not None]
         if not plotted:
             ax.text(0.5, 0.5, f"no {key} in the results", ha="center", va="center", transform=ax.transAxes)
@@ -72,7 +82,7 @@ def plot_scene(plt, ticker, scene, rows, out):
             for r, x, y in zip(pts, xs, ys):
                 ax.annotate(resolution_label(r["resolution"]), (x, y), textcoords="offset points", xytext=(4, 4),
                             fontsize=7, color=colour)
-        noise = [r[noise_key] for r in plotted if r.get(noise_key)]
+        noise = [r[noise_key] for r in plotted if noise_key and r.get(noise_key)]
         if noise:
             ax.axhline(100 * max(noise), color="grey", linestyle=":", linewidth=1,
                        label="reference noise (largest)")

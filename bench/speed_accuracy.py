@@ -13,6 +13,14 @@ At large atlases (seed3 at 64² has 4.9 M texels) a full reference takes hours: 
 stratified sample of N texels (`cpgi reference --texels`), and compare-light estimates the RMSE on it, with the
 sampling error in `rel_rmse_sampling_error` (bench/RESULTS.md, "Sparse reference").
 
+With --truth N, every bake is also compared against one reference per scene at N² texels per quad (a
+--truth-texels sample at --truth-spp), read at its texels through the scene (compare-light --scene): the
+error against the light itself, per cell, at whatever atlas the bake had (OUT/table_truth.md). The
+resolution "auto" (bake --density auto) is compared that way only, no reference sharing its atlas.
+
+  bench/speed_accuracy.py --out out/t91 --resolutions 16,32,64,density,auto --truth 64 \
+      --methods global-hemicube,cells-binned --plot
+
 Timing: every bake is run --reps times in one run of this script and the median kept (2 noisy cores);
 compare methods as ratios within one run, never across runs or machines.
 """
@@ -32,6 +40,7 @@ METHODS = {
     "global-hemisphere": ["--method", "global", "--visibility", "hemisphere"],
     "cells-diffuse": ["--method", "cells", "--cells", "{scene}", "--portals", "diffuse"],
     "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],
+    "cells-binned": ["--method", "cells", "--cells", "{scene}", "--portals", "binned"],
 }
 
 
@@ -53,7 +62,17 @@ def run(cmd, log):
 
 
 def atlas_args(res):
+    if res == "auto":
+        return ["--density", "auto"]
     return ["--density", res[len("density"):] or "10"] if res.startswith("density") else ["--texels-per-quad", res]
+
+
+def truth_figures(err):
+    """compare-light's figures against the truth reference: the whole scene's and per cell (the RMSE
+    without the reference's own noise, and the ratio of means)."""
+    return {"truth_rel_rmse": err["rel_rmse"],
+            "truth_cells": {c["name"]: c.get("rel_rmse_without_noise", c["rel_rmse"]) for c in err.get("cells", [])},
+            "truth_ratio": {c["name"]: c["ratio_of_means"] for c in err.get("cells", [])}}
 
 
 def main():
@@ -69,6 +88,12 @@ def main():
     ap.add_argument("--spp", type=int, default=256, help="reference samples per texel")
     ap.add_argument("--ref-texels", type=int, default=0,
                     help="trace the reference on a sample of this many texels (0 = all)")
+    ap.add_argument("--truth", default="",
+                    help="also compare every bake (and only so 'auto', whose atlas no reference shares) against "
+                         "one reference per scene at this many texels per quad, read at its texels through the "
+                         "scene (compare-light --scene): the error against the light itself, per cell")
+    ap.add_argument("--truth-texels", type=int, default=4000, help="texels the truth reference traces")
+    ap.add_argument("--truth-spp", type=int, default=4096, help="its samples per texel")
     ap.add_argument("--plot", action="store_true")
     ap.add_argument("--resume", action="store_true",
                     help="keep OUT/results.json's rows and skip what they cover; reuse finished references")
@@ -89,20 +114,29 @@ def main():
             proc, _ = run([args.cpgi, "generate", scene, "-o", glb], log)
             if proc.returncode:
                 sys.exit(f"speed_accuracy: cannot generate {scene}: {proc.stderr.strip()}")
+        truth_dir = os.path.join(args.out, f"{scene}-truth-{args.truth}") if args.truth else None
+        if truth_dir and not (args.resume and os.path.exists(os.path.join(truth_dir, "report.json"))):
+            proc, _ = run([args.cpgi, "reference", glb, "-o", truth_dir, "--texels-per-quad", args.truth,
+                           "--texels", str(args.truth_texels), "--spp", str(args.truth_spp)], log)
+            if proc.returncode:
+                sys.exit(f"speed_accuracy: {scene}: truth reference failed: {proc.stderr.strip()}")
         for res in args.resolutions.split(","):
             methods = [m for m in args.methods.split(",") if (scene, res, m) not in done]
             if not methods:
                 continue
-            ref_dir = os.path.join(args.out, f"{scene}-{res}-reference")
-            ref_json = os.path.join(ref_dir, "report.json")
-            reusable = args.resume and os.path.exists(ref_json) and same_reference(json.load(open(ref_json)), args)
+            if res == "auto" and not truth_dir:
+                sys.exit("speed_accuracy: resolution 'auto' needs --truth (no reference shares its atlas)")
+            ref_dir = os.path.join(args.out, f"{scene}-{res}-reference") if res != "auto" else None
+            ref_json = os.path.join(ref_dir, "report.json") if ref_dir else None
+            reusable = ref_dir is None or (args.resume and os.path.exists(ref_json) and
+                                           same_reference(json.load(open(ref_json)), args))
             if not reusable:
                 proc, _ = run([args.cpgi, "reference", glb, "-o", ref_dir, "--spp", str(args.spp)] + atlas_args(res)
                               + ref_sample, log)
                 if proc.returncode:
                     print(f"{scene} {res}: reference failed: {proc.stderr.strip()}", file=sys.stderr)
                     continue
-            ref_report = json.load(open(ref_json))
+            ref_report = json.load(open(ref_json)) if ref_json else {}
             for method in methods:
                 extra = [a.replace("{scene}", glb) for a in METHODS[method]]
                 out_dir = os.path.join(args.out, f"{scene}-{res}-{method}")
@@ -118,12 +152,22 @@ def main():
                     solves.append(report["solve_seconds"])
                 if report is None or len(times) < args.reps:
                     continue
-                proc, _ = run([args.cpgi, "compare-light", out_dir, ref_dir, "--json"], log)
-                if proc.returncode:
-                    print(f"{scene} {res} {method}: compare failed: {proc.stderr.strip()}", file=sys.stderr)
-                    continue
-                err = json.loads(proc.stdout)
-                last = (out_dir, ref_dir)
+                truth = {}
+                if truth_dir:
+                    proc, _ = run([args.cpgi, "compare-light", out_dir, truth_dir, "--json", "--scene", glb], log)
+                    if proc.returncode:
+                        print(f"{scene} {res} {method}: truth compare failed: {proc.stderr.strip()}", file=sys.stderr)
+                        continue
+                    truth = truth_figures(json.loads(proc.stdout))
+                if ref_dir:
+                    proc, _ = run([args.cpgi, "compare-light", out_dir, ref_dir, "--json"], log)
+                    if proc.returncode:
+                        print(f"{scene} {res} {method}: compare failed: {proc.stderr.strip()}", file=sys.stderr)
+                        continue
+                    err = json.loads(proc.stdout)
+                    last = (out_dir, ref_dir)
+                else:  # auto: no same-atlas figures (table.md and table91.md leave it out)
+                    err = {"rel_rmse": None, "rel_mean_error": None}
                 row = {
                     "scene": scene, "resolution": res, "method": method,
                     "seconds": statistics.median(times), "seconds_min": min(times), "seconds_max": max(times),
@@ -144,9 +188,12 @@ def main():
                     "reference_texels_traced": ref_report.get("texels_traced", ref_report.get("texels")),
                     "rel_rmse_sampling_error": err.get("rel_rmse_sampling_error", 0.0),
                     "rel_rmse_nonemissive_sampling_error": err.get("rel_rmse_nonemissive_sampling_error"),
+                    "same_atlas_reference": ref_dir is not None,
+                    **truth,
                 }
                 rows.append(row)
-                print(f"{scene:6} {res:>9} {method:18} {row['seconds']:8.3f} s  rel_rmse {row['rel_rmse']:.4f}", flush=True)
+                shown = row["rel_rmse"] if row["rel_rmse"] is not None else row["truth_rel_rmse"]
+                print(f"{scene:6} {res:>9} {method:18} {row['seconds']:8.3f} s  rel_rmse {shown:.4f}", flush=True)
                 save(rows, args.out)  # after every row: a long run stopped half-way keeps what it measured
 
     save(rows, args.out)
@@ -167,8 +214,11 @@ def save(rows, out):
             w = csv.DictWriter(f, fieldnames=fields)
             w.writeheader()
             w.writerows(rows)
-    write_table(rows, os.path.join(out, "table.md"))
-    write_table91(rows, os.path.join(out, "table91.md"))
+    same_atlas = [r for r in rows if r.get("rel_rmse") is not None]
+    write_table(same_atlas, os.path.join(out, "table.md"))
+    write_table91(same_atlas, os.path.join(out, "table91.md"))
+    if any(r.get("truth_cells") for r in rows):
+        write_truth_table(rows, os.path.join(out, "table_truth.md"))
 
 
 def same_reference(report, args):
@@ -239,6 +289,29 @@ def write_table91(rows, path):
             label = f"{res}²" if res.isdigit() else res
             lines.append(f"| {scene} | {label} | " + (f"{thesis[0]:.3f} | {thesis[1]:.3f}" if thesis else "– | –") +
                          f" | {texels} | " + " | ".join(cells) + " |")
+    open(path, "w").write("\n".join(lines) + "\n")
+
+
+def write_truth_table(rows, path):
+    """Rows: scene × resolution; per method 'seconds s (CPU s) / each cell's rel RMSE against the truth
+    reference, without its noise' — the error a user sees, at any atlas, per room."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    lines = ["| scene | resolution | texels | " + " | ".join(methods) + " |", "|---|---|---|" + "---|" * len(methods)]
+    order = lambda res: (0, int(res)) if res.isdigit() else (1, 0) if res.startswith("density") else (2, 0)
+    for scene in sorted(dict.fromkeys(r["scene"] for r in rows)):
+        for res in sorted(dict.fromkeys(r["resolution"] for r in rows if r["scene"] == scene), key=order):
+            mine = {r["method"]: r for r in rows if (r["scene"], r["resolution"]) == (scene, res)}
+            cells = []
+            for m in methods:
+                r = mine.get(m)
+                if r is None or not r.get("truth_cells"):
+                    cells.append("–")
+                    continue
+                per_cell = " / ".join(f"{k} {100 * v:.2f}" for k, v in sorted(r["truth_cells"].items()))
+                cells.append(f"{r['seconds']:.1f} s ({r.get('cpu_seconds', 0):.1f}) / {per_cell} %")
+            texels = next(iter(mine.values())).get("texels")
+            label = f"{res}²" if res.isdigit() else res
+            lines.append(f"| {scene} | {label} | {texels} | " + " | ".join(cells) + " |")
     open(path, "w").write("\n".join(lines) + "\n")
 
 

@@ -565,6 +565,20 @@ std::vector<int> groupIndices(const std::string& list) {
   return out;
 }
 
+int bakeLoaded(const BakeOptions& o, BakeInput& in, const EglContext* given,
+               std::chrono::steady_clock::time_point start, std::string& sizeLine, Context& ctx);
+
+// The gather of a cell-job server (a {"gather": true} request): `cpgi cell-job PLAN --gather` on the scene,
+// graph and EGL context the server loaded at its start, with a context of its own (the report's timings are
+// the gather's) and no output on stdout (the server's answers are there).
+void serveGather(const BakeOptions& served, BakeInput& in, const EglContext& gl) {
+  BakeOptions o = served;
+  o.jobServe = false, o.gather = true, o.quiet = true;
+  Context ctx;
+  std::string sizeLine;
+  bakeLoaded(o, in, &gl, std::chrono::steady_clock::now(), sizeLine, ctx);
+}
+
 // --plan DIR: the cell jobs' plan, or (`cpgi cell-job`) the first shot of some emitter groups, its sum, or
 // one round of some cells.
 int runCellJobStage(const BakeOptions& o) {
@@ -585,8 +599,12 @@ int runCellJobStage(const BakeOptions& o) {
       atlasBuilt = true;
       return in.atlas;
     };
+    const auto gather = [&] {
+      serveGather(o, in, gl);
+      atlasBuilt = true;  // the gather built it again, the same
+    };
     return serveCellJobs(o.plan, readCellJobPlan(o.plan).bakeArgs, in.loaded.scene, in.graph, params,
-                         globalAtlas, gl, ctx, std::cin, std::cout);
+                         globalAtlas, gather, gl, ctx, std::cin, std::cout);
   }
   if (o.jobRound > 0) {
     const CellJobPlan plan = readCellJobPlan(o.plan);
@@ -687,31 +705,30 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
   };
 }
 
-int runBake(const BakeOptions& o) {
-  if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
-    throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
-  if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
-  const auto start = std::chrono::steady_clock::now();
+// Steps 2-4 of a bake whose scene is loaded (`in`, from loadBakeInput): the atlas, the solve (or a cell-job
+// plan's gather), the ambient term and the files. `given`: the EGL context to draw with (a cell-job
+// server's, kept from job to job), else one is opened here. `sizeLine` takes the bake's size for the
+// progress notes. `in.atlas` is built again (the same for the same options).
+int bakeLoaded(const BakeOptions& o, BakeInput& in, const EglContext* given,
+               std::chrono::steady_clock::time_point start, std::string& sizeLine, Context& ctx) {
   const auto deadline = o.timeLimit > 0.0
                             ? start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                           std::chrono::duration<double>(o.timeLimit))
                             : std::chrono::steady_clock::time_point::max();
-  Context ctx;
-  auto sizeLine = std::make_shared<std::string>();
-  ctx.setProgress(withBakeNotes(stderrProgress(o.quiet), o, start, sizeLine));
-  BakeInput in = loadBakeInput(o, ctx);
   OutputDir out(o.output, kLightmapResultNames);
-  std::unique_ptr<EglContext> gl;
+  std::unique_ptr<EglContext> opened;
+  const EglContext* gl = given;
   auto openGl = [&] {
     auto t = ctx.time("egl");
-    gl = std::make_unique<EglContext>(ctx);
+    opened = std::make_unique<EglContext>(ctx);
+    gl = opened.get();
   };
   if (o.gather) usePlannedDensities(o, in);
-  if (o.densityAuto && in.triangleDensity.empty()) openGl();  // the pilot shoots before the atlas is laid out
-  buildBakeAtlas(o, in, gl.get(), ctx);
+  if (o.densityAuto && in.triangleDensity.empty() && !gl) openGl();  // the pilot shoots before the layout
+  buildBakeAtlas(o, in, gl, ctx);
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
-  *sizeLine = bakeSizeLine(o, in);
+  sizeLine = bakeSizeLine(o, in);
   if (!gl) openGl();
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
@@ -760,6 +777,18 @@ int runBake(const BakeOptions& o) {
     for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   }
   return 0;
+}
+
+int runBake(const BakeOptions& o) {
+  if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
+    throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
+  if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
+  const auto start = std::chrono::steady_clock::now();
+  Context ctx;
+  auto sizeLine = std::make_shared<std::string>();
+  ctx.setProgress(withBakeNotes(stderrProgress(o.quiet), o, start, sizeLine));
+  BakeInput in = loadBakeInput(o, ctx);
+  return bakeLoaded(o, in, nullptr, start, *sizeLine, ctx);
 }
 
 void addOnDemandOptions(CLI::App& sub, BakeOptions& o) {

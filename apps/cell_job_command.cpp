@@ -3,15 +3,15 @@
 // --method cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather runs the
 // bake command again on the arguments kept in PLAN/plan.json, so a job takes exactly the plan's scene and
 // options; --status reads only the plan's small files and says which step comes next (what a driver such
-// as cpgi-dask waits on); --serve runs round jobs read from stdin in one process (apps/cell_job_serve.h).
+// as cpgi-dask waits on); --serve runs round jobs read from stdin in one process (apps/cell_job_serve.h),
+// and answers the same status there.
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "apps/cell_job_status.h"
 #include "apps/commands.h"
 #include "core/error.h"
 #include "radiosity/cells/cell_jobs.h"
@@ -28,39 +28,10 @@ struct CellJobOptions {
   bool status = false, json = false, gather = false, quiet = false;
 };
 
-// What a driver runs next: the first shot's groups, their sum, a round, or the gather.
-const char* nextStep(const CellJobStatus& s) {
-  if (!s.firstShotSummed) return s.firstShotMissing.empty() ? "first-shot-sum" : "first-shot";
-  return s.nextRound == 0 ? "gather" : "round";
-}
-
 int printStatus(const CellJobOptions& o, const CellJobPlan& plan) {
   const CellJobStatus s = cellJobStatus(o.plan, plan);
   if (o.json) {
-    nlohmann::json rounds = nlohmann::json::array(), missing = nlohmann::json::array();
-    for (const CellJobRoundStatus& r : s.rounds)
-      rounds.push_back({{"round", r.round},
-                        {"unshot_w", r.unshot},
-                        {"target_w", r.target},
-                        {"solved_cells", r.solved},
-                        {"shots", r.shots},
-                        {"job_seconds", r.jobSeconds},
-                        {"max_job_seconds", r.maxJobSeconds},
-                        {"portal_bytes", r.portalBytes}});
-    for (int c : s.missing) missing.push_back(plan.cells[size_t(c)]);
-    const nlohmann::json firstShot = {{"groups", plan.firstShotGroups.size()},
-                                      {"missing_groups", s.firstShotMissing},
-                                      {"summed", s.firstShotSummed}};
-    std::cout << nlohmann::json{{"cells", plan.cells.size()},
-                                {"emitted_w", plan.emitted},
-                                {"target_w", plan.target},
-                                {"first_shot", firstShot},
-                                {"next_step", nextStep(s)},
-                                {"rounds", rounds},
-                                {"next_round", s.firstShotSummed ? s.nextRound : 1},
-                                {"missing", missing}}
-                     .dump()
-              << "\n";
+    std::cout << cellJobStatusJson(plan, s).dump() << "\n";
     return 0;
   }
   if (!s.firstShotSummed) {
@@ -144,7 +115,8 @@ void addCellJobCommand(CLI::App& app, CommandFn& selected) {
                                      "Add the emitter groups' shots in order and start round 0 from them");
   auto* serve = sub->add_flag(
       "--serve", o->serve,
-      "Run round jobs read from stdin, one JSON request a line ({\"round\": R, \"cells\": [...]}), "
+      "Run jobs read from stdin, one JSON request a line ({\"round\": R, \"cells\": [...]}, "
+      "{\"first_shot\": [G, ...]}, {\"status\": true} for --status --json's object, {\"gather\": true}), "
       "answering one line each on stdout, keeping the scene, EGL context and atlases between them");
   auto* status = sub->add_flag("--status", o->status, "Print the finished rounds and the next one");
   sub->add_flag("--json", o->json, "With --status: as one JSON line")->needs(status);

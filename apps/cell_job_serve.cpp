@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/cell_job_status.h"
 #include "core/error.h"
 #include "radiosity/cells/cell_jobs.h"
 #include "radiosity/cells/cell_selection.h"
@@ -16,9 +17,10 @@ namespace cpgi::cli {
 namespace {
 
 struct ServeRequest {
-  int round = 0;               ///< a round job, or 0: a first-shot job
-  std::string cells;           ///< "A,B" (cellsByName's list), empty: every cell
-  std::vector<int> firstShot;  ///< with round 0: the emitter groups to shoot
+  enum class Kind { Round, FirstShot, Status, Gather } kind = Kind::Round;
+  int round = 0;               ///< a round job's round
+  std::string cells;           ///< a round job's "A,B" (cellsByName's list), empty: every cell
+  std::vector<int> firstShot;  ///< a first-shot job's emitter groups
 };
 
 // {"first_shot": [G, ...]}: emitter group numbers, at least one.
@@ -46,9 +48,19 @@ ServeRequest parseRequest(const std::string& line, nlohmann::json& id) {
   if (!j.is_object()) throw InputError("request", "not a JSON object: " + line.substr(0, 80));
   ServeRequest r;
   id = j.value("id", nlohmann::json());
-  if (j.contains("first_shot") == j.contains("round"))
-    throw InputError("request", "give either \"round\" (and \"cells\") or \"first_shot\"");
+  const int kinds = int(j.contains("first_shot")) + int(j.contains("round")) + int(j.contains("status")) +
+                    int(j.contains("gather"));
+  if (kinds != 1)
+    throw InputError("request",
+                     "give one of \"round\" (and \"cells\"), \"first_shot\", \"status\" or \"gather\"");
+  for (const char* flag : {"status", "gather"})
+    if (j.contains(flag)) {
+      if (j[flag] != true) throw InputError("request", std::string("\"") + flag + "\" must be true");
+      r.kind = j.contains("status") ? ServeRequest::Kind::Status : ServeRequest::Kind::Gather;
+      return r;
+    }
   if (j.contains("first_shot")) {
+    r.kind = ServeRequest::Kind::FirstShot;
     r.firstShot = firstShotGroups(j["first_shot"]);
     return r;
   }
@@ -82,9 +94,11 @@ std::vector<int> requestedCells(const CellGraph& graph, const std::string& list)
 
 int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
                   const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const std::function<const LightmapAtlas&()>& globalAtlas, const EglContext& gl,
-                  Context& ctx, std::istream& in, std::ostream& out) {
+                  const std::function<const LightmapAtlas&()>& globalAtlas,
+                  const std::function<void()>& gather, const EglContext& gl, Context& ctx, std::istream& in,
+                  std::ostream& out) {
   std::optional<CellJobServer> server;  // built at the first request: a server may start before the sum
+  CellJobStatusKept statusKept;         // the finished rounds, so that a status reads only the new ones
   for (std::string line; std::getline(in, line);) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     nlohmann::json id;
@@ -103,7 +117,12 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
         return 1;
       }
       nlohmann::json done = {{"ok", true}};
-      if (request.round == 0) {
+      if (request.kind == ServeRequest::Kind::Status) {
+        done["status"] = cellJobStatusJson(plan, cellJobStatus(dir, plan, &statusKept));
+      } else if (request.kind == ServeRequest::Kind::Gather) {
+        gather();
+        done["gather"] = true;
+      } else if (request.kind == ServeRequest::Kind::FirstShot) {
         runFirstShotJobs(dir, plan, request.firstShot, scene, graph, globalAtlas(), params, gl, ctx);
         done["first_shot"] = request.firstShot;
       } else {

@@ -2,12 +2,17 @@
 // one answer a line on stdout, in one process that keeps the scene, the EGL context, the cells' atlases and
 // the compiled GPU programs between jobs (radiosity/cells/cell_jobs.h, CellJobServer; docs/cell-jobs.md).
 // What a driver such as cpgi-dask keeps per worker, so that a job no longer pays a process start, a scene
-// load and llvmpipe's shader set-up.
+// load and llvmpipe's shader set-up, nor a round's barrier a `cpgi cell-job --status` process, nor the
+// gather its own process, scene load and EGL context.
 //
 //   request  {"round": R, "cells": ["A", "B"], "id": ANY}     cells: default every cell; id: echoed
 //            {"first_shot": [G, ...], "id": ANY}              emitter groups of the lamps' first shot
+//            {"status": true, "id": ANY}                      which step is next (no GPU, no job)
+//            {"gather": true, "id": ANY}                      the bake's -o folder, as --gather writes it
 //   answer   {"ok": true, "round": R, "cells": 2, "seconds": 1.25, "id": ANY}
 //            {"ok": true, "first_shot": [G, ...], "seconds": 3.5, "id": ANY}
+//            {"ok": true, "status": {...}, "seconds": 0.004, "id": ANY}  status: --status --json's object
+//            {"ok": true, "gather": true, "seconds": 1.2, "id": ANY}
 //            {"ok": false, "error": "one line", "id": ANY}
 //
 // A refused job (InputError: a file missing or damaged, a round not needed) is answered and the server
@@ -32,10 +37,12 @@ namespace cpgi::cli {
 
 /// Serves round and first-shot jobs of the plan in `dir`, made with `bakeArgs`, on `scene` and `graph`
 /// (loaded from those arguments), until `in` ends. `globalAtlas`: the whole scene's atlas, asked for at the
-/// first first-shot job only. Returns the exit status.
+/// first first-shot job only. `gather`: writes the bake's folder as `cpgi cell-job PLAN --gather` does.
+/// Returns the exit status.
 int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
                   const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const std::function<const LightmapAtlas&()>& globalAtlas, const EglContext& gl,
-                  Context& ctx, std::istream& in, std::ostream& out);
+                  const std::function<const LightmapAtlas&()>& globalAtlas,
+                  const std::function<void()>& gather, const EglContext& gl, Context& ctx, std::istream& in,
+                  std::ostream& out);
 
 }  // namespace cpgi::cli

@@ -2,8 +2,8 @@
 """Projects the wall time of a cell-job bake (docs/cell-jobs.md) on 1..64 workers from one measured run.
 
     bench/cell_jobs_projection.py PLAN --job-overhead SECONDS [--plan-seconds S] [--first-shot-overhead S]
-                                  [--sum S | --first-shot S] [--gather S] [--barrier S] [--straggle P]
-                                  [--time-scale F]
+                                  [--sum S | --first-shot S] [--gather S] [--barrier S] [--dask-log LOG]
+                                  [--straggle P] [--time-scale F]
 
 Reads every round's cell summaries in PLAN (the binary records of radiosity/cells/cell_job_files.h: each
 cell's measured job seconds and portal bytes) and every emitter group's first-shot record (its measured
@@ -18,7 +18,9 @@ seconds), and simulates, per worker count W:
   - each round's jobs list-scheduled longest first onto the earliest free worker, each costing the fixed
     per-job overhead (process start, scene load, atlases of the group's cells and their neighbours) plus
     its cells' measured seconds,
-  - a barrier between rounds and the gather after (one worker),
+  - a barrier between rounds and the gather after (one worker); with --dask-log, both as a cpgi-dask run
+    measured them (its progress lines: each round's idle time before its first job, the median of them as
+    the barrier, and the gather task's seconds),
   - stragglers: each job 2x slower with probability 5 % (mean of 20 draws).
 Prints a Markdown table: workers, projected wall, speed-up against 1 worker, efficiency, critical path
 (the slowest single job of each round, summed: no worker count goes below it).
@@ -28,6 +30,7 @@ import glob
 import json
 import os
 import random
+import re
 import struct
 import sys
 
@@ -104,6 +107,22 @@ def first_shot_wall(batches, seconds, workers, overhead, straggle, rng):
     return list_schedule(jobs, workers)
 
 
+def dask_log_figures(path):
+    """The barrier (median idle time before a round's first job, rounds 2 on) and the gather's seconds, from
+    cpgi-dask's progress lines."""
+    idle, gather = [], None
+    for line in open(path):
+        m = re.match(r"cpgi-dask: round \d+: .*idle before it ([0-9.]+) s", line)
+        if m:
+            idle.append(float(m.group(1)))
+        m = re.match(r"cpgi-dask: .*: \d+ rounds, gather ([0-9.]+) s", line)
+        if m:
+            gather = float(m.group(1))
+    if not idle or gather is None:
+        sys.exit("%s: no cpgi-dask progress lines with the idle time between rounds and the gather" % path)
+    return sorted(idle)[len(idle) // 2], gather
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("plan")
@@ -113,17 +132,24 @@ def main():
                     help="seconds per first-shot job besides its groups' solves")
     ap.add_argument("--sum", type=float, default=0.0, help="the first shot's sum (one worker)")
     ap.add_argument("--first-shot", type=float, help="model the first shot as this many seconds on one worker")
-    ap.add_argument("--gather", type=float, default=0.0)
+    ap.add_argument("--gather", type=float, help="the gather (one worker; default 0)")
     ap.add_argument("--baseline-first-shot", type=float,
                     help="speed-up against 1 worker whose first shot is this many seconds in one solve (the "
                          "emitters shot together cost less than shot group by group)")
-    ap.add_argument("--barrier", type=float, default=0.3, help="seconds between rounds (status, scheduling)")
+    ap.add_argument("--barrier", type=float, help="seconds between rounds (status, scheduling; default 0.3)")
+    ap.add_argument("--dask-log", help="cpgi-dask's output of a run: the barrier and the gather as it measured "
+                                       "them (an explicit --barrier or --gather wins)")
     ap.add_argument("--straggle", type=float, default=0.05)
     ap.add_argument("--groups-per-worker", type=int, default=3, help="cell groups per worker (cpgi-dask: 3)")
     ap.add_argument("--time-scale", type=float, default=1.0,
                     help="multiplies the measured cell seconds (jobs measured side by side on shared cores run "
                          "slower than one job alone on its machine)")
     args = ap.parse_args()
+    barrier, gather = dask_log_figures(args.dask_log) if args.dask_log else (0.3, 0.0)
+    args.barrier = barrier if args.barrier is None else args.barrier
+    args.gather = gather if args.gather is None else args.gather
+    print("barrier %.3f s a round, gather %.2f s%s" % (args.barrier, args.gather,
+                                                      " (from %s)" % args.dask_log if args.dask_log else ""))
     plan = json.load(open(os.path.join(args.plan, "plan.json")))
     texels = [c["texels"] for c in plan["cells"]]
     neighbours = [c["neighbours"] for c in plan["cells"]]

@@ -3,7 +3,7 @@
 #include <unistd.h>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <string_view>
 #include <system_error>
 
 #include "core/error.h"
@@ -14,10 +14,22 @@ namespace {
 constexpr char kMagic[8] = {'C', 'P', 'G', 'I', 'C', 'E', 'L', 'L'};
 constexpr size_t kHeader = 8 + 4 + 4 + 8, kTrailer = 8;
 
-uint64_t fnv1a(const std::string& bytes) {
+uint64_t fnv1a(std::string_view bytes) {
   uint64_t h = 14695981039346656037ull;
   for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
   return h;
+}
+
+// The whole file in one read: a gather reads tens of MB of records, and an istreambuf_iterator's byte at a
+// time cost as much as the checksum.
+bool readWholeFile(const std::filesystem::path& file, std::string& out) {
+  std::ifstream f(file, std::ios::binary | std::ios::ate);
+  if (!f) return false;
+  const std::streamoff size = f.tellg();
+  if (size < 0) return false;
+  out.resize(size_t(size));
+  f.seekg(0);
+  return bool(f.read(out.data(), size));
 }
 
 // The payload of a record, field after field (the machines that run cpgi are little-endian).
@@ -64,10 +76,12 @@ class Writer {
 
 class Reader {
  public:
+  Reader(const Reader&) = delete;  // bytes_ views all_
+  Reader& operator=(const Reader&) = delete;
   Reader(const std::filesystem::path& file, CellJobRecord kind) : file_(file.string()) {
-    std::ifstream f(file, std::ios::binary);
-    if (!f) fail("cannot read the cell job file (missing? run the job that writes it first)");
-    const std::string all((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (!readWholeFile(file, all_))
+      fail("cannot read the cell job file (missing? run the job that writes it first)");
+    const std::string& all = all_;
     if (all.size() < kHeader + kTrailer || std::memcmp(all.data(), kMagic, 8) != 0)
       fail("not a cpgi cell job file (or truncated)");
     uint32_t version = 0, k = 0;
@@ -80,7 +94,7 @@ class Reader {
            std::to_string(kCellJobFormat));
     if (k != uint32_t(kind)) fail("a cell job file of another kind");
     if (size != all.size() - kHeader - kTrailer) fail("truncated cell job file");
-    bytes_ = all.substr(kHeader, size);
+    bytes_ = std::string_view(all).substr(kHeader, size);
     uint64_t sum = 0;
     std::memcpy(&sum, all.data() + kHeader + size, 8);
     if (sum != fnv1a(bytes_)) fail("checksum mismatch (damaged cell job file)");
@@ -115,7 +129,8 @@ class Reader {
   void need(size_t n) const {
     if (bytes_.size() - at_ < n) fail("record shorter than its fields");
   }
-  std::string file_, bytes_;
+  std::string file_, all_;  ///< all_: the whole file
+  std::string_view bytes_;  ///< the payload, in all_
   size_t at_ = 0;
 };
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include <tbb/parallel_for.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -81,10 +82,10 @@ double unshotAfter(const fs::path& dir, const CellJobPlan& plan, int round,
   std::vector<CellRoundSummary> all(plan.cells.size());
   std::vector<double> kept(plan.cells.size());
   std::vector<const PortalSend*> sends;
-  for (size_t c = 0; c < all.size(); ++c) {
+  tbb::parallel_for(size_t(0), all.size(), [&](size_t c) {  // a file each: read side by side
     all[c] = readSummary(cellSummaryFile(dir, round, int(c)), round, int(c));
     kept[c] = all[c].figures.keptPower;
-  }
+  });
   for (const CellRoundSummary& s : all)
     for (const PortalSend& send : s.figures.sends) sends.push_back(&send);
   const double unshot = roundUnshot(kept, sends);
@@ -563,15 +564,40 @@ void CellJobServer::runRound(const fs::path& dir, const CellJobPlan& plan, int r
   solveJobCells(dir, plan, round, run, kept_->cells, settings, *kept_->transfer, kept_->programs, gl, ctx);
 }
 
-CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
+namespace {
+
+// Round `round`'s figures from its summaries, fed to `stop`; `unshot` becomes the power unshot after it.
+CellJobRoundStatus finishedRound(const fs::path& dir, const CellJobPlan& plan, int round, RoundStop& stop,
+                                 double& unshot) {
+  std::vector<CellRoundSummary> summaries;
+  CellJobRoundStatus r;
+  r.target = stop.target();
+  unshot = addRoundToStop(dir, plan, round, stop, &summaries);
+  r.round = round;
+  r.unshot = unshot;
+  for (const CellRoundSummary& s : summaries) {
+    r.solved += s.figures.solved;
+    r.shots += s.figures.shots;
+    r.jobSeconds += s.jobSeconds;
+    r.maxJobSeconds = std::max(r.maxJobSeconds, s.jobSeconds);
+    r.portalBytes += s.portalBytes;
+  }
+  return r;
+}
+
+}  // namespace
+
+CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan, CellJobStatusKept* kept) {
   CellJobStatus status;
   for (size_t g = 0; g < plan.firstShotGroups.size(); ++g)
     if (!fs::exists(firstShotGroupFile(dir, int(g)))) status.firstShotMissing.push_back(int(g));
   status.firstShotSummed = plan.firstShotSummed;
   if (!plan.firstShotSummed) return status;
-  double unshot = plan.emitted;
-  RoundStop stop = planStop(plan);
-  for (int round = 1;; ++round) {
+  const bool reusable = kept && kept->stop && kept->emitted == plan.emitted && kept->target == plan.target;
+  double unshot = reusable ? kept->unshot : plan.emitted;
+  RoundStop stop = reusable ? *kept->stop : planStop(plan);
+  if (reusable) status.rounds = kept->rounds;
+  for (int round = int(status.rounds.size()) + 1;; ++round) {
     if (!roundNeeded(plan, round, unshot, stop)) {
       status.nextRound = 0;
       return status;
@@ -580,22 +606,24 @@ CellJobStatus cellJobStatus(const fs::path& dir, const CellJobPlan& plan) {
     for (size_t c = 0; c < plan.cells.size(); ++c)
       if (!fs::exists(cellSummaryFile(dir, round, int(c)))) status.missing.push_back(int(c));
     if (!status.missing.empty()) return status;
-    std::vector<CellRoundSummary> summaries;
-    CellJobRoundStatus r;
-    r.target = stop.target();
-    unshot = addRoundToStop(dir, plan, round, stop, &summaries);
-    r.round = round;
-    r.unshot = unshot;
-    for (const CellRoundSummary& s : summaries) {
-      r.solved += s.figures.solved;
-      r.shots += s.figures.shots;
-      r.jobSeconds += s.jobSeconds;
-      r.maxJobSeconds = std::max(r.maxJobSeconds, s.jobSeconds);
-      r.portalBytes += s.portalBytes;
-    }
-    status.rounds.push_back(r);
+    status.rounds.push_back(finishedRound(dir, plan, round, stop, unshot));
+    if (kept) *kept = CellJobStatusKept{plan.emitted, plan.target, status.rounds, stop, unshot};
   }
 }
+
+namespace {
+
+// Every cell's state of round `round`, read side by side (the files are independent; reading and checking
+// them is most of a gather's work).
+std::vector<CellRound> readRoundStates(const fs::path& dir, int round, size_t cells) {
+  std::vector<CellRound> states(cells);
+  tbb::parallel_for(size_t(0), cells, [&](size_t c) {
+    states[c] = readCellState(cellStateFile(dir, round, int(c)), round, int(c));
+  });
+  return states;
+}
+
+}  // namespace
 
 SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const Scene& scene,
                            const CellGraph& graph, const LightmapAtlas& global, const CellSolveParams& params,
@@ -607,7 +635,10 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
     throw InputError((dir / "plan.json").string(), "the plan's cells are not the scene's");
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
   std::vector<CellState> cells = buildMappedCellAtlases(scene, graph, params, cellOf, global, ctx);
-  for (size_t c = 0; c < cells.size(); ++c) gatherFromFiles(dir, plan, 1, int(c), cells[c]);
+  auto t = ctx.time("gather: rounds");
+  // The pending light of the first round, from round 0: the first shot's landing (each cell's emitted power).
+  tbb::parallel_for(size_t(0), cells.size(),
+                    [&](size_t c) { gatherFromFiles(dir, plan, 1, int(c), cells[c]); });
   SolveResult result = startBookkeeping(graph, cells, global);
   const FirstShotRecord shot = readFirstShot(dir / "first-shot.cell");
   if (shot.absorbed.size() != cells.size() || shot.emission.size() != global.texelCount())
@@ -618,18 +649,20 @@ SolveResult gatherCellJobs(const fs::path& dir, const CellJobPlan& plan, const S
   RoundStop stop = planStop(plan);
   while (roundNeeded(plan, rounds + 1, unshot, stop)) {
     const int round = ++rounds;
-    std::vector<CellRound> states(cells.size());
     std::vector<CellRoundSummary> summaries;
     unshot = addRoundToStop(dir, plan, round, stop, &summaries);
-    std::vector<const PortalSend*> sends;
-    for (size_t c = 0; c < cells.size(); ++c) {
-      states[c] = readCellState(cellStateFile(dir, round, int(c)), round, int(c));
-      CellRound& r = summaries[c].figures;  // the figures, with the state's arrays
+    std::vector<CellRound> states = readRoundStates(dir, round, cells.size());
+    for (size_t c = 0; c < cells.size(); ++c) {  // in cell order, as solveCells adds them
+      CellRound& r = summaries[c].figures;       // the figures, with the state's radiosity
       r.radiosity = std::move(states[c].radiosity);
       addCellRound(r, cells[c], graph, result);
     }
-    for (size_t c = 0; c < cells.size(); ++c) gatherFromFiles(dir, plan, round + 1, int(c), cells[c]);
   }
+  // Only the light left pending after the last round counts (finishBookkeeping's unshot, the ambient term):
+  // a round's states hold its radiosity, so the rounds before need no pending light of their own.
+  if (rounds > 0)
+    tbb::parallel_for(size_t(0), cells.size(),
+                      [&](size_t c) { gatherFromFiles(dir, plan, rounds + 1, int(c), cells[c]); });
   result.stopChecks = stop.checks();
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

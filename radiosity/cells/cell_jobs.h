@@ -21,6 +21,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -137,7 +138,19 @@ struct CellJobStatus {
   int nextRound = 1;                       ///< 0: converged (or at --max-rounds): gather
   std::vector<int> missing;                ///< cells whose round nextRound is not done yet
 };
-CellJobStatus cellJobStatus(const std::filesystem::path& dir, const CellJobPlan& plan);
+/// The finished rounds as cellJobStatus found them, kept by a process that asks again (a cell-job server
+/// answering every round's barrier): finished rounds do not change (a rerun writes the same figures), so the
+/// next call reads only the summaries of the rounds after them, for as long as the plan's emitted and
+/// target power are the same (a plan made again and summed again gives the same rounds). One per plan folder.
+struct CellJobStatusKept {
+  double emitted = 0.0, target = 0.0;  ///< the plan's when kept
+  std::vector<CellJobRoundStatus> rounds;
+  std::optional<RoundStop> stop;  ///< the stop after `rounds`; unset: nothing kept
+  double unshot = 0.0;            ///< W unshot after `rounds`
+};
+/// From plan.json and the summaries alone (no scene, no GPU); with `kept`, on from the rounds kept there.
+CellJobStatus cellJobStatus(const std::filesystem::path& dir, const CellJobPlan& plan,
+                            CellJobStatusKept* kept = nullptr);
 
 /// Every round of the plan applied in order (InputError unless the rounds are complete up to the stop).
 SolveResult gatherCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, const Scene& scene,

@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/views.h"
 
@@ -176,11 +178,13 @@ Camera cornerView(const std::string& name, const Bounds& b) {
 }  // namespace
 
 std::vector<Camera> defaultCameras(const RayScene& rays, const Scene& scene, const CellGraph& cells) {
-  std::vector<Camera> cameras;
   const std::vector<int> triangleCell = cells.cellOfTriangle(scene.triangles.size());
-  for (size_t c = 0; c < cells.cells.size(); ++c) {
+  // One camera per room, placed side by side (a building of a hundred rooms spent a quarter of a second
+  // here on one core): each is placed by rays alone, and they are kept in the cells' order.
+  std::vector<std::optional<Camera>> placed(cells.cells.size());
+  tbb::parallel_for(size_t(0), cells.cells.size(), [&](size_t c) {
     const Cell& cell = cells.cells[c];
-    if (cell.name == "outside") continue;  // the rooms are what a bake of an interior is for
+    if (cell.name == "outside") return;  // the rooms are what a bake of an interior is for
     Region region{.name = cell.name, .bounds = {}, .triangleCell = &triangleCell, .cell = int(c)};
     // The cell's own volume bounds its empty space exactly; its surfaces' bounds include wall thickness.
     for (const Triangle& t : cell.volume)
@@ -189,10 +193,13 @@ std::vector<Camera> defaultCameras(const RayScene& rays, const Scene& scene, con
       for (uint32_t t : cell.triangles)
         if (t < scene.triangles.size())
           for (const glm::vec3& p : scene.triangles[t].p) region.bounds.extend(p);
-    if (region.bounds.empty()) continue;
+    if (region.bounds.empty()) return;
     const std::optional<Camera> cam = placeCamera(rays, scene, region);
-    cameras.push_back(cam ? *cam : cornerView(cell.name, region.bounds));
-  }
+    placed[c] = cam ? *cam : cornerView(cell.name, region.bounds);
+  });
+  std::vector<Camera> cameras;
+  for (std::optional<Camera>& cam : placed)
+    if (cam) cameras.push_back(std::move(*cam));
   if (!cameras.empty()) return cameras;
 
   Region whole{.name = "overview",

@@ -3,7 +3,8 @@
 # long-lived process give the single-process cells bake bit for bit (lightmap.exr byte for byte) on the
 # 4-room office-small; a server killed (SIGKILL) during a job of round 2 leaves the round unfinished, and a
 # new server reruns it to the same state and portal-light bytes; a refused request is answered and the
-# server goes on.
+# server goes on; a served status request answers what --status --json prints, at every step; a served
+# gather writes the files of the one-shot gather.
 #   cell_job_serve_test.sh CPGI
 set -euo pipefail
 cpgi=$1
@@ -33,6 +34,20 @@ answer() {
   echo "$line"
 }
 ok() { [ "$(echo "$1" | field 's["ok"]')" = True ] || fail "job not done: $1"; }
+# A served status request answers what `cpgi cell-job --status --json` prints (cpgi-dask asks the servers
+# at every round's barrier); $1 says where.
+served_status_matches() {
+  echo '{"status": true, "id": "barrier"}' >&"${SERVER[1]}"
+  local line
+  line=$(answer)
+  ok "$line"
+  status >status.json
+  echo "$line" | python3 -c "import json, sys; a = json.load(sys.stdin); s = json.load(open('status.json'))
+sys.exit(0 if a['status'] == s and a['id'] == 'barrier' else 1)" ||
+    fail "$1: the served status is not --status --json's: $line against $(cat status.json)"
+  served_statuses=$((served_statuses + 1))
+}
+served_statuses=0
 # The light files of a round (every file but the summaries, which also record the job's seconds).
 light_sums() { (cd "plan/round-$(printf %04d "$1")" && md5sum $(ls | grep -v '\.summary$' | grep -v '\.part-')); }
 
@@ -41,7 +56,9 @@ start_server
 groups=$(python3 -c "import json; print(len(json.load(open('plan/plan.json'))['first_shot_groups']))")
 for ((g = groups - 1; g >= 0; --g)); do echo "{\"first_shot\": [$g]}" >&"${SERVER[1]}"; ok "$(answer)"; done
 [ "$(status | field 's["next_step"]')" = first-shot-sum ] || fail "served first shot left groups missing"
+served_status_matches "before the first shot's sum"
 "$cpgi" cell-job plan --first-shot-sum -q
+served_status_matches "after the first shot's sum"
 # A request for a round the plan is not at yet is refused, with its id; the server goes on.
 echo "{\"round\": 3, \"cells\": [\"${cells[0]}\"], \"id\": \"early\"}" >&"${SERVER[1]}"
 refused=$(answer)
@@ -75,12 +92,22 @@ while [ "$(status | field 's["next_step"]')" = round ]; do
   fi
   for c in "${cells[@]}"; do request "$round" "$c"; done
   for c in "${cells[@]}"; do ok "$(answer)"; done
+  served_status_matches "after round $round"
 done
 [ "$round" -ge 3 ] || fail "only $round rounds: the kill was not followed by a served round"
+[ "$(status | field 's["next_step"]')" = gather ] && [ "$served_statuses" -ge 4 ] ||
+  fail "the served status was not checked at the gather ($served_statuses checks)"
+# The gather served too (the plan's -o folder, "served"), then again as its own process: the same files.
+echo '{"gather": true, "id": "gather"}' >&"${SERVER[1]}"
+ok "$(answer)"
+mv served served-by-server
 input=${SERVER[1]}
 exec {input}>&-  # end of input: the server exits 0
 wait "$server_pid" || fail "the server exited with status $? at the end of its input"
 server_pid=
 "$cpgi" cell-job plan --gather -q
 cmp served/lightmap.exr single/lightmap.exr || fail "served lightmap.exr differs from the single process's"
-echo "PASS: $round rounds served, lightmap.exr byte for byte the single process's"
+for f in lightmap.exr lightmap.png baked.glb; do
+  cmp served-by-server/$f served/$f || fail "the served gather's $f differs from the one-shot gather's"
+done
+echo "PASS: $round rounds served, lightmap.exr byte for byte the single process's; the served gather's files the one-shot gather's"

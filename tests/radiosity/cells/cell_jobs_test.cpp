@@ -11,6 +11,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "core/quads.h"
@@ -57,6 +58,22 @@ void runRound(const fs::path& dir, const CellJobPlan& plan, int round, const See
   }
 }
 
+// A status kept from call to call (a server's, CellJobStatusKept) against one read from every file.
+void expectSameStatus(const CellJobStatus& kept, const CellJobStatus& fresh) {
+  EXPECT_EQ(kept.firstShotMissing, fresh.firstShotMissing);
+  EXPECT_EQ(kept.firstShotSummed, fresh.firstShotSummed);
+  EXPECT_EQ(kept.nextRound, fresh.nextRound);
+  EXPECT_EQ(kept.missing, fresh.missing);
+  ASSERT_EQ(kept.rounds.size(), fresh.rounds.size());
+  for (size_t r = 0; r < kept.rounds.size(); ++r) {
+    EXPECT_EQ(kept.rounds[r].round, fresh.rounds[r].round);
+    EXPECT_EQ(kept.rounds[r].unshot, fresh.rounds[r].unshot) << "round " << r + 1;
+    EXPECT_EQ(kept.rounds[r].target, fresh.rounds[r].target) << "round " << r + 1;
+    EXPECT_EQ(kept.rounds[r].shots, fresh.rounds[r].shots);
+    EXPECT_EQ(kept.rounds[r].solved, fresh.rounds[r].solved);
+  }
+}
+
 // Every step as its own job from files, against solveCells with the same parameters: bit for bit. With
 // `served`, the rounds run on one CellJobServer, and each round's first cell runs again at the end of the
 // round (a job rerun after a lost worker), and a cell of the round before too, rewriting the same state
@@ -92,8 +109,13 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientS
   EXPECT_EQ(readCellJobPlan(dir.path).emitted, plan.emitted);
   std::optional<CellJobServer> server;
   if (served) server.emplace(s.scene, s.cells, params, ctx);
+  CellJobStatusKept kept;
   for (int round = 1;; ++round) {
     const CellJobStatus status = cellJobStatus(dir.path, plan);
+    expectSameStatus(cellJobStatus(dir.path, plan, &kept), status);
+    if (round >= 2) {
+      EXPECT_EQ(kept.rounds.size(), size_t(round - 1));  // the rounds finished so far, kept
+    }
     if (status.nextRound == 0) break;
     ASSERT_EQ(status.nextRound, round);
     runRound(dir.path, plan, round, s, params, server ? &*server : nullptr, gl, ctx);
@@ -121,6 +143,22 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientS
   EXPECT_EQ(gathered.energy.unshot, single.energy.unshot);
   EXPECT_EQ(gathered.energy.absorbed, single.energy.absorbed);
   testing::expectConserved(gathered);
+  {
+    // The gather reads the cells' files side by side and adds them in cell order: on one thread, the same
+    // bits.
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const SolveResult serial = gatherCellJobs(dir.path, plan, s.scene, s.cells, atlas, params, ctx);
+    EXPECT_EQ(serial.radiosity, gathered.radiosity);
+    EXPECT_EQ(serial.residual, gathered.residual);
+    for (auto field : {&EnergyTotals::emitted, &EnergyTotals::shot, &EnergyTotals::received,
+                       &EnergyTotals::absorbed, &EnergyTotals::unshot})
+      EXPECT_EQ(serial.energy.*field, gathered.energy.*field);
+    ASSERT_EQ(serial.perCell->cells.size(), gathered.perCell->cells.size());
+    for (size_t c = 0; c < serial.perCell->cells.size(); ++c) {
+      EXPECT_EQ(serial.perCell->cells[c].received, gathered.perCell->cells[c].received);
+      EXPECT_EQ(serial.perCell->cells[c].unshot, gathered.perCell->cells[c].unshot);
+    }
+  }
 
   // A round the solve does not need is refused, naming the round's folder.
   EXPECT_THROW(

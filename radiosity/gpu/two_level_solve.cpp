@@ -50,7 +50,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
   size_t refined = 0;
   if (levels.refineContacts) {
-    const std::vector<float> fine = outputDensity(atlas, scene.triangles.size());
+    std::vector<float> fine = outputDensity(atlas, scene.triangles.size());
+    for (float& d : fine) d = std::min(d, std::max(levels.maxContactDensity, levels.solveDensity));
     coarseParams.triangleDensity = contactDensity(scene, RayScene(scene), levels.solveDensity, fine);
     for (float d : coarseParams.triangleDensity) refined += d > levels.solveDensity;
   }

@@ -22,6 +22,11 @@ struct TwoLevelParams {
   /// Surfaces with something close in front of them solved finer, up to the output's texels
   /// (radiosity/lightmap/contact_density.h).
   bool refineContacts = true;
+  /// The most texels per metre a contact asks of the coarse atlas, where the output is finer still (a
+  /// --density auto bake gives small furniture parts 100–500 a metre): the furnished house's
+  /// interreflection held 337 029 solve texels up to the output's, 244 896 up to 20. At 10, seed3's room
+  /// C (16 columns on its floor) read 5.52 % against a 64² reference, 3.59 % at 20 (bench/RESULTS.md).
+  float maxContactDensity = 20.0f;
   /// The coarse atlas's fewest texels along a quad chart's edge (a loose triangle keeps 2, its one texel
   /// inside): the interreflection on a book's spine is one value, and a furnished house's 22 000 small
   /// charts at the output's 2 × 2 were 115 000 of its solve texels at 5 a metre, 83 000 at 1.

@@ -195,8 +195,11 @@ BakeInput loadBakeInput(const BakeOptions& o, Context& ctx) {
 }
 
 // `gl`: with --density auto, for the pilot's shot of the lamps (unused, and may be null, when
-// in.triangleDensity holds a plan's densities already).
-void buildBakeAtlas(const BakeOptions& o, BakeInput& in, const EglContext* gl, Context& ctx) {
+// in.triangleDensity holds a plan's densities already). The pilot shoots no more after `deadline`
+// (--time-limit counts it): its light so far lays the atlas out.
+void buildBakeAtlas(
+    const BakeOptions& o, BakeInput& in, const EglContext* gl, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max()) {
   {
     auto t = ctx.time("atlas");
     in.quads = findQuads(in.loaded.scene);
@@ -205,8 +208,8 @@ void buildBakeAtlas(const BakeOptions& o, BakeInput& in, const EglContext* gl, C
     if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
     auto t = ctx.time("auto density");
     AutoDensityData data;
-    in.triangleDensity =
-        chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, *gl, ctx, {}, &data);
+    in.triangleDensity = chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, *gl,
+                                           ctx, SolveControls{.deadline = deadline}, &data);
     in.autoDensity = data;
   }
   AtlasParams params = o.atlas;
@@ -725,7 +728,7 @@ int bakeLoaded(const BakeOptions& o, BakeInput& in, const EglContext* given,
   };
   if (o.gather) usePlannedDensities(o, in);
   if (o.densityAuto && in.triangleDensity.empty() && !gl) openGl();  // the pilot shoots before the layout
-  buildBakeAtlas(o, in, gl, ctx);
+  buildBakeAtlas(o, in, gl, ctx, deadline);
   requireSolveMemory(o, in.atlas);
   requireConvergence(o, in.loaded.scene, in.atlas);
   sizeLine = bakeSizeLine(o, in);

@@ -70,6 +70,21 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, gl, ctx,
                                       lampControls, &lampData);
   const double lampSeconds = seconds(lampStart);
+  if (lit.timedOut) {
+    // The deadline came during the lamps' shot: what they did not shoot is unshot, and no interreflection
+    // starts from it (as a prior shot, the light the lamps never sent would count as shot and escaped).
+    lit.seconds = seconds(start);
+    if (data)
+      *data = {coarse.validTexels(),
+               refined,
+               lit.shots,
+               lampSeconds,
+               0.0,
+               lampData.coarseTexels,
+               lampData.refinedTexels,
+               settings.itemBuffer};
+    return lit;
+  }
 
   // Step 2: the coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that
   // first shot, with the emitted power of the lamps.

@@ -102,7 +102,19 @@ struct BakeOptions {
   /// per metre chosen per surface (radiosity/gpu/auto_density.h).
   bool densityAuto = true;
   AutoDensityParams autoDensity;
+  /// --indirect-solver: how a two-level solve shoots its interreflection: "gpu" (item buffers on the GL
+  /// device), "rays" (Embree on the CPU, radiosity/cpu/ray_solver.h) or "auto" (rays where the GL device
+  /// is a software rasterizer, usesRays).
+  std::string indirectSolver = "auto";
 };
+
+// Whether --indirect-solver asks for rays on this GL device: auto picks them where the device is Mesa's
+// software rasterizer (llvmpipe, softpipe), which draws item buffers on the same CPU cores the rays use.
+bool usesRays(const BakeOptions& o, const EglContext& gl) {
+  if (o.indirectSolver != "auto") return o.indirectSolver == "rays";
+  const std::string r = gl.renderer();
+  return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
+}
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
 struct OnDemand {
@@ -343,6 +355,7 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = o.lampCoarsening;
+    twoLevels.indirectByRays = usesRays(o, gl);
     return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
                          &*levels);
   }
@@ -497,6 +510,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
     report["lamp_solve_s"] = levels->lampSeconds;
     report["indirect_solve_s"] = levels->solveSeconds;
     report["indirect_item_buffer"] = levels->indirectItemBuffer;
+    report["indirect_solver"] = levels->indirectByRays ? "rays" : "gpu";
   }
   report["density_option"] = o.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
   report["auto_density"] = autoDensityReport(o, in);
@@ -855,6 +869,12 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addTimeLimitOption(*sub, o->timeLimit);
   addSolveDensityOption(*sub, o->solveDensity);
   addLampCoarseningOption(*sub, o->lampCoarsening);
+  sub->add_option("--indirect-solver", o->indirectSolver,
+                  "With two levels (--solve-density): shoot the interreflection on the coarse atlas by item "
+                  "buffers on the GL device (gpu), by Embree rays on the CPU (rays), or by rays where the GL "
+                  "device is a software rasterizer such as llvmpipe (auto)")
+      ->check(CLI::IsMember({"auto", "gpu", "rays"}))
+      ->default_str(o->indirectSolver);
   addDensityToleranceOption(*sub, o->autoDensity.light.tolerance);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {

@@ -12,7 +12,7 @@
 #include "core/context.h"
 #include "core/output_dir.h"
 #include "core/scene.h"
-#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {

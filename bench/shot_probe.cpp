@@ -9,6 +9,8 @@
 //   cpgi_shot_probe SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R]
 //                   [--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR] [--draws N] [--texels P]
 //
+// The third figure per patch is the same shot by the CPU ray solver (radiosity/cpu/ray_shot.h), its
+// eyes drawn by the same shot numbers, before its own scaling.
 // --draws N: the same shot N times with the eyes of shots 1..N of a solve (SolveControls::
 // firstShotNumber), each before its scaling, averaged: what a receiver gets on average over the eyes'
 // draws (per draw the scale also averaged), against the rays. --texels P: also each texel of receiving
@@ -28,10 +30,12 @@
 #include "core/context.h"
 #include "core/image_io.h"
 #include "core/quads.h"
+#include "radiosity/cpu/ray_shot.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/shooter_layout.h"
 #include "scenes/stability_scenes.h"
 
 namespace {
@@ -94,8 +98,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   float density = 10.0f, farField = 2.0f;
-  int points = 4, regions = 2, draws = 1, texelsOf = -1;
-  bool hemisphere = false;
+  int points = 4, regions = 2, draws = 1, texelsOf = -1, rayEyes = 1;
+  bool hemisphere = false, nearRays = true;
   Lighting light;
   std::string bakeDir;
   for (int i = 3; i < argc; ++i) {
@@ -105,6 +109,10 @@ int main(int argc, char** argv) {
       points = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--regions") && i + 1 < argc)
       regions = std::stoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--eye-gated"))
+      nearRays = false;
+    else if (!std::strcmp(argv[i], "--ray-eyes") && i + 1 < argc)
+      rayEyes = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--texels") && i + 1 < argc)
       texelsOf = std::stoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--draws") && i + 1 < argc)
@@ -186,6 +194,22 @@ int main(int argc, char** argv) {
     }
 
     const cpgi::RayScene rays(scene);
+    // The same shot by the CPU ray solver's shot (radiosity/cpu/ray_shot.h), averaged over the same draws.
+    std::vector<double> byRays(atlas.texelCount(), 0.0);
+    {
+      const cpgi::RayShotScene shots(scene, atlas, rays);
+      const auto layouts = cpgi::layoutShooters(scene, atlas, {sp2.regionSize, regions});
+      std::vector<glm::vec3> residual(atlas.texelCount(), glm::vec3(0.0f));
+      for (size_t t : shooter) residual[t] = glm::vec3(unshot[t]);
+      for (int d = 0; d < draws; ++d) {
+        const cpgi::RayShotGain g =
+            cpgi::shootByRays(shots, shooterPatch, layouts[size_t(shooterPatch)], residual, uint32_t(d + 1),
+                              {farField, 1024, rayEyes, nearRays});
+        for (size_t k = 0; k < shots.texels.size(); ++k)
+          byRays[shots.texels[k]] +=
+              (g.irradiance[k].x + g.irradiance[k].y + g.irradiance[k].z) / 3.0 / draws;
+      }
+    }
     std::vector<double> exact(atlas.texelCount(), 0.0);
     tbb::parallel_for(size_t(0), atlas.texelCount(), [&](size_t t) {
       if (atlas.patch[t] >= 0 && atlas.patch[t] != shooterPatch)
@@ -193,8 +217,8 @@ int main(int argc, char** argv) {
     });
     // What the receive pass gathered, before the solver scaled the shot to its eyes' covered share.
     std::vector<double> bakeP(atlas.patches.size(), 0.0), exactP(atlas.patches.size(), 0.0),
-        absP(atlas.patches.size(), 0.0);
-    double bakeAll = 0.0, exactAll = 0.0;
+        absP(atlas.patches.size(), 0.0), raysP(atlas.patches.size(), 0.0);
+    double bakeAll = 0.0, exactAll = 0.0, raysAll = 0.0;
     for (size_t t = 0; t < atlas.texelCount(); ++t) {
       if (atlas.patch[t] < 0 || atlas.patch[t] == shooterPatch) continue;
       const glm::dvec3 in = gathered[t];
@@ -202,6 +226,8 @@ int main(int argc, char** argv) {
       bakeP[size_t(atlas.patch[t])] += b;
       exactP[size_t(atlas.patch[t])] += e;
       absP[size_t(atlas.patch[t])] += std::abs(b - e);
+      raysP[size_t(atlas.patch[t])] += byRays[t] * atlas.area[t];
+      raysAll += byRays[t] * atlas.area[t];
       bakeAll += b;
       exactAll += e;
     }
@@ -213,14 +239,17 @@ int main(int argc, char** argv) {
     const double shot = power / 3.0;
     std::printf(
         "shot %.4f W (per channel); gathered %.4f (%.4f of it), by rays %.4f (%.4f); then scaled by %.4f "
-        "(mean over %d draws)\n",
-        shot, bakeAll, bakeAll / shot, exactAll, exactAll / shot, scale, draws);
+        "(mean over %d draws); the ray solver's shot gathered %.4f (%.4f)\n",
+        shot, bakeAll, bakeAll / shot, exactAll, exactAll / shot, scale, draws, raysAll, raysAll / shot);
     for (size_t p = 0; p < atlas.patches.size(); ++p) {
       if (exactP[p] < 1e-4 * shot && bakeP[p] < 1e-4 * shot) continue;
       const auto& q = atlas.patches[p];
-      std::printf("  %3zu %-22s n %+.0f %+.0f %+.0f  bake %.4f exact %.4f  ratio %.3f  |diff| %.4f\n", p,
-                  scene.nodePaths[scene.triangles[q.triangles[0]].node].c_str(), q.normal.x, q.normal.y,
-                  q.normal.z, bakeP[p], exactP[p], exactP[p] > 0 ? bakeP[p] / exactP[p] : 0.0, absP[p]);
+      std::printf(
+          "  %3zu %-22s n %+.0f %+.0f %+.0f  bake %.4f exact %.4f  ratio %.3f  |diff| %.4f  rays %.4f ratio "
+          "%.3f\n",
+          p, scene.nodePaths[scene.triangles[q.triangles[0]].node].c_str(), q.normal.x, q.normal.y,
+          q.normal.z, bakeP[p], exactP[p], exactP[p] > 0 ? bakeP[p] / exactP[p] : 0.0, absP[p], raysP[p],
+          exactP[p] > 0 ? raysP[p] / exactP[p] : 0.0);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

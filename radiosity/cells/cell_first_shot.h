@@ -19,7 +19,7 @@
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/first_shot_groups.h"
 #include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/solve_result.h"
 
 namespace cpgi {
 

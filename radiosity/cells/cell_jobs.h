@@ -32,7 +32,7 @@
 #include "radiosity/cells/first_shot_groups.h"
 #include "radiosity/cells/round_stop.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {

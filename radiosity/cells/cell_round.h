@@ -24,7 +24,7 @@
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/solve_result.h"
 
 namespace cpgi {
 

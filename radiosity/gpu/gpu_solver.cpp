@@ -16,7 +16,7 @@
 #include "radiosity/gpu/gl.h"
 #include "radiosity/gpu/item_mesh.h"
 #include "radiosity/gpu/shader_library.h"
-#include "radiosity/gpu/shooter_layout.h"
+#include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
 #include "radiosity/lightmap/lamp_light.h"
 #include "radiosity/lightmap/ray_scene.h"

@@ -21,7 +21,7 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/solve_result.h"
+#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi {

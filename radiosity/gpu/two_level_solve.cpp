@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "radiosity/cpu/ray_solver.h"
 #include "radiosity/gpu/refined_lamp_shot.h"
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
@@ -29,6 +30,26 @@ std::vector<glm::vec3> outputRadiosity(const AtlasMapping& mapping, const Lightm
   std::vector<glm::vec3> out = upsample(mapping, atlas, coarse, gained);
   for (size_t t = 0; t < out.size(); ++t) out[t] += lampRadiosity[t];
   return out;
+}
+
+// The interreflection by rays (radiosity/cpu/ray_solver.h), with the GPU solve's settings and controls.
+SolveResult solveIndirectByRays(const Scene& scene, const LightmapAtlas& coarse, const SolverParams& settings,
+                                const SolveControls& c, Context& ctx) {
+  const RaySolveParams params{.unshotFraction = settings.unshotFraction,
+                              .maxShots = settings.maxShots,
+                              .farField = settings.farField,
+                              .regionSize = settings.regionSize,
+                              .maxRegions = settings.maxRegions,
+                              .strongShotRegions = settings.strongShotRegions,
+                              .strongShotFraction = settings.strongShotFraction};
+  const RaySolveControls controls{.priorIrradiance = c.priorShot->irradiance,
+                                  .priorEmitted = c.priorShot->emitted,
+                                  .readTransfer = c.readTransfer,
+                                  .acceptStop = c.acceptStop,
+                                  .stopRecheck = kStopRecheck,
+                                  .firstShotNumber = c.firstShotNumber,
+                                  .deadline = c.deadline};
+  return solveByRays(scene, coarse, params, ctx, controls);
 }
 
 }  // namespace
@@ -102,7 +123,11 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   const auto coarseStart = std::chrono::steady_clock::now();
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
-  SolveResult indirect = solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
+  // Rays need none of what a cell solve drives the GPU solver with (lobes, bounds per patch, masks).
+  const bool byRays = levels.indirectByRays && !c.directionalEmission && c.minShotPower <= 0.0 &&
+                      c.strongShotPower <= 0.0 && c.receivers.empty();
+  SolveResult indirect = byRays ? solveIndirectByRays(scene, coarse, indirectSettings, c, ctx)
+                                : solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
   const double coarseSeconds = seconds(coarseStart);
 
   // Step 3: the coarse solve's own irradiance (its incident less the lamps' light it started from) back
@@ -139,7 +164,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              coarseSeconds,
              lampData.coarseTexels,
              lampData.refinedTexels,
-             indirectSettings.itemBuffer};
+             indirectSettings.itemBuffer,
+             byRays};
   return out;
 }
 

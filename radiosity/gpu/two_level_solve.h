@@ -34,6 +34,9 @@ struct TwoLevelParams {
   /// The lamps' shot on the output atlas: at a coarser one first, then at the output's texels where that
   /// one's light varies (refined_lamp_shot.h).
   RefinedLampParams lamps = {};
+  /// The interreflection's shots traced by Embree rays on the CPU (radiosity/cpu/ray_solver.h) instead of
+  /// drawn as item buffers on the GL device: where the device is llvmpipe, the rays are faster.
+  bool indirectByRays = false;
 };
 
 /// What the two levels were, beside the SolveResult.
@@ -46,6 +49,7 @@ struct TwoLevelData {
   size_t lampCoarseTexels = 0;   ///< valid texels of the lamps' coarse shot (0: shot on the output's alone)
   size_t lampRefinedTexels = 0;  ///< output texels the lamps shot at their own resolution
   int indirectItemBuffer = 0;    ///< the interreflection's item buffer (indirectItemBuffer())
+  bool indirectByRays = false;   ///< the interreflection was traced by rays (TwoLevelParams::indirectByRays)
 };
 
 /// The item buffer of the interreflection on the coarse atlas: `itemBuffer` (the user's, sized for 10

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include <embree3/rtcore.h>
 
@@ -132,6 +133,26 @@ bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, flo
   rtcOccluded1(scene_, &context, &ray);
   // Embree marks an occluded ray by setting tfar to −∞.
   return ray.tfar < 0.0f;
+}
+
+void RayScene::occluded(std::span<const Segment> segments, std::span<uint8_t> hidden) const {
+  thread_local std::vector<RTCRay> rays;
+  rays.resize(segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const Segment& g = segments[i];
+    RTCRay& r = rays[i];
+    r = RTCRay{};
+    r.org_x = g.origin.x, r.org_y = g.origin.y, r.org_z = g.origin.z;
+    r.dir_x = g.direction.x, r.dir_y = g.direction.y, r.dir_z = g.direction.z;
+    r.tnear = 0.0f;
+    r.tfar = g.length;
+    r.mask = 0xffffffffu;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  if (!rays.empty()) rtcOccluded1M(scene_, &context, rays.data(), unsigned(rays.size()), sizeof(RTCRay));
+  for (size_t i = 0; i < segments.size(); ++i) hidden[i] = rays[i].tfar < 0.0f;
 }
 
 }  // namespace cpgi

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -37,6 +38,17 @@ class RayScene {
                 float tfar = 3.0e38f) const;
   /// True when anything lies on (tnear, tfar). Thread-safe.
   bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tnear, float tfar) const;
+
+  /// A segment to test: from `origin` along the unit `direction` over (0, length).
+  struct Segment {
+    glm::vec3 origin{0.0f};
+    float length = 0.0f;
+    glm::vec3 direction{0.0f};
+  };
+  /// For every segment, whether anything lies on it (hidden[i] = 1), traced as one coherent stream: Embree
+  /// packs segments that start near each other into packets, which costs less than one call per segment
+  /// (radiosity/cpu/ray_shot.cpp). Thread-safe; hidden.size() == segments.size().
+  void occluded(std::span<const Segment> segments, std::span<uint8_t> hidden) const;
 
   /// Length of the scene's bounding-box diagonal (metres); ray offsets scale with it.
   float diagonal() const { return diagonal_; }

@@ -47,6 +47,15 @@ TEST(SolveDensity, AutoIsOneLevelForASmallAtlasAndTwoForALargeOne) {
   EXPECT_EQ(one["solve_density_option"], 0.0);
   const json two = bake(dir, scene, "two", "--density 10 --solve-density 5");
   EXPECT_EQ(two["solve_density"], 5.0);
+  // The interreflection by rays where the GL device is llvmpipe (--indirect-solver auto), by item buffers
+  // when asked, and the same light either way within the stop's share.
+  EXPECT_EQ(two["renderer"].get<std::string>().find("llvmpipe") != std::string::npos ? "rays" : "gpu",
+            two["indirect_solver"]);
+  const json gpu = bake(dir, scene, "gpu", "--density 10 --solve-density 5 --indirect-solver gpu");
+  EXPECT_EQ(gpu["indirect_solver"], "gpu");
+  EXPECT_NEAR(gpu["energy"]["absorbed_w"].get<double>(), two["energy"]["absorbed_w"].get<double>(),
+              0.2 * two["energy"]["emitted_w"].get<double>());
+  EXPECT_EQ(cpgi(dir, "bake '" + scene + "' -o '" + dir / "bad" + "' --indirect-solver cuda").status, 1);
 }
 
 TEST(SolveDensity, AnythingButAutoOrTexelsPerMetreIsRefused) {

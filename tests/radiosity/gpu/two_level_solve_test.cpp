@@ -100,6 +100,31 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   ASSERT_EQ(two.residual.size(), atlas.texelCount());
 }
 
+// The interreflection traced by rays on the CPU (radiosity/cpu/ray_solver.h) instead of drawn as item
+// buffers: the same rooms, the same books, the ceiling behind the lamp as dark.
+TEST(TwoLevelSolve, InterreflectionByRaysGivesTheLightOfItemBuffers) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, gl, quads, output, atlas] = r;
+  SolverParams params;
+  const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
+  TwoLevelData levels;
+  const SolveResult two =
+      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f, .indirectByRays = true},
+                    params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
+  EXPECT_TRUE(levels.indirectByRays);
+  const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
+  EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
+  EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
+  const EnergyTotals& e = two.energy;
+  EXPECT_NEAR(e.emitted, single.energy.emitted, 1e-4 * e.emitted);
+  EXPECT_LE(e.created, 1e-4 * e.emitted);
+  EXPECT_LT(std::abs(e.escaped()), 0.01 * e.emitted);
+  EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
+  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  ASSERT_EQ(two.residual.size(), atlas.texelCount());
+  ASSERT_EQ(two.incident.size(), atlas.texelCount());
+}
+
 // The command line's default shoots lamps by rays (SolverParams::lampRays); the two levels shoot the lamps
 // on the output atlas themselves. The reflectors' light must not be shot twice: it was, through
 // `emitters` reflector shots after the rays' lamp shot, seed3's lamp rooms 28 % and 19 % too bright.

@@ -1,4 +1,4 @@
-#include "radiosity/gpu/shooter_layout.h"
+#include "radiosity/lightmap/shooter_layout.h"
 
 #include <algorithm>
 #include <cmath>

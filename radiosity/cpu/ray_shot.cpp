@@ -1,0 +1,368 @@
+#include "radiosity/cpu/ray_shot.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+namespace cpgi {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr int kBlock =
+    2;  // a region's texels are gathered in blocks of kBlock × kBlock, taken whole when far
+
+// A shooter texel: where it is, its area, its unshot radiosity.
+struct ShooterTexel {
+  glm::vec3 position{0.0f};
+  float area = 0.0f;
+  glm::vec3 radiosity{0.0f};
+};
+
+// A piece of a region (a block, or the whole region) as seen from afar: its area and mean radiosity, the
+// mean and spread of its power over the chart (texels), and the disk round it that "far" is measured from.
+struct FarPiece {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+  float area = 0.0f;
+  glm::vec3 radiosity{0.0f};
+  glm::vec3 mean{0.0f}, spreadU{0.0f}, spreadV{0.0f};  // world-space: mean ± spreadU ± spreadV
+};
+
+// A node of a region's quadtree (receive.comp walks the GPU's residual pyramid the same way): a texel, or
+// up to four children over the halves of its rectangle.
+struct PieceNode {
+  FarPiece piece;
+  int32_t texel = -1;  // a leaf: its index in RegionPieces::texels
+  std::array<int32_t, 4> children{-1, -1, -1, -1};
+};
+
+struct RegionPieces {
+  double power = 0.0;            // R + G + B, W
+  std::vector<glm::vec3> eyes;   // drawn by power, stratified: each stands for an equal share of it
+  std::vector<PieceNode> nodes;  // nodes[0]: the whole region
+  std::vector<ShooterTexel> texels;
+  const FarPiece& whole() const { return nodes[0].piece; }
+};
+
+using ChartTexels = std::vector<std::pair<glm::ivec2, ShooterTexel>>;
+
+float channelSum(const glm::vec3& v) {
+  return v.r + v.g + v.b;
+}
+
+// The piece of patch `p` over chart texels [i0, i1) × [j0, j1), from its texels `cells` (chart coordinates).
+FarPiece farPiece(const Patch& p, const ChartTexels& cells) {
+  FarPiece f;
+  double weight = 0.0;
+  glm::dvec2 m(0.0), m2(0.0);
+  glm::dvec3 flux(0.0);
+  glm::ivec2 lo(1 << 30), hi(-(1 << 30));
+  for (const auto& [c, t] : cells) {
+    f.area += t.area;
+    flux += glm::dvec3(t.radiosity) * double(t.area);
+    const double w = double(channelSum(t.radiosity)) * t.area;
+    const glm::dvec2 at = glm::dvec2(c) + 0.5;
+    weight += w, m += w * at, m2 += w * at * at;
+    lo = glm::min(lo, c), hi = glm::max(hi, c + 1);
+  }
+  if (f.area <= 0.0f || weight <= 0.0) {
+    f.area = 0.0f;
+    return f;
+  }
+  f.radiosity = glm::vec3(flux / double(f.area));
+  const glm::dvec2 mean = m / weight;
+  // The power's spread along each axis, a texel's own (uniform, 1/12) included: for a uniform piece the
+  // points mean ± spread are the 2×2 Gauss rule (receive.comp, nodePiece).
+  const glm::dvec2 sd = glm::sqrt(glm::max(m2 / weight - mean * mean, 0.0) + 1.0 / 12.0);
+  f.mean = p.origin + float(mean.x) * p.texelU + float(mean.y) * p.texelV;
+  f.spreadU = float(sd.x) * p.texelU, f.spreadV = float(sd.y) * p.texelV;
+  const glm::vec2 mid = 0.5f * glm::vec2(lo + hi), size = glm::vec2(hi - lo);
+  f.centre = p.origin + mid.x * p.texelU + mid.y * p.texelV;
+  f.radius = 0.5f * std::max(glm::length(size.x * p.texelU + size.y * p.texelV),
+                             glm::length(size.x * p.texelU - size.y * p.texelV));
+  return f;
+}
+
+uint32_t regionHash(uint32_t r) {
+  uint32_t h = r * 0x9E3779B9u + 0x7F4A7C15u;
+  h ^= h >> 16;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15;
+  return h;
+}
+
+// The quadtree over chart texels [lo, hi) of `cells` (all inside it), appended to `out`; its index, or -1
+// when nothing in it has area.
+int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::ivec2 hi, RegionPieces& out) {
+  const FarPiece piece = farPiece(p, cells);
+  if (piece.area <= 0.0f) return -1;
+  const int32_t index = int32_t(out.nodes.size());
+  out.nodes.push_back({piece});
+  if (cells.size() == 1 && hi - lo == glm::ivec2(1)) {
+    out.nodes[size_t(index)].texel = int32_t(out.texels.size());
+    out.texels.push_back(cells[0].second);
+    return index;
+  }
+  // Halves along each axis longer than a texel.
+  const glm::ivec2 size = hi - lo, mid = lo + size / 2;
+  auto quarter = [&](glm::ivec2 c) {
+    return (size.x > 1 && c.x >= mid.x ? 1 : 0) + (size.y > 1 && c.y >= mid.y ? 2 : 0);
+  };
+  std::array<ChartTexels, 4> quarters;
+  for (const auto& cell : cells) quarters[size_t(quarter(cell.first))].push_back(cell);
+  for (int q = 0; q < 4; ++q) {
+    if (quarters[size_t(q)].empty()) continue;
+    const glm::ivec2 qlo{q & 1 ? mid.x : lo.x, q & 2 ? mid.y : lo.y};
+    const glm::ivec2 qhi{q & 1 || size.x == 1 ? hi.x : mid.x, q & 2 || size.y == 1 ? hi.y : mid.y};
+    out.nodes[size_t(index)].children[size_t(q)] = buildNode(p, quarters[size_t(q)], qlo, qhi, out);
+  }
+  return index;
+}
+
+// The region's pieces and its eyes: texels drawn with probability ∝ their unshot power (pick_eyes.comp's
+// sequence: a hashed offset per region, the golden ratio per shot), stratified.
+RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& rect,
+                          std::span<const glm::vec3> residual, uint32_t region, uint32_t shotNumber,
+                          int eyes) {
+  const Patch& p = s.atlas.patches[size_t(shooter)];
+  RegionPieces out;
+  ChartTexels all;
+  for (int j = rect.y; j < rect.w; ++j)
+    for (int i = rect.x; i < rect.z; ++i) {
+      const size_t t = size_t(p.y + j) * s.atlas.width + size_t(p.x + i);
+      if (s.atlas.patch[t] != shooter) continue;
+      const ShooterTexel st{s.atlas.position[t], s.atlas.area[t], residual[t]};
+      all.push_back({{i, j}, st});
+      out.power += double(channelSum(st.radiosity)) * st.area;
+    }
+  if (!(out.power > 0.0)) return out;
+  if (buildNode(p, all, {rect.x, rect.y}, {rect.z, rect.w}, out) != 0) {
+    out.power = 0.0;
+    return out;
+  }
+  const float u = float((regionHash(region) + shotNumber * 0x9E3779B9u) >> 8) / 16777216.0f;
+  for (int k = 0; k < eyes; ++k) {
+    const double target = double(std::fmod(u + float(k) / float(eyes), 1.0f)) * out.power;
+    double sum = 0.0;
+    glm::vec3 eye = all.back().second.position;
+    for (const auto& [c, t] : all) {
+      const double w = double(channelSum(t.radiosity)) * t.area;
+      if (w > 0.0 && target < sum + w) {
+        eye = t.position;
+        break;
+      }
+      sum += w;
+    }
+    out.eyes.push_back(eye + p.normal * s.offset);
+  }
+  return out;
+}
+
+// The form factor kernels of receive.comp: ΔB F(dA_x → piece) with the shooter's normal `ns`.
+struct Gather {
+  glm::vec3 x, n, ns;
+  float farField;
+
+  glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b) const {
+    const glm::vec3 v = c - x;
+    const float r2 = glm::dot(v, v), ci = glm::dot(n, v), cs = -glm::dot(ns, v);
+    if (ci <= 0.0f || cs <= 0.0f || r2 <= 0.0f) return glm::vec3(0.0f);
+    return b * (area * ci * cs / (kPi * r2 * r2));
+  }
+  glm::vec3 disk(const glm::vec3& c, float area, const glm::vec3& b) const {
+    const glm::vec3 v = c - x;
+    const float r2 = glm::dot(v, v), ci = glm::dot(n, v), cs = -glm::dot(ns, v);
+    if (ci <= 0.0f || cs <= 0.0f || r2 <= 0.0f) return glm::vec3(0.0f);
+    return b * (area * ci * cs / (r2 * (kPi * r2 + area)));
+  }
+  bool far(const glm::vec3& c, float radius) const {
+    const glm::vec3 d = c - x;
+    const float f = farField * radius;
+    return glm::dot(d, d) > f * f;
+  }
+  glm::vec3 piece(const FarPiece& f) const {
+    const float a = 0.25f * f.area;
+    const glm::vec3 &c = f.mean, &u = f.spreadU, &v = f.spreadV;
+    return point(c - u - v, a, f.radiosity) + point(c + u - v, a, f.radiosity) +
+           point(c - u + v, a, f.radiosity) + point(c + u + v, a, f.radiosity);
+  }
+  glm::vec3 texel(const ShooterTexel& t, const glm::vec3& tu, const glm::vec3& tv, float radius) const {
+    if (far(t.position, radius)) {  // 2×2 Gauss points
+      const float g = 0.5f * 0.5773502692f, a = 0.25f * t.area;
+      const glm::vec3 u = g * tu, v = g * tv;
+      return point(t.position - u - v, a, t.radiosity) + point(t.position + u - v, a, t.radiosity) +
+             point(t.position - u + v, a, t.radiosity) + point(t.position + u + v, a, t.radiosity);
+    }
+    glm::vec3 sum(0.0f);  // near: 4×4 sub-disks, which keep F finite as r → 0
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)
+        sum += disk(t.position + (float(i) - 1.5f) * 0.25f * tu + (float(j) - 1.5f) * 0.25f * tv,
+                    t.area / 16.0f, t.radiosity);
+    return sum;
+  }
+  // The region's light at the receiver through its quadtree, each piece handed to `use(point, light)`:
+  // a node far from the receiver whole, a texel near it by itself (`point`: the piece's power mean, or the
+  // texel's centre, which a caller may test for visibility).
+  template <class Use>
+  void walk(const RegionPieces& r, const Patch& p, float texelRadius, Use&& use) const {
+    int32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const PieceNode& node = r.nodes[size_t(stack[--top])];
+      if (node.texel >= 0) {
+        const ShooterTexel& t = r.texels[size_t(node.texel)];
+        use(t.position, texel(t, p.texelU, p.texelV, texelRadius));
+        continue;
+      }
+      if (far(node.piece.centre, node.piece.radius)) {
+        use(node.piece.mean, piece(node.piece));
+        continue;
+      }
+      for (int32_t c : node.children)
+        if (c >= 0) stack[top++] = c;
+    }
+  }
+  glm::vec3 region(const RegionPieces& r, const Patch& p, float texelRadius) const {
+    glm::vec3 sum(0.0f);
+    walk(r, p, texelRadius, [&](const glm::vec3&, const glm::vec3& light) { sum += light; });
+    return sum;
+  }
+};
+
+// Share of region r's eye's hemisphere (cosine-weighted) covered by a receiver facing it, and open.
+glm::dvec2 eyeCoverage(const RayShotScene& s, const ShooterLayout& l, const glm::vec3& eye, int rays,
+                       uint32_t shotNumber) {
+  const int side = std::max(1, int(std::lround(std::sqrt(double(rays)))));
+  // A shot's strata shifted by a 2D golden-ratio step, so successive shots sample between each other's.
+  const float du = float(std::fmod(0.7548776662 * shotNumber, 1.0)),
+              dv = float(std::fmod(0.5698402910 * shotNumber, 1.0));
+  double covered = 0.0, open = 0.0;
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const float u1 = (float(i) + std::fmod(0.5f + du, 1.0f)) / float(side);
+      const float u2 = (float(j) + std::fmod(0.5f + dv, 1.0f)) / float(side);
+      const float r = std::sqrt(u1), phi = 2.0f * kPi * u2;
+      const glm::vec3 d = r * std::cos(phi) * l.tangent + r * std::sin(phi) * l.bitangent +
+                          std::sqrt(std::max(0.0f, 1.0f - u1)) * l.normal;
+      const RayScene::Hit hit = s.rays.intersect(eye, d, 0.0f);
+      if (!hit) {
+        open += 1.0;
+        continue;
+      }
+      const int32_t patch = s.trianglePatch[size_t(hit.triangle)];
+      if (patch >= 0 && !s.patchTexels[size_t(patch)].empty() &&
+          glm::dot(s.atlas.patches[size_t(patch)].normal, d) < 0.0f)
+        covered += 1.0;
+    }
+  return glm::dvec2(covered, open) / double(side * side);
+}
+
+}  // namespace
+
+RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RayScene& r)
+    : scene(sc), atlas(a), rays(r), trianglePatch(sc.triangles.size(), -1), patchTexels(a.patches.size()) {
+  for (size_t t = 0; t < a.texelCount(); ++t)
+    if (a.patch[t] >= 0)
+      texels.push_back(uint32_t(t)), patchTexels[size_t(a.patch[t])].push_back(uint32_t(t));
+  for (size_t p = 0; p < a.patches.size(); ++p)
+    for (int32_t t : a.patches[p].triangles)
+      if (t >= 0 && size_t(t) < trianglePatch.size()) trianglePatch[size_t(t)] = int32_t(p);
+  offset = 1e-4f * r.diagonal();
+}
+
+RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
+                        std::span<const glm::vec3> residual, uint32_t shotNumber,
+                        const RayShotParams& params) {
+  const Patch& p = s.atlas.patches[size_t(shooter)];
+  std::vector<RegionPieces> regions(layout.rects.size());
+  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
+    regions[r] =
+        regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber, params.eyesPerRegion);
+  });
+  std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
+  RayShotGain out;
+  out.irradiance.assign(s.texels.size(), glm::vec3(0.0f));
+  if (regions.empty()) return out;
+
+  double shotPower = 0.0;
+  for (const RegionPieces& r : regions) shotPower += r.power;
+  std::vector<glm::dvec2> seen(regions.size());
+  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
+    for (const glm::vec3& eye : regions[r].eyes)
+      seen[r] += eyeCoverage(s, layout, eye, params.coverageRays / int(regions[r].eyes.size()), shotNumber) /
+                 double(regions[r].eyes.size());
+  });
+  for (size_t r = 0; r < regions.size(); ++r) {
+    const double share = regions[r].power / shotPower;
+    out.covered += share * seen[r].x, out.open += share * seen[r].y;
+  }
+
+  const glm::vec3 ns = p.normal;
+  // Per chunk of receivers, every piece's light waits on its segment; the segments are traced together.
+  struct Pending {
+    uint32_t receiver;
+    glm::vec3 light;
+  };
+  struct Queued {
+    std::vector<RayScene::Segment> segments;
+    std::vector<Pending> light;
+    std::vector<uint8_t> hidden;
+  };
+  out.gathered = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, s.texels.size(), 64), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double sum) {
+        thread_local Queued q;
+        q.segments.clear(), q.light.clear();
+        auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light) {
+          const glm::vec3 d = to - from;
+          const float length = glm::length(d);
+          if (length <= 2.0f * s.offset) return;
+          q.segments.push_back({from, length - s.offset, d / length});
+          q.light.push_back({k, light});
+        };
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          const uint32_t t = s.texels[k];
+          if (s.atlas.patch[t] == shooter) continue;
+          const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t], lifted = x + n * s.offset;
+          const Gather g{x, n, ns, params.farField};
+          for (const RegionPieces& r : regions) {
+            if (params.nearRays && !g.far(r.whole().centre, r.whole().radius)) {
+              // Near the region, each piece is gated by its own segment. One eye for the region put a cube
+              // standing on a floor in the dark wherever the eye was on its far side (its faces gathered
+              // 12–68 % of the floor's light, bench/shot_probe.cpp), and the shot's scaling to its power
+              // spread what they missed over every other receiver.
+              g.walk(r, p, layout.texelRadius, [&](const glm::vec3& y, const glm::vec3& light) {
+                if (light != glm::vec3(0.0f)) queue(uint32_t(k), lifted, y + ns * s.offset, light);
+              });
+              continue;
+            }
+            const glm::vec3 f = g.far(r.whole().centre, r.whole().radius)
+                                    ? g.piece(r.whole())
+                                    : g.region(r, p, layout.texelRadius);
+            if (f == glm::vec3(0.0f)) continue;
+            const glm::vec3 share = f / float(r.eyes.size());
+            for (const glm::vec3& eye : r.eyes) {
+              const glm::vec3 toEye = eye - x;
+              if (glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)
+                queue(uint32_t(k), eye, lifted, share);
+            }
+          }
+        }
+        q.hidden.resize(q.segments.size());
+        s.rays.occluded(q.segments, q.hidden);
+        for (size_t i = 0; i < q.light.size(); ++i)
+          if (!q.hidden[i]) out.irradiance[q.light[i].receiver] += q.light[i].light;
+        for (size_t k = range.begin(); k < range.end(); ++k)
+          sum += double(channelSum(out.irradiance[k])) * s.atlas.area[s.texels[k]];
+        return sum;
+      },
+      [](double a, double b) { return a + b; });
+  return out;
+}
+
+}  // namespace cpgi

@@ -1,0 +1,62 @@
+// One shot of progressive radiosity on the CPU (issue 13 item 3): the GPU solver's shot (gpu_solver.h,
+// shaders/receive.comp) with Embree rays where it draws item buffers. A shooter patch is cut into the same
+// visibility regions (shooter_layout.h); each region's eye is a texel drawn by unshot power; a receiver
+// texel gathers a region's light when a ray from that eye reaches its centre, through the region's pieces
+// (blocks of texels taken whole when far, texels, then 4×4 sub-disks when near). Rays from one eye to every
+// receiver replace an item buffer per eye: on llvmpipe the buffers and the receive pass were ~40 of the
+// ~48 s of seed3's interreflection (bench/RESULTS.md).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/shooter_layout.h"
+
+namespace cpgi {
+
+/// What stays the same over a solve's shots: the atlas's valid texels, which patch each scene triangle
+/// belongs to (what a coverage ray hit), the rays.
+struct RayShotScene {
+  const Scene& scene;
+  const LightmapAtlas& atlas;
+  const RayScene& rays;
+  std::vector<uint32_t> texels;                    ///< valid texels, row-major
+  std::vector<int32_t> trianglePatch;              ///< per scene triangle, its patch or -1
+  std::vector<std::vector<uint32_t>> patchTexels;  ///< per patch, its valid texels
+  float offset = 0.0f;                             ///< ray ends lifted off their surfaces by this (m)
+
+  RayShotScene(const Scene& scene, const LightmapAtlas& atlas, const RayScene& rays);
+};
+
+struct RayShotParams {
+  float farField = 2.0f;    ///< a piece counts whole beyond this many of its radii (SolverParams::farField)
+  int coverageRays = 1024;  ///< per region: cosine-distributed rays measuring what its eyes see covered
+  /// Eyes per region, drawn by power and stratified; a receiver gathers the region's light times the share
+  /// of them that see it.
+  int eyesPerRegion = 2;
+  /// A receiver near a region (nearer than farField × its radius) sees each of its pieces by its own ray
+  /// rather than through the region's eyes.
+  bool nearRays = true;
+};
+
+/// What one shot gave: per valid texel (RayShotScene::texels order), the irradiance it gathered
+/// (W/m²) before any scaling, and what the eyes saw.
+struct RayShotGain {
+  std::vector<glm::vec3> irradiance;
+  double gathered = 0.0;  ///< Σ irradiance × area, R + G + B
+  double covered = 0.0;   ///< power-weighted share of the eyes' hemispheres showing a receiver facing them
+  double open = 0.0;      ///< ... showing nothing at all
+};
+
+/// Shoots patch `shooter`'s unshot radiosity `residual` (per atlas texel) with the regions of `layout`,
+/// eyes drawn by the shot's number `shotNumber`. Receivers are every valid texel of the other patches.
+RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
+                        std::span<const glm::vec3> residual, uint32_t shotNumber,
+                        const RayShotParams& params);
+
+}  // namespace cpgi

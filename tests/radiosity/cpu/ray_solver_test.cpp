@@ -1,0 +1,193 @@
+// The CPU ray solver (radiosity/cpu/ray_solver.h): one shot against the exact form factors and against an
+// independent ray integration, and whole solves against closed forms and their energy books.
+#include "radiosity/cpu/ray_solver.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/quads.h"
+#include "radiosity/cpu/ray_shot.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/shooter_layout.h"
+#include "radiosity/metrics/form_factors.h"
+#include "tests/radiosity/test_scenes.h"
+
+namespace cpgi {
+namespace {
+
+using testing::addClosedBox;
+using testing::addMaterial;
+using testing::addRect;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A scene's atlas and rays, and one shot from `shooter` of unit radiosity (per channel) on all its texels.
+struct OneShot {
+  Scene scene;
+  Context ctx;
+  LightmapAtlas atlas;
+  std::unique_ptr<RayScene> rays;
+  std::unique_ptr<RayShotScene> shots;
+  int shooter = -1;
+  std::vector<glm::vec3> residual;
+
+  OneShot(Scene s, float density, glm::vec3 shooterNormal) : scene(std::move(s)) {
+    atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.density = density}, ctx);
+    rays = std::make_unique<RayScene>(scene);
+    shots = std::make_unique<RayShotScene>(scene, atlas, *rays);
+    for (size_t p = 0; p < atlas.patches.size(); ++p)
+      if (glm::dot(atlas.patches[p].normal, shooterNormal) > 0.99f && shooter < 0) shooter = int(p);
+    residual.assign(atlas.texelCount(), glm::vec3(0.0f));
+    for (size_t t = 0; t < atlas.texelCount(); ++t)
+      if (atlas.patch[t] == shooter) residual[t] = glm::vec3(1.0f);
+  }
+  // The shot's irradiance per atlas texel (R), averaged over `draws` eye draws.
+  std::vector<double> gathered(int draws = 1) const {
+    std::vector<double> e(atlas.texelCount(), 0.0);
+    const auto layouts = layoutShooters(scene, atlas, {});
+    for (int d = 0; d < draws; ++d) {
+      const RayShotGain g =
+          shootByRays(*shots, shooter, layouts[size_t(shooter)], residual, uint32_t(d + 1), {});
+      for (size_t k = 0; k < shots->texels.size(); ++k) e[shots->texels[k]] += g.irradiance[k].r / draws;
+    }
+    return e;
+  }
+  // The irradiance at texel t by 8 × 8 points per shooter texel, each seen by its own ray: nothing shared
+  // with the solver but the ray scene.
+  double exact(size_t t) const {
+    const Patch& sp = atlas.patches[size_t(shooter)];
+    const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
+    const float eps = 1e-4f * rays->diagonal();
+    double sum = 0.0;
+    for (size_t s = 0; s < atlas.texelCount(); ++s) {
+      if (atlas.patch[s] != shooter) continue;
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+          const glm::vec3 y = atlas.position[s] + ((i + 0.5f) / 8.0f - 0.5f) * sp.texelU +
+                              ((j + 0.5f) / 8.0f - 0.5f) * sp.texelV;
+          const glm::vec3 v = y - x;
+          const float r2 = glm::dot(v, v), r = std::sqrt(r2);
+          const float ci = glm::dot(n, v) / r, cs = -glm::dot(sp.normal, v) / r;
+          if (ci <= 0.0f || cs <= 0.0f) continue;
+          const glm::vec3 from = x + n * eps, to = y + sp.normal * eps;
+          const float length = glm::distance(from, to);
+          if (rays->occluded(from, (to - from) / length, 0.0f, length - eps)) continue;
+          sum += atlas.area[s] / 64.0 * ci * cs / (kPi * r2);
+        }
+    }
+    return sum;
+  }
+};
+
+// Two 1 m squares 1 m apart, facing each other: every receiver texel gathers the shooter's exact form
+// factor (Lambert's contour), and the whole receiver the closed form C-11.
+TEST(RayShot, ParallelSquaresGatherTheExactFormFactor) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addRect(s, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, m);  // z = 0, normal +z: the shooter
+  addRect(s, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, m);  // z = 1, normal −z
+  const OneShot shot(std::move(s), 8.0f, {0, 0, 1});
+  const std::vector<double> e = shot.gathered();
+  const std::array<glm::dvec3, 4> square{glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(1, 1, 0),
+                                         glm::dvec3(0, 1, 0)};
+  double total = 0.0;
+  for (size_t t = 0; t < shot.atlas.texelCount(); ++t) {
+    if (shot.atlas.patch[t] < 0 || shot.atlas.patch[t] == shot.shooter) continue;
+    const double f = pointToPolygonFormFactor(glm::dvec3(shot.atlas.position[t]),
+                                              glm::dvec3(shot.atlas.normal[t]), square);
+    EXPECT_NEAR(e[t], f, 0.01 * f) << "texel at " << shot.atlas.position[t].x << ", "
+                                   << shot.atlas.position[t].y;
+    total += e[t] * shot.atlas.area[t];
+  }
+  EXPECT_NEAR(total, parallelRectanglesFormFactor(1.0, 1.0, 1.0), 0.005);
+}
+
+// A 0.5 m cube standing on a 4 m floor that shoots: the cube's sides gather the floor's light in front of
+// them. Seen through one eye per region they got 12–68 % of it wherever the eye was behind the cube.
+TEST(RayShot, ACubeOnTheFloorGetsTheLightInFrontOfIt) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addRect(s, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}, m);  // the floor, normal +z
+  const glm::vec3 lo(1.0f, 1.2f, 0.0f), hi(1.5f, 1.7f, 0.5f);
+  const glm::vec3 d = hi - lo, X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);
+  addRect(s, lo, Z, Y, m);      // x = lo, normal −x
+  addRect(s, lo + X, Y, Z, m);  // x = hi, normal +x
+  addRect(s, lo, X, Z, m);      // y = lo, normal −y
+  addRect(s, lo + Y, Z, X, m);  // y = hi, normal +y
+  addRect(s, lo + Z, X, Y, m);  // the top, normal +z
+  const OneShot shot(std::move(s), 5.0f, {0, 0, 1});
+  ASSERT_EQ(shot.atlas.patches[size_t(shot.shooter)].w, 20);  // the floor
+  const std::vector<double> e = shot.gathered(4);
+  for (size_t p = 0; p < shot.atlas.patches.size(); ++p) {
+    if (int(p) == shot.shooter || glm::dot(shot.atlas.patches[p].normal, glm::vec3(0, 0, 1)) > 0.5f) continue;
+    double got = 0.0, want = 0.0;
+    for (size_t t = 0; t < shot.atlas.texelCount(); ++t)
+      if (shot.atlas.patch[t] == int(p))
+        got += e[t] * shot.atlas.area[t], want += shot.exact(t) * shot.atlas.area[t];
+    EXPECT_NEAR(got / want, 1.0, 0.06)
+        << "side facing " << shot.atlas.patches[p].normal.x << ", " << shot.atlas.patches[p].normal.y;
+  }
+}
+
+// A closed box whose walls all emit E with albedo ρ: the radiosity is E / (1 − ρ) everywhere.
+TEST(RaySolver, AUniformClosedBoxReachesItsClosedForm) {
+  Scene s;
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 3.0f, 2.5f),
+               addMaterial(s, glm::vec3(0.5f), glm::vec3(1.0f)));
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
+  const SolveResult r = solveByRays(s, atlas, RaySolveParams{.unshotFraction = 0.001}, ctx);
+  double mean = 0.0, area = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0) continue;
+    EXPECT_NEAR(r.radiosity[t].r, 2.0, 0.06) << "texel " << t;
+    mean += r.radiosity[t].r * atlas.area[t], area += atlas.area[t];
+  }
+  EXPECT_NEAR(mean / area, 2.0, 0.01);
+  const EnergyTotals& e = r.energy;
+  EXPECT_LE(e.created, 1e-4 * e.emitted);
+  EXPECT_LT(std::abs(e.escaped()), 0.005 * e.emitted);
+  EXPECT_LE(e.unshot, 0.001 * e.emitted);
+  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-4 * e.emitted);
+  EXPECT_LE(e.received, e.shot * (1.0 + 1e-4));
+  ASSERT_EQ(r.history.size(), size_t(r.shots) + 1);
+  ASSERT_EQ(r.shotScales.size(), size_t(r.shots));
+}
+
+// A prior shot starts the books (its power emitted and shot); a refused stop shoots on; a deadline that
+// has passed stops before the first shot with everything left counted unshot.
+TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
+  Scene s;
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), addMaterial(s, glm::vec3(0.6f)));
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
+  // 10 W/m² on the floor (z = 0), as a lamp above it would have left.
+  std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
+  double priorPower = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t)
+    if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
+      prior[t] = glm::vec3(10.0f), priorPower += 30.0 * atlas.area[t];
+  int asked = 0;
+  RaySolveControls c{.priorIrradiance = prior, .priorEmitted = priorPower};
+  c.acceptStop = [&](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) { return ++asked >= 2; };
+  const SolveResult r = solveByRays(s, atlas, {}, ctx, c);
+  EXPECT_EQ(r.stopChecks, 2);
+  EXPECT_NEAR(r.energy.emitted, priorPower, 1e-6 * priorPower);
+  EXPECT_LE(r.energy.unshot, 0.01 * 0.7 * r.energy.emitted);  // shot on past the refused stop
+  EXPECT_NEAR(r.energy.absorbed + r.energy.unshot + r.energy.escaped(), r.energy.emitted, 1e-4 * priorPower);
+  // Closed: the uniform box's walls (ρ = 0.6) hold ρ/(1−ρ) of the floor's first light, spread evenly.
+  EXPECT_GT(r.energy.received, priorPower * 2.3);
+
+  c.acceptStop = {};
+  c.deadline = std::chrono::steady_clock::now();
+  const SolveResult late = solveByRays(s, atlas, {}, ctx, c);
+  EXPECT_TRUE(late.timedOut);
+  EXPECT_EQ(late.shots, 0);
+  EXPECT_NEAR(late.energy.unshot, 0.6 * priorPower, 1e-4 * priorPower);
+  EXPECT_NEAR(late.energy.absorbed + late.energy.unshot, late.energy.emitted, 1e-4 * priorPower);
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -6,7 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
 
 namespace cpgi {
 namespace {
@@ -304,6 +304,9 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
 
   const glm::vec3 ns = p.normal;
   // Per chunk of receivers, every piece's light waits on its segment; the segments are traced together.
+  // The chunks are fixed (a simple partitioner splits the same way every run): Embree packs a stream's
+  // rays into packets, whose answers for a ray grazing an edge may differ from a single ray's, and chunks
+  // that followed the threads' stealing made the bake differ in the 8th digit from run to run.
   struct Pending {
     uint32_t receiver;
     glm::vec3 light;
@@ -313,9 +316,9 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
     std::vector<Pending> light;
     std::vector<uint8_t> hidden;
   };
-  out.gathered = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, s.texels.size(), 64), 0.0,
-      [&](const tbb::blocked_range<size_t>& range, double sum) {
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, s.texels.size(), 64),
+      [&](const tbb::blocked_range<size_t>& range) {
         thread_local Queued q;
         q.segments.clear(), q.light.clear();
         auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light) {
@@ -357,11 +360,11 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
         s.rays.occluded(q.segments, q.hidden);
         for (size_t i = 0; i < q.light.size(); ++i)
           if (!q.hidden[i]) out.irradiance[q.light[i].receiver] += q.light[i].light;
-        for (size_t k = range.begin(); k < range.end(); ++k)
-          sum += double(channelSum(out.irradiance[k])) * s.atlas.area[s.texels[k]];
-        return sum;
       },
-      [](double a, double b) { return a + b; });
+      tbb::simple_partitioner());
+  // Summed in texel order, so that a shot's scaling, and the bake, do not depend on the threads' split.
+  for (size_t k = 0; k < s.texels.size(); ++k)
+    out.gathered += double(channelSum(out.irradiance[k])) * s.atlas.area[s.texels[k]];
   return out;
 }
 

@@ -300,9 +300,10 @@ constexpr size_t kAutoTwoLevelTexels = 100'000;
 
 // The solve density of a bake: the option's, or with auto half the output's density (at most 5 texels
 // a metre: RESULTS.md, "Two levels") once the output has more than kAutoTwoLevelTexels texels. 0: one
-// level (and always for cells, whose solves are on their own atlases).
+// level. A cells bake solves in two levels only when asked (a value): auto keeps it in one, as its cell
+// jobs are (their plan has one atlas).
 float chosenSolveDensity(const BakeOptions& o, const LightmapAtlas& atlas) {
-  if (o.method == "cells") return 0.0f;
+  if (o.method == "cells") return o.solveDensity > 0.0f ? o.solveDensity : 0.0f;
   if (o.solveDensity != kAutoSolveDensity) return o.solveDensity;
   constexpr float kAutoMost = 5.0f;
   // --density auto: the output is fine only where the lamps' light needs it; the bounced light never does.
@@ -356,6 +357,12 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = o.lampCoarsening;
     twoLevels.indirectByRays = usesRays(o, gl);
+    if (o.method == "cells") {  // the cells on the coarse atlas, each solve on the GL device
+      CellSolveParams params = cellSolveParams(o, in);
+      params.deadline = deadline;
+      return solveCellsTwoLevel(in.loaded.scene, in.graph, in.quads, in.atlas, twoLevels, params, gl, ctx,
+                                &*levels);
+    }
     return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
                          &*levels);
   }
@@ -797,8 +804,9 @@ int bakeLoaded(const BakeOptions& o, BakeInput& in, const EglContext* given,
 }
 
 int runBake(const BakeOptions& o) {
-  if (o.method == "cells" && o.solveDensity > 0.0f)  // auto is one level there
-    throw InputError("--solve-density", "works with --method global only (a cell solve is on its own atlas)");
+  if (o.method == "cells" && o.solveDensity > 0.0f &&
+      (!o.plan.empty() || !o.onlyCells.empty() || !o.around.empty()))
+    throw InputError("--solve-density", "cell jobs and on-demand bakes solve in one level: leave it out");
   if (!o.plan.empty() && !o.gather) return runCellJobStage(o);
   const auto start = std::chrono::steady_clock::now();
   Context ctx;

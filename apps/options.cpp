@@ -385,7 +385,9 @@ void addSolveDensityOption(CLI::App& cmd, float& density) {
          },
          "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
          "the lamps' own shots on the output's; 0: all on the output's atlas; auto (the default): half the "
-         "output's density (at most 5) when the output has more than 100 000 texels, else 0 (global method)")
+         "output's density (at most 5) when the output has more than 100 000 texels, else 0 (global method); "
+         "with --method cells, auto is 0 and a value solves the cells on that atlas (not with --plan, "
+         "--only-cells or --around)")
       ->type_name("auto|T")
       ->default_str("auto");
 }

@@ -204,7 +204,13 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
 
   const CellFirstShot first =
-      shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
+      params.firstShot
+          ? landFirstShot(
+                scene, global,
+                FirstShotSum{params.firstShot->emitted,
+                             {params.firstShot->irradiance.begin(), params.firstShot->irradiance.end()}},
+                cells)
+          : shootEmittersIntoCells(scene, global, cellOf, params.solver, cells, workers, ctx);
   SolveResult result = startBookkeeping(graph, cells, global);
   addFirstShotBookkeeping(first, result);
   SolveControls controls;
@@ -241,6 +247,23 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   finishBookkeeping(cells, global, result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const QuadSet& quads,
+                               const LightmapAtlas& global, const TwoLevelParams& levels,
+                               const CellSolveParams& params, const EglContext& gl, Context& ctx,
+                               TwoLevelData* data) {
+  if (params.firstShot) throw InputError("cells", "a two-level cells solve shoots its lamps itself");
+  const CoarseSolve cellByCell = [&](const LightmapAtlas& coarse, const AtlasParams& coarseParams,
+                                     const SolveControls& c) {
+    CellSolveParams p = params;
+    p.atlas = coarseParams;
+    p.firstShot = c.priorShot;
+    return solveCells(scene, graph, coarse, p, gl, ctx);
+  };
+  SolveControls controls{.readTransfer = true, .deadline = params.deadline};
+  return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, gl, ctx, controls, data,
+                       cellByCell);
 }
 
 AtlasParams coarseAtlasParams(const AtlasParams& atlas) {

@@ -62,7 +62,7 @@ int indirectItemBuffer(int itemBuffer, float solveDensity) {
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
                           const SolverParams& settings, const EglContext& gl, Context& ctx,
-                          const SolveControls& controls, TwoLevelData* data) {
+                          const SolveControls& controls, TwoLevelData* data, const CoarseSolve& solveCoarse) {
   const auto start = std::chrono::steady_clock::now();
   // The coarse atlas: its own emission is left out below (the lamps shoot on the output's).
   AtlasParams coarseParams = atlasParams;
@@ -78,7 +78,9 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   }
   LightmapAtlas coarse = buildAtlas(scene, quads, coarseParams, ctx);
   if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
-    SolveResult one = solveProgressive(scene, atlas, settings, gl, ctx, controls);
+    SolveResult one = solveCoarse
+                          ? solveCoarse(atlas, atlasParams, controls)  // no prior: it shoots the lamps
+                          : solveProgressive(scene, atlas, settings, gl, ctx, controls);
     if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer};
     return one;
   }
@@ -124,26 +126,34 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
   // Rays need none of what a cell solve drives the GPU solver with (lobes, bounds per patch, masks).
-  const bool byRays = levels.indirectByRays && !c.directionalEmission && c.minShotPower <= 0.0 &&
-                      c.strongShotPower <= 0.0 && c.receivers.empty();
-  SolveResult indirect = byRays ? solveIndirectByRays(scene, coarse, indirectSettings, c, ctx)
-                                : solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
+  const bool byRays = !solveCoarse && levels.indirectByRays && !c.directionalEmission &&
+                      c.minShotPower <= 0.0 && c.strongShotPower <= 0.0 && c.receivers.empty();
+  SolveResult indirect = solveCoarse ? solveCoarse(coarse, coarseParams, c)
+                         : byRays    ? solveIndirectByRays(scene, coarse, indirectSettings, c, ctx)
+                                     : solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
   const double coarseSeconds = seconds(coarseStart);
 
   // Step 3: the coarse solve's own irradiance (its incident less the lamps' light it started from) back
-  // onto the output texels.
-  std::vector<glm::vec3> gained = indirect.incident;
-  for (size_t t = 0; t < gained.size(); ++t) gained[t] -= direct[t];
-  const std::vector<glm::vec3> fineGained = upsample(mapping, atlas, coarse, gained);
+  // onto the output texels, times their albedo; a coarse solve that returns no irradiance (a cell solve)
+  // hands back its radiosity less the lamps' reflected light.
   SolveResult out;
-  out.radiosity = lit.radiosity;
-  for (size_t t = 0; t < atlas.texelCount(); ++t)
-    if (atlas.patch[t] >= 0) out.radiosity[t] += atlas.albedo[t] * fineGained[t];
-  if (controls.readTransfer) {
-    out.incident = lit.incident;
-    for (size_t t = 0; t < out.incident.size(); ++t) out.incident[t] += fineGained[t];
-    out.residual = upsample(mapping, atlas, coarse, indirect.residual);
+  if (indirect.incident.empty()) {
+    out.radiosity = outputRadiosity(mapping, atlas, coarse, lit.radiosity, direct, indirect.radiosity);
+  } else {
+    std::vector<glm::vec3> gained = indirect.incident;
+    for (size_t t = 0; t < gained.size(); ++t) gained[t] -= direct[t];
+    const std::vector<glm::vec3> fineGained = upsample(mapping, atlas, coarse, gained);
+    out.radiosity = lit.radiosity;
+    for (size_t t = 0; t < atlas.texelCount(); ++t)
+      if (atlas.patch[t] >= 0) out.radiosity[t] += atlas.albedo[t] * fineGained[t];
+    if (controls.readTransfer) {
+      out.incident = lit.incident;
+      for (size_t t = 0; t < out.incident.size(); ++t) out.incident[t] += fineGained[t];
+    }
   }
+  if (controls.readTransfer && !indirect.residual.empty())
+    out.residual = upsample(mapping, atlas, coarse, indirect.residual);
+  out.perCell = indirect.perCell;
   out.shots = lit.shots + indirect.shots;
   out.energy = indirect.energy;
   out.energy.created += lit.energy.created;

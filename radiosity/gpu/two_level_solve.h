@@ -7,6 +7,8 @@
 // direct at full resolution, the indirect at the solve's.
 #pragma once
 
+#include <functional>
+
 #include "core/context.h"
 #include "core/quads.h"
 #include "core/scene.h"
@@ -60,6 +62,14 @@ struct TwoLevelData {
 /// ± 0.013 of the eye sequences' spread).
 int indirectItemBuffer(int itemBuffer, float solveDensity);
 
+/// A solve of the interreflection on the coarse atlas in place of the progressive solver's: a cells bake
+/// solves it cell by cell (radiosity/cells/cell_solver.h, solveCellsTwoLevel). It gets the coarse atlas,
+/// the parameters it was built with and the controls (priorShot: the lamps' light averaged onto it), and
+/// returns the radiosity over it and, with controls.readTransfer, the residual; without an irradiance
+/// (SolveResult::incident) its radiosity less the lamps' reflected light is what comes back to the output.
+using CoarseSolve = std::function<SolveResult(const LightmapAtlas& coarse, const AtlasParams& coarseParams,
+                                              const SolveControls& controls)>;
+
 /// Solves `atlas` (the output's, built with `atlasParams` from `quads`) in two levels. The result is over
 /// the output atlas: radiosity, and with controls.readTransfer the incident and residual (the coarse
 /// solve's, interpolated); energy is the whole solve's (emitted, shot, received, absorbed, unshot as one
@@ -69,6 +79,7 @@ int indirectItemBuffer(int itemBuffer, float solveDensity);
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
                           const SolverParams& settings, const EglContext& gl, Context& ctx,
-                          const SolveControls& controls = {}, TwoLevelData* data = nullptr);
+                          const SolveControls& controls = {}, TwoLevelData* data = nullptr,
+                          const CoarseSolve& solveCoarse = {});
 
 }  // namespace cpgi

@@ -58,6 +58,31 @@ TEST(SolveDensity, AutoIsOneLevelForASmallAtlasAndTwoForALargeOne) {
   EXPECT_EQ(cpgi(dir, "bake '" + scene + "' -o '" + dir / "bad" + "' --indirect-solver cuda").status, 1);
 }
 
+// Cells in two levels when asked: the lamps on the output's atlas, the cells on the coarse one; auto keeps
+// a cells bake in one level, as its cell jobs are, and cell jobs or on-demand bakes refuse a value.
+TEST(SolveDensity, CellsSolveInTwoLevelsWhenAsked) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const std::string cells = " --method cells --cells '" + scene + "' --density 10";
+  const json one = bake(dir, scene, "one", cells);
+  EXPECT_TRUE(one["solve_density"].is_null());
+  const json two = bake(dir, scene, "two", cells + " --solve-density 5");
+  EXPECT_EQ(two["solve_density"], 5.0);
+  EXPECT_LT(two["solve_texels"].get<size_t>() * 2, two["texels"].get<size_t>());
+  EXPECT_EQ(two["cells"].size(), one["cells"].size());
+  const json& e = two["energy"];
+  const double emitted = e["emitted_w"].get<double>();
+  EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
+              emitted, 1e-3 * emitted);
+  for (const std::string refused : {" --plan '" + dir / "plan" + "'", std::string(" --only-cells A")}) {
+    const test::CommandRun r = cpgi(
+        dir, "bake '" + scene + "' -o '" + dir / "bad" + "' -q" + cells + " --solve-density 5" + refused);
+    EXPECT_EQ(r.status, 1) << refused;
+    EXPECT_NE(r.err.find("--solve-density"), std::string::npos) << r.err;
+  }
+}
+
 TEST(SolveDensity, AnythingButAutoOrTexelsPerMetreIsRefused) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

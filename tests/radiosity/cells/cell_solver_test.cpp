@@ -1,14 +1,15 @@
 // Radiosity with cells and portals: the cell scene and its portal patches, texel maps across a portal,
 // energy bookkeeping per cell and portal, a closed two-cell furnace (B = E/(1−ρ) through the portal), and
 // a thin wall with no opening (the second room must stay exactly black).
-#include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/cells/cell_atlases.h"
 
 #include <set>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "scenes/seed_scenes.h"
 #include "scenes/stability_scenes.h"
 #include "tests/radiosity/cells/cell_energy_check.h"
 #include "tests/radiosity/furnace_check.h"
@@ -113,11 +114,12 @@ Furnace twoCellFurnace(float rho, float e) {
     addRect(s, o, Z, X, m);      // y = 0, normal +y
     addRect(s, o + Y, X, Z, m);  // y = 1, normal −y
   }
-  addRect(s, glm::vec3(0), Y, Z, m);      // x = 0, normal +x (A)
-  addRect(s, 2.0f * X, Z, Y, m);          // x = 2, normal −x (B)
+  addRect(s, glm::vec3(0), Y, Z, m);  // x = 0, normal +x (A)
+  addRect(s, 2.0f * X, Z, Y, m);      // x = 2, normal −x (B)
   CellGraph& g = f.graph;
   g.cells = {Cell{"A", {}, {}}, Cell{"B", {}, {}}};
-  for (uint32_t t = 0; t < s.triangles.size(); ++t) g.cells[s.triangles[t].centroid().x < 1.0f ? 0 : 1].triangles.push_back(t);
+  for (uint32_t t = 0; t < s.triangles.size(); ++t)
+    g.cells[s.triangles[t].centroid().x < 1.0f ? 0 : 1].triangles.push_back(t);
   PortalQuad portal;
   portal.name = "portal:A:B";
   portal.corners = {X, X + Y, X + Y + Z, X + Z};
@@ -200,6 +202,39 @@ TEST(CellSolver, ThinWallLeavesTheOtherRoomBlack) {
   }
   ::testing::Test::RecordProperty("global_leak_fraction", std::to_string(leak / lit));
   std::printf("thin wall: global puts %.3g of A's radiosity power into B; cells put 0\n", leak / lit);
+}
+
+// Cells in two levels (solveCellsTwoLevel): the lamps shot onto the output's atlas, the cells solved on a
+// coarser one. Every room of seed1 gets the light of the one-level cells bake, and every cell's books
+// balance.
+TEST(CellSolver, TwoLevelsGiveEachRoomTheLightOfOne) {
+  const SeedScene s = makeSeedScene(1);
+  Context ctx;
+  EglContext gl(ctx);
+  CellSolveParams params;
+  params.atlas.density = 10.0f;
+  params.solver.itemBuffer = 256;
+  const QuadSet quads = findQuads(s.scene);
+  const LightmapAtlas atlas = buildAtlas(s.scene, quads, params.atlas, ctx);
+  const SolveResult one = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
+  TwoLevelData levels;
+  const SolveResult two = solveCellsTwoLevel(s.scene, s.cells, quads, atlas,
+                                             TwoLevelParams{.solveDensity = 5.0f}, params, gl, ctx, &levels);
+  expectConserved(two);
+  EXPECT_EQ(two.perCell->cells.size(), s.cells.cells.size());
+  EXPECT_LT(levels.solveTexels * 2, atlas.validTexels());
+  EXPECT_GE(levels.lampShots, 1);
+  const std::vector<int> cellOf = s.cells.cellOfTriangle(s.scene.triangles.size());
+  std::vector<double> sumOne(s.cells.cells.size()), sumTwo(s.cells.cells.size());
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0 || atlas.emission[t] != glm::vec3(0.0f)) continue;
+    const int c = cellOf[size_t(atlas.patches[size_t(atlas.patch[t])].triangles[0])];
+    sumOne[size_t(c)] += double(one.radiosity[t].g) * atlas.area[t];
+    sumTwo[size_t(c)] += double(two.radiosity[t].g) * atlas.area[t];
+  }
+  for (size_t c = 0; c < sumOne.size(); ++c)
+    EXPECT_NEAR(sumTwo[c] / sumOne[c], 1.0, 0.03) << s.cells.cells[c].name;
+  ASSERT_EQ(two.residual.size(), atlas.texelCount());
 }
 
 TEST(CellSolver, RejectsAGraphWithABadPortal) {

@@ -58,6 +58,18 @@ struct TwoRoomsAtlas {
   const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);
 };
 
+// Nothing made up or lost between the atlases: a closed scene's books, as the one-level solve's.
+void expectOneSolvesBooks(const SolveResult& two, const SolveResult& single, const SolverParams& params,
+                          const LightmapAtlas& atlas) {
+  const EnergyTotals& e = two.energy;
+  EXPECT_NEAR(e.emitted, single.energy.emitted, 1e-4 * e.emitted);
+  EXPECT_LE(e.created, 1e-4 * e.emitted);
+  EXPECT_LT(std::abs(e.escaped()), 0.01 * e.emitted);
+  EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
+  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  ASSERT_EQ(two.residual.size(), atlas.texelCount());
+}
+
 TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   TwoRoomsAtlas r;
   auto& [scene, ctx, gl, quads, output, atlas] = r;
@@ -90,14 +102,7 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   const double around = roomMeans(atlas, single.radiosity)[0] / 3.0;
   EXPECT_NEAR(behindLamp(two.radiosity), behindLamp(single.radiosity), 0.05 * around);
 
-  // Nothing made up or lost between the atlases: one closed scene's books, as a one-level solve's.
-  const EnergyTotals& e = two.energy;
-  EXPECT_NEAR(e.emitted, single.energy.emitted, 1e-4 * e.emitted);
-  EXPECT_LE(e.created, 1e-4 * e.emitted);
-  EXPECT_LT(std::abs(e.escaped()), 0.01 * e.emitted);
-  EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
-  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
-  ASSERT_EQ(two.residual.size(), atlas.texelCount());
+  expectOneSolvesBooks(two, single, params, atlas);
 }
 
 // The interreflection traced by rays on the CPU (radiosity/cpu/ray_solver.h) instead of drawn as item
@@ -115,13 +120,7 @@ TEST(TwoLevelSolve, InterreflectionByRaysGivesTheLightOfItemBuffers) {
   const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
   EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
   EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
-  const EnergyTotals& e = two.energy;
-  EXPECT_NEAR(e.emitted, single.energy.emitted, 1e-4 * e.emitted);
-  EXPECT_LE(e.created, 1e-4 * e.emitted);
-  EXPECT_LT(std::abs(e.escaped()), 0.01 * e.emitted);
-  EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
-  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
-  ASSERT_EQ(two.residual.size(), atlas.texelCount());
+  expectOneSolvesBooks(two, single, params, atlas);
   ASSERT_EQ(two.incident.size(), atlas.texelCount());
 }
 

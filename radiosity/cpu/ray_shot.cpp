@@ -12,8 +12,6 @@ namespace cpgi {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr int kBlock =
-    2;  // a region's texels are gathered in blocks of kBlock × kBlock, taken whole when far
 
 // A shooter texel: where it is, its area, its unshot radiosity.
 struct ShooterTexel {
@@ -209,6 +207,8 @@ struct Gather {
   // texel's centre, which a caller may test for visibility).
   template <class Use>
   void walk(const RegionPieces& r, const Patch& p, float texelRadius, Use&& use) const {
+    // Depth first: at most three nodes wait per level, and a chart's edge (≤ the atlas's 8 192 texels) gives
+    // at most 14 levels.
     int32_t stack[64];
     int top = 0;
     stack[top++] = 0;
@@ -319,8 +319,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, s.texels.size(), 64),
       [&](const tbb::blocked_range<size_t>& range) {
-        thread_local Queued q;
-        q.segments.clear(), q.light.clear();
+        Queued q;  // per chunk, not per thread: nothing here may share it with another chunk
         auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light) {
           const glm::vec3 d = to - from;
           const float length = glm::length(d);

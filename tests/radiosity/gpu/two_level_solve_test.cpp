@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/quads.h"
+#include "radiosity/cpu/ray_solver.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -122,6 +123,20 @@ TEST(TwoLevelSolve, InterreflectionByRaysGivesTheLightOfItemBuffers) {
   EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
   expectOneSolvesBooks(two, single, params, atlas);
   ASSERT_EQ(two.incident.size(), atlas.texelCount());
+}
+
+// The ray solver's settings are the GPU solver's, with the same defaults (it keeps its own struct so that
+// radiosity/cpu/ does not reach into radiosity/gpu/).
+TEST(TwoLevelSolve, RaySettingsDefaultAsTheGpuSolversDo) {
+  const SolverParams gpu;
+  const RaySolveParams rays;
+  EXPECT_EQ(rays.unshotFraction, gpu.unshotFraction);
+  EXPECT_EQ(rays.maxShots, gpu.maxShots);
+  EXPECT_EQ(rays.farField, gpu.farField);
+  EXPECT_EQ(rays.regionSize, gpu.regionSize);
+  EXPECT_EQ(rays.maxRegions, gpu.maxRegions);
+  EXPECT_EQ(rays.strongShotRegions, gpu.strongShotRegions);
+  EXPECT_EQ(rays.strongShotFraction, gpu.strongShotFraction);
 }
 
 // The command line's default shoots lamps by rays (SolverParams::lampRays); the two levels shoot the lamps

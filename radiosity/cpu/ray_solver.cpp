@@ -32,7 +32,8 @@ struct RayState {
 SolveResult solveByRays(const Scene& scene, const LightmapAtlas& atlas, const RaySolveParams& params,
                         Context& ctx, const RaySolveControls& controls) {
   if (!(params.unshotFraction > 0.0 && params.unshotFraction < 1.0) || params.maxShots < 1 ||
-      params.farField < 1.0f || params.coverageRays < 1 || params.eyesPerRegion < 1)
+      params.farField < 1.0f || params.coverageRays < 1 || params.eyesPerRegion < 1 ||
+      params.strongEyesPerRegion < 1)
     throw InputError("solver", "the ray solver's settings are out of range");
   if (!controls.priorIrradiance.empty() && controls.priorIrradiance.size() != atlas.texelCount())
     throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
@@ -93,7 +94,8 @@ SolveResult solveByRays(const Scene& scene, const LightmapAtlas& atlas, const Ra
     return scale > 0.0 ? e.unshot / scale : 1.0;
   };
   const double strongAt = params.strongShotFraction * e.emitted;
-  const RayShotParams shotParams{params.farField, params.coverageRays, params.eyesPerRegion};
+  const RayShotParams shotParams{params.farField, params.coverageRays, params.eyesPerRegion},
+      strongShotParams{params.farField, params.coverageRays, params.strongEyesPerRegion};
   double stopAt = params.unshotFraction, lastReport = -1.0;
   ctx.progress("solve", 0.0, "shots 0 (by rays)");
   const auto shootStart = std::chrono::steady_clock::now();
@@ -115,7 +117,8 @@ SolveResult solveByRays(const Scene& scene, const LightmapAtlas& atlas, const Ra
     const bool strong = shotPower >= strongAt && !strongLayouts.empty();
     const ShooterLayout& layout = (strong ? strongLayouts : layouts)[shooter];
     const RayShotGain gain = shootByRays(shots, int(shooter), layout, st.residual,
-                                         controls.firstShotNumber + uint32_t(result.shots) + 1, shotParams);
+                                         controls.firstShotNumber + uint32_t(result.shots) + 1,
+                                         shotPower >= strongAt ? strongShotParams : shotParams);
     // What the shot delivers: what it gathered, scaled to what its eyes saw covered where they see no
     // open space, and never more than its power (gpu_solver.cpp gives the reasons and tolerances).
     constexpr double kTolerance = 2e-3;

@@ -65,7 +65,11 @@ struct BakeOptions {
   int depth = 0;               ///< with `around`: portals away from the point's cell
   BoundaryMode boundary = BoundaryMode::Coarse;
   AtlasParams atlas;
-  SolverParams solver{.lampRays = kBakeLampRays};
+  SolverParams solver = [] {
+    SolverParams p;
+    p.lampRays = kBakeLampRays;
+    return p;
+  }();
   /// portals (kBakePortalLight unless --portals), maxRounds, jobs; its atlas and solver are the two above
   CellSolveParams cellParams = [] {
     CellSolveParams p;

@@ -29,7 +29,11 @@ struct CellBakeComparison {
   AtlasParams atlas;
   /// unshotFraction is the whole scene's target, as in `bake --method cells`; lampRays as bake's
   /// (kBakeLampRays)
-  SolverParams solver{.lampRays = 64};
+  SolverParams solver = [] {
+    SolverParams p;
+    p.lampRays = 64;
+    return p;
+  }();
   int maxRounds = 64;
   PortalLight portals = PortalLight::Binned;  ///< as `bake --method cells` by default (kBakePortalLight)
   ReferenceParams reference;

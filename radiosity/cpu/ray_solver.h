@@ -16,19 +16,13 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/shot_settings.h"
 #include "radiosity/lightmap/solve_result.h"
 
 namespace cpgi {
 
-/// The settings the GPU solver's SolverParams also has, with the same meaning and defaults.
-struct RaySolveParams {
-  double unshotFraction = 0.01;
-  int maxShots = 100000;
-  float farField = 2.0f;
-  float regionSize = 1.0f;
-  int maxRegions = 2;
-  int strongShotRegions = 4;
-  double strongShotFraction = 0.002;
+/// The shared settings (shot_settings.h) and the rays' own.
+struct RaySolveParams : ShotSettings {
   /// Cosine-distributed rays per region eye measuring what it sees covered (the item buffer's coverage).
   int coverageRays = 1024;
   /// Eyes per region for the receivers far from it (RayShotParams::eyesPerRegion). On seed3 at --density

@@ -21,8 +21,9 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/shot_settings.h"
+#include "radiosity/lightmap/solve_result.h"
 
 namespace cpgi {
 
@@ -33,8 +34,9 @@ enum class Visibility {
 
 const char* visibilityName(Visibility v);
 
-/// The user's settings of a solve (the CLI binds them to flags, apps/options.cpp).
-struct SolverParams {
+/// The user's settings of a solve (the CLI binds them to flags, apps/options.cpp): the shared ones
+/// (stop, regions, pieces; shot_settings.h) and the item buffers'.
+struct SolverParams : ShotSettings {
   Visibility visibility = Visibility::Hemicube;
   /// Hemisphere: the buffer's edge in pixels. Hemicube: twice a face's edge (faces of N/2, so both modes
   /// hold about N² pixels). In [16, GL_MAX_TEXTURE_SIZE], even.
@@ -48,32 +50,9 @@ struct SolverParams {
   /// Off: the fixed eye of shooter_layout.h, chosen clear of nearby occluders, which sees more than most of
   /// the region does (a lamp under a ceiling: the ceiling's shots delivered 1.1–1.2× their power).
   bool jitteredEyes = true;
-  /// Stop when the unshot power is at most this fraction of the emitted power, or of the power the surfaces
-  /// have reflected so far when that is less (a lamp in a dark housing), in (0, 1).
-  double unshotFraction = 0.01;
-  /// Stop after this many shots whatever the unshot fraction (>= 1).
-  int maxShots = 100000;
-  /// A shooter piece (a region, then a node of its residual pyramid, then a texel) counts as one piece
-  /// for receivers farther than this many times its bounding radius; nearer receivers use its four
-  /// children. >= 1.
-  float farField = 2.0f;
-  /// A shooter is split into visibility regions about this long (m), each with its own item buffer
-  /// drawn from its centre, so a lamp just under a ceiling's centre does not hide the whole ceiling.
-  float regionSize = 1.0f;
-  /// At most this many regions per chart edge, 1..4 (so at most 16 item buffers per shot).
-  int maxRegions = 2;
-  /// Shots carrying at least `strongShotFraction` of the emitted power use up to `strongShotRegions`
-  /// per edge (1..4; 0 = maxRegions). Such shots hold most of the light, and one eye per metres-wide
-  /// region is what gives light through a door from a large shooter a hard, misplaced edge; the many
-  /// weak shots after them keep the cheaper layout.
-  /// Measured on seed3 (density 10, unshot 1 %, error without lamps against the reference, CPU seconds):
-  /// 2 regions 16.5 % / 17.9 s; all shots 4: 12.4 % / 39.1 s; strong ≥ 1 %: 13.4 % / 20.4 s;
-  /// strong ≥ 0.2 % (the default): 12.4 % / 25.5 s.
-  int strongShotRegions = 4;
-  double strongShotFraction = 0.002;
   /// > 0: the lamps (patches whose material emits) shoot first on the CPU, by this many shadow rays per
-  /// texel and lamp, 16× in penumbrae (radiosity/lightmap/lamp_light.h), and not through item buffers. 0: item
-  /// buffers, as every other shot. A multiple of 4.
+  /// texel and lamp, 16× in penumbrae (radiosity/lightmap/lamp_light.h), and not through item buffers. 0:
+  /// item buffers, as every other shot. A multiple of 4.
   int lampRays = 0;
   /// Hemicube: each shot lists per face the triangles that may show in it (shaders/item_cull.comp) and
   /// draws only those, bit-identical to drawing every triangle into every face (off: that), which on

@@ -35,13 +35,8 @@ std::vector<glm::vec3> outputRadiosity(const AtlasMapping& mapping, const Lightm
 // The interreflection by rays (radiosity/cpu/ray_solver.h), with the GPU solve's settings and controls.
 SolveResult solveIndirectByRays(const Scene& scene, const LightmapAtlas& coarse, const SolverParams& settings,
                                 const SolveControls& c, Context& ctx) {
-  const RaySolveParams params{.unshotFraction = settings.unshotFraction,
-                              .maxShots = settings.maxShots,
-                              .farField = settings.farField,
-                              .regionSize = settings.regionSize,
-                              .maxRegions = settings.maxRegions,
-                              .strongShotRegions = settings.strongShotRegions,
-                              .strongShotFraction = settings.strongShotFraction};
+  RaySolveParams params;
+  static_cast<ShotSettings&>(params) = settings;
   const RaySolveControls controls{.priorIrradiance = c.priorShot->irradiance,
                                   .priorEmitted = c.priorShot->emitted,
                                   .readTransfer = c.readTransfer,

@@ -150,7 +150,8 @@ TEST(RoundStop, LampRoomLitByWhatComesBackIsRightAtTheDefaultStop) {
   const ExrChannel cells = cellChannel(atlas, s.scene, s.cells);
   const int lampRoom = s.cells.findCell("A");
   ASSERT_GE(lampRoom, 0);
-  SolverParams converged{.lampRays = 64};
+  SolverParams converged;
+  converged.lampRays = 64;
   converged.unshotFraction = 1e-4;
   const SolveResult global = solveProgressive(s.scene, atlas, converged, gl, ctx);
   const double truth = cellMean(atlas, cells, lampRoom, global.radiosity);
@@ -160,7 +161,8 @@ TEST(RoundStop, LampRoomLitByWhatComesBackIsRightAtTheDefaultStop) {
   for (int withStop = 0; withStop < 2; ++withStop) {
     CellSolveParams p;
     p.atlas = ap;
-    p.solver = SolverParams{.lampRays = 64};  // the default unshot stop, 1 %
+    p.solver = SolverParams{};
+    p.solver.lampRays = 64;  // the default unshot stop, 1 %
     p.portals = PortalLight::Binned;
     p.maxAmbientShare = withStop ? kDefaultAmbientShare : 0.0;
     SolveResult r = solveCells(s.scene, s.cells, atlas, p, gl, ctx);

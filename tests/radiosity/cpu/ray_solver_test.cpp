@@ -138,7 +138,9 @@ TEST(RaySolver, AUniformClosedBoxReachesItsClosedForm) {
                addMaterial(s, glm::vec3(0.5f), glm::vec3(1.0f)));
   Context ctx;
   const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
-  const SolveResult r = solveByRays(s, atlas, RaySolveParams{.unshotFraction = 0.001}, ctx);
+  RaySolveParams params;
+  params.unshotFraction = 0.001;
+  const SolveResult r = solveByRays(s, atlas, params, ctx);
   double mean = 0.0, area = 0.0;
   for (size_t t = 0; t < atlas.texelCount(); ++t) {
     if (atlas.patch[t] < 0) continue;

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include "core/quads.h"
-#include "radiosity/cpu/ray_solver.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -71,24 +70,14 @@ void expectOneSolvesBooks(const SolveResult& two, const SolveResult& single, con
   ASSERT_EQ(two.residual.size(), atlas.texelCount());
 }
 
+// Both ways of shooting the interreflection: item buffers on the GL device, and rays on the CPU
+// (radiosity/cpu/ray_solver.h).
 TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   TwoRoomsAtlas r;
   auto& [scene, ctx, gl, quads, output, atlas] = r;
   SolverParams params;
   const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
-  TwoLevelData levels;
-  const SolveResult two = solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f},
-                                        params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
-  const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
-  EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
-  EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
-  // Fewer texels for the interreflection: 4 against 8 texels a metre, but the ceiling, with the lamp 1 cm
-  // in front of it, at the output's 8.
-  EXPECT_EQ(levels.lampShots, 1);
-  EXPECT_GE(levels.refinedTriangles, 1u);  // a triangle of the ceiling quad: its chart takes the finer
-  EXPECT_LT(levels.solveTexels * 3, atlas.validTexels() * 2);
-  // The ceiling behind the lamp, shaded from every bounce by it: as dark as at the output's resolution
-  // (the coarse texels smeared the light around it 2 texels in, 40 × the light there on openings).
+  // The ceiling behind the lamp, shaded from every bounce by it.
   auto behindLamp = [&](const std::vector<glm::vec3>& b) {
     double sum = 0.0, area = 0.0;
     for (size_t t = 0; t < atlas.texelCount(); ++t) {
@@ -100,43 +89,27 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
     }
     return sum / area;
   };
-  const double around = roomMeans(atlas, single.radiosity)[0] / 3.0;
-  EXPECT_NEAR(behindLamp(two.radiosity), behindLamp(single.radiosity), 0.05 * around);
-
-  expectOneSolvesBooks(two, single, params, atlas);
-}
-
-// The interreflection traced by rays on the CPU (radiosity/cpu/ray_solver.h) instead of drawn as item
-// buffers: the same rooms, the same books, the ceiling behind the lamp as dark.
-TEST(TwoLevelSolve, InterreflectionByRaysGivesTheLightOfItemBuffers) {
-  TwoRoomsAtlas r;
-  auto& [scene, ctx, gl, quads, output, atlas] = r;
-  SolverParams params;
-  const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
-  TwoLevelData levels;
-  const SolveResult two =
-      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f, .indirectByRays = true},
-                    params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
-  EXPECT_TRUE(levels.indirectByRays);
-  const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
-  EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
-  EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
-  expectOneSolvesBooks(two, single, params, atlas);
-  ASSERT_EQ(two.incident.size(), atlas.texelCount());
-}
-
-// The ray solver's settings are the GPU solver's, with the same defaults (it keeps its own struct so that
-// radiosity/cpu/ does not reach into radiosity/gpu/).
-TEST(TwoLevelSolve, RaySettingsDefaultAsTheGpuSolversDo) {
-  const SolverParams gpu;
-  const RaySolveParams rays;
-  EXPECT_EQ(rays.unshotFraction, gpu.unshotFraction);
-  EXPECT_EQ(rays.maxShots, gpu.maxShots);
-  EXPECT_EQ(rays.farField, gpu.farField);
-  EXPECT_EQ(rays.regionSize, gpu.regionSize);
-  EXPECT_EQ(rays.maxRegions, gpu.maxRegions);
-  EXPECT_EQ(rays.strongShotRegions, gpu.strongShotRegions);
-  EXPECT_EQ(rays.strongShotFraction, gpu.strongShotFraction);
+  for (const bool byRays : {false, true}) {
+    SCOPED_TRACE(byRays ? "rays" : "item buffers");
+    TwoLevelData levels;
+    const SolveResult two = solveTwoLevel(scene, quads, atlas, output,
+                                          TwoLevelParams{.solveDensity = 4.0f, .indirectByRays = byRays},
+                                          params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
+    EXPECT_EQ(levels.indirectByRays, byRays);
+    const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
+    EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
+    EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
+    // Fewer texels for the interreflection: 4 against 8 texels a metre, but the ceiling, with the lamp 1 cm
+    // in front of it, at the output's 8.
+    EXPECT_EQ(levels.lampShots, 1);
+    EXPECT_GE(levels.refinedTriangles, 1u);  // a triangle of the ceiling quad: its chart takes the finer
+    EXPECT_LT(levels.solveTexels * 3, atlas.validTexels() * 2);
+    // As dark behind the lamp as at the output's resolution (the coarse texels smeared the light around it
+    // 2 texels in, 40 × the light there on openings).
+    EXPECT_NEAR(behindLamp(two.radiosity), behindLamp(single.radiosity), 0.05 * a[0] / 3.0);
+    expectOneSolvesBooks(two, single, params, atlas);
+    ASSERT_EQ(two.incident.size(), atlas.texelCount());
+  }
 }
 
 // The command line's default shoots lamps by rays (SolverParams::lampRays); the two levels shoot the lamps

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/memory_limit.h"
 #include "radiosity/lightmap/quad_grids.h"
+#include "radiosity/lightmap/seam_gutters.h"
 
 namespace cpgi {
 namespace {
@@ -353,6 +354,7 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
   }
+  atlas.gutter = seamGutters(atlas, scene, params.padding);
   return atlas;
 }
 
@@ -369,10 +371,18 @@ void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radi
   const int w = atlas.width, h = atlas.height;
   // Reads only valid texels, so the result does not depend on the order padding is visited in.
   const std::vector<glm::vec3> source = values;
+  std::vector<uint8_t> filled(atlas.texelCount(), 0);
+  for (const GutterTap& g : atlas.gutter) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < g.from.count; ++k)
+      sum += g.from.weight[size_t(k)] * glm::dvec3(source[size_t(g.from.texel[size_t(k)])]);
+    values[g.texel] = glm::max(glm::vec3(sum), glm::vec3(0.0f));  // extrapolated at an edge: never below 0
+    filled[g.texel] = 1;
+  }
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t t = size_t(y) * w + x;
-      if (atlas.patch[t] >= 0) continue;
+      if (atlas.patch[t] >= 0 || filled[t]) continue;
       int best = INT32_MAX;
       size_t from = t;
       for (int dy = -radius; dy <= radius; ++dy) {

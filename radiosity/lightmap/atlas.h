@@ -68,6 +68,20 @@ struct Patch {
   glm::vec3 origin{0.0f}, texelU{0.0f}, texelV{0.0f};
 };
 
+/// Up to four atlas texels and their weights, a value interpolated between texel centres.
+struct BilinearTaps {
+  std::array<int64_t, 4> texel{};
+  std::array<double, 4> weight{};
+  int count = 0;
+};
+
+/// A gutter texel that takes its value from the chart its surface goes on in
+/// (radiosity/lightmap/seam_gutters.h).
+struct GutterTap {
+  size_t texel = 0;
+  BilinearTaps from;
+};
+
 struct LightmapAtlas {
   int width = 0, height = 0;
   /// The parameter that set the resolution ("texels per quad" or "texel density"), for the messages of
@@ -87,6 +101,9 @@ struct LightmapAtlas {
   /// triangles not in the atlas (e.g. outside the cell being baked) get all zeros.
   std::vector<std::array<glm::vec2, 3>> triangleUV;
 
+  /// The gutter texels dilate() fills from a neighbouring chart of their surface, not from their own.
+  std::vector<GutterTap> gutter;
+
   size_t texelCount() const { return static_cast<size_t>(width) * height; }
   size_t validTexels() const;
 };
@@ -100,8 +117,9 @@ int32_t texelTriangle(const Patch& p, int i, int j);
 LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
                          const std::vector<uint32_t>& subset = {});
 
-/// Fills padding texels with the value of their nearest valid texel (within `radius` texels), so that
-/// bilinear lookups at chart edges don't pull in black.
+/// Fills padding texels so that bilinear lookups at chart edges don't pull in black: those of
+/// `atlas.gutter` with the neighbouring chart's light at their point, the others with the value of their
+/// nearest valid texel (within `radius` texels).
 void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius = 2);
 
 /// Per texel, 1 where its patch emits (in any channel) and 0 elsewhere, padding included: the lamps, which

@@ -8,17 +8,6 @@ namespace cpgi {
 
 namespace {
 
-// Chart coordinates of world point x on patch p: origin + i texelU + j texelV, least squares in its plane.
-glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x) {
-  const glm::vec3 d = x - p.origin;
-  const float uu = glm::dot(p.texelU, p.texelU), vv = glm::dot(p.texelV, p.texelV),
-              uv = glm::dot(p.texelU, p.texelV);
-  const float du = glm::dot(d, p.texelU), dv = glm::dot(d, p.texelV);
-  const float det = uu * vv - uv * uv;
-  if (!(det > 0.0f)) return glm::vec2(0.0f);
-  return glm::vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
-}
-
 // The valid texel of coarse chart `cp` whose centre is nearest chart point `at` (−1 if it has none): for
 // the few points of a loose triangle whose rasterized texels miss them.
 int64_t nearestValidTexel(const LightmapAtlas& coarse, int32_t cp, glm::vec2 at) {
@@ -35,7 +24,26 @@ int64_t nearestValidTexel(const LightmapAtlas& coarse, int32_t cp, glm::vec2 at)
   return best;
 }
 
+// The texel of chart `cp` that chart point `at` falls in; a point just off the chart (float rounding, a
+// loose triangle's edge) goes to the nearest valid texel of it.
+int64_t texelUnder(const LightmapAtlas& atlas, int32_t cp, glm::vec2 at) {
+  const Patch& c = atlas.patches[size_t(cp)];
+  const int ci = std::clamp(int(std::floor(at.x)), 0, c.w - 1), cj = std::clamp(int(std::floor(at.y)), 0, c.h - 1);
+  const int64_t ct = int64_t(c.y + cj) * atlas.width + (c.x + ci);
+  return atlas.patch[size_t(ct)] == cp ? ct : nearestValidTexel(atlas, cp, at);
+}
+
 }  // namespace
+
+glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x) {
+  const glm::vec3 d = x - p.origin;
+  const float uu = glm::dot(p.texelU, p.texelU), vv = glm::dot(p.texelV, p.texelV),
+              uv = glm::dot(p.texelU, p.texelV);
+  const float du = glm::dot(d, p.texelU), dv = glm::dot(d, p.texelV);
+  const float det = uu * vv - uv * uv;
+  if (!(det > 0.0f)) return glm::vec2(0.0f);
+  return glm::vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
+}
 
 AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse) {
   if (fine.triangleUV.size() != coarse.triangleUV.size())
@@ -59,13 +67,7 @@ AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse) {
         const glm::vec2 at = chartCoordinates(c, fine.position[t]);
         m.coarsePatch[t] = cp;
         m.chartPoint[t] = at;
-        // The coarse texel under the centre; a point just off the chart (float rounding, a loose
-        // triangle's edge) goes to the nearest texel of it.
-        const int ci = std::clamp(int(std::floor(at.x)), 0, c.w - 1),
-                  cj = std::clamp(int(std::floor(at.y)), 0, c.h - 1);
-        int64_t ct = int64_t(c.y + cj) * coarse.width + (c.x + ci);
-        if (coarse.patch[size_t(ct)] != cp) ct = nearestValidTexel(coarse, cp, at);
-        m.coarseTexel[t] = ct;
+        m.coarseTexel[t] = texelUnder(coarse, cp, at);
       }
   return m;
 }
@@ -101,13 +103,11 @@ std::vector<glm::vec3> downsample(const AtlasMapping& m, const LightmapAtlas& fi
   return out;
 }
 
-BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t) {
+BilinearTaps chartTaps(const LightmapAtlas& atlas, int32_t patch, glm::vec2 at) {
   BilinearTaps taps;
-  const int32_t cp = m.coarsePatch[t];
-  if (cp < 0) return taps;
-  const Patch& c = coarse.patches[size_t(cp)];
-  const glm::vec2 g = m.chartPoint[t] - 0.5f;
-  auto texelAt = [&](int i, int j) { return int64_t(c.y + j) * coarse.width + (c.x + i); };
+  const Patch& c = atlas.patches[size_t(patch)];
+  const glm::vec2 g = at - 0.5f;
+  auto texelAt = [&](int i, int j) { return int64_t(c.y + j) * atlas.width + (c.x + i); };
   // The 2 × 2 centres around the point, moved inside the chart at its edges, so that the outer half
   // texel is extrapolated along the slope of the two nearest centres rather than held at the last one
   // (light falling steeply towards a corner near a lamp).
@@ -120,7 +120,7 @@ BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, si
     for (int dj = 0; dj < ny; ++dj)
       for (int di = 0; di < nx; ++di) {
         const int64_t ct = texelAt(i0 + di, j0 + dj);
-        valid = valid && coarse.patch[size_t(ct)] == cp;
+        valid = valid && atlas.patch[size_t(ct)] == patch;
         taps.texel[size_t(taps.count)] = ct;
         taps.weight[size_t(taps.count)] = (nx == 1 ? 1.0
                                            : di    ? fx
@@ -133,16 +133,31 @@ BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, si
     if (valid) return taps;
     taps = BilinearTaps{};
   }
-  // A loose triangle's chart with empty texels: the four centres around the point clamped into the
-  // chart, those that are not valid dropped and the others renormalised.
+  // A loose triangle's chart, whose texels are valid where i + j + 1 < w: near its long edge the point is
+  // interpolated (or extrapolated, by up to a texel and a half) affinely from the three valid centres
+  // (i, j), (i+1, j), (i, j+1) nearest it, exact where the light is linear. Holding the nearest texels'
+  // mean instead put a step at every seam between two triangles of one floor (a texel's worth of slope).
+  if (c.quad < 0 && c.w >= 3) {
+    int i = std::clamp(int(std::floor(g.x)), 0, c.w - 2), j = std::clamp(int(std::floor(g.y)), 0, c.h - 2);
+    while (i + j > c.w - 3) (i > j ? i : j) -= 1;
+    const double fx = double(g.x) - i, fy = double(g.y) - j;
+    const std::array<int64_t, 3> corner = {texelAt(i, j), texelAt(i + 1, j), texelAt(i, j + 1)};
+    if (std::all_of(corner.begin(), corner.end(), [&](int64_t ct) { return atlas.patch[size_t(ct)] == patch; })) {
+      taps.texel = {corner[0], corner[1], corner[2], 0};
+      taps.weight = {1.0 - fx - fy, fx, fy, 0.0};
+      taps.count = 3;
+      return taps;
+    }
+  }
+  // Else the four centres around the point clamped into the chart, those that are not valid dropped and
+  // the others renormalised.
   const int i0 = int(std::floor(g.x)), j0 = int(std::floor(g.y));
   const float fx = std::clamp(g.x - float(i0), 0.0f, 1.0f), fy = std::clamp(g.y - float(j0), 0.0f, 1.0f);
   double weight = 0.0;
   for (int dj = 0; dj < 2; ++dj)
     for (int di = 0; di < 2; ++di) {
-      const int i = std::clamp(i0 + di, 0, c.w - 1), j = std::clamp(j0 + dj, 0, c.h - 1);
-      const int64_t ct = int64_t(c.y + j) * coarse.width + (c.x + i);
-      if (coarse.patch[size_t(ct)] != cp) continue;
+      const int64_t ct = texelAt(std::clamp(i0 + di, 0, c.w - 1), std::clamp(j0 + dj, 0, c.h - 1));
+      if (atlas.patch[size_t(ct)] != patch) continue;
       const double w = double(di ? fx : 1.0f - fx) * double(dj ? fy : 1.0f - fy);
       taps.texel[size_t(taps.count)] = ct;
       taps.weight[size_t(taps.count)] = w;
@@ -151,15 +166,20 @@ BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, si
     }
   if (weight > 0.0) {
     for (int k = 0; k < taps.count; ++k) taps.weight[size_t(k)] /= weight;
-  } else if (m.coarseTexel[t] >= 0) {
-    taps = BilinearTaps{};
-    taps.texel[0] = m.coarseTexel[t];
+    return taps;
+  }
+  taps = BilinearTaps{};
+  if (const int64_t under = texelUnder(atlas, patch, at); under >= 0) {
+    taps.texel[0] = under;
     taps.weight[0] = 1.0;
     taps.count = 1;
-  } else {
-    taps.count = 0;
   }
   return taps;
+}
+
+BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t) {
+  const int32_t cp = m.coarsePatch[t];
+  return cp < 0 ? BilinearTaps{} : chartTaps(coarse, cp, m.chartPoint[t]);
 }
 
 std::vector<glm::vec3> upsample(const AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,

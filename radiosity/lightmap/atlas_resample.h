@@ -41,15 +41,18 @@ std::vector<glm::vec3> downsample(const AtlasMapping& m, const LightmapAtlas& fi
 std::vector<glm::vec3> upsample(const AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,
                                 std::span<const glm::vec3> values);
 
-/// The coarse texels upsample() interpolates fine texel `t` from and their weights (summing to 1; one
-/// below 0 where the point lies beyond the chart's outer centres and is extrapolated): up to four valid
-/// texels of its chart around its centre, or the one its centre falls in where none of those is valid;
-/// none on fine padding.
-struct BilinearTaps {
-  std::array<int64_t, 4> texel{};
-  std::array<double, 4> weight{};
-  int count = 0;
-};
+/// Chart coordinates of world point `x` on chart `p` (texel (i, j) spans [i, i+1] × [j, j+1]): origin +
+/// i texelU + j texelV, least squares in its plane.
+glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x);
+
+/// The valid texels of chart `patch` of `atlas` that interpolate it at chart point `at`, and their weights
+/// (summing to 1; one below 0 where the point lies beyond the chart's outer centres and is extrapolated,
+/// within their half texel): the four around it, or where a loose triangle's empty corner leaves fewer
+/// valid, those of the four clamped into the chart, renormalised, or else the valid texel nearest it.
+BilinearTaps chartTaps(const LightmapAtlas& atlas, int32_t patch, glm::vec2 at);
+
+/// The coarse texels upsample() interpolates fine texel `t` from: chartTaps at its centre's point on its
+/// coarse chart; none on fine padding.
 BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t);
 
 /// Per fine texel, 1 where `values` (per coarse texel) cannot be interpolated to it: a coarse texel it

@@ -90,7 +90,7 @@ bool sameSurface(const Triangle& a, const Triangle& b) {
 
 }  // namespace
 
-void evenOverSurfaces(const Scene& scene, std::vector<float>& density) {
+void evenOverSurfaces(const Scene& scene, std::vector<float>& density, double maxGrowth) {
   const size_t n = std::min(scene.triangles.size(), density.size());
   Surfaces surfaces(n);
   // Triangles meeting at a corner (positions to 0.1 mm) join when they lie on one surface.
@@ -108,8 +108,19 @@ void evenOverSurfaces(const Scene& scene, std::vector<float>& density) {
           surfaces.join(triangles[i], triangles[j]);
   std::vector<float> most(n, 0.0f);
   for (uint32_t t = 0; t < n; ++t) most[surfaces.find(t)] = std::max(most[surfaces.find(t)], density[t]);
-  for (uint32_t t = 0; t < n; ++t)
-    if (density[t] > 0.0f) density[t] = most[surfaces.find(t)];
+  // Texels a surface holds at its triangles' own densities and at its largest.
+  std::vector<double> own(n, 0.0), even(n, 0.0);
+  for (uint32_t t = 0; t < n; ++t) {
+    if (!(density[t] > 0.0f)) continue;
+    const uint32_t s = surfaces.find(t);
+    const double a = scene.triangles[t].area();
+    own[s] += a * double(density[t]) * density[t];
+    even[s] += a * double(most[s]) * most[s];
+  }
+  for (uint32_t t = 0; t < n; ++t) {
+    const uint32_t s = surfaces.find(t);
+    if (density[t] > 0.0f && even[s] <= maxGrowth * own[s]) density[t] = most[s];
+  }
 }
 
 std::vector<float> lightDensity(const LightmapAtlas& pilot, std::span<const glm::vec3> light, size_t triangleCount,

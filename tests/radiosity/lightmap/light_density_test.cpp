@@ -134,5 +134,20 @@ TEST(LightDensity, OneFlatSurfaceGetsOneDensity) {
   EXPECT_EQ(partly[4], 0.0f);
 }
 
+// A long floor with a shadow's edge on one of its eight quads: one density over all of it would take
+// 6.25 times the texels of a density per quad, so each quad keeps its own (the seam gutters join them).
+TEST(LightDensity, ALargeSurfaceEvenedOnlyWhereItCostsLittle) {
+  Scene s;
+  const uint32_t grey = testing::addMaterial(s, glm::vec3(0.5f));
+  for (int i = 0; i < 8; ++i) testing::addRect(s, {float(i), 0, 0}, {1, 0, 0}, {0, 1, 0}, grey);
+  std::vector<float> density(16, 4.0f);
+  density[6] = density[7] = 20.0f;
+  const std::vector<float> own = density;
+  evenOverSurfaces(s, density);
+  EXPECT_EQ(density, own);
+  evenOverSurfaces(s, density, 7.0);  // allowed to grow 7 times: one density
+  EXPECT_EQ(density, std::vector<float>(16, 20.0f));
+}
+
 }  // namespace
 }  // namespace cpgi

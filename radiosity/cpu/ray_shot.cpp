@@ -262,10 +262,38 @@ glm::dvec2 eyeCoverage(const RayShotScene& s, const ShooterLayout& l, const glm:
   return glm::dvec2(covered, open) / double(side * side);
 }
 
+// Per eye of the shot (regions in order) and receiver tile, 1 when one surface hides the whole tile from
+// the eye (occluder_cull.h). A tile that no eye segment could reach anyway (facing away from the eye, or
+// behind the shooter), of a few texels, or the shooter's own is not tested: its ray would cost as much as
+// it saves.
+std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions) {
+  std::vector<glm::vec3> eyes;
+  for (const RegionPieces& r : regions) eyes.insert(eyes.end(), r.eyes.begin(), r.eyes.end());
+  const size_t tiles = s.tiles.spheres.size();
+  const glm::vec3 ns = s.atlas.patches[size_t(shooter)].normal;
+  std::vector<uint8_t> hidden(eyes.size() * tiles, 0);
+  tbb::parallel_for(size_t(0), tiles, [&](size_t tile) {
+    if (s.tiles.counts[tile] < 4 || s.tiles.patches[tile] == shooter) return;
+    const glm::vec4 sphere = s.tiles.spheres[tile];
+    const glm::vec3 centre(sphere);
+    for (size_t e = 0; e < eyes.size(); ++e) {
+      const glm::vec3 toEye = eyes[e] - centre;
+      if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
+      hidden[e * tiles + tile] = s.occluders.hides(s.rays, eyes[e], sphere, s.offset) ? 1 : 0;
+    }
+  });
+  return hidden;
+}
+
 }  // namespace
 
 RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RayScene& r)
-    : scene(sc), atlas(a), rays(r), trianglePatch(sc.triangles.size(), -1), patchTexels(a.patches.size()) {
+    : scene(sc),
+      atlas(a),
+      rays(r),
+      trianglePatch(sc.triangles.size(), -1),
+      patchTexels(a.patches.size()),
+      occluders(sc, a) {
   for (size_t t = 0; t < a.texelCount(); ++t)
     if (a.patch[t] >= 0)
       texels.push_back(uint32_t(t)), patchTexels[size_t(a.patch[t])].push_back(uint32_t(t));
@@ -273,6 +301,7 @@ RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RaySce
     for (int32_t t : a.patches[p].triangles)
       if (t >= 0 && size_t(t) < trianglePatch.size()) trianglePatch[size_t(t)] = int32_t(p);
   offset = 1e-4f * r.diagonal();
+  tiles = receiverTiles(a, texels, offset);
 }
 
 RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
@@ -303,6 +332,10 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   }
 
   const glm::vec3 ns = p.normal;
+  std::vector<size_t> eyeBase(regions.size(), 0);  // each region's first eye among all the shot's
+  for (size_t r = 1; r < regions.size(); ++r) eyeBase[r] = eyeBase[r - 1] + regions[r - 1].eyes.size();
+  const std::vector<uint8_t> hidden = params.cull ? hiddenTiles(s, shooter, regions) : std::vector<uint8_t>{};
+  const size_t tileCount = s.tiles.spheres.size();
   // Per chunk of receivers, every piece's light waits on its segment; the segments are traced together.
   // The chunks are fixed (a simple partitioner splits the same way every run): Embree packs a stream's
   // rays into packets, whose answers for a ray grazing an edge may differ from a single ray's, and chunks
@@ -348,7 +381,10 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
                                     : g.region(r, p, layout.texelRadius);
             if (f == glm::vec3(0.0f)) continue;
             const glm::vec3 share = f / float(r.eyes.size());
-            for (const glm::vec3& eye : r.eyes) {
+            const uint8_t* eyeHides = hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
+            for (size_t e = 0; e < r.eyes.size(); ++e) {
+              if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]]) continue;
+              const glm::vec3& eye = r.eyes[e];
               const glm::vec3 toEye = eye - x;
               if (glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)
                 queue(uint32_t(k), eye, lifted, share);

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "radiosity/cpu/occluder_cull.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
@@ -29,6 +30,8 @@ struct RayShotScene {
   std::vector<int32_t> trianglePatch;              ///< per scene triangle, its patch or -1
   std::vector<std::vector<uint32_t>> patchTexels;  ///< per patch, its valid texels
   float offset = 0.0f;                             ///< ray ends lifted off their surfaces by this (m)
+  ReceiverTiles tiles;                             ///< the receivers by tiles of a chart, for the cull
+  ConvexOccluders occluders;
 
   RayShotScene(const Scene& scene, const LightmapAtlas& atlas, const RayScene& rays);
 };
@@ -42,6 +45,8 @@ struct RayShotParams {
   /// A receiver near a region (nearer than farField × its radius) sees each of its pieces by its own ray
   /// rather than through the region's eyes.
   bool nearRays = true;
+  /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
+  bool cull = true;
 };
 
 /// What one shot gave: per valid texel (RayShotScene::texels order), the irradiance it gathered

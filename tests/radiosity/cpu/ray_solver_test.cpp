@@ -44,12 +44,12 @@ struct OneShot {
       if (atlas.patch[t] == shooter) residual[t] = glm::vec3(1.0f);
   }
   // The shot's irradiance per atlas texel (R), averaged over `draws` eye draws.
-  std::vector<double> gathered(int draws = 1) const {
+  std::vector<double> gathered(int draws = 1, const RayShotParams& params = {}) const {
     std::vector<double> e(atlas.texelCount(), 0.0);
     const auto layouts = layoutShooters(scene, atlas, {});
     for (int d = 0; d < draws; ++d) {
       const RayShotGain g =
-          shootByRays(*shots, shooter, layouts[size_t(shooter)], residual, uint32_t(d + 1), {});
+          shootByRays(*shots, shooter, layouts[size_t(shooter)], residual, uint32_t(d + 1), params);
       for (size_t k = 0; k < shots->texels.size(); ++k) e[shots->texels[k]] += g.irradiance[k].r / draws;
     }
     return e;
@@ -129,6 +129,32 @@ TEST(RayShot, ACubeOnTheFloorGetsTheLightInFrontOfIt) {
     EXPECT_NEAR(got / want, 1.0, 0.06)
         << "side facing " << shot.atlas.patches[p].normal.x << ", " << shot.atlas.patches[p].normal.y;
   }
+}
+
+// Two rooms of a 6 × 3 m box, a partition with a door between them, the floor shooting: the eyes'
+// segments to the receivers a single surface hides whole are left out (occluder_cull.h), and no
+// receiver's light changes for it.
+TEST(RayShot, TheOccluderCullChangesNoReceiversLight) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(6.0f, 3.0f, 3.0f), m);
+  // The partition x = 3 (both faces), a door 1 m wide and 2 m high at z in [1, 2].
+  auto both = [&](glm::vec3 o, glm::vec3 u, glm::vec3 v) {
+    addRect(s, o, u, v, m);
+    addRect(s, o, v, u, m);
+  };
+  both({3, 0, 0}, {0, 3, 0}, {0, 0, 1});
+  both({3, 0, 2}, {0, 3, 0}, {0, 0, 1});
+  both({3, 2, 1}, {0, 1, 0}, {0, 0, 1});
+  const OneShot shot(std::move(s), 5.0f, {0, 1, 0});  // the floor, normal +y
+  const std::vector<double> culled = shot.gathered(2), all = shot.gathered(2, RayShotParams{.cull = false});
+  double most = 0.0, gathered = 0.0;
+  for (double v : all) most = std::max(most, v);
+  for (size_t t = 0; t < all.size(); ++t) {
+    EXPECT_NEAR(culled[t], all[t], 1e-5 * most) << "texel " << t;
+    gathered += all[t];
+  }
+  EXPECT_GT(gathered, 0.0);
 }
 
 // A closed box whose walls all emit E with albedo ρ: the radiosity is E / (1 − ρ) everywhere.

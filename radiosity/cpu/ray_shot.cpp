@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -266,12 +267,14 @@ glm::dvec2 eyeCoverage(const RayShotScene& s, const ShooterLayout& l, const glm:
 // the eye (occluder_cull.h). A tile that no eye segment could reach anyway (facing away from the eye, or
 // behind the shooter), of a few texels, or the shooter's own is not tested: its ray would cost as much as
 // it saves.
-std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions) {
+std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions,
+                                 size_t& tests) {
   std::vector<glm::vec3> eyes;
   for (const RegionPieces& r : regions) eyes.insert(eyes.end(), r.eyes.begin(), r.eyes.end());
   const size_t tiles = s.tiles.spheres.size();
   const glm::vec3 ns = s.atlas.patches[size_t(shooter)].normal;
   std::vector<uint8_t> hidden(eyes.size() * tiles, 0);
+  std::vector<uint32_t> tested(tiles, 0);
   tbb::parallel_for(size_t(0), tiles, [&](size_t tile) {
     if (s.tiles.counts[tile] < 4 || s.tiles.patches[tile] == shooter) return;
     const glm::vec4 sphere = s.tiles.spheres[tile];
@@ -280,8 +283,10 @@ std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::
       const glm::vec3 toEye = eyes[e] - centre;
       if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
       hidden[e * tiles + tile] = s.occluders.hides(s.rays, eyes[e], sphere, s.offset) ? 1 : 0;
+      ++tested[tile];
     }
   });
+  for (uint32_t n : tested) tests += n;
   return hidden;
 }
 
@@ -334,7 +339,9 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   const glm::vec3 ns = p.normal;
   std::vector<size_t> eyeBase(regions.size(), 0);  // each region's first eye among all the shot's
   for (size_t r = 1; r < regions.size(); ++r) eyeBase[r] = eyeBase[r - 1] + regions[r - 1].eyes.size();
-  const std::vector<uint8_t> hidden = params.cull ? hiddenTiles(s, shooter, regions) : std::vector<uint8_t>{};
+  const std::vector<uint8_t> hidden =
+      params.cull ? hiddenTiles(s, shooter, regions, out.cullTests) : std::vector<uint8_t>{};
+  std::atomic<size_t> saved{0};
   const size_t tileCount = s.tiles.spheres.size();
   // Per chunk of receivers, every piece's light waits on its segment; the segments are traced together.
   // The chunks are fixed (a simple partitioner splits the same way every run): Embree packs a stream's
@@ -348,6 +355,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
     std::vector<RayScene::Segment> segments;
     std::vector<Pending> light;
     std::vector<uint8_t> hidden;
+    size_t saved = 0;
   };
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, s.texels.size(), 64),
@@ -383,10 +391,12 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
             const glm::vec3 share = f / float(r.eyes.size());
             const uint8_t* eyeHides = hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
             for (size_t e = 0; e < r.eyes.size(); ++e) {
-              if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]]) continue;
               const glm::vec3& eye = r.eyes[e];
               const glm::vec3 toEye = eye - x;
-              if (glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)
+              if (!(glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)) continue;
+              if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]])
+                ++q.saved;
+              else
                 queue(uint32_t(k), eye, lifted, share);
             }
           }
@@ -395,8 +405,10 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
         s.rays.occluded(q.segments, q.hidden);
         for (size_t i = 0; i < q.light.size(); ++i)
           if (!q.hidden[i]) out.irradiance[q.light[i].receiver] += q.light[i].light;
+        saved += q.saved;
       },
       tbb::simple_partitioner());
+  out.cullSaved = saved;
   // Summed in texel order, so that a shot's scaling, and the bake, do not depend on the threads' split.
   for (size_t k = 0; k < s.texels.size(); ++k)
     out.gathered += double(channelSum(out.irradiance[k])) * s.atlas.area[s.texels[k]];

@@ -56,6 +56,8 @@ struct RayShotGain {
   double gathered = 0.0;  ///< Σ irradiance × area, R + G + B
   double covered = 0.0;   ///< power-weighted share of the eyes' hemispheres showing a receiver facing them
   double open = 0.0;      ///< ... showing nothing at all
+  size_t cullTests = 0;   ///< eye–tile pairs the cull tested (each one to three rays)
+  size_t cullSaved = 0;   ///< eye segments it left out
 };
 
 /// Shoots patch `shooter`'s unshot radiosity `residual` (per atlas texel) with the regions of `layout`,

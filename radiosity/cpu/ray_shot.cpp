@@ -389,7 +389,8 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
                                     : g.region(r, p, layout.texelRadius);
             if (f == glm::vec3(0.0f)) continue;
             const glm::vec3 share = f / float(r.eyes.size());
-            const uint8_t* eyeHides = hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
+            const uint8_t* eyeHides =
+                hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
             for (size_t e = 0; e < r.eyes.size(); ++e) {
               const glm::vec3& eye = r.eyes[e];
               const glm::vec3 toEye = eye - x;

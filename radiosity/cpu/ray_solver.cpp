@@ -15,27 +15,30 @@ namespace cpgi {
 namespace {
 
 // Whether a shot culls its receivers (occluder_cull.h). A test is one to three single rays that find the
-// nearest hit; a segment it leaves out is one ray of a coherent stream that stops at any hit, about a
-// tenth of a test. So the cull runs while its shots leave out at least kPays segments per test, and after
-// a shot that saved less it rests kRest shots before it is measured again. Always on, the furnished
-// house (open rooms, small furniture: 9.4 segments per test) took 63.2 s for 1 500 shots against 55.4 s
-// without; with this rule 52.2 s. oa_dm4 (walled rooms: 19.7 per test): 24.9 s always on, 26.0 s with
-// the rule, 29.3 s without (bench/RESULTS.md).
+// nearest hit; a segment it leaves out is one ray of a coherent stream that stops at any hit. From the
+// furnished house (9.4 segments left out per test: 63.2 s for 1 500 shots culled, 55.4 s not) and
+// oa_dm4 (19.7: 24.9 s against 29.3 s), a test costs about 14 segments. So the cull runs while the shots
+// that tried it lately left out at least kPays segments per test (sums decaying by kKeep a shot); while
+// they did not, one shot in kProbe tries it again. Shots vary: a rule on each shot alone turned the cull
+// off after every poor one, and oa_dm4's bake took 225 s in its interreflection against 183 s culling
+// always.
 class CullControl {
  public:
   bool next() {
-    if (rest_ == 0) return true;
-    --rest_;
-    return false;
+    ++shot_;
+    return saved_ >= kPays * tests_ || shot_ % kProbe == 0;
   }
   void measured(const RayShotGain& g) {
-    if (g.cullTests > 0 && double(g.cullSaved) < kPays * double(g.cullTests)) rest_ = kRest;
+    if (g.cullTests == 0) return;
+    tests_ = kKeep * tests_ + double(g.cullTests);
+    saved_ = kKeep * saved_ + double(g.cullSaved);
   }
 
  private:
-  static constexpr double kPays = 12.0;
-  static constexpr int kRest = 16;
-  int rest_ = 0;
+  static constexpr double kPays = 10.0, kKeep = 0.9;
+  static constexpr int kProbe = 8;
+  double tests_ = 0.0, saved_ = 0.0;
+  uint64_t shot_ = 0;
 };
 
 double channelSum(const glm::vec3& v) {

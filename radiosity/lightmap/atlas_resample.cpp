@@ -28,7 +28,8 @@ int64_t nearestValidTexel(const LightmapAtlas& coarse, int32_t cp, glm::vec2 at)
 // loose triangle's edge) goes to the nearest valid texel of it.
 int64_t texelUnder(const LightmapAtlas& atlas, int32_t cp, glm::vec2 at) {
   const Patch& c = atlas.patches[size_t(cp)];
-  const int ci = std::clamp(int(std::floor(at.x)), 0, c.w - 1), cj = std::clamp(int(std::floor(at.y)), 0, c.h - 1);
+  const int ci = std::clamp(int(std::floor(at.x)), 0, c.w - 1),
+            cj = std::clamp(int(std::floor(at.y)), 0, c.h - 1);
   const int64_t ct = int64_t(c.y + cj) * atlas.width + (c.x + ci);
   return atlas.patch[size_t(ct)] == cp ? ct : nearestValidTexel(atlas, cp, at);
 }
@@ -142,7 +143,8 @@ BilinearTaps chartTaps(const LightmapAtlas& atlas, int32_t patch, glm::vec2 at) 
     while (i + j > c.w - 3) (i > j ? i : j) -= 1;
     const double fx = double(g.x) - i, fy = double(g.y) - j;
     const std::array<int64_t, 3> corner = {texelAt(i, j), texelAt(i + 1, j), texelAt(i, j + 1)};
-    if (std::all_of(corner.begin(), corner.end(), [&](int64_t ct) { return atlas.patch[size_t(ct)] == patch; })) {
+    if (std::all_of(corner.begin(), corner.end(),
+                    [&](int64_t ct) { return atlas.patch[size_t(ct)] == patch; })) {
       taps.texel = {corner[0], corner[1], corner[2], 0};
       taps.weight = {1.0 - fx - fy, fx, fy, 0.0};
       taps.count = 3;

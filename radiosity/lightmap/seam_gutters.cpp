@@ -40,7 +40,7 @@ bool onChart(const Patch& p, glm::vec2 g) {
 // neighbours without comparing every pair.
 class ChartGrid {
  public:
-  ChartGrid(const std::vector<Box>& boxes) {
+  explicit ChartGrid(const std::vector<Box>& boxes) {
     Box all;
     for (const Box& b : boxes) all.add(b.lo), all.add(b.hi);
     lo_ = all.lo;

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <unordered_map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -38,6 +39,24 @@ int findRoot(std::vector<int>& parent, int x) {
   return x;
 }
 
+// The direction from cell a into cell b across an opening: its faces' mean direction, or where they cancel
+// (an interface wrapped round a column of one cell, faces looking both ways in equal numbers), the axis
+// most of its faces lie across, signed by the first of those. Normalising the zero mean gave NaN, which
+// CGAL's exact rectangle fit turned into a crash (SIGFPE in GMP) on OpenArena's aggressor.
+glm::vec3 openingDirection(const std::vector<const Face*>& faces, const glm::vec3& meanDir) {
+  if (glm::length(meanDir) > 0.5f) return glm::normalize(meanDir);
+  int count[3] = {0, 0, 0};
+  for (const Face* face : faces) ++count[face->axis];
+  const int axis = count[0] >= count[1] ? (count[0] >= count[2] ? 0 : 2) : (count[1] >= count[2] ? 1 : 2);
+  glm::vec3 n(0.0f);
+  for (const Face* face : faces)
+    if (face->axis == axis) {
+      n[axis] = float(face->sign);
+      break;
+    }
+  return n;
+}
+
 // Fits one quad to the faces of one opening.
 FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& faces, double margin) {
   const float h = float(f.voxel);
@@ -62,7 +81,7 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
 
   Kernel::Plane_3 plane;
   Kernel::Point_3 centroid;
-  glm::vec3 n = glm::normalize(meanDir);
+  glm::vec3 n = openingDirection(faces, meanDir);
   if (mids.size() >= 3) {
     CGAL::linear_least_squares_fitting_3(mids.begin(), mids.end(), plane, centroid, CGAL::Dimension_tag<0>());
     const auto pn = plane.orthogonal_vector();
@@ -88,7 +107,13 @@ FittedPortal fitOpening(const GridFrame& f, const std::vector<const Face*>& face
 
   std::vector<Kernel::Point_2> projected, hull, rect;
   projected.reserve(corners.size());
-  for (const glm::vec3& p : corners) projected.emplace_back(glm::dot(p - c, u), glm::dot(p - c, v));
+  for (const glm::vec3& p : corners) {
+    const glm::vec2 q(glm::dot(p - c, u), glm::dot(p - c, v));
+    // GMP, under CGAL's exact predicates, raises SIGFPE on a NaN: say which step went wrong instead.
+    if (!std::isfinite(q.x) || !std::isfinite(q.y))
+      throw std::logic_error("fitOpening: a non-finite opening point");
+    projected.emplace_back(q.x, q.y);
+  }
   CGAL::convex_hull_2(projected.begin(), projected.end(), std::back_inserter(hull));
   CGAL::min_rectangle_2(hull.begin(), hull.end(), std::back_inserter(rect));
 

@@ -7,6 +7,7 @@
 #include "decomposition/compare.h"
 #include "decomposition/distance.h"
 #include "decomposition/merge.h"
+#include "decomposition/portals.h"
 #include "decomposition/voxelize.h"
 #include "decomposition/watershed.h"
 #include "tests/decomposition/scene_builder.h"
@@ -165,6 +166,28 @@ TEST(Compare, PortalMatchMeasures) {
   EXPECT_NEAR(m[0].normalAngle, std::atan(t) * 180.0 / M_PI, 1e-3);
   EXPECT_NEAR(m[0].areaRatio, 1.5f * std::sqrt(1.0f + t * t), 1e-4);
   EXPECT_NEAR(m[0].centreDistance, glm::length(cand.centre() - ref.centre()), 1e-6);
+}
+
+// A column of one cell standing through another: the interface wraps round it, its faces look both ways
+// along x and y in equal numbers, and their mean direction is zero. Normalised, that was NaN, and CGAL's
+// exact rectangle fit crashed on it (SIGFPE in GMP) on OpenArena's aggressor. Whatever it fits must be
+// finite.
+TEST(Portals, AnInterfaceWrappedRoundAColumnFitsAFiniteQuad) {
+  CellLabels cells;
+  cells.frame.dims = {7, 5, 6};
+  cells.frame.voxel = 0.1;
+  cells.cell.assign(cells.frame.count(), 1);
+  for (int z = 0; z < cells.frame.dims.z; ++z) cells.cell[cells.frame.index(3, 2, z)] = 0;
+  cells.peak = {0.2f, 0.2f};
+  cells.volume = {6u, uint32_t(cells.frame.count() - 6)};
+  DistanceGrid distance;
+  distance.frame = cells.frame;
+  distance.d2.assign(cells.frame.count(), 4u);
+  distance.maxD2 = 4u;
+  Context ctx;
+  const PortalSet set = fitPortals(cells, distance, PortalParams{}, ctx);
+  for (const FittedPortal& p : set.portals)
+    for (const glm::vec3& c : p.quad.corners) EXPECT_TRUE(std::isfinite(c.x + c.y + c.z));
 }
 
 }  // namespace

@@ -710,26 +710,22 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
                                   std::shared_ptr<std::string> size) {
   if (!inner) return inner;
   auto said = std::make_shared<std::pair<bool, bool>>(false, false);  // size, estimate
-  return [inner, said, size, global = o.method == "global", limit = o.timeLimit, start](
-             const std::string& stage, double fraction, const std::string& status) {
+  return [inner, said, size, global = o.method == "global", limit = o.timeLimit, start](const Progress& p) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!said->first && stage == "solve" && !size->empty()) {
+    if (!said->first && p.stage == "solve" && !size->empty()) {
       said->first = true;
       printNote(*size + " (" + formatDuration(std::max(elapsed, 1.0)) + " so far)");
     }
-    int shots = 0;
-    double unshot = 0.0, eta = 0.0;
-    if (global && !said->second && stage == "solve" &&
-        std::sscanf(status.c_str(), "shots %d, unshot %lf%%, ETA %lf s", &shots, &unshot, &eta) == 3) {
+    if (global && !said->second && p.stage == "solve" && p.shots > 0 && p.secondsLeft >= 0.0) {
       said->second = true;
       std::ostringstream line;
-      line << "bake: after " << shots << " shots, about " << formatDuration(eta) << " more to solve";
-      if (limit > 0.0 && elapsed + eta > limit)
+      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft) << " more to solve";
+      if (limit > 0.0 && elapsed + p.secondsLeft > limit)
         line << "; the time limit stops it in " << formatDuration(std::max(0.0, limit - elapsed))
              << " with a partial result";
       printNote(line.str());
     }
-    inner(stage, fraction, status);
+    inner(p);
   };
 }
 

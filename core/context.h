@@ -11,18 +11,31 @@
 
 namespace cpgi {
 
+/// One report of a long stage, as data: a printer formats it, a caller reads the numbers (no parsing of
+/// text). The fields after `status` are set by the stages that know them and negative otherwise.
+struct Progress {
+  std::string stage;     ///< "solve", "atlas", "reference", ...
+  double fraction = 0;   ///< of the stage, in [0, 1]
+  std::string status;    ///< short text such as "shots 120, unshot 3.2%"
+  int shots = -1;        ///< a solve: shots so far
+  double unshot = -1;    ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
+  double secondsLeft = -1;  ///< the stage's own estimate of its time left (s), from a model of its work
+};
+
 class Context {
  public:
-  /// Called with (stage, fraction in [0,1], short status such as "shots 120, unshot 3.2%").
-  using ProgressFn = std::function<void(const std::string&, double, const std::string&)>;
+  using ProgressFn = std::function<void(const Progress&)>;
 
   /// Kept to one line of sane length whatever names a file smuggled into it (core/error.h).
   void warn(const std::string& message) { warnings_.push_back(printable(message, 2000)); }
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   void setProgress(ProgressFn fn) { progress_ = std::move(fn); }
+  void progress(const Progress& p) const {
+    if (progress_) progress_(p);
+  }
   void progress(const std::string& stage, double fraction, const std::string& status = {}) const {
-    if (progress_) progress_(stage, fraction, status);
+    if (progress_) progress_(Progress{stage, fraction, status});
   }
 
   struct Timing {

@@ -34,19 +34,22 @@ ProgressPrinter::ProgressPrinter(Settings settings, Sink sink, Clock clock)
   lastLine_ = clock_();
 }
 
-std::string ProgressPrinter::line(const std::string& stage, double fraction, const std::string& status,
-                                  double stageSeconds) {
-  fraction = std::clamp(fraction, 0.0, 1.0);
+std::string ProgressPrinter::line(const Progress& p, double stageSeconds) {
+  const double fraction = std::clamp(p.fraction, 0.0, 1.0);
   char percent[16];
   std::snprintf(percent, sizeof percent, "%3.0f%%", 100.0 * fraction);
-  std::string text = stage + " " + percent;
-  if (!status.empty()) text += " " + status;
-  if (fraction >= 0.01 && fraction < 1.0 && stageSeconds >= 1.0 && status.find("ETA") == std::string::npos)
+  std::string text = p.stage + " " + percent;
+  if (!p.status.empty()) text += " " + p.status;
+  if (fraction < 1.0 && p.secondsLeft >= 0.0)
+    text += ", " + formatDuration(p.secondsLeft) + " left";
+  else if (fraction >= 0.01 && fraction < 1.0 && stageSeconds >= 1.0)
     text += ", " + formatDuration(stageSeconds * (1.0 - fraction) / fraction) + " left";
   return text;
 }
 
-void ProgressPrinter::report(const std::string& stage, double fraction, const std::string& status) {
+void ProgressPrinter::report(const Progress& p) {
+  const std::string& stage = p.stage;
+  const double fraction = p.fraction;
   std::lock_guard lock(mutex_);
   const double now = clock_();
   // A new stage, or the same one started over (each cell's solve in a cells bake): time it afresh.
@@ -57,7 +60,7 @@ void ProgressPrinter::report(const std::string& stage, double fraction, const st
     stageStart_ = now;
   }
   lastFraction_ = fraction;
-  const std::string text = line(stage, fraction, status, now - stageStart_);
+  const std::string text = line(p, now - stageStart_);
   if (settings_.live) {
     sink_("\r" + text + "\033[K");  // erase what a longer earlier line left
     openLine_ = fraction < 1.0;
@@ -81,9 +84,7 @@ Context::ProgressFn stderrProgress(bool quiet) {
     std::fputs(text.c_str(), stderr);
     std::fflush(stderr);
   });
-  return [printer](const std::string& stage, double fraction, const std::string& status) {
-    printer->report(stage, fraction, status);
-  };
+  return [printer](const Progress& p) { printer->report(p); };
 }
 
 }  // namespace cpgi

@@ -29,13 +29,12 @@ class ProgressPrinter {
   ProgressPrinter(Settings settings, Sink sink, Clock clock = {});
 
   /// Thread-safe, so a stage may report from worker threads.
-  void report(const std::string& stage, double fraction, const std::string& status);
+  void report(const Progress& p);
 
-  /// The text of one report without its "\r" or newline: "solve  42% shots 120, unshot 3.2% · 1 min left".
-  /// The time left is extrapolated from the stage's elapsed time and fraction, unless `status` already
-  /// carries an ETA; none before 1 % or 1 s.
-  static std::string line(const std::string& stage, double fraction, const std::string& status,
-                          double stageSeconds);
+  /// The text of one report without its "\r" or newline: "solve  42% shots 120, unshot 3.2%, 1 min left".
+  /// The time left is the stage's own estimate (Progress::secondsLeft) when it gives one, else
+  /// extrapolated from the stage's elapsed time and fraction; none before 1 % or 1 s.
+  static std::string line(const Progress& p, double stageSeconds);
 
  private:
   Settings settings_;

@@ -78,8 +78,10 @@ std::vector<size_t> activeCells(std::vector<CellState>& cells, double target) {
 SolveResult solveLabelled(const std::string& label, const std::function<SolveResult(Context&)>& solve,
                           Context& ctx) {
   Context cellCtx;
-  cellCtx.setProgress([&](const std::string& stage, double fraction, const std::string& status) {
-    ctx.progress(stage, fraction, label + (status.empty() ? "" : ": " + status));
+  cellCtx.setProgress([&](const Progress& p) {
+    Progress labelled = p;
+    labelled.status = label + (p.status.empty() ? "" : ": " + p.status);
+    ctx.progress(labelled);
   });
   SolveResult solved = solve(cellCtx);
   for (const Context::Timing& t : cellCtx.timings()) ctx.addTiming(t.stage, t.seconds);

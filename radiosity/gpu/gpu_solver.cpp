@@ -1054,13 +1054,16 @@ double channelSum(const glm::vec4& v) {
   return double(v.r) + double(v.g) + double(v.b);
 }
 
-std::string formatStatus(int shots, double fraction, double eta) {
-  char buf[96];
-  if (eta >= 0.0)
-    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%, ETA %.0f s", shots, 100.0 * fraction, eta);
-  else
-    std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * fraction);
-  return buf;
+// A solve's progress report: how far towards the stop (`stopAt`, the unshot share it waits for), the
+// shots, the unshot share and the estimate of the time left (negative: none yet).
+Progress solveProgress(double fraction, int shots, double unshot, double secondsLeft) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * unshot);
+  Progress p{"solve", fraction, buf};
+  p.shots = shots;
+  p.unshot = unshot;
+  p.secondsLeft = secondsLeft;
+  return p;
 }
 
 }  // namespace
@@ -1185,7 +1188,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
   record(sel);
   // Before the first shot, once the settings are checked and the programs built: the CLI prints the
   // bake's size here (apps/bake_command.cpp).
-  ctx.progress("solve", 0.0, formatStatus(0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
+  ctx.progress(solveProgress(0.0, 0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
   double lastReport = -1.0;
   const double strongAt =
       params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
@@ -1278,7 +1281,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
       const double eta = estimate.secondsLeft(stopAt);
       // Towards the current stop: past a refused one (acceptStop), the next ask.
       const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(stopAt), 0.0, 1.0);
-      ctx.progress("solve", progress, formatStatus(result.shots, now, eta));
+      ctx.progress(solveProgress(progress, result.shots, now, eta));
       lastReport = elapsed;
     }
   }
@@ -1307,7 +1310,7 @@ SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const
       if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
       if (!result.arrivals.empty()) result.arrivals[i] = glm::vec4(0.0f);
     }
-  ctx.progress("solve", 1.0, formatStatus(result.shots, result.unshotFraction, -1.0));
+  ctx.progress(solveProgress(1.0, result.shots, result.unshotFraction, -1.0));
   result.seconds = since(start);
   return result;
 }

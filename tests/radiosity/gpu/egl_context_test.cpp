@@ -13,8 +13,8 @@ namespace {
 TEST(EglContext, RunsAComputeShaderAndReadsBack) {
   Context ctx;
   std::string reported;
-  ctx.setProgress([&](const std::string& stage, double, const std::string& status) {
-    if (stage == "egl") reported = status;
+  ctx.setProgress([&](const Progress& p) {
+    if (p.stage == "egl") reported = p.status;
   });
   EglContext context(ctx);
   EXPECT_FALSE(context.renderer().empty());

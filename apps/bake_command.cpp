@@ -4,7 +4,7 @@
 // [--allow-dark] [--view-size WxH] [loading options]`: GPU progressive radiosity over a lightmap atlas
 // (design.md §1, §3), over the whole scene at once or cell by cell through portals
 // (radiosity/cells/cell_solver.h); both write the same atlas layout, plus an ambient term for the power the
-// stop left unshot (radiosity/gpu/ambient.h). Writes the lightmap files
+// stop left unshot (radiosity/solve/ambient.h). Writes the lightmap files
 // (radiosity/lightmap/lightmap_output.h: lightmap.exr with "area", "emissive" and "cell", lightmap.png,
 // baked.glb with the cells, view-*.png/.exr), report.json and report.html (apps/report_page.h), all or
 // nothing. The options are apps/options.h's.
@@ -41,16 +41,17 @@
 #include "radiosity/cells/cell_jobs.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/ambient.h"
-#include "radiosity/gpu/auto_density.h"
+#include "radiosity/cpu/ray_shot_engine.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/two_level_solve.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
+#include "radiosity/solve/ambient.h"
+#include "radiosity/solve/auto_density.h"
+#include "radiosity/solve/two_level_solve.h"
 
 namespace cpgi::cli {
 namespace {
@@ -77,7 +78,7 @@ struct BakeOptions {
     return p;
   }();
   decomp::DecomposeParams decompose;           ///< for --cells auto
-  bool noAmbient = false;                      ///< leave out the ambient term (radiosity/gpu/ambient.h)
+  bool noAmbient = false;                      ///< leave out the ambient term (radiosity/solve/ambient.h)
   double ambientShare = kDefaultAmbientShare;  ///< the stop per cell (ambientShares; cells: round_stop.h)
   LoadOptions load;                            ///< --strict, --allow-outside-files, --emit, --albedo
   bool allowDark = false;                      ///< go on when nothing lights the scene
@@ -96,28 +97,27 @@ struct BakeOptions {
   bool gather = false;
   double timeLimit = 0.0;  ///< --time-limit: seconds of wall clock from the start, 0 = none
   /// --solve-density: the indirect light solved on an atlas of this many texels per metre, the lamps'
-  /// light on the output's (radiosity/gpu/two_level_solve.h); 0: everything on the output's atlas;
+  /// light on the output's (radiosity/solve/two_level_solve.h); 0: everything on the output's atlas;
   /// kAutoSolveDensity: chosen by chosenSolveDensity.
   float solveDensity = kAutoSolveDensity;
   /// --lamp-coarsening (with --solve-density): the lamps' shot first on an atlas this many times coarser,
-  /// then at the output's texels only where its light varies (radiosity/gpu/refined_lamp_shot.h).
+  /// then at the output's texels only where its light varies (radiosity/solve/refined_lamp_shot.h).
   float lampCoarsening = RefinedLampParams{}.coarsening;
   /// --density auto (the default; a number or --texels-per-quad fixes the density): the output's texels
-  /// per metre chosen per surface (radiosity/gpu/auto_density.h).
+  /// per metre chosen per surface (radiosity/solve/auto_density.h).
   bool densityAuto = true;
   AutoDensityParams autoDensity;
   /// --indirect-solver: how a two-level solve shoots its interreflection: "gpu" (item buffers on the GL
-  /// device), "rays" (Embree on the CPU, radiosity/cpu/ray_solver.h) or "auto" (rays where the GL device
+  /// device), "rays" (Embree on the CPU, radiosity/cpu/ray_shot_engine.h) or "auto" (rays where the GL device
   /// is a software rasterizer, usesRays).
   std::string indirectSolver = "auto";
 };
 
-// Whether --indirect-solver asks for rays on this GL device: auto picks them where the device is Mesa's
-// software rasterizer (llvmpipe, softpipe), which draws item buffers on the same CPU cores the rays use.
+// Whether --indirect-solver asks for rays on this GL device: auto picks them where the device rasterizes
+// in software (EglContext::softwareRasterizer), drawing item buffers on the same CPU cores the rays use.
 bool usesRays(const BakeOptions& o, const EglContext& gl) {
   if (o.indirectSolver != "auto") return o.indirectSolver == "rays";
-  const std::string r = gl.renderer();
-  return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos;
+  return gl.softwareRasterizer();
 }
 
 // On-demand bakes (radiosity/cells/cell_selection.h): the cells to bake, or nothing for a whole bake.
@@ -224,7 +224,8 @@ void buildBakeAtlas(
     if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
     auto t = ctx.time("auto density");
     AutoDensityData data;
-    in.triangleDensity = chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, *gl,
+    GlShotEngine pilot(*gl);
+    in.triangleDensity = chooseAutoDensity(in.loaded.scene, in.quads, o.atlas, o.autoDensity, o.solver, pilot,
                                            ctx, SolveControls{.deadline = deadline}, &data);
     in.autoDensity = data;
   }
@@ -317,7 +318,7 @@ float chosenSolveDensity(const BakeOptions& o, const LightmapAtlas& atlas) {
 }
 
 // Where the light leaving each cell's surfaces lands, or leaves the scene, for the ambient term and the
-// stop per cell (radiosity/gpu/ambient_transfer.h): the portals' areas alone kept the outside's light in
+// stop per cell (radiosity/solve/ambient_transfer.h): the portals' areas alone kept the outside's light in
 // it. Empty (the portals' areas) with --no-ambient.
 AmbientTransfer bakeAmbientTransfer(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
                                     const ExrChannel& texelCells, Context& ctx) {
@@ -340,13 +341,15 @@ std::vector<double> escapeShares(const AmbientTransfer& transfer) {
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 // A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
-// `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/gpu/ambient.h,
+// `texelCells` the ambient term would be more than --ambient-share of the light (radiosity/solve/ambient.h,
 // ambientShares).
 SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
                       const ExrChannel& texelCells, const AmbientTransfer& transfer, const EglContext& gl,
                       std::chrono::steady_clock::time_point deadline, Context& ctx,
                       std::optional<TwoLevelData>& levels) {
   auto t = ctx.time("solve");
+  GlShotEngine glEngine(gl);
+  RayShotEngine rays;
   // The residual, for the ambient term.
   SolveControls controls{.readTransfer = !o.noAmbient, .deadline = deadline};
   if (o.method != "cells" && o.ambientShare > 0.0)
@@ -360,17 +363,18 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = o.lampCoarsening;
-    twoLevels.indirectByRays = usesRays(o, gl);
     if (o.method == "cells") {  // the cells on the coarse atlas, each solve on the GL device
       CellSolveParams params = cellSolveParams(o, in);
       params.deadline = deadline;
-      return solveCellsTwoLevel(in.loaded.scene, in.graph, in.quads, in.atlas, twoLevels, params, gl, ctx,
-                                &*levels);
+      return solveCellsTwoLevel(in.loaded.scene, in.graph, in.quads, in.atlas, twoLevels, params, glEngine,
+                                ctx, &*levels);
     }
-    return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, gl, ctx, controls,
-                         &*levels);
+    const ShotEngines engines{glEngine, usesRays(o, gl) ? static_cast<ShotEngine&>(rays) : glEngine};
+    return solveTwoLevel(in.loaded.scene, in.quads, in.atlas, o.atlas, twoLevels, o.solver, engines, ctx,
+                         controls, &*levels);
   }
-  if (o.method != "cells") return solveProgressive(in.loaded.scene, in.atlas, o.solver, gl, ctx, controls);
+  if (o.method != "cells")
+    return solveProgressive(in.loaded.scene, in.atlas, o.solver, glEngine, ctx, controls);
   CellSolveParams params = cellSolveParams(o, in);
   params.deadline = deadline;
   if (o.gather) {
@@ -378,11 +382,11 @@ SolveResult solveBake(const BakeOptions& o, const BakeInput& in, const CellGraph
     return gatherCellJobs(o.plan, plan, in.loaded.scene, in.graph, in.atlas, params, ctx);
   }
   return in.onDemand.active ? solveCellsOnDemand(in.loaded.scene, in.graph, in.onDemand.selection,
-                                                 in.onDemand.mode, in.atlas, params, gl, ctx)
-                            : solveCells(in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
+                                                 in.onDemand.mode, in.atlas, params, glEngine, ctx)
+                            : solveCells(in.loaded.scene, in.graph, in.atlas, params, glEngine, ctx);
 }
 
-// Step 3: what the stop left unshot, as an ambient term that follows the cells (radiosity/gpu/ambient.h),
+// Step 3: what the stop left unshot, as an ambient term that follows the cells (radiosity/solve/ambient.h),
 // added to `s.radiosity` on the texels of `texelCells` that are written. Returns the mean ambient
 // irradiance (W/m², RGB; 0 with --no-ambient).
 glm::dvec3 addBakeAmbient(const BakeOptions& o, const BakeInput& in, const CellGraph& texelGraph,
@@ -506,7 +510,8 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   report["region_size"] = o.solver.regionSize;
   report["jittered_eyes"] = o.solver.jitteredEyes;
   report["lamp_rays"] = o.solver.lampRays;
-  // Two levels (radiosity/gpu/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
+  // Two levels (radiosity/solve/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser
+  // one.
   report["solve_density"] =
       levels ? nlohmann::json(chosenSolveDensity(o, in.atlas)) : nlohmann::json(nullptr);
   report["solve_density_option"] =
@@ -521,7 +526,7 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
     report["lamp_solve_s"] = levels->lampSeconds;
     report["indirect_solve_s"] = levels->solveSeconds;
     report["indirect_item_buffer"] = levels->indirectItemBuffer;
-    report["indirect_solver"] = levels->indirectByRays ? "rays" : "gpu";
+    report["indirect_solver"] = levels->indirectBackend == "rays" ? "rays" : "gpu";
   }
   report["density_option"] = o.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
   report["auto_density"] = autoDensityReport(o, in);
@@ -642,7 +647,8 @@ int runCellJobStage(const BakeOptions& o) {
     else
       run = cellsByName(in.graph, o.jobCells, "--cell");
     const EglContext gl(ctx);
-    runCellJobs(o.plan, plan, o.jobRound, run, in.loaded.scene, in.graph, params, gl, ctx);
+    GlShotEngine engine(gl);
+    runCellJobs(o.plan, plan, o.jobRound, run, in.loaded.scene, in.graph, params, engine, ctx);
     if (!o.quiet) std::cout << o.plan << ": round " << o.jobRound << " of " << run.size() << " cells done\n";
     return 0;
   }
@@ -658,7 +664,8 @@ int runCellJobStage(const BakeOptions& o) {
     else
       groups = groupIndices(o.jobFirstShot);
     const EglContext gl(ctx);
-    runFirstShotJobs(o.plan, plan, groups, in.loaded.scene, in.graph, in.atlas, params, gl, ctx);
+    GlShotEngine engine(gl);
+    runFirstShotJobs(o.plan, plan, groups, in.loaded.scene, in.graph, in.atlas, params, engine, ctx);
     if (!o.quiet) std::cout << o.plan << ": first shot of " << groups.size() << " emitter groups done\n";
     return 0;
   }
@@ -719,7 +726,8 @@ Context::ProgressFn withBakeNotes(Context::ProgressFn inner, const BakeOptions& 
     if (global && !said->second && p.stage == "solve" && p.shots > 0 && p.secondsLeft >= 0.0) {
       said->second = true;
       std::ostringstream line;
-      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft) << " more to solve";
+      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft)
+           << " more to solve";
       if (limit > 0.0 && elapsed + p.secondsLeft > limit)
         line << "; the time limit stops it in " << formatDuration(std::max(0.0, limit - elapsed))
              << " with a partial result";

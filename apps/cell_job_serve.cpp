@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "radiosity/cells/cell_jobs.h"
 #include "radiosity/cells/cell_selection.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 namespace cpgi::cli {
 namespace {
@@ -97,6 +98,7 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
                   const std::function<const LightmapAtlas&()>& globalAtlas,
                   const std::function<void()>& gather, const EglContext& gl, Context& ctx, std::istream& in,
                   std::ostream& out) {
+  GlShotEngine engine(gl);              // its programs kept from job to job
   std::optional<CellJobServer> server;  // built at the first request: a server may start before the sum
   CellJobStatusKept statusKept;         // the finished rounds, so that a status reads only the new ones
   for (std::string line; std::getline(in, line);) {
@@ -123,12 +125,12 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
         gather();
         done["gather"] = true;
       } else if (request.kind == ServeRequest::Kind::FirstShot) {
-        runFirstShotJobs(dir, plan, request.firstShot, scene, graph, globalAtlas(), params, gl, ctx);
+        runFirstShotJobs(dir, plan, request.firstShot, scene, graph, globalAtlas(), params, engine, ctx);
         done["first_shot"] = request.firstShot;
       } else {
         const std::vector<int> cells = requestedCells(graph, request.cells);
         if (!server) server.emplace(scene, graph, params, ctx);
-        server->runRound(dir, plan, request.round, cells, gl, ctx);
+        server->runRound(dir, plan, request.round, cells, engine, ctx);
         done["round"] = request.round, done["cells"] = cells.size();
       }
       done["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -14,12 +14,13 @@
 #include "core/error.h"
 #include "core/quads.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/ambient.h"
 #include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/metrics/cell_metrics.h"
 #include "radiosity/metrics/metrics.h"
+#include "radiosity/solve/ambient.h"
 
 namespace cpgi::cli {
 namespace {
@@ -76,7 +77,7 @@ Reference trace(const std::string& scene, const CellsToBake& cells, const Lightm
 }
 
 nlohmann::json bake(const std::string& scene, const CellsToBake& cells, const LightmapAtlas& atlas,
-                    const CellBakeComparison& params, const EglContext& gl, Context& ctx,
+                    const CellBakeComparison& params, ShotEngine& engine, Context& ctx,
                     std::vector<glm::vec3>& radiosity) {
   CellSolveParams solve;
   solve.solver = params.solver;
@@ -85,8 +86,8 @@ nlohmann::json bake(const std::string& scene, const CellsToBake& cells, const Li
   solve.portals = params.portals;
   solve.maxAmbientShare = kDefaultAmbientShare;  // `cpgi bake`'s stop per cell
   const Clock::time_point start = Clock::now();
-  SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, gl, ctx);
-  // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/gpu/ambient.h).
+  SolveResult solved = solveCells(cells.scene, cells.graph, atlas, solve, engine, ctx);
+  // As `cpgi bake` does: the ambient term for what the stop left unshot (radiosity/solve/ambient.h).
   addAmbient(atlas, solved.residual, glm::dvec3(solved.energy.unshot / 3.0),
              cellChannel(atlas, cells.scene, cells.graph).values, cells.graph, solved.radiosity);
   const double seconds = secondsSince(start);
@@ -166,8 +167,9 @@ nlohmann::json compareCellBakes(const std::string& scene, const CellsToBake& a, 
   const auto gl = std::make_unique<EglContext>(ctx);
 
   std::vector<glm::vec3> radiosityA, radiosityB;
-  nlohmann::json sideA = bake(scene, a, atlasA, params, *gl, ctx, radiosityA);
-  nlohmann::json sideB = bake(scene, b, atlasB, params, *gl, ctx, radiosityB);
+  GlShotEngine engine(*gl);
+  nlohmann::json sideA = bake(scene, a, atlasA, params, engine, ctx, radiosityA);
+  nlohmann::json sideB = bake(scene, b, atlasB, params, engine, ctx, radiosityB);
 
   const Reference refA = trace(scene, a, atlasA, params.reference, ctx);
   nlohmann::json references = nlohmann::json::array({refA.report});

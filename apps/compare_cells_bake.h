@@ -12,7 +12,7 @@
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/lightmap/atlas.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/reference/reference_tracer.h"
 
 namespace cpgi::cli {

@@ -122,6 +122,28 @@ std::string recordedScene(const std::string& bDir, const std::string& aDir) {
   return "";
 }
 
+// A read at each of B's texel centres through the scene (its lightmap coordinates, bilinear), as an engine
+// reads A's baked.glb, when the two atlases differ.
+void readOnAtlasOf(const CompareLightOptions& o, const Lightmap& b, Lightmap& a) {
+  std::string scene = o.scene;
+  if (scene.empty()) {
+    scene = recordedScene(o.b, o.a);
+    if (scene.empty())
+      throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" +
+                                std::to_string(b.rgb.height) + " but " + o.a + "'s is " +
+                                std::to_string(a.rgb.width) + "x" + std::to_string(a.rgb.height) +
+                                " or its texel areas differ, and the scene " +
+                                "their reports name is not there; give --scene to read A at B's texels");
+    if (!o.json)
+      std::cerr << "compare-light: the atlases differ; " << o.a << " is read at " << o.b
+                << "'s texels through " << scene << "\n";
+  }
+  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
+  a.area = b.area;
+  a.emissive.clear();
+  a.cell.clear();
+}
+
 int runCompareLight(const CompareLightOptions& o) {
   const nlohmann::json bench = o.bench.empty() ? nlohmann::json(nullptr) : readBenchResults(o.bench);
   Lightmap a = readLightmap(o.a);
@@ -130,25 +152,7 @@ int runCompareLight(const CompareLightOptions& o) {
     throw InputError(o.a,
                      "is a sparse reference (cpgi reference --texels traces a sample of texels), not a "
                      "lightmap to test; give it as B, the reference");
-  if (!sameAtlas(a, b)) {
-    std::string scene = o.scene;
-    if (scene.empty()) {
-      scene = recordedScene(o.b, o.a);
-      if (scene.empty())
-        throw InputError(o.b, "lightmap is " + std::to_string(b.rgb.width) + "x" +
-                                  std::to_string(b.rgb.height) + " but " + o.a + "'s is " +
-                                  std::to_string(a.rgb.width) + "x" + std::to_string(a.rgb.height) +
-                                  " or its texel areas differ, and the scene " +
-                                  "their reports name is not there; give --scene to read A at B's texels");
-      if (!o.json)
-        std::cerr << "compare-light: the atlases differ; " << o.a << " is read at " << o.b
-                  << "'s texels through " << scene << "\n";
-    }
-    a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
-    a.area = b.area;
-    a.emissive.clear();
-    a.cell.clear();
-  }
+  if (!sameAtlas(a, b)) readOnAtlasOf(o, b, a);
 
   // Against a sparse reference, the metric's sums run over its traced texels, each weighted by the number
   // of texels it stands for (texel_sample.h): unbiased estimates of the sums over every texel.

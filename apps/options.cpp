@@ -33,7 +33,7 @@ constexpr ParameterFlag kFlags[] = {
     {"texels per quad", "--texels-per-quad"},
     {"texel density", "--density"},
     {"maximum memory", "--max-memory"},
-    // GPU solver (radiosity/gpu/gpu_solver.h)
+    // GPU solver (radiosity/gpu/gl_shot_engine.h)
     {"unshot fraction", "--unshot"},
     {"maximum shots", "--max-shots"},
     {"visibility", "--visibility"},
@@ -46,7 +46,7 @@ constexpr ParameterFlag kFlags[] = {
     {"strong-shot fraction", "--strong-fraction"},
     {"region size", "--region-size"},
     {"lamp rays", "--lamp-rays"},
-    // Ambient term (radiosity/gpu/ambient.h), bake only
+    // Ambient term (radiosity/solve/ambient.h), bake only
     {"no ambient term", "--no-ambient"},
     {"ambient share", "--ambient-share"},
     // Bake only: stop the solve at a wall-clock limit, writing a partial result

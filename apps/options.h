@@ -16,7 +16,7 @@
 #include "decomposition/decompose.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/views.h"
 #include "radiosity/reference/noisy_cells.h"
@@ -37,14 +37,14 @@ struct OptionScope {
 };
 
 /// --texels-per-quad | --density; with `densityAuto`, --density also takes "auto" and sets it
-/// (bake: radiosity/gpu/auto_density.h).
+/// (bake: radiosity/solve/auto_density.h).
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {}, bool* densityAuto = nullptr);
 /// --max-memory SIZE into `limit` (default: defaultMemoryLimit()); addAtlasOptions adds it for the atlas.
 void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope = {});
 /// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
 /// --strong-regions, --strong-fraction, --region-size, --fixed-eyes.
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope = {});
-/// --no-ambient (bake: leave out radiosity/gpu/ambient.h's term) and --ambient-share (bake: the stop per
+/// --no-ambient (bake: leave out radiosity/solve/ambient.h's term) and --ambient-share (bake: the stop per
 /// cell).
 void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare);
 /// bake's `--time-limit SECONDS` (0: none).
@@ -72,13 +72,13 @@ inline constexpr int kBakeLampRays = 64;
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
 /// --spp (paths per texel of the reference).
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
-/// --solve-density (bake: the indirect light on a coarser atlas, radiosity/gpu/two_level_solve.h):
+/// --solve-density (bake: the indirect light on a coarser atlas, radiosity/solve/two_level_solve.h):
 /// texels per metre, 0 for one level, or "auto" (kAutoSolveDensity, the default).
 inline constexpr float kAutoSolveDensity = -1.0f;
 void addSolveDensityOption(CLI::App& cmd, float& density);
 /// --density-tolerance (bake, with --density auto: radiosity/lightmap/light_density.h).
 void addDensityToleranceOption(CLI::App& cmd, float& tolerance);
-/// --lamp-coarsening (bake, with --solve-density: radiosity/gpu/refined_lamp_shot.h).
+/// --lamp-coarsening (bake, with --solve-density: radiosity/solve/refined_lamp_shot.h).
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening);
 /// --cell-noise and --max-spp (more paths for the reference's noisy cells,
 /// radiosity/reference/noisy_cells.h).

@@ -3,8 +3,8 @@
 // looked up where rays from the portal into the source cell hit; the destination cell's texels then
 // receive from the portal (a) through it, as the truth: the ray from the texel through a portal point
 // continues into the source cell and takes the radiance it meets, and (b) from the portal re-emitting its
-// irradiance per portal texel as a Lambertian, as the moment-fitted lobe of radiosity/gpu/emission_lobes.h,
-// or as a histogram of arrival directions in radiosity/gpu/emission_bins.h's bins. Only the first pass
+// irradiance per portal texel as a Lambertian, as the moment-fitted lobe of radiosity/solve/emission_lobes.h,
+// or as a histogram of arrival directions in radiosity/solve/emission_bins.h's bins. Only the first pass
 // through the portal; no interreflection in the destination. Prints, per destination surface orientation
 // and per band of distance from the portal plane, the ratio of each model to the truth, and the per-texel
 // RMSE relative to the destination's mean.
@@ -25,8 +25,8 @@
 #include "core/image_io.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
-#include "radiosity/gpu/emission_bins.h"
-#include "radiosity/gpu/emission_lobes.h"
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/emission_lobes.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
 

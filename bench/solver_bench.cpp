@@ -12,7 +12,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "scenes/seed_scenes.h"
 
 namespace {

@@ -14,11 +14,11 @@ namespace cpgi {
 /// One report of a long stage, as data: a printer formats it, a caller reads the numbers (no parsing of
 /// text). The fields after `status` are set by the stages that know them and negative otherwise.
 struct Progress {
-  std::string stage;     ///< "solve", "atlas", "reference", ...
-  double fraction = 0;   ///< of the stage, in [0, 1]
-  std::string status;    ///< short text such as "shots 120, unshot 3.2%"
-  int shots = -1;        ///< a solve: shots so far
-  double unshot = -1;    ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
+  std::string stage;        ///< "solve", "atlas", "reference", ...
+  double fraction = 0;      ///< of the stage, in [0, 1]
+  std::string status;       ///< short text such as "shots 120, unshot 3.2%"
+  int shots = -1;           ///< a solve: shots so far
+  double unshot = -1;       ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
   double secondsLeft = -1;  ///< the stage's own estimate of its time left (s), from a model of its work
 };
 

@@ -14,8 +14,8 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/emission_bins.h"
 
 namespace cpgi {
 
@@ -47,11 +47,11 @@ struct CellState {
   std::vector<int> portalPatch;                       ///< per CellScene::portals entry
   std::vector<glm::vec3> pending;                     ///< exitance to shoot at the next solve (W/m²)
   std::vector<glm::vec3> carried;  ///< the part of `pending` already counted in the radiosity
-  /// Directional portals: per texel, the arrival moments of `pending` (radiosity/gpu/emission_lobes.h),
+  /// Directional portals: per texel, the arrival moments of `pending` (radiosity/solve/emission_lobes.h),
   /// fitted into its emission lobes at the next solve; empty with diffuse portals.
   std::vector<glm::vec4> pendingMoments;
   /// Binned portals: per texel holding pending light that crossed a portal, its arrival bins
-  /// (radiosity/gpu/emission_bins.h), weighted so that they sum to its pending exitance's R + G + B.
+  /// (radiosity/solve/emission_bins.h), weighted so that they sum to its pending exitance's R + G + B.
   std::map<int32_t, ArrivalBins> pendingBins;
   bool boundary = false;  ///< an on-demand boundary cell: coarse atlas, texels not written
 };

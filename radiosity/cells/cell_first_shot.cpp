@@ -71,10 +71,9 @@ CellFirstShot shootEmittersIntoCells(const Scene& scene, const LightmapAtlas& gl
   std::vector<FirstShotContribution> parts(groups.size());
   {
     auto t = ctx.time("cells: first shot");
-    workers.run(
-        groups.size(), ctx, [&](size_t g, const EglContext& gl, SolverPrograms& programs, Context& taskCtx) {
-          parts[g] = shootFirstShotGroup(scene, receivers, groups, g, settings, gl, programs, taskCtx);
-        });
+    workers.run(groups.size(), ctx, [&](size_t g, ShotEngine& engine, Context& taskCtx) {
+      parts[g] = shootFirstShotGroup(scene, receivers, groups, g, settings, engine, taskCtx);
+    });
   }
   return landFirstShot(scene, global, sumFirstShot(parts, global.texelCount()), cells);
 }

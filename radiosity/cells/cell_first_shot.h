@@ -18,8 +18,8 @@
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/first_shot_groups.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/solve_result.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 

@@ -339,7 +339,7 @@ std::vector<FirstShotGroup> checkedGroups(const fs::path& dir, const CellJobPlan
 
 void runFirstShotJobs(const fs::path& dir, const CellJobPlan& plan, const std::vector<int>& run,
                       const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
-                      const CellSolveParams& params, const EglContext& gl, Context& ctx) {
+                      const CellSolveParams& params, ShotEngine& engine, Context& ctx) {
   requireSupported(params);
   LightmapAtlas receivers;
   const std::vector<FirstShotGroup> groups = checkedGroups(dir, plan, scene, graph, global, &receivers);
@@ -347,12 +347,11 @@ void runFirstShotJobs(const fs::path& dir, const CellJobPlan& plan, const std::v
     if (g < 0 || g >= int(groups.size()))
       throw InputError("first shot", "no emitter group " + std::to_string(g) + " (the plan has " +
                                          std::to_string(groups.size()) + ")");
-  SolverPrograms programs;
   fs::create_directories(dir / "first-shot");
   for (int g : run) {
     auto t = ctx.time("cells: first shot");
     const FirstShotContribution c =
-        shootFirstShotGroup(scene, receivers, groups, size_t(g), params.solver, gl, programs, ctx);
+        shootFirstShotGroup(scene, receivers, groups, size_t(g), params.solver, engine, ctx);
     writeFirstShotGroup(firstShotGroupFile(dir, g), g, groups[size_t(g)].cell, global.texelCount(), c);
   }
 }
@@ -485,9 +484,8 @@ RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int ro
 // Round `round` of the cells `run` (graph indices, each kept in `j`): gathers, solves or waits, and
 // writes each cell's files, its summary last.
 void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
-                   JobCells& j, RoundSettings r, const PortalTransfer& transfer, SolverPrograms& programs,
-                   const EglContext& gl, Context& ctx) {
-  r.controls.programs = &programs;
+                   JobCells& j, const RoundSettings& r, const PortalTransfer& transfer, ShotEngine& engine,
+                   Context& ctx) {
   fs::create_directories(roundDir(dir, round));
   for (int c : run) {
     const auto start = std::chrono::steady_clock::now();
@@ -505,7 +503,7 @@ void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, cons
     if (cellSolvesRound(s, r.target)) {
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
       auto t = ctx.time("cells: solve");
-      const SolveResult solved = transfer.solve(k, s, r.settings, r.controls, gl, ctx);
+      const SolveResult solved = transfer.solve(k, s, r.settings, r.controls, engine, ctx);
       cr = cellRoundOf(k, s, solved, j.links, j.cells, transfer.binRays());
     } else {
       cr = waitingCellRound(k, s);
@@ -528,13 +526,12 @@ void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, cons
 
 void runCellJobs(const fs::path& dir, const CellJobPlan& plan, int round, const std::vector<int>& run,
                  const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                 const EglContext& gl, Context& ctx) {
+                 ShotEngine& engine, Context& ctx) {
   std::optional<StopReplay> replay;
   const RoundSettings settings = roundSettings(dir, plan, round, graph, params, replay);
   JobCells cells = buildJobCells(scene, graph, cellsAround(plan, run), params, ctx);
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
-  SolverPrograms programs;
-  solveJobCells(dir, plan, round, run, cells, settings, *transfer, programs, gl, ctx);
+  solveJobCells(dir, plan, round, run, cells, settings, *transfer, engine, ctx);
 }
 
 struct CellJobServer::Kept {
@@ -542,7 +539,6 @@ struct CellJobServer::Kept {
   CellSolveParams params;
   JobCells cells;
   std::unique_ptr<PortalTransfer> transfer;
-  SolverPrograms programs;
   std::optional<StopReplay> replay;
 };
 
@@ -551,17 +547,16 @@ CellJobServer::CellJobServer(const Scene& scene, const CellGraph& graph, const C
   requireSupported(params);
   std::vector<int> all(graph.cells.size());
   for (size_t c = 0; c < all.size(); ++c) all[c] = int(c);
-  // SolverPrograms neither copies nor moves: the aggregate is built in place.
-  kept_.reset(new Kept{
-      graph, params, buildJobCells(scene, graph, all, params, ctx), makePortalTransfer(params), {}, {}});
+  kept_.reset(
+      new Kept{graph, params, buildJobCells(scene, graph, all, params, ctx), makePortalTransfer(params), {}});
 }
 
 CellJobServer::~CellJobServer() = default;
 
 void CellJobServer::runRound(const fs::path& dir, const CellJobPlan& plan, int round,
-                             const std::vector<int>& run, const EglContext& gl, Context& ctx) {
+                             const std::vector<int>& run, ShotEngine& engine, Context& ctx) {
   const RoundSettings settings = roundSettings(dir, plan, round, kept_->graph, kept_->params, kept_->replay);
-  solveJobCells(dir, plan, round, run, kept_->cells, settings, *kept_->transfer, kept_->programs, gl, ctx);
+  solveJobCells(dir, plan, round, run, kept_->cells, settings, *kept_->transfer, engine, ctx);
 }
 
 namespace {

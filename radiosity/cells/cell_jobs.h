@@ -14,7 +14,7 @@
 //                    enough (cell_round.h, as solveCells does), and writes its state, the portal light it
 //                    sends each neighbour and its summary (last: its presence marks the job done).
 //   CellJobServer    runCellJobs for one job after another in one process, the cells' atlases, the GPU
-//                    programs and the EGL context kept between them (`cpgi cell-job PLAN --serve`).
+//                    programs and the shot engine kept between them (`cpgi cell-job PLAN --serve`).
 //   cellJobStatus    which round comes next, from plan.json and the summaries alone (cheap).
 //   gatherCellJobs   every round applied in order, as solveCells applies them: the same SolveResult.
 #pragma once
@@ -31,9 +31,9 @@
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/cells/first_shot_groups.h"
 #include "radiosity/cells/round_stop.h"
-#include "radiosity/gpu/egl_context.h"
-#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/solve_result.h"
+#include "radiosity/solve/shot_engine.h"
 
 namespace cpgi {
 
@@ -83,10 +83,10 @@ CellJobPlan planCellJobs(const std::filesystem::path& dir, const Scene& scene, c
                          std::vector<std::string> bakeArgs, Context& ctx);
 
 /// The first shot of emitter groups `groups` (indices into plan.firstShotGroups), one after the other on
-/// `gl`; each writes its group's file. InputError when the scene's groups are not the plan's.
+/// `engine`; each writes its group's file. InputError when the scene's groups are not the plan's.
 void runFirstShotJobs(const std::filesystem::path& dir, const CellJobPlan& plan,
                       const std::vector<int>& groups, const Scene& scene, const CellGraph& graph,
-                      const LightmapAtlas& global, const CellSolveParams& params, const EglContext& gl,
+                      const LightmapAtlas& global, const CellSolveParams& params, ShotEngine& engine,
                       Context& ctx);
 
 /// Adds every group's file in the plan's order, lands the sum in the cells, writes first-shot.cell and
@@ -99,13 +99,14 @@ CellJobPlan sumFirstShotJobs(const std::filesystem::path& dir, const CellJobPlan
 /// neighbours, and the round to be one the solve still needs (InputError otherwise).
 void runCellJobs(const std::filesystem::path& dir, const CellJobPlan& plan, int round,
                  const std::vector<int>& cells, const Scene& scene, const CellGraph& graph,
-                 const CellSolveParams& params, const EglContext& gl, Context& ctx);
+                 const CellSolveParams& params, ShotEngine& engine, Context& ctx);
 
 /// Round jobs served by one long-lived process (`cpgi cell-job PLAN --serve`, docs/cell-jobs.md): the whole
-/// graph's cell atlases and portal links are built once, and the portal model and the solver's compiled
-/// programs are kept between jobs, so that a job costs its cells' work and files alone. A served round of
-/// some cells writes the bytes runCellJobs writes (the job seconds aside): a cell's atlas and links are the
-/// whole graph's in both, and each job starts from its cells' atlases as built. `graph` must outlive it.
+/// graph's cell atlases and portal links are built once, and the portal model are kept between jobs (the
+/// caller keeps its shot engine, with its compiled programs), so that a job costs its cells' work and files
+/// alone. A served round of some cells writes the bytes runCellJobs writes (the job seconds aside): a cell's
+/// atlas and links are the whole graph's in both, and each job starts from its cells' atlases as built.
+/// `graph` must outlive it.
 class CellJobServer {
  public:
   CellJobServer(const Scene& scene, const CellGraph& graph, const CellSolveParams& params, Context& ctx);
@@ -115,7 +116,7 @@ class CellJobServer {
 
   /// As runCellJobs, on the kept cells.
   void runRound(const std::filesystem::path& dir, const CellJobPlan& plan, int round,
-                const std::vector<int>& cells, const EglContext& gl, Context& ctx);
+                const std::vector<int>& cells, ShotEngine& engine, Context& ctx);
 
  private:
   struct Kept;

@@ -22,9 +22,9 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_atlases.h"
-#include "radiosity/gpu/emission_bins.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/solve_result.h"
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 

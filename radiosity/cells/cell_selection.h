@@ -64,5 +64,4 @@ CellSelection selectCells(const CellGraph& graph, const std::vector<int>& baked)
 /// the quad under it.
 std::vector<int> cellOfTexels(const LightmapAtlas& atlas, const CellGraph& graph, size_t triangleCount);
 
-
 }  // namespace cpgi

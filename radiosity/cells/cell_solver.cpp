@@ -100,20 +100,16 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
   std::vector<CellRound> round(cells.size());
   {
     auto t = ctx.time("cells: solve");
-    workers.run(
-        active.size(), ctx,
-        [&](size_t k, const EglContext& context, SolverPrograms& programs, Context& taskCtx) {
-          SolveControls own = controls;
-          own.programs = &programs;
-          const size_t c = active[k];
-          const std::string label = "cell " + graph.cells[c].name + " (" + std::to_string(k + 1) + " of " +
-                                    std::to_string(active.size()) + "), round " + std::to_string(roundNumber);
-          solvedOf[c] = solveLabelled(
-              label,
-              [&](Context& cellCtx) { return transfer.solve(c, cells[c], settings, own, context, cellCtx); },
-              taskCtx);
-          round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays());
-        });
+    workers.run(active.size(), ctx, [&](size_t k, ShotEngine& engine, Context& taskCtx) {
+      const size_t c = active[k];
+      const std::string label = "cell " + graph.cells[c].name + " (" + std::to_string(k + 1) + " of " +
+                                std::to_string(active.size()) + "), round " + std::to_string(roundNumber);
+      solvedOf[c] = solveLabelled(
+          label,
+          [&](Context& cellCtx) { return transfer.solve(c, cells[c], settings, controls, engine, cellCtx); },
+          taskCtx);
+      round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays());
+    });
   }
   for (size_t c = 0; c < cells.size(); ++c)
     if (round[c].cell < 0) round[c] = waitingCellRound(c, cells[c]);
@@ -138,10 +134,10 @@ double endRound(std::vector<CellState>& cells, const std::vector<CellRound>& rou
   return roundUnshot(kept, sends);
 }
 
-// What is still pending at the stop, per global texel (W/m²), for the ambient term (radiosity/gpu/ambient.h)
-// to follow: light arrived on a portal and not yet shot is spread over its cell's own texels, where it
-// would have landed first. Without it the ambient term spread the whole scene's unshot power by area, and
-// a dim room two doors from the lamp came out 19 % bright at the default stop.
+// What is still pending at the stop, per global texel (W/m²), for the ambient term
+// (radiosity/solve/ambient.h) to follow: light arrived on a portal and not yet shot is spread over its cell's
+// own texels, where it would have landed first. Without it the ambient term spread the whole scene's unshot
+// power by area, and a dim room two doors from the lamp came out 19 % bright at the default stop.
 std::vector<glm::vec3> pendingPerGlobalTexel(const std::vector<CellState>& cells,
                                              const LightmapAtlas& global) {
   std::vector<glm::vec3> residual(global.texelCount(), glm::vec3(0.0f));
@@ -193,7 +189,7 @@ const char* portalLightName(PortalLight p) {
 }
 
 SolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
-                       const CellSolveParams& params, const EglContext& gl, Context& ctx) {
+                       const CellSolveParams& params, ShotEngine& engine, Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
   checkCells(scene, graph, params, ctx);
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
@@ -203,7 +199,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     ctx.warn(std::to_string(unassigned) + " triangles belong to no cell and stay black");
   const std::vector<PortalLink> links = linkPortals(graph, cells);
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
-  CellWorkers workers(params.jobs, gl);  // programs compiled once per context for every cell and round
+  CellWorkers workers(params.jobs, engine);  // an engine per thread for every cell and round
 
   const CellFirstShot first =
       params.firstShot
@@ -253,7 +249,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
 
 SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const QuadSet& quads,
                                const LightmapAtlas& global, const TwoLevelParams& levels,
-                               const CellSolveParams& params, const EglContext& gl, Context& ctx,
+                               const CellSolveParams& params, ShotEngine& engine, Context& ctx,
                                TwoLevelData* data) {
   if (params.firstShot) throw InputError("cells", "a two-level cells solve shoots its lamps itself");
   const CoarseSolve cellByCell = [&](const LightmapAtlas& coarse, const AtlasParams& coarseParams,
@@ -261,11 +257,11 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
     CellSolveParams p = params;
     p.atlas = coarseParams;
     p.firstShot = c.priorShot;
-    return solveCells(scene, graph, coarse, p, gl, ctx);
+    return solveCells(scene, graph, coarse, p, engine, ctx);
   };
   SolveControls controls{.readTransfer = true, .deadline = params.deadline};
-  return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, gl, ctx, controls, data,
-                       cellByCell);
+  return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, {engine, engine}, ctx,
+                       controls, data, cellByCell);
 }
 
 AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
@@ -280,7 +276,7 @@ AtlasParams coarseAtlasParams(const AtlasParams& atlas) {
 
 SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
                                BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
-                               const EglContext& gl, Context& ctx) {
+                               ShotEngine& engine, Context& ctx) {
   if (selection.baked.empty()) throw InputError("cells", "an on-demand bake needs at least one cell");
   const CellValidation validation = validateCells(scene, graph);
   if (!validation.errors.empty()) throw InputError("cell graph", validation.errors.front());
@@ -309,7 +305,7 @@ SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const
     p.cellA = subIndex[q.cellA], p.cellB = subIndex[q.cellB];
     sub.portals.push_back(p);
   }
-  return solveCells(scene, sub, global, subParams, gl, ctx);
+  return solveCells(scene, sub, global, subParams, engine, ctx);
 }
 
 }  // namespace cpgi

@@ -19,18 +19,17 @@
 #include "core/quads.h"
 #include "core/scene.h"
 #include "radiosity/cells/cell_selection.h"
-#include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/two_level_solve.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/solve.h"
+#include "radiosity/solve/two_level_solve.h"
 
 namespace cpgi {
 
 /// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
-/// directional (the light keeps the directions it arrived with; radiosity/gpu/emission_lobes.h). One
+/// directional (the light keeps the directions it arrived with; radiosity/solve/emission_lobes.h). One
 /// PortalTransfer class per model (radiosity/cells/portal_transfer.h).
 /// Binned: the directions kept in 8 × 16 bins found by rays in the sending cell
-/// (radiosity/gpu/emission_bins.h), for light more concentrated than one lobe can say.
+/// (radiosity/solve/emission_bins.h), for light more concentrated than one lobe can say.
 enum class PortalLight { Diffuse, Directional, Binned };
 const char* portalLightName(PortalLight p);
 
@@ -83,7 +82,7 @@ struct CellSolveParams {
 /// the rounds and the energy per cell and portal. Throws InputError when the graph is unusable
 /// (validateCells errors); triangles in no cell stay black (a warning in ctx).
 SolveResult solveCells(const Scene& scene, const CellGraph& graph, const LightmapAtlas& global,
-                       const CellSolveParams& params, const EglContext& gl, Context& ctx);
+                       const CellSolveParams& params, ShotEngine& engine, Context& ctx);
 
 /// An on-demand bake (radiosity/cells/cell_selection.h): solveCells over the selection's baked cells and, in
 /// Coarse mode, its boundary cells on a coarse atlas (coarseAtlasParams);
@@ -92,16 +91,16 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
 /// written = false); `result.perCell->portals` the portals between them.
 SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const CellSelection& selection,
                                BoundaryMode mode, const LightmapAtlas& global, const CellSolveParams& params,
-                               const EglContext& gl, Context& ctx);
+                               ShotEngine& engine, Context& ctx);
 
-/// A cells bake in two levels (radiosity/gpu/two_level_solve.h): the lamps and punctual lights shoot onto
+/// A cells bake in two levels (radiosity/solve/two_level_solve.h): the lamps and punctual lights shoot onto
 /// `global` (the output's atlas, built with `params.atlas` from `quads`) at its own texels where their light
 /// varies, and the cells solve the light they leave on an atlas of `levels.solveDensity` texels per metre
 /// (finer at contacts), which comes back to `global` interpolated. Not for cell jobs (their plan is one
 /// level). `data` receives the levels' figures when not null.
 SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const QuadSet& quads,
                                const LightmapAtlas& global, const TwoLevelParams& levels,
-                               const CellSolveParams& params, const EglContext& gl, Context& ctx,
+                               const CellSolveParams& params, ShotEngine& engine, Context& ctx,
                                TwoLevelData* data = nullptr);
 
 /// The boundary cells' atlas: half the texels per edge of `atlas` (at least 2 per quad edge). Most of a

@@ -4,7 +4,7 @@
 
 namespace cpgi {
 
-CellWorkers::CellWorkers(int jobs, const EglContext& gl) : gl_(gl) {
+CellWorkers::CellWorkers(int jobs, ShotEngine& engine) : engine_(engine) {
   if (jobs < 1) throw InputError("jobs", "must be at least 1");
   for (int w = 1; w < jobs; ++w) threads_.emplace_back(&CellWorkers::workerLoop, this, size_t(w));
   std::exception_ptr failure;
@@ -34,11 +34,9 @@ void CellWorkers::stopAll() {
 }
 
 void CellWorkers::workerLoop(size_t) {
-  std::unique_ptr<EglContext> gl;
-  std::unique_ptr<SolverPrograms> programs;
+  std::unique_ptr<ShotEngine> engine;
   try {
-    gl = EglContext::sibling(gl_);
-    programs = std::make_unique<SolverPrograms>();
+    engine = engine_.forThisThread();
   } catch (...) {
     std::lock_guard lock(mutex_);
     if (!startFailure_) startFailure_ = std::current_exception();
@@ -60,14 +58,13 @@ void CellWorkers::workerLoop(size_t) {
       if (stop_) break;
       seen = generation_;
     }
-    work(*gl, *programs);
+    work(*engine);
   }
-  // GL objects go while their context is still current on this thread.
-  programs.reset();
-  gl.reset();
+  // The engine's device objects go while its context is still current on this thread.
+  engine.reset();
 }
 
-void CellWorkers::work(const EglContext& gl, SolverPrograms& programs) {
+void CellWorkers::work(ShotEngine& engine) {
   for (;;) {
     size_t i = 0;
     const Task* task = nullptr;
@@ -78,7 +75,7 @@ void CellWorkers::work(const EglContext& gl, SolverPrograms& programs) {
       task = task_;
     }
     try {
-      (*task)(i, gl, programs, contexts_[i]);
+      (*task)(i, engine, contexts_[i]);
     } catch (...) {
       failures_[i] = std::current_exception();
     }
@@ -90,7 +87,7 @@ void CellWorkers::work(const EglContext& gl, SolverPrograms& programs) {
 void CellWorkers::run(size_t n, Context& ctx, const Task& task) {
   if (n == 0) return;
   if (threads_.empty()) {
-    for (size_t i = 0; i < n; ++i) task(i, gl_, programs_, ctx);
+    for (size_t i = 0; i < n; ++i) task(i, engine_, ctx);
     return;
   }
   {
@@ -102,7 +99,7 @@ void CellWorkers::run(size_t n, Context& ctx, const Task& task) {
     ++generation_;
   }
   wake_.notify_all();
-  work(gl_, programs_);
+  work(engine_);
   {
     std::unique_lock lock(mutex_);
     done_.wait(lock, [&] { return finished_ == count_; });

@@ -1,8 +1,8 @@
-// Runs the GPU solves of one round of cells side by side (issue 5 item 4). A GL context is current on one
-// thread at a time, so every worker thread beyond the caller's owns its own context (a sibling on the
-// same EGL display, radiosity/gpu/egl_context.h) and its own compiled programs; the caller works too, on
-// its own context. Tasks share nothing on the GPU, and the caller combines their results in a fixed
-// order afterwards, so any number of workers gives the serial run's numbers.
+// Runs the solves of one round of cells side by side (issue 5 item 4). Every worker thread beyond the
+// caller's has a shot engine of its own (ShotEngine::forThisThread: for GL, a sibling context on the same
+// EGL display with its own compiled programs, since a GL context is current on one thread at a time); the
+// caller works too, on its own engine. Tasks share nothing on the GPU, and the caller combines their results
+// in a fixed order afterwards, so any number of workers gives the serial run's numbers.
 //
 // On llvmpipe every context already rasterizes and dispatches on all cores, so on a 2-core machine the
 // gain is only what one solve leaves idle (CPU-side setup, read-backs, small dispatches).
@@ -17,20 +17,18 @@
 #include <vector>
 
 #include "core/context.h"
-#include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/solve/shot_engine.h"
 
 namespace cpgi {
 
 class CellWorkers {
  public:
-  /// One task: index, the context current on this thread, programs compiled on it, a Context for its
-  /// timings and warnings.
-  using Task = std::function<void(size_t, const EglContext&, SolverPrograms&, Context&)>;
+  /// One task: index, the engine of this thread, a Context for its timings and warnings.
+  using Task = std::function<void(size_t, ShotEngine&, Context&)>;
 
-  /// `jobs` >= 1 tasks at once; jobs − 1 threads are started (each makes its context at once). `gl` is
-  /// the caller's context, current on the calling thread.
-  CellWorkers(int jobs, const EglContext& gl);
+  /// `jobs` >= 1 tasks at once; jobs − 1 threads are started (each makes its engine at once). `engine` is
+  /// the caller's, usable on the calling thread.
+  CellWorkers(int jobs, ShotEngine& engine);
   ~CellWorkers();
   CellWorkers(const CellWorkers&) = delete;
   CellWorkers& operator=(const CellWorkers&) = delete;
@@ -45,10 +43,9 @@ class CellWorkers {
  private:
   void workerLoop(size_t worker);
   void stopAll();
-  void work(const EglContext& gl, SolverPrograms& programs);
+  void work(ShotEngine& engine);
 
-  const EglContext& gl_;
-  SolverPrograms programs_;  // the caller's
+  ShotEngine& engine_;  // the caller's
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable wake_, done_;
@@ -57,7 +54,7 @@ class CellWorkers {
   size_t count_ = 0, next_ = 0, finished_ = 0;
   unsigned generation_ = 0;
   bool stop_ = false;
-  int ready_ = 0;  // workers whose context is made (or failed)
+  int ready_ = 0;  // workers whose engine is made (or failed)
   std::exception_ptr startFailure_;
   std::vector<Context> contexts_;
   std::vector<std::exception_ptr> failures_;

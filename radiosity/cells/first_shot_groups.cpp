@@ -44,8 +44,7 @@ std::vector<FirstShotGroup> firstShotGroups(const Scene& scene, const LightmapAt
 
 FirstShotContribution shootFirstShotGroup(const Scene& scene, const LightmapAtlas& receivers,
                                           const std::vector<FirstShotGroup>& groups, size_t g,
-                                          const SolverParams& settings, const EglContext& gl,
-                                          SolverPrograms& programs, Context& ctx) {
+                                          const SolverParams& settings, ShotEngine& engine, Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
   const FirstShotGroup& group = groups.at(g);
   // The group's emitters alone; the power of all of them for the strong-shot threshold.
@@ -79,8 +78,8 @@ FirstShotContribution shootFirstShotGroup(const Scene& scene, const LightmapAtla
   // group's shots are strong where they were when all shot in one solve (punctual lights left out of
   // `all`; a group under the fraction of all is capped at 1: its largest shot still counts as strong).
   if (mine > 0.0) first.strongShotFraction = std::min(1.0, settings.strongShotFraction * all / mine);
-  const SolveResult direct = solveProgressive(*shooting, own, first, gl, ctx,
-                                              SolveControls{.readTransfer = true, .programs = &programs});
+  const SolveResult direct =
+      solveProgressive(*shooting, own, first, engine, ctx, SolveControls{.readTransfer = true});
   FirstShotContribution out;
   out.emitted = direct.energy.emitted;
   out.shots = direct.shots;

@@ -18,8 +18,8 @@
 
 #include "core/context.h"
 #include "core/scene.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 
@@ -52,8 +52,7 @@ std::vector<FirstShotGroup> firstShotGroups(const Scene& scene, const LightmapAt
 /// context current on this thread.
 FirstShotContribution shootFirstShotGroup(const Scene& scene, const LightmapAtlas& receivers,
                                           const std::vector<FirstShotGroup>& groups, size_t g,
-                                          const SolverParams& settings, const EglContext& gl,
-                                          SolverPrograms& programs, Context& ctx);
+                                          const SolverParams& settings, ShotEngine& engine, Context& ctx);
 
 /// The groups' irradiance per global texel (`texels` of them) and their emitted power, added group after
 /// group in the order given.

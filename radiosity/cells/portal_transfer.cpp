@@ -1,32 +1,32 @@
 #include "radiosity/cells/portal_transfer.h"
 
-#include "radiosity/gpu/emission_bins.h"
-#include "radiosity/gpu/emission_lobes.h"
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/emission_lobes.h"
 
 namespace cpgi {
 
 SolveResult DiffusePortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                  SolveControls controls, const EglContext& gl, Context& ctx) const {
+                                  SolveControls controls, ShotEngine& engine, Context& ctx) const {
   // A cell's atlas emits what arrived at it (its lamps shot first, over the whole scene:
   // cell_first_shot.h), so nothing in it is a lamp to shoot by rays.
   SolverParams own = settings;
   own.lampRays = 0;
-  return solveProgressive(s.cs.scene, s.atlas, own, gl, ctx, controls);
+  return solveProgressive(s.cs.scene, s.atlas, own, engine, ctx, controls);
 }
 
 SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                      SolveControls controls, const EglContext& gl, Context& ctx) const {
+                                      SolveControls controls, ShotEngine& engine, Context& ctx) const {
   // No moments yet (the lamps' first shot, or nothing crossed a portal): Lambertian everywhere.
   const std::vector<glm::vec4> none(s.pendingMoments.empty() ? s.atlas.texelCount() : 0, glm::vec4(0.0f));
   const std::vector<glm::vec4> lobes =
       fitEmissionLobes(s.pendingMoments.empty() ? none : s.pendingMoments, s.atlas, lobeMinWidth_);
   controls.directionalEmission = true;
   controls.emissionLobes = lobes;
-  return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);
+  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls);
 }
 
 SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                 SolveControls controls, const EglContext& gl, Context& ctx) const {
+                                 SolveControls controls, ShotEngine& engine, Context& ctx) const {
   // Texels with bins emit by them; the rest (reflectors, and everything before light crossed a portal)
   // as Lambertians.
   std::vector<glm::vec4> lobes(s.atlas.texelCount(), glm::vec4(0.0f));
@@ -44,7 +44,7 @@ SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams&
   controls.arrivalMoments = false;  // the bins are traced after the solve (cell_round.h)
   controls.emissionLobes = lobes;
   controls.emissionBins = bins;
-  return solveProgressive(s.cs.scene, s.atlas, settings, gl, ctx, controls);
+  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls);
 }
 
 std::unique_ptr<PortalTransfer> makePortalTransfer(const CellSolveParams& params) {

@@ -4,9 +4,9 @@
 // its next solve and what travels with the exitance:
 //  - DiffusePortals (the thesis): a Lambertian area light; nothing travels along.
 //  - DirectionalPortals: the arrival moments travel with the exitance (cell_round.h) and become emission
-//    lobes (radiosity/gpu/emission_lobes.h), so light keeps the direction it crossed the opening in.
+//    lobes (radiosity/solve/emission_lobes.h), so light keeps the direction it crossed the opening in.
 //  - BinnedPortals: arrival bins found by rays in the sending cell travel with the exitance and are
-//    emitted as they are (radiosity/gpu/emission_bins.h).
+//    emitted as they are (radiosity/solve/emission_bins.h).
 // A new portal model is one more class here and one more case in makePortalTransfer.
 #pragma once
 
@@ -18,8 +18,8 @@
 #include "core/context.h"
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/egl_context.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/solve/shot_engine.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 
@@ -30,7 +30,7 @@ class PortalTransfer {
   /// Solves cell `c` (state `s`), shooting its pending exitance (already its atlas's emission) with
   /// `controls`. Called side by side for distinct cells within a round.
   virtual SolveResult solve(size_t c, const CellState& s, const SolverParams& settings,
-                            SolveControls controls, const EglContext& gl, Context& ctx) const = 0;
+                            SolveControls controls, ShotEngine& engine, Context& ctx) const = 0;
   /// Rays per sending portal texel for the sends' arrival bins (cellRoundOf); 0: the model has none.
   virtual int binRays() const { return 0; }
 };
@@ -39,7 +39,7 @@ class PortalTransfer {
 class DiffusePortals : public PortalTransfer {
  public:
   SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    const EglContext& gl, Context& ctx) const override;
+                    ShotEngine& engine, Context& ctx) const override;
 };
 
 /// Light keeps the direction it arrived in: per texel, the arrival moments of what is pending
@@ -51,7 +51,7 @@ class DirectionalPortals : public PortalTransfer {
   /// `lobeMinWidth`: CellSolveParams::lobeMinWidth.
   explicit DirectionalPortals(float lobeMinWidth) : lobeMinWidth_(lobeMinWidth) {}
   SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    const EglContext& gl, Context& ctx) const override;
+                    ShotEngine& engine, Context& ctx) const override;
 
  private:
   float lobeMinWidth_;
@@ -64,7 +64,7 @@ class BinnedPortals : public PortalTransfer {
  public:
   explicit BinnedPortals(int rays) : rays_(rays) {}
   SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    const EglContext& gl, Context& ctx) const override;
+                    ShotEngine& engine, Context& ctx) const override;
   int binRays() const override { return rays_; }
 
  private:

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/solve/progressive_loop.h"
 
 namespace cpgi {
 

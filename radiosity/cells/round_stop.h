@@ -1,5 +1,5 @@
 // When the cells' rounds stop: at the scene's unshot target, and then only once the ambient term (what the
-// bake adds for the power left unshot, radiosity/gpu/ambient.h) is at most --ambient-share of the light in
+// bake adds for the power left unshot, radiosity/solve/ambient.h) is at most --ambient-share of the light in
 // every cell, as a global bake's solve stops (SolveControls::acceptStop). Refused, the rounds go on to
 // kStopRecheck of the unshot power and ask again. At the scene's target alone, spot-door's lamp room (its
 // lamp aimed through the door, its light mostly what comes back) stopped after one round with the ambient
@@ -17,7 +17,7 @@
 #include "core/cell_graph.h"
 #include "radiosity/cells/cell_atlases.h"
 #include "radiosity/cells/cell_round.h"
-#include "radiosity/gpu/ambient.h"
+#include "radiosity/solve/ambient.h"
 
 namespace cpgi {
 

@@ -10,7 +10,7 @@
 // On oa_dm4 (density 10, 500 shots) it leaves out 37 % of the eye segments, none of which a ray would have
 // seen (70 M checked); most of the hidden segments are hidden by several surfaces together, which one
 // blocker cannot show. Its tests cost more than they save in open rooms: the ray solver runs it only
-// while it pays (ray_solver.cpp, CullControl).
+// while it pays (ray_shot_engine.cpp, CullControl).
 #pragma once
 
 #include <cstdint>

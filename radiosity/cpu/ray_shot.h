@@ -1,4 +1,4 @@
-// One shot of progressive radiosity on the CPU (issue 13 item 3): the GPU solver's shot (gpu_solver.h,
+// One shot of progressive radiosity on the CPU (issue 13 item 3): the GPU solver's shot (gl_shot_engine.h,
 // shaders/receive.comp) with Embree rays where it draws item buffers. A shooter patch is cut into the same
 // visibility regions (shooter_layout.h); each region's eye is a texel drawn by unshot power; a receiver
 // texel gathers a region's light when a ray from that eye reaches its centre, through the region's pieces

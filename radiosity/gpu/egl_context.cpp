@@ -21,6 +21,7 @@ struct EglExtensions {
   PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
   PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
   PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay = nullptr;
+  PFNEGLQUERYDISPLAYATTRIBEXTPROC queryDisplayAttrib = nullptr;
 };
 
 EglExtensions loadExtensions() {
@@ -30,6 +31,8 @@ EglExtensions loadExtensions() {
       reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
   e.getPlatformDisplay =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  e.queryDisplayAttrib =
+      reinterpret_cast<PFNEGLQUERYDISPLAYATTRIBEXTPROC>(eglGetProcAddress("eglQueryDisplayAttribEXT"));
   return e;
 }
 
@@ -70,6 +73,20 @@ std::vector<Candidate> candidates(const EglExtensions& e) {
   }
   for (Candidate c : software) out.push_back({c.display, "software device"});
   return out;
+}
+
+// Whether the device behind display `d` rasterizes in software on the CPU (Mesa's llvmpipe or softpipe
+// mark their device EGL_MESA_device_software), asked of the device itself (EGL_EXT_device_query). A
+// display whose device cannot be asked counts as hardware.
+bool softwareDevice(const EglExtensions& e, EGLDisplay d, const char* platform) {
+  if (std::strcmp(platform, "software device") == 0) return true;
+  if (!e.queryDisplayAttrib || !e.queryDeviceString ||
+      !hasExtension(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS), "EGL_EXT_device_query"))
+    return false;
+  EGLAttrib device = 0;
+  if (!e.queryDisplayAttrib(d, EGL_DEVICE_EXT, &device) || device == 0) return false;
+  return hasExtension(e.queryDeviceString(reinterpret_cast<EGLDeviceEXT>(device), EGL_EXTENSIONS),
+                      "EGL_MESA_device_software");
 }
 
 // Tries one display; returns the context or EGL_NO_CONTEXT with `why` filled in.
@@ -132,6 +149,7 @@ EglContext::EglContext(Context& ctx) {
       context_ = c;
       config_ = config;
       platform_ = cand.platform;
+      software_ = softwareDevice(ext, cand.display, cand.platform);
       break;
     }
     eglTerminate(cand.display);
@@ -142,7 +160,8 @@ EglContext::EglContext(Context& ctx) {
                       (failures.empty() ? std::string("no EGL device or surfaceless platform") : failures) +
                       "); install Mesa (libegl-mesa0, libgl1-mesa-dri) or a GPU driver");
   describe();
-  ctx.progress("egl", 1.0, platform_ + ": " + renderer_ + ", OpenGL " + version_);
+  ctx.progress("egl", 1.0,
+               platform_ + ": " + renderer_ + ", OpenGL " + version_ + (software_ ? " (software)" : ""));
 }
 
 std::unique_ptr<EglContext> EglContext::sibling(const EglContext& first) {
@@ -150,6 +169,7 @@ std::unique_ptr<EglContext> EglContext::sibling(const EglContext& first) {
   c->display_ = first.display_;
   c->config_ = first.config_;
   c->platform_ = first.platform_;
+  c->software_ = first.software_;
   c->ownsDisplay_ = false;
   // The API binding is per thread.
   if (!eglBindAPI(EGL_OPENGL_API)) throw SystemError("EGL: no desktop OpenGL API on a worker thread");

@@ -32,6 +32,9 @@ class EglContext {
   const std::string& version() const { return version_; }
   /// How the display was found: "device", "surfaceless" or "software device".
   const std::string& platform() const { return platform_; }
+  /// Whether the device rasterizes on the CPU (its EGL device says EGL_MESA_device_software: llvmpipe,
+  /// softpipe), where item buffers cost more than rays traced on the same cores.
+  bool softwareRasterizer() const { return software_; }
   int maxTextureSize() const { return maxTextureSize_; }
   /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE, bytes: the largest buffer a shader may address (llvmpipe: 128 MiB).
   int64_t maxStorageBlockSize() const { return maxStorageBlockSize_; }
@@ -44,6 +47,7 @@ class EglContext {
   void* context_ = nullptr;  // EGLContext
   void* config_ = nullptr;   // EGLConfig, null with EGL_KHR_no_config_context
   bool ownsDisplay_ = true;  // false for a sibling: the first context terminates the display
+  bool software_ = false;
   std::string renderer_, version_, platform_;
   int maxTextureSize_ = 0;
   int64_t maxStorageBlockSize_ = 0;

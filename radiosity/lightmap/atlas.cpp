@@ -37,7 +37,8 @@ void checkParams(const AtlasParams& params) {
   if (params.texelsPerQuad == 0 && !(params.density > 0.0f && std::isfinite(params.density)))
     throw InputError("texel density", "must be a positive number of texels per metre");
   for (float d : params.triangleDensity)
-    if (!(d > 0.0f && std::isfinite(d))) throw InputError("texel density", "a chart's density must be positive");
+    if (!(d > 0.0f && std::isfinite(d)))
+      throw InputError("texel density", "a chart's density must be positive");
   if (params.minTexels < 1 || params.maxTexels < params.minTexels)
     throw InputError("atlas", "texel limits need 1 <= min <= max");
   if (params.padding < 0) throw InputError("atlas", "padding must not be negative");
@@ -74,11 +75,11 @@ int triangleChartSide(const Triangle& t, const AtlasParams& params) {
 
 // Shelf packing: charts sorted by height (tallest first), placed left to right on shelves of the width
 // chosen below. Returns the atlas size; writes the chart origins into the patches.
-glm::ivec2 packShelves(std::vector<ChartSize> charts, std::vector<Patch>& patches, const AtlasParams& params) {
+glm::ivec2 packShelves(std::vector<ChartSize> charts, std::vector<Patch>& patches,
+                       const AtlasParams& params) {
   const int pad = params.padding;
-  std::stable_sort(charts.begin(), charts.end(), [](const ChartSize& a, const ChartSize& b) {
-    return a.h != b.h ? a.h > b.h : a.w > b.w;
-  });
+  std::stable_sort(charts.begin(), charts.end(),
+                   [](const ChartSize& a, const ChartSize& b) { return a.h != b.h ? a.h > b.h : a.w > b.w; });
   double area = 0.0;
   int widest = 0;
   for (const ChartSize& c : charts) {
@@ -103,7 +104,8 @@ glm::vec2 atlasUV(const LightmapAtlas& atlas, float x, float y) {
   return {x / float(atlas.width), y / float(atlas.height)};
 }
 
-void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 4>& corners, const Scene& scene) {
+void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 4>& corners,
+              const Scene& scene) {
   Patch& p = atlas.patches[patchIndex];
   const Material& m = scene.materials[p.material];
   const glm::vec3 u = corners[1] - corners[0], v = corners[3] - corners[0];
@@ -113,7 +115,8 @@ void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 
     for (int i = 0; i < p.w; ++i) {
       const size_t t = size_t(p.y + j) * atlas.width + (p.x + i);
       atlas.patch[t] = patchIndex;
-      atlas.position[t] = corners[0] + (float(i) + 0.5f) / float(p.w) * u + (float(j) + 0.5f) / float(p.h) * v;
+      atlas.position[t] =
+          corners[0] + (float(i) + 0.5f) / float(p.w) * u + (float(j) + 0.5f) / float(p.h) * v;
       atlas.normal[t] = p.normal;
       atlas.albedo[t] = m.albedo;
       atlas.emission[t] = m.emission;
@@ -127,7 +130,8 @@ void fillQuad(LightmapAtlas& atlas, int patchIndex, const std::array<glm::vec3, 
     const Triangle& t = scene.triangles[tri];
     for (int k = 0; k < 3; ++k) {
       const glm::vec3 d = t.p[k] - corners[0];
-      const glm::vec2 at = glm::round(glm::vec2(glm::dot(d, u) / uu * float(p.grid.x), glm::dot(d, v) / vv * float(p.grid.y)));
+      const glm::vec2 at =
+          glm::round(glm::vec2(glm::dot(d, u) / uu * float(p.grid.x), glm::dot(d, v) / vv * float(p.grid.y)));
       atlas.triangleUV[tri][k] = atlasUV(atlas, float(p.x) + at.x * tile.x, float(p.y) + at.y * tile.y);
     }
   }
@@ -170,10 +174,11 @@ glm::ivec2 tileTexels(const QuadGrid& g, const AtlasParams& params) {
 // Cuts a grid into sub-grids of at most params.mergeTexels texels along each edge.
 std::vector<QuadGrid> splitToFit(const QuadGrid& g, const AtlasParams& params) {
   const glm::ivec2 tile = tileTexels(g, params);
-  const glm::ivec2 most = params.mergeTexels > 0 ? glm::max(glm::ivec2(1), glm::ivec2(params.mergeTexels) / tile)
-                                                 : glm::ivec2(1);
+  const glm::ivec2 most =
+      params.mergeTexels > 0 ? glm::max(glm::ivec2(1), glm::ivec2(params.mergeTexels) / tile) : glm::ivec2(1);
   if (g.size.x <= most.x && g.size.y <= most.y) return {g};
-  const glm::vec3 u = (g.corners[1] - g.corners[0]) / float(g.size.x), v = (g.corners[3] - g.corners[0]) / float(g.size.y);
+  const glm::vec3 u = (g.corners[1] - g.corners[0]) / float(g.size.x),
+                  v = (g.corners[3] - g.corners[0]) / float(g.size.y);
   std::vector<QuadGrid> parts;
   for (int j0 = 0; j0 < g.size.y; j0 += most.y)
     for (int i0 = 0; i0 < g.size.x; i0 += most.x) {
@@ -206,7 +211,8 @@ int32_t texelTriangle(const Patch& p, int i, int j) {
   if (p.triangles.empty()) return -1;
   if (p.quads.size() <= 1) return p.triangles[0];
   const int gx = std::max(p.grid.x, 1), gy = std::max(p.grid.y, 1);
-  const size_t q = size_t(std::min(j * gy / p.h, gy - 1)) * size_t(gx) + size_t(std::min(i * gx / p.w, gx - 1));
+  const size_t q =
+      size_t(std::min(j * gy / p.h, gy - 1)) * size_t(gx) + size_t(std::min(i * gx / p.w, gx - 1));
   return 2 * q < p.triangles.size() ? p.triangles[2 * q] : p.triangles[0];
 }
 
@@ -214,12 +220,10 @@ size_t LightmapAtlas::validTexels() const {
   return static_cast<size_t>(std::count_if(patch.begin(), patch.end(), [](int32_t p) { return p >= 0; }));
 }
 
-LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
-                         const std::vector<uint32_t>& subset) {
-  checkParams(params);
-  const size_t triangleCount = scene.triangles.size();
-  if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
-    throw InputError("texel density", "per-triangle densities must be one per scene triangle");
+namespace {
+
+// The triangles to chart: `subset` (sorted, without repeats) or every scene triangle.
+std::vector<uint32_t> chosenTriangles(const std::vector<uint32_t>& subset, size_t triangleCount) {
   std::vector<uint32_t> chosen = subset;
   if (chosen.empty()) {
     chosen.resize(triangleCount);
@@ -227,42 +231,51 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   }
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-  std::vector<char> inSubset(triangleCount, 0);
-  for (uint32_t t : chosen) {
-    if (t >= triangleCount) throw InputError("atlas", "triangle subset refers to a triangle past the scene's end");
-    inSubset[t] = 1;
-  }
-  // Charts are capped at maxTexels per edge: a density beyond what the longest edge can take there gets
-  // fewer texels per metre on the largest patches (--density 1e9 was clamped silently). Said when they get
-  // less than half of it.
-  if (params.texelsPerQuad == 0) {
-    float longest = 0.0f;
-    for (uint32_t t : chosen)
-      for (int i = 0; i < 3; ++i)
-        longest = std::max(longest, glm::length(scene.triangles[t].p[(i + 1) % 3] - scene.triangles[t].p[i]));
-    float density = params.density;
-    for (float d : params.triangleDensity) density = std::max(density, d);
-    const double wanted = std::ceil(double(longest) * density - 1e-3);
-    if (wanted > 2.0 * params.maxTexels) {
-      std::ostringstream s;
-      s << "atlas: --density " << density << " asks for " << wanted << " texels along a "
-        << longest << " m edge; charts are capped at " << params.maxTexels
-        << " texels per edge, so the largest patches get fewer texels per metre";
-      ctx.warn(s.str());
-    }
-  }
+  for (uint32_t t : chosen)
+    if (t >= triangleCount)
+      throw InputError("atlas", "triangle subset refers to a triangle past the scene's end");
+  return chosen;
+}
 
-  LightmapAtlas atlas;
+// Charts are capped at maxTexels per edge: a density beyond what the longest edge can take there gets
+// fewer texels per metre on the largest patches (--density 1e9 was clamped silently). Said when they get
+// less than half of it.
+void warnCappedDensity(const Scene& scene, const std::vector<uint32_t>& chosen, const AtlasParams& params,
+                       Context& ctx) {
+  if (params.texelsPerQuad != 0) return;
+  float longest = 0.0f;
+  for (uint32_t t : chosen)
+    for (int i = 0; i < 3; ++i)
+      longest = std::max(longest, glm::length(scene.triangles[t].p[(i + 1) % 3] - scene.triangles[t].p[i]));
+  float density = params.density;
+  for (float d : params.triangleDensity) density = std::max(density, d);
+  const double wanted = std::ceil(double(longest) * density - 1e-3);
+  if (wanted > 2.0 * params.maxTexels) {
+    std::ostringstream s;
+    s << "atlas: --density " << density << " asks for " << wanted << " texels along a " << longest
+      << " m edge; charts are capped at " << params.maxTexels
+      << " texels per edge, so the largest patches get fewer texels per metre";
+    ctx.warn(s.str());
+  }
+}
+
+// The atlas's patches before packing: whole quads as grids (a grid's chart placed where its first quad's
+// triangle comes), every other triangle a chart of its own.
+struct ChartLayout {
+  std::vector<Patch> patches;
   std::vector<ChartSize> charts;
-  std::vector<std::array<glm::vec3, 4>> chartCorners;  // per patch (unused for loose triangles)
-  // Whole quads first become grids; a grid's chart is placed where its first quad's triangle comes.
-  std::vector<char> wholeQuad(quads.quads.size(), 0);
-  for (size_t qi = 0; qi < quads.quads.size(); ++qi)
-    wholeQuad[qi] = inSubset[quads.quads[qi].triangles[0]] && inSubset[quads.quads[qi].triangles[1]];
+  std::vector<std::array<glm::vec3, 4>> corners;  // per patch (unused for loose triangles)
+  size_t degenerate = 0;                          // zero-area triangles left out
+};
+
+// The quad grids of the chosen whole quads: quads at different densities are different grids (the float's
+// bits: densities are compared exactly).
+std::vector<QuadGrid> chosenGrids(const Scene& scene, const QuadSet& quads, const AtlasParams& params,
+                                  const std::vector<char>& wholeQuad) {
   int maxQuads = 1;
   if (params.mergeTexels > 0)
-    maxQuads = std::max(1, params.mergeTexels / (params.texelsPerQuad > 0 ? params.texelsPerQuad : params.minTexels));
-  // Quads at different densities are different grids (the float's bits: densities are compared exactly).
+    maxQuads = std::max(
+        1, params.mergeTexels / (params.texelsPerQuad > 0 ? params.texelsPerQuad : params.minTexels));
   std::vector<uint32_t> densityGroup;
   if (params.texelsPerQuad == 0 && !params.triangleDensity.empty()) {
     densityGroup.resize(quads.quads.size());
@@ -272,62 +285,94 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
           std::bit_cast<uint32_t>(std::max(params.triangleDensity[qt[0]], params.triangleDensity[qt[1]]));
     }
   }
-  const std::vector<QuadGrid> grids =
-      findQuadGrids(quads, wholeQuad, scene, maxQuads, densityGroup.empty() ? nullptr : &densityGroup);
+  return findQuadGrids(quads, wholeQuad, scene, maxQuads, densityGroup.empty() ? nullptr : &densityGroup);
+}
+
+// One chart per piece of `grid` that fits a chart (splitToFit).
+void chartGrid(const QuadSet& quads, const QuadGrid& grid, const AtlasParams& params, const Patch& base,
+               std::vector<char>& quadDone, ChartLayout& out) {
+  std::vector<int32_t> gridTriangles;
+  for (uint32_t q : grid.quads)
+    for (uint32_t qt : quads.quads[q].triangles) gridTriangles.push_back(int32_t(qt));
+  const AtlasParams gridParams = chartParams(params, gridTriangles);
+  for (const QuadGrid& g : splitToFit(grid, gridParams)) {
+    Patch gp = base;
+    gp.quad = int(g.quads.front());
+    gp.grid = g.size;
+    for (uint32_t q : g.quads) {
+      gp.quads.push_back(int32_t(q));
+      for (uint32_t qt : quads.quads[q].triangles) gp.triangles.push_back(int32_t(qt));
+      quadDone[q] = 1;
+    }
+    const Quad& first = quads.quads[g.quads.front()];
+    gp.normal = first.normal;
+    gp.area = first.area() * float(g.quads.size());
+    const glm::ivec2 tile = tileTexels(g, gridParams);
+    out.charts.push_back({int(out.patches.size()), tile.x * g.size.x, tile.y * g.size.y});
+    out.corners.push_back(g.corners);
+    out.patches.push_back(std::move(gp));
+  }
+}
+
+ChartLayout layOutCharts(const Scene& scene, const QuadSet& quads, const AtlasParams& params,
+                         const std::vector<uint32_t>& chosen) {
+  std::vector<char> inSubset(scene.triangles.size(), 0);
+  for (uint32_t t : chosen) inSubset[t] = 1;
+  std::vector<char> wholeQuad(quads.quads.size(), 0);
+  for (size_t qi = 0; qi < quads.quads.size(); ++qi)
+    wholeQuad[qi] = inSubset[quads.quads[qi].triangles[0]] && inSubset[quads.quads[qi].triangles[1]];
+  const std::vector<QuadGrid> grids = chosenGrids(scene, quads, params, wholeQuad);
   std::vector<int> gridOfQuad(quads.quads.size(), -1);
   for (size_t g = 0; g < grids.size(); ++g) gridOfQuad[grids[g].quads.front()] = int(g);
   std::vector<char> quadDone(quads.quads.size(), 0);
-  size_t degenerate = 0;
+  ChartLayout out;
   for (uint32_t tri : chosen) {
     const Triangle& t = scene.triangles[tri];
-    if (t.material >= scene.materials.size()) throw InputError("atlas", "triangle refers to a missing material");
+    if (t.material >= scene.materials.size())
+      throw InputError("atlas", "triangle refers to a missing material");
     const int32_t qi = tri < quads.quadOfTriangle.size() ? quads.quadOfTriangle[tri] : -1;
     Patch p;
     p.material = t.material;
     if (qi >= 0 && wholeQuad[qi]) {
       if (quadDone[qi]) continue;
       quadDone[qi] = 1;
-      if (gridOfQuad[qi] < 0) continue;  // charted when the grid's first quad comes
-      std::vector<int32_t> gridTriangles;
-      for (uint32_t q : grids[gridOfQuad[qi]].quads)
-        for (uint32_t qt : quads.quads[q].triangles) gridTriangles.push_back(int32_t(qt));
-      const AtlasParams gridParams = chartParams(params, gridTriangles);
-      for (const QuadGrid& g : splitToFit(grids[gridOfQuad[qi]], gridParams)) {
-        Patch gp = p;
-        gp.quad = int(g.quads.front());
-        gp.grid = g.size;
-        for (uint32_t q : g.quads) {
-          gp.quads.push_back(int32_t(q));
-          for (uint32_t qt : quads.quads[q].triangles) gp.triangles.push_back(int32_t(qt));
-          quadDone[q] = 1;
-        }
-        const Quad& first = quads.quads[g.quads.front()];
-        gp.normal = first.normal;
-        gp.area = first.area() * float(g.quads.size());
-        const glm::ivec2 tile = tileTexels(g, gridParams);
-        charts.push_back({int(atlas.patches.size()), tile.x * g.size.x, tile.y * g.size.y});
-        chartCorners.push_back(g.corners);
-        atlas.patches.push_back(std::move(gp));
-      }
-      continue;
+      if (gridOfQuad[qi] >= 0) chartGrid(quads, grids[gridOfQuad[qi]], params, p, quadDone, out);
+      continue;  // else charted when the grid's first quad comes
     }
     if (!(t.area() > 0.0f)) {
-      ++degenerate;
+      ++out.degenerate;
       continue;
     }
     p.triangles = {int32_t(tri)};
     p.normal = t.geometricNormal();
     p.area = t.area();
     const int32_t only[1] = {int32_t(tri)};
-    const int s = triangleChartSide(t, chartParams(params, only));
-    charts.push_back({int(atlas.patches.size()), s, s});
-    chartCorners.push_back({});
-    atlas.patches.push_back(p);
+    const int side = triangleChartSide(t, chartParams(params, only));
+    out.charts.push_back({int(out.patches.size()), side, side});
+    out.corners.push_back({});
+    out.patches.push_back(p);
   }
-  if (degenerate > 0)
-    ctx.warn("atlas: " + std::to_string(degenerate) + " zero-area triangle(s) left out of the lightmap");
+  return out;
+}
 
-  const glm::ivec2 size = packShelves(charts, atlas.patches, params);
+}  // namespace
+
+LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
+                         const std::vector<uint32_t>& subset) {
+  checkParams(params);
+  const size_t triangleCount = scene.triangles.size();
+  if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
+    throw InputError("texel density", "per-triangle densities must be one per scene triangle");
+  const std::vector<uint32_t> chosen = chosenTriangles(subset, triangleCount);
+  warnCappedDensity(scene, chosen, params, ctx);
+  ChartLayout layout = layOutCharts(scene, quads, params, chosen);
+  if (layout.degenerate > 0)
+    ctx.warn("atlas: " + std::to_string(layout.degenerate) +
+             " zero-area triangle(s) left out of the lightmap");
+
+  LightmapAtlas atlas;
+  atlas.patches = std::move(layout.patches);
+  const glm::ivec2 size = packShelves(layout.charts, atlas.patches, params);
   if (size.x > params.maxSize || size.y > params.maxSize)
     throw InputError(sizeOption(params), "the lightmap atlas would be " + std::to_string(size.x) + "x" +
                                              std::to_string(size.y) + " texels, over the limit of " +
@@ -346,11 +391,10 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   atlas.emission.assign(n, glm::vec3(0.0f));
   atlas.area.assign(n, 0.0f);
   atlas.triangleUV.assign(triangleCount, {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
-
   for (size_t i = 0; i < atlas.patches.size(); ++i) {
     const Patch& p = atlas.patches[i];
     if (p.quad >= 0)
-      fillQuad(atlas, int(i), chartCorners[i], scene);
+      fillQuad(atlas, int(i), layout.corners[i], scene);
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
   }

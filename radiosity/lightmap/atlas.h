@@ -42,7 +42,7 @@ struct AtlasParams {
   int mergeTexels = 1024;
   /// With texelsPerQuad == 0: per scene triangle, the texels per metre of the chart that holds it (a
   /// merged grid takes its quads' largest), for an atlas whose resolution follows where the light varies
-  /// (radiosity/gpu/two_level_solve.h). Empty: `density` everywhere.
+  /// (radiosity/solve/two_level_solve.h). Empty: `density` everywhere.
   std::vector<float> triangleDensity = {};
   /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
   /// before any per-texel array: InputError naming the size option when passed. 0: no limit.

@@ -2,7 +2,7 @@
 // a progressive solver cannot shoot a point source (it has no area to put in an item buffer), and needs
 // not, since the light it sends to each texel is known in closed form. Each valid texel gets the
 // irradiance every light gives its sample point, with one Embree shadow ray per light and texel (TBB
-// parallel); a solver then starts from it as light already shot (radiosity/gpu/gpu_solver.h,
+// parallel); a solver then starts from it as light already shot (radiosity/gpu/gl_shot_engine.h,
 // SolveResult's energy: the lights' power counts as emitted and shot, what lands as received).
 #pragma once
 

@@ -1,5 +1,5 @@
 // The settings every progressive solver shares, whichever way it sees (item buffers on the GL device,
-// radiosity/gpu/gpu_solver.h; Embree rays on the CPU, radiosity/cpu/ray_solver.h): when to stop, how a
+// radiosity/gpu/gl_shot_engine.h; Embree rays on the CPU, radiosity/cpu/ray_shot_engine.h): when to stop, how a
 // shooter is cut into visibility regions and pieces. One struct, so the two cannot drift apart.
 #pragma once
 

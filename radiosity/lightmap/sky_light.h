@@ -1,7 +1,7 @@
 // The sky's share of the first shot (core/sky.h): the irradiance the sky dome and the ground at infinity
 // give every texel, gathered with Embree rays in the texel's cosine-weighted hemisphere, added to the
 // punctual lights' DirectLight. The solver then starts from ρE as unshot radiosity like any first shot
-// (radiosity/gpu/gpu_solver.h); cell by cell, the first shot over the whole scene puts into each room
+// (radiosity/gpu/gl_shot_engine.h); cell by cell, the first shot over the whole scene puts into each room
 // the sky it sees through its openings (radiosity/cells/cell_first_shot.h).
 //
 // Why a gather and not emitter geometry: a dome of patches far outside the scene would shoot through

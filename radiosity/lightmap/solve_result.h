@@ -1,4 +1,4 @@
-// What a radiosity solve hands back: one type for a solve of a whole atlas (radiosity/gpu/gpu_solver.h)
+// What a radiosity solve hands back: one type for a solve of a whole atlas (radiosity/gpu/gl_shot_engine.h)
 // and for a solve cell by cell through portals (radiosity/cells/cell_solver.h), so that a caller (bake,
 // compare-cells, the benchmarks) reads the radiosity and the energy the same way whichever ran; each
 // solver adds its own details beside them.
@@ -81,7 +81,7 @@ struct SolveResult {
   /// unless another bound stopped the solve first.
   int stopChecks = 0;
 
-  // A solve of one atlas (gpu_solver.h):
+  // A solve of one atlas (gl_shot_engine.h):
   /// With SolveControls::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;
   /// a texel of albedo 0 keeps all of it, e.g. a portal) and the residual still unshot at the end.
   std::vector<glm::vec3> incident, residual;
@@ -90,7 +90,7 @@ struct SolveResult {
   std::vector<glm::vec4> arrivals;
   std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
   std::vector<int> shooters;          ///< the patch of every shot, in order
-  /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gpu_solver.cpp).
+  /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gl_shot_engine.cpp).
   std::vector<float> shotScales;
   /// With SolveControls::readLampFlags, per atlas texel, LampFlag bits of what the lamps' shots found there.
   std::vector<uint8_t> lampFlags;

@@ -9,13 +9,14 @@ set(allowed_scenes core scenes)
 set(allowed_decomposition core decomposition)
 set(allowed_radiosity/metrics radiosity/metrics)
 set(allowed_radiosity/lightmap core radiosity/lightmap)
-set(allowed_radiosity/cpu core radiosity/lightmap radiosity/cpu)
-set(allowed_radiosity/gpu core radiosity/lightmap radiosity/cpu radiosity/gpu)
-set(allowed_radiosity/cells core radiosity/lightmap radiosity/cpu radiosity/gpu radiosity/cells)
+set(allowed_radiosity/solve core radiosity/lightmap radiosity/solve)
+set(allowed_radiosity/cpu core radiosity/lightmap radiosity/solve radiosity/cpu)
+set(allowed_radiosity/gpu core radiosity/lightmap radiosity/solve radiosity/gpu)
+set(allowed_radiosity/cells core radiosity/lightmap radiosity/solve radiosity/cells)
 set(allowed_radiosity/reference core radiosity/lightmap radiosity/metrics radiosity/reference)
 
 set(failures "")
-foreach(library core core/html_report scenes decomposition radiosity/metrics radiosity/lightmap radiosity/cpu radiosity/gpu
+foreach(library core core/html_report scenes decomposition radiosity/metrics radiosity/lightmap radiosity/solve radiosity/cpu radiosity/gpu
         radiosity/cells radiosity/reference)
   file(GLOB sources ${ROOT}/${library}/*.h ${ROOT}/${library}/*.cpp)
   foreach(source IN LISTS sources)

@@ -1,4 +1,4 @@
-// Binned portals (PortalLight::Binned, radiosity/gpu/emission_bins.h) on openings' narrow door into room C,
+// Binned portals (PortalLight::Binned, radiosity/solve/emission_bins.h) on openings' narrow door into room C,
 // against the solve of the whole scene, which is right there to about 1 % (bench/RESULTS.md, issue 11):
 // one lobe fitted to the arrivals' moments turns light brighter from one half of the door's hemisphere
 // into a lobe round its mean direction, and left C's north wall beside the door at 0.80 of the light
@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "scenes/openings_scene.h"
 #include "tests/radiosity/cells/cell_energy_check.h"
 
@@ -21,7 +22,8 @@ using L = OpeningsLayout;
 struct Openings {
   SeedScene s = makeOpeningsScene();
   Context ctx;
-  EglContext gl{ctx};
+  EglContext context{ctx};
+  GlShotEngine gl{context};
   LightmapAtlas atlas;
   SolverParams solver;
   AtlasParams ap;

@@ -3,6 +3,7 @@
 // storeys joined by a hatch, a lamp in two rooms), also when one server process runs the round jobs one
 // after another (CellJobServer); the job files refuse damage.
 #include "radiosity/cells/cell_jobs.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <filesystem>
 #include <fstream>
@@ -49,7 +50,7 @@ std::map<std::string, std::string> roundLight(const fs::path& dir, int round) {
 // (runCellJobs), or one server's after another (CellJobServer: its atlases, programs and the cells' state
 // kept from the jobs before, of this round and the rounds before).
 void runRound(const fs::path& dir, const CellJobPlan& plan, int round, const SeedScene& s,
-              const CellSolveParams& params, CellJobServer* server, const EglContext& gl, Context& ctx) {
+              const CellSolveParams& params, CellJobServer* server, ShotEngine& gl, Context& ctx) {
   for (int c = int(plan.cells.size()) - 1; c >= 0; --c) {  // any order within a round
     if (server)
       server->runRound(dir, plan, round, {c}, gl, ctx);
@@ -82,7 +83,8 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientS
                                          bool served = false) {
   const SeedScene s = makeBuiltinScene("office-small");
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.portals = portals;
   params.maxAmbientShare = maxAmbientShare;

@@ -3,6 +3,7 @@
 // a thin wall with no opening (the second room must stay exactly black).
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/cells/cell_atlases.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <set>
 
@@ -29,7 +30,8 @@ struct CellRun {
 
 CellRun runCells(const Scene& scene, const CellGraph& graph, int texelsPerQuad, double unshot) {
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.atlas.texelsPerQuad = texelsPerQuad;
   params.solver.unshotFraction = unshot;
@@ -149,7 +151,8 @@ TEST(CellSolver, TwoCellFurnaceThroughAPortal) {
 TEST(CellSolver, EveryEmitterShootsFirstWhateverTheShotLimit) {
   const Furnace f = twoCellFurnace(0.5f, 1.0f);
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.atlas.texelsPerQuad = 4;
   params.solver.itemBuffer = 64;
@@ -189,7 +192,8 @@ TEST(CellSolver, ThinWallLeavesTheOtherRoomBlack) {
 
   // The global solve of the same scene, for the record.
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   SolverParams params;
   params.itemBuffer = 256;
   const SolveResult global = solveProgressive(s.scene, r.atlas, params, gl, ctx);
@@ -210,7 +214,8 @@ TEST(CellSolver, ThinWallLeavesTheOtherRoomBlack) {
 TEST(CellSolver, TwoLevelsGiveEachRoomTheLightOfOne) {
   const SeedScene s = makeSeedScene(1);
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.atlas.density = 10.0f;
   params.solver.itemBuffer = 256;
@@ -241,7 +246,8 @@ TEST(CellSolver, RejectsAGraphWithABadPortal) {
   SeedScene s = makeSpotThroughDoor();
   s.cells.portals[0].cellB = s.cells.portals[0].cellA;  // a portal from a cell to itself
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), AtlasParams{.texelsPerQuad = 4}, ctx);
   EXPECT_THROW(solveCells(s.scene, s.cells, atlas, CellSolveParams{}, gl, ctx), InputError);
 }

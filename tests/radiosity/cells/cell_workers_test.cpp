@@ -2,6 +2,7 @@
 // GL context, passes task exceptions on, and a cells solve with several jobs gives exactly the serial
 // numbers (the syncs combine the solves in cell order).
 #include "radiosity/cells/cell_workers.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <atomic>
 #include <set>
@@ -18,26 +19,27 @@ namespace {
 
 TEST(CellWorkers, EveryTaskOnceOnSeveralContexts) {
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellWorkers workers(3, gl);
   EXPECT_EQ(workers.jobs(), 3);
   for (int batch = 0; batch < 3; ++batch) {
     std::vector<int> runs(20, 0);
     std::mutex m;
     std::set<const EglContext*> contexts;
-    workers.run(runs.size(), ctx,
-                [&](size_t i, const EglContext& context, SolverPrograms&, Context& taskCtx) {
-                  // Real GL work on this thread's context: a buffer written and read back.
-                  const uint32_t value = uint32_t(i) * 7u + 1u;
-                  gl::Buffer b = gl::makeBuffer(sizeof value, &value);
-                  uint32_t back = 0;
-                  glGetNamedBufferSubData(b.get(), 0, sizeof back, &back);
-                  if (back != value) throw std::runtime_error("read back another context's data");
-                  taskCtx.warn("task " + std::to_string(i));
-                  std::lock_guard lock(m);
-                  ++runs[i];
-                  contexts.insert(&context);
-                });
+    workers.run(runs.size(), ctx, [&](size_t i, ShotEngine& engine, Context& taskCtx) {
+      const EglContext& context = dynamic_cast<GlShotEngine&>(engine).context();
+      // Real GL work on this thread's context: a buffer written and read back.
+      const uint32_t value = uint32_t(i) * 7u + 1u;
+      gl::Buffer b = gl::makeBuffer(sizeof value, &value);
+      uint32_t back = 0;
+      glGetNamedBufferSubData(b.get(), 0, sizeof back, &back);
+      if (back != value) throw std::runtime_error("read back another context's data");
+      taskCtx.warn("task " + std::to_string(i));
+      std::lock_guard lock(m);
+      ++runs[i];
+      contexts.insert(&context);
+    });
     for (int r : runs) EXPECT_EQ(r, 1);
     EXPECT_GE(contexts.size(), 1u);
   }
@@ -49,11 +51,12 @@ TEST(CellWorkers, EveryTaskOnceOnSeveralContexts) {
 
 TEST(CellWorkers, TaskExceptionsReachTheCaller) {
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellWorkers workers(2, gl);
   std::atomic<int> ran{0};
   EXPECT_THROW(workers.run(6, ctx,
-                           [&](size_t i, const EglContext&, SolverPrograms&, Context&) {
+                           [&](size_t i, ShotEngine&, Context&) {
                              ++ran;
                              if (i == 4) throw std::runtime_error("task 4 failed");
                            }),
@@ -61,14 +64,15 @@ TEST(CellWorkers, TaskExceptionsReachTheCaller) {
   EXPECT_EQ(ran.load(), 6);  // the other tasks still ran
   // The pool still works afterwards.
   ran = 0;
-  workers.run(5, ctx, [&](size_t, const EglContext&, SolverPrograms&, Context&) { ++ran; });
+  workers.run(5, ctx, [&](size_t, ShotEngine&, Context&) { ++ran; });
   EXPECT_EQ(ran.load(), 5);
 }
 
 TEST(CellWorkers, ParallelCellsSolveEqualsSerial) {
   const SeedScene s = makeSeedScene(1);
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.atlas.texelsPerQuad = 4;
   params.solver.unshotFraction = 0.02;

@@ -9,7 +9,8 @@
 
 #include "core/error.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/emission_lobes.h"
+#include "radiosity/gpu/gl_shot_engine.h"
+#include "radiosity/solve/emission_lobes.h"
 #include "scenes/seed_scenes.h"
 #include "scenes/stability_scenes.h"
 #include "tests/radiosity/cells/cell_energy_check.h"
@@ -23,7 +24,8 @@ constexpr double kUnshot = 1e-3;
 struct SpotDoor {
   SeedScene s = makeSpotThroughDoor();
   Context ctx;
-  EglContext gl{ctx};
+  EglContext context{ctx};
+  GlShotEngine gl{context};
   LightmapAtlas atlas;
   std::vector<glm::vec3> global;
   SpotDoor() {
@@ -55,9 +57,9 @@ bool farWall(const LightmapAtlas& a, size_t i) {
 }
 
 struct Pool {
-  double power = 0.0;        ///< W (R + G + B) on the far wall
-  glm::dvec2 centre{0.0};    ///< power-weighted (y, z), m
-  double relError = 0.0;     ///< area-weighted relative RMSE against `reference` over the far wall
+  double power = 0.0;      ///< W (R + G + B) on the far wall
+  glm::dvec2 centre{0.0};  ///< power-weighted (y, z), m
+  double relError = 0.0;   ///< area-weighted relative RMSE against `reference` over the far wall
 };
 Pool pool(const LightmapAtlas& a, const std::vector<glm::vec3>& b, const std::vector<glm::vec3>& reference) {
   Pool p;
@@ -85,10 +87,11 @@ TEST(DirectionalPortals, BeamLandsWhereTheWholeSceneSolvePutsIt) {
   const Pool g = pool(d.atlas, d.global, d.global);
   const Pool pd = pool(d.atlas, diffuse.radiosity, d.global);
   const Pool pr = pool(d.atlas, directional.radiosity, d.global);
-  std::printf("far wall: global %.3f W at (%.3f, %.3f); diffuse %.3f W at (%.3f, %.3f) err %.3f; "
-              "directional %.3f W at (%.3f, %.3f) err %.3f\n",
-              g.power, g.centre.x, g.centre.y, pd.power, pd.centre.x, pd.centre.y, pd.relError, pr.power,
-              pr.centre.x, pr.centre.y, pr.relError);
+  std::printf(
+      "far wall: global %.3f W at (%.3f, %.3f); diffuse %.3f W at (%.3f, %.3f) err %.3f; "
+      "directional %.3f W at (%.3f, %.3f) err %.3f\n",
+      g.power, g.centre.x, g.centre.y, pd.power, pd.centre.x, pd.centre.y, pd.relError, pr.power, pr.centre.x,
+      pr.centre.y, pr.relError);
   // The same light crosses the door either way (the portal collects it the same way).
   EXPECT_NEAR(directional.perCell->portals[0].aToB, diffuse.perCell->portals[0].aToB,
               0.02 * diffuse.perCell->portals[0].aToB);
@@ -110,7 +113,8 @@ TEST(DirectionalPortals, BeamLandsWhereTheWholeSceneSolvePutsIt) {
 TEST(DirectionalPortals, NoHotTexelsBesideTheDoor) {
   const SeedScene s = makeSeedScene(1);
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams p;
   p.atlas.texelsPerQuad = kTexels;
   p.solver.itemBuffer = 256;
@@ -129,7 +133,8 @@ TEST(DirectionalPortals, NoHotTexelsBesideTheDoor) {
 TEST(DirectionalPortals, RejectsABadLobeWidth) {
   const SeedScene s = makeSpotThroughDoor();
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams p;
   p.atlas.texelsPerQuad = 4;
   p.portals = PortalLight::Directional;

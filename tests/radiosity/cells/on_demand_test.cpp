@@ -10,6 +10,7 @@
 #include "core/quads.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "scenes/seed_scenes.h"
 #include "tests/support/suite_setup.h"
 
@@ -97,7 +98,8 @@ class OnDemandSolve : public ::testing::Test {
     setup_.run([] {
       seed_ = new SeedScene(makeSeedScene(1));
       ctx_ = new Context;
-      gl_ = new EglContext(*ctx_);
+      context_ = new EglContext(*ctx_);
+      gl_ = new GlShotEngine(*context_);
       params_ = new CellSolveParams;
       params_->atlas.texelsPerQuad = 4;
       params_->solver.unshotFraction = 0.02;
@@ -108,7 +110,8 @@ class OnDemandSolve : public ::testing::Test {
     });
   }
   static void TearDownTestSuite() {
-    delete cellOfTexel_, delete whole_, delete atlas_, delete params_, delete gl_, delete ctx_, delete seed_;
+    delete cellOfTexel_, delete whole_, delete atlas_, delete params_, delete gl_, delete context_,
+        delete ctx_, delete seed_;
   }
   static SolveResult onDemand(const std::vector<int>& baked, BoundaryMode mode) {
     return solveCellsOnDemand(seed_->scene, seed_->cells, selectCells(seed_->cells, baked), mode, *atlas_,
@@ -135,7 +138,8 @@ class OnDemandSolve : public ::testing::Test {
   }
   static inline SeedScene* seed_ = nullptr;
   static inline Context* ctx_ = nullptr;
-  static inline EglContext* gl_ = nullptr;
+  static inline EglContext* context_ = nullptr;
+  static inline GlShotEngine* gl_ = nullptr;
   static inline CellSolveParams* params_ = nullptr;
   static inline LightmapAtlas* atlas_ = nullptr;
   static inline SolveResult* whole_ = nullptr;

@@ -7,6 +7,7 @@
 
 #include "core/quads.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "scenes/stability_scenes.h"
 #include "tests/radiosity/cells/cell_energy_check.h"
 
@@ -30,7 +31,8 @@ std::vector<double> powerPerCell(const SeedScene& s, const LightmapAtlas& atlas,
 TEST(PunctualCells, PointLampInOneRoomLightsBothAsTheGlobalSolveDoes) {
   const SeedScene s = makePointLightRooms();
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   CellSolveParams params;
   params.atlas.density = 4.0f;
   params.solver.unshotFraction = 1e-3;

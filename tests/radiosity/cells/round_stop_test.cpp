@@ -4,6 +4,8 @@
 // left that room 3–4.5 % bright; with the stop per cell it is within 1 % of a converged solve of the whole
 // scene.
 #include "radiosity/cells/round_stop.h"
+#include "radiosity/gpu/gl_shot_engine.h"
+#include "radiosity/solve/progressive_loop.h"
 
 #include <cstdio>
 
@@ -11,8 +13,8 @@
 
 #include "core/quads.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/gpu/ambient.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/solve/ambient.h"
 #include "scenes/stability_scenes.h"
 #include "tests/radiosity/cells/cell_energy_check.h"
 
@@ -143,7 +145,8 @@ double cellMean(const LightmapAtlas& a, const ExrChannel& cells, int cell, const
 TEST(RoundStop, LampRoomLitByWhatComesBackIsRightAtTheDefaultStop) {
   const SeedScene s = makeBuiltinScene("spot-door");
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   AtlasParams ap;
   ap.density = 10.0f;
   const LightmapAtlas atlas = buildAtlas(s.scene, findQuads(s.scene), ap, ctx);

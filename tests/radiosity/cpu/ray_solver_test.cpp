@@ -1,6 +1,6 @@
-// The CPU ray solver (radiosity/cpu/ray_solver.h): one shot against the exact form factors and against an
-// independent ray integration, and whole solves against closed forms and their energy books.
-#include "radiosity/cpu/ray_solver.h"
+// The CPU ray solver (radiosity/cpu/ray_shot_engine.h): one shot against the exact form factors and against
+// an independent ray integration, and whole solves against closed forms and their energy books.
+#include "radiosity/cpu/ray_shot_engine.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,6 +12,7 @@
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/metrics/form_factors.h"
+#include "radiosity/solve/solve.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -164,9 +165,10 @@ TEST(RaySolver, AUniformClosedBoxReachesItsClosedForm) {
                addMaterial(s, glm::vec3(0.5f), glm::vec3(1.0f)));
   Context ctx;
   const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
-  RaySolveParams params;
+  SolverParams params;
   params.unshotFraction = 0.001;
-  const SolveResult r = solveByRays(s, atlas, params, ctx);
+  RayShotEngine rays;
+  const SolveResult r = solveProgressive(s, atlas, params, rays, ctx);
   double mean = 0.0, area = 0.0;
   for (size_t t = 0; t < atlas.texelCount(); ++t) {
     if (atlas.patch[t] < 0) continue;
@@ -198,9 +200,11 @@ TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
     if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
       prior[t] = glm::vec3(10.0f), priorPower += 30.0 * atlas.area[t];
   int asked = 0;
-  RaySolveControls c{.priorIrradiance = prior, .priorEmitted = priorPower};
+  const PriorShot first{.irradiance = prior, .emitted = priorPower};
+  SolveControls c{.priorShot = &first};
   c.acceptStop = [&](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) { return ++asked >= 2; };
-  const SolveResult r = solveByRays(s, atlas, {}, ctx, c);
+  RayShotEngine rays;
+  const SolveResult r = solveProgressive(s, atlas, {}, rays, ctx, c);
   EXPECT_EQ(r.stopChecks, 2);
   EXPECT_NEAR(r.energy.emitted, priorPower, 1e-6 * priorPower);
   EXPECT_LE(r.energy.unshot, 0.01 * 0.7 * r.energy.emitted);  // shot on past the refused stop
@@ -210,11 +214,42 @@ TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
 
   c.acceptStop = {};
   c.deadline = std::chrono::steady_clock::now();
-  const SolveResult late = solveByRays(s, atlas, {}, ctx, c);
+  const SolveResult late = solveProgressive(s, atlas, {}, rays, ctx, c);
   EXPECT_TRUE(late.timedOut);
   EXPECT_EQ(late.shots, 0);
   EXPECT_NEAR(late.energy.unshot, 0.6 * priorPower, 1e-4 * priorPower);
   EXPECT_NEAR(late.energy.absorbed + late.energy.unshot, late.energy.emitted, 1e-4 * priorPower);
+}
+
+// The lamps shot first by shadow rays (SolverParams::lampRays) are spent: the rays engine starts from the
+// light they left and never shoots their emission again, so the books count their power once.
+TEST(RaySolver, LampsShotByRaysFirstAreShotOnce) {
+  Scene s;
+  const uint32_t grey = addMaterial(s, glm::vec3(0.5f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(3.0f, 3.0f, 2.5f), grey);
+  // A 0.5 m lamp facing down, 1 cm under the ceiling.
+  addRect(s, {1.25f, 1.25f, 2.49f}, {0.0f, 0.5f, 0.0f}, {0.5f, 0.0f, 0.0f},
+          addMaterial(s, glm::vec3(0.0f), glm::vec3(100.0f)));
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
+  SolverParams params;
+  params.unshotFraction = 0.001;
+  RayShotEngine rays;
+  const SolveResult byItself = solveProgressive(s, atlas, params, rays, ctx);
+  params.lampRays = 16;
+  const SolveResult lampsFirst = solveProgressive(s, atlas, params, rays, ctx);
+  const double lamp = 3.0 * 100.0 * 0.25;  // W, R + G + B
+  for (const SolveResult* r : {&byItself, &lampsFirst}) {
+    EXPECT_NEAR(r->energy.emitted, lamp, 0.01 * lamp);
+    EXPECT_LE(r->energy.created, 1e-4 * lamp);
+    EXPECT_NEAR(r->energy.absorbed + r->energy.unshot + r->energy.escaped(), r->energy.emitted, 1e-3 * lamp);
+  }
+  // Closed and grey: everything is absorbed in the end, so the two agree on the light in the room.
+  double a = 0.0, b = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t)
+    if (atlas.patch[t] >= 0 && atlas.emission[t] == glm::vec3(0.0f))
+      a += byItself.radiosity[t].r * atlas.area[t], b += lampsFirst.radiosity[t].r * atlas.area[t];
+  EXPECT_NEAR(b / a, 1.0, 0.02);
 }
 
 }  // namespace

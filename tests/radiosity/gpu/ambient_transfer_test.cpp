@@ -1,7 +1,7 @@
-// Where the light leaving each cell's surfaces goes, measured by rays (radiosity/gpu/ambient_transfer.h),
+// Where the light leaving each cell's surfaces goes, measured by rays (radiosity/solve/ambient_transfer.h),
 // against what reciprocity says of an enclosure with one open face: of the light its inner faces send
 // out (spread over them by area), the share leaving through the opening is A_opening / A_faces.
-#include "radiosity/gpu/ambient_transfer.h"
+#include "radiosity/solve/ambient_transfer.h"
 
 #include <gtest/gtest.h>
 

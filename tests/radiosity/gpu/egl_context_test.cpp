@@ -20,6 +20,11 @@ TEST(EglContext, RunsAComputeShaderAndReadsBack) {
   EXPECT_FALSE(context.renderer().empty());
   EXPECT_NE(reported.find(context.renderer()), std::string::npos);
   EXPECT_GE(context.maxTextureSize(), 1024);
+  // The device's own word on software rasterizing (EGL_MESA_device_software) agrees with what Mesa's
+  // software renderers call themselves.
+  const bool named = context.renderer().find("llvmpipe") != std::string::npos ||
+                     context.renderer().find("softpipe") != std::string::npos;
+  EXPECT_EQ(context.softwareRasterizer(), named) << context.renderer();
 
   const char* source = R"(#version 450 core
     layout(local_size_x = 64) in;

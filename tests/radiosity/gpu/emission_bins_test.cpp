@@ -1,7 +1,7 @@
-// Binned directional emission (radiosity/gpu/emission_bins.h): equal-area bins make ∫ f cos θ dω = π for
+// Binned directional emission (radiosity/solve/emission_bins.h): equal-area bins make ∫ f cos θ dω = π for
 // any weights; a square above a point gives, by rays, its closed-form irradiance, all of it in the bins its
 // directions fall in.
-#include "radiosity/gpu/emission_bins.h"
+#include "radiosity/solve/emission_bins.h"
 
 #include <cmath>
 #include <numbers>
@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "core/quads.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {

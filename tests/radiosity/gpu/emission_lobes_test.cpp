@@ -1,8 +1,8 @@
-// Directional emission lobes (radiosity/gpu/emission_lobes.h): ∫ f cos θ dω = π by quadrature for every
+// Directional emission lobes (radiosity/solve/emission_lobes.h): ∫ f cos θ dω = π by quadrature for every
 // kind of lobe, the fit of known arrivals (diffuse → Lambertian, a beam → a lobe around it, a mixture →
 // its share), and on the GPU an emitter aimed at one of two walls of a black box: that wall gets more than
 // under a Lambertian, the total caught stays the emitted power.
-#include "radiosity/gpu/emission_lobes.h"
+#include "radiosity/solve/emission_lobes.h"
 
 #include <cmath>
 #include <cstdio>
@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "core/quads.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {

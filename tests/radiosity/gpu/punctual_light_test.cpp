@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/quads.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {

@@ -1,7 +1,8 @@
 // The lamps' shot at the output's texels only where its light varies (issue 13): against the same shot
 // at every output texel, the rooms get the same direct light, sharp where a table's shadow and the
 // door's edge fall, for a fraction of the texels.
-#include "radiosity/gpu/refined_lamp_shot.h"
+#include "radiosity/solve/refined_lamp_shot.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <cmath>
 
@@ -61,7 +62,8 @@ std::array<RoomError, 2> compareRooms(const LightmapAtlas& atlas, const std::vec
 TEST(RefinedLampShot, GivesEveryOutputTexelTheLightOfAShotAtItsOwnResolution) {
   const Scene scene = roomsWithTable();
   Context ctx;
-  EglContext gl(ctx);
+  EglContext context(ctx);
+  GlShotEngine gl(context);
   const QuadSet quads = findQuads(scene);
   const AtlasParams output{.density = 24.0f};
   const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);

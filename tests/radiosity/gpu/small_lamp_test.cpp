@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/quads.h"
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/lamp_light.h"
 #include "radiosity/metrics/form_factors.h"
 #include "tests/radiosity/test_scenes.h"

@@ -1,4 +1,4 @@
-#include "radiosity/gpu/solve_estimate.h"
+#include "radiosity/solve/solve_estimate.h"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "core/quads.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/atlas.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "scenes/seed_scenes.h"
 
 namespace cpgi {
@@ -31,11 +31,11 @@ TEST(SolverPrograms, ReusedProgramsGiveTheFreshResult) {
   std::vector<SolveResult> fresh;
   for (const Case& c : cases) fresh.push_back(solveProgressive(*c.scene, *c.atlas, *c.params, gl, ctx));
   EXPECT_NE(fresh[0].radiosity, fresh[3].radiosity);  // the two modes differ, so mixing them would show
-  SolverPrograms programs;
+  // One engine keeps its programs from solve to solve.
+  GlShotEngine engine(gl);
   for (int pass = 0; pass < 2; ++pass)
     for (size_t i = 0; i < std::size(cases); ++i) {
-      const SolveResult r =
-          solveProgressive(*cases[i].scene, *cases[i].atlas, *cases[i].params, gl, ctx, {.programs = &programs});
+      const SolveResult r = solveProgressive(*cases[i].scene, *cases[i].atlas, *cases[i].params, engine, ctx);
       EXPECT_EQ(r.shots, fresh[i].shots) << i;
       EXPECT_EQ(r.shooters, fresh[i].shooters) << i;
       EXPECT_TRUE(r.radiosity == fresh[i].radiosity) << "case " << i << ", pass " << pass;

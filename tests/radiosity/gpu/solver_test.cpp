@@ -1,6 +1,7 @@
 // The GPU solver against closed forms: Lambert's point-to-polygon form factor, the parallel and
 // perpendicular unit squares, the white furnace, energy bookkeeping and determinism.
-#include "radiosity/gpu/gpu_solver.h"
+#include "radiosity/solve/progressive_loop.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <algorithm>
 

@@ -1,7 +1,9 @@
 // The two-level solve (issue 13): the lamps' shots on the output atlas, the interreflection on a coarser
 // one. It must give the rooms the light a solve at the output's resolution gives, lose none on the way
 // between the atlases, and cost fewer receiver texels.
-#include "radiosity/gpu/two_level_solve.h"
+#include "radiosity/solve/two_level_solve.h"
+#include "radiosity/cpu/ray_shot_engine.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <gtest/gtest.h>
 
@@ -52,7 +54,8 @@ std::array<double, 2> roomMeans(const LightmapAtlas& atlas, const std::vector<gl
 struct TwoRoomsAtlas {
   const Scene scene = twoRooms();
   Context ctx;
-  EglContext gl{ctx};
+  EglContext context{ctx};
+  GlShotEngine gl{context};
   const QuadSet quads = findQuads(scene);
   const AtlasParams output{.density = 8.0f};
   const LightmapAtlas atlas = buildAtlas(scene, quads, output, ctx);
@@ -71,10 +74,10 @@ void expectOneSolvesBooks(const SolveResult& two, const SolveResult& single, con
 }
 
 // Both ways of shooting the interreflection: item buffers on the GL device, and rays on the CPU
-// (radiosity/cpu/ray_solver.h).
+// (radiosity/cpu/ray_shot_engine.h).
 TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   TwoRoomsAtlas r;
-  auto& [scene, ctx, gl, quads, output, atlas] = r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
   SolverParams params;
   const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
   // The ceiling behind the lamp, shaded from every bounce by it.
@@ -92,10 +95,11 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
   for (const bool byRays : {false, true}) {
     SCOPED_TRACE(byRays ? "rays" : "item buffers");
     TwoLevelData levels;
-    const SolveResult two = solveTwoLevel(scene, quads, atlas, output,
-                                          TwoLevelParams{.solveDensity = 4.0f, .indirectByRays = byRays},
-                                          params, gl, ctx, SolveControls{.readTransfer = true}, &levels);
-    EXPECT_EQ(levels.indirectByRays, byRays);
+    RayShotEngine rays;
+    const ShotEngines engines{gl, byRays ? static_cast<ShotEngine&>(rays) : gl};
+    const SolveResult two = solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f},
+                                          params, engines, ctx, SolveControls{.readTransfer = true}, &levels);
+    EXPECT_EQ(levels.indirectBackend, byRays ? "rays" : "gl");
     const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
     EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
     EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";
@@ -117,12 +121,12 @@ TEST(TwoLevelSolve, RoomsGetTheLightOfASolveAtTheOutputsResolution) {
 // `emitters` reflector shots after the rays' lamp shot, seed3's lamp rooms 28 % and 19 % too bright.
 TEST(TwoLevelSolve, LampsShotByRaysElsewhereAreShotOnceHere) {
   TwoRoomsAtlas r;
-  auto& [scene, ctx, gl, quads, output, atlas] = r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
   SolverParams params;
   params.lampRays = 64;
   const SolveResult single = solveProgressive(scene, atlas, params, gl, ctx);
   const SolveResult two =
-      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f}, params, gl, ctx);
+      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f}, params, {gl, gl}, ctx);
   const auto a = roomMeans(atlas, single.radiosity), b = roomMeans(atlas, two.radiosity);
   EXPECT_NEAR(b[0] / a[0], 1.0, 0.02) << "the lamp's room";
   EXPECT_NEAR(b[1] / a[1], 1.0, 0.03) << "the room behind the door";

@@ -11,8 +11,8 @@
 #include "core/context.h"
 #include "core/quads.h"
 #include "core/scene.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 
@@ -41,7 +41,7 @@ struct RefinedLampData {
 /// above what was shot), shots, shooters and their scales.
 SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
-                              const SolverParams& settings, const EglContext& gl, Context& ctx,
+                              const SolverParams& settings, ShotEngine& engine, Context& ctx,
                               const SolveControls& controls, RefinedLampData* data = nullptr);
 
 }  // namespace cpgi

@@ -1,13 +1,12 @@
-#include "radiosity/gpu/two_level_solve.h"
+#include "radiosity/solve/two_level_solve.h"
 
 #include <algorithm>
 #include <chrono>
 
-#include "radiosity/cpu/ray_solver.h"
-#include "radiosity/gpu/refined_lamp_shot.h"
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/solve/refined_lamp_shot.h"
 
 namespace cpgi {
 
@@ -32,19 +31,31 @@ std::vector<glm::vec3> outputRadiosity(const AtlasMapping& mapping, const Lightm
   return out;
 }
 
-// The interreflection by rays (radiosity/cpu/ray_solver.h), with the GPU solve's settings and controls.
-SolveResult solveIndirectByRays(const Scene& scene, const LightmapAtlas& coarse, const SolverParams& settings,
-                                const SolveControls& c, Context& ctx) {
-  RaySolveParams params;
-  static_cast<ShotSettings&>(params) = settings;
-  const RaySolveControls controls{.priorIrradiance = c.priorShot->irradiance,
-                                  .priorEmitted = c.priorShot->emitted,
-                                  .readTransfer = c.readTransfer,
-                                  .acceptStop = c.acceptStop,
-                                  .stopRecheck = kStopRecheck,
-                                  .firstShotNumber = c.firstShotNumber,
-                                  .deadline = c.deadline};
-  return solveByRays(scene, coarse, params, ctx, controls);
+// The coarse solve's own irradiance (its incident less the lamps' light it started from) back onto the
+// output texels, times their albedo, over the lamps' own light there; a coarse solve that returns no
+// irradiance (a cell solve) hands back its radiosity less the lamps' reflected light.
+SolveResult lightOnOutput(const AtlasMapping& mapping, const LightmapAtlas& atlas,
+                          const LightmapAtlas& coarse, const SolveResult& lit,
+                          const std::vector<glm::vec3>& direct, const SolveResult& indirect,
+                          bool readTransfer) {
+  SolveResult out;
+  if (indirect.incident.empty()) {
+    out.radiosity = outputRadiosity(mapping, atlas, coarse, lit.radiosity, direct, indirect.radiosity);
+  } else {
+    std::vector<glm::vec3> gained = indirect.incident;
+    for (size_t t = 0; t < gained.size(); ++t) gained[t] -= direct[t];
+    const std::vector<glm::vec3> fineGained = upsample(mapping, atlas, coarse, gained);
+    out.radiosity = lit.radiosity;
+    for (size_t t = 0; t < atlas.texelCount(); ++t)
+      if (atlas.patch[t] >= 0) out.radiosity[t] += atlas.albedo[t] * fineGained[t];
+    if (readTransfer) {
+      out.incident = lit.incident;
+      for (size_t t = 0; t < out.incident.size(); ++t) out.incident[t] += fineGained[t];
+    }
+  }
+  if (readTransfer && !indirect.residual.empty())
+    out.residual = upsample(mapping, atlas, coarse, indirect.residual);
+  return out;
 }
 
 }  // namespace
@@ -56,7 +67,7 @@ int indirectItemBuffer(int itemBuffer, float solveDensity) {
 
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
-                          const SolverParams& settings, const EglContext& gl, Context& ctx,
+                          const SolverParams& settings, const ShotEngines& engines, Context& ctx,
                           const SolveControls& controls, TwoLevelData* data, const CoarseSolve& solveCoarse) {
   const auto start = std::chrono::steady_clock::now();
   // The coarse atlas: its own emission is left out below (the lamps shoot on the output's).
@@ -75,7 +86,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
     SolveResult one = solveCoarse
                           ? solveCoarse(atlas, atlasParams, controls)  // no prior: it shoots the lamps
-                          : solveProgressive(scene, atlas, settings, gl, ctx, controls);
+                          : solveProgressive(scene, atlas, settings, engines.lamps, ctx, controls);
     if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer};
     return one;
   }
@@ -85,8 +96,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   RefinedLampData lampData;
   SolveControls lampControls = controls;
   lampControls.acceptStop = {};  // the stop is the interreflection's, asked below
-  SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, gl, ctx,
-                                      lampControls, &lampData);
+  SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, engines.lamps,
+                                      ctx, lampControls, &lampData);
   const double lampSeconds = seconds(lampStart);
   if (lit.timedOut) {
     // The deadline came during the lamps' shot: what they did not shoot is unshot, and no interreflection
@@ -120,34 +131,19 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   const auto coarseStart = std::chrono::steady_clock::now();
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
-  // Rays need none of what a cell solve drives the GPU solver with (lobes, bounds per patch, masks).
-  const bool byRays = !solveCoarse && levels.indirectByRays && !c.directionalEmission &&
-                      c.minShotPower <= 0.0 && c.strongShotPower <= 0.0 && c.receivers.empty();
-  SolveResult indirect = solveCoarse ? solveCoarse(coarse, coarseParams, c)
-                         : byRays    ? solveIndirectByRays(scene, coarse, indirectSettings, c, ctx)
-                                     : solveProgressive(scene, coarse, indirectSettings, gl, ctx, c);
+  // The reflections' engine unless the solve needs what only the lamps' has (lobes, masks).
+  const EngineFeatures can = engines.reflections.features();
+  ShotEngine& indirectEngine =
+      (c.directionalEmission && !can.directionalEmission) || (!c.receivers.empty() && !can.lampShots)
+          ? engines.lamps
+          : engines.reflections;
+  SolveResult indirect = solveCoarse
+                             ? solveCoarse(coarse, coarseParams, c)
+                             : solveProgressive(scene, coarse, indirectSettings, indirectEngine, ctx, c);
   const double coarseSeconds = seconds(coarseStart);
 
-  // Step 3: the coarse solve's own irradiance (its incident less the lamps' light it started from) back
-  // onto the output texels, times their albedo; a coarse solve that returns no irradiance (a cell solve)
-  // hands back its radiosity less the lamps' reflected light.
-  SolveResult out;
-  if (indirect.incident.empty()) {
-    out.radiosity = outputRadiosity(mapping, atlas, coarse, lit.radiosity, direct, indirect.radiosity);
-  } else {
-    std::vector<glm::vec3> gained = indirect.incident;
-    for (size_t t = 0; t < gained.size(); ++t) gained[t] -= direct[t];
-    const std::vector<glm::vec3> fineGained = upsample(mapping, atlas, coarse, gained);
-    out.radiosity = lit.radiosity;
-    for (size_t t = 0; t < atlas.texelCount(); ++t)
-      if (atlas.patch[t] >= 0) out.radiosity[t] += atlas.albedo[t] * fineGained[t];
-    if (controls.readTransfer) {
-      out.incident = lit.incident;
-      for (size_t t = 0; t < out.incident.size(); ++t) out.incident[t] += fineGained[t];
-    }
-  }
-  if (controls.readTransfer && !indirect.residual.empty())
-    out.residual = upsample(mapping, atlas, coarse, indirect.residual);
+  // Step 3: the coarse solve's light back onto the output texels.
+  SolveResult out = lightOnOutput(mapping, atlas, coarse, lit, direct, indirect, controls.readTransfer);
   out.perCell = indirect.perCell;
   out.shots = lit.shots + indirect.shots;
   out.energy = indirect.energy;
@@ -170,7 +166,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              lampData.coarseTexels,
              lampData.refinedTexels,
              indirectSettings.itemBuffer,
-             byRays};
+             solveCoarse ? std::string() : indirectEngine.name()};
   return out;
 }
 

@@ -1,4 +1,4 @@
-#include "radiosity/gpu/emission_lobes.h"
+#include "radiosity/solve/emission_lobes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "radiosity/gpu/ambient.h"
+#include "radiosity/solve/ambient.h"
 
 #include <stdexcept>
 
@@ -25,10 +25,12 @@ std::vector<glm::dvec3> ambientLanded(const std::vector<AmbientRoom>& rooms,
 std::vector<glm::dvec3> ambientLandedByShares(const std::vector<AmbientRoom>& rooms,
                                               const std::vector<std::vector<double>>& transfer) {
   const size_t count = rooms.size();
-  if (transfer.size() != count) throw std::invalid_argument("ambientLandedByShares: not one transfer row per room");
+  if (transfer.size() != count)
+    throw std::invalid_argument("ambientLandedByShares: not one transfer row per room");
   std::vector<glm::dvec3> albedo(count, glm::dvec3(0.0));
   for (size_t c = 0; c < count; ++c) {
-    if (transfer[c].size() != count) throw std::invalid_argument("ambientLandedByShares: not one share per room");
+    if (transfer[c].size() != count)
+      throw std::invalid_argument("ambientLandedByShares: not one share per room");
     if (rooms[c].area > 0.0) albedo[c] = rooms[c].albedoArea / rooms[c].area;
   }
   // The series: what leaves (unshot, then each bounce's reflection) lands by `transfer`, is absorbed or

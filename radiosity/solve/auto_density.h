@@ -12,9 +12,9 @@
 #include "core/context.h"
 #include "core/quads.h"
 #include "core/scene.h"
-#include "radiosity/gpu/gpu_solver.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/light_density.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 
@@ -41,7 +41,7 @@ struct AutoDensityData {
 /// memory), which the pilot atlas shares. Throws InputError when the pilot passes the memory limit.
 std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, const AtlasParams& atlasParams,
                                      const AutoDensityParams& params, const SolverParams& settings,
-                                     const EglContext& gl, Context& ctx, const SolveControls& controls = {},
+                                     ShotEngine& engine, Context& ctx, const SolveControls& controls = {},
                                      AutoDensityData* data = nullptr);
 
 }  // namespace cpgi

@@ -38,7 +38,8 @@ glm::vec4 fitEmissionLobe(const glm::vec4& moments, const glm::vec3& n, float mi
 
 /// f(ω) for unit ω leaving a surface of unit normal n (0 behind it), the lobe's σ² widened by blur2 (the
 /// solver widens it by the receiver texel's footprint). Must match shaders/directional.glsl.
-float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::vec3& omega, float blur2 = 0.0f);
+float emissionLobeFactor(const glm::vec4& lobe, const glm::vec3& n, const glm::vec3& omega,
+                         float blur2 = 0.0f);
 
 /// Lobes for every texel of an atlas from per-texel moments (zero moments → Lambertian), with the atlas's
 /// normals. `moments` is empty or one per texel.

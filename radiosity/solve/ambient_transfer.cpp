@@ -1,4 +1,4 @@
-#include "radiosity/gpu/ambient_transfer.h"
+#include "radiosity/solve/ambient_transfer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "radiosity/gpu/emission_bins.h"
+#include "radiosity/solve/emission_bins.h"
 
 namespace cpgi {
 
@@ -20,7 +20,9 @@ uint64_t mix64(uint64_t x) {  // splitmix64's finaliser
   return x ^ (x >> 31);
 }
 
-double fraction(double x) { return x - std::floor(x); }
+double fraction(double x) {
+  return x - std::floor(x);
+}
 
 // A cosine-distributed direction about unit n from two numbers in [0, 1) (frame: Duff et al. 2017).
 glm::vec3 cosineDirection(const glm::vec3& n, double u1, double u2) {
@@ -37,7 +39,8 @@ AmbientTransfer measureAmbientTransfer(const LightmapAtlas& atlas, const RayScen
                                        std::span<const float> texelCell, size_t cells, int raysPerCell,
                                        uint64_t seed) {
   const size_t n = atlas.texelCount();
-  if (texelCell.size() != n) throw std::invalid_argument("measureAmbientTransfer: not one cell per atlas texel");
+  if (texelCell.size() != n)
+    throw std::invalid_argument("measureAmbientTransfer: not one cell per atlas texel");
   const size_t count = cells + 1;
   auto cellOf = [&](size_t t) {
     const float c = texelCell[t];
@@ -71,11 +74,12 @@ AmbientTransfer measureAmbientTransfer(const LightmapAtlas& atlas, const RayScen
     std::vector<double> landed(count, 0.0);
     for (int k = 0; k < out.raysPerCell; ++k) {
       const double at = total * fraction(shift0 + (k + 0.5) / out.raysPerCell);
-      const size_t i = std::min(size_t(std::upper_bound(running[c].begin(), running[c].end(), at) -
-                                       running[c].begin()),
-                                texels[c].size() - 1);
+      const size_t i =
+          std::min(size_t(std::upper_bound(running[c].begin(), running[c].end(), at) - running[c].begin()),
+                   texels[c].size() - 1);
       const size_t t = texels[c][i];
-      const glm::vec3 dir = cosineDirection(atlas.normal[t], fraction(shift1 + k / g), fraction(shift2 + k / (g * g)));
+      const glm::vec3 dir =
+          cosineDirection(atlas.normal[t], fraction(shift1 + k / g), fraction(shift2 + k / (g * g)));
       const RayScene::Hit hit = rays.intersect(atlas.position[t] + atlas.normal[t] * offset, dir, offset);
       if (!hit) continue;  // left the scene
       const int64_t texel = texelAtHit(atlas, hit.triangle, hit.u, hit.v);

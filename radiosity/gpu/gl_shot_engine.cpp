@@ -1,5 +1,4 @@
-#include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/solve_estimate.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 #include <algorithm>
 #include <array>
@@ -12,15 +11,17 @@
 
 #include "core/error.h"
 #include "core/memory_limit.h"
-#include "radiosity/gpu/emission_bins.h"
 #include "radiosity/gpu/gl.h"
 #include "radiosity/gpu/item_mesh.h"
 #include "radiosity/gpu/shader_library.h"
-#include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/lightmap/direct_light.h"
 #include "radiosity/lightmap/lamp_light.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/lightmap/sky_light.h"
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/progressive_loop.h"
+#include "radiosity/solve/shot_backend.h"
 
 namespace cpgi {
 namespace {
@@ -207,25 +208,15 @@ struct ProgramDefines {
 
 // The user's settings and the caller's controls together, as the passes read them.
 struct SolveConfig : SolverParams {
-  bool readTransfer = false;
-  double minShotPower = 0.0;
-  double strongShotPower = 0.0;
-  bool emittersAreLamps = true;  ///< SolveControls::emittersAreLamps
-  bool directionalEmission = false;
+  bool directionalEmission = false;          ///< SolveControls::directionalEmission
   bool arrivalMoments = true;                ///< SolveControls::arrivalMoments
   std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
-  const DirectLight* direct = nullptr;  ///< punctual lights' first shot, already done (addDirectLight)
-  /// Per patch, 1 for a lamp whose first shot is in `direct` (lamp_light.h): its emission is not unshot.
-  const std::vector<char>* shotLamps = nullptr;
-  std::span<const uint8_t> receivers = {};     ///< SolveControls::receivers
-  std::span<const float> patchShotScale = {};  ///< SolveControls::patchShotScale
-  bool readLampFlags = false;
-  /// The power that first shot carried (W): punctualEmitted of the scene's lights, or a prior shot's.
+  std::span<const uint8_t> receivers = {};   ///< SolveControls::receivers
+  bool readLampFlags = false;                ///< SolveControls::readLampFlags
+  /// The first shot made before the solve (shot_engine.h): its irradiance, its power, the lamps it spent.
+  std::span<const glm::vec3> direct = {};
   double directEmitted = 0.0;
-  uint32_t firstShotNumber = 0;  ///< SolveControls::firstShotNumber
-  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  const std::function<bool(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)>* acceptStop =
-      nullptr;
+  std::span<const char> shotLamps = {};
 };
 
 ProgramDefines programDefines(const SolveConfig& params) {
@@ -284,15 +275,21 @@ const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, boo
 
 namespace {
 
-class Solver {
+double channelSum(const glm::vec4& v) {
+  return double(v.r) + double(v.g) + double(v.b);
+}
+
+// The progressive loop's shots by item buffers on the GL device (shot_backend.h): the atlas's state lives
+// in GPU buffers, the next shooter is chosen there (select_shooter.comp), and the loop reads the sums back.
+class GlShotBackend final : public ShotBackend {
  public:
   // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
   // `binned`: the programs for binned shooters (SolveConfig::emissionBins), null without bins. `plain`:
   // the programs without directional emission for shooters with no lobe, null where every shot must note
   // the arrival moments.
-  Solver(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-         const SolverPrograms::Set& programs, const SolverPrograms::Set* binned,
-         const SolverPrograms::Set* plain, const std::vector<glm::vec4>* emissionLobes)
+  GlShotBackend(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
+                const SolverPrograms::Set& programs, const SolverPrograms::Set* binned,
+                const SolverPrograms::Set* plain, const std::vector<glm::vec4>* emissionLobes)
       : scene_(scene),
         atlas_(atlas),
         params_(params),
@@ -327,8 +324,63 @@ class Solver {
     gl::check("solver setup");
   }
 
+  // ShotBackend. The books start from the atlas's unshot light, plus the first shot made before the solve
+  // (params_.direct: its power emitted and shot; what it left reflected is in the unshot sum).
+  EnergyTotals start() override {
+    sel_ = startGl();
+    EnergyTotals e;
+    e.emitted = channelSum(sel_.unshot);
+    if (!params_.direct.empty()) {
+      double reflected = 0.0;
+      for (size_t i = 0; i < params_.direct.size(); ++i)
+        if (atlas_.patch[i] >= 0) {
+          const glm::dvec3 r = glm::dvec3(atlas_.albedo[i]) * glm::dvec3(params_.direct[i]);
+          reflected += (r.r + r.g + r.b) * atlas_.area[i];
+        }
+      e.shot = params_.directEmitted;
+      e.emitted += e.shot - reflected;
+    }
+    const TexelSums now = sums();
+    e.unshot = now.unshot, e.received = now.received, e.absorbed = now.absorbed;
+    return e;
+  }
+  ShooterChoice next() override {
+    return {sel_.winner, channelSum(sel_.winnerUnshot), sel_.winnerPending != 0,
+            sel_.winner >= 0 && sel_.winnerUnshot.w > 0.0f};
+  }
+  ShotGathered shoot(const ShooterChoice& choice, bool strong, bool lamp) override {
+    receivedBefore_ = channelSum(sel_.incident);
+    lastShooter_ = choice.patch;
+    sel_ = shootGl(choice.patch, strong, lamp);
+    return {channelSum(sel_.incident) - receivedBefore_, lastCoverage_.covered, lastCoverage_.open};
+  }
+  // The shot has landed already; a scale other than 1 rescales what it gave (rescale_shot.comp).
+  double deliver(float scale) override {
+    if (scale != 1.0f) sel_ = rescaleLastShot(lastShooter_, scale);
+    return channelSum(sel_.incident) - receivedBefore_;
+  }
+  TexelSums sums() const override {
+    return {channelSum(sel_.unshot), channelSum(sel_.incident), channelSum(sel_.absorbed)};
+  }
+  std::vector<glm::vec3> radiosity() override { return readRadiosity(); }
+  std::vector<glm::vec3> residual() override { return readResidual(); }
+  void readBack(const ReadBack& what, SolveResult& result, Context& ctx) override {
+    reportPasses(ctx);
+    auto t = ctx.time("solve: read back");
+    result.radiosity = readRadiosity();
+    if (what.transfer) result.incident = readIncident(), result.residual = readResidual();
+    if (what.arrivals) result.arrivals = readArrivals();
+    if (what.lampFlags) result.lampFlags = readLampFlags();
+    for (size_t i = 0; i < result.radiosity.size(); ++i)
+      if (atlas_.patch[i] < 0) {
+        result.radiosity[i] = glm::vec3(0.0f);
+        if (what.transfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
+        if (!result.arrivals.empty()) result.arrivals[i] = glm::vec4(0.0f);
+      }
+  }
+
   // Statistics of every patch from the initial state, then the first selection.
-  GpuSelection start() {
+  GpuSelection startGl() {
     std::vector<uint32_t> all(kListHeader / 4 + atlas_.patches.size());
     all[0] = uint32_t(atlas_.patches.size());
     for (size_t i = 0; i < atlas_.patches.size(); ++i) all[kListHeader / 4 + i] = uint32_t(i);
@@ -344,7 +396,7 @@ class Solver {
   /// `strong`: the shot carries at least SolverParams::strongShotFraction of the emitted power. `lamp`: an
   /// emitter's own shot, whose receivers crossed by a shadow or beam edge, or near it, are resampled
   /// (receive.comp).
-  GpuSelection shoot(int shooter, bool strong, bool lamp) {
+  GpuSelection shootGl(int shooter, bool strong, bool lamp) {
     const ShooterLayout& l = strong && !strongLayouts_.empty() ? strongLayouts_[shooter] : layouts_[shooter];
     const Patch& p = atlas_.patches[shooter];
     const int baseRegions = l.regions.x * l.regions.y;
@@ -378,39 +430,17 @@ class Solver {
     const glm::mat3 toShooter = rowsOf(tangent, bitangent, l.normal);
 
     // Sub-shooters from the residual before it is zeroed: the regions' pyramids, level by level.
-    const int levels = uploadRegions(l, p, replicas);
     const bool binnedShot = binnedReceive_ && hasBins_[shooter];
     const bool plainShot = plainReceive_ && !hasLobes_[shooter];
-    const gl::Program& pyramidProgram = binnedShot  ? *binnedPyramid_
-                                        : plainShot ? *plainPyramid_
-                                                    : pyramidProgram_;
     const gl::Program& receiveProgram = binnedShot  ? *binnedReceive_
                                         : plainShot ? *plainReceive_
                                                     : receiveProgram_;
-    set(pyramidProgram, "uShooter", shooter);
-    set(pyramidProgram, "uRegionCount", baseRegions);  // replicas share their region's pyramid
-    set(pyramidProgram, "uTexelRadius", l.texelRadius);
-    if (params_.directionalEmission && !plainShot) set(pyramidProgram, "uShooterNormal", l.normal);
-    glUseProgram(pyramidProgram.get());
-    for (int k = 1; k <= levels; ++k) {
-      set(pyramidProgram, "uLevel", k);
-      glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    if (params_.jitteredEyes) {
-      // Each region's eye drawn by power from the pyramid just built (pick_eyes.comp).
-      set(pickEyesProgram_, "uShooter", shooter);
-      set(pickEyesProgram_, "uRegionCount", regions);
-      set(pickEyesProgram_, "uBaseRegions", baseRegions);
-      setU(pickEyesProgram_, "uShot", GLuint(shotCount_));
-      glUseProgram(pickEyesProgram_.get());
-      glDispatchCompute(1, 1, 1);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      std::array<glm::vec4, kMaxRegions * kMaxRegions> drawn{};
-      glGetNamedBufferSubData(eyes_.get(), 0, GLsizeiptr(regions * sizeof(glm::vec4)), drawn.data());
-      for (int r = 0; r < regions; ++r)
-        if (drawn[r].w > 0.0f) eyes[r] = glm::vec3(drawn[r]) + l.normal * eyeOffset_;
-    }
+    buildPyramids(shooter, l, p, baseRegions, replicas,
+                  binnedShot  ? *binnedPyramid_
+                  : plainShot ? *plainPyramid_
+                              : pyramidProgram_,
+                  !plainShot);
+    if (params_.jitteredEyes) drawEyes(shooter, l, regions, baseRegions, eyes);
     clock_.mark("shooter pyramid");
 
     const GLuint zero = 0;
@@ -440,7 +470,64 @@ class Solver {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     clock_.mark("visible lists");
 
-    // Gather.
+    gather(receiveProgram, {shooter, l, p, toShooter, baseRegions, regions, replicas}, eyes, lamp, binnedShot,
+           !plainShot);
+    clock_.mark(lamp ? "receive (lamp shots)" : "receive");
+
+    runTileStats(0, tileCount_, shooter, true);
+    runStats(shooter);
+    clock_.mark("patch statistics");
+    GpuSelection s = select();
+    clock_.mark("select");
+    lastCoverage_ = readCoverage(regions);
+    return s;
+  }
+
+  // The regions' residual pyramids of `shooter` (shooter_pyramid.comp), level by level.
+  void buildPyramids(int shooter, const ShooterLayout& l, const Patch& p, int baseRegions, int replicas,
+                     const gl::Program& pyramidProgram, bool withLobes) {
+    const int levels = uploadRegions(l, p, replicas);
+    set(pyramidProgram, "uShooter", shooter);
+    set(pyramidProgram, "uRegionCount", baseRegions);  // replicas share their region's pyramid
+    set(pyramidProgram, "uTexelRadius", l.texelRadius);
+    if (params_.directionalEmission && withLobes) set(pyramidProgram, "uShooterNormal", l.normal);
+    glUseProgram(pyramidProgram.get());
+    for (int k = 1; k <= levels; ++k) {
+      set(pyramidProgram, "uLevel", k);
+      glDispatchCompute(groups(levelNodes_[k], 64), 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  }
+
+  // Each region's eye drawn by power from the pyramid just built (pick_eyes.comp), into `eyes`.
+  void drawEyes(int shooter, const ShooterLayout& l, int regions, int baseRegions,
+                std::vector<glm::vec3>& eyes) {
+    set(pickEyesProgram_, "uShooter", shooter);
+    set(pickEyesProgram_, "uRegionCount", regions);
+    set(pickEyesProgram_, "uBaseRegions", baseRegions);
+    setU(pickEyesProgram_, "uShot", GLuint(shotCount_));
+    glUseProgram(pickEyesProgram_.get());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::array<glm::vec4, kMaxRegions * kMaxRegions> drawn{};
+    glGetNamedBufferSubData(eyes_.get(), 0, GLsizeiptr(regions * sizeof(glm::vec4)), drawn.data());
+    for (int r = 0; r < regions; ++r)
+      if (drawn[r].w > 0.0f) eyes[r] = glm::vec3(drawn[r]) + l.normal * eyeOffset_;
+  }
+
+  // Every visible receiver tile gathers the shot (receive.comp).
+  struct ShotGeometry {
+    int shooter;
+    const ShooterLayout& layout;
+    const Patch& patch;
+    const glm::mat3& toShooter;
+    int baseRegions, regions, replicas;
+  };
+  void gather(const gl::Program& receiveProgram, const ShotGeometry& g, const std::vector<glm::vec3>& eyes,
+              bool lamp, bool binnedShot, bool withLobes) {
+    const int shooter = g.shooter, baseRegions = g.baseRegions, regions = g.regions, replicas = g.replicas;
+    const ShooterLayout& l = g.layout;
+    const Patch& p = g.patch;
     set(receiveProgram, "uShooter", shooter);
     set(receiveProgram, "uRegionCount", regions);
     set(receiveProgram, "uRegionShare", 1.0f / float(replicas));
@@ -453,9 +540,10 @@ class Solver {
     }
     glProgramUniform3fv(receiveProgram.get(), loc(receiveProgram, "uRegionOrigins"), regions,
                         &regionOrigins[0].x);
-    set(receiveProgram, "uToShooter", toShooter);
+    set(receiveProgram, "uToShooter", g.toShooter);
     set(receiveProgram, "uShooterNormal", l.normal);
-    if (params_.directionalEmission && !plainShot) set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
+    if (params_.directionalEmission && withLobes)
+      set(receiveProgram, "uShooterLobes", int(hasLobes_[shooter]));
     if (binnedShot) {  // the shooter's bin frame, as the CPU lays its bins out
       const BinFrame frame = binFrame(l.normal);
       set(receiveProgram, "uBinT1", frame.t1);
@@ -468,15 +556,6 @@ class Solver {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileList_.get());
     glDispatchComputeIndirect(4);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    clock_.mark(lamp ? "receive (lamp shots)" : "receive");
-
-    runTileStats(0, tileCount_, shooter, true);
-    runStats(shooter);
-    clock_.mark("patch statistics");
-    GpuSelection s = select();
-    clock_.mark("select");
-    lastCoverage_ = readCoverage(regions);
-    return s;
   }
 
   /// What the eyes of the last shot saw (shot_coverage.comp), each region's share weighted by its unshot
@@ -726,16 +805,16 @@ class Solver {
 
   // Punctual lights (radiosity/lightmap/direct_light.h): their shot is done, so the solve starts after it,
   // as after any shot: ρE reflected in radiosity and residual, E received.
-  void addDirectLight(const DirectLight& direct, std::vector<glm::vec4>& exitance,
+  void addDirectLight(std::span<const glm::vec3> direct, std::vector<glm::vec4>& exitance,
                       std::vector<glm::vec4>& incident) const {
-    for (size_t i = 0; i < direct.irradiance.size() && i < exitance.size(); ++i) {
+    for (size_t i = 0; i < direct.size() && i < exitance.size(); ++i) {
       if (atlas_.patch[i] < 0) continue;
-      exitance[i] += glm::vec4(atlas_.albedo[i] * direct.irradiance[i], 0.0f);
-      incident[i] = glm::vec4(direct.irradiance[i], 0.0f);
+      exitance[i] += glm::vec4(atlas_.albedo[i] * direct[i], 0.0f);
+      incident[i] = glm::vec4(direct[i], 0.0f);
     }
   }
 
-  bool shotByRays(size_t patch) const { return params_.shotLamps && (*params_.shotLamps)[patch]; }
+  bool shotByRays(size_t patch) const { return !params_.shotLamps.empty() && params_.shotLamps[patch]; }
 
   std::vector<glm::vec3> readImage(const gl::Buffer& b) const {
     std::vector<glm::vec4> v(atlas_.texelCount());
@@ -766,11 +845,11 @@ class Solver {
     texels(normalPatch_, normalPatch, kNormalPatch);
     texels(albedo_, albedo, kAlbedo);
     std::vector<glm::vec4> incident(n, glm::vec4(0.0f));
-    if (params_.direct) addDirectLight(*params_.direct, emission, incident);
+    if (!params_.direct.empty()) addDirectLight(params_.direct, emission, incident);
     texels(radiosity_, emission, kRadiosity);
-    if (params_.shotLamps)  // lamps shot by rays (lamp_light.h): their light shows, but is spent
+    if (!params_.shotLamps.empty())  // lamps shot by rays (lamp_light.h): their light shows, but is spent
       for (size_t i = 0; i < n; ++i)
-        if (atlas_.patch[i] >= 0 && (*params_.shotLamps)[size_t(atlas_.patch[i])])
+        if (atlas_.patch[i] >= 0 && params_.shotLamps[size_t(atlas_.patch[i])])
           emission[i] -= glm::vec4(atlas_.emission[i], 0.0f);
     texels(residual_, emission, kResidual);
     texels(incident_, incident, kIncident);
@@ -1043,6 +1122,9 @@ class Solver {
     return all;
   }
   PassClock clock_;
+  GpuSelection sel_{};         ///< the selection and sums after the last pass
+  double receivedBefore_ = 0;  ///< the received sum before the last shot
+  int lastShooter_ = -1;
   GLsizei indexCount_ = 0, triangleCount_ = 0;
   size_t tileCount_ = 0;
   uint32_t shotCount_ = 0;  ///< shots so far, the seed of the eyes' draw
@@ -1050,271 +1132,64 @@ class Solver {
   float far_ = 1.0f, near_ = 1e-3f, eyeOffset_ = 1e-4f;
 };
 
-double channelSum(const glm::vec4& v) {
-  return double(v.r) + double(v.g) + double(v.b);
-}
-
-// A solve's progress report: how far towards the stop (`stopAt`, the unshot share it waits for), the
-// shots, the unshot share and the estimate of the time left (negative: none yet).
-Progress solveProgress(double fraction, int shots, double unshot, double secondsLeft) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * unshot);
-  Progress p{"solve", fraction, buf};
-  p.shots = shots;
-  p.unshot = unshot;
-  p.secondsLeft = secondsLeft;
-  return p;
-}
-
 }  // namespace
 
 namespace {
-SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
-                           Context& ctx, SolverPrograms& programs);
+
+std::unique_ptr<ShotBackend> makeGlBackend(const Scene& scene, const LightmapAtlas& atlas,
+                                           const SolverParams& settings, const SolveControls& controls,
+                                           const FirstShot& first, const EglContext& context,
+                                           SolverPrograms& programs) {
+  SolveConfig params{settings};
+  params.directionalEmission = controls.directionalEmission;
+  params.arrivalMoments = controls.arrivalMoments;
+  params.emissionBins = controls.emissionBins;
+  params.receivers = controls.receivers;
+  params.readLampFlags = controls.readLampFlags;
+  params.direct = first.irradiance;
+  params.directEmitted = first.emitted;
+  params.shotLamps = first.spentEmitters;
+  checkParams(params, atlas, context);
+  if (atlas.patches.empty()) return nullptr;
+  const SolverPrograms::Set& base = programs.get(params, params.directionalEmission);
+  const SolverPrograms::Set* binned = params.directionalEmission && !params.emissionBins.empty()
+                                          ? &programs.get(params, true, true)
+                                          : nullptr;
+  const SolverPrograms::Set* plain =
+      params.directionalEmission && !params.arrivalMoments ? &programs.get(params, false) : nullptr;
+  const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
+  auto backend = std::make_unique<GlShotBackend>(scene, atlas, params, base, binned, plain,
+                                                 lobes.empty() ? nullptr : &lobes);
+  // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
+  // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
+  const auto rayShots = std::count(first.spentEmitters.begin(), first.spentEmitters.end(), 1);
+  backend->countShotsFrom(first.firstShotNumber + uint32_t(rayShots));
+  return backend;
+}
+
 }  // namespace
 
-const char* visibilityName(Visibility v) {
-  return v == Visibility::Hemisphere ? "hemisphere" : "hemicube";
+GlShotEngine::GlShotEngine(const EglContext& gl) : gl_(gl) {}
+
+GlShotEngine::GlShotEngine(std::unique_ptr<EglContext> own) : own_(std::move(own)), gl_(*own_) {}
+
+GlShotEngine::~GlShotEngine() = default;
+
+std::unique_ptr<ShotBackend> GlShotEngine::backend(const Scene& scene, const LightmapAtlas& atlas,
+                                                   const SolverParams& settings,
+                                                   const SolveControls& controls, const FirstShot& first,
+                                                   Context&) {
+  return makeGlBackend(scene, atlas, settings, controls, first, gl_, programs_);
+}
+
+std::unique_ptr<ShotEngine> GlShotEngine::forThisThread() const {
+  return std::unique_ptr<ShotEngine>(new GlShotEngine(EglContext::sibling(gl_)));
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                             const EglContext& context, Context& ctx, const SolveControls& controls) {
-  if (!controls.directionalEmission && !controls.emissionLobes.empty())
-    throw InputError("solver", "emission lobes need SolveControls::directionalEmission");
-  SolveConfig config{settings};
-  config.readTransfer = controls.readTransfer;
-  config.minShotPower = controls.minShotPower;
-  config.strongShotPower = controls.strongShotPower;
-  config.emittersAreLamps = controls.emittersAreLamps;
-  config.directionalEmission = controls.directionalEmission;
-  config.arrivalMoments = controls.arrivalMoments;
-  config.emissionBins = controls.emissionBins;
-  config.deadline = controls.deadline;
-  config.firstShotNumber = controls.firstShotNumber;
-  if (controls.acceptStop) config.acceptStop = &controls.acceptStop;
-  if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
-    throw InputError("solver", "receivers need one flag per atlas texel");
-  if (!controls.receivers.empty() && controls.patchShotScale.size() != atlas.patches.size())
-    throw InputError("solver", "a solve at some receivers needs one shot scale per patch");
-  config.receivers = controls.receivers;
-  config.patchShotScale = controls.patchShotScale;
-  config.readLampFlags = controls.readLampFlags;
-  // The punctual lights' exact first shot on the CPU (the one hook of KHR_lights_punctual in the solver),
-  // or a first shot the caller made (it covers those lights too).
-  DirectLight direct;
-  if (controls.priorShot) {
-    if (controls.priorShot->irradiance.size() != atlas.texelCount())
-      throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
-    direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
-    config.direct = &direct;
-    config.directEmitted = controls.priorShot->emitted;
-  } else if (!scene.lights.empty() ||
-             scene.sky.lights()) {  // and the sky's (core/sky.h), gathered the same way
-    direct = shootPunctualAndSky(scene, atlas, ctx);
-    config.direct = &direct;
-    config.directEmitted = punctualEmitted(scene.lights, direct.directionalLanded);
-  }
-  // The lamps' first shot by rays (SolverParams::lampRays), into the same prior light. Not where a caller
-  // drives the lamps' shots itself (a prior shot, some receivers, the lamp flags) or emits with lobes.
-  LampLight lamps;
-  if (settings.lampRays > 0 && !controls.priorShot && controls.receivers.empty() && !controls.readLampFlags &&
-      !controls.directionalEmission) {
-    const std::vector<char> flagged = lampPatches(scene, atlas);
-    if (std::find(flagged.begin(), flagged.end(), 1) != flagged.end()) {
-      lamps =
-          shootLampsByRays(scene, RayScene(scene), atlas, flagged, settings.lampRays, ctx, controls.deadline);
-      if (direct.irradiance.empty()) direct.irradiance.assign(atlas.texelCount(), glm::vec3(0.0f));
-      for (size_t i = 0; i < direct.irradiance.size(); ++i) direct.irradiance[i] += lamps.irradiance[i];
-      config.direct = &direct;
-      config.directEmitted += lamps.emitted;
-      config.shotLamps = &lamps.shot;
-    }
-  }
-  const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
-  SolverPrograms own;
-  return solveWithLobes(scene, atlas, config, controls.emissionLobes.empty() ? nullptr : &lobes, context, ctx,
-                        controls.programs ? *controls.programs : own);
+                             const EglContext& gl, Context& ctx, const SolveControls& controls) {
+  GlShotEngine engine(gl);
+  return solveProgressive(scene, atlas, settings, engine, ctx, controls);
 }
-
-namespace {
-
-SolveResult solveWithLobes(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
-                           const std::vector<glm::vec4>* emissionLobes, const EglContext& context,
-                           Context& ctx, SolverPrograms& programs) {
-  checkParams(params, atlas, context);
-  SolveResult result;
-  result.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
-  if (atlas.patches.empty()) return result;
-
-  const auto start = std::chrono::steady_clock::now();
-  auto since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  };
-  const SolverPrograms::Set& base = programs.get(params, params.directionalEmission);
-  const SolverPrograms::Set* binned =
-      params.directionalEmission && !params.emissionBins.empty() ? &programs.get(params, true, true) : nullptr;
-  const SolverPrograms::Set* plain =
-      params.directionalEmission && !params.arrivalMoments ? &programs.get(params, false) : nullptr;
-  Solver solver(scene, atlas, params, base, binned, plain, emissionLobes);
-  // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
-  // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
-  const auto rayShots =
-      params.shotLamps ? std::count(params.shotLamps->begin(), params.shotLamps->end(), 1) : 0;
-  solver.countShotsFrom(params.firstShotNumber + uint32_t(rayShots));
-  result.setupSeconds = since(start);
-  ctx.addTiming("solve: setup", result.setupSeconds);
-
-  const auto shootStart = std::chrono::steady_clock::now();
-  GpuSelection sel = solver.start();
-  EnergyTotals e;
-  e.emitted = channelSum(sel.unshot);
-  if (params.direct) {  // the lights' power was emitted and shot; what it left reflected is in the unshot sum
-    double reflected = 0.0;
-    for (size_t i = 0; i < params.direct->irradiance.size(); ++i)
-      if (atlas.patch[i] >= 0) {
-        const glm::dvec3 r = glm::dvec3(atlas.albedo[i]) * glm::dvec3(params.direct->irradiance[i]);
-        reflected += (r.r + r.g + r.b) * atlas.area[i];
-      }
-    e.shot = params.directEmitted;
-    e.emitted += e.shot - reflected;
-  }
-  auto record = [&](const GpuSelection& s) {
-    e.unshot = channelSum(s.unshot);
-    e.received = channelSum(s.incident);
-    e.absorbed = channelSum(s.absorbed);
-    result.history.push_back(e);
-  };
-  record(sel);
-  // Before the first shot, once the settings are checked and the programs built: the CLI prints the
-  // bake's size here (apps/bake_command.cpp).
-  ctx.progress(solveProgress(0.0, 0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
-  double lastReport = -1.0;
-  const double strongAt =
-      params.strongShotPower > 0.0 ? params.strongShotPower : params.strongShotFraction * e.emitted;
-  // The ETA, from the shots after the lamps' (radiosity/gpu/solve_estimate.h).
-  SolveEstimate estimate(strongAt);
-  bool reflecting = false;
-  double lastShotEnd = 0.0;
-  // The stop weighs the unshot power against the light the surfaces reflect when that is less than what
-  // the lamps emit: a lamp in a black housing sends 1 % of its power out and the rest is absorbed at
-  // once, so 1 % of the emitted power was the whole of the rooms' light, and the solve stopped after the
-  // lamp's shot (spot-door: the lit room +5 % at the default stop, +1.6 % converged). In a scene whose
-  // surfaces reflect as much as is emitted, this is the emitted power as before.
-  auto unshotShare = [&e] {
-    const double scale = std::min(e.emitted, e.received - e.absorbed);
-    return scale > 0.0 ? e.unshot / scale : 1.0;
-  };
-  double stopAt = params.unshotFraction;
-  while (e.emitted > 0.0 && result.shots < params.maxShots && sel.winner >= 0 && sel.winnerUnshot.w > 0.0f) {
-    if (unshotShare() <= stopAt) {
-      if (!params.acceptStop) break;
-      ++result.stopChecks;
-      if ((*params.acceptStop)(solver.readRadiosity(), solver.readResidual())) break;
-      stopAt = unshotShare() * kStopRecheck;
-    }
-    if (channelSum(sel.winnerUnshot) < params.minShotPower) break;
-    if (std::chrono::steady_clock::now() >= params.deadline) {
-      result.timedOut = true;
-      break;
-    }
-    const double shotPower = channelSum(sel.winnerUnshot), receivedBefore = e.received;
-    const bool strong = shotPower >= strongAt, reflectorShot = reflecting;
-    e.shot += shotPower;
-    result.shooters.push_back(sel.winner);
-    sel = solver.shoot(sel.winner, strong, sel.winnerPending != 0 && params.emittersAreLamps);
-    ++result.shots;
-    record(sel);
-    // A shot whose eyes see nothing open delivers what they see covered (shot_coverage.comp); no shot
-    // delivers more than its power (design.md §5: received ≤ shot) nor more than its eyes see covered or
-    // open. The receivers' form factors, each gated by one eye's visibility, share the shot out but do
-    // not sum to it: an eye drawn beside an occluder hides what most of its region sees, and the
-    // occluder gets only the region-wide form factor (seed3's room C floor shots delivered 78 %, and
-    // 6 % of the light vanished); an eye that sees more than its region made light up (1.07× on seed1).
-    // Where open space is in view, one eye's share of it is not its region's, so the gathered figure
-    // stands. worstShotGain keeps the gathered gain before the scaling, `created` whatever is left
-    // beyond float rounding.
-    double gained = e.received - receivedBefore;
-    if (shotPower > 0.0) e.worstShotGain = std::max(e.worstShotGain, gained / shotPower);
-    if (!params.patchShotScale.empty()) {  // some receivers only: the scale of a shot that saw them all
-      const float scale = params.patchShotScale[size_t(result.shooters.back())];
-      if (scale != 1.0f) {
-        sel = solver.rescaleLastShot(result.shooters.back(), scale);
-        result.history.pop_back();
-        record(sel);
-      }
-      result.shotScales.push_back(scale);
-      continue;
-    }
-    // The tolerance covers float sums and the emission lobes' normalisation (+1.1e-3 measured).
-    constexpr double kTolerance = 2e-3;
-    const auto& seen = solver.lastCoverage();
-    const double closedBelow = 1e-3;  // open share under which the view counts as closed
-    const double target = seen.open < closedBelow
-                              ? shotPower * std::min(seen.covered, 1.0)
-                              : std::min(gained, shotPower * std::min(seen.covered + seen.open, 1.0));
-    // Over the target by anything beyond float rounding, the shot is scaled back: with far pieces at their
-    // power's moments shots land within the tolerance of their power, and those a little over it added
-    // up (0.23 % of the light made in two closed rooms,
-    // EnergyConservation.ZeroThicknessPartitionLosesNoLight). Not with emission lobes, whose normalisation is
-    // what the tolerance is for and whose arrival moments the rescale does not scale.
-    const double overTolerance = params.directionalEmission ? kTolerance : 1e-5;
-    float scale = 1.0f;
-    if (gained > 0.0 &&
-        (gained - target > overTolerance * shotPower || target - gained > kTolerance * shotPower)) {
-      scale = float(target / gained);
-      sel = solver.rescaleLastShot(result.shooters.back(), scale);
-      result.history.pop_back();
-      record(sel);
-      gained = e.received - receivedBefore;
-    }
-    if (gained > shotPower * (1.0 + kTolerance)) e.created += gained - shotPower;
-    result.history.back() = e;
-    result.shotScales.push_back(scale);
-
-    const double elapsed = since(shootStart), now = unshotShare();
-    if (reflectorShot) estimate.addShot(strong, elapsed - lastShotEnd, shotPower, now);
-    lastShotEnd = elapsed;
-    if (!reflecting && !sel.winnerPending) reflecting = true;
-    if (elapsed - lastReport > 0.25) {
-      if (reflecting) estimate.add({result.shots, now, elapsed});
-      const double eta = estimate.secondsLeft(stopAt);
-      // Towards the current stop: past a refused one (acceptStop), the next ask.
-      const double progress = std::clamp(std::log(std::max(now, 1e-12)) / std::log(stopAt), 0.0, 1.0);
-      ctx.progress(solveProgress(progress, result.shots, now, eta));
-      lastReport = elapsed;
-    }
-  }
-  result.energy = e;
-  if (e.created > 1e-4 * e.emitted) {
-    char note[160];
-    std::snprintf(
-        note, sizeof note,
-        "the solve created %.3g W of light (%.2f%% of the emitted; worst shot received %.3fx its power)",
-        e.created, 100.0 * e.created / e.emitted, e.worstShotGain);
-    ctx.warn(note);
-  }
-  result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
-  ctx.addTiming("solve: shots", since(shootStart));
-  solver.reportPasses(ctx);
-  {
-    auto t = ctx.time("solve: read back");
-    result.radiosity = solver.readRadiosity();
-    if (params.readTransfer) result.incident = solver.readIncident(), result.residual = solver.readResidual();
-    if (params.directionalEmission && params.arrivalMoments) result.arrivals = solver.readArrivals();
-    if (params.readLampFlags) result.lampFlags = solver.readLampFlags();
-  }
-  for (size_t i = 0; i < result.radiosity.size(); ++i)
-    if (atlas.patch[i] < 0) {
-      result.radiosity[i] = glm::vec3(0.0f);
-      if (params.readTransfer) result.incident[i] = result.residual[i] = glm::vec3(0.0f);
-      if (!result.arrivals.empty()) result.arrivals[i] = glm::vec4(0.0f);
-    }
-  ctx.progress(solveProgress(1.0, result.shots, result.unshotFraction, -1.0));
-  result.seconds = since(start);
-  return result;
-}
-
-}  // namespace
 
 }  // namespace cpgi

@@ -8,13 +8,14 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "core/context.h"
 #include "core/quads.h"
 #include "core/scene.h"
-#include "radiosity/gpu/gpu_solver.h"
-#include "radiosity/gpu/refined_lamp_shot.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/refined_lamp_shot.h"
+#include "radiosity/solve/solve.h"
 
 namespace cpgi {
 
@@ -36,9 +37,6 @@ struct TwoLevelParams {
   /// The lamps' shot on the output atlas: at a coarser one first, then at the output's texels where that
   /// one's light varies (refined_lamp_shot.h).
   RefinedLampParams lamps = {};
-  /// The interreflection's shots traced by Embree rays on the CPU (radiosity/cpu/ray_solver.h) instead of
-  /// drawn as item buffers on the GL device: where the device is llvmpipe, the rays are faster.
-  bool indirectByRays = false;
 };
 
 /// What the two levels were, beside the SolveResult.
@@ -51,7 +49,7 @@ struct TwoLevelData {
   size_t lampCoarseTexels = 0;   ///< valid texels of the lamps' coarse shot (0: shot on the output's alone)
   size_t lampRefinedTexels = 0;  ///< output texels the lamps shot at their own resolution
   int indirectItemBuffer = 0;    ///< the interreflection's item buffer (indirectItemBuffer())
-  bool indirectByRays = false;   ///< the interreflection was traced by rays (TwoLevelParams::indirectByRays)
+  std::string indirectBackend;   ///< the engine of the interreflection (ShotEngine::name)
 };
 
 /// The item buffer of the interreflection on the coarse atlas: `itemBuffer` (the user's, sized for 10
@@ -70,7 +68,9 @@ int indirectItemBuffer(int itemBuffer, float solveDensity);
 using CoarseSolve = std::function<SolveResult(const LightmapAtlas& coarse, const AtlasParams& coarseParams,
                                               const SolveControls& controls)>;
 
-/// Solves `atlas` (the output's, built with `atlasParams` from `quads`) in two levels. The result is over
+/// Solves `atlas` (the output's, built with `atlasParams` from `quads`) in two levels: the lamps on
+/// `engines.lamps`, the interreflection on `engines.reflections` (on `lamps` where it needs what the
+/// other cannot do, EngineFeatures). The result is over
 /// the output atlas: radiosity, and with controls.readTransfer the incident and residual (the coarse
 /// solve's, interpolated); energy is the whole solve's (emitted, shot, received, absorbed, unshot as one
 /// solve's would be); shots count both levels. Where the coarse atlas would hold as many texels as the
@@ -78,7 +78,7 @@ using CoarseSolve = std::function<SolveResult(const LightmapAtlas& coarse, const
 /// receives the levels' figures when not null.
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                           const AtlasParams& atlasParams, const TwoLevelParams& levels,
-                          const SolverParams& settings, const EglContext& gl, Context& ctx,
+                          const SolverParams& settings, const ShotEngines& engines, Context& ctx,
                           const SolveControls& controls = {}, TwoLevelData* data = nullptr,
                           const CoarseSolve& solveCoarse = {});
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Lists the longest function bodies in the C++ sources, and fails when one is over the limit.
 
-    bench/function_lengths.py [--limit 120] [--top 10] [DIR...]     (default: every source folder)
+    tests/architecture/function_lengths.py [--limit 120] [--top 10] [DIR...]   (default: every source folder)
 
 A brace counter, not a parser: comments, string and character literals are blanked first; braces of
 namespaces, classes, structs, enums and initialisers are transparent, and a brace that opens after a
@@ -13,7 +13,7 @@ import pathlib
 import re
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
+ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
 FOLDERS = ["core", "decomposition", "radiosity", "scenes", "apps", "bench", "tests"]
 
 

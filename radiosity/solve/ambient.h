@@ -14,8 +14,8 @@
 #include <glm/glm.hpp>
 
 #include "core/cell_graph.h"
-#include "radiosity/gpu/ambient_transfer.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/solve/ambient_transfer.h"
 
 namespace cpgi {
 

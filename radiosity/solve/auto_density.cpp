@@ -1,17 +1,17 @@
-#include "radiosity/gpu/auto_density.h"
+#include "radiosity/solve/auto_density.h"
 
 #include <algorithm>
 #include <chrono>
 
-#include "radiosity/gpu/refined_lamp_shot.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/solve/refined_lamp_shot.h"
 
 namespace cpgi {
 
 std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, const AtlasParams& atlasParams,
                                      const AutoDensityParams& params, const SolverParams& settings,
-                                     const EglContext& gl, Context& ctx, const SolveControls& controls,
+                                     ShotEngine& engine, Context& ctx, const SolveControls& controls,
                                      AutoDensityData* data) {
   const auto start = std::chrono::steady_clock::now();
   AtlasParams pilotParams = atlasParams;
@@ -20,8 +20,8 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
   pilotParams.triangleDensity.clear();
   const LightmapAtlas pilot = buildAtlas(scene, quads, pilotParams, ctx);
   // The direct light alone: what bounces is smooth but for the contacts, found by rays below.
-  const SolveResult lit =
-      shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{}, settings, gl, ctx, controls);
+  const SolveResult lit = shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{}, settings,
+                                            engine, ctx, controls);
   std::vector<float> density = lightDensity(pilot, lit.incident, scene.triangles.size(), params.light);
   size_t contactTriangles = 0;
   if (params.contacts) {

@@ -1,4 +1,4 @@
-#include "radiosity/gpu/emission_bins.h"
+#include "radiosity/solve/emission_bins.h"
 
 #include <algorithm>
 #include <cmath>

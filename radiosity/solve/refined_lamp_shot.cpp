@@ -1,4 +1,4 @@
-#include "radiosity/gpu/refined_lamp_shot.h"
+#include "radiosity/solve/refined_lamp_shot.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,7 +28,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
 // The emitter patches' shots on `atlas` (they shoot before any reflector, so the first N shots are
 // theirs; the punctual lights and the sky are shot inside on the CPU).
 SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int emitters,
-                          const SolverParams& settings, const EglContext& gl, Context& ctx,
+                          const SolverParams& settings, ShotEngine& engine, Context& ctx,
                           SolveControls controls) {
   SolverParams lamps = settings;
   // The emitters' own shots, through item buffers: with lampRays the solver shoots the lamps by rays
@@ -39,7 +39,7 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
   lamps.unshotFraction = 1e-12;  // every lamp shoots, whatever the stop
   controls.readTransfer = true;
   controls.minShotPower = 0.0;
-  return solveProgressive(scene, atlas, lamps, gl, ctx, controls);
+  return solveProgressive(scene, atlas, lamps, engine, ctx, controls);
 }
 
 // Punctual lights and sky only: their exact shot is the whole first step.
@@ -74,7 +74,7 @@ AtlasParams coarseLampAtlas(const LightmapAtlas& atlas, const AtlasParams& atlas
 
 SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
-                              const SolverParams& settings, const EglContext& gl, Context& ctx,
+                              const SolverParams& settings, ShotEngine& engine, Context& ctx,
                               const SolveControls& controls, RefinedLampData* data) {
   const int emitters = emitterPatches(atlas);
   if (emitters == 0) {
@@ -85,7 +85,7 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   const LightmapAtlas coarse =
       buildAtlas(scene, quads, coarseLampAtlas(atlas, atlasParams, params, scene.triangles.size()), ctx);
   if (4 * coarse.validTexels() > atlas.validTexels()) {  // not coarse enough to pay for a second shot
-    SolveResult whole = shootEmitters(scene, atlas, emitters, settings, gl, ctx, controls);
+    SolveResult whole = shootEmitters(scene, atlas, emitters, settings, engine, ctx, controls);
     if (data) *data = {0, atlas.validTexels(), 0.0, seconds(start)};
     return whole;
   }
@@ -94,7 +94,7 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   //    lamp near.
   SolveControls coarseControls = controls;
   coarseControls.readLampFlags = true;
-  SolveResult lit = shootEmitters(scene, coarse, emitters, settings, gl, ctx, coarseControls);
+  SolveResult lit = shootEmitters(scene, coarse, emitters, settings, engine, ctx, coarseControls);
   const double coarseSeconds = seconds(start);
 
   // 2. The output texels that cannot take it interpolated.
@@ -120,7 +120,7 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
     SolveControls fineControls = controls;
     fineControls.receivers = refine;
     fineControls.patchShotScale = scale;
-    const SolveResult fine = shootEmitters(scene, atlas, emitters, settings, gl, ctx, fineControls);
+    const SolveResult fine = shootEmitters(scene, atlas, emitters, settings, engine, ctx, fineControls);
     for (size_t t = 0; t < incident.size(); ++t)
       if (refine[t]) incident[t] = fine.incident[t];
   }

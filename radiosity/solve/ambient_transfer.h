@@ -1,5 +1,5 @@
 // Where the light leaving each cell's surfaces lands, measured with rays, for the ambient term
-// (radiosity/gpu/ambient.h). The term's own rule, a share A_portal / (A_cell + A_portals) of each bounce
+// (radiosity/solve/ambient.h). The term's own rule, a share A_portal / (A_cell + A_portals) of each bounce
 // through each portal and the rest back into the cell, holds for closed rooms; it has no sky. The
 // outside of a building is a cell whose surfaces (terrain, facades, roofs) send most of what they reflect
 // out of the scene, and kept all of it: the furnished house's outside read +9 % with its ambient at 18 %

@@ -1,0 +1,113 @@
+#include "radiosity/solve/solve.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/error.h"
+#include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/lamp_light.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/sky_light.h"
+#include "radiosity/solve/progressive_loop.h"
+
+namespace cpgi {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void checkControls(const LightmapAtlas& atlas, const SolveControls& controls, const EngineFeatures& can,
+                   const std::string& engine) {
+  if (!controls.directionalEmission && !controls.emissionLobes.empty())
+    throw InputError("solver", "emission lobes need SolveControls::directionalEmission");
+  if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
+    throw InputError("solver", "receivers need one flag per atlas texel");
+  if (!controls.receivers.empty() && controls.patchShotScale.size() != atlas.patches.size())
+    throw InputError("solver", "a solve at some receivers needs one shot scale per patch");
+  if (controls.priorShot && controls.priorShot->irradiance.size() != atlas.texelCount())
+    throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
+  if (controls.directionalEmission && !can.directionalEmission)
+    throw InputError(
+        "solver", "directional emission (directional or binned portals) needs the GL backend, not " + engine);
+  if ((!controls.receivers.empty() || controls.readLampFlags) && !can.lampShots)
+    throw InputError("solver", "a lamp shot at some receivers needs the GL backend, not " + engine);
+}
+
+// The first shot on the CPU: the scene's punctual lights and sky (the one hook of KHR_lights_punctual in
+// the solve), or a first shot the caller made (it covers those lights too); then the lamps by rays
+// (SolverParams::lampRays), not where a caller drives the lamps' shots itself (a prior shot, some
+// receivers, the lamp flags) or emits with lobes.
+struct DirectStart {
+  DirectLight direct;
+  LampLight lamps;
+  double emitted = 0.0;
+  bool any = false;
+};
+
+DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                       const SolveControls& controls, Context& ctx) {
+  DirectStart s;
+  if (controls.priorShot) {
+    s.direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
+    s.emitted = controls.priorShot->emitted;
+    s.any = true;
+  } else if (!scene.lights.empty() || scene.sky.lights()) {
+    s.direct = shootPunctualAndSky(scene, atlas, ctx);
+    s.emitted = punctualEmitted(scene.lights, s.direct.directionalLanded);
+    s.any = true;
+  }
+  if (settings.lampRays > 0 && !controls.priorShot && controls.receivers.empty() && !controls.readLampFlags &&
+      !controls.directionalEmission) {
+    const std::vector<char> flagged = lampPatches(scene, atlas);
+    if (std::find(flagged.begin(), flagged.end(), 1) != flagged.end()) {
+      s.lamps =
+          shootLampsByRays(scene, RayScene(scene), atlas, flagged, settings.lampRays, ctx, controls.deadline);
+      if (s.direct.irradiance.empty()) s.direct.irradiance.assign(atlas.texelCount(), glm::vec3(0.0f));
+      for (size_t i = 0; i < s.direct.irradiance.size(); ++i) s.direct.irradiance[i] += s.lamps.irradiance[i];
+      s.emitted += s.lamps.emitted;
+      s.any = true;
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             ShotEngine& engine, Context& ctx, const SolveControls& controls) {
+  checkControls(atlas, controls, engine.features(), engine.name());
+  const DirectStart direct = shootFirst(scene, atlas, settings, controls, ctx);
+  FirstShot first;
+  if (direct.any) first.irradiance = direct.direct.irradiance, first.emitted = direct.emitted;
+  if (!direct.lamps.shot.empty()) first.spentEmitters = direct.lamps.shot;
+  first.firstShotNumber = controls.firstShotNumber;
+
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<ShotBackend> backend = engine.backend(scene, atlas, settings, controls, first, ctx);
+  if (!backend) {
+    SolveResult empty;
+    empty.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
+    return empty;
+  }
+  const double setupSeconds = secondsSince(start);
+  ctx.addTiming("solve: setup", setupSeconds);
+
+  LoopControls loop;
+  loop.acceptStop = controls.acceptStop;
+  loop.minShotPower = controls.minShotPower;
+  loop.strongShotPower = controls.strongShotPower;
+  loop.emittersAreLamps = controls.emittersAreLamps;
+  loop.patchShotScale = controls.patchShotScale;
+  loop.lobedEmission = controls.directionalEmission;
+  loop.deadline = controls.deadline;
+  SolveResult result = runProgressiveLoop(*backend, settings, loop, ctx);
+  result.setupSeconds = setupSeconds;
+  backend->readBack({controls.readTransfer, controls.directionalEmission && controls.arrivalMoments,
+                     controls.readLampFlags},
+                    result, ctx);
+  result.seconds = secondsSince(start);
+  return result;
+}
+
+}  // namespace cpgi

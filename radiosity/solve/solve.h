@@ -1,0 +1,25 @@
+// A progressive radiosity solve of one atlas (thesis ch. 6) on any shot engine: the exact first shot of
+// the scene's punctual lights, sky and (SolverParams::lampRays) lamps on the CPU, then the shooting loop
+// (progressive_loop.h) on the engine's backend, then the per-texel results read back.
+#pragma once
+
+#include "core/context.h"
+#include "core/scene.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/solve_result.h"
+#include "radiosity/solve/shot_engine.h"
+#include "radiosity/solve/solve_controls.h"
+#include "radiosity/solve/solver_params.h"
+
+namespace cpgi {
+
+/// Solves `atlas` with the user's `settings` and the caller's `controls` on `engine`. `scene` supplies
+/// occluders: every scene triangle blocks light, those outside the atlas receive none. Its punctual lights
+/// (Scene::lights) and sky are shot first, exactly (radiosity/lightmap/direct_light.h): the solve starts
+/// from their reflected light as unshot radiosity and counts their power as emitted and shot; a caller's
+/// prior shot (SolveControls::priorShot) stands for them. Throws InputError for bad settings or a control
+/// the engine cannot honour (EngineFeatures), SystemError for device failures.
+SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
+                             ShotEngine& engine, Context& ctx, const SolveControls& controls = {});
+
+}  // namespace cpgi

@@ -14,9 +14,10 @@
 #include <string>
 
 #include "core/quads.h"
-#include "radiosity/lightmap/atlas.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
+#include "radiosity/gpu/gl_shot_engine.h"
+#include "radiosity/lightmap/atlas.h"
 #include "scenes/seed_scenes.h"
 
 namespace {
@@ -54,7 +55,8 @@ int main(int argc, char** argv) {
   }
   const cpgi::SeedScene seed = cpgi::makeSeedScene(level);
   cpgi::Context ctx;
-  cpgi::EglContext gl(ctx);
+  cpgi::EglContext context(ctx);
+  cpgi::GlShotEngine gl(context);
   cpgi::CellSolveParams params;
   params.atlas.texelsPerQuad = res;
   params.solver.unshotFraction = unshot;
@@ -64,7 +66,7 @@ int main(int argc, char** argv) {
   const cpgi::LightmapAtlas atlas =
       cpgi::buildAtlas(seed.scene, cpgi::findQuads(seed.scene), params.atlas, ctx);
   std::printf("# seed%d, %d^2 texels per quad, unshot %g, item buffer %d, jobs %d, renderer %s\n", level, res,
-              unshot, itemBuffer, jobs, gl.renderer().c_str());
+              unshot, itemBuffer, jobs, context.renderer().c_str());
 
   cpgi::Context wholeCtx;
   auto start = std::chrono::steady_clock::now();

@@ -76,6 +76,13 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
                               const SolverParams& settings, ShotEngine& engine, Context& ctx,
                               const SolveControls& controls, RefinedLampData* data) {
+  if (!engine.features().lampShots) {  // the lamps by shadow rays on the CPU, at every output texel
+    const auto start = std::chrono::steady_clock::now();
+    SolveResult byRays = shootFirstOnCpu(
+        scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls.deadline);
+    if (data) *data = {0, atlas.validTexels(), 0.0, seconds(start)};
+    return byRays;
+  }
   const int emitters = emitterPatches(atlas);
   if (emitters == 0) {
     if (data) *data = {0, atlas.validTexels(), 0.0, 0.0};

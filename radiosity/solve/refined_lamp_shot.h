@@ -35,10 +35,16 @@ struct RefinedLampData {
   double coarseSeconds = 0.0, fineSeconds = 0.0;
 };
 
+/// Shadow rays per texel and lamp of the lamps' shot on an engine without lamp shots of its own, when
+/// SolverParams::lampRays gives none (the command line's default).
+inline constexpr int kLampRaysOnCpu = 64;
+
 /// The first shot of every emitter patch (and the scene's punctual lights and sky, as solveProgressive
 /// shoots them) over `atlas`, the output's atlas built from `quads` with `atlasParams`: radiosity, incident
 /// (the direct irradiance) and residual per texel, energy as one solve's after those shots (received never
-/// above what was shot), shots, shooters and their scales.
+/// above what was shot), shots, shooters and their scales. On an engine without lamp shots
+/// (EngineFeatures::lampShots: the rays), the lamps are shot by shadow rays at every output texel instead
+/// (shootFirstOnCpu, SolverParams::lampRays or kLampRaysOnCpu).
 SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
                               const SolverParams& settings, ShotEngine& engine, Context& ctx,

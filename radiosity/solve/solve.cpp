@@ -74,6 +74,40 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
 
 }  // namespace
 
+SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
+                            std::chrono::steady_clock::time_point deadline) {
+  if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
+  SolverParams settings;
+  settings.lampRays = lampRays;
+  const DirectStart first = shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ctx);
+  SolveResult r;
+  r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
+  r.residual = r.incident = r.radiosity;
+  // The lights' power emitted and shot; the reflected light and any emitter the rays did not spend unshot.
+  EnergyTotals& e = r.energy;
+  double reflected = 0.0, unspent = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0) continue;
+    const glm::vec3 in = first.any ? first.direct.irradiance[t] : glm::vec3(0.0f);
+    const bool spent = !first.lamps.shot.empty() && first.lamps.shot[size_t(atlas.patch[t])];
+    const glm::vec3 kept = spent ? glm::vec3(0.0f) : atlas.emission[t];
+    r.incident[t] = in;
+    r.residual[t] = atlas.albedo[t] * in + kept;
+    r.radiosity[t] = atlas.emission[t] + atlas.albedo[t] * in;
+    const glm::dvec3 got(in), back(atlas.albedo[t] * in), own(kept);
+    e.received += (got.r + got.g + got.b) * atlas.area[t];
+    reflected += (back.r + back.g + back.b) * atlas.area[t];
+    unspent += (own.r + own.g + own.b) * atlas.area[t];
+  }
+  e.shot = first.emitted;
+  e.emitted = first.emitted + unspent;
+  e.unshot = reflected + unspent;
+  e.absorbed = e.received - reflected;
+  r.history.push_back(e);
+  r.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
+  return r;
+}
+
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                              ShotEngine& engine, Context& ctx, const SolveControls& controls) {
   checkControls(atlas, controls, engine.features(), engine.name());

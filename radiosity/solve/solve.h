@@ -3,6 +3,8 @@
 // (progressive_loop.h) on the engine's backend, then the per-texel results read back.
 #pragma once
 
+#include <chrono>
+
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
@@ -21,5 +23,14 @@ namespace cpgi {
 /// the engine cannot honour (EngineFeatures), SystemError for device failures.
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                              ShotEngine& engine, Context& ctx, const SolveControls& controls = {});
+
+/// The first shot alone, all of it on the CPU: the punctual lights and sky, and the lamps by `lampRays`
+/// shadow rays per texel and lamp (> 0; 16× in penumbrae, radiosity/lightmap/lamp_light.h), up to
+/// `deadline`. As a solve after it: per texel the radiosity (emission + ρE), the irradiance E and the
+/// residual ρE (the lamps' own light spent); energy with the lights' power emitted and shot. What an engine
+/// without lamp shots of its own (EngineFeatures::lampShots) starts a two-level solve from.
+SolveResult shootFirstOnCpu(
+    const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -136,5 +136,36 @@ TEST(TwoLevelSolve, LampsShotByRaysElsewhereAreShotOnceHere) {
   EXPECT_LE(e.absorbed + e.unshot, e.emitted * (1.0 + 1e-4));
 }
 
+// Where there is no GL device: the rays engine alone, its lamps shot by shadow rays at every output texel
+// (shootFirstOnCpu) and every other shot by rays, in one level and in two. The rooms get the light the GL
+// engine gives them, and the books balance.
+TEST(TwoLevelSolve, TheRaysEngineAloneGivesTheRoomsTheirLight) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
+  SolverParams params;
+  params.lampRays = 64;
+  const SolveResult byGl = solveProgressive(scene, atlas, params, gl, ctx);
+  RayShotEngine rays;
+  EXPECT_FALSE(rays.features().lampShots);
+  const SolveResult one = solveProgressive(scene, atlas, params, rays, ctx);
+  TwoLevelData levels;
+  const SolveResult two =
+      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f}, params, {rays, rays},
+                    ctx, SolveControls{.readTransfer = true}, &levels);
+  EXPECT_EQ(levels.indirectBackend, "rays");
+  EXPECT_EQ(levels.lampShots, 0);  // no emitter shot by the engine: the lamps' light came by shadow rays
+  const auto a = roomMeans(atlas, byGl.radiosity);
+  for (const SolveResult* s : {&one, &two}) {
+    SCOPED_TRACE(s == &one ? "one level" : "two levels");
+    const auto b = roomMeans(atlas, s->radiosity);
+    EXPECT_NEAR(b[0] / a[0], 1.0, 0.03) << "the lamp's room";
+    EXPECT_NEAR(b[1] / a[1], 1.0, 0.05) << "the room behind the door";
+    const EnergyTotals& e = s->energy;
+    EXPECT_NEAR(e.emitted, byGl.energy.emitted, 1e-3 * e.emitted);
+    EXPECT_LE(e.created, 1e-4 * e.emitted);
+    EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  }
+}
+
 }  // namespace
 }  // namespace cpgi

@@ -133,6 +133,10 @@ void finishSettings(BakeCommand& c, const CLI::App& sub) {
   s.solver.ambient = !c.noAmbient;
   // --max-shots bounds the solve: no refusal of a scene that would need more.
   s.limits.refuseEndless = sub.count("--max-shots") == 0;
+  // The options' tables fill the machine's memory in as the default; the library's default (0) is the
+  // same limit found where the bake runs (a cell job on another machine finds its own).
+  if (sub.count("--max-memory") == 0) s.limits.maxMemory = BakeSettings{}.limits.maxMemory;
+  s.cells.decompose.memoryLimit = BakeSettings{}.cells.decompose.memoryLimit;  // the bake sets it from Limits
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 
 #include "core/image_io.h"
 #include "core/scene_io.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/bake_settings.h"
 #include "scenes/seed_scenes.h"
 #include "tests/support/run_cpgi.h"
 
@@ -108,6 +110,42 @@ TEST(Bake, BadOptionsFailWithOneLine) {
   const BakeRun missing = cpgi(dir, "bake '" + dir / "none.glb" + "' -o '" + dir / "out" + "'");
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("none.glb"), std::string::npos) << missing.err;
+}
+
+// A library caller who fills nothing gets the command line's bake: the settings `cpgi bake` keeps in a
+// cell-job plan, given no option but the method, are BakeSettings' defaults.
+TEST(Bake, CommandLineDefaultsAreTheLibrarys) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
+  const BakeRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --method cells --cells '" +
+                                  dir / "s.glb" + "' --plan '" + dir / "plan" + "' -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings expected;
+  expected.input.scene = dir / "s.glb";
+  expected.output.folder = dir / "out";
+  expected.cells.method = BakeMethod::Cells;
+  expected.cells.source = dir / "s.glb";
+  const nlohmann::json plan = nlohmann::json::parse(slurp(dir / "plan/plan.json"));
+  EXPECT_EQ(plan["bake_settings"], bakeSettingsJson(expected));
+}
+
+// bake() in process writes the command line's files: the same lightmap, byte for byte.
+TEST(Bake, InProcessBakeWritesTheCommandLinesLightmap) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
+  const BakeRun r =
+      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "cli" + "' --texels-per-quad 4 --unshot 0.05 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s;
+  s.input.scene = dir / "s.glb";
+  s.output.folder = dir / "lib";
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.05;
+  Context ctx;
+  const BakeResult b = bake(s, ctx);
+  EXPECT_EQ(slurp(dir / "lib/lightmap.exr"), slurp(dir / "cli/lightmap.exr"));
+  EXPECT_EQ(b.report["shots"], nlohmann::json::parse(slurp(dir / "cli/report.json"))["shots"]);
 }
 
 }  // namespace

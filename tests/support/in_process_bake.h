@@ -28,12 +28,24 @@ inline BakeResult bakeHere(const Scene& scene, const CellGraph& cells, const Bak
   return bake(scene, cells, settings, ctx, run);
 }
 
-/// bake() of settings.input.scene (loadBakeScene) on the shared context.
-inline BakeResult bakeHere(const BakeSettings& settings) {
-  Context ctx;
+/// bake() of settings.input.scene (loadBakeScene) on the shared context; its warnings in `ctx`.
+inline BakeResult bakeHere(const BakeSettings& settings, Context& ctx) {
   BakeRun run;
   run.gl = &sharedGl();
   return bake(settings, ctx, run);
+}
+inline BakeResult bakeHere(const BakeSettings& settings) {
+  Context ctx;
+  return bakeHere(settings, ctx);
+}
+
+/// `bake SCENE --method cells --cells CELLS` as settings.
+inline BakeSettings cellsBake(const std::string& scene, const std::string& cells) {
+  BakeSettings s;
+  s.input.scene = scene;
+  s.cells.method = BakeMethod::Cells;
+  s.cells.source = cells;
+  return s;
 }
 
 }  // namespace cpgi::test

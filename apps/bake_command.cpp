@@ -73,12 +73,14 @@ int runBake(const BakeCommand& c) {
 }
 
 void addOnDemandOptions(CLI::App& sub, BakeSettings::Cells& c) {
-  auto* only = sub.add_option("--only-cells", c.onlyCells,
-                              "With --method cells: bake only these cells (comma-separated names); the others "
-                              "act through their portals (see --boundary)");
-  auto* around = sub.add_option("--around", c.around,
-                                "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
-                                "within --depth portals of it");
+  auto* only =
+      sub.add_option("--only-cells", c.onlyCells,
+                     "With --method cells: bake only these cells (comma-separated names); the others "
+                     "act through their portals (see --boundary)");
+  auto* around =
+      sub.add_option("--around", c.around,
+                     "With --method cells: bake the cell holding the point X,Y,Z (metres) and those "
+                     "within --depth portals of it");
   only->excludes(around);
   sub.add_option("--depth", c.depth, "With --around: portals away from the point's cell")
       ->check(CLI::Range(0, 1000000))
@@ -100,9 +102,10 @@ void addMethodOptions(CLI::App& sub, BakeCommand& c) {
       ->capture_default_str();
   addCellOptions(sub, c.settings.cells.params);
   addOnDemandOptions(sub, c.settings.cells);
-  sub.add_option("--plan", c.plan,
-                 "With --method cells: do not solve; write the cell jobs' plan (cells, portals and the lamps' "
-                 "emitter groups) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
+  sub.add_option(
+      "--plan", c.plan,
+      "With --method cells: do not solve; write the cell jobs' plan (cells, portals and the lamps' "
+      "emitter groups) into this folder, for `cpgi cell-job` or cpgi-dask (docs/cell-jobs.md)");
 }
 
 void addSolveOptions(CLI::App& sub, BakeCommand& c) {
@@ -143,7 +146,8 @@ void finishSettings(BakeCommand& c, const CLI::App& sub) {
 
 void addBakeCommand(CLI::App& app, CommandFn& selected) {
   auto c = std::make_shared<BakeCommand>();
-  CLI::App* sub = app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
+  CLI::App* sub =
+      app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
   sub->add_option("scene", c->settings.input.scene, "Scene (.glb, .gltf, .obj)")->required();
   sub->add_option("-o,--output", c->settings.output.folder, "Output folder")->required();
   addMethodOptions(*sub, *c);

@@ -121,7 +121,9 @@ int serveCellJobs(const std::filesystem::path& dir, BakeJobs& jobs, const EglCon
         // As `cpgi cell-job PLAN --gather`, with a context of its own (the report's timings are the
         // gather's) and nothing on stdout (the answers are there).
         Context gatherCtx;
-        jobs.gather(BakeRun{.gl = &gl}, gatherCtx);
+        BakeRun run;
+        run.gl = &gl;
+        jobs.gather(run, gatherCtx);
         done["gather"] = true;
       } else if (request.kind == ServeRequest::Kind::FirstShot) {
         jobs.firstShot(request.firstShot, gl, ctx);

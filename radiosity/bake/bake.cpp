@@ -75,7 +75,8 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
   if (!cells && s.solver.ambientShare > 0.0)
-    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
+                              const std::vector<glm::vec3>& residual) {
       const std::vector<double> shares =
           ambientShares(in.atlas, residual, x.texelCells.values, x.texelGraph, radiosity, &x.transfer);
       return *std::max_element(shares.begin(), shares.end()) <= s.solver.ambientShare;
@@ -88,16 +89,17 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
     twoLevels.lamps.coarsening = s.solver.lampCoarsening;
     twoLevels.indirectByRays = indirectByRays(s.solver.indirect, x.gl);
     if (cells)  // the cells on the coarse atlas, each solve on the GL device
-      return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.gl, ctx, &*levels);
+      return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.gl, ctx,
+                                &*levels);
     return solveTwoLevel(*in.scene, in.quads, in.atlas, s.atlas.params, twoLevels, s.solver.params, x.gl, ctx,
                          controls, &*levels);
   }
   if (!cells) return solveProgressive(*in.scene, in.atlas, s.solver.params, x.gl, ctx, controls);
   if (x.gatherPlan)
-    return gatherCellJobs(*x.gatherPlan, readCellJobPlan(*x.gatherPlan), *in.scene, *in.cells, in.atlas, params,
-                          ctx);
-  return in.onDemand.active ? solveCellsOnDemand(*in.scene, *in.cells, in.onDemand.selection, in.onDemand.mode,
-                                                 in.atlas, params, x.gl, ctx)
+    return gatherCellJobs(*x.gatherPlan, readCellJobPlan(*x.gatherPlan), *in.scene, *in.cells, in.atlas,
+                          params, ctx);
+  return in.onDemand.active ? solveCellsOnDemand(*in.scene, *in.cells, in.onDemand.selection,
+                                                 in.onDemand.mode, in.atlas, params, x.gl, ctx)
                             : solveCells(*in.scene, *in.cells, in.atlas, params, x.gl, ctx);
 }
 
@@ -123,7 +125,8 @@ glm::dvec3 addBakeAmbient(const BakeSettings& s, const BakeInput& in, const Solv
 
 Clock::time_point deadlineOf(const BakeSettings& s, Clock::time_point start) {
   if (s.limits.timeLimit <= 0.0) return Clock::time_point::max();
-  return start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s.limits.timeLimit));
+  return start +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s.limits.timeLimit));
 }
 
 // With --density auto, a cell job's texel densities are those its plan recorded: every job lays its
@@ -144,8 +147,8 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-  f.views = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
-                                 s.output.views)
+  f.views = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells},
+                                 ctx, s.output.views)
                 .views;
 }
 
@@ -164,7 +167,8 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
     gl = opened.get();
   };
   if (gatherPlan) usePlannedDensities(s, in, *gatherPlan);
-  if (s.atlas.densityAuto && in.triangleDensity.empty() && !gl) openGl();  // the pilot shoots before the layout
+  if (s.atlas.densityAuto && in.triangleDensity.empty() && !gl)
+    openGl();  // the pilot shoots before the layout
   buildBakeAtlas(s, in, gl, ctx, deadline);
   requireSolveMemory(s, in.atlas);
   requireConvergence(s, *in.scene, in.atlas);
@@ -185,7 +189,8 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   SolveResult r = solveBake(s, in, x, ctx, levels);
   BakeFigures f;
   if (!r.residual.empty())
-    f.ambientShares = ambientShares(in.atlas, r.residual, texelCells.values, texelGraph, r.radiosity, &transfer);
+    f.ambientShares =
+        ambientShares(in.atlas, r.residual, texelCells.values, texelGraph, r.radiosity, &transfer);
   f.cellNames = cellNames(texelGraph);
   f.ambientEscape = escapeShares(transfer);
   f.ambient = addBakeAmbient(s, in, x, r);
@@ -197,14 +202,16 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
   writeBake(s, in, x, r, out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
-  BakeResult result{.report = bakeReport(s, in, r, levels, *gl, f, ctx),
-                    .shots = r.shots,
-                    .unshotFraction = r.unshotFraction,
-                    .partial = r.timedOut,
-                    .seconds = f.seconds};
+  BakeResult result;
+  result.report = bakeReport(s, in, r, levels, *gl, f, ctx);
+  result.shots = r.shots;
+  result.unshotFraction = r.unshotFraction;
+  result.partial = r.timedOut;
+  result.seconds = f.seconds;
   if (out) {
     writeReport(*out, result.report);
-    writeBakeReportPage(*out, "bake of " + s.input.scene, result.report, *in.scene, cells, in.atlas, r.radiosity);
+    writeBakeReportPage(*out, "bake of " + s.input.scene, result.report, *in.scene, cells, in.atlas,
+                        r.radiosity);
     out->commit();
   }
   result.texelCell = texelCells.values;
@@ -246,7 +253,8 @@ Context::ProgressFn bakeNotes(Context::ProgressFn inner, const BakeSettings& set
     if (global && !said->second && p.stage == "solve" && p.shots > 0 && p.secondsLeft >= 0.0) {
       said->second = true;
       std::ostringstream line;
-      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft) << " more to solve";
+      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft)
+           << " more to solve";
       if (limit > 0.0 && elapsed + p.secondsLeft > limit)
         line << "; the time limit stops it in " << formatDuration(std::max(0.0, limit - elapsed))
              << " with a partial result";

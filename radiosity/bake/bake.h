@@ -59,15 +59,15 @@ struct BakeRun {
 };
 
 struct BakeResult {
-  LightmapAtlas atlas;                  ///< the output's atlas
-  std::vector<glm::vec3> radiosity;     ///< per atlas texel, W/m² (R, G, B), the ambient term included
-  std::vector<float> texelCell;         ///< per atlas texel, the index into cellNames; -1: none
-  std::vector<std::string> cellNames;   ///< the cells (or automatic rooms) of texelCell
-  nlohmann::json report;                ///< report.json (design.md §3 and bake's own keys)
+  LightmapAtlas atlas;                 ///< the output's atlas
+  std::vector<glm::vec3> radiosity;    ///< per atlas texel, W/m² (R, G, B), the ambient term included
+  std::vector<float> texelCell;        ///< per atlas texel, the index into cellNames; -1: none
+  std::vector<std::string> cellNames;  ///< the cells (or automatic rooms) of texelCell
+  nlohmann::json report;               ///< report.json (design.md §3 and bake's own keys)
   int shots = 0;
-  double unshotFraction = 0.0;          ///< of the emitted power, at the stop
-  bool partial = false;                 ///< stopped by Limits::timeLimit
-  double seconds = 0.0;                 ///< from BakeRun::start to the files written
+  double unshotFraction = 0.0;  ///< of the emitted power, at the stop
+  bool partial = false;         ///< stopped by Limits::timeLimit
+  double seconds = 0.0;         ///< from BakeRun::start to the files written
 };
 
 /// Steps 2–4 on a loaded scene: the atlas, the solve (BakeMethod::Cells: on `cells`, which index

@@ -53,17 +53,25 @@ BakeJobs::BakeJobs(std::filesystem::path dir, Context& ctx) : dir_(std::move(dir
     l.in.triangleDensity = plan.triangleDensity;
     if (l.in.triangleDensity.size() != l.in.scene->triangles.size())
       throw InputError((dir_ / "plan.json").string(), "holds no texel density per triangle of " +
-                                                           l.settings.input.scene + "; make the plan again");
+                                                          l.settings.input.scene + "; make the plan again");
   }
   l.params = bake_steps::cellSolveParams(bake_steps::resolved(l.settings), l.in);
 }
 
 BakeJobs::~BakeJobs() = default;
 
-const BakeSettings& BakeJobs::settings() const { return loaded_->settings; }
-const Scene& BakeJobs::scene() const { return *loaded_->in.scene; }
-const CellGraph& BakeJobs::graph() const { return *loaded_->in.cells; }
-const CellSolveParams& BakeJobs::params() const { return loaded_->params; }
+const BakeSettings& BakeJobs::settings() const {
+  return loaded_->settings;
+}
+const Scene& BakeJobs::scene() const {
+  return *loaded_->in.scene;
+}
+const CellGraph& BakeJobs::graph() const {
+  return *loaded_->in.cells;
+}
+const CellSolveParams& BakeJobs::params() const {
+  return loaded_->params;
+}
 
 const LightmapAtlas& BakeJobs::globalAtlas(Context& ctx) {
   Loaded& l = *loaded_;

@@ -142,8 +142,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   // Two levels (radiosity/gpu/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
   report["solve_density"] =
       levels ? nlohmann::json(chosenSolveDensity(s, in.atlas)) : nlohmann::json(nullptr);
-  report["solve_density_option"] =
-      s.solver.solveDensity == kAutoSolveDensity ? nlohmann::json("auto") : nlohmann::json(s.solver.solveDensity);
+  report["solve_density_option"] = s.solver.solveDensity == kAutoSolveDensity
+                                       ? nlohmann::json("auto")
+                                       : nlohmann::json(s.solver.solveDensity);
   report["solve_texels"] = levels ? levels->solveTexels : in.atlas.validTexels();
   if (levels) {
     report["lamp_shots"] = levels->lampShots;
@@ -178,7 +179,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["ambient_escape"] = escape;
   // A bake stopped by --time-limit is valid but partial: what it left unshot is in energy.unshot_w (and
   // spread by the ambient term unless --no-ambient).
-  report["time_limit_s"] = s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
+  report["time_limit_s"] =
+      s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
   report["partial"] = r.timedOut;
   if (r.timedOut) {
     std::ostringstream why;

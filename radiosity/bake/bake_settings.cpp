@@ -8,26 +8,31 @@
 // to_json / from_json of every settings struct a bake nests, in the namespace of each (found by ADL).
 // from_json reads into the object it is given and keeps a field the JSON lacks, so that what a JSON leaves
 // out keeps BakeSettings' default (its lamp rays and portals are not SolverParams' or CellSolveParams').
-#define CPGI_JSON_READ(field)                                             \
+#define CPGI_JSON_READ(field)                                                    \
   if (const auto it = nlohmann_json_j.find(#field); it != nlohmann_json_j.end()) \
     it->get_to(nlohmann_json_t.field);
-#define CPGI_JSON_FIELDS(Type, ...)                                                          \
-  inline void to_json(nlohmann::json& nlohmann_json_j, const Type& nlohmann_json_t) {        \
-    NLOHMANN_JSON_EXPAND(NLOHMANN_JSON_PASTE(NLOHMANN_JSON_TO, __VA_ARGS__))                 \
-  }                                                                                          \
-  inline void from_json(const nlohmann::json& nlohmann_json_j, Type& nlohmann_json_t) {      \
-    NLOHMANN_JSON_EXPAND(NLOHMANN_JSON_PASTE(CPGI_JSON_READ, __VA_ARGS__))                   \
+#define CPGI_JSON_FIELDS(Type, ...)                                                     \
+  inline void to_json(nlohmann::json& nlohmann_json_j, const Type& nlohmann_json_t) {   \
+    NLOHMANN_JSON_EXPAND(NLOHMANN_JSON_PASTE(NLOHMANN_JSON_TO, __VA_ARGS__))            \
+  }                                                                                     \
+  inline void from_json(const nlohmann::json& nlohmann_json_j, Type& nlohmann_json_t) { \
+    NLOHMANN_JSON_EXPAND(NLOHMANN_JSON_PASTE(CPGI_JSON_READ, __VA_ARGS__))              \
   }
 
 namespace cpgi {
 
-const char* bakeMethodName(BakeMethod m) { return m == BakeMethod::Cells ? "cells" : "global"; }
+const char* bakeMethodName(BakeMethod m) {
+  return m == BakeMethod::Cells ? "cells" : "global";
+}
 
 const char* indirectSolverName(IndirectSolver s) {
   switch (s) {
-    case IndirectSolver::Gpu: return "gpu";
-    case IndirectSolver::Rays: return "rays";
-    default: return "auto";
+    case IndirectSolver::Gpu:
+      return "gpu";
+    case IndirectSolver::Rays:
+      return "rays";
+    default:
+      return "auto";
   }
 }
 
@@ -41,15 +46,15 @@ void enumFromJson(const nlohmann::json& j, Enum& e, const std::pair<Enum, const 
     }
   throw InputError("bake settings", "unknown value " + j.dump());
 }
-#define CPGI_JSON_ENUM(Enum, ...)                                                   \
-  inline void to_json(nlohmann::json& j, const Enum& e) {                            \
-    static const std::pair<Enum, const char*> names[] = __VA_ARGS__;                 \
-    for (const auto& [value, name] : names)                                          \
-      if (value == e) j = name;                                                      \
-  }                                                                                  \
-  inline void from_json(const nlohmann::json& j, Enum& e) {                          \
-    static const std::pair<Enum, const char*> names[] = __VA_ARGS__;                 \
-    enumFromJson(j, e, names);                                                       \
+#define CPGI_JSON_ENUM(Enum, ...)                                    \
+  inline void to_json(nlohmann::json& j, const Enum& e) {            \
+    static const std::pair<Enum, const char*> names[] = __VA_ARGS__; \
+    for (const auto& [value, name] : names)                          \
+      if (value == e) j = name;                                      \
+  }                                                                  \
+  inline void from_json(const nlohmann::json& j, Enum& e) {          \
+    static const std::pair<Enum, const char*> names[] = __VA_ARGS__; \
+    enumFromJson(j, e, names);                                       \
   }
 
 CPGI_JSON_ENUM(BakeMethod, {{BakeMethod::Global, "global"}, {BakeMethod::Cells, "cells"}})
@@ -89,7 +94,8 @@ std::optional<std::vector<float>> listOf(const std::optional<glm::vec3>& v) {
 }
 
 void to_json(nlohmann::json& j, const MaterialOverride& o) {
-  j = {{"material", o.material}, {"emission", optionalJson(listOf(o.emission))},
+  j = {{"material", o.material},
+       {"emission", optionalJson(listOf(o.emission))},
        {"albedo", optionalJson(listOf(o.albedo))}};
 }
 void from_json(const nlohmann::json& j, MaterialOverride& o) {
@@ -151,7 +157,9 @@ CPGI_JSON_FIELDS(DecomposeParams, voxelSize, minAutoVoxel, autoVoxelBudget, seal
 CPGI_JSON_FIELDS(BakeSettings::Cells, method, source, params, decompose, onlyCells, around, depth, boundary)
 CPGI_JSON_FIELDS(BakeSettings, input, atlas, solver, cells, sky, output, limits)
 
-nlohmann::json bakeSettingsJson(const BakeSettings& s) { return nlohmann::json(s); }
+nlohmann::json bakeSettingsJson(const BakeSettings& s) {
+  return nlohmann::json(s);
+}
 
 BakeSettings bakeSettingsFromJson(const nlohmann::json& j) {
   if (!j.is_object()) throw InputError("bake settings", "not a JSON object");

@@ -62,8 +62,8 @@ inline constexpr PortalLight kBakePortalLight = PortalLight::Binned;
 struct BakeSettings {
   /// The scene and how it is read (used by loadBakeScene and in messages and report.json).
   struct Input {
-    std::string scene;  ///< path of the .glb, .gltf or .obj, in metres; names the scene in every message
-    LoadOptions load;   ///< --strict, --emit, --albedo, --allow-outside-files, file and triangle limits
+    std::string scene;       ///< path of the .glb, .gltf or .obj, in metres; names the scene in every message
+    LoadOptions load;        ///< --strict, --emit, --albedo, --allow-outside-files, file and triangle limits
     bool allowDark = false;  ///< bake a scene nothing lights (black) instead of refusing it
   } input;
 
@@ -120,7 +120,7 @@ struct BakeSettings {
     /// `depth` portals of the cell holding the point `around` ("X,Y,Z", metres); empty: every cell.
     std::string onlyCells;
     std::string around;
-    int depth = 0;  ///< >= 0
+    int depth = 0;                                 ///< >= 0
     BoundaryMode boundary = BoundaryMode::Coarse;  ///< what the cells next to the baked ones do
   } cells;
 

@@ -106,8 +106,9 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, const EglContext* gl, 
     if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
     auto t = ctx.time("auto density");
     AutoDensityData data;
-    in.triangleDensity = chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity,
-                                           s.solver.params, *gl, ctx, SolveControls{.deadline = deadline}, &data);
+    in.triangleDensity =
+        chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity, s.solver.params, *gl, ctx,
+                          SolveControls{.deadline = deadline}, &data);
     in.autoDensity = data;
   }
   AtlasParams params = s.atlas.params;

@@ -70,8 +70,8 @@ TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   s.atlas.params.density = 8;
   test::bakeHere(s);
   // Different atlases: A is read at B's texels through the scene given, or else the one their reports name.
-  test::CommandRun r = cpgi(dir,
-           "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
+  test::CommandRun r = cpgi(
+      dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const json cmp = json::parse(r.out);
   r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json");
@@ -112,7 +112,8 @@ TEST(AutoDensity, CellsAndCellJobsFollowTheWholeScenesPilot) {
   s.cells.source = scene;
   Context ctx;
   const json one = test::bakeHere(s, ctx).report;
-  for (const std::string& w : ctx.warnings()) EXPECT_EQ(w.find("charted differently"), std::string::npos) << w;
+  for (const std::string& w : ctx.warnings())
+    EXPECT_EQ(w.find("charted differently"), std::string::npos) << w;
   test::CommandRun r;
   EXPECT_EQ(one["density_option"], "auto");
   EXPECT_GT(one["auto_density"]["pilot_texels"].get<size_t>(), 0u);

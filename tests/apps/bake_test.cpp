@@ -28,7 +28,7 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
   const CliRun r = cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" +
-                                  "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
+                                 "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* f : {"lightmap.exr", "lightmap.png", "baked.glb", "report.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
@@ -123,8 +123,9 @@ TEST(Bake, BadOptionsFailWithOneLine) {
 TEST(Bake, CommandLineDefaultsAreTheLibrarys) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
-  const CliRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --method cells --cells '" +
-                                  dir / "s.glb" + "' --plan '" + dir / "plan" + "' -q");
+  const CliRun r =
+      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --method cells --cells '" +
+                    dir / "s.glb" + "' --plan '" + dir / "plan" + "' -q");
   ASSERT_EQ(r.status, 0) << r.err;
   BakeSettings expected;
   expected.input.scene = dir / "s.glb";
@@ -140,7 +141,8 @@ TEST(Bake, InProcessBakeWritesTheCommandLinesLightmap) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
   const CliRun r =
-      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "cli" + "' --texels-per-quad 4 --unshot 0.05 --item-buffer 128 --view-size 64x48 -q");
+      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "cli" +
+                    "' --texels-per-quad 4 --unshot 0.05 --item-buffer 128 --view-size 64x48 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   BakeSettings s;
   s.input.scene = dir / "s.glb";

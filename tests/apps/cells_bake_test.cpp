@@ -34,7 +34,8 @@ TEST(CellsBake, CellsFromAnotherFileKeepEachFaceOfAThinWallInItsRoom) {
   s.atlas.params.density = 5;
   Context ctx;
   const nlohmann::json report = test::bakeHere(s, ctx).report;
-  for (const std::string& w : ctx.warnings()) EXPECT_EQ(w.find("not in the cells file"), std::string::npos) << w;
+  for (const std::string& w : ctx.warnings())
+    EXPECT_EQ(w.find("not in the cells file"), std::string::npos) << w;
   ASSERT_EQ(report["cell_energy"].size(), 3u);
   for (const auto& c : report["cell_energy"])
     EXPECT_LT(c["escaped_w"].get<double>(), 0.01 * c["absorbed_w"].get<double>()) << c.dump();
@@ -148,9 +149,9 @@ TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   }
 }
 
-// The command line's cells bakes default to binned portals (apps/options.h, kBakePortalLight), and so
-// do the cell jobs of a plan made with the same options: run one after another by `cpgi cell-job`, they
-// give the single-process bake texel for texel.
+// The command line's cells bakes default to binned portals (radiosity/bake/bake_settings.h,
+// kBakePortalLight), and so do the cell jobs of a plan made with the same options: run one after another by
+// `cpgi cell-job`, they give the single-process bake texel for texel.
 TEST(CellsBake, DefaultPortalsAreBinnedAlsoAsCellJobs) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

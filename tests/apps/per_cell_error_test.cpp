@@ -30,7 +30,7 @@ using test::cpgi;
 using Options = std::function<void(BakeSettings&)>;
 const Options kDefault = [](BakeSettings&) {};
 const Options kConverged = [](BakeSettings& s) { s.solver.params.unshotFraction = 1e-4; };  // --unshot 1e-4
-const Options kUnshotStopOnly = [](BakeSettings& s) { s.solver.ambientShare = 0.0; };      // --ambient-share 0
+const Options kUnshotStopOnly = [](BakeSettings& s) { s.solver.ambientShare = 0.0; };  // --ambient-share 0
 Options cellsWith(const Options& more) {  // --method cells --cells SCENE
   return [more](BakeSettings& s) {
     s.cells.method = BakeMethod::Cells;
@@ -62,7 +62,8 @@ class OpeningsBakes : public ::testing::Test {
     const std::string scene = test::quote(*dir_ / "openings.glb");
     if (!std::filesystem::exists(*dir_ / "ref/report.json")) {
       run("generate openings -o " + scene);
-      run("reference " + scene + " -o " + test::quote(*dir_ / "ref") + " --density 5 --spp 1024 --texels 1500 -q");
+      run("reference " + scene + " -o " + test::quote(*dir_ / "ref") +
+          " --density 5 --spp 1024 --texels 1500 -q");
     }
     for (const auto& [name, options] : bakes) {
       BakeSettings s;
@@ -109,7 +110,8 @@ class PerCellTwoLevels : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
     setup_.run([] {
-      bakeAll({{"two-levels", twoLevels(kDefault)}, {"two-levels-unshot-stop-only", twoLevels(kUnshotStopOnly)}});
+      bakeAll(
+          {{"two-levels", twoLevels(kDefault)}, {"two-levels-unshot-stop-only", twoLevels(kUnshotStopOnly)}});
     });
   }
 };

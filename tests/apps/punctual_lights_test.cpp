@@ -37,7 +37,8 @@ class PunctualLightBakes : public ::testing::Test {
         run(std::string("generate ") + name + " -o " + scene);
         run("reference " + scene + " -o " + quote(out + "-ref") + atlas + " --spp 512");
         // The bakes in process: --density 5 --unshot 0.001, global and cell by cell.
-        BakeSettings s = test::cellsBake(*dir_ / (std::string(name) + ".glb"), *dir_ / (std::string(name) + ".glb"));
+        BakeSettings s =
+            test::cellsBake(*dir_ / (std::string(name) + ".glb"), *dir_ / (std::string(name) + ".glb"));
         s.atlas.densityAuto = false;
         s.atlas.params.density = 5;
         s.solver.params.unshotFraction = 0.001;

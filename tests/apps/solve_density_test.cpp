@@ -39,7 +39,9 @@ BakeSettings solveDensity(BakeSettings s, float d) {  // --solve-density D
   s.solver.solveDensity = d;
   return s;
 }
-json bake(const BakeSettings& s) { return test::bakeHere(s).report; }
+json bake(const BakeSettings& s) {
+  return test::bakeHere(s).report;
+}
 
 TEST(SolveDensity, AutoIsOneLevelForASmallAtlasAndTwoForALargeOne) {
   test::TempDir dir;

@@ -15,7 +15,8 @@ BakeSettings everyFieldChanged() {
   BakeSettings s;
   s.input.scene = "rooms/a b.glb";
   s.input.load.strict = true;
-  s.input.load.overrides = {{"lamp", glm::vec3(1, 2, 3), std::nullopt}, {"wall", std::nullopt, glm::vec3(0.5f)}};
+  s.input.load.overrides = {{"lamp", glm::vec3(1, 2, 3), std::nullopt},
+                            {"wall", std::nullopt, glm::vec3(0.5f)}};
   s.input.load.allowOutsideFiles = true;
   s.input.load.maxFileBytes = 12345;
   s.input.load.maxTriangles = 678;
@@ -35,13 +36,15 @@ BakeSettings everyFieldChanged() {
   s.solver.ambient = false, s.solver.ambientShare = 0.25;
   s.cells.method = BakeMethod::Cells, s.cells.source = "auto";
   CellSolveParams& c = s.cells.params;
-  c.maxRounds = 9, c.portals = PortalLight::Directional, c.lobeMinWidth = 0.3f, c.portalBinRays = 128, c.jobs = 2;
+  c.maxRounds = 9, c.portals = PortalLight::Directional, c.lobeMinWidth = 0.3f, c.portalBinRays = 128,
+  c.jobs = 2;
   decomp::DecomposeParams& q = s.cells.decompose;
   q.voxelSize = 0.08, q.minAutoVoxel = 0.04, q.autoVoxelBudget = 1e6, q.sealRadius = 0.1, q.memoryLimit = 99;
   q.outsideMargin = 1.5, q.classify.minComponentVolume = 0.2, q.watershed.levelStep = 0.25;
   q.merge = {0.5, 0.3, 0.7, 2.0, 0.8};
   q.portals = {0.7, 0.9f, 3}, q.assign = {1.5, 6, 3, 0.4}, q.sourceName = "house";
-  s.cells.onlyCells = "A,B", s.cells.around = "1,2,3", s.cells.depth = 2, s.cells.boundary = BoundaryMode::Dark;
+  s.cells.onlyCells = "A,B", s.cells.around = "1,2,3", s.cells.depth = 2,
+  s.cells.boundary = BoundaryMode::Dark;
   s.sky.kind = Sky::Kind::CieOvercast, s.sky.horizontalIrradiance = 20.0f, s.sky.zenithRadiance = 4.0f;
   s.sky.towardsSun = glm::vec3(0, 1, 1);
   s.sky.sunIrradiance = 300, s.sky.groundAlbedo = std::nullopt, s.sky.gatherRays = 64;
@@ -163,7 +166,9 @@ TEST(BakeSettingsJson, EveryFieldSurvivesTheRoundTrip) {
   // The fixture changes every field: no leaf of the JSON is the default's.
   const nlohmann::json defaults = bakeSettingsJson(BakeSettings{}).flatten(), flat = j.flatten();
   for (const auto& [path, value] : defaults.items())
-    if (flat.contains(path)) EXPECT_NE(flat[path], value) << path;
+    if (flat.contains(path)) {
+      EXPECT_NE(flat[path], value) << path;
+    }
 }
 
 TEST(BakeSettingsJson, DefaultsAreTheBakesAndSurviveTooWithUnsetOptionals) {

@@ -1,20 +1,25 @@
 // `cpgi cell-job PLAN (--first-shot [--group G]... | --first-shot-sum | --round R [--cell NAME]... |
 // --serve | --status [--json] | --gather) [-q]`: the cell jobs of a plan made by `cpgi bake SCENE -o DIR
-// --method cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather runs the
-// bake command again on the arguments kept in PLAN/plan.json, so a job takes exactly the plan's scene and
-// options; --status reads only the plan's small files and says which step comes next (what a driver such
-// as cpgi-dask waits on); --serve runs round jobs read from stdin in one process (apps/cell_job_serve.h),
-// and answers the same status there.
+// --method cells --plan PLAN` (radiosity/cells/cell_jobs.h, docs/cell-jobs.md). A job or the gather bakes
+// with the settings kept in PLAN/plan.json (radiosity/bake/bake_jobs.h), so a job takes exactly the plan's
+// scene and options; --status reads only the plan's small files and says which step comes next (what a driver
+// such as cpgi-dask waits on); --serve runs round jobs read from stdin in one process
+// (apps/cell_job_serve.h), and answers the same status there.
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "apps/cell_job_serve.h"
 #include "apps/cell_job_status.h"
 #include "apps/commands.h"
 #include "core/error.h"
+#include "core/progress.h"
+#include "radiosity/bake/bake_jobs.h"
 #include "radiosity/cells/cell_jobs.h"
+#include "radiosity/cells/cell_selection.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 
 namespace cpgi::cli {
 namespace {
@@ -53,39 +58,43 @@ int printStatus(const CellJobOptions& o, const CellJobPlan& plan) {
   return 0;
 }
 
-// The bake command on the plan's arguments plus the job's own.
-int runThroughBake(const CellJobOptions& o, const CellJobPlan& plan) {
-  std::vector<std::string> args = {"bake"};
-  args.insert(args.end(), plan.bakeArgs.begin(), plan.bakeArgs.end());
-  args.insert(args.end(), {"--plan", o.plan});
+// A job of the plan, on the plan's settings (radiosity/bake/bake_jobs.h).
+int runJob(const CellJobOptions& o) {
+  Context ctx;
+  ctx.setProgress(stderrProgress(o.quiet));
+  BakeJobs jobs(o.plan, ctx);
   if (o.gather) {
-    args.push_back("--gather");
-  } else if (o.serve) {
-    args.push_back("--job-serve");
-  } else if (o.firstShot) {
-    std::string list;
-    for (int g : o.groups) list += (list.empty() ? "" : ",") + std::to_string(g);
-    args.insert(args.end(), {"--job-first-shot", list.empty() ? "all" : list});
+    const BakeResult r = jobs.gather(BakeRun{}, ctx);
+    if (!o.quiet)
+      std::cout << jobs.settings().output.folder << ": " << r.atlas.validTexels() << " texels, " << r.shots
+                << " shots, unshot " << r.unshotFraction * 100.0 << " %, " << r.seconds << " s"
+                << (r.partial ? " (partial: stopped at the time limit)" : "") << "\n";
+    if (!o.quiet)
+      for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
   } else if (o.firstShotSum) {
-    args.push_back("--job-first-shot-sum");
+    jobs.firstShotSum(ctx);
+    if (!o.quiet)
+      std::cout << o.plan << ": first shot summed; next: cpgi cell-job " << o.plan << " --round 1\n";
   } else {
-    args.insert(args.end(), {"--job-round", std::to_string(o.round)});
-    std::string list;
-    for (const std::string& c : o.cells) list += (list.empty() ? "" : ",") + c;
-    if (!list.empty()) args.insert(args.end(), {"--job-cells", list});
+    const EglContext gl(ctx);
+    if (o.serve) return serveCellJobs(o.plan, jobs, gl, ctx, std::cin, std::cout);
+    GlShotEngine engine(gl);
+    if (o.firstShot) {
+      const size_t groups =
+          o.groups.empty() ? readCellJobPlan(o.plan).firstShotGroups.size() : o.groups.size();
+      jobs.firstShot(o.groups, engine, ctx);
+      if (!o.quiet) std::cout << o.plan << ": first shot of " << groups << " emitter groups done\n";
+    } else {
+      std::string list;
+      for (const std::string& c : o.cells) list += (list.empty() ? "" : ",") + c;
+      std::vector<int> cells = list.empty() ? std::vector<int>{} : cellsByName(jobs.graph(), list, "--cell");
+      jobs.round(o.round, cells, engine, ctx);
+      if (!o.quiet)
+        std::cout << o.plan << ": round " << o.round << " of "
+                  << (cells.empty() ? jobs.graph().cells.size() : cells.size()) << " cells done\n";
+    }
   }
-  if (o.quiet) args.push_back("-q");
-  CLI::App app;
-  CommandFn selected;
-  addBakeCommand(app, selected);
-  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
-  try {
-    app.parse(reversed);
-  } catch (const CLI::ParseError& e) {
-    throw InputError((std::filesystem::path(o.plan) / "plan.json").string(),
-                     std::string("its bake arguments do not parse: ") + e.what());
-  }
-  return selected ? selected() : 1;
+  return 0;
 }
 
 }  // namespace
@@ -140,7 +149,7 @@ void addCellJobCommand(CLI::App& app, CommandFn& selected) {
       std::error_code ec;
       if (!o->status && std::filesystem::is_directory(plan.workingDir, ec))
         std::filesystem::current_path(plan.workingDir);
-      return o->status ? printStatus(*o, plan) : runThroughBake(*o, plan);
+      return o->status ? printStatus(*o, plan) : runJob(*o);
     };
   });
 }

@@ -93,11 +93,9 @@ std::vector<int> requestedCells(const CellGraph& graph, const std::string& list)
 
 }  // namespace
 
-int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
-                  const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const std::function<const LightmapAtlas&()>& globalAtlas,
-                  const std::function<void()>& gather, const EglContext& gl, Context& ctx, std::istream& in,
-                  std::ostream& out) {
+int serveCellJobs(const std::filesystem::path& dir, BakeJobs& jobs, const EglContext& gl, Context& ctx,
+                  std::istream& in, std::ostream& out) {
+  const nlohmann::json settings = bakeSettingsJson(jobs.settings());
   GlShotEngine engine(gl);              // its programs kept from job to job
   std::optional<CellJobServer> server;  // built at the first request: a server may start before the sum
   CellJobStatusKept statusKept;         // the finished rounds, so that a status reads only the new ones
@@ -109,7 +107,7 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
       const ServeRequest request = parseRequest(line, id);
       // plan.json is re-read for every job: the first shot's sum rewrites it (summed, target power).
       const CellJobPlan plan = readCellJobPlan(dir);
-      if (plan.bakeArgs != bakeArgs) {
+      if (bakeSettingsJson(bakeSettingsFromJson(plan.bakeSettings)) != settings) {
         answer(
             out,
             {{"ok", false},
@@ -122,14 +120,19 @@ int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::strin
       if (request.kind == ServeRequest::Kind::Status) {
         done["status"] = cellJobStatusJson(plan, cellJobStatus(dir, plan, &statusKept));
       } else if (request.kind == ServeRequest::Kind::Gather) {
-        gather();
+        // As `cpgi cell-job PLAN --gather`, with a context of its own (the report's timings are the
+        // gather's) and nothing on stdout (the answers are there).
+        Context gatherCtx;
+        BakeRun run;
+        run.gl = &gl;
+        jobs.gather(run, gatherCtx);
         done["gather"] = true;
       } else if (request.kind == ServeRequest::Kind::FirstShot) {
-        runFirstShotJobs(dir, plan, request.firstShot, scene, graph, globalAtlas(), params, engine, ctx);
+        jobs.firstShot(request.firstShot, engine, ctx);
         done["first_shot"] = request.firstShot;
       } else {
-        const std::vector<int> cells = requestedCells(graph, request.cells);
-        if (!server) server.emplace(scene, graph, params, ctx);
+        const std::vector<int> cells = requestedCells(jobs.graph(), request.cells);
+        if (!server) server.emplace(jobs.scene(), jobs.graph(), jobs.params(), ctx);
         server->runRound(dir, plan, request.round, cells, engine, ctx);
         done["round"] = request.round, done["cells"] = cells.size();
       }

@@ -17,32 +17,21 @@
 //
 // A refused job (InputError: a file missing or damaged, a round not needed) is answered and the server
 // goes on; anything else (the GPU, a write that failed) is answered and ends it with status 1, as does a
-// plan remade with other bake arguments than the server's. End of input ends it with status 0.
+// plan remade with other bake settings than the server's. End of input ends it with status 0.
 #pragma once
 
 #include <filesystem>
-#include <functional>
 #include <iosfwd>
-#include <string>
-#include <vector>
 
-#include "core/cell_graph.h"
 #include "core/context.h"
-#include "core/scene.h"
-#include "radiosity/cells/cell_solver.h"
+#include "radiosity/bake/bake_jobs.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
 
-/// Serves round and first-shot jobs of the plan in `dir`, made with `bakeArgs`, on `scene` and `graph`
-/// (loaded from those arguments), until `in` ends. `globalAtlas`: the whole scene's atlas, asked for at the
-/// first first-shot job only. `gather`: writes the bake's folder as `cpgi cell-job PLAN --gather` does.
-/// Returns the exit status.
-int serveCellJobs(const std::filesystem::path& dir, const std::vector<std::string>& bakeArgs,
-                  const Scene& scene, const CellGraph& graph, const CellSolveParams& params,
-                  const std::function<const LightmapAtlas&()>& globalAtlas,
-                  const std::function<void()>& gather, const EglContext& gl, Context& ctx, std::istream& in,
-                  std::ostream& out);
+/// Serves the jobs of the plan in `dir` on `jobs` (its settings, scene and cells, loaded from the plan)
+/// until `in` ends. Returns the exit status.
+int serveCellJobs(const std::filesystem::path& dir, BakeJobs& jobs, const EglContext& gl, Context& ctx,
+                  std::istream& in, std::ostream& out);
 
 }  // namespace cpgi::cli

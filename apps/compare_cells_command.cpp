@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/cell_source.h"
+#include "radiosity/bake/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_cells_bake.h"
 #include "apps/options.h"

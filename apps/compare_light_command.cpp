@@ -19,7 +19,7 @@
 #include "apps/compare_light_cells.h"
 #include "apps/compare_light_resample.h"
 #include "apps/options.h"
-#include "apps/report_page.h"
+#include "radiosity/bake/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "radiosity/lightmap/cell_channel.h"

@@ -8,7 +8,7 @@
 
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "apps/report_page.h"
+#include "radiosity/bake/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"

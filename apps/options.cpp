@@ -184,7 +184,8 @@ std::string userMessage(const InputError& e) {
   return flagOf(e.where()) + ": " + problem;
 }
 
-void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool* densityAuto) {
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool* densityAuto,
+                     uint64_t* memoryLimit) {
   auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
                                     help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
                          ->check(within(1, 4096)),
@@ -218,7 +219,7 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool*
     tpq->each([densityAuto](const std::string&) { *densityAuto = false; });  // a fixed resolution
   }
   tpq->excludes(density);
-  addMemoryOption(cmd, atlas.memoryLimit, scope);
+  addMemoryOption(cmd, memoryLimit ? *memoryLimit : atlas.memoryLimit, scope);
 }
 
 void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope) {
@@ -550,13 +551,6 @@ void addDarkOption(CLI::App& cmd, bool& allowDark) {
   cmd.add_flag(flag("dark"), allowDark,
                "Go on when nothing lights the scene (no emissive material, no punctual light, no --emit): "
                "the result is black");
-}
-
-void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark) {
-  if (allowDark || loaded.scene.hasLight()) return;
-  throw InputError(scenePath,
-                   "no light in the scene (no emissive material, no KHR_lights_punctual light); light a "
-                   "material with `emit` MATERIAL=W/m2, or pass `dark` for a black result");
 }
 
 void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {

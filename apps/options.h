@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/scene_io.h"
 #include "decomposition/decompose.h"
+#include "radiosity/bake/bake_settings.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/gl_shot_engine.h"
@@ -37,8 +38,9 @@ struct OptionScope {
 };
 
 /// --texels-per-quad | --density; with `densityAuto`, --density also takes "auto" and sets it
-/// (bake: radiosity/solve/auto_density.h).
-void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {}, bool* densityAuto = nullptr);
+/// (bake: radiosity/solve/auto_density.h); --max-memory into `memoryLimit`, else into atlas.memoryLimit.
+void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope = {}, bool* densityAuto = nullptr,
+                     uint64_t* memoryLimit = nullptr);
 /// --max-memory SIZE into `limit` (default: defaultMemoryLimit()); addAtlasOptions adds it for the atlas.
 void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope = {});
 /// --unshot, --max-shots, --visibility, --item-buffer, --item-neighbourhood, --far-field, --regions,
@@ -51,22 +53,6 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare);
 void addTimeLimitOption(CLI::App& cmd, double& seconds);
 /// --portals, --max-rounds, --jobs (for `--method cells`).
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope = {});
-/// The portal light of the command line's cells bakes (bake, its cell jobs, compare-cells --bake) unless
-/// --portals says otherwise: binned. The library's default stays the thesis's diffuse portal. Measured at
-/// the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`, ratio of means
-/// and per-texel RMSE without the reference's noise; bench/RESULTS.md, session 17): openings' room C, lit
-/// through a narrow door, 0.965 (21.3 %) diffuse, 0.984 (8.4 %) directional, 1.006 (4.5 %) binned; the
-/// rooms behind doors in seed1–3 3.4–3.6 % binned where one lobe gave 4.2–4.8 %; 1.04–1.25× the wall
-/// seconds of one lobe (seed2, seed3 1.04–1.06×, seed1 1.19×, openings 1.25×).
-inline constexpr PortalLight kBakePortalLight = PortalLight::Binned;
-/// The lamps' first shot of the command line's bakes (bake, its cell jobs' first shot, compare-cells --bake)
-/// unless --lamp-rays says otherwise: 64 shadow rays per texel and lamp, 16× in penumbrae
-/// (radiosity/lightmap/lamp_light.h). The library's default stays item buffers for every shot, as the thesis.
-/// Measured at the default stop (density 10, per cell against `cpgi reference --texels 4000 --spp 4096`):
-/// spot-door's rooms 0.973 / 1.013 (13.4 / 9.7 % per texel) with item buffers, 1.016 / 0.996 (3.7 / 0.5 %)
-/// with rays; seed3's B 1.023 → 0.984; the other seed cells within 0.002; 1.2–1.35× the CPU seconds; on the
-/// 108-room office's 36 lamps the lamps' shot costs 1.5× their item-buffer shots (256 rays: 5×).
-inline constexpr int kBakeLampRays = 64;
 /// --voxel, --seal, --saddle-ratio, --min-depth, --opening-ratio, --min-cell-volume; params.memoryLimit
 /// set to the default (commands with --max-memory copy theirs into it).
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope = {});
@@ -74,7 +60,6 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
 /// --solve-density (bake: the indirect light on a coarser atlas, radiosity/solve/two_level_solve.h):
 /// texels per metre, 0 for one level, or "auto" (kAutoSolveDensity, the default).
-inline constexpr float kAutoSolveDensity = -1.0f;
 void addSolveDensityOption(CLI::App& cmd, float& density);
 /// --density-tolerance (bake, with --density auto: radiosity/lightmap/light_density.h).
 void addDensityToleranceOption(CLI::App& cmd, float& tolerance);
@@ -90,9 +75,6 @@ CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope sco
 void addLoadOptions(CLI::App& cmd, LoadOptions& load);
 /// --allow-dark (bake, reference): go on with a scene nothing lights.
 void addDarkOption(CLI::App& cmd, bool& allowDark);
-/// Throws InputError(scenePath, ...) naming --emit and --allow-dark when nothing lights the scene, unless
-/// allowDark.
-void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark);
 /// --sky none|uniform|cie-overcast, --sky-irradiance W/m2 | --sky-zenith W/(m2 sr), --sun X,Y,Z,E,
 /// --ground A|none (core/sky.h), and with `gatherRays` (bake) --sky-rays N. Values are checked as they are
 /// parsed; makeSky's own rules when core/sky.h's applySky puts them on the scene (bake and reference

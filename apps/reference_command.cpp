@@ -10,13 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/cell_source.h"
+#include "radiosity/bake/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
-#include "apps/lightmap_report.h"
+#include "radiosity/bake/lightmap_report.h"
 #include "apps/options.h"
-#include "apps/report_page.h"
+#include "radiosity/bake/report_page.h"
 #include "core/error.h"
+#include "radiosity/bake/bake.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/progress.h"

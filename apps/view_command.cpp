@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "apps/lightmap_report.h"
+#include "radiosity/bake/lightmap_report.h"
 #include "apps/options.h"
 #include "core/error.h"
 #include "core/image_io.h"

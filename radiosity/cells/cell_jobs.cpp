@@ -184,7 +184,7 @@ fs::path firstShotGroupFile(const fs::path& dir, int group) {
 void writeCellJobPlan(const fs::path& dir, const CellJobPlan& plan) {
   nlohmann::json j = {{"format", "cpgi cell jobs"},
                       {"version", plan.version},
-                      {"bake_args", plan.bakeArgs},
+                      {"bake_settings", plan.bakeSettings},
                       {"working_dir", plan.workingDir},
                       {"first_shot_summed", plan.firstShotSummed},
                       {"emitted_w", plan.emitted},
@@ -232,7 +232,8 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
     if (plan.version != kCellJobPlanVersion)
       throw InputError(file, "cell job plan version " + std::to_string(plan.version) + ", this cpgi reads " +
                                  std::to_string(kCellJobPlanVersion));
-    plan.bakeArgs = j.at("bake_args").get<std::vector<std::string>>();
+    plan.bakeSettings = j.at("bake_settings");
+    if (!plan.bakeSettings.is_object()) throw InputError(file, "its bake settings are not a JSON object");
     plan.workingDir = j.at("working_dir").get<std::string>();
     plan.firstShotSummed = j.at("first_shot_summed").get<bool>();
     plan.emitted = j.at("emitted_w").get<double>();
@@ -279,7 +280,7 @@ CellJobPlan readCellJobPlan(const fs::path& dir) {
 
 CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGraph& graph,
                          const LightmapAtlas& global, const CellSolveParams& params,
-                         std::vector<std::string> bakeArgs, Context& ctx) {
+                         nlohmann::json bakeSettings, Context& ctx) {
   requireSupported(params);
   checkCells(scene, graph, params, ctx);
   const std::vector<int> cellOf = graph.cellOfTriangle(scene.triangles.size());
@@ -287,7 +288,7 @@ CellJobPlan planCellJobs(const fs::path& dir, const Scene& scene, const CellGrap
   linkPortals(graph, cells);  // refuses a degenerate portal now rather than in a job
 
   CellJobPlan plan;
-  plan.bakeArgs = std::move(bakeArgs);
+  plan.bakeSettings = std::move(bakeSettings);
   plan.workingDir = fs::current_path().string();
   plan.maxRounds = params.maxRounds;
   plan.globalPatches = global.patches.size();

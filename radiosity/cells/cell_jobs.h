@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/cell_graph.h"
 #include "core/context.h"
 #include "core/scene.h"
@@ -37,13 +39,16 @@
 
 namespace cpgi {
 
-/// 3: the stop per cell's figures (round_stop.h); 4: the texel densities of bake --density auto
-inline constexpr int kCellJobPlanVersion = 4;
+/// 3: the stop per cell's figures (round_stop.h); 4: the texel densities of bake --density auto; 5: the
+/// bake's settings as JSON instead of its command line
+inline constexpr int kCellJobPlanVersion = 5;
 
 /// plan.json: what every job and the gather need besides the scene and the bake's options.
 struct CellJobPlan {
   int version = kCellJobPlanVersion;
-  std::vector<std::string> bakeArgs;  ///< the bake's command line (after "bake"), less --plan
+  /// The bake's settings (radiosity/bake/bake_settings.h, bakeSettingsJson): every job and the gather
+  /// bake with them. Kept as JSON here: the cells know nothing of a bake above them.
+  nlohmann::json bakeSettings;
   std::string workingDir;             ///< where the plan was made: the bake's relative paths start there
   bool firstShotSummed = false;       ///< the first shot's groups are summed: round 0 is there
   double emitted = 0.0;               ///< W (R + G + B) after the first shot's bookkeeping (once summed)
@@ -80,7 +85,7 @@ std::filesystem::path firstShotGroupFile(const std::filesystem::path& dir, int g
 /// On-demand cells are refused (InputError).
 CellJobPlan planCellJobs(const std::filesystem::path& dir, const Scene& scene, const CellGraph& graph,
                          const LightmapAtlas& global, const CellSolveParams& params,
-                         std::vector<std::string> bakeArgs, Context& ctx);
+                         nlohmann::json bakeSettings, Context& ctx);
 
 /// The first shot of emitter groups `groups` (indices into plan.firstShotGroups), one after the other on
 /// `engine`; each writes its group's file. InputError when the scene's groups are not the plan's.

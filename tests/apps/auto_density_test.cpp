@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -18,13 +19,23 @@ using test::slurp;
 
 constexpr const char* kQuick = " --item-buffer 128 --unshot 0.05 -q";
 
+// kQuick as settings, for the bakes run in process, into `folder`.
+BakeSettings quick(const std::string& scene, const std::string& folder) {
+  BakeSettings s;
+  s.input.scene = scene;
+  s.output.folder = folder;
+  s.solver.params.itemBuffer = 128;
+  s.solver.params.unshotFraction = 0.05;
+  return s;
+}
+
 TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "auto" + "' --density auto" + kQuick);
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json a = json::parse(slurp(dir / "auto/report.json"));
+  BakeSettings s = quick(scene, dir / "auto");  // --density auto, the default
+  ASSERT_TRUE(s.atlas.densityAuto);
+  const json a = test::bakeHere(s).report;
   EXPECT_EQ(a["density_option"], "auto");
   EXPECT_EQ(a["atlas"]["density"], "auto");
   const json& choice = a["auto_density"];
@@ -54,10 +65,13 @@ TEST(AutoDensity, ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels) {
   const json& e = a["energy"];
   EXPECT_GT(e["escaped_w"].get<double>(), -1e-3 * e["emitted_w"].get<double>());
 
-  ASSERT_EQ(cpgi(dir, "bake '" + scene + "' -o '" + dir / "fixed" + "' --density 8" + kQuick).status, 0);
+  s = quick(scene, dir / "fixed");  // --density 8
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = 8;
+  test::bakeHere(s);
   // Different atlases: A is read at B's texels through the scene given, or else the one their reports name.
-  r = cpgi(dir,
-           "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
+  test::CommandRun r = cpgi(
+      dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json --scene '" + scene + "'");
   ASSERT_EQ(r.status, 0) << r.err;
   const json cmp = json::parse(r.out);
   r = cpgi(dir, "compare-light '" + dir / "auto" + "' '" + dir / "fixed" + "' --json");
@@ -93,10 +107,14 @@ TEST(AutoDensity, CellsAndCellJobsFollowTheWholeScenesPilot) {
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   const std::string cells = " --method cells --cells '" + scene + "' --density auto" + std::string(kQuick);
-  test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "one" + "'" + cells);
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err.find("charted differently"), std::string::npos) << r.err;
-  const json one = json::parse(slurp(dir / "one/report.json"));
+  BakeSettings s = quick(scene, dir / "one");  // the single process, in this one
+  s.cells.method = BakeMethod::Cells;
+  s.cells.source = scene;
+  Context ctx;
+  const json one = test::bakeHere(s, ctx).report;
+  for (const std::string& w : ctx.warnings())
+    EXPECT_EQ(w.find("charted differently"), std::string::npos) << w;
+  test::CommandRun r;
   EXPECT_EQ(one["density_option"], "auto");
   EXPECT_GT(one["auto_density"]["pilot_texels"].get<size_t>(), 0u);
 

@@ -11,21 +11,24 @@
 
 #include "core/image_io.h"
 #include "core/scene_io.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/bake_settings.h"
 #include "scenes/seed_scenes.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
 namespace {
 
-using BakeRun = test::CommandRun;
+using CliRun = test::CommandRun;
 using test::cpgi;
 using test::slurp;
 
 TEST(Bake, SeedSceneWritesAllOutputs) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
-  const BakeRun r = cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" +
-                                  "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
+  const CliRun r = cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" +
+                                 "' --texels-per-quad 8 --unshot 0.05 --visibility hemicube");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* f : {"lightmap.exr", "lightmap.png", "baked.glb", "report.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
@@ -78,8 +81,13 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
 TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
-  const std::string args = "' --texels-per-quad 2 --unshot 0.2 -q";
-  ASSERT_EQ(cpgi(dir, "bake '" + dir / "seed1.glb" + "' -o '" + dir / "out" + args).status, 0);
+  BakeSettings s;  // in process: --texels-per-quad 2 --unshot 0.2
+  s.input.scene = dir / "seed1.glb";
+  s.output.folder = dir / "out";
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 2;
+  s.solver.params.unshotFraction = 0.2;
+  test::bakeHere(s);
   const LoadedScene baked = loadScene(dir / "out/baked.glb", LoadOptions{});
   EXPECT_EQ(baked.cells.cells.size(), 3u);
   EXPECT_EQ(baked.cells.portals.size(), 2u);
@@ -89,7 +97,7 @@ TEST(Bake, BadOptionsFailWithOneLine) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
   // Checked by the solver: exactly one line naming the option.
-  const BakeRun bad = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --item-buffer 7");
+  const CliRun bad = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --item-buffer 7");
   EXPECT_EQ(bad.status, 1);
   EXPECT_EQ(bad.err.rfind("cpgi: --item-buffer: ", 0), 0u) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
@@ -99,15 +107,56 @@ TEST(Bake, BadOptionsFailWithOneLine) {
        {std::string("--visibility cube"), std::string("--texels-per-quad 8 --density 4"),
         std::string("--unshot 2"), std::string("--regions 0"), std::string("--regions 5"),
         std::string("--lamp-rays 6"), std::string("--lamp-rays -4")}) {
-    const BakeRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' " + args);
+    const CliRun r = cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' " + args);
     EXPECT_EQ(r.status, 1) << args;
     const std::string option = args.substr(0, args.find(' '));
     EXPECT_NE(r.err.substr(0, r.err.find('\n')).find(option), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json")) << args;
   }
-  const BakeRun missing = cpgi(dir, "bake '" + dir / "none.glb" + "' -o '" + dir / "out" + "'");
+  const CliRun missing = cpgi(dir, "bake '" + dir / "none.glb" + "' -o '" + dir / "out" + "'");
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("none.glb"), std::string::npos) << missing.err;
+}
+
+// A library caller who fills nothing gets the command line's bake: the settings `cpgi bake` keeps in a
+// cell-job plan, given no option but the method, are BakeSettings' defaults.
+TEST(Bake, CommandLineDefaultsAreTheLibrarys) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
+  const CliRun r =
+      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "out" + "' --method cells --cells '" +
+                    dir / "s.glb" + "' --plan '" + dir / "plan" + "' -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings expected;
+  expected.input.scene = dir / "s.glb";
+  expected.output.folder = dir / "out";
+  expected.cells.method = BakeMethod::Cells;
+  expected.cells.source = dir / "s.glb";
+  const nlohmann::json plan = nlohmann::json::parse(slurp(dir / "plan/plan.json"));
+  EXPECT_EQ(plan["bake_settings"], bakeSettingsJson(expected));
+}
+
+// bake() in process writes the command line's files: the same lightmap, byte for byte.
+TEST(Bake, InProcessBakeWritesTheCommandLinesLightmap) {
+  test::TempDir dir;
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "s.glb" + "'").status, 0);
+  const CliRun r =
+      cpgi(dir, "bake '" + dir / "s.glb" + "' -o '" + dir / "cli" +
+                    "' --texels-per-quad 4 --unshot 0.05 --item-buffer 128 --view-size 64x48 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s;
+  s.input.scene = dir / "s.glb";
+  s.output.folder = dir / "lib";
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.05;
+  s.solver.params.itemBuffer = 128;
+  s.output.views.width = 64;
+  s.output.views.height = 48;
+  Context ctx;
+  const BakeResult b = bake(s, ctx);
+  EXPECT_EQ(slurp(dir / "lib/lightmap.exr"), slurp(dir / "cli/lightmap.exr"));
+  EXPECT_EQ(b.report["shots"], nlohmann::json::parse(slurp(dir / "cli/report.json"))["shots"]);
 }
 
 }  // namespace

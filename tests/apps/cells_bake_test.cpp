@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -28,11 +29,13 @@ TEST(CellsBake, CellsFromAnotherFileKeepEachFaceOfAThinWallInItsRoom) {
   const std::string scene = dir / "openings.glb", cells = dir / "cells.glb";
   ASSERT_EQ(cpgi(dir, "generate openings -o '" + scene + "'").status, 0);
   std::filesystem::copy_file(scene, cells);
-  const CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" + "' --method cells --cells '" +
-                                 cells + "' --density 5 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err.find("not in the cells file"), std::string::npos) << r.err;
-  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  BakeSettings s = test::cellsBake(scene, cells);
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = 5;
+  Context ctx;
+  const nlohmann::json report = test::bakeHere(s, ctx).report;
+  for (const std::string& w : ctx.warnings())
+    EXPECT_EQ(w.find("not in the cells file"), std::string::npos) << w;
   ASSERT_EQ(report["cell_energy"].size(), 3u);
   for (const auto& c : report["cell_energy"])
     EXPECT_LT(c["escaped_w"].get<double>(), 0.01 * c["absorbed_w"].get<double>()) << c.dump();
@@ -43,13 +46,19 @@ TEST(CellsBake, Seed1AgainstGlobalAndReference) {
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   const std::string atlas = " --texels-per-quad 8 -q";
-  CliRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene +
-                           "'" + atlas + " --unshot 0.01 --item-buffer 256");
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = cpgi(dir,
-           "bake '" + scene + "' -o '" + dir / "global" + "'" + atlas + " --unshot 0.01 --item-buffer 256");
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = cpgi(dir, "reference '" + scene + "' -o '" + dir / "ref" + "'" + atlas + " --spp 256");
+  // The bakes in process (their folders for compare-light): --texels-per-quad 8 --unshot 0.01
+  // --item-buffer 256, cell by cell and global.
+  BakeSettings s = test::cellsBake(scene, scene);
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 8;
+  s.solver.params.unshotFraction = 0.01;
+  s.solver.params.itemBuffer = 256;
+  s.output.folder = dir / "cells";
+  test::bakeHere(s);
+  s.cells.method = BakeMethod::Global;
+  s.output.folder = dir / "global";
+  test::bakeHere(s);
+  CliRun r = cpgi(dir, "reference '" + scene + "' -o '" + dir / "ref" + "'" + atlas + " --spp 256");
   ASSERT_EQ(r.status, 0) << r.err;
 
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "cells/report.json"));
@@ -96,11 +105,12 @@ TEST(CellsBake, AutomaticCells) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  const CliRun r =
-      cpgi(dir, "bake '" + scene + "' -o '" + dir / "out" +
-                    "' --method cells --cells auto --texels-per-quad 4 --unshot 0.02 --item-buffer 256 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const nlohmann::json report = nlohmann::json::parse(slurp(dir / "out/report.json"));
+  BakeSettings s = test::cellsBake(scene, "auto");
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.02;
+  s.solver.params.itemBuffer = 256;
+  const nlohmann::json report = test::bakeHere(s).report;
   EXPECT_EQ(report["method"], "cells");
   EXPECT_EQ(report["cells"], 3);
   EXPECT_EQ(report["portals"], 2);
@@ -139,9 +149,9 @@ TEST(CellsBake, BadCellsOptionsFailWithOneLine) {
   }
 }
 
-// The command line's cells bakes default to binned portals (apps/options.h, kBakePortalLight), and so
-// do the cell jobs of a plan made with the same options: run one after another by `cpgi cell-job`, they
-// give the single-process bake texel for texel.
+// The command line's cells bakes default to binned portals (radiosity/bake/bake_settings.h,
+// kBakePortalLight), and so do the cell jobs of a plan made with the same options: run one after another by
+// `cpgi cell-job`, they give the single-process bake texel for texel.
 TEST(CellsBake, DefaultPortalsAreBinnedAlsoAsCellJobs) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

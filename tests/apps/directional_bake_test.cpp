@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -27,14 +28,24 @@ TEST(DirectionalBake, SpotThroughADoorAgainstTheReference) {
   ASSERT_EQ(cpgi(dir, "generate spot-door -o '" + scene + "'").status, 0);
   // On the thesis's fixed eyes, where the portal modes' difference was measured: this test compares the
   // portal modes, not the eyes (bench/RESULTS.md, issue 11, for the global solve with drawn eyes).
-  const std::string common = " --texels-per-quad 8 --unshot 1e-3 --item-buffer 256 --fixed-eyes -q";
-  const std::string cells = " --method cells --cells '" + scene + "'";
-  for (const std::string& run : {"global" + common, "diffuse" + common + cells + " --portals diffuse",
-                                 "directional" + common + cells + " --portals directional"}) {
-    const std::string out = run.substr(0, run.find(' '));
-    const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / out + "'" + run.substr(out.size()));
-    ASSERT_EQ(r.status, 0) << r.err;
+  // In process, into the folders compare-light reads: --texels-per-quad 8 --unshot 1e-3 --item-buffer 256
+  // --fixed-eyes, globally and cell by cell with diffuse and directional portals.
+  BakeSettings s = test::cellsBake(scene, scene);
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 8;
+  s.solver.params.unshotFraction = 1e-3;
+  s.solver.params.itemBuffer = 256;
+  s.solver.params.jitteredEyes = false;
+  s.output.views.width = 64;  // the pictures are not what is compared
+  for (const auto& [out, portals] : {std::pair("diffuse", PortalLight::Diffuse),
+                                     std::pair("directional", PortalLight::Directional)}) {
+    s.cells.params.portals = portals;
+    s.output.folder = dir / out;
+    test::bakeHere(s);
   }
+  s.cells.method = BakeMethod::Global;
+  s.output.folder = dir / "global";
+  test::bakeHere(s);
   ASSERT_EQ(cpgi(dir, "reference '" + scene + "' -o '" + dir / "ref" + "' --texels-per-quad 8 --spp 256 -q").status, 0);
   const nlohmann::json report = nlohmann::json::parse(slurp(dir / "directional/report.json"));
   EXPECT_EQ(report["portal_mode"], "directional");

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 #include "tests/support/suite_setup.h"
 
@@ -41,10 +42,24 @@ class OnDemandBake : public ::testing::Test {
       dir_ = new test::TempDir;
       scene_ = *dir_ / "seed1.glb";
       ASSERT_EQ(cpgi(*dir_, "generate seed1 -o '" + scene_ + "'").status, 0);
-      const test::CommandRun r = bake("whole", "");
-      ASSERT_EQ(r.status, 0) << r.err;
+      bakeHere("whole", settings());
     });
   }
+  // The bakes of the tests, in process: --method cells --cells SCENE --texels-per-quad 4 --unshot 0.02
+  // --item-buffer 256, into folder `out`.
+  static BakeSettings settings() {
+    BakeSettings s = test::cellsBake(scene_, scene_);
+    s.atlas.densityAuto = false;
+    s.atlas.params.texelsPerQuad = 4;
+    s.solver.params.unshotFraction = 0.02;
+    s.solver.params.itemBuffer = 256;
+    return s;
+  }
+  static void bakeHere(const std::string& out, BakeSettings s) {
+    s.output.folder = *dir_ / out;
+    test::bakeHere(s);
+  }
+  // The same on the command line, for its refusals.
   static void TearDownTestSuite() { delete dir_; }
   static test::CommandRun bake(const std::string& out, const std::string& extra) {
     return cpgi(*dir_, "bake '" + scene_ + "' -o '" + *dir_ / out + "' --method cells --cells '" + scene_ +
@@ -59,8 +74,10 @@ class OnDemandBake : public ::testing::Test {
 
 TEST_F(OnDemandBake, DepthCoveringEveryCellIsTheWholeBake) {
   // (6.2, 1.5, 2) is the middle of room B; A and C are one portal away.
-  const test::CommandRun r = bake("around", "--around 6.2,1.5,2 --depth 1");
-  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s = settings();  // --around 6.2,1.5,2 --depth 1
+  s.cells.around = "6.2,1.5,2";
+  s.cells.depth = 1;
+  bakeHere("around", s);
   const nlohmann::json rep = report("around");
   EXPECT_EQ(rep["on_demand"]["around_cell"], "B");
   EXPECT_EQ(rep["on_demand"]["baked"], nlohmann::json({"A", "B", "C"}));
@@ -77,8 +94,9 @@ TEST_F(OnDemandBake, DepthCoveringEveryCellIsTheWholeBake) {
 }
 
 TEST_F(OnDemandBake, OneRoomIsLitThroughItsDoorsAndTheRestIsBlack) {
-  const test::CommandRun r = bake("only-b", "--only-cells B");
-  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s = settings();  // --only-cells B
+  s.cells.onlyCells = "B";
+  bakeHere("only-b", s);
   const nlohmann::json rep = report("only-b");
   EXPECT_EQ(rep["on_demand"]["baked"], nlohmann::json({"B"}));
   EXPECT_EQ(rep["on_demand"]["boundary"], nlohmann::json({"A", "C"}));
@@ -103,8 +121,8 @@ TEST_F(OnDemandBake, OneRoomIsLitThroughItsDoorsAndTheRestIsBlack) {
   EXPECT_LT(std::sqrt(num / den), 0.07);  // measured 0.046 (boundary rooms at 2² texels per quad)
 
   // Dark boundary: B has no lamp, so nothing at all.
-  const test::CommandRun d = bake("only-b-dark", "--only-cells B --boundary dark");
-  ASSERT_EQ(d.status, 0) << d.err;
+  s.cells.boundary = BoundaryMode::Dark;  // --boundary dark
+  bakeHere("only-b-dark", s);
   const Lightmap dark = readLightmap(*dir_ / "only-b-dark");
   EXPECT_TRUE(std::all_of(dark.rgb.pixels.begin(), dark.rgb.pixels.end(),
                           [](const glm::vec3& v) { return v == glm::vec3(0.0f); }));

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 #include "tests/support/suite_setup.h"
 #include "tests/support/temp_dir.h"
@@ -25,23 +27,55 @@ namespace {
 
 using test::cpgi;
 
-// The openings scene, its sampled reference, and the bakes `bakes` (folder name, options) against it.
-// CTest runs every test in a process of its own: each fixture bakes only what its tests compare.
+using Options = std::function<void(BakeSettings&)>;
+const Options kDefault = [](BakeSettings&) {};
+const Options kConverged = [](BakeSettings& s) { s.solver.params.unshotFraction = 1e-4; };  // --unshot 1e-4
+const Options kUnshotStopOnly = [](BakeSettings& s) { s.solver.ambientShare = 0.0; };  // --ambient-share 0
+Options cellsWith(const Options& more) {  // --method cells --cells SCENE
+  return [more](BakeSettings& s) {
+    s.cells.method = BakeMethod::Cells;
+    s.cells.source = s.input.scene;
+    more(s);
+  };
+}
+Options portals(PortalLight p) {  // --portals P
+  return [p](BakeSettings& s) { s.cells.params.portals = p; };
+}
+Options twoLevels(const Options& more) {  // --solve-density 2.5
+  return [more](BakeSettings& s) {
+    s.solver.solveDensity = 2.5f;
+    more(s);
+  };
+}
+
+// The openings scene, its sampled reference, and the bakes `bakes` (folder name, options) against it, in
+// process at --density 5 (their folders for compare-light). CTest runs every test in a process of its own:
+// each fixture bakes only what its tests compare. The scene and the reference are made once per process
+// and kept for the fixtures after (the test binary run whole), which bake into folders of their own.
 class OpeningsBakes : public ::testing::Test {
  public:
   void SetUp() override { setup_.require(); }
   static inline test::SuiteSetup setup_;
-  static void bakeAll(const std::vector<std::pair<std::string, std::string>>& bakes) {
+  static void bakeAll(const std::vector<std::pair<std::string, Options>>& bakes) {
     if (!dir_) dir_ = std::make_unique<test::TempDir>();
     auto run = [](const std::string& args) { test::cpgiOrThrow(*dir_, args); };
     const std::string scene = test::quote(*dir_ / "openings.glb");
-    const std::string atlas = " --density 5 ";
-    run("generate openings -o " + scene);
-    run("reference " + scene + " -o " + test::quote(*dir_ / "ref") + atlas + "--spp 1024 --texels 1500 -q");
-    for (const auto& [name, options] : bakes)
-      run("bake " + scene + " -o " + test::quote(*dir_ / name) + atlas + options + " -q");
+    if (!std::filesystem::exists(*dir_ / "ref/report.json")) {
+      run("generate openings -o " + scene);
+      run("reference " + scene + " -o " + test::quote(*dir_ / "ref") +
+          " --density 5 --spp 1024 --texels 1500 -q");
+    }
+    for (const auto& [name, options] : bakes) {
+      BakeSettings s;
+      s.input.scene = *dir_ / "openings.glb";
+      s.output.folder = *dir_ / name;
+      s.output.views.width = 64;  // the lightmaps are compared, not the pictures
+      s.atlas.densityAuto = false;
+      s.atlas.params.density = 5;
+      options(s);
+      test::bakeHere(s);
+    }
   }
-  static void TearDownTestSuite() { dir_.reset(); }
   static nlohmann::json compare(const std::string& a) {
     const test::CommandRun r =
         cpgi(*dir_, "compare-light " + test::quote(*dir_ / a) + " " + test::quote(*dir_ / "ref") + " --json");
@@ -56,7 +90,7 @@ class PerCellError : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
     setup_.run([] {
-      bakeAll({{"converged", "--unshot 0.0001"}, {"default", ""}, {"unshot-stop-only", "--ambient-share 0"}});
+      bakeAll({{"converged", kConverged}, {"default", kDefault}, {"unshot-stop-only", kUnshotStopOnly}});
     });
   }
 };
@@ -65,11 +99,9 @@ class PerCellPortals : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
     setup_.run([] {
-      dir_ = std::make_unique<test::TempDir>();
-      const std::string cells = "--method cells --cells " + test::quote(*dir_ / "openings.glb");
-      bakeAll({{"cells-diffuse", cells + " --portals diffuse"},
-               {"cells-directional", cells + " --portals directional"},
-               {"cells-binned-converged", cells + " --unshot 0.0001"}});
+      bakeAll({{"cells-diffuse", cellsWith(portals(PortalLight::Diffuse))},
+               {"cells-directional", cellsWith(portals(PortalLight::Directional))},
+               {"cells-binned-converged", cellsWith(kConverged)}});
     });
   }
 };
@@ -78,8 +110,8 @@ class PerCellTwoLevels : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
     setup_.run([] {
-      bakeAll({{"two-levels", "--solve-density 2.5"},
-               {"two-levels-unshot-stop-only", "--solve-density 2.5 --ambient-share 0"}});
+      bakeAll(
+          {{"two-levels", twoLevels(kDefault)}, {"two-levels-unshot-stop-only", twoLevels(kUnshotStopOnly)}});
     });
   }
 };
@@ -87,7 +119,12 @@ class PerCellTwoLevels : public OpeningsBakes {
 class PerCellHemisphere : public OpeningsBakes {
  protected:
   static void SetUpTestSuite() {
-    setup_.run([] { bakeAll({{"hemisphere-converged", "--visibility hemisphere --unshot 0.0001"}}); });
+    setup_.run([] {
+      bakeAll({{"hemisphere-converged", [](BakeSettings& s) {
+                  s.solver.params.visibility = Visibility::Hemisphere;  // --visibility hemisphere
+                  kConverged(s);
+                }}});
+    });
   }
 };
 
@@ -237,7 +274,12 @@ TEST(PerCellErrorWithoutCells, RoomsOfTheAutomaticDecomposition) {
   test::TempDir dir;
   const std::string scene = test::quote(dir / "raw.glb"), atlas = " --density 2 ";
   test::cpgiOrThrow(dir, "generate openings --no-cells -o " + scene);
-  test::cpgiOrThrow(dir, "bake " + scene + " -o " + test::quote(dir / "bake") + atlas + "-q");
+  BakeSettings s;  // in process: --density 2
+  s.input.scene = dir / "raw.glb";
+  s.output.folder = dir / "bake";
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = 2;
+  test::bakeHere(s);
   test::cpgiOrThrow(dir, "reference " + scene + " -o " + test::quote(dir / "ref") + atlas + "--spp 32 -q");
   const std::vector<float> baked = channelOf(dir / "bake", "cell"), traced = channelOf(dir / "ref", "cell");
   const std::vector<float> area = channelOf(dir / "bake", "area");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/glb_builder.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 #include "tests/support/suite_setup.h"
 #include "tests/support/temp_dir.h"
@@ -35,9 +36,17 @@ class PunctualLightBakes : public ::testing::Test {
         const std::string scene = quote(*dir_ / (std::string(name) + ".glb")), out = *dir_ / name;
         run(std::string("generate ") + name + " -o " + scene);
         run("reference " + scene + " -o " + quote(out + "-ref") + atlas + " --spp 512");
-        run("bake " + scene + " -o " + quote(out + "-global") + atlas + " --unshot 0.001");
-        run("bake " + scene + " -o " + quote(out + "-cells") + atlas +
-            " --unshot 0.001 --method cells --cells " + scene);
+        // The bakes in process: --density 5 --unshot 0.001, global and cell by cell.
+        BakeSettings s =
+            test::cellsBake(*dir_ / (std::string(name) + ".glb"), *dir_ / (std::string(name) + ".glb"));
+        s.atlas.densityAuto = false;
+        s.atlas.params.density = 5;
+        s.solver.params.unshotFraction = 0.001;
+        s.output.folder = out + "-cells";
+        test::bakeHere(s);
+        s.cells.method = BakeMethod::Global;
+        s.output.folder = out + "-global";
+        test::bakeHere(s);
       }
     });
   }

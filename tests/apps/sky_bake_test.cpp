@@ -10,6 +10,7 @@
 
 #include "core/scene_io.h"
 #include "tests/radiosity/test_sky_scenes.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -28,7 +29,16 @@ TEST(SkyBake, BoxUnderAUniformSkyAgainstTheReference) {
   test::TempDir dir;
   const std::string box = writeBox(dir);
   const std::string sky = " --sky uniform --sky-irradiance 10 --ground none --density 6 -q";
-  ASSERT_EQ(cpgi(dir, "bake '" + box + "' -o '" + dir / "bake" + "'" + sky + " --unshot 1e-3").status, 0);
+  BakeSettings s;  // in process: the same sky and density, --unshot 1e-3
+  s.input.scene = box;
+  s.output.folder = dir / "bake";
+  s.sky.kind = Sky::Kind::Uniform;
+  s.sky.horizontalIrradiance = 10.0f;
+  s.sky.groundAlbedo = std::nullopt;
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = 6;
+  s.solver.params.unshotFraction = 1e-3;
+  test::bakeHere(s);
   const test::CommandRun ref =
       cpgi(dir, "reference '" + box + "' -o '" + dir / "ref" + "'" + sky + " --spp 64");
   ASSERT_EQ(ref.status, 0) << ref.err;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -15,24 +16,43 @@ using nlohmann::json;
 using test::cpgi;
 using test::slurp;
 
-json bake(const test::TempDir& dir, const std::string& scene, const std::string& name,
-          const std::string& options) {
-  const test::CommandRun r =
-      cpgi(dir, "bake '" + scene + "' -o '" + dir / name + "' --item-buffer 128 --unshot 0.2 -q " + options);
-  EXPECT_EQ(r.status, 0) << r.err;
-  return json::parse(slurp(dir / name + "/report.json"));
+// The bakes below in process (nothing written: their reports are what is read): `bake SCENE --item-buffer
+// 128 --unshot 0.2` and the options each sets.
+BakeSettings quick(const std::string& scene) {
+  BakeSettings s;
+  s.input.scene = scene;
+  s.solver.params.itemBuffer = 128;
+  s.solver.params.unshotFraction = 0.2;
+  return s;
+}
+BakeSettings texelsPerQuad(BakeSettings s, int n) {  // --texels-per-quad N
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = n;
+  return s;
+}
+BakeSettings density(BakeSettings s, float d) {  // --density D
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = d;
+  return s;
+}
+BakeSettings solveDensity(BakeSettings s, float d) {  // --solve-density D
+  s.solver.solveDensity = d;
+  return s;
+}
+json bake(const BakeSettings& s) {
+  return test::bakeHere(s).report;
 }
 
 TEST(SolveDensity, AutoIsOneLevelForASmallAtlasAndTwoForALargeOne) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  const json small = bake(dir, scene, "small", "--texels-per-quad 8");
+  const json small = bake(texelsPerQuad(quick(scene), 8));
   EXPECT_EQ(small["solve_density_option"], "auto");
   EXPECT_TRUE(small["solve_density"].is_null());
   EXPECT_EQ(small["solve_texels"], small["texels"]);
   // 64² texels a quad: 180 224 texels, past the 100 000 of auto.
-  const json large = bake(dir, scene, "large", "--texels-per-quad 64");
+  const json large = bake(texelsPerQuad(quick(scene), 64));
   EXPECT_GT(large["texels"].get<size_t>(), 100'000u);
   EXPECT_EQ(large["solve_density"], 5.0);
   EXPECT_LT(large["solve_texels"].get<size_t>(), large["texels"].get<size_t>() / 4);
@@ -41,17 +61,19 @@ TEST(SolveDensity, AutoIsOneLevelForASmallAtlasAndTwoForALargeOne) {
   EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
               emitted, 1e-3 * emitted);
   // Forced: one level on the large atlas, two on the small.
-  const json one = bake(dir, scene, "one", "--texels-per-quad 64 --solve-density 0");
+  const json one = bake(solveDensity(texelsPerQuad(quick(scene), 64), 0));
   EXPECT_TRUE(one["solve_density"].is_null());
   EXPECT_EQ(one["solve_texels"], one["texels"]);
   EXPECT_EQ(one["solve_density_option"], 0.0);
-  const json two = bake(dir, scene, "two", "--density 10 --solve-density 5");
+  const json two = bake(solveDensity(density(quick(scene), 10), 5));
   EXPECT_EQ(two["solve_density"], 5.0);
   // The interreflection by rays where the GL device is llvmpipe (--indirect-solver auto), by item buffers
   // when asked, and the same light either way within the stop's share.
   EXPECT_EQ(two["renderer"].get<std::string>().find("llvmpipe") != std::string::npos ? "rays" : "gpu",
             two["indirect_solver"]);
-  const json gpu = bake(dir, scene, "gpu", "--density 10 --solve-density 5 --indirect-solver gpu");
+  BakeSettings byGpu = solveDensity(density(quick(scene), 10), 5);
+  byGpu.solver.indirect = IndirectSolver::Gpu;  // --indirect-solver gpu
+  const json gpu = bake(byGpu);
   EXPECT_EQ(gpu["indirect_solver"], "gpu");
   EXPECT_NEAR(gpu["energy"]["absorbed_w"].get<double>(), two["energy"]["absorbed_w"].get<double>(),
               0.2 * two["energy"]["emitted_w"].get<double>());
@@ -65,9 +87,12 @@ TEST(SolveDensity, CellsSolveInTwoLevelsWhenAsked) {
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
   const std::string cells = " --method cells --cells '" + scene + "' --density 10";
-  const json one = bake(dir, scene, "one", cells);
+  BakeSettings byCells = density(quick(scene), 10);
+  byCells.cells.method = BakeMethod::Cells;
+  byCells.cells.source = scene;
+  const json one = bake(byCells);
   EXPECT_TRUE(one["solve_density"].is_null());
-  const json two = bake(dir, scene, "two", cells + " --solve-density 5");
+  const json two = bake(solveDensity(byCells, 5));
   EXPECT_EQ(two["solve_density"], 5.0);
   EXPECT_LT(two["solve_texels"].get<size_t>() * 2, two["texels"].get<size_t>());
   EXPECT_EQ(two["cells"].size(), one["cells"].size());

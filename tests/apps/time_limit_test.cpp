@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -64,10 +65,16 @@ TEST(TimeLimit, LimitNotReachedIsNoPartialResult) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
-  const test::CommandRun r = cpgi(
-      dir, "bake '" + scene + "' -o '" + dir / "out" + "'" + kAtlas + " --unshot 0.2 --time-limit 3600 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json report = json::parse(slurp(dir / "out/report.json"));
+  BakeSettings s;  // in process: kAtlas --unshot 0.2 --time-limit 3600
+  s.input.scene = scene;
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 8;
+  s.solver.params.itemBuffer = 128;
+  s.solver.params.unshotFraction = 0.2;
+  s.limits.timeLimit = 3600;
+  const BakeResult r = test::bakeHere(s);
+  EXPECT_FALSE(r.partial);
+  const json& report = r.report;
   EXPECT_EQ(report["partial"], false);
   EXPECT_FALSE(report.contains("partial_reason"));
   EXPECT_LE(report["unshot_fraction"].get<double>(), 0.2);

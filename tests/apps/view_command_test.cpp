@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/image_io.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 #include "tests/support/suite_setup.h"
 
@@ -27,9 +28,13 @@ class ViewCommand : public ::testing::Test {
       dir_ = new test::TempDir;
       const std::string scene = *dir_ / "seed1.glb";
       ASSERT_EQ(cpgi(dir_->path(), "generate seed1 -o " + quote(scene)).status, 0);
-      const test::CommandRun r = cpgi(dir_->path(), "bake " + quote(scene) + " -o " + quote(bake()) +
-                                                        " --texels-per-quad 4 --unshot 0.3 -q");
-      ASSERT_EQ(r.status, 0) << r.err;
+      BakeSettings s;  // in process: --texels-per-quad 4 --unshot 0.3
+      s.input.scene = scene;
+      s.output.folder = bake();
+      s.atlas.densityAuto = false;
+      s.atlas.params.texelsPerQuad = 4;
+      s.solver.params.unshotFraction = 0.3;
+      test::bakeHere(s);
     });
   }
   static void TearDownTestSuite() { delete dir_; }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_io.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -41,9 +42,13 @@ TEST(ViewExposure, DimRoomReadsAsWellAsLitOnes) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb", out = dir / "out";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(scene)).status, 0);
-  const test::CommandRun r =
-      cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) + " --texels-per-quad 8 --unshot 0.05 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s;  // in process: --texels-per-quad 8 --unshot 0.05
+  s.input.scene = scene;
+  s.output.folder = out;
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 8;
+  s.solver.params.unshotFraction = 0.05;
+  test::bakeHere(s);
   // 0.8 linear is 231 in sRGB; bilinear edges and rounding leave a few levels either way.
   const double expected = 255.0 * (1.055 * std::pow(0.8, 1.0 / 2.4) - 0.055);
   for (const char* view : {"A", "B", "C"})
@@ -68,9 +73,15 @@ TEST(ViewSize, PicturesHaveTheSizeAskedFor) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb", out = dir / "out";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(scene)).status, 0);
-  const test::CommandRun r = cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) +
-                                           " --texels-per-quad 4 --unshot 0.3 --view-size 320x200 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
+  BakeSettings s;  // in process: --texels-per-quad 4 --unshot 0.3 --view-size 320x200
+  s.input.scene = scene;
+  s.output.folder = out;
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.3;
+  s.output.views.width = 320;
+  s.output.views.height = 200;
+  test::bakeHere(s);
   for (const char* view : {"A", "B", "C"}) {
     const ImageRGB image = readExr(out + "/view-" + view + ".exr");
     EXPECT_EQ(image.width, 320) << view;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/in_process_bake.h"
 #include "tests/support/run_cpgi.h"
 
 namespace cpgi {
@@ -25,11 +26,16 @@ TEST(VolumeCellsCommand, RoomsGivenAsVolumesBakeCellByCell) {
   EXPECT_NE(r.out.find("4 cells, 0 portals"), std::string::npos) << r.out;
   r = cpgi(dir, "info '" + scene + "' --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "cells" + "' --method cells --cells '" + scene +
-                    "' --voxel 0.1 --density 2 --unshot 0.05 --item-buffer 128 -q");
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_EQ(r.err.find("in no cell"), std::string::npos) << r.err;
-  const json report = json::parse(slurp(dir / "cells/report.json"));
+  // In process: --method cells --cells SCENE --voxel 0.1 --density 2 --unshot 0.05 --item-buffer 128.
+  BakeSettings s = test::cellsBake(scene, scene);
+  s.cells.decompose.voxelSize = 0.1;
+  s.atlas.densityAuto = false;
+  s.atlas.params.density = 2;
+  s.solver.params.unshotFraction = 0.05;
+  s.solver.params.itemBuffer = 128;
+  Context ctx;
+  const json report = test::bakeHere(s, ctx).report;
+  for (const std::string& w : ctx.warnings()) EXPECT_EQ(w.find("in no cell"), std::string::npos) << w;
   EXPECT_EQ(report["cells"], 5);    // hall, living room, kitchen, bedroom + outside
   EXPECT_EQ(report["portals"], 9);  // 3 interior doors, 2 exterior doors, 4 windows
   for (const json& c : report["cell_energy"]) {

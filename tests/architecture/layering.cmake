@@ -14,10 +14,12 @@ set(allowed_radiosity/cpu core radiosity/lightmap radiosity/solve radiosity/cpu)
 set(allowed_radiosity/gpu core radiosity/lightmap radiosity/solve radiosity/gpu)
 set(allowed_radiosity/cells core radiosity/lightmap radiosity/solve radiosity/cells)
 set(allowed_radiosity/reference core radiosity/lightmap radiosity/metrics radiosity/reference)
+set(allowed_radiosity/bake core core/html_report decomposition radiosity/lightmap radiosity/solve radiosity/cpu
+    radiosity/gpu radiosity/cells radiosity/bake)
 
 set(failures "")
-foreach(library core core/html_report scenes decomposition radiosity/metrics radiosity/lightmap radiosity/solve radiosity/cpu radiosity/gpu
-        radiosity/cells radiosity/reference)
+foreach(library core core/html_report scenes decomposition radiosity/metrics radiosity/lightmap radiosity/solve
+        radiosity/cpu radiosity/gpu radiosity/cells radiosity/reference radiosity/bake)
   file(GLOB sources ${ROOT}/${library}/*.h ${ROOT}/${library}/*.cpp)
   foreach(source IN LISTS sources)
     file(STRINGS ${source} includes REGEX "^#include \"")

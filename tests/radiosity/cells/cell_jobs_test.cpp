@@ -98,7 +98,7 @@ void expectJobsGiveTheSingleProcessSolve(PortalLight portals, double maxAmbientS
   }
 
   TempDir dir;
-  const CellJobPlan made = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {"unused"}, ctx);
+  const CellJobPlan made = planCellJobs(dir.path, s.scene, s.cells, atlas, params, {{"unused", true}}, ctx);
   EXPECT_EQ(readCellJobPlan(dir.path).cells, made.cells);
   ASSERT_EQ(made.firstShotGroups.size(), 2u);  // two lamps in two rooms: the sum adds two groups
   EXPECT_THROW(runCellJobs(dir.path, made, 1, {0}, s.scene, s.cells, params, gl, ctx), InputError);

@@ -12,7 +12,7 @@
 #include "decomposition/decompose.h"
 #include "radiosity/lightmap/atlas.h"
 
-namespace cpgi::cli {
+namespace cpgi {
 
 /// The cells of `cellsFile` (another file of the same scene, e.g. a decompose output's cells.glb or the
 /// hand-made scene) over `scene`'s triangles, matched by centroid to the millimetre and by the side they
@@ -48,4 +48,4 @@ struct RoomLabels {
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
                              Context& ctx, const CellGraph& volumes = {});
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

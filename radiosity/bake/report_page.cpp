@@ -1,4 +1,4 @@
-#include "apps/report_page.h"
+#include "radiosity/bake/report_page.h"
 
 #include <cmath>
 #include <filesystem>
@@ -11,7 +11,7 @@
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/views.h"
 
-namespace cpgi::cli {
+namespace cpgi {
 namespace {
 std::string bDir(const nlohmann::json& figures) {
   return figures.value("b", std::string("the reference"));
@@ -116,4 +116,4 @@ nlohmann::json readBenchResults(const std::string& path) {
   return rows;
 }
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

@@ -1,9 +1,9 @@
-#include "apps/lightmap_report.h"
+#include "radiosity/bake/lightmap_report.h"
 
 #include <filesystem>
 #include <system_error>
 
-namespace cpgi::cli {
+namespace cpgi {
 
 namespace {
 
@@ -72,4 +72,4 @@ nlohmann::json skyReport(const Scene& scene) {
           {"sun", sun}};
 }
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

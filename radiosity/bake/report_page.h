@@ -14,7 +14,7 @@
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
 
-namespace cpgi::cli {
+namespace cpgi {
 
 /// After a bake or a reference: shows the staged baked.glb with `radiosity` (per atlas texel, W/m², as
 /// solved; dilated here) and `cells` (may be empty), and the numbers of `report`.
@@ -40,4 +40,4 @@ void writeComparisonReportPage(const std::string& dir, const std::string& aDir, 
 /// with a scene, a method and positive seconds and rel_rmse). Throws InputError naming the file otherwise.
 nlohmann::json readBenchResults(const std::string& path);
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

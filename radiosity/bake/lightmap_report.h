@@ -15,7 +15,7 @@
 #include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
 
-namespace cpgi::cli {
+namespace cpgi {
 
 /// The figures every lightmap producer reports.
 struct LightmapRun {
@@ -57,4 +57,4 @@ inline const std::vector<std::string> kLightmapResultNames = {"lightmap.exr", "l
 /// Stages `report` as report.json in `out` (visible at out.commit()).
 void writeReport(OutputDir& out, const nlohmann::json& report);
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

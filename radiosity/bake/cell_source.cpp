@@ -1,4 +1,4 @@
-#include "apps/cell_source.h"
+#include "radiosity/bake/cell_source.h"
 
 #include <filesystem>
 #include <map>
@@ -10,7 +10,7 @@
 #include "decomposition/volume_cells.h"
 #include "radiosity/lightmap/cell_channel.h"
 
-namespace cpgi::cli {
+namespace cpgi {
 
 CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
                             Context& ctx) {
@@ -110,4 +110,4 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
   return out;
 }
 
-}  // namespace cpgi::cli
+}  // namespace cpgi

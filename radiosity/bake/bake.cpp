@@ -1,0 +1,269 @@
+// bake() (bake.h): steps 2–4 on a loaded scene; step 1 and the checks are bake_steps.cpp's, the report
+// bake_report.cpp's.
+#include "radiosity/bake/bake.h"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "core/error.h"
+#include "core/output_dir.h"
+#include "core/progress.h"
+#include "radiosity/bake/bake_steps.h"
+#include "radiosity/bake/cell_source.h"
+#include "radiosity/bake/lightmap_report.h"
+#include "radiosity/bake/report_page.h"
+#include "radiosity/cells/cell_jobs.h"
+#include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/finite_result.h"
+#include "radiosity/lightmap/lightmap_output.h"
+#include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/solve/ambient.h"
+#include "radiosity/solve/ambient_transfer.h"
+
+namespace cpgi {
+
+bool indirectByRays(IndirectSolver solver, const EglContext& gl) {
+  if (solver != IndirectSolver::Auto) return solver == IndirectSolver::Rays;
+  return gl.softwareRasterizer();
+}
+
+BakeEngines::BakeEngines(IndirectSolver solver, const EglContext& gl)
+    : gl_(gl), engines_{gl_, indirectByRays(solver, gl) ? static_cast<ShotEngine&>(rays_) : gl_} {}
+
+namespace bake_steps {
+namespace {
+
+// Where the light leaving each cell's surfaces lands, or leaves the scene, for the ambient term and the
+// stop per cell (radiosity/solve/ambient_transfer.h): the portals' areas alone kept the outside's light in
+// it. Empty (the portals' areas) without the ambient term.
+AmbientTransfer bakeAmbientTransfer(const BakeSettings& s, const BakeInput& in, const CellGraph& texelGraph,
+                                    const ExrChannel& texelCells, Context& ctx) {
+  if (!s.solver.ambient) return {};
+  auto t = ctx.time("ambient transfer");
+  const RayScene rays(*in.scene);
+  return measureAmbientTransfer(in.atlas, rays, texelCells.values, texelGraph.cells.size());
+}
+
+// Per entry of the transfer, the share of the light leaving its surfaces that leaves the scene.
+std::vector<double> escapeShares(const AmbientTransfer& transfer) {
+  std::vector<double> escape;
+  for (const std::vector<double>& row : transfer.share) {
+    double landed = 0.0;
+    for (double v : row) landed += v;
+    escape.push_back(std::max(0.0, 1.0 - landed));
+  }
+  return escape;
+}
+
+// What the solve needs beside the settings: the cells of its texels and where their light goes.
+struct SolveInput {
+  const CellGraph& texelGraph;
+  const ExrChannel& texelCells;
+  const AmbientTransfer& transfer;
+  const ShotEngines& engines;
+  Clock::time_point deadline;
+  const std::filesystem::path* gatherPlan;
+};
+
+// Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
+// A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
+// `texelCells` the ambient term would be more than the ambient share of the light (ambientShares).
+SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, Context& ctx,
+                      std::optional<TwoLevelData>& levels) {
+  auto t = ctx.time("solve");
+  const bool cells = s.cells.method == BakeMethod::Cells;
+  SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
+  if (!cells && s.solver.ambientShare > 0.0)
+    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
+                              const std::vector<glm::vec3>& residual) {
+      const std::vector<double> shares =
+          ambientShares(in.atlas, residual, x.texelCells.values, x.texelGraph, radiosity, &x.transfer);
+      return *std::max_element(shares.begin(), shares.end()) <= s.solver.ambientShare;
+    };
+  CellSolveParams params = cellSolveParams(s, in);
+  params.deadline = x.deadline;
+  if (const float solveDensity = chosenSolveDensity(s, in.atlas); solveDensity > 0.0f) {
+    levels.emplace();
+    TwoLevelParams twoLevels{.solveDensity = solveDensity};
+    twoLevels.lamps.coarsening = s.solver.lampCoarsening;
+    if (cells)  // the cells on the coarse atlas, each solve on the lamps' engine
+      return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.engines.lamps,
+                                ctx, &*levels);
+    return solveTwoLevel(*in.scene, in.quads, in.atlas, s.atlas.params, twoLevels, s.solver.params, x.engines,
+                         ctx, controls, &*levels);
+  }
+  if (!cells) return solveProgressive(*in.scene, in.atlas, s.solver.params, x.engines.lamps, ctx, controls);
+  if (x.gatherPlan)
+    return gatherCellJobs(*x.gatherPlan, readCellJobPlan(*x.gatherPlan), *in.scene, *in.cells, in.atlas,
+                          params, ctx);
+  return in.onDemand.active ? solveCellsOnDemand(*in.scene, *in.cells, in.onDemand.selection,
+                                                 in.onDemand.mode, in.atlas, params, x.engines.lamps, ctx)
+                            : solveCells(*in.scene, *in.cells, in.atlas, params, x.engines.lamps, ctx);
+}
+
+// Step 3: what the stop left unshot, as an ambient term that follows the cells (radiosity/solve/ambient.h),
+// added to `r.radiosity` on the texels of `texelCells` that are written. Returns the mean ambient
+// irradiance (W/m², RGB; 0 without the ambient term).
+glm::dvec3 addBakeAmbient(const BakeSettings& s, const BakeInput& in, const SolveInput& x, SolveResult& r) {
+  if (!s.solver.ambient) return glm::dvec3(0.0);
+  const std::vector<glm::vec3> unlit = r.radiosity;
+  const glm::dvec3 ambient = addAmbient(in.atlas, r.residual, glm::dvec3(r.energy.unshot / 3.0),
+                                        x.texelCells.values, x.texelGraph, r.radiosity, &x.transfer);
+  if (in.onDemand.active && r.perCell) {  // the cells an on-demand bake does not write stay black
+    std::vector<uint8_t> written(x.texelGraph.cells.size(), 0);
+    for (const CellEnergy& c : r.perCell->cells)
+      if (const int k = x.texelGraph.findCell(c.name); k >= 0 && c.written) written[size_t(k)] = 1;
+    for (size_t i = 0; i < unlit.size(); ++i) {
+      const float k = x.texelCells.values[i];
+      if (!(k >= 0.0f && written[size_t(k)])) r.radiosity[i] = unlit[i];
+    }
+  }
+  return ambient;
+}
+
+Clock::time_point deadlineOf(const BakeSettings& s, Clock::time_point start) {
+  if (s.limits.timeLimit <= 0.0) return Clock::time_point::max();
+  return start +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s.limits.timeLimit));
+}
+
+// With --density auto, a cell job's texel densities are those its plan recorded: every job lays its
+// atlases out alike, and a pilot of its own could choose otherwise (another machine's GPU).
+void usePlannedDensities(const BakeSettings& s, BakeInput& in, const std::filesystem::path& plan) {
+  if (!s.atlas.densityAuto) return;
+  in.triangleDensity = readCellJobPlan(plan).triangleDensity;
+  if (in.triangleDensity.size() != in.scene->triangles.size())
+    throw InputError((plan / "plan.json").string(),
+                     "holds no texel density per triangle of " + s.input.scene + "; make the plan again");
+}
+
+// The light written: the files of the result set (with a folder) and the figures of the report.
+void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, const SolveResult& r,
+               OutputDir* out, BakeFigures& f, Context& ctx) {
+  auto t = ctx.time("write");
+  if (!out) return;
+  // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
+  // gives each texel its cell, for compare-light's per-cell figures.
+  const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
+  f.views = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells},
+                                 ctx, s.output.views)
+                .views;
+}
+
+}  // namespace
+
+BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
+                      const std::filesystem::path* gatherPlan) {
+  const Clock::time_point deadline = deadlineOf(s, run.start);
+  std::optional<OutputDir> out;
+  if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
+  std::unique_ptr<EglContext> opened;
+  const EglContext* gl = run.gl;
+  auto openGl = [&] {
+    auto t = ctx.time("egl");
+    opened = std::make_unique<EglContext>(ctx);
+    gl = opened.get();
+  };
+  if (gatherPlan) usePlannedDensities(s, in, *gatherPlan);
+  if (s.atlas.densityAuto && in.triangleDensity.empty() && !gl)
+    openGl();  // the pilot shoots before the layout
+  buildBakeAtlas(s, in, gl, ctx, deadline);
+  requireSolveMemory(s, in.atlas);
+  requireConvergence(s, *in.scene, in.atlas);
+  if (run.sized) run.sized(bakeSizeLine(s, in));
+  if (!gl) openGl();
+  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
+  // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
+  // the ambient term.
+  const CellGraph& cells = *in.cells;
+  const RoomLabels rooms = cells.empty() || cells.definedByVolumes()
+                               ? labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells)
+                               : RoomLabels{};
+  const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
+  const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
+  const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
+  BakeEngines engines(s.solver.indirect, *gl);
+  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), deadline, gatherPlan};
+  std::optional<TwoLevelData> levels;
+  SolveResult r = solveBake(s, in, x, ctx, levels);
+  BakeFigures f;
+  if (!r.residual.empty())
+    f.ambientShares =
+        ambientShares(in.atlas, r.residual, texelCells.values, texelGraph, r.radiosity, &transfer);
+  f.cellNames = cellNames(texelGraph);
+  f.ambientEscape = escapeShares(transfer);
+  f.ambient = addBakeAmbient(s, in, x, r);
+  const std::pair<const char*, double> totals[] = {{"emitted", r.energy.emitted},
+                                                   {"shot", r.energy.shot},
+                                                   {"received", r.energy.received},
+                                                   {"absorbed", r.energy.absorbed},
+                                                   {"unshot", r.energy.unshot}};
+  requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
+  writeBake(s, in, x, r, out ? &*out : nullptr, f, ctx);
+  f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
+  BakeResult result;
+  result.report = bakeReport(s, in, r, levels, *gl, f, ctx);
+  result.shots = r.shots;
+  result.unshotFraction = r.unshotFraction;
+  result.partial = r.timedOut;
+  result.seconds = f.seconds;
+  if (out) {
+    writeReport(*out, result.report);
+    writeBakeReportPage(*out, "bake of " + s.input.scene, result.report, *in.scene, cells, in.atlas,
+                        r.radiosity);
+    out->commit();
+  }
+  result.texelCell = texelCells.values;
+  result.cellNames = std::move(f.cellNames);
+  result.radiosity = std::move(r.radiosity);
+  result.atlas = std::move(in.atlas);
+  return result;
+}
+
+}  // namespace bake_steps
+
+BakeResult bake(const Scene& scene, const CellGraph& cells, const BakeSettings& settings, Context& ctx,
+                const BakeRun& run) {
+  const BakeSettings s = bake_steps::resolved(settings);
+  bake_steps::BakeInput in;
+  in.scene = &scene;
+  in.cells = &cells;
+  in.onDemand = bake_steps::resolveOnDemand(s, scene, cells);
+  return bake_steps::bakeLoaded(s, in, run, ctx);
+}
+
+BakeResult bake(const BakeSettings& settings, Context& ctx, const BakeRun& run) {
+  const BakeScene in = loadBakeScene(settings, ctx);
+  return bake(in.loaded.scene, in.graph, settings, ctx, run);
+}
+
+Context::ProgressFn bakeNotes(Context::ProgressFn inner, const BakeSettings& settings,
+                              std::chrono::steady_clock::time_point start, std::shared_ptr<std::string> size,
+                              std::function<void(const std::string&)> note) {
+  if (!inner) return inner;
+  auto said = std::make_shared<std::pair<bool, bool>>(false, false);  // size, estimate
+  const bool global = settings.cells.method == BakeMethod::Global;
+  return [inner, said, size, note, global, limit = settings.limits.timeLimit, start](const Progress& p) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!said->first && p.stage == "solve" && !size->empty()) {
+      said->first = true;
+      note(*size + " (" + formatDuration(std::max(elapsed, 1.0)) + " so far)");
+    }
+    if (global && !said->second && p.stage == "solve" && p.shots > 0 && p.secondsLeft >= 0.0) {
+      said->second = true;
+      std::ostringstream line;
+      line << "bake: after " << p.shots << " shots, about " << formatDuration(p.secondsLeft)
+           << " more to solve";
+      if (limit > 0.0 && elapsed + p.secondsLeft > limit)
+        line << "; the time limit stops it in " << formatDuration(std::max(0.0, limit - elapsed))
+             << " with a partial result";
+      note(line.str());
+    }
+    inner(p);
+  };
+}
+
+}  // namespace cpgi

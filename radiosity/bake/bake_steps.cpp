@@ -1,0 +1,206 @@
+// Step 1 of a bake and the checks before its solve (bake_steps.h).
+#include "radiosity/bake/bake_steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "core/error.h"
+#include "core/memory_limit.h"
+#include "core/progress.h"
+#include "core/sky.h"
+#include "radiosity/bake/cell_source.h"
+#include "radiosity/lightmap/bounce_limit.h"
+
+namespace cpgi {
+
+void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark) {
+  if (allowDark || loaded.scene.hasLight()) return;
+  throw InputError(scenePath,
+                   "no light in the scene (no emissive material, no KHR_lights_punctual light); light a "
+                   "material with `emit` MATERIAL=W/m2, or pass `dark` for a black result");
+}
+
+BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx) {
+  const BakeSettings s = bake_steps::resolved(settings);
+  BakeScene in;
+  {
+    auto t = ctx.time("load");
+    in.loaded = loadScene(s.input.scene, s.input.load);
+  }
+  applySky(s.sky, in.loaded.scene);
+  requireLight(in.loaded, s.input.scene, s.input.allowDark);
+  for (const std::string& w : in.loaded.warnings) ctx.warn(w);
+  if (s.cells.method == BakeMethod::Cells)
+    in.graph = resolveCells(s.cells.source, s.input.scene, in.loaded, s.cells.decompose, s.input.load, ctx);
+  else
+    in.graph = in.loaded.cells;
+  return in;
+}
+
+namespace bake_steps {
+namespace {
+
+// --around's "X,Y,Z" (metres): three finite numbers, else InputError("--around", ...).
+glm::vec3 aroundPoint(const std::string& text) {
+  std::stringstream in(text);
+  std::vector<float> values;
+  for (std::string part; std::getline(in, part, ',');) {
+    size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v)) break;
+    values.push_back(v);
+  }
+  if (values.size() != 3 || std::count(text.begin(), text.end(), ',') != 2)
+    throw InputError("--around", "'" + text + "' is not X,Y,Z (three numbers in metres)");
+  return {values[0], values[1], values[2]};
+}
+
+}  // namespace
+
+BakeSettings resolved(const BakeSettings& settings) {
+  BakeSettings s = settings;
+  const uint64_t limit = s.limits.maxMemory > 0 ? s.limits.maxMemory : defaultMemoryLimit();
+  s.atlas.params.memoryLimit = limit;
+  s.cells.decompose.memoryLimit = limit;  // one limit for the whole bake
+  return s;
+}
+
+OnDemand resolveOnDemand(const BakeSettings& s, const Scene& scene, const CellGraph& graph) {
+  OnDemand d;
+  const BakeSettings::Cells& c = s.cells;
+  if (c.onlyCells.empty() && c.around.empty()) return d;
+  const std::string option = c.onlyCells.empty() ? "--around" : "--only-cells";
+  if (c.method != BakeMethod::Cells) throw InputError(option, "needs --method cells");
+  if (s.solver.solveDensity > 0.0f)
+    throw InputError("--solve-density", "cell jobs and on-demand bakes solve in one level: leave it out");
+  d.active = true;
+  d.mode = c.boundary;
+  std::vector<int> baked;
+  if (!c.onlyCells.empty()) {
+    baked = cellsByName(graph, c.onlyCells, "--only-cells");
+  } else {
+    const glm::vec3 p = aroundPoint(c.around);
+    d.aroundCell = cellContaining(scene, graph, p);
+    if (d.aroundCell < 0) throw InputError("--around", "the point " + c.around + " is in no cell");
+    baked = cellsWithin(graph, d.aroundCell, c.depth);
+  }
+  d.selection = selectCells(graph, baked);
+  return d;
+}
+
+void buildBakeAtlas(const BakeSettings& s, BakeInput& in, const EglContext* gl, Context& ctx,
+                    Clock::time_point deadline) {
+  {
+    auto t = ctx.time("atlas");
+    in.quads = findQuads(*in.scene);
+  }
+  if (s.atlas.densityAuto && in.triangleDensity.empty()) {
+    if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
+    auto t = ctx.time("auto density");
+    AutoDensityData data;
+    GlShotEngine pilot(*gl);
+    in.triangleDensity =
+        chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity, s.solver.params, pilot,
+                          ctx, SolveControls{.deadline = deadline}, &data);
+    in.autoDensity = data;
+  }
+  AtlasParams params = s.atlas.params;
+  params.triangleDensity = in.triangleDensity;
+  {
+    auto t = ctx.time("atlas");
+    in.atlas = buildAtlas(*in.scene, in.quads, params, ctx);
+  }
+  if (in.atlas.patches.empty()) throw InputError(s.input.scene, "no surface to bake");
+  if (!in.scene->hasLight()) ctx.warn(s.input.scene + ": nothing emits light; the lightmap is black");
+}
+
+// The atlas was checked alone when it was built; the solve adds its item buffers: per visibility region
+// (up to the larger of --regions and --strong-regions, squared) an item and a depth layer of the buffer's
+// pixels (8 bytes a pixel), and half as much again for what the GL driver keeps beside them.
+static double solveRegions(const BakeSettings& s) {
+  return std::pow(std::max(s.solver.params.maxRegions, s.solver.params.strongShotRegions), 2);
+}
+
+double solveBytes(const BakeSettings& s, const LightmapAtlas& atlas) {
+  const double edge = s.solver.params.itemBuffer;
+  return double(atlas.texelCount()) * kBakeBytesPerTexel + edge * edge * solveRegions(s) * 12.0;
+}
+
+void requireSolveMemory(const BakeSettings& s, const LightmapAtlas& atlas) {
+  const double regions = solveRegions(s);
+  requireMemory(solveBytes(s, atlas), s.atlas.params.memoryLimit, "item buffer",
+                "the solve (" + std::to_string(atlas.width) + "x" + std::to_string(atlas.height) +
+                    " atlas texels, item buffers of " + std::to_string(s.solver.params.itemBuffer) +
+                    "^2 pixels x " + std::to_string(int(regions)) + " regions)",
+                "lower `item buffer` or raise `maximum memory`");
+}
+
+// In a closed scene of mean albedo ρ, light bounces about ln(unshot) / ln(ρ) times before the unshot
+// share falls to --unshot, each bounce a round of shots over the lit patches: near ρ = 1 that is thousands
+// of rounds (at 1, never), which the default --max-shots of 100,000 would let run for hours. Refused
+// up front unless the caller bounded the solve (an open scene lets light escape, so an albedo of 1 there
+// would converge: the message says how to go on). A dark scene has nothing to shoot.
+void requireConvergence(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas) {
+  if (!s.limits.refuseEndless || s.limits.timeLimit > 0.0 || !scene.hasLight()) return;
+  const BounceEstimate e = estimateBounces(atlas, s.solver.params.unshotFraction);
+  if (!e.tooMany()) return;
+  std::ostringstream m;
+  m << e.describe() << " before `unshot fraction` " << s.solver.params.unshotFraction
+    << " is unshot; lower the albedo, raise `unshot fraction`, or bound the solve with `maximum shots` N or "
+       "`time limit` SECONDS";
+  throw InputError(s.input.scene, m.str());
+}
+
+CellSolveParams cellSolveParams(const BakeSettings& s, const BakeInput& in) {
+  CellSolveParams params = s.cells.params;
+  params.maxAmbientShare = s.solver.ambientShare;
+  params.solver = s.solver.params;
+  params.atlas = s.atlas.params;
+  params.atlas.triangleDensity = in.triangleDensity;
+  return params;
+}
+
+// --solve-density auto: one level up to this many output texels. A large atlas is where two levels pay
+// (fewer receiver texels and half the item buffer per shot of the interreflection): the furnished
+// house's 282 000 texels baked in 37 min in one level and in 11–12 min in two at 5 texels a metre
+// (bench/RESULTS.md, "The furnished house"); seed1–3 at the default density, under this, stay as they
+// were.
+constexpr size_t kAutoTwoLevelTexels = 100'000;
+
+// The option's, or with auto half the output's density (at most 5 texels a metre: RESULTS.md, "Two
+// levels") once the output has more than kAutoTwoLevelTexels texels. A cells bake solves in two levels
+// only when asked (a value): auto keeps it in one, as its cell jobs are (their plan has one atlas).
+float chosenSolveDensity(const BakeSettings& s, const LightmapAtlas& atlas) {
+  const float asked = s.solver.solveDensity;
+  if (s.cells.method == BakeMethod::Cells) return asked > 0.0f ? asked : 0.0f;
+  if (asked != kAutoSolveDensity) return asked;
+  constexpr float kAutoMost = 5.0f;
+  // --density auto: the output is fine only where the lamps' light needs it; the bounced light never does.
+  if (s.atlas.densityAuto) return kAutoMost;
+  if (atlas.validTexels() <= kAutoTwoLevelTexels) return 0.0f;
+  return s.atlas.params.texelsPerQuad > 0 ? kAutoMost : std::min(kAutoMost, s.atlas.params.density / 2.0f);
+}
+
+std::string bakeSizeLine(const BakeSettings& s, const BakeInput& in) {
+  std::ostringstream line;
+  line << "bake: " << in.atlas.validTexels() << " texels in " << in.atlas.patches.size() << " patches ("
+       << in.scene->triangles.size() << " triangles";
+  if (s.cells.method == BakeMethod::Cells)
+    line << ", " << in.cells->cells.size() << " cells, " << in.cells->portals.size() << " portals";
+  line << "), about " << int(std::ceil(solveBytes(s, in.atlas) / (1 << 20)))
+       << " MB; the time is estimated from the first shots";
+  if (s.limits.timeLimit > 0.0)
+    line << "; --time-limit " << s.limits.timeLimit << " s stops it with a partial result";
+  return line.str();
+}
+
+}  // namespace bake_steps
+}  // namespace cpgi

@@ -32,6 +32,7 @@ struct BakeCommand {
   BakeSettings settings;
   std::string method = bakeMethodName(BakeSettings{}.cells.method);
   std::string indirect = indirectSolverName(BakeSettings{}.solver.indirect);
+  std::string backend = backendName(BakeSettings{}.solver.backend);
   bool noAmbient = false;
   /// --plan DIR: the cell jobs' plan (radiosity/bake/bake_jobs.h, docs/cell-jobs.md) instead of the bake.
   std::string plan;
@@ -123,6 +124,13 @@ void addSolveOptions(CLI::App& sub, BakeCommand& c) {
                  "device is a software rasterizer such as llvmpipe (auto)")
       ->check(CLI::IsMember({"auto", "gpu", "rays"}))
       ->default_str(c.indirect);
+  sub.add_option(
+         "--backend", c.backend,
+         "How every shot sees: item buffers on the GL device (gl), Embree rays on the CPU with no GL at "
+         "all (rays: lamps by shadow rays, --portals diffuse only), or gl where an OpenGL 4.5 context "
+         "can be made and rays where not (auto)")
+      ->check(CLI::IsMember({"auto", "gl", "rays"}))
+      ->default_str(c.backend);
   addDensityToleranceOption(sub, s.atlas.autoDensity.light.tolerance);
 }
 
@@ -133,6 +141,7 @@ void finishSettings(BakeCommand& c, const CLI::App& sub) {
   s.solver.indirect = c.indirect == "rays"  ? IndirectSolver::Rays
                       : c.indirect == "gpu" ? IndirectSolver::Gpu
                                             : IndirectSolver::Auto;
+  s.solver.backend = c.backend == "rays" ? Backend::Rays : c.backend == "gl" ? Backend::Gl : Backend::Auto;
   s.solver.ambient = !c.noAmbient;
   // --max-shots bounds the solve: no refusal of a scene that would need more.
   s.limits.refuseEndless = sub.count("--max-shots") == 0;

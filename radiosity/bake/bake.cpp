@@ -30,8 +30,32 @@ bool indirectByRays(IndirectSolver solver, const EglContext& gl) {
   return gl.softwareRasterizer();
 }
 
-BakeEngines::BakeEngines(IndirectSolver solver, const EglContext& gl)
-    : gl_(gl), engines_{gl_, indirectByRays(solver, gl) ? static_cast<ShotEngine&>(rays_) : gl_} {}
+BakeEngines::BakeEngines(Backend backend, IndirectSolver indirect, const EglContext* given, Context& ctx)
+    : backend_(backend), indirect_(indirect), ctx_(ctx), gl_(given) {}
+
+BakeEngines::~BakeEngines() = default;
+
+const ShotEngines& BakeEngines::engines() {
+  if (engines_) return *engines_;
+  if (!gl_ && backend_ != Backend::Rays) {
+    auto t = ctx_.time("egl");
+    try {
+      opened_ = std::make_unique<EglContext>(ctx_);
+      gl_ = opened_.get();
+    } catch (const SystemError& e) {
+      if (backend_ == Backend::Gl) throw;
+      ctx_.warn(std::string(e.what()) + "; baking by Embree rays on the CPU (--backend rays)");
+    }
+  }
+  if (!gl_) {
+    engines_.emplace(ShotEngines{rays_, rays_});
+    return *engines_;
+  }
+  glEngine_ = std::make_unique<GlShotEngine>(*gl_);
+  ShotEngine& gl = *glEngine_;
+  engines_.emplace(ShotEngines{gl, indirectByRays(indirect_, *gl_) ? static_cast<ShotEngine&>(rays_) : gl});
+  return *engines_;
+}
 
 namespace bake_steps {
 namespace {
@@ -160,21 +184,15 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const Clock::time_point deadline = deadlineOf(s, run.start);
   std::optional<OutputDir> out;
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
-  std::unique_ptr<EglContext> opened;
-  const EglContext* gl = run.gl;
-  auto openGl = [&] {
-    auto t = ctx.time("egl");
-    opened = std::make_unique<EglContext>(ctx);
-    gl = opened.get();
-  };
+  BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);
   if (gatherPlan) usePlannedDensities(s, in, *gatherPlan);
-  if (s.atlas.densityAuto && in.triangleDensity.empty() && !gl)
-    openGl();  // the pilot shoots before the layout
-  buildBakeAtlas(s, in, gl, ctx, deadline);
+  // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
+  buildBakeAtlas(s, in,
+                 s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
+                 deadline);
   requireSolveMemory(s, in.atlas);
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
-  if (!gl) openGl();
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
   // the ambient term.
@@ -185,7 +203,6 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
-  BakeEngines engines(s.solver.indirect, *gl);
   const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), deadline, gatherPlan};
   std::optional<TwoLevelData> levels;
   SolveResult r = solveBake(s, in, x, ctx, levels);
@@ -205,7 +222,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   writeBake(s, in, x, r, out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
   BakeResult result;
-  result.report = bakeReport(s, in, r, levels, *gl, f, ctx);
+  result.report = bakeReport(s, in, r, levels, engines.gl(), engines.engines().lamps.name(), f, ctx);
   result.shots = r.shots;
   result.unshotFraction = r.unshotFraction;
   result.partial = r.timedOut;

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -88,19 +89,29 @@ BakeResult bake(const BakeSettings& settings, Context& ctx, const BakeRun& run =
 /// EglContext::softwareRasterizer: it draws item buffers on the same CPU cores the rays use).
 bool indirectByRays(IndirectSolver solver, const EglContext& gl);
 
-/// The shot engines of one bake (radiosity/solve/shot_engine.h), chosen once from what the device offers
-/// (Cycles' one device choice): the GL engine on `gl` for the lamps' shots and every solve, and for the
-/// interreflection of a two-level solve the rays engine where indirectByRays says so.
+/// The shot engines of one bake (radiosity/solve/shot_engine.h), chosen once from what the machine offers
+/// (Cycles' one device choice). Backend::Auto and Gl: the GL engine for the lamps' shots and every solve,
+/// and for the interreflection of a two-level solve the rays engine where indirectByRays says so; Auto
+/// where no GL context can be made, and Rays: the rays engine for everything. The GL context is opened at
+/// the first need (or `given`, kept by the caller).
 class BakeEngines {
  public:
-  BakeEngines(IndirectSolver solver, const EglContext& gl);
-  const ShotEngines& engines() const { return engines_; }
-  ShotEngine& gl() { return gl_; }
+  BakeEngines(Backend backend, IndirectSolver indirect, const EglContext* given, Context& ctx);
+  ~BakeEngines();
+  /// The engines, the GL context made if it is to be used.
+  const ShotEngines& engines();
+  /// The GL context, when the bake draws with one (after engines()); null for rays alone.
+  const EglContext* gl() const { return gl_; }
 
  private:
-  GlShotEngine gl_;
+  Backend backend_;
+  IndirectSolver indirect_;
+  Context& ctx_;
+  const EglContext* gl_;
+  std::unique_ptr<EglContext> opened_;
+  std::unique_ptr<GlShotEngine> glEngine_;
   RayShotEngine rays_;
-  ShotEngines engines_;
+  std::optional<ShotEngines> engines_;
 };
 
 /// The two notes a bake leaves around a live progress line, as a wrapper of `inner` (null stays null):

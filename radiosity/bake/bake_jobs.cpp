@@ -19,9 +19,8 @@ CellJobPlan planBakeJobs(const std::filesystem::path& dir, const BakeSettings& s
   bake_steps::BakeInput in;
   in.scene = &loaded.loaded.scene;
   in.cells = &loaded.graph;
-  std::unique_ptr<EglContext> pilotGl;  // with --density auto
-  if (s.atlas.densityAuto) pilotGl = std::make_unique<EglContext>(ctx);
-  bake_steps::buildBakeAtlas(s, in, pilotGl.get(), ctx);
+  BakeEngines engines(s.solver.backend, s.solver.indirect, nullptr, ctx);  // the pilot's, with --density auto
+  bake_steps::buildBakeAtlas(s, in, s.atlas.densityAuto ? &engines.engines().lamps : nullptr, ctx);
   bake_steps::requireSolveMemory(s, in.atlas);
   bake_steps::requireConvergence(s, *in.scene, in.atlas);
   return planCellJobs(dir, *in.scene, *in.cells, in.atlas, bake_steps::cellSolveParams(s, in),

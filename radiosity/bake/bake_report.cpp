@@ -112,8 +112,8 @@ nlohmann::json autoDensityReport(const BakeSettings& s, const BakeInput& in) {
 }  // namespace
 
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,
-                          const std::optional<TwoLevelData>& levels, const EglContext& gl,
-                          const BakeFigures& f, const Context& ctx) {
+                          const std::optional<TwoLevelData>& levels, const EglContext* gl,
+                          const std::string& backend, const BakeFigures& f, const Context& ctx) {
   const bool cells = s.cells.method == BakeMethod::Cells;
   LightmapRun run{.method = bakeMethodName(s.cells.method),
                   .scene = s.input.scene,
@@ -139,7 +139,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["region_size"] = s.solver.params.regionSize;
   report["jittered_eyes"] = s.solver.params.jitteredEyes;
   report["lamp_rays"] = s.solver.params.lampRays;
-  // Two levels (radiosity/solve/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser one.
+  // Two levels (radiosity/solve/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser
+  // one.
   report["solve_density"] =
       levels ? nlohmann::json(chosenSolveDensity(s, in.atlas)) : nlohmann::json(nullptr);
   report["solve_density_option"] = s.solver.solveDensity == kAutoSolveDensity
@@ -160,9 +161,11 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["density_option"] = s.atlas.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
   report["auto_density"] = autoDensityReport(s, in);
   if (s.atlas.densityAuto) report["atlas"]["density"] = "auto";
-  report["renderer"] = gl.renderer();
-  report["gl_version"] = gl.version();
-  report["egl_platform"] = gl.platform();
+  report["backend"] =
+      backend;  // the engine of the lamps' shots and every solve (indirect_solver: two levels')
+  report["renderer"] = gl ? nlohmann::json(gl->renderer()) : nlohmann::json(nullptr);
+  report["gl_version"] = gl ? nlohmann::json(gl->version()) : nlohmann::json(nullptr);
+  report["egl_platform"] = gl ? nlohmann::json(gl->platform()) : nlohmann::json(nullptr);
   report["sky"] = skyReport(*in.scene);
   report["energy"] = energyReport(r.energy);
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};

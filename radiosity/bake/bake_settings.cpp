@@ -36,6 +36,17 @@ const char* indirectSolverName(IndirectSolver s) {
   }
 }
 
+const char* backendName(Backend b) {
+  switch (b) {
+    case Backend::Gl:
+      return "gl";
+    case Backend::Rays:
+      return "rays";
+    default:
+      return "auto";
+  }
+}
+
 // An unknown name is an error, not the first value (NLOHMANN_JSON_SERIALIZE_ENUM's fallback).
 template <class Enum, size_t N>
 void enumFromJson(const nlohmann::json& j, Enum& e, const std::pair<Enum, const char*> (&names)[N]) {
@@ -60,6 +71,7 @@ void enumFromJson(const nlohmann::json& j, Enum& e, const std::pair<Enum, const 
 CPGI_JSON_ENUM(BakeMethod, {{BakeMethod::Global, "global"}, {BakeMethod::Cells, "cells"}})
 CPGI_JSON_ENUM(IndirectSolver,
                {{IndirectSolver::Auto, "auto"}, {IndirectSolver::Gpu, "gpu"}, {IndirectSolver::Rays, "rays"}})
+CPGI_JSON_ENUM(Backend, {{Backend::Auto, "auto"}, {Backend::Gl, "gl"}, {Backend::Rays, "rays"}})
 CPGI_JSON_ENUM(Visibility, {{Visibility::Hemisphere, "hemisphere"}, {Visibility::Hemicube, "hemicube"}})
 CPGI_JSON_ENUM(PortalLight, {{PortalLight::Diffuse, "diffuse"},
                              {PortalLight::Directional, "directional"},
@@ -140,7 +152,8 @@ CPGI_JSON_FIELDS(CellSolveParams, maxRounds, portals, lobeMinWidth, portalBinRay
 CPGI_JSON_FIELDS(ViewParams, width, height, supersample, exposure)
 CPGI_JSON_FIELDS(BakeSettings::Input, scene, load, allowDark)
 CPGI_JSON_FIELDS(BakeSettings::Atlas, params, densityAuto, autoDensity)
-CPGI_JSON_FIELDS(BakeSettings::Solver, params, solveDensity, lampCoarsening, indirect, ambient, ambientShare)
+CPGI_JSON_FIELDS(BakeSettings::Solver, params, solveDensity, lampCoarsening, indirect, backend, ambient,
+                 ambientShare)
 CPGI_JSON_FIELDS(BakeSettings::Output, folder, views)
 CPGI_JSON_FIELDS(BakeSettings::Limits, timeLimit, maxMemory, refuseEndless)
 

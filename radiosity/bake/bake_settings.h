@@ -17,12 +17,12 @@
 #include "decomposition/decompose.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/solve/ambient.h"
-#include "radiosity/solve/auto_density.h"
 #include "radiosity/gpu/gl_shot_engine.h"
-#include "radiosity/solve/refined_lamp_shot.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/views.h"
+#include "radiosity/solve/ambient.h"
+#include "radiosity/solve/auto_density.h"
+#include "radiosity/solve/refined_lamp_shot.h"
 
 namespace cpgi {
 
@@ -39,6 +39,15 @@ enum class IndirectSolver {
   Rays,  ///< Embree rays on the CPU (radiosity/cpu/ray_shot_engine.h)
 };
 const char* indirectSolverName(IndirectSolver s);  ///< "auto", "gpu", "rays"
+
+/// How every shot of a bake sees (radiosity/solve/shot_engine.h).
+enum class Backend {
+  Auto,  ///< GL item buffers where an OpenGL 4.5 context can be made (EGL), else Embree rays
+  Gl,    ///< GL item buffers (radiosity/gpu/gl_shot_engine.h); fails without a GL device
+  Rays,  ///< Embree rays on the CPU (radiosity/cpu/ray_shot_engine.h), no GL at all: the lamps by shadow
+         ///< rays, portals diffuse only (directional and binned portals need GL)
+};
+const char* backendName(Backend b);  ///< "auto", "gl", "rays"
 
 /// --solve-density auto (SolverSettings::solveDensity): chosen by the bake (bake.h, chosenSolveDensity).
 inline constexpr float kAutoSolveDensity = -1.0f;
@@ -95,6 +104,7 @@ struct BakeSettings {
     /// texels where its light varies (radiosity/solve/refined_lamp_shot.h). In [1, 1000].
     float lampCoarsening = RefinedLampParams{}.coarsening;
     IndirectSolver indirect = IndirectSolver::Auto;  ///< with two levels: who shoots the interreflection
+    Backend backend = Backend::Auto;                 ///< who shoots everything else (and, with Rays, all)
     /// The ambient term for the power still unshot at the stop (radiosity/solve/ambient.h).
     bool ambient = true;
     /// The stop per cell: at the unshot stop, shoot on (cells: run more rounds) while in some cell the

@@ -96,19 +96,18 @@ OnDemand resolveOnDemand(const BakeSettings& s, const Scene& scene, const CellGr
   return d;
 }
 
-void buildBakeAtlas(const BakeSettings& s, BakeInput& in, const EglContext* gl, Context& ctx,
+void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
                     Clock::time_point deadline) {
   {
     auto t = ctx.time("atlas");
     in.quads = findQuads(*in.scene);
   }
   if (s.atlas.densityAuto && in.triangleDensity.empty()) {
-    if (!gl) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a GL context");
+    if (!pilot) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a shot engine");
     auto t = ctx.time("auto density");
     AutoDensityData data;
-    GlShotEngine pilot(*gl);
     in.triangleDensity =
-        chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity, s.solver.params, pilot,
+        chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity, s.solver.params, *pilot,
                           ctx, SolveControls{.deadline = deadline}, &data);
     in.autoDensity = data;
   }

@@ -17,11 +17,11 @@
 #include "radiosity/bake/bake_settings.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
-#include "radiosity/solve/auto_density.h"
 #include "radiosity/gpu/egl_context.h"
-#include "radiosity/solve/two_level_solve.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/solve_result.h"
+#include "radiosity/solve/auto_density.h"
+#include "radiosity/solve/two_level_solve.h"
 
 namespace cpgi::bake_steps {
 
@@ -51,9 +51,9 @@ struct BakeInput {
   std::vector<float> triangleDensity;
 };
 
-/// The atlas; with --density auto and no densities yet, after a pilot shot of the lamps on `gl` that
+/// The atlas; with --density auto and no densities yet, after a pilot shot of the lamps on `pilot` that
 /// shoots no more after `deadline`.
-void buildBakeAtlas(const BakeSettings& s, BakeInput& in, const EglContext* gl, Context& ctx,
+void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
                     Clock::time_point deadline = Clock::time_point::max());
 /// The bytes the solve takes: the atlas's texels and the item buffers of every visibility region.
 double solveBytes(const BakeSettings& s, const LightmapAtlas& atlas);
@@ -83,7 +83,7 @@ struct BakeFigures {
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,
-                          const std::optional<TwoLevelData>& levels, const EglContext& gl,
-                          const BakeFigures& f, const Context& ctx);
+                          const std::optional<TwoLevelData>& levels, const EglContext* gl,
+                          const std::string& backend, const BakeFigures& f, const Context& ctx);
 
 }  // namespace cpgi::bake_steps

@@ -32,8 +32,10 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
   size_t unmatched = 0;
   for (size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto it = cellAt.find(key(scene.triangles[t]));
-    if (it == cellAt.end()) ++unmatched;
-    else if (it->second >= 0) graph.cells[it->second].triangles.push_back(uint32_t(t));
+    if (it == cellAt.end())
+      ++unmatched;
+    else if (it->second >= 0)
+      graph.cells[it->second].triangles.push_back(uint32_t(t));
   }
   if (unmatched > 0)
     ctx.warn(name + ": " + std::to_string(unmatched) + " triangles of the scene are not in the cells file");
@@ -101,7 +103,8 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
   std::vector<glm::vec3> points, normals;
   std::vector<size_t> texel;
   for (size_t i = 0; i < atlas.texelCount(); ++i)
-    if (atlas.patch[i] >= 0) points.push_back(atlas.position[i]), normals.push_back(atlas.normal[i]), texel.push_back(i);
+    if (atlas.patch[i] >= 0)
+      points.push_back(atlas.position[i]), normals.push_back(atlas.normal[i]), texel.push_back(i);
   const std::vector<int> cell = decomp::cellsFaced(d, points, normals);
   out.channel = ExrChannel{kCellChannel, std::vector<float>(atlas.texelCount(), -1.0f)};
   for (size_t k = 0; k < texel.size(); ++k) out.channel.values[texel[k]] = float(cell[k]);

@@ -6,9 +6,9 @@
 
 #include "core/cell_graph.h"
 #include "core/context.h"
+#include "core/image_io.h"
 #include "core/scene.h"
 #include "core/scene_io.h"
-#include "core/image_io.h"
 #include "decomposition/decompose.h"
 #include "radiosity/lightmap/atlas.h"
 

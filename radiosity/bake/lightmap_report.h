@@ -12,8 +12,8 @@
 #include "core/context.h"
 #include "core/output_dir.h"
 #include "core/scene.h"
-#include "radiosity/lightmap/solve_result.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/solve_result.h"
 
 namespace cpgi {
 

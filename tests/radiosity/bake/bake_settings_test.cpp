@@ -33,6 +33,7 @@ BakeSettings everyFieldChanged() {
   p.itemBuffer = 256, p.neighbourhood = 1, p.jitteredEyes = false, p.lampRays = 16, p.cullItemBuffers = false;
   p.profilePasses = true;
   s.solver.solveDensity = 2.5f, s.solver.lampCoarsening = 3, s.solver.indirect = IndirectSolver::Rays;
+  s.solver.backend = Backend::Rays;
   s.solver.ambient = false, s.solver.ambientShare = 0.25;
   s.cells.method = BakeMethod::Cells, s.cells.source = "auto";
   CellSolveParams& c = s.cells.params;

@@ -66,6 +66,35 @@ TEST_F(BakeSeed1, WithoutAFolderReturnsTheLightmapAndWritesNothing) {
               e["emitted_w"].get<double>(), 1e-3 * e["emitted_w"].get<double>());
 }
 
+// Backend::Rays bakes with no GL at all (the lamps by shadow rays, every shot by Embree): each room gets
+// the light the GL engine gives it, and the report says which engine shot.
+TEST_F(BakeSeed1, TheRaysBackendNeedsNoGlAndLightsTheRoomsAsGlDoes) {
+  auto roomLight = [](const BakeResult& r) {
+    std::vector<double> sum(3, 0.0), area(3, 0.0);
+    for (size_t i = 0; i < r.radiosity.size(); ++i)
+      if (r.texelCell[i] >= 0.0f && r.atlas.emission[i] == glm::vec3(0.0f)) {
+        const size_t c = size_t(r.texelCell[i]);
+        sum[c] += double(r.radiosity[i].g) * r.atlas.area[i], area[c] += r.atlas.area[i];
+      }
+    for (size_t c = 0; c < 3; ++c) sum[c] /= area[c];
+    return sum;
+  };
+  BakeSettings s = quick();
+  s.solver.params.unshotFraction = 0.01;
+  Context ctx;
+  const BakeResult gl = bake(seed().scene, seed().cells, s, ctx);
+  s.solver.backend = Backend::Rays;
+  const BakeResult rays = bake(seed().scene, seed().cells, s, ctx);
+  EXPECT_EQ(gl.report["backend"], "gl");
+  EXPECT_EQ(rays.report["backend"], "rays");
+  EXPECT_TRUE(rays.report["renderer"].is_null());
+  const std::vector<double> a = roomLight(gl), b = roomLight(rays);
+  EXPECT_NEAR(b[0] / a[0], 1.0, 0.03) << "A";
+  EXPECT_NEAR(b[1] / a[1], 1.0, 0.05) << "B, lit through the doors";
+  EXPECT_NEAR(b[2] / a[2], 1.0, 0.03) << "C";
+  EXPECT_EQ(rays.report["energy"]["created_w"], 0.0);
+}
+
 TEST_F(BakeSeed1, WithAFolderWritesTheResultSetOfWhatItReturns) {
   test::TempDir dir;
   BakeSettings s = quick();

@@ -23,6 +23,8 @@ struct PortalParams {
   float searchRange = 0.6f;
   /// Rounds of extra portals for interface faces the earlier portals left uncovered.
   int extraRounds = 2;
+  /// Closed sections tried per non-planar opening, narrowest first, for one that cuts its two rooms apart.
+  int sectionCandidates = 12;
 };
 
 struct FittedPortal {

@@ -21,6 +21,8 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
       {"min_depth_m", params.merge.minDepth},
       {"opening_ratio", params.merge.openingRatio},
       {"min_cell_volume_m3", params.merge.minCellVolume},
+      {"storey_spread", params.merge.storeySpread},
+      {"storey_opening", params.merge.storeyOpening},
       {"min_component_volume_m3", params.classify.minComponentVolume},
       {"portal_margin_voxels", params.portals.marginVoxels},
       {"portal_search_m", params.portals.searchRange},

@@ -257,6 +257,15 @@ size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell,
   return leaks;
 }
 
+std::map<std::pair<int, int>, size_t> leakingFacesByPair(const GridFrame& f, const std::vector<int32_t>& cell,
+                                                         const std::vector<PortalQuad>& portals) {
+  PortalsByPair byPair;
+  for (const PortalQuad& p : portals) addPortal(byPair, p);
+  std::map<std::pair<int, int>, size_t> out;
+  forEachUncoveredFace(f, cell, byPair, [&](size_t, size_t, int a, int b, int) { ++out[{std::min(a, b), std::max(a, b)}]; });
+  return out;
+}
+
 namespace {
 
 // Every face between two cells whose segment crosses no portal of those two cells (all of them when

@@ -104,6 +104,8 @@ void expectRoomsAndFrontDoor(const Building& b, const Scored& s, double voxel) {
   EXPECT_EQ(d.graph.cells[size_t(d.outsideCell)].name, "outside");
   EXPECT_EQ(d.leakingFaces, 0u);
   EXPECT_TRUE(d.graph.connected());
+  EXPECT_TRUE(d.connectedOpen);
+  for (char closed : d.closedRoom) EXPECT_FALSE(closed);
   expectPortalsFaceFromAToB(d);
   const BuildingOpening& door = openingNamed(b, "front-door");
   int doorRoom = -1;

@@ -1,0 +1,106 @@
+#include "decomposition/leaks.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "decomposition/sections.h"
+
+namespace cpgi::decomp {
+namespace {
+
+// Turns a portal whose cells were renumbered so that cellA < cellB again, its normal from A into B.
+void orderCells(PortalQuad& q) {
+  if (q.cellA < q.cellB) return;
+  std::swap(q.cellA, q.cellB);
+  std::swap(q.corners[1], q.corners[3]);
+  q.normal = -q.normal;
+}
+
+}  // namespace
+
+ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
+                       const LeakParams& params, Context& ctx) {
+  auto timer = ctx.time("portals.leaks");
+  const GridFrame& f = distance.frame;
+  ClosedLeaks out;
+  out.cellOf.resize(size_t(cellCount));
+  for (int c = 0; c < cellCount; ++c) out.cellOf[size_t(c)] = c;
+  std::vector<char> alive(size_t(cellCount), 1);
+
+  auto quads = [&] {
+    std::vector<PortalQuad> q;
+    for (const FittedPortal& p : set.portals) q.push_back(p.quad);
+    return q;
+  };
+  auto merge = [&](int a, int b) {
+    const int keep = b == outsideCell ? b : a == outsideCell ? a : std::min(a, b);
+    const int gone = keep == a ? b : a;
+    for (int32_t& l : set.cell)
+      if (l == gone) l = keep;
+    std::vector<FittedPortal> kept;
+    for (FittedPortal& p : set.portals) {
+      PortalQuad& q = p.quad;
+      const bool between = (q.cellA == a && q.cellB == b) || (q.cellA == b && q.cellB == a);
+      if (between) continue;
+      if (q.cellA == gone) q.cellA = keep;
+      if (q.cellB == gone) q.cellB = keep;
+      orderCells(q);
+      kept.push_back(p);
+    }
+    set.portals = std::move(kept);
+    for (int32_t& c : out.cellOf)
+      if (c == gone) c = keep;
+    alive[size_t(gone)] = 0;
+    ++out.mergedPairs;
+  };
+
+  for (int round = 0; round < std::max(1, params.rounds); ++round) {
+    const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());
+    if (leaks.empty()) break;
+    const bool last = round + 1 >= std::max(1, params.rounds);
+    // Each cell's deepest voxel: the seeds of the relabelling flood.
+    std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
+    for (size_t i = 0; i < set.cell.size(); ++i) {
+      const int c = set.cell[i];
+      if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
+        deepest[size_t(c)] = i;
+    }
+    std::vector<std::pair<size_t, std::pair<int, int>>> order;
+    for (const auto& [pair, faces] : leaks) order.push_back({faces, pair});
+    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    std::set<int> touched;
+    for (const auto& [faces, pair] : order) {
+      const auto [a, b] = pair;
+      if (!alive[size_t(a)] || !alive[size_t(b)] || touched.count(a) || touched.count(b)) continue;
+      touched.insert(a), touched.insert(b);
+      std::vector<const PortalQuad*> barrier;
+      for (const FittedPortal& p : set.portals)
+        if ((p.quad.cellA == a && p.quad.cellB == b) || (p.quad.cellA == b && p.quad.cellB == a))
+          barrier.push_back(&p.quad);
+      // The outside's deepest voxel may lie anywhere round the building: flood from the room's.
+      const int first = a == outsideCell ? b : a, second = first == a ? b : a;
+      if (!last && !barrier.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX &&
+          relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                               barrier)) {
+        ++out.relabelledPairs;
+        continue;
+      }
+      merge(a, b);
+    }
+  }
+
+  // Dense numbering in the old order; the outside, last before, stays last.
+  std::vector<int32_t> index(size_t(cellCount), -1);
+  for (int c = 0; c < cellCount; ++c)
+    if (alive[size_t(c)]) index[size_t(c)] = out.cellCount++, out.keptCell.push_back(c);
+  for (int32_t& l : set.cell)
+    if (l >= 0) l = index[size_t(l)];
+  for (FittedPortal& p : set.portals) p.quad.cellA = index[size_t(p.quad.cellA)], p.quad.cellB = index[size_t(p.quad.cellB)];
+  for (int32_t& c : out.cellOf) c = index[size_t(c)];
+  out.outsideCell = outsideCell >= 0 ? index[size_t(outsideCell)] : -1;
+  set.leakingFaces = countLeakingFaces(f, set.cell, quads());
+  return out;
+}
+
+}  // namespace cpgi::decomp

@@ -1,0 +1,83 @@
+// The leak pass (decomposition/leaks.h) on hand-made labels with known answers: a pocket of one cell
+// on the other's side of their portal is relabelled; two cells whose portal does not cut them apart are
+// merged; a pair without a portal is merged; the outside is never merged away.
+#include <gtest/gtest.h>
+
+#include "decomposition/leaks.h"
+
+namespace cpgi::decomp {
+namespace {
+
+// A 12 × 6 × 6 box of 1 m voxels, all empty (distance 1 except the border, 0), split at x = 6: cells 0
+// (x < 6) and 1 (x ≥ 6), and a portal in the plane x = 5.5 over `portalZ` (z range, all y).
+struct TwoCells {
+  DistanceGrid distance;
+  PortalSet set;
+};
+
+TwoCells twoCells(float z0, float z1) {
+  TwoCells t;
+  GridFrame& f = t.distance.frame;
+  f.dims = {12, 6, 6};
+  f.voxel = 1.0;
+  t.distance.d2.assign(f.count(), 0);
+  t.set.cell.assign(f.count(), -1);
+  for (size_t i = 0; i < f.count(); ++i) {
+    const glm::ivec3 c = f.coord(i);
+    if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1))) continue;
+    // Deepest in the middle of each half: the relabelling's seeds.
+    t.distance.d2[i] = 1 + uint32_t(c.x == 3 || c.x == 8) * uint32_t(c.y == 3 && c.z == 3) * 8;
+    t.set.cell[i] = c.x < 6 ? 0 : 1;
+  }
+  FittedPortal p;
+  p.quad.corners = {glm::vec3(5.5f, 0.5f, z0), glm::vec3(5.5f, 4.5f, z0), glm::vec3(5.5f, 4.5f, z1),
+                    glm::vec3(5.5f, 0.5f, z1)};
+  computePortalFrame(p.quad);
+  p.quad.normal = {1, 0, 0};
+  p.quad.cellA = 0, p.quad.cellB = 1;
+  t.set.portals.push_back(p);
+  return t;
+}
+
+TEST(Leaks, APocketAcrossThePortalIsRelabelled) {
+  TwoCells t = twoCells(0.5f, 4.5f);  // the portal covers the whole interface
+  const GridFrame& f = t.distance.frame;
+  // Two voxels of cell 1 on cell 0's side, touching cell 0 only through faces no portal crosses.
+  t.set.cell[f.index(2, 2, 2)] = 1, t.set.cell[f.index(2, 2, 3)] = 1;
+  ASSERT_GT(countLeakingFaces(f, t.set.cell, {t.set.portals.front().quad}), 0u);
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 2);
+  EXPECT_EQ(c.relabelledPairs, 1);
+  EXPECT_EQ(c.mergedPairs, 0);
+  EXPECT_EQ(t.set.leakingFaces, 0u);
+  EXPECT_EQ(t.set.cell[f.index(2, 2, 2)], 0);
+  EXPECT_EQ(t.set.portals.size(), 1u);
+}
+
+TEST(Leaks, CellsThePortalDoesNotCutApartAreMerged) {
+  TwoCells t = twoCells(0.5f, 2.5f);  // half the interface open beside the portal
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 1);
+  EXPECT_EQ(c.mergedPairs, 1);
+  EXPECT_EQ(c.cellOf[0], 0);
+  EXPECT_EQ(c.cellOf[1], 0);
+  EXPECT_TRUE(t.set.portals.empty());
+  EXPECT_EQ(t.set.leakingFaces, 0u);
+  for (int32_t l : t.set.cell) EXPECT_TRUE(l == -1 || l == 0);
+}
+
+TEST(Leaks, TheOutsideKeepsItsPlaceWhenARoomMergesIntoIt) {
+  TwoCells t = twoCells(0.5f, 4.5f);
+  t.set.portals.clear();  // no portal at all between the room (0) and the outside (1)
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, 1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 1);
+  EXPECT_EQ(c.outsideCell, 0);  // renumbered, still the outside
+  EXPECT_EQ(c.keptCell, std::vector<int32_t>{1});
+  EXPECT_EQ(t.set.leakingFaces, 0u);
+}
+
+}  // namespace
+}  // namespace cpgi::decomp

@@ -17,6 +17,20 @@ void orderCells(PortalQuad& q) {
   q.normal = -q.normal;
 }
 
+// The quad grown by `by` metres on every side, in its plane, its normal kept.
+PortalQuad grownQuad(const PortalQuad& q, float by) {
+  if (by <= 0.0f) return q;
+  PortalQuad g = q;
+  const glm::vec3 e1 = q.corners[1] - q.corners[0], e2 = q.corners[3] - q.corners[0];
+  const float l1 = glm::length(e1), l2 = glm::length(e2);
+  if (l1 <= 0.0f || l2 <= 0.0f) return q;
+  const glm::vec3 u = by * e1 / l1, v = by * e2 / l2;
+  g.corners = {q.corners[0] - u - v, q.corners[1] + u - v, q.corners[2] + u + v, q.corners[3] - u + v};
+  computePortalFrame(g);
+  g.normal = q.normal;
+  return g;
+}
+
 }  // namespace
 
 ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
@@ -58,7 +72,7 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
   for (int round = 0; round < std::max(1, params.rounds); ++round) {
     const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());
     if (leaks.empty()) break;
-    const bool last = round + 1 >= std::max(1, params.rounds);
+    const bool last = params.merge && round + 1 >= std::max(1, params.rounds);
     // Each cell's deepest voxel: the seeds of the relabelling flood.
     std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
     for (size_t i = 0; i < set.cell.size(); ++i) {
@@ -74,19 +88,34 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
       const auto [a, b] = pair;
       if (!alive[size_t(a)] || !alive[size_t(b)] || touched.count(a) || touched.count(b)) continue;
       touched.insert(a), touched.insert(b);
-      std::vector<const PortalQuad*> barrier;
-      for (const FittedPortal& p : set.portals)
-        if ((p.quad.cellA == a && p.quad.cellB == b) || (p.quad.cellA == b && p.quad.cellB == a))
-          barrier.push_back(&p.quad);
+      std::vector<size_t> own;
+      for (size_t k = 0; k < set.portals.size(); ++k) {
+        const PortalQuad& q = set.portals[k].quad;
+        if ((q.cellA == a && q.cellB == b) || (q.cellA == b && q.cellB == a)) own.push_back(k);
+      }
       // The outside's deepest voxel may lie anywhere round the building: flood from the room's.
       const int first = a == outsideCell ? b : a, second = first == a ? b : a;
-      if (!last && !barrier.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX &&
-          relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
-                               barrier)) {
+      bool separated = false;
+      if (!last && !own.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX) {
+        // The portals as fitted, then grown by one and two voxels on every side: a quad that stops a
+        // voxel short of a door's jamb lets the flood round its edge (the wall takes the extra rim).
+        for (int grow = 0; grow <= 2 && !separated; ++grow) {
+          std::vector<PortalQuad> grown;
+          for (size_t k : own) grown.push_back(grownQuad(set.portals[k].quad, float(grow * f.voxel)));
+          std::vector<const PortalQuad*> barrier;
+          for (const PortalQuad& q : grown) barrier.push_back(&q);
+          if (!relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                                    barrier))
+            continue;
+          for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = grown[n];
+          separated = true;
+        }
+      }
+      if (separated) {
         ++out.relabelledPairs;
         continue;
       }
-      merge(a, b);
+      if (params.merge) merge(a, b);
     }
   }
 

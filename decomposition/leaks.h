@@ -21,6 +21,9 @@ struct LeakParams {
   /// Rounds of relabelling; relabelling one pair can uncover faces of another, the next round takes
   /// those. In the last round every pair still leaking is merged, so the result has no leaking face.
   int rounds = 6;
+  /// false: pairs that relabelling cannot part keep their leaking faces (counted in leakingFaces) instead
+  /// of merging, for cells a user gave (room volumes), which the decomposition must not join.
+  bool merge = true;
 };
 
 struct ClosedLeaks {

@@ -3,12 +3,14 @@
 // merged; a pair without a portal is merged; the outside is never merged away.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "decomposition/leaks.h"
 
 namespace cpgi::decomp {
 namespace {
 
-// A 12 × 6 × 6 box of 1 m voxels, all empty (distance 1 except the border, 0), split at x = 6: cells 0
+// A 12 × 6 × 12 box of 1 m voxels, all empty (distance 1 except the border, 0), split at x = 6: cells 0
 // (x < 6) and 1 (x ≥ 6), and a portal in the plane x = 5.5 over `portalZ` (z range, all y).
 struct TwoCells {
   DistanceGrid distance;
@@ -18,7 +20,7 @@ struct TwoCells {
 TwoCells twoCells(float z0, float z1) {
   TwoCells t;
   GridFrame& f = t.distance.frame;
-  f.dims = {12, 6, 6};
+  f.dims = {12, 6, 12};
   f.voxel = 1.0;
   t.distance.d2.assign(f.count(), 0);
   t.set.cell.assign(f.count(), -1);
@@ -26,7 +28,7 @@ TwoCells twoCells(float z0, float z1) {
     const glm::ivec3 c = f.coord(i);
     if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1))) continue;
     // Deepest in the middle of each half: the relabelling's seeds.
-    t.distance.d2[i] = 1 + uint32_t(c.x == 3 || c.x == 8) * uint32_t(c.y == 3 && c.z == 3) * 8;
+    t.distance.d2[i] = 1 + uint32_t(c.x == 3 || c.x == 8) * uint32_t(c.y == 3 && c.z == 6) * 8;
     t.set.cell[i] = c.x < 6 ? 0 : 1;
   }
   FittedPortal p;
@@ -40,7 +42,7 @@ TwoCells twoCells(float z0, float z1) {
 }
 
 TEST(Leaks, APocketAcrossThePortalIsRelabelled) {
-  TwoCells t = twoCells(0.5f, 4.5f);  // the portal covers the whole interface
+  TwoCells t = twoCells(0.5f, 10.5f);  // the portal covers the whole interface
   const GridFrame& f = t.distance.frame;
   // Two voxels of cell 1 on cell 0's side, touching cell 0 only through faces no portal crosses.
   t.set.cell[f.index(2, 2, 2)] = 1, t.set.cell[f.index(2, 2, 3)] = 1;
@@ -56,7 +58,8 @@ TEST(Leaks, APocketAcrossThePortalIsRelabelled) {
 }
 
 TEST(Leaks, CellsThePortalDoesNotCutApartAreMerged) {
-  TwoCells t = twoCells(0.5f, 2.5f);  // half the interface open beside the portal
+  TwoCells t = twoCells(0.5f, 3.5f);  // most of the interface open beside the portal (more than
+                                      // the two voxels the pass may grow a portal by)
   Context ctx;
   const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
   EXPECT_EQ(c.cellCount, 1);
@@ -68,8 +71,32 @@ TEST(Leaks, CellsThePortalDoesNotCutApartAreMerged) {
   for (int32_t l : t.set.cell) EXPECT_TRUE(l == -1 || l == 0);
 }
 
+TEST(Leaks, APortalAVoxelShortOfTheJambIsGrown) {
+  TwoCells t = twoCells(2.5f, 10.5f);  // rows z = 1, 2 open beside the portal (z = 2 within its
+                                       // half-voxel tolerance, z = 1 not)
+  ASSERT_GT(countLeakingFaces(t.distance.frame, t.set.cell, {t.set.portals.front().quad}), 0u);
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 2);
+  EXPECT_EQ(c.mergedPairs, 0);
+  EXPECT_EQ(t.set.leakingFaces, 0u);
+  float lowest = 1e9f;
+  for (const glm::vec3& c : t.set.portals.front().quad.corners) lowest = std::min(lowest, c.z);
+  EXPECT_NEAR(lowest, 1.5f, 1e-4f);  // grown by one voxel, not two
+}
+
+TEST(Leaks, CellsGivenByTheUserAreNeverMerged) {
+  TwoCells t = twoCells(0.5f, 3.5f);
+  LeakParams keep;
+  keep.merge = false;
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, keep, ctx);
+  EXPECT_EQ(c.cellCount, 2);
+  EXPECT_GT(t.set.leakingFaces, 0u);
+}
+
 TEST(Leaks, TheOutsideKeepsItsPlaceWhenARoomMergesIntoIt) {
-  TwoCells t = twoCells(0.5f, 4.5f);
+  TwoCells t = twoCells(0.5f, 10.5f);
   t.set.portals.clear();  // no portal at all between the room (0) and the outside (1)
   Context ctx;
   const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, 1, LeakParams{}, ctx);

@@ -31,6 +31,63 @@ PortalQuad grownQuad(const PortalQuad& q, float by) {
   return g;
 }
 
+// Every cell's voxels connected: each piece of a cell but its largest joins the cell it shares most
+// voxel faces with (a pocket a relabelling cut off, the head of a door's reveal left to the storey
+// above). Returns the voxels moved.
+size_t absorbFragments(const GridFrame& f, std::vector<int32_t>& cell) {
+  const size_t n = cell.size();
+  std::vector<int32_t> piece(n, -1);
+  std::vector<size_t> size;       // per piece
+  std::vector<int32_t> owner;     // per piece: its cell
+  std::vector<size_t> queue;
+  const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+  auto neighbours = [&](size_t i, auto&& visit) {
+    const glm::ivec3 c = f.coord(i);
+    for (int k = 0; k < 3; ++k) {
+      if (c[k] > 0) visit(size_t(ptrdiff_t(i) - strides[k]));
+      if (c[k] + 1 < f.dims[k]) visit(size_t(ptrdiff_t(i) + strides[k]));
+    }
+  };
+  for (size_t s = 0; s < n; ++s) {
+    if (cell[s] < 0 || piece[s] >= 0) continue;
+    const int32_t id = int32_t(size.size());
+    size.push_back(0), owner.push_back(cell[s]);
+    queue.assign(1, s);
+    piece[s] = id;
+    for (size_t head = 0; head < queue.size(); ++head) {
+      ++size.back();
+      neighbours(queue[head], [&](size_t j) {
+        if (piece[j] < 0 && cell[j] == owner[size_t(id)]) piece[j] = id, queue.push_back(j);
+      });
+    }
+  }
+  std::map<int32_t, int32_t> largest;  // per cell: its largest piece
+  for (int32_t p = 0; p < int32_t(size.size()); ++p) {
+    auto it = largest.find(owner[size_t(p)]);
+    if (it == largest.end() || size[size_t(p)] > size[size_t(it->second)]) largest[owner[size_t(p)]] = p;
+  }
+  // Per stray piece, the faces it shares with each other cell.
+  std::map<int32_t, std::map<int32_t, size_t>> shared;
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t p = piece[i];
+    if (p < 0 || largest[owner[size_t(p)]] == p) continue;
+    neighbours(i, [&](size_t j) {
+      if (cell[j] >= 0 && cell[j] != cell[i]) ++shared[p][cell[j]];
+    });
+  }
+  std::map<int32_t, int32_t> target;
+  for (const auto& [p, counts] : shared) {
+    size_t best = 0;
+    for (const auto& [c, k] : counts)
+      if (k > best) best = k, target[p] = c;
+  }
+  size_t moved = 0;
+  for (size_t i = 0; i < n; ++i)
+    if (piece[i] >= 0)
+      if (const auto it = target.find(piece[i]); it != target.end()) cell[i] = it->second, ++moved;
+  return moved;
+}
+
 }  // namespace
 
 ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
@@ -68,6 +125,68 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
     alive[size_t(gone)] = 0;
     ++out.mergedPairs;
   };
+
+  // Cells in one piece, then no portal between cells that do not touch.
+  absorbFragments(f, set.cell);
+  {
+    std::set<std::pair<int, int>> touching;
+    const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
+    for (size_t i = 0; i < set.cell.size(); ++i) {
+      const int a = set.cell[i];
+      if (a < 0) continue;
+      const glm::ivec3 c = f.coord(i);
+      for (int k = 0; k < 3; ++k) {
+        if (c[k] + 1 >= f.dims[k]) continue;
+        const int b = set.cell[size_t(ptrdiff_t(i) + strides[k])];
+        if (b >= 0 && b != a) touching.insert({std::min(a, b), std::max(a, b)});
+      }
+    }
+    std::vector<FittedPortal> kept;
+    for (const FittedPortal& p : set.portals)
+      if (touching.count({std::min(p.quad.cellA, p.quad.cellB), std::max(p.quad.cellA, p.quad.cellB)}))
+        kept.push_back(p);
+      else
+        ++out.droppedPortals;
+    set.portals = std::move(kept);
+  }
+  // Redundant portals first: a pair joined by several portals whose largest one to three alone cut the
+  // two apart (relabelled to meet on them) keeps only those; the others are slivers of the interface
+  // that the earlier rounds of fitPortals covered (a stair's landing edge beside its hole's portal).
+  if (params.dropRedundant) {
+    std::map<std::pair<int, int>, std::vector<size_t>> byPair;
+    for (size_t k = 0; k < set.portals.size(); ++k) {
+      const PortalQuad& q = set.portals[k].quad;
+      byPair[{std::min(q.cellA, q.cellB), std::max(q.cellA, q.cellB)}].push_back(k);
+    }
+    std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
+    for (size_t i = 0; i < set.cell.size(); ++i) {
+      const int c = set.cell[i];
+      if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
+        deepest[size_t(c)] = i;
+    }
+    std::vector<char> dropped(set.portals.size(), 0);
+    for (auto& [pair, list] : byPair) {
+      if (list.size() < 2) continue;
+      const auto [a, b] = pair;
+      if (deepest[size_t(a)] == SIZE_MAX || deepest[size_t(b)] == SIZE_MAX) continue;
+      std::sort(list.begin(), list.end(),
+                [&](size_t x, size_t y) { return set.portals[x].quad.area > set.portals[y].quad.area; });
+      const int first = a == outsideCell ? b : a, second = first == a ? b : a;
+      for (size_t keep = 1; keep < list.size() && keep <= 3; ++keep) {
+        std::vector<const PortalQuad*> barrier;
+        for (size_t n = 0; n < keep; ++n) barrier.push_back(&set.portals[list[n]].quad);
+        if (!relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                                  barrier))
+          continue;
+        for (size_t n = keep; n < list.size(); ++n) dropped[list[n]] = 1, ++out.droppedPortals;
+        break;
+      }
+    }
+    std::vector<FittedPortal> kept;
+    for (size_t k = 0; k < set.portals.size(); ++k)
+      if (!dropped[k]) kept.push_back(set.portals[k]);
+    set.portals = std::move(kept);
+  }
 
   for (int round = 0; round < std::max(1, params.rounds); ++round) {
     const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());

@@ -24,6 +24,9 @@ struct LeakParams {
   /// false: pairs that relabelling cannot part keep their leaking faces (counted in leakingFaces) instead
   /// of merging, for cells a user gave (room volumes), which the decomposition must not join.
   bool merge = true;
+  /// First drop the portals of a pair that its largest one to three portals make redundant (they alone
+  /// part the two cells).
+  bool dropRedundant = true;
 };
 
 struct ClosedLeaks {
@@ -33,6 +36,7 @@ struct ClosedLeaks {
   int outsideCell = -1;         ///< after; the outside is never merged away, so it stays the last cell
   int relabelledPairs = 0;      ///< pairs made to meet on their portals
   int mergedPairs = 0;          ///< pairs merged
+  int droppedPortals = 0;       ///< redundant portals dropped
 };
 
 /// Makes every voxel face between two cells of `set` cross a portal of those two cells, by relabelling

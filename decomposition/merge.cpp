@@ -10,6 +10,7 @@ namespace {
 struct Interface {
   float saddle = 0.0f;
   uint64_t faces = 0;
+  uint64_t facesUp = 0;  // crossed along y: the interface seen from above
 };
 
 struct Group {
@@ -53,8 +54,8 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
           if (const int b = basins.basin[i]; b >= 0) groups[size_t(b)].sumY += y, groups[size_t(b)].sumY2 += double(y) * y;
   }
   for (const BasinContact& c : basins.contacts) {
-    groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces};
-    groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces};
+    groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces, c.facesUp};
+    groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces, c.facesUp};
   }
 
   std::priority_queue<Candidate> queue;
@@ -75,7 +76,7 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     if (!x.outside && !y.outside && params.storeySpread > 0.0 &&
         std::abs(x.meanY() - y.meanY()) > params.storeySpread * (x.spreadY() + y.spreadY())) {
       const double floorArea = small.volume / (small.spreadY() * std::sqrt(12.0));  // voxel faces
-      if (double(iface.faces) < params.storeyOpening * floorArea)
+      if (double(iface.facesUp) < params.storeyOpening * floorArea)
         return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
     }
     const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
@@ -105,6 +106,7 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
       Interface& merged = k.neighbours[other];
       merged.saddle = std::max(merged.saddle, iface.saddle);
       merged.faces += iface.faces;
+      merged.facesUp += iface.facesUp;
       auto& back = groups[size_t(other)].neighbours;
       back.erase(gone);
       back[keep] = merged;

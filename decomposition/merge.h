@@ -36,8 +36,10 @@ struct MergeParams {
   /// Storeys (y is up): two groups lie one above the other when their mean heights are further apart
   /// than storeySpread × the sum of their heights' standard deviations (a room of height H has H/√12;
   /// two 2.7 m storeys over a 0.25 m slab are 2.95 m apart against 1.5 × 1.56 = 2.34 m, a gallery over
-  /// a double-height room 1.5 m against 3.6 m). Stacked groups that meet over less than storeyOpening of
-  /// the smaller one's floor area (its volume over its height) are two floors joined through a hole —
+  /// a double-height room 1.5 m against 3.6 m). Stacked groups whose interface, seen from above (its
+  /// faces crossed along y: a stair's crust along the flight counts its treads, not its risers), is
+  /// less than storeyOpening of the smaller one's floor area (its volume over its height) are two floors
+  /// joined through a hole —
   /// a stair's, however wide against the storey's height — and the saddle and opening rules do not
   /// merge them (small groups and shallow dips still do). 0 disables.
   double storeySpread = 1.5;

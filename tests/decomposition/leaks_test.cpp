@@ -41,11 +41,11 @@ TwoCells twoCells(float z0, float z1) {
   return t;
 }
 
-TEST(Leaks, APocketAcrossThePortalIsRelabelled) {
+TEST(Leaks, ABulgeAcrossThePortalIsRelabelled) {
   TwoCells t = twoCells(0.5f, 10.5f);  // the portal covers the whole interface
   const GridFrame& f = t.distance.frame;
-  // Two voxels of cell 1 on cell 0's side, touching cell 0 only through faces no portal crosses.
-  t.set.cell[f.index(2, 2, 2)] = 1, t.set.cell[f.index(2, 2, 3)] = 1;
+  // Cell 1 bulges a voxel past the portal's plane: its faces with cell 0 there cross no portal.
+  t.set.cell[f.index(5, 2, 2)] = 1, t.set.cell[f.index(5, 2, 3)] = 1;
   ASSERT_GT(countLeakingFaces(f, t.set.cell, {t.set.portals.front().quad}), 0u);
   Context ctx;
   const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
@@ -53,7 +53,32 @@ TEST(Leaks, APocketAcrossThePortalIsRelabelled) {
   EXPECT_EQ(c.relabelledPairs, 1);
   EXPECT_EQ(c.mergedPairs, 0);
   EXPECT_EQ(t.set.leakingFaces, 0u);
+  EXPECT_EQ(t.set.cell[f.index(5, 2, 2)], 0);
+  EXPECT_EQ(t.set.portals.size(), 1u);
+}
+
+TEST(Leaks, APocketCutOffFromItsCellJoinsTheCellAroundIt) {
+  TwoCells t = twoCells(0.5f, 10.5f);
+  const GridFrame& f = t.distance.frame;
+  t.set.cell[f.index(2, 2, 2)] = 1, t.set.cell[f.index(2, 2, 3)] = 1;  // inside cell 0, apart from cell 1
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 2);
+  EXPECT_EQ(c.mergedPairs, 0);
+  EXPECT_EQ(t.set.leakingFaces, 0u);
   EXPECT_EQ(t.set.cell[f.index(2, 2, 2)], 0);
+}
+
+TEST(Leaks, APortalBetweenCellsThatDoNotTouchIsDropped) {
+  TwoCells t = twoCells(0.5f, 10.5f);
+  FittedPortal stray = t.set.portals.front();
+  stray.quad.cellA = 0, stray.quad.cellB = 2;  // cell 2: a few voxels walled off in a corner of cell 1
+  t.set.portals.push_back(stray);
+  const GridFrame& f = t.distance.frame;
+  t.set.cell[f.index(10, 4, 10)] = 2;
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 3, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.droppedPortals, 1);
   EXPECT_EQ(t.set.portals.size(), 1u);
 }
 

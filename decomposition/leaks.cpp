@@ -92,7 +92,7 @@ size_t absorbFragments(const GridFrame& f, std::vector<int32_t>& cell) {
 
 ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
                        const LeakParams& params, Context& ctx) {
-  auto timer = ctx.time("portals.leaks");
+  auto timer = ctx.time("leaks");
   const GridFrame& f = distance.frame;
   ClosedLeaks out;
   out.cellOf.resize(size_t(cellCount));
@@ -149,10 +149,12 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
         ++out.droppedPortals;
     set.portals = std::move(kept);
   }
-  // Redundant portals first: a pair joined by several portals whose largest one to three alone cut the
-  // two apart (relabelled to meet on them) keeps only those; the others are slivers of the interface
-  // that the earlier rounds of fitPortals covered (a stair's landing edge beside its hole's portal).
-  if (params.dropRedundant) {
+  // Redundant portals: a pair joined by several portals whose largest one to three alone cut the two
+  // apart (relabelled to meet on them) keeps only those; the others are slivers of the interface that
+  // the earlier rounds of fitPortals covered (a stair's landing edge beside its hole's portal), or fringe
+  // portals a moved door portal no longer needs.
+  std::set<std::pair<int, int>> relabelled;  // pairs the leak rounds moved onto their portals
+  auto dropRedundant = [&](bool onlyRelabelled) {
     std::map<std::pair<int, int>, std::vector<size_t>> byPair;
     for (size_t k = 0; k < set.portals.size(); ++k) {
       const PortalQuad& q = set.portals[k].quad;
@@ -166,13 +168,19 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
     }
     std::vector<char> dropped(set.portals.size(), 0);
     for (auto& [pair, list] : byPair) {
-      if (list.size() < 2) continue;
+      if (list.size() < 2 || (onlyRelabelled && !relabelled.count(pair))) continue;
       const auto [a, b] = pair;
       if (deepest[size_t(a)] == SIZE_MAX || deepest[size_t(b)] == SIZE_MAX) continue;
       std::sort(list.begin(), list.end(),
                 [&](size_t x, size_t y) { return set.portals[x].quad.area > set.portals[y].quad.area; });
       const int first = a == outsideCell ? b : a, second = first == a ? b : a;
       for (size_t keep = 1; keep < list.size() && keep <= 3; ++keep) {
+        // Only slivers: what would go is under a quarter of what stays (a pair's several doors are
+        // not tried, which spares a flood per door on a game level); after the leak rounds, any of the
+        // portals of a pair they moved.
+        float stays = 0.0f, goes = 0.0f;
+        for (size_t n = 0; n < list.size(); ++n) (n < keep ? stays : goes) += set.portals[list[n]].quad.area;
+        if (!onlyRelabelled && goes > 0.25f * stays) continue;
         std::vector<const PortalQuad*> barrier;
         for (size_t n = 0; n < keep; ++n) barrier.push_back(&set.portals[list[n]].quad);
         if (!relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
@@ -186,8 +194,9 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
     for (size_t k = 0; k < set.portals.size(); ++k)
       if (!dropped[k]) kept.push_back(set.portals[k]);
     set.portals = std::move(kept);
-  }
+  };
 
+  auto leakRounds = [&] {
   for (int round = 0; round < std::max(1, params.rounds); ++round) {
     const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());
     if (leaks.empty()) break;
@@ -216,26 +225,65 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
       const int first = a == outsideCell ? b : a, second = first == a ? b : a;
       bool separated = false;
       if (!last && !own.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX) {
-        // The portals as fitted, then grown by one and two voxels on every side: a quad that stops a
-        // voxel short of a door's jamb lets the flood round its edge (the wall takes the extra rim).
-        for (int grow = 0; grow <= 2 && !separated; ++grow) {
-          std::vector<PortalQuad> grown;
-          for (size_t k : own) grown.push_back(grownQuad(set.portals[k].quad, float(grow * f.voxel)));
+        // The portals as fitted; else grown by up to two voxels on every side (a quad that stops a voxel
+        // short of a door's jamb lets the flood round its edge; the wall takes the extra rim) and moved
+        // along their normals by up to six voxels either way (a quad pushed past the wall by furniture
+        // in front of the door, whose slab of relabelled voxels then meets the room beyond it edge on):
+        // of those that part the two cells, the one that moves the fewest voxels from one to the other.
+        auto candidate = [&](int grow, int shift) {
+          std::vector<PortalQuad> q;
+          for (size_t k : own) {
+            PortalQuad g = grownQuad(set.portals[k].quad, float(grow * f.voxel));
+            for (glm::vec3& c : g.corners) c += float(shift * f.voxel) * g.normal;
+            q.push_back(g);
+          }
+          return q;
+        };
+        auto tryOn = [&](std::vector<int32_t>& labels, const std::vector<PortalQuad>& quads) {
           std::vector<const PortalQuad*> barrier;
-          for (const PortalQuad& q : grown) barrier.push_back(&q);
-          if (!relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
-                                    barrier))
-            continue;
-          for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = grown[n];
+          for (const PortalQuad& q : quads) barrier.push_back(&q);
+          return relabelAcrossPortals(f, labels, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                                      barrier);
+        };
+        std::vector<PortalQuad> fitted = candidate(0, 0);
+        if (tryOn(set.cell, fitted)) {
           separated = true;
+        } else {
+          size_t fewest = SIZE_MAX;
+          std::vector<PortalQuad> best;
+          std::vector<int32_t> trial;
+          for (int grow = 0; grow <= 2; ++grow)
+            for (int shift = -6; shift <= 6; ++shift) {
+              if (grow == 0 && shift == 0) continue;
+              const std::vector<PortalQuad> quads = candidate(grow, shift);
+              trial = set.cell;
+              if (!tryOn(trial, quads)) continue;
+              size_t moved = 0;
+              for (size_t i = 0; i < trial.size(); ++i) moved += trial[i] != set.cell[i];
+              if (moved < fewest) fewest = moved, best = quads;
+            }
+          if (!best.empty()) {
+            tryOn(set.cell, best);
+            for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = best[n];
+            separated = true;
+          }
         }
       }
       if (separated) {
+        relabelled.insert({a, b});
         ++out.relabelledPairs;
         continue;
       }
       if (params.merge) merge(a, b);
     }
+  }
+  };
+  if (params.dropRedundant) dropRedundant(false);
+  leakRounds();
+  // Relabelling may have moved a pair onto fewer of its portals: drop the others, then make sure.
+  if (params.dropRedundant && !relabelled.empty()) {
+    dropRedundant(true);
+    leakRounds();
   }
 
   // Dense numbering in the old order; the outside, last before, stays last.

@@ -110,6 +110,32 @@ TEST(Leaks, APortalAVoxelShortOfTheJambIsGrown) {
   EXPECT_NEAR(lowest, 1.5f, 1e-4f);  // grown by one voxel, not two
 }
 
+TEST(Leaks, ADoorPortalPushedPastTheWallMovesBackIntoTheDoor) {
+  // A wall at x = 5 with a door over z in [4, 7]; the door's portal was fitted at x = 7.5, two voxels into
+  // cell 1 (furniture in front of the door made that the narrowest stretch), and cell 0 was relabelled up
+  // to it: its bulge meets cell 1 edge on, beside the door.
+  TwoCells t = twoCells(3.5f, 7.5f);
+  const GridFrame& f = t.distance.frame;
+  for (int y = 1; y < 5; ++y)
+    for (int z = 1; z < 11; ++z) {
+      const size_t i = f.index(5, y, z);
+      const bool door = z >= 4 && z <= 7;
+      t.set.cell[i] = door ? 0 : -1;
+      t.distance.d2[i] = door ? 1 : 0;
+      if (door) t.set.cell[f.index(6, y, z)] = 0, t.set.cell[f.index(7, y, z)] = 0;
+    }
+  for (glm::vec3& c : t.set.portals.front().quad.corners) c.x = 7.5f;
+  ASSERT_GT(countLeakingFaces(f, t.set.cell, {t.set.portals.front().quad}), 0u);
+  Context ctx;
+  const ClosedLeaks c = closeLeaks(t.set, t.distance, 2, -1, LeakParams{}, ctx);
+  EXPECT_EQ(c.cellCount, 2);
+  EXPECT_EQ(c.mergedPairs, 0);
+  EXPECT_EQ(t.set.leakingFaces, 0u);
+  ASSERT_EQ(t.set.portals.size(), 1u);
+  EXPECT_LT(t.set.portals.front().quad.centre().x, 6.0f);  // back in the door, not in the room
+  EXPECT_EQ(t.set.cell[f.index(7, 2, 5)], 1);
+}
+
 TEST(Leaks, CellsGivenByTheUserAreNeverMerged) {
   TwoCells t = twoCells(0.5f, 3.5f);
   LeakParams keep;

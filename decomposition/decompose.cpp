@@ -222,7 +222,8 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   for (const std::string& w : validateCells(out.scene, out.graph).warnings) {
     // A closed room is said once below, as what it is.
     if (w == "the cell graph is not connected") continue;
-    if (w.size() > 14 && w.substr(w.size() - 14) == ": has no portal") continue;
+    const std::string noPortal = ": has no portal";
+    if (w.size() > noPortal.size() && w.compare(w.size() - noPortal.size(), noPortal.size(), noPortal) == 0) continue;
     ctx.warn("decompose: " + params.sourceName + ": " + w);
   }
   for (int c = 0; c < cellCount; ++c)

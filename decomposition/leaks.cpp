@@ -88,6 +88,48 @@ size_t absorbFragments(const GridFrame& f, std::vector<int32_t>& cell) {
   return moved;
 }
 
+// Relabels cells `first` and `second` to meet on `quads` (relabelAcrossPortals), trying them as they are,
+// then grown by up to maxGrow voxels on every side and moved along their normals by up to maxShift voxels
+// either way: of those that part the two, the one that moves the fewest voxels from one cell to the
+// other. On success `quads` holds the ones used. A quad that stops a voxel short of a door's jamb lets the
+// flood round its edge (the wall takes the extra rim); one pushed past the wall by furniture in front of
+// the door leaves a slab of relabelled voxels that meets the room beyond it edge on.
+bool partOnMovedPortals(const GridFrame& f, std::vector<int32_t>& cell, int first, int second, size_t seedA,
+                        size_t seedB, std::vector<PortalQuad>& quads, int maxGrow, int maxShift) {
+  auto candidate = [&](int grow, int shift) {
+    std::vector<PortalQuad> q;
+    for (const PortalQuad& p : quads) {
+      PortalQuad g = grownQuad(p, float(grow * f.voxel));
+      for (glm::vec3& c : g.corners) c += float(shift * f.voxel) * g.normal;
+      q.push_back(g);
+    }
+    return q;
+  };
+  auto tryOn = [&](std::vector<int32_t>& labels, const std::vector<PortalQuad>& q) {
+    std::vector<const PortalQuad*> barrier;
+    for (const PortalQuad& x : q) barrier.push_back(&x);
+    return relabelAcrossPortals(f, labels, first, second, seedA, seedB, barrier);
+  };
+  if (tryOn(cell, quads)) return true;
+  size_t fewest = SIZE_MAX;
+  std::vector<PortalQuad> best;
+  std::vector<int32_t> trial;
+  for (int grow = 0; grow <= maxGrow; ++grow)
+    for (int shift = -maxShift; shift <= maxShift; ++shift) {
+      if (grow == 0 && shift == 0) continue;
+      const std::vector<PortalQuad> q = candidate(grow, shift);
+      trial = cell;
+      if (!tryOn(trial, q)) continue;
+      size_t moved = 0;
+      for (size_t i = 0; i < trial.size(); ++i) moved += trial[i] != cell[i];
+      if (moved < fewest) fewest = moved, best = q;
+    }
+  if (best.empty()) return false;
+  tryOn(cell, best);
+  quads = std::move(best);
+  return true;
+}
+
 }  // namespace
 
 ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
@@ -181,11 +223,15 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
         float stays = 0.0f, goes = 0.0f;
         for (size_t n = 0; n < list.size(); ++n) (n < keep ? stays : goes) += set.portals[list[n]].quad.area;
         if (!onlyRelabelled && goes > 0.25f * stays) continue;
-        std::vector<const PortalQuad*> barrier;
-        for (size_t n = 0; n < keep; ++n) barrier.push_back(&set.portals[list[n]].quad);
-        if (!relabelAcrossPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
-                                  barrier))
+        // The largest alone may also be grown by a voxel or moved by up to two (a door portal past its
+        // wall, its jamb covered by a fringe portal or two beside it; pairs with more portals, a game
+        // level's, are not searched: each try floods the pair).
+        std::vector<PortalQuad> quads;
+        for (size_t n = 0; n < keep; ++n) quads.push_back(set.portals[list[n]].quad);
+        if (!partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)], quads,
+                                keep == 1 && list.size() <= 3 ? 1 : 0, keep == 1 && list.size() <= 3 ? 2 : 0))
           continue;
+        for (size_t n = 0; n < keep; ++n) set.portals[list[n]].quad = quads[n];
         for (size_t n = keep; n < list.size(); ++n) dropped[list[n]] = 1, ++out.droppedPortals;
         break;
       }
@@ -225,48 +271,12 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
       const int first = a == outsideCell ? b : a, second = first == a ? b : a;
       bool separated = false;
       if (!last && !own.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX) {
-        // The portals as fitted; else grown by up to two voxels on every side (a quad that stops a voxel
-        // short of a door's jamb lets the flood round its edge; the wall takes the extra rim) and moved
-        // along their normals by up to six voxels either way (a quad pushed past the wall by furniture
-        // in front of the door, whose slab of relabelled voxels then meets the room beyond it edge on):
-        // of those that part the two cells, the one that moves the fewest voxels from one to the other.
-        auto candidate = [&](int grow, int shift) {
-          std::vector<PortalQuad> q;
-          for (size_t k : own) {
-            PortalQuad g = grownQuad(set.portals[k].quad, float(grow * f.voxel));
-            for (glm::vec3& c : g.corners) c += float(shift * f.voxel) * g.normal;
-            q.push_back(g);
-          }
-          return q;
-        };
-        auto tryOn = [&](std::vector<int32_t>& labels, const std::vector<PortalQuad>& quads) {
-          std::vector<const PortalQuad*> barrier;
-          for (const PortalQuad& q : quads) barrier.push_back(&q);
-          return relabelAcrossPortals(f, labels, first, second, deepest[size_t(first)], deepest[size_t(second)],
-                                      barrier);
-        };
-        std::vector<PortalQuad> fitted = candidate(0, 0);
-        if (tryOn(set.cell, fitted)) {
+        std::vector<PortalQuad> quads;
+        for (size_t k : own) quads.push_back(set.portals[k].quad);
+        if (partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)], quads,
+                               2, 6)) {
+          for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = quads[n];
           separated = true;
-        } else {
-          size_t fewest = SIZE_MAX;
-          std::vector<PortalQuad> best;
-          std::vector<int32_t> trial;
-          for (int grow = 0; grow <= 2; ++grow)
-            for (int shift = -6; shift <= 6; ++shift) {
-              if (grow == 0 && shift == 0) continue;
-              const std::vector<PortalQuad> quads = candidate(grow, shift);
-              trial = set.cell;
-              if (!tryOn(trial, quads)) continue;
-              size_t moved = 0;
-              for (size_t i = 0; i < trial.size(); ++i) moved += trial[i] != set.cell[i];
-              if (moved < fewest) fewest = moved, best = quads;
-            }
-          if (!best.empty()) {
-            tryOn(set.cell, best);
-            for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = best[n];
-            separated = true;
-          }
         }
       }
       if (separated) {

@@ -3,6 +3,7 @@
 // (cell:/portal:/cellvolume: nodes, e.g. a decompose output's cells.glb or the hand-made scene itself), or
 // a decompose output folder. B is the reference. With --bake, SCENE is also baked with each (`bake --method
 // cells`) and both bakes are measured against a path-traced reference (apps/compare_cells_bake.h).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,7 @@
 #include "core/scene_io.h"
 #include "decomposition/compare.h"
 #include "decomposition/decompose.h"
+#include "decomposition/volume_cells.h"
 
 namespace cpgi::cli {
 namespace {
@@ -126,7 +128,21 @@ int runCompare(const CompareOptions& o) {
   double meanIoU = 0.0;
   for (double v : iouB) meanIoU += v;
   meanIoU = iouB.empty() ? 0.0 : meanIoU / double(iouB.size());
-  const std::vector<decomp::PortalMatch> matches = decomp::matchPortals(b.graph.portals, a.graph.portals);
+  // Rooms given as cellvolume: meshes alone (an IFC export's) carry no portal: theirs are the ones the
+  // decomposition fits where the volumes meet (decompose --from-volumes), so there is something to match.
+  auto portalsOf = [&](const Labelled& x, bool& fitted) {
+    fitted = false;
+    const bool volumesOnly = x.graph.portals.empty() && !x.graph.cells.empty() &&
+                             std::all_of(x.graph.cells.begin(), x.graph.cells.end(), [](const Cell& c) {
+                               return c.triangles.empty() && !c.volume.empty();
+                             });
+    if (!volumesOnly) return x.graph.portals;
+    fitted = true;
+    return decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
+  };
+  bool fittedA = false, fittedB = false;
+  const std::vector<PortalQuad> portalsA = portalsOf(a, fittedA), portalsB = portalsOf(b, fittedB);
+  const std::vector<decomp::PortalMatch> matches = decomp::matchPortals(portalsB, portalsA);
   double worst = 0.0;
   bool unmatched = false;
   for (const auto& m : matches) {
@@ -147,8 +163,11 @@ int runCompare(const CompareOptions& o) {
   j["coverage_b"] = interior.coverageB();
   j["cells_a"] = countA;
   j["cells_b"] = countB;
-  j["portals_a"] = a.graph.portals.size();
-  j["portals_b"] = b.graph.portals.size();
+  j["portals_a"] = portalsA.size();
+  j["portals_b"] = portalsB.size();
+  // "volumes": fitted where the side's room volumes meet (it gave rooms as cellvolume: meshes alone).
+  j["portals_a_from"] = fittedA ? "volumes" : "cells";
+  j["portals_b_from"] = fittedB ? "volumes" : "cells";
   // null, not a perfect 1, when there is nothing to compare.
   j["adjusted_rand_index"] = ari ? nlohmann::json(*ari) : nlohmann::json(nullptr);
   j["matched_iou"] = meanIoU;
@@ -157,9 +176,9 @@ int runCompare(const CompareOptions& o) {
   j["matched_iou_per_cell"] = perCell;
   nlohmann::json pm = nlohmann::json::array();
   for (const auto& m : matches) {
-    nlohmann::json e = {{"reference", b.graph.portals[size_t(m.reference)].name}};
+    nlohmann::json e = {{"reference", portalsB[size_t(m.reference)].name}};
     if (m.candidate >= 0) {
-      e["candidate"] = a.graph.portals[size_t(m.candidate)].name;
+      e["candidate"] = portalsA[size_t(m.candidate)].name;
       e["centre_distance_m"] = m.centreDistance;
       e["normal_angle_deg"] = m.normalAngle;
       e["area_ratio"] = m.areaRatio;
@@ -184,7 +203,7 @@ int runCompare(const CompareOptions& o) {
     return 0;
   }
   std::printf("A: %s (%d cells, %zu portals)\nB: %s (%d cells, %zu portals)\n", a.source.c_str(), countA,
-              a.graph.portals.size(), b.source.c_str(), countB, b.graph.portals.size());
+              portalsA.size(), b.source.c_str(), countB, portalsB.size());
   std::printf(
       "voxel %.3g m, %zu interior voxels (in a room of A or B): %.0f %% in A's rooms, %.0f %% in B's\n", h,
       interior.interior, 100 * interior.coverageA(), 100 * interior.coverageB());
@@ -195,11 +214,11 @@ int runCompare(const CompareOptions& o) {
   for (int c = 0; c < countB; ++c) std::printf("  cell %-12s best IoU %.4f\n", b.graph.cells[size_t(c)].name.c_str(), iouB[size_t(c)]);
   for (const auto& m : matches) {
     if (m.candidate < 0) {
-      std::printf("  portal %-16s unmatched\n", b.graph.portals[size_t(m.reference)].name.c_str());
+      std::printf("  portal %-16s unmatched\n", portalsB[size_t(m.reference)].name.c_str());
       continue;
     }
     std::printf("  portal %-16s ~ %-16s centre %.3f m, normal %.2f deg, area ratio %.3f\n",
-                b.graph.portals[size_t(m.reference)].name.c_str(), a.graph.portals[size_t(m.candidate)].name.c_str(),
+                portalsB[size_t(m.reference)].name.c_str(), portalsA[size_t(m.candidate)].name.c_str(),
                 m.centreDistance, m.normalAngle, m.areaRatio);
   }
   if (o.bake) printCellBakes(j["bake"]);

@@ -81,6 +81,19 @@ int runDecompose(DecomposeOptions o) {
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
   std::printf("outside: %s; voxel faces between cells not covered by a portal: %zu\n",
               d.outsideCell >= 0 ? "a cell (\"outside\")" : "not a cell (no room opens onto it)", d.leakingFaces);
+  std::string closed, pockets;
+  for (size_t c = 0; c < d.closedRoom.size(); ++c)
+    if (d.closedRoom[c]) closed += (closed.empty() ? "" : ", ") + d.graph.cells[c].name;
+  for (size_t c = 0; c < d.outsidePocket.size(); ++c)
+    if (d.outsidePocket[c]) pockets += (pockets.empty() ? "" : ", ") + d.graph.cells[c].name;
+  std::printf("closed rooms (no portal, touching no other cell): %s; the rooms are %s through portals\n",
+              closed.empty() ? "none" : closed.c_str(),
+              d.connectedOpen ? "all reachable from each other" : "NOT all reachable from each other");
+  if (!pockets.empty())
+    std::printf("sealed from the outside: no portal joins the rooms to it; only it reaches %s (space behind "
+                "one-sided walls)\n", pockets.c_str());
+  if (d.leakMerges > 0)
+    std::printf("%d pairs of cells merged: they met outside any portal of theirs\n", d.leakMerges);
   for (const Context::Timing& t : ctx.timings()) std::printf("  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
   std::printf("  %-20s %8.3f s\n", "total", report["timings_s"]["total"].get<double>());
   std::printf("wrote %s/{cells.glb, cells.json, decomposition.png}\n", o.out.c_str());

@@ -86,6 +86,7 @@ constexpr ParameterFlag kFlags[] = {
     {"opening ratio", "--opening-ratio"},
     {"minimum cell volume", "--min-cell-volume"},
     {"outside saddle ratio", "--outside-saddle-ratio"},
+    {"storey spread", "--storey-spread"},
 };
 
 std::string flag(std::string_view parameter) {
@@ -362,6 +363,10 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
              "Merge a room into the outside when the saddle of its opening / its peak exceeds this (exterior "
              "doors are wide)",
              within(0.0, 1.0));
+  addChecked(cmd, scope, "storey spread", params.merge.storeySpread,
+             "Groups whose mean heights are further apart than this x the sum of their heights' standard "
+             "deviations are storeys: a hole in the floor between them stays a portal however wide; 0 disables",
+             kNonNegative);
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {

@@ -1,8 +1,13 @@
 // Converts the world geometry of a Quake III BSP (version 46: OpenArena's maps, as in Debian's
 // openarena-data) to OBJ in metres, y up, for running the decomposition on real levels the project did
 // not make. Polygon and mesh faces are triangle lists; Bézier patches are tessellated; billboards and
-// brush models other than the world (doors, platforms) are left out. The data stays outside the repo.
-//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT]   (default 0.03: a 56-unit player is 1.7 m)
+// brush models other than the world (doors, platforms) are left out, and so are the see-through
+// surfaces a player walks through (texture flagged SURF_NONSOLID, contents not CONTENTS_SOLID: fog
+// volumes' faces, light beams, clear water's surface), which are no walls: on oa_dm7 a pool's surface
+// and a fog layer sealed the whole lower level and the open arena off as rooms without a door
+// (issue 46); --keep-nonsolid keeps them. The data stays outside the repo.
+//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid]
+//   (default scale 0.03: a 56-unit player is 1.7 m)
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -58,7 +63,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   double scale = 0.03;
-  if (argc >= 5 && std::string(argv[3]) == "--scale") scale = std::atof(argv[4]);
+  bool keepNonsolid = false;
+  for (int a = 3; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--scale" && a + 1 < argc) scale = std::atof(argv[++a]);
+    else if (arg == "--keep-nonsolid") keepNonsolid = true;
+    else {
+      std::fprintf(stderr, "q3bsp_to_obj: unknown option %s\n", arg.c_str());
+      return 1;
+    }
+  }
   std::ifstream in(argv[1], std::ios::binary);
   const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (file.size() < 8 + 17 * 8 || file.compare(0, 4, "IBSP") != 0) {
@@ -82,7 +96,7 @@ int main(int argc, char** argv) {
   auto toWorld = [&](const V3& q) { return V3{q[0] * scale, q[2] * scale, -q[1] * scale}; };
   std::vector<V3> points;
   std::vector<std::array<size_t, 3>> tris;
-  size_t skippedNodraw = 0;
+  size_t skippedNodraw = 0, skippedNonsolid = 0;
   auto emit = [&](const V3& a, const V3& b, const V3& c, const V3& facing) {
     // Each triangle faces the same way as its face's normal (into the playable space).
     const bool flip = dot(cross(sub(b, a), sub(c, a)), facing) < 0.0;
@@ -97,6 +111,11 @@ int main(int argc, char** argv) {
     const Face& f = faces[size_t(fi)];
     if (f.texture >= 0 && size_t(f.texture) < textures.size() && (textures[size_t(f.texture)].flags & 0x80)) {
       ++skippedNodraw;  // SURF_NODRAW
+      continue;
+    }
+    if (!keepNonsolid && f.texture >= 0 && size_t(f.texture) < textures.size() &&
+        (textures[size_t(f.texture)].flags & 0x4000) && !(textures[size_t(f.texture)].contents & 1)) {
+      ++skippedNonsolid;  // SURF_NONSOLID and not CONTENTS_SOLID: fog, beams, clear water
       continue;
     }
     auto pos = [&](int32_t v) {
@@ -153,6 +172,7 @@ int main(int argc, char** argv) {
     out << line;
   }
   for (const auto& t : tris) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  std::fprintf(stderr, "%s: %zu triangles (%zu nodraw faces skipped)\n", argv[2], tris.size(), skippedNodraw);
+  std::fprintf(stderr, "%s: %zu triangles (%zu nodraw and %zu non-solid see-through faces skipped)\n", argv[2],
+               tris.size(), skippedNodraw, skippedNonsolid);
   return 0;
 }

@@ -92,6 +92,11 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
   Decomposition out =
       finishDecomposition(scene, params, solid, std::move(space.space), distance, std::move(cells), names, ctx);
+  // Cells merged by the leak pass leave gaps in the numbering: the names follow the indices again.
+  for (size_t c = 0; c < out.graph.cells.size(); ++c)
+    if (int(c) != out.outsideCell) out.graph.cells[c].name = "c" + std::to_string(c);
+  for (PortalQuad& q : out.graph.portals)
+    q.name = "portal:" + out.graph.cells[size_t(q.cellA)].name + ":" + out.graph.cells[size_t(q.cellB)].name;
   out.voxelChoice = std::move(empty.voxelChoice);
   out.basins = basinCount;
   return out;
@@ -104,18 +109,31 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   const double h = solid.frame.voxel;
   out.frame = solid.frame;
   out.sealedVoxels = solid.sealedVoxels;
-  out.enclosed = cells.roomCount() > 0;
-  out.outsideCell = cells.outsideCell;
-  const std::vector<float> peaks = cells.peak;
+  const int outsideBefore = cells.outsideCell;
+  const std::vector<float> peaksBefore = cells.peak;
   PortalSet portals = fitPortals(std::move(cells), distance, params.portals, ctx);
+  // Every face between two cells on a portal of theirs, or the two merged (leaks.h).
+  const ClosedLeaks closed =
+      closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
+  std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
+  for (size_t c = 0; c < peaksBefore.size(); ++c)
+    if (closed.cellOf[c] >= 0) peaks[size_t(closed.cellOf[c])] = std::max(peaks[size_t(closed.cellOf[c])], peaksBefore[c]);
+  std::vector<std::string> keptNames;
+  for (int32_t c : closed.keptCell) keptNames.push_back(names[size_t(c)]);
+  out.outsideCell = closed.outsideCell;
+  out.enclosed = closed.cellCount - (out.outsideCell >= 0 ? 1 : 0) > 0;
+  out.leakMerges = closed.mergedPairs;
   out.voxelCell = std::move(portals.cell);
   out.leakingFaces = portals.leakingFaces;
   std::vector<PortalQuad> quads;
   for (FittedPortal& fp : portals.portals) {
-    fp.quad.name = "portal:" + names[size_t(fp.quad.cellA)] + ":" + names[size_t(fp.quad.cellB)];
+    fp.quad.name = "portal:" + keptNames[size_t(fp.quad.cellA)] + ":" + keptNames[size_t(fp.quad.cellB)];
     quads.push_back(fp.quad);
   }
   out.portals = std::move(portals.portals);
+  if (out.leakMerges > 0)
+    ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakMerges) +
+             " pairs of cells merged: they met outside any portal of theirs");
   if (out.leakingFaces > 0)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.leakingFaces) +
              " voxel faces join two cells outside any portal");
@@ -133,7 +151,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   out.graph.cells.resize(size_t(cellCount));
   out.cellStats.resize(size_t(cellCount));
   for (int c = 0; c < cellCount; ++c) {
-    out.graph.cells[size_t(c)].name = names[size_t(c)];
+    out.graph.cells[size_t(c)].name = keptNames[size_t(c)];
     out.cellStats[size_t(c)].peak = peaks[size_t(c)];
   }
   for (size_t t = 0; t < assigned.cellOfTriangle.size(); ++t) {
@@ -163,8 +181,58 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
   out.graph.portals = std::move(quads);
 
-  for (const std::string& w : validateCells(out.scene, out.graph).warnings)
+  // Closed rooms: no portal (after the leak pass no voxel face touches another cell either).
+  out.closedRoom.assign(size_t(cellCount), 0);
+  for (int c = 0; c < cellCount; ++c)
+    out.closedRoom[size_t(c)] = c != out.outsideCell && out.graph.portalsOf(c).empty();
+  // The parts of the portal graph: closed rooms are parts of their own; the outside's part, when it
+  // holds no other, is the outside and its pockets.
+  {
+    std::vector<int> part(size_t(cellCount), -1);
+    int parts = 0;
+    for (int c = 0; c < cellCount; ++c) {
+      if (part[size_t(c)] >= 0) continue;
+      std::vector<int> todo{c};
+      part[size_t(c)] = parts;
+      while (!todo.empty()) {
+        const int x = todo.back();
+        todo.pop_back();
+        for (int p : out.graph.portalsOf(x)) {
+          const PortalQuad& q = out.graph.portals[size_t(p)];
+          const int y = q.cellA == x ? q.cellB : q.cellA;
+          if (y >= 0 && part[size_t(y)] < 0) part[size_t(y)] = parts, todo.push_back(y);
+        }
+      }
+      ++parts;
+    }
+    out.regions = parts;
+    int closedParts = 0;
+    for (int c = 0; c < cellCount; ++c) closedParts += out.closedRoom[size_t(c)] ? 1 : 0;
+    out.outsidePocket.assign(size_t(cellCount), 0);
+    const int openParts = parts - closedParts;
+    if (out.outsideCell >= 0 && openParts > 1) {
+      // The outside's part is apart from the rooms: it and its pockets are not counted against them.
+      for (int c = 0; c < cellCount; ++c)
+        out.outsidePocket[size_t(c)] = c != out.outsideCell && part[size_t(c)] == part[size_t(out.outsideCell)];
+      out.connectedOpen = openParts - 1 <= 1;
+    } else {
+      out.connectedOpen = openParts <= 1;
+    }
+  }
+  for (const std::string& w : validateCells(out.scene, out.graph).warnings) {
+    // A closed room is said once below, as what it is.
+    if (w == "the cell graph is not connected") continue;
+    const std::string noPortal = ": has no portal";
+    if (w.size() > noPortal.size() && w.compare(w.size() - noPortal.size(), noPortal.size(), noPortal) == 0) continue;
     ctx.warn("decompose: " + params.sourceName + ": " + w);
+  }
+  for (int c = 0; c < cellCount; ++c)
+    if (out.closedRoom[size_t(c)])
+      ctx.warn("decompose: " + params.sourceName + ": cell " + out.graph.cells[size_t(c)].name +
+               " is a closed room: no portal, it touches no other cell");
+  if (!out.connectedOpen)
+    ctx.warn("decompose: " + params.sourceName + ": the rooms fall in separate groups that no portal joins "
+             "(walls seal them from each other)");
   if (out.thinWallArea > 0.1)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.thinWallArea) +
              " m2 of wall between two cells is thinner than one voxel (" + metres(h) +

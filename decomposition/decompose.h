@@ -22,6 +22,7 @@
 #include "decomposition/assign.h"
 #include "decomposition/classify.h"
 #include "decomposition/distance.h"
+#include "decomposition/leaks.h"
 #include "decomposition/merge.h"
 #include "decomposition/portals.h"
 #include "decomposition/watershed.h"
@@ -42,6 +43,7 @@ struct DecomposeParams {
   WatershedParams watershed;
   MergeParams merge;
   PortalParams portals;
+  LeakParams leaks;
   AssignParams assign;
   std::string sourceName = "scene"; ///< the input's name, for messages
 };
@@ -65,6 +67,18 @@ struct Decomposition {
   bool enclosed = true;               ///< false: no room was found; the outside is the only cell
   int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                     ///< watershed basins before merging
+  int leakMerges = 0;                 ///< pairs of cells merged because they met outside any portal
+  /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
+  /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.
+  std::vector<char> closedRoom;
+  /// Per cell: true for a room reached through portals from the outside but from no room that the
+  /// outside does not also reach, in a scene whose other rooms no portal joins to the outside: a sealed
+  /// game level's space behind its one-sided walls (Quake maps keep only the faces a player sees).
+  std::vector<char> outsidePocket;
+  /// Every cell reachable from every other through portals once the closed rooms, and the outside with
+  /// its pockets when no portal joins them to the rest (a sealed level), are left out.
+  bool connectedOpen = true;
+  int regions = 0;  ///< connected parts of the portal graph, closed rooms and the outside's part included
   size_t leakingFaces = 0;            ///< see PortalSet::leakingFaces
   size_t inputTriangles = 0;
   size_t splitTriangles = 0;

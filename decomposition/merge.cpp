@@ -10,6 +10,7 @@ namespace {
 struct Interface {
   float saddle = 0.0f;
   uint64_t faces = 0;
+  uint64_t facesUp = 0;  // crossed along y: the interface seen from above
 };
 
 struct Group {
@@ -19,6 +20,13 @@ struct Group {
   int version = 0;
   bool alive = true;
   bool outside = false;  // holds the outside marker basin: infinitely high, never the "smaller" room
+  double sumY = 0.0, sumY2 = 0.0;  // of its voxels' heights (y index), for the storey rule
+  double meanY() const { return volume > 0.0 ? sumY / volume : 0.0; }
+  double spreadY() const {
+    if (volume <= 0.0) return 0.0;
+    const double m = meanY();
+    return std::sqrt(std::max(0.0, sumY2 / volume - m * m) + 1.0 / 12.0);  // a voxel's own spread
+  }
 };
 
 struct Candidate {
@@ -38,9 +46,16 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
   for (int b = 0; b < count; ++b)
     groups[size_t(b)].peak = basins.peak[size_t(b)], groups[size_t(b)].volume = basins.volume[size_t(b)];
   if (basins.outsideBasin >= 0) groups[size_t(basins.outsideBasin)].outside = true;
+  {
+    size_t i = 0;
+    for (int z = 0; z < f.dims.z; ++z)
+      for (int y = 0; y < f.dims.y; ++y)
+        for (int x = 0; x < f.dims.x; ++x, ++i)
+          if (const int b = basins.basin[i]; b >= 0) groups[size_t(b)].sumY += y, groups[size_t(b)].sumY2 += double(y) * y;
+  }
   for (const BasinContact& c : basins.contacts) {
-    groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces};
-    groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces};
+    groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces, c.facesUp};
+    groups[size_t(c.b)].neighbours[c.a] = {c.saddle, c.faces, c.facesUp};
   }
 
   std::priority_queue<Candidate> queue;
@@ -57,6 +72,13 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     const Group& small = x.outside ? y : y.outside ? x : x.volume <= y.volume ? x : y;
     const float lowPeak = x.outside ? y.peak : y.outside ? x.peak : std::min(x.peak, y.peak);
     if (small.volume < minVoxels) return true;
+    // Two floors joined through a hole: only a shallow dip merges them.
+    if (!x.outside && !y.outside && params.storeySpread > 0.0 &&
+        std::abs(x.meanY() - y.meanY()) > params.storeySpread * (x.spreadY() + y.spreadY())) {
+      const double floorArea = small.volume / (small.spreadY() * std::sqrt(12.0));  // voxel faces
+      if (double(iface.facesUp) < params.storeyOpening * floorArea)
+        return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
+    }
     const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
     if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
     if (lowPeak - iface.saddle < params.minDepth) return true;
@@ -84,6 +106,7 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
       Interface& merged = k.neighbours[other];
       merged.saddle = std::max(merged.saddle, iface.saddle);
       merged.faces += iface.faces;
+      merged.facesUp += iface.facesUp;
       auto& back = groups[size_t(other)].neighbours;
       back.erase(gone);
       back[keep] = merged;
@@ -92,6 +115,7 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     k.peak = std::max(k.peak, g.peak);
     k.volume += g.volume;
     k.outside = k.outside || g.outside;
+    k.sumY += g.sumY, k.sumY2 += g.sumY2;
     ++k.version;
     g.alive = false;
     g.neighbours.clear();

@@ -24,13 +24,26 @@ struct MergeParams {
   /// of tall pillars 2 m apart: ~1; a door into a 4 × 4 × 3 m room: ~0.16). 0 disables.
   double openingRatio = 0.6;
   /// Any group smaller than this, m³, joins the neighbour it meets at the highest saddle; an isolated
-  /// one is dropped (its voxels become unlabelled).
-  double minCellVolume = 1.0;
+  /// one is dropped (its voxels become unlabelled). 2.5 m³ is under the smallest room (a 0.9 × 1.2 m
+  /// WC 2.4 m high holds 2.6 m³) and over the enclosures in rooms that are not rooms: a shower of
+  /// 0.9 × 0.9 × 2 m glass holds 1.6 m³, a wardrobe's inside 0.6 × 2 × 2.1 m 2.5 m³.
+  double minCellVolume = 2.5;
   /// saddleRatio between a room and the outside, in [0, 1]. Higher than saddleRatio: exterior doors are
   /// wide (a 2 m terrace door into a 2.7 m high room has 1.0 / 1.35 = 0.74), and whether a space is a
   /// room or part of the outside is better told by how much of it is open (openingRatio): a porch open
   /// on three sides merges by that rule.
   double outsideSaddleRatio = 0.9;
+  /// Storeys (y is up): two groups lie one above the other when their mean heights are further apart
+  /// than storeySpread × the sum of their heights' standard deviations (a room of height H has H/√12;
+  /// two 2.7 m storeys over a 0.25 m slab are 2.95 m apart against 1.5 × 1.56 = 2.34 m, a gallery over
+  /// a double-height room 1.5 m against 3.6 m). Stacked groups whose interface, seen from above (its
+  /// faces crossed along y: a stair's crust along the flight counts its treads, not its risers), is
+  /// less than storeyOpening of the smaller one's floor area (its volume over its height) are two floors
+  /// joined through a hole —
+  /// a stair's, however wide against the storey's height — and the saddle and opening rules do not
+  /// merge them (small groups and shallow dips still do). 0 disables.
+  double storeySpread = 1.5;
+  double storeyOpening = 0.5;
 };
 
 struct CellLabels {

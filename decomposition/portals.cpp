@@ -257,6 +257,15 @@ size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell,
   return leaks;
 }
 
+std::map<std::pair<int, int>, size_t> leakingFacesByPair(const GridFrame& f, const std::vector<int32_t>& cell,
+                                                         const std::vector<PortalQuad>& portals) {
+  PortalsByPair byPair;
+  for (const PortalQuad& p : portals) addPortal(byPair, p);
+  std::map<std::pair<int, int>, size_t> out;
+  forEachUncoveredFace(f, cell, byPair, [&](size_t, size_t, int a, int b, int) { ++out[{std::min(a, b), std::max(a, b)}]; });
+  return out;
+}
+
 namespace {
 
 // Every face between two cells whose segment crosses no portal of those two cells (all of them when
@@ -317,31 +326,35 @@ bool alongOneAxis(const std::vector<const Face*>& faces) {
   return double(std::max({count[0], count[1], count[2]})) >= 0.9 * double(faces.size());
 }
 
-// The portal across the narrowest closed section near a non-planar opening (sections.h), facing away
-// from the side of a's deepest voxel (faceFromAToB checks it once the cells are relabelled); nothing
-// when no section is closed.
-std::optional<FittedPortal> sectionPortal(const GridFrame& f, const std::vector<int32_t>& cell,
-                                          const DistanceGrid& distance, const std::vector<const Face*>& faces,
-                                          const std::vector<size_t>& deepest, const PortalParams& params) {
+// The portals across the closed sections near a non-planar opening (sections.h), narrowest first, each
+// facing away from the side of a's deepest voxel (faceFromAToB checks it once the cells are relabelled);
+// none when no section is closed.
+std::vector<FittedPortal> sectionPortals(const GridFrame& f, const std::vector<int32_t>& cell,
+                                         const DistanceGrid& distance, const std::vector<const Face*>& faces,
+                                         const std::vector<size_t>& deepest, const PortalParams& params) {
   const int a = faces.front()->a, b = faces.front()->b;
   const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
   std::vector<size_t> voxels;
   for (const Face* face : faces)
     voxels.push_back(face->lower), voxels.push_back(size_t(ptrdiff_t(face->lower) + strides[face->axis]));
   const int search = int(std::ceil(params.searchRange / f.voxel));
-  const std::optional<Section> s =
-      narrowestSection(f, cell, a, b, voxels, search, std::max<size_t>(400, 4 * faces.size()));
-  if (!s) return std::nullopt;
-  // a is never the outside (numbered last), whose deepest voxel may lie at any corner of the grid.
-  const int sign = f.coord(deepest[size_t(a)])[s->axis] > s->layer ? -1 : 1;
-  std::vector<Face> cut;
-  for (size_t v : s->voxels) cut.push_back({a, b, v, s->axis, sign, float(distance.metres(v))});
-  std::vector<const Face*> refs;
-  for (const Face& face : cut) refs.push_back(&face);
-  FittedPortal fp = fitOpening(f, refs, params.marginVoxels);
-  fp.faces = uint32_t(faces.size());
-  fp.section = true;
-  return fp;
+  const std::vector<Section> sections = closedSections(f, cell, a, b, voxels, search,
+                                                       std::max<size_t>(400, 4 * faces.size()),
+                                                       size_t(std::max(1, params.sectionCandidates)));
+  std::vector<FittedPortal> out;
+  for (const Section& s : sections) {
+    // a is never the outside (numbered last), whose deepest voxel may lie at any corner of the grid.
+    const int sign = f.coord(deepest[size_t(a)])[s.axis] > s.layer ? -1 : 1;
+    std::vector<Face> cut;
+    for (size_t v : s.voxels) cut.push_back({a, b, v, s.axis, sign, float(distance.metres(v))});
+    std::vector<const Face*> refs;
+    for (const Face& face : cut) refs.push_back(&face);
+    FittedPortal fp = fitOpening(f, refs, params.marginVoxels);
+    fp.faces = uint32_t(faces.size());
+    fp.section = true;
+    out.push_back(fp);
+  }
+  return out;
 }
 
 // Relabels the slab around a portal (its quad, ± depth along the normal) by the side of its plane.
@@ -401,7 +414,8 @@ void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQu
 // the pair apart, its sections go back to the planes fitted to their interfaces.
 void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const std::vector<size_t>& deepest,
                          int outsideCell, const PortalParams& params, std::vector<FittedPortal>& fresh,
-                         const std::vector<FittedPortal>& planeFits) {
+                         const std::vector<FittedPortal>& planeFits,
+                         const std::vector<std::vector<FittedPortal>>& alternatives) {
   std::vector<char> redundant(fresh.size(), 0);
   std::set<std::pair<int, int>> done;
   for (size_t k = 0; k < fresh.size(); ++k) {
@@ -417,7 +431,23 @@ void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const s
     std::vector<size_t> all = sections;
     all.insert(all.end(), others.begin(), others.end());
     if (a != outsideCell && b != outsideCell) {
-      attempts.push_back({sections.front()});
+      // Between two rooms, the narrowest closed section that cuts them apart alone: the hole of a stair,
+      // not a pocket under its flight that happens to be narrower. Each section opening's candidates in
+      // turn, narrowest first (the first candidate is fresh[q] itself).
+      bool cutAlone = false;
+      for (size_t q : sections) {
+        for (const FittedPortal& alt : alternatives[q]) {
+          const std::vector<const PortalQuad*> barrier{&alt.quad};
+          if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) continue;
+          fresh[q] = alt;
+          faceFromAToB(f, cell, fresh[q].quad);
+          for (size_t r : all) redundant[r] = r != q;
+          cutAlone = true;
+          break;
+        }
+        if (cutAlone) break;
+      }
+      if (cutAlone) continue;
       if (sections.size() > 1) attempts.push_back(sections);
     }
     if (!others.empty() || attempts.empty()) attempts.push_back(all);
@@ -463,19 +493,20 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
     const std::vector<Face> faces = uncoveredFaces(f, out.cell, distance, out.portals);
     if (faces.empty()) break;
     std::vector<FittedPortal> fresh, planeFits;
+    std::vector<std::vector<FittedPortal>> alternatives;  // per fresh portal: its section candidates
     for (const std::vector<const Face*>& opening : groupOpenings(f, faces)) {
       FittedPortal fp = fitOpening(f, opening, params.marginVoxels);
-      std::optional<FittedPortal> cut;
-      if (round == 0 && !alongOneAxis(opening))
-        cut = sectionPortal(f, out.cell, distance, opening, deepest, params);
+      std::vector<FittedPortal> cuts;
+      if (round == 0 && !alongOneAxis(opening)) cuts = sectionPortals(f, out.cell, distance, opening, deepest, params);
       // Several pieces of one stair's interface find the same section: one portal for them.
-      if (cut && std::any_of(fresh.begin(), fresh.end(), [&](const FittedPortal& q) {
-            return q.section && q.quad.cellA == cut->quad.cellA && q.quad.cellB == cut->quad.cellB &&
-                   glm::length(q.quad.centre() - cut->quad.centre()) < 2.0f * float(f.voxel);
+      if (!cuts.empty() && std::any_of(fresh.begin(), fresh.end(), [&](const FittedPortal& q) {
+            return q.section && q.quad.cellA == cuts.front().quad.cellA && q.quad.cellB == cuts.front().quad.cellB &&
+                   glm::length(q.quad.centre() - cuts.front().quad.centre()) < 2.0f * float(f.voxel);
           }))
         continue;
       planeFits.push_back(fp);
-      fresh.push_back(cut ? *cut : fp);
+      fresh.push_back(cuts.empty() ? fp : cuts.front());
+      alternatives.push_back(std::move(cuts));
     }
     // Each to the middle of its constriction, then the cells made to meet exactly at its quad.
     // Later rounds leave the labels alone: relabelling around a fringe portal moves the interface
@@ -486,7 +517,7 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
         if (!fp.section) centreInConstriction(fp, f, out.cell, params.searchRange);
       for (const FittedPortal& fp : fresh)
         if (!fp.section) relabelSlab(f, fp, out.cell);
-      relabelSectionPairs(f, out.cell, deepest, cells.outsideCell, params, fresh, planeFits);
+      relabelSectionPairs(f, out.cell, deepest, cells.outsideCell, params, fresh, planeFits, alternatives);
     }
     out.portals.insert(out.portals.end(), fresh.begin(), fresh.end());
   }

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "core/cell_graph.h"
@@ -23,6 +25,8 @@ struct PortalParams {
   float searchRange = 0.6f;
   /// Rounds of extra portals for interface faces the earlier portals left uncovered.
   int extraRounds = 2;
+  /// Closed sections tried per non-planar opening, narrowest first, for one that cuts its two rooms apart.
+  int sectionCandidates = 12;
 };
 
 struct FittedPortal {
@@ -54,6 +58,10 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
 /// Counts voxel faces between different cells that cross no portal joining those cells (see PortalSet).
 size_t countLeakingFaces(const GridFrame& frame, const std::vector<int32_t>& cell,
                          const std::vector<PortalQuad>& portals);
+
+/// The same faces counted per pair of cells (lower index first); pairs without such faces are absent.
+std::map<std::pair<int, int>, size_t> leakingFacesByPair(const GridFrame& frame, const std::vector<int32_t>& cell,
+                                                         const std::vector<PortalQuad>& portals);
 
 /// True when the segment a→b crosses the portal's plane inside its quad grown by `tolerance` metres.
 bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance);

@@ -21,6 +21,8 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
       {"min_depth_m", params.merge.minDepth},
       {"opening_ratio", params.merge.openingRatio},
       {"min_cell_volume_m3", params.merge.minCellVolume},
+      {"storey_spread", params.merge.storeySpread},
+      {"storey_opening", params.merge.storeyOpening},
       {"min_component_volume_m3", params.classify.minComponentVolume},
       {"portal_margin_voxels", params.portals.marginVoxels},
       {"portal_search_m", params.portals.searchRange},
@@ -42,6 +44,10 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
     const CellStats& s = d.cellStats[c];
     cells.push_back({{"name", d.graph.cells[c].name},
                      {"exterior", int(c) == d.outsideCell},
+                     {"kind", int(c) == d.outsideCell                               ? "outside"
+                              : c < d.closedRoom.size() && d.closedRoom[c]       ? "closed_room"
+                              : c < d.outsidePocket.size() && d.outsidePocket[c] ? "outside_pocket"
+                                                                                   : "room"},
                      {"volume_m3", s.volume},
                      {"bounds_m", {vec(s.bounds.lo), vec(s.bounds.hi)}},
                      {"peak_m", s.peak},
@@ -72,7 +78,18 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                  {"triangles_out", d.scene.triangles.size()},
                  {"split_triangles", d.splitTriangles},
                  {"fallback_triangles", d.fallbackTriangles}};
-  j["checks"] = {{"leaking_faces", d.leakingFaces}, {"thin_wall_area_m2", d.thinWallArea}, {"connected", d.graph.connected()}};
+  size_t closedRooms = 0, pockets = 0;
+  for (char c : d.closedRoom) closedRooms += c ? 1 : 0;
+  for (char c : d.outsidePocket) pockets += c ? 1 : 0;
+  // connected: every cell but the closed rooms reachable through portals; graph_connected: all cells.
+  j["checks"] = {{"leaking_faces", d.leakingFaces},
+                 {"thin_wall_area_m2", d.thinWallArea},
+                 {"connected", d.connectedOpen},
+                 {"graph_connected", d.graph.connected()},
+                 {"closed_rooms", closedRooms},
+                 {"outside_pockets", pockets},
+                 {"regions", d.regions},
+                 {"leak_merges", d.leakMerges}};
   json timings = json::object();
   double total = 0.0;
   for (const Context::Timing& t : ctx.timings()) {

@@ -51,63 +51,76 @@ size_t floodLayer(const GridFrame& f, const std::vector<int32_t>& cell, int a, i
 
 }  // namespace
 
-std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
-                                        const std::vector<size_t>& interfaceVoxels, int searchVoxels,
-                                        size_t maxArea) {
-  if (interfaceVoxels.empty()) return std::nullopt;
-  struct Best {
-    size_t area = kOpen;
-    int axis = -1;
-    std::vector<size_t> areas;  // per layer along axis
-    std::vector<glm::ivec2> seeds;
-  } best;
+std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
+                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels, size_t maxArea,
+                                    size_t maxCandidates) {
+  if (interfaceVoxels.empty() || maxCandidates == 0) return {};
+  struct Layer {
+    size_t area;
+    int axis, layer;
+  };
+  std::vector<Layer> closed;
+  std::vector<size_t> areas[3];  // per axis, per layer: kOpen when open or empty
+  std::vector<glm::ivec2> seeds[3];
   std::vector<glm::ivec2> queue;
   for (int axis = 0; axis < 3; ++axis) {
     const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    std::vector<glm::ivec2> seeds;
     int lo = f.dims[axis], hi = -1;
     for (size_t i : interfaceVoxels) {
       const glm::ivec3 c = f.coord(i);
-      seeds.emplace_back(c[a1], c[a2]);
+      seeds[axis].emplace_back(c[a1], c[a2]);
       lo = std::min(lo, c[axis]), hi = std::max(hi, c[axis]);
     }
-    std::sort(seeds.begin(), seeds.end(),
-              [](glm::ivec2 p, glm::ivec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
-    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+    std::vector<glm::ivec2>& sd = seeds[axis];
+    std::sort(sd.begin(), sd.end(), [](glm::ivec2 p, glm::ivec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+    sd.erase(std::unique(sd.begin(), sd.end()), sd.end());
     std::vector<uint32_t> stamp(size_t(f.dims[a1]) * size_t(f.dims[a2]), 0);
-    std::vector<size_t> areas(size_t(f.dims[axis]), kOpen);
+    areas[axis].assign(size_t(f.dims[axis]), kOpen);
     uint32_t mark = 0;
     for (int layer = std::max(1, lo - searchVoxels); layer <= std::min(f.dims[axis] - 2, hi + searchVoxels);
          ++layer) {
-      const size_t area =
-          floodLayer(f, cell, a, b, axis, layer, seeds, maxArea, stamp, ++mark, queue, nullptr);
-      if (area == 0) continue;
-      areas[size_t(layer)] = area;
-      if (area < best.area) best.area = area, best.axis = axis;
+      const size_t area = floodLayer(f, cell, a, b, axis, layer, sd, maxArea, stamp, ++mark, queue, nullptr);
+      if (area == 0 || area == kOpen) continue;
+      areas[axis][size_t(layer)] = area;
+      closed.push_back({area, axis, layer});
     }
-    if (best.axis == axis) best.areas = std::move(areas), best.seeds = std::move(seeds);
   }
-  if (best.axis < 0) return std::nullopt;
+  std::stable_sort(closed.begin(), closed.end(), [](const Layer& x, const Layer& y) { return x.area < y.area; });
 
-  // The run of near-narrowest layers around the narrowest, and its middle.
-  const size_t limit = best.area + std::max<size_t>(1, best.area / 50);
-  int first = -1;
-  for (int l = 0; l < int(best.areas.size()); ++l)
-    if (best.areas[size_t(l)] == best.area) {
-      first = l;
-      break;
-    }
-  int last = first;
-  while (first > 0 && best.areas[size_t(first - 1)] <= limit) --first;
-  while (last + 1 < int(best.areas.size()) && best.areas[size_t(last + 1)] <= limit) ++last;
-  Section s;
-  s.axis = best.axis;
-  s.layer = (first + last) / 2;
-  const int a1 = (s.axis + 1) % 3, a2 = (s.axis + 2) % 3;
-  std::vector<uint32_t> stamp(size_t(f.dims[a1]) * size_t(f.dims[a2]), 0);
-  if (floodLayer(f, cell, a, b, s.axis, s.layer, best.seeds, maxArea, stamp, 1, queue, &s.voxels) == kOpen)
-    return std::nullopt;
-  return s;
+  // Each candidate: the run of near-equal layers around a narrowest layer not yet in a chosen run, and
+  // its middle (a floor's mid-plane).
+  std::vector<Section> out;
+  std::vector<std::pair<int, int>> runs[3];
+  for (const Layer& c : closed) {
+    if (out.size() >= maxCandidates) break;
+    const std::vector<size_t>& ar = areas[c.axis];
+    bool taken = false;
+    for (const auto& [first, last] : runs[c.axis]) taken = taken || (c.layer >= first - 1 && c.layer <= last + 1);
+    if (taken) continue;
+    const size_t limit = c.area + std::max<size_t>(1, c.area / 50);
+    int first = c.layer, last = c.layer;
+    while (first > 0 && ar[size_t(first - 1)] <= limit) --first;
+    while (last + 1 < int(ar.size()) && ar[size_t(last + 1)] <= limit) ++last;
+    runs[c.axis].push_back({first, last});
+    Section s;
+    s.axis = c.axis;
+    s.layer = (first + last) / 2;
+    const int a1 = (s.axis + 1) % 3, a2 = (s.axis + 2) % 3;
+    std::vector<uint32_t> stamp(size_t(f.dims[a1]) * size_t(f.dims[a2]), 0);
+    if (floodLayer(f, cell, a, b, s.axis, s.layer, seeds[s.axis], maxArea, stamp, 1, queue, &s.voxels) == kOpen ||
+        s.voxels.empty())
+      continue;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
+                                        const std::vector<size_t>& interfaceVoxels, int searchVoxels,
+                                        size_t maxArea) {
+  std::vector<Section> s = closedSections(f, cell, a, b, interfaceVoxels, searchVoxels, maxArea, 1);
+  if (s.empty()) return std::nullopt;
+  return std::move(s.front());
 }
 
 bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,

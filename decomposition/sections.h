@@ -31,6 +31,14 @@ std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<in
                                         const std::vector<size_t>& interfaceVoxels, int searchVoxels,
                                         size_t maxArea);
 
+/// The closed sections of closedSections' search as candidates, narrowest first, at most
+/// `maxCandidates`: each the middle of the run of near-equal layers round a layer not in an earlier
+/// candidate's run. The narrowest closed section need not separate the two cells (a pocket under a
+/// stair's flight is closed and small); the caller tries them in turn (relabelAcrossPortals).
+std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
+                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels, size_t maxArea,
+                                    size_t maxCandidates);
+
 /// Relabels the voxels of cells a and b by which side of `portals` (those joining a and b) they are on:
 /// the voxels reachable from `seedA` without crossing a portal become a, the other voxels of a or b
 /// become b. Leaves the labels alone and returns false when `seedB` is reachable too (the portals do not

@@ -223,8 +223,11 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
     }
   cells.cell = std::move(label);
   timer.reset();
+  // The rooms are the user's: a pair the leak pass cannot part keeps its leaking faces, never merges.
+  DecomposeParams roomsKept = params;
+  roomsKept.leaks.merge = false;
   Decomposition out =
-      finishDecomposition(scene, params, solid, std::move(space.space), distance, std::move(cells), names, ctx);
+      finishDecomposition(scene, roomsKept, solid, std::move(space.space), distance, std::move(cells), names, ctx);
   out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
   return out;
 }

@@ -72,8 +72,8 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
   auto label = [&](size_t i, int b) {
     out.basin[i] = b;
     ++out.volume[size_t(b)];
-    for (ptrdiff_t o : offsets) {
-      const size_t j = size_t(ptrdiff_t(i) + o);
+    for (int k = 0; k < 6; ++k) {
+      const size_t j = size_t(ptrdiff_t(i) + offsets[k]);
       const int nb = out.basin[j];
       if (nb < 0 || nb == b) continue;
       const int lo = std::min(nb, b), hi = std::max(nb, b);
@@ -82,6 +82,7 @@ WatershedLabels floodWatershed(const DistanceGrid& distance, const WatershedPara
       // The lower of the two distances, converted once it is known to be needed.
       c.saddle = std::max(c.saddle, metres(distance.d2[i] < distance.d2[j] ? i : j));
       ++c.faces;
+      if (k == 2 || k == 3) ++c.facesUp;
     }
   };
 

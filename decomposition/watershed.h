@@ -24,6 +24,7 @@ struct BasinContact {
   int a = -1, b = -1;      ///< basin indices, a < b
   float saddle = 0.0f;     ///< max over touching voxel pairs of min(distance), metres: the half-width
   uint32_t faces = 0;      ///< voxel faces shared by the two basins (× voxel² = interface area)
+  uint32_t facesUp = 0;    ///< those crossed along y (up): the interface's area seen from above
 };
 
 struct WatershedLabels {

@@ -435,10 +435,183 @@ Building makePorchHouse() {
   return m.finish();
 }
 
+namespace {
+
+// The kind of stair between the IFC-like house's storeys.
+enum class IfcStair { Straight, OpenRiser, LShaped, Spiral };
+
+// A glass pane (2 cm, opaque to the decomposition as an IFC window's glazing is) across the middle of a
+// window hole through the wall at `at` along `axis`.
+void glazedWindow(BuildingMaker& m, int axis, float at, float from, float to, float y0, float y1) {
+  const Box3 h = hole(axis, at, from, to, y0, y1);
+  m.massing.carved.push_back(h);
+  Box3 pane = h;
+  const float mid = 0.5f * (h.lo[axis] + h.hi[axis]);
+  pane.lo[axis] = mid - 0.01f, pane.hi[axis] = mid + 0.01f;
+  m.massing.added.push_back(pane);
+}
+
+// The house in the shape an IFC export has (issue 46): two storeys of rooms behind doorways whose leaves
+// are missing, windows glazed (closed), two exterior doors open, furniture, a shower enclosure of glass
+// and a wardrobe, and a stair of `stair`'s kind from the hall up to the landing through a hole in the
+// floor with a balustrade of spindles round it.
+void ifcHouse(BuildingMaker& m, IfcStair stair) {
+  houseShell(m, 12.0f, 10.0f, 2, 1.0f, 1.0f);
+  const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey, w = 0.15f;  // interior walls 15 cm
+  const float hx = 3.6f;  // the hall's and the landing's east wall
+  m.room("hall", {box(0.2f, 0, 0.2f, hx, H, 6.2f)});
+  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, H, 6.2f)});
+  m.room("kitchen", {box(0.2f, 0, 6.2f + w, 5.0f, H, 9.8f)});
+  m.room("bathroom", {box(5.0f + w, 0, 6.2f + w, 7.6f, H, 9.8f)});
+  m.room("bedroom", {box(7.6f + w, 0, 6.2f + w, 11.8f, H, 9.8f)});
+  m.room("landing", {box(0.2f, y2, 0.2f, hx, H2, 6.2f)});
+  m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
+  m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
+  m.room("bath2", {box(0.2f, y2, 6.2f + w, 5.0f, H2, 9.8f)});
+  m.room("room3", {box(5.0f + w, y2, 6.2f + w, 11.8f, H2, 9.8f)});
+  auto interior = [&](const std::string& name, int axis, float at, float from, float to, float level,
+                      const std::string& a, const std::string& b) {
+    const Box3 h = axis == 0 ? box(at, level, from, at + w, level + kDoorTop, to)
+                             : box(from, level, at, to, level + kDoorTop, at + w);
+    m.opening(name, h, axis, a, b);
+  };
+  m.opening("front-door", hole(2, 0.0f, 2.2f, 3.2f, 0, kDoorTop), 2, "outside", "hall");
+  m.opening("terrace-door", hole(0, 11.8f, 2.0f, 3.6f, 0, 2.2f), 0, "living", "outside");
+  interior("door-hall-living", 0, hx, 1.0f, 1.9f, 0, "hall", "living");
+  interior("door-hall-kitchen", 2, 6.2f, 1.6f, 2.5f, 0, "hall", "kitchen");
+  interior("door-living-bathroom", 2, 6.2f, 5.6f, 6.4f, 0, "living", "bathroom");
+  interior("door-living-bedroom", 2, 6.2f, 9.0f, 9.9f, 0, "living", "bedroom");
+  interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
+  interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
+  interior("door-landing-bath2", 2, 6.2f, 2.4f, 3.3f, y2, "landing", "bath2");
+  interior("door-room1-room3", 2, 6.2f, 6.2f, 7.1f, y2, "room1", "room3");
+  for (float level : {0.0f, y2}) {
+    glazedWindow(m, 2, 0.0f, 5.0f, 7.0f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 0.0f, 8.5f, 10.5f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 9.8f, 1.5f, 3.0f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 9.8f, 8.5f, 10.5f, level + kSill, level + kHead);
+    glazedWindow(m, 0, 11.8f, 7.0f, 8.5f, level + kSill, level + kHead);
+  }
+  glazedWindow(m, 2, 9.8f, 5.6f, 6.8f, 1.4f, kHead);  // the bathroom's high window
+  glazedWindow(m, 0, 0.0f, 3.0f, 4.2f, y2 + kSill, y2 + kHead);  // the landing's
+
+  // The stair, 16 risers up the hall's west side; the hole over it where a person's head would meet the
+  // slab, a balustrade of spindles along the hole's open sides on the landing.
+  const int steps = 16;
+  const float rise = y2 / float(steps), run = 0.27f, width = 1.0f;
+  Box3 hl;
+  const bool spiral = stair == IfcStair::Spiral;
+  if (stair == IfcStair::Straight || stair == IfcStair::OpenRiser) {
+    const float z0 = 1.2f, zEnd = z0 + steps * run;
+    for (int k = 0; k < steps; ++k) {
+      const float top = float(k + 1) * rise;
+      // A flight's waist under its treads (space under the flight stays open), or 4 cm treads alone.
+      const float bottom = stair == IfcStair::OpenRiser ? top - 0.04f : std::max(0.0f, top - 0.35f);
+      m.massing.added.push_back(box(0.2f, bottom, z0 + k * run, 0.2f + width, top, z0 + (k + 1) * run));
+    }
+    hl = box(0.2f, H, zEnd - 3.3f, 0.2f + width, y2, zEnd);
+  } else if (stair == IfcStair::LShaped) {
+    // Up +z along the west wall to a quarter landing in the hall's north-west corner, then +x.
+    const float z0 = 2.2f;
+    const int first = 8;
+    const float zl = z0 + first * run;  // the landing's south edge
+    for (int k = 0; k < first; ++k)
+      m.massing.added.push_back(box(0.2f, std::max(0.0f, (k + 1) * rise - 0.35f), z0 + k * run, 0.2f + width,
+                                    (k + 1) * rise, z0 + (k + 1) * run));
+    m.massing.added.push_back(box(0.2f, (first + 1) * rise - 0.35f, zl, 0.2f + width, (first + 1) * rise,
+                                  zl + width));
+    const float x0 = 0.2f + width;
+    for (int k = first + 1; k < steps; ++k) {
+      const float x = x0 + float(k - first - 1) * run;
+      m.massing.added.push_back(box(x, (k + 1) * rise - 0.35f, zl, x + run, (k + 1) * rise, zl + width));
+    }
+    const float xEnd = x0 + float(steps - first - 1) * run;
+    hl = box(0.2f, H, zl - 1.2f, xEnd, y2, zl + width);
+  } else {
+    const glm::vec2 c(1.3f, 4.4f);
+    m.massing.added.push_back(box(c.x - 0.1f, 0, c.y - 0.1f, c.x + 0.1f, y2, c.y + 0.1f));
+    spiralTreads(m, c, steps, rise, 0.1f, 0.95f);
+    hl = box(c.x - 1.0f, H, c.y - 1.0f, c.x + 1.0f, y2, c.y + 1.0f);
+  }
+  m.opening("stair", hl, 1, "hall", "landing");
+
+  SceneBuilder b(m.scene());
+  Furniture f(b);
+  auto in = [&](const char* room) { return b.node(std::string(room) + "/furniture"); };
+  // The balustrade round the hole on the landing, open where the stair arrives (the hole's +z end for a
+  // straight stair, its +x end for the L, the spiral's +x side).
+  const float rail = 0.9f, spacing = 0.12f, e = 0.05f;
+  const float west = hl.lo.x + 0.05f, south = hl.lo.z - e, north = hl.hi.z + e, east = hl.hi.x + e;
+  if (stair == IfcStair::Straight || stair == IfcStair::OpenRiser) {
+    f.balustrade({{west, y2, south}, {east, y2, south}, {east, y2, hl.hi.z}}, rail, spacing, in("landing"));
+  } else {
+    // The arrival: the hole's east edge beside the last flight (L) or the last tread (spiral).
+    const float gapLo = spiral ? 0.5f * (hl.lo.z + hl.hi.z) - 0.5f : hl.hi.z - width;
+    const float gapHi = spiral ? 0.5f * (hl.lo.z + hl.hi.z) + 0.1f : hl.hi.z;
+    f.balustrade({{west, y2, south}, {east, y2, south}, {east, y2, gapLo}}, rail, spacing, in("landing"));
+    if (gapHi < hl.hi.z)
+      f.balustrade({{west, y2, north}, {east, y2, north}, {east, y2, gapHi}}, rail, spacing, in("landing"));
+    else
+      f.balustrade({{west, y2, north}, {east, y2, north}}, rail, spacing, in("landing"));
+  }
+
+  // Hall: a shoe cabinet and a coat stand. Living: a sofa, a dining table and chairs, a bookshelf.
+  f.cabinets({{2.9f, 0, 0.2f}, {3.55f, 0.9f, 0.8f}}, 2, Facing::MinusX, in("hall"));
+  f.column({3.2f, 0, 5.8f}, 0.02f, 1.8f, 12, f.wood(), in("hall"));
+  f.sofa({7.0f, 0, 5.6f}, {2.2f, 0.9f}, Facing::MinusZ, in("living"));
+  f.table({6.0f, 0, 2.6f}, {1.6f, 0.9f}, false, in("living"));
+  for (float x : {5.6f, 6.4f}) {
+    f.chair({x, 0, 1.9f}, Facing::PlusZ, in("living"));
+    f.chair({x, 0, 3.3f}, Facing::MinusZ, in("living"));
+  }
+  f.bookshelf({{11.4f, 0, 4.0f}, {11.75f, 2.1f, 5.8f}}, 6, Facing::MinusX, 5, in("living"));
+  // Kitchen: cabinets along the north wall, a fridge, a table.
+  f.cabinets({{0.3f, 0, 9.2f}, {4.0f, 0.9f, 9.8f}}, 6, Facing::MinusZ, in("kitchen"));
+  f.block({{4.2f, 0, 9.1f}, {4.95f, 1.9f, 9.75f}}, f.fabric(), in("kitchen"), 0.3f);
+  f.table({2.4f, 0, 7.6f}, {1.2f, 0.8f}, false, in("kitchen"));
+  // Bathroom: a shower enclosure of 1 cm glass 2 m high in the north-east corner, open above, its door
+  // a gap; a basin cabinet.
+  const uint32_t glass = b.material("glass", glm::vec3(0.8f));
+  f.block({{6.65f, 0, 8.85f}, {6.66f, 2.0f, 9.8f}}, glass, in("bathroom"));
+  f.block({{6.65f, 0, 8.84f}, {7.6f, 2.0f, 8.85f}}, glass, in("bathroom"));
+  f.block({{6.65f, 0, 8.85f}, {7.6f, 0.05f, 9.8f}}, f.wood(), in("bathroom"));  // its tray
+  f.cabinets({{5.2f, 0, 6.4f}, {6.2f, 0.85f, 6.9f}}, 2, Facing::PlusZ, in("bathroom"));
+  // Bedroom: a double bed and a wardrobe of boards (hollow, doors shut: an enclosure of 2.5 m3).
+  f.bed({9.6f, 0, 7.5f}, {2.0f, 1.6f}, false, in("bedroom"));
+  const float wx0 = 7.8f, wx1 = 9.8f, wz0 = 9.15f, wz1 = 9.78f, wt = 0.02f, wh = 2.2f;
+  f.block({{wx0, 0, wz0}, {wx1, wt, wz1}}, f.wood(), in("bedroom"));
+  f.block({{wx0, wh - wt, wz0}, {wx1, wh, wz1}}, f.wood(), in("bedroom"));
+  f.block({{wx0, wt, wz0}, {wx0 + wt, wh - wt, wz1}}, f.wood(), in("bedroom"));
+  f.block({{wx1 - wt, wt, wz0}, {wx1, wh - wt, wz1}}, f.wood(), in("bedroom"));
+  f.block({{wx0 + wt, wt, wz1 - wt}, {wx1 - wt, wh - wt, wz1}}, f.wood(), in("bedroom"));
+  f.block({{wx0 + wt, wt, wz0}, {wx1 - wt, wh - wt, wz0 + wt}}, f.wood(), in("bedroom"));
+  // Upstairs: beds, a desk, a bath tub.
+  f.bed({5.0f, y2, 3.0f}, {2.0f, 0.9f}, true, in("room1"));
+  f.table({9.5f, y2, 1.0f}, {1.2f, 0.6f}, false, in("room2"));
+  f.chair({9.5f, y2, 1.5f}, Facing::MinusZ, in("room2"));
+  f.bed({9.6f, y2, 7.2f}, {2.0f, 1.6f}, false, in("room3"));
+  f.block({{0.3f, y2, 8.9f}, {2.0f, y2 + 0.55f, 9.75f}}, glass, in("bath2"), 0.3f);
+}
+
+}  // namespace
+
+Building makeIfcLikeHouse(const std::string& stair) {
+  IfcStair kind = IfcStair::Straight;
+  if (stair == "open-riser") kind = IfcStair::OpenRiser;
+  else if (stair == "l") kind = IfcStair::LShaped;
+  else if (stair == "spiral") kind = IfcStair::Spiral;
+  else if (stair != "straight") throw std::invalid_argument("unknown stair '" + stair + "'");
+  BuildingMaker m;
+  ifcHouse(m, kind);
+  return m.finish();
+}
+
 const std::vector<std::string>& buildingNames() {
   static const std::vector<std::string> names = {"house-open",          "house-stair",   "house-spiral",
                                                  "open-plan",           "porch",         "house-stair-closed",
-                                                 "house-spiral-closed", "house-gallery", "house-furnished"};
+                                                 "house-spiral-closed", "house-gallery", "house-furnished",
+                                                 "ifc-house",           "ifc-house-open-riser",
+                                                 "ifc-house-l-stair",   "ifc-house-spiral"};
   return names;
 }
 
@@ -452,6 +625,10 @@ Building makeBuilding(const std::string& name) {
   if (name == "house-gallery") return makeGalleryHouse();
   if (name == "porch") return makePorchHouse();
   if (name == "house-furnished") return makeFurnishedHouse();
+  if (name == "ifc-house") return makeIfcLikeHouse("straight");
+  if (name == "ifc-house-open-riser") return makeIfcLikeHouse("open-riser");
+  if (name == "ifc-house-l-stair") return makeIfcLikeHouse("l");
+  if (name == "ifc-house-spiral") return makeIfcLikeHouse("spiral");
   throw std::invalid_argument("unknown building '" + name + "'");
 }
 

@@ -64,8 +64,16 @@ Building makeOpenPlanHouse();
 /// The house of makeOpenHouse's size with a roofed porch on posts in front of its open front door.
 Building makePorchHouse();
 
+/// The two-storey house in the shape an IFC export has (issue 46): glazed windows (closed), two open
+/// exterior doors, doorways without leaves, furniture, a glass shower enclosure and a hollow wardrobe, ten
+/// rooms; the stair from the hall to the landing is "straight" (a flight with its waist, open beneath),
+/// "open-riser" (4 cm treads alone), "l" (two flights round a quarter landing) or "spiral".
+/// Throws std::invalid_argument for another stair.
+Building makeIfcLikeHouse(const std::string& stair);
+
 /// "house-open", "house-stair", "house-spiral", "open-plan", "porch", "house-stair-closed",
-/// "house-spiral-closed", "house-gallery", "house-furnished".
+/// "house-spiral-closed", "house-gallery", "house-furnished", "ifc-house", "ifc-house-open-riser",
+/// "ifc-house-l-stair", "ifc-house-spiral".
 const std::vector<std::string>& buildingNames();
 /// Throws std::invalid_argument for a name not in buildingNames().
 Building makeBuilding(const std::string& name);

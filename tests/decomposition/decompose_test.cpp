@@ -269,3 +269,47 @@ TEST(Decompose, ChoosesTheVoxelFromTheScene) {
 
 }  // namespace
 }  // namespace cpgi::decomp
+
+namespace cpgi::decomp {
+namespace {
+
+// A hollow box of 0.2 m slabs round the empty box [lo, hi].
+void closedRoom(SceneBuilder& b, glm::vec3 lo, glm::vec3 hi) {
+  const float t = 0.2f;
+  b.box({lo.x - t, lo.y - t, lo.z - t}, {hi.x + t, lo.y, hi.z + t});  // floor
+  b.box({lo.x - t, hi.y, lo.z - t}, {hi.x + t, hi.y + t, hi.z + t});  // ceiling
+  b.box({lo.x - t, lo.y, lo.z - t}, {lo.x, hi.y, hi.z + t});
+  b.box({hi.x, lo.y, lo.z - t}, {hi.x + t, hi.y, hi.z + t});
+  b.box({lo.x, lo.y, lo.z - t}, {hi.x, hi.y, lo.z});
+  b.box({lo.x, lo.y, hi.z}, {hi.x, hi.y, hi.z + t});
+}
+
+// Issue 46: a cell with no portal says what it is. Beside the three rooms, a sealed 2.5 m room is a
+// closed room (kind closed_room, the rooms still all reachable), and a sealed cupboard of 1 × 1 × 1.8 m
+// (1.8 m3, under the 2.5 m3 minimum) is no cell at all.
+TEST(Decompose, ASealedRoomIsAClosedRoomAndACupboardNoCell) {
+  Scene scene = testing::makeThreeRooms();
+  SceneBuilder extra;
+  closedRoom(extra, {14.0f, 0.0f, 0.5f}, {16.5f, 2.5f, 3.0f});
+  closedRoom(extra, {14.0f, 0.0f, 4.0f}, {15.0f, 1.8f, 5.0f});
+  for (const Triangle& t : extra.scene().triangles) scene.triangles.push_back(t);
+  Context ctx;
+  const Decomposition d = run(scene, 0.1, ctx);
+  ASSERT_EQ(d.graph.cells.size(), 4u);  // three rooms and the sealed room
+  int closed = -1;
+  for (size_t c = 0; c < d.graph.cells.size(); ++c)
+    if (d.closedRoom[c]) {
+      EXPECT_EQ(closed, -1);
+      closed = int(c);
+    }
+  ASSERT_GE(closed, 0);
+  EXPECT_GT(d.cellStats[size_t(closed)].bounds.lo.x, 13.9f);
+  EXPECT_TRUE(d.graph.portalsOf(closed).empty());
+  EXPECT_TRUE(d.connectedOpen);
+  EXPECT_FALSE(d.graph.connected());
+  EXPECT_EQ(d.leakingFaces, 0u);
+  EXPECT_TRUE(anyWarningContains(ctx, "is a closed room"));
+}
+
+}  // namespace
+}  // namespace cpgi::decomp

@@ -114,6 +114,27 @@ TEST(Merge, WideOpeningMergesNarrowOneDoesNot) {
   EXPECT_GE(mergeBasins(floodWatershed(d, {}, ctx), keep, ctx).cellCount(), 2);
 }
 
+TEST(Merge, StoreysStayApartThroughAWideHoleInTheFloor) {
+  // Two 21 × 21 voxel storeys, 10 and 11 voxels high, over a 2-voxel slab with a 10 × 14 hole: the
+  // hole's saddle is nearly a storey's half-height (the saddle rule alone merges them, as it merged an
+  // L-shaped stair's storeys), but it covers under half a floor seen from above.
+  const glm::ivec3 dims(25, 27, 25);
+  const Synthetic s = synthetic(dims, [](glm::ivec3 c) {
+    const bool shell = c.x == 1 || c.x == 23 || c.z == 1 || c.z == 23 || c.y == 1 || c.y == 25;
+    const bool hole = c.x >= 3 && c.x <= 12 && c.z >= 3 && c.z <= 16;
+    return shell || ((c.y == 12 || c.y == 13) && !hole);
+  });
+  Context ctx;
+  const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
+  const CellLabels cells = mergeBasins(floodWatershed(d, {}, ctx), {}, ctx);
+  ASSERT_EQ(cells.cellCount(), 2);
+  const GridFrame& f = d.frame;
+  EXPECT_NE(cells.cell[f.index(18, 6, 18)], cells.cell[f.index(18, 19, 18)]);
+  MergeParams noStoreys;
+  noStoreys.storeySpread = 0.0;
+  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noStoreys, ctx).cellCount(), 1);
+}
+
 TEST(Voxelize, ThinRotatedShellDoesNotLeak) {
   // A closed 3 m cube of single-sided inward faces, turned by awkward angles: the 6-connected outside
   // flood must not get in, whatever the planes' orientation against the grid.

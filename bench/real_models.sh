@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# The decomposition on models the project did not make (issue 46): OpenArena's game levels from Debian's
+# openarena-081-maps (Quake III BSP, converted to OBJ by bench/q3bsp_to_obj.cpp) and houses in the shape
+# an IFC export has (scenes: ifc-house*, rooms given as cellvolume: meshes alone, glazed windows, door
+# leaves missing, furniture, a shower and a wardrobe, a stair of each kind). Each is decomposed with
+# `cpgi decompose` at the defaults (the houses also at each VOXEL given), one process per run under
+# /usr/bin/time, as a Markdown table: CPU and wall seconds, peak memory, cells, portals, voxel faces
+# between cells no portal covers, closed rooms (no portal, touching no other cell), the outside's pockets
+# (space behind a sealed level's one-sided walls), whether every room is reachable from every other,
+# and for the houses the portals between the storeys and the adjusted Rand index against the house's
+# own rooms (`cpgi compare-cells SCENE auto SCENE`).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] bench/real_models.sh CPGI_BINARY [VOXEL ...]
+# The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
+# converter is compiled into the work folder with the system's c++ when no build of it is given
+# (Q3BSP_TO_OBJ=path). The data stays outside the repo.
+set -euo pipefail
+cpgi=${1:?usage: real_models.sh CPGI_BINARY [VOXEL ...]}
+shift
+sizes=("$@")
+[ ${#sizes[@]} -eq 0 ] && sizes=(0.05)
+here=$(cd "$(dirname "$0")" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pk3=${OPENARENA_PK3:-/usr/share/games/openarena/baseoa/pak1-maps.pk3}
+maps=(${MAPS-oa_dm1 oa_dm4 oa_dm7 aggressor})
+houses=(${HOUSES-ifc-house ifc-house-open-riser ifc-house-l-stair ifc-house-spiral})
+
+# One row: decompose SCENE (VOXEL 0 = automatic), then the figures from cells.json (and ARI for a house).
+row() {
+  local name=$1 scene=$2 voxel=$3 house=$4 out="$work/out"
+  rm -rf "$out"
+  /usr/bin/time -f "%e %U %S %M" -o "$work/time.txt" "$cpgi" decompose "$scene" -o "$out" --voxel "$voxel" \
+    >"$work/log.txt" 2>&1 || { echo "| $name | $voxel | decompose failed: $(tail -1 "$work/log.txt") |"; return; }
+  echo '{}' >"$work/cmp.json"
+  if [ "$house" = 1 ]; then
+    "$cpgi" compare-cells "$scene" auto "$scene" --voxel "$voxel" --json >"$work/cmp.json" 2>/dev/null ||
+      echo '{}' >"$work/cmp.json"
+  fi
+  read -r wall user sys rss <"$work/time.txt"
+  python3 - "$name" "$out/cells.json" "$work/cmp.json" "$house" "$wall" "$user" "$sys" "$rss" <<'PY'
+import json, sys
+name, cells_json, cmp_json, house = sys.argv[1:5]
+wall, user, sys_, rss = map(float, sys.argv[5:])
+d = json.load(open(cells_json)); c = json.load(open(cmp_json))
+ch = d["checks"]
+cells = {x["name"]: x for x in d["cells"]}
+def kind(n):
+    return "horizontal" if abs(n[1]) > 0.999 else "vertical" if abs(n[1]) < 0.001 else "tilted"
+# Portals between storeys: joining two rooms whose lowest points are 1.5 m or more apart in height.
+stair = [p for p in d["portals"] if "outside" not in p["cells"] and
+         abs(cells[p["cells"][0]]["bounds_m"][0][1] - cells[p["cells"][1]]["bounds_m"][0][1]) > 1.5]
+ari = c.get("adjusted_rand_index")
+rooms = [r["best_iou"] for r in c.get("matched_iou_per_cell", []) if r["cell"] != "outside"]
+cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["counts"]["portals"],
+        ch["leaking_faces"], ch.get("closed_rooms", "-"), ch.get("outside_pockets", "-"),
+        "yes" if ch["connected"] else "NO", ch.get("leak_merges", "-"),
+        (", ".join("%.2f m2 %s" % (p["area_m2"], kind(p["normal"])) for p in stair) or "none") if house == "1" else "-",
+        ("%.3f" % ari if ari is not None else "none") if house == "1" else "-",
+        "%.2f" % min(rooms) if house == "1" and rooms else "-",
+        "%.2f" % (user + sys_), "%.2f" % wall, "%.0f" % (rss / 1024)]
+print("| " + " | ".join(str(x) for x in cols) + " |")
+PY
+}
+
+echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | CPU s | wall s | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+for h in "${houses[@]}"; do
+  "$cpgi" generate "$h" --volumes-only -o "$work/$h.glb" >/dev/null
+  for v in 0 "${sizes[@]}"; do row "$h" "$work/$h.glb" "$v" 1; done
+done
+if [ ${#maps[@]} -gt 0 ]; then
+  if [ ! -f "$pk3" ]; then
+    echo "real_models.sh: no $pk3: install Debian's openarena-081-maps (apt-get install openarena-081-maps) or set OPENARENA_PK3" >&2
+    exit 1
+  fi
+  conv=${Q3BSP_TO_OBJ:-}
+  if [ -z "$conv" ]; then
+    conv="$work/q3bsp_to_obj"
+    c++ -O2 -std=c++20 -o "$conv" "$here/q3bsp_to_obj.cpp"
+  fi
+  for m in "${maps[@]}"; do
+    unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"
+    "$conv" "$work/$m.bsp" "$work/$m.obj" 2>/dev/null
+    row "$m" "$work/$m.obj" 0 0
+  done
+fi

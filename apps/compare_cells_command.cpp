@@ -15,7 +15,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "radiosity/bake/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_cells_bake.h"
 #include "apps/options.h"
@@ -25,6 +24,7 @@
 #include "decomposition/compare.h"
 #include "decomposition/decompose.h"
 #include "decomposition/volume_cells.h"
+#include "radiosity/bake/cell_source.h"
 
 namespace cpgi::cli {
 namespace {
@@ -76,7 +76,8 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   }
   std::string path = what;
   if (std::filesystem::is_directory(path)) path = (std::filesystem::path(path) / "cells.glb").string();
-  if (!std::filesystem::exists(path)) throw InputError(what, "no such file (give a scene with cells, a folder with cells.glb, or auto)");
+  if (!std::filesystem::exists(path))
+    throw InputError(what, "no such file (give a scene with cells, a folder with cells.glb, or auto)");
   LoadedScene loaded = loadScene(path, load);
   if (loaded.cells.empty()) throw InputError(path, "has no cell: or cellvolume: nodes to compare");
   out.source = path;
@@ -137,8 +138,15 @@ int runCompare(const CompareOptions& o) {
                                return c.triangles.empty() && !c.volume.empty();
                              });
     if (!volumesOnly) return x.graph.portals;
-    fitted = true;
-    return decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
+    try {
+      std::vector<PortalQuad> fitted_ =
+          decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
+      fitted = true;
+      return portals;
+    } catch (const InputError& e) {  // volumes that hold no empty space: nothing to fit, nothing to score
+      ctx.warn(std::string("no portals fitted where the room volumes meet: ") + e.what());
+      return x.graph.portals;
+    }
   };
   bool fittedA = false, fittedB = false;
   const std::vector<PortalQuad> portalsA = portalsOf(a, fittedA), portalsB = portalsOf(b, fittedB);
@@ -172,7 +180,8 @@ int runCompare(const CompareOptions& o) {
   j["adjusted_rand_index"] = ari ? nlohmann::json(*ari) : nlohmann::json(nullptr);
   j["matched_iou"] = meanIoU;
   nlohmann::json perCell = nlohmann::json::array();
-  for (int c = 0; c < countB; ++c) perCell.push_back({{"cell", b.graph.cells[size_t(c)].name}, {"best_iou", iouB[size_t(c)]}});
+  for (int c = 0; c < countB; ++c)
+    perCell.push_back({{"cell", b.graph.cells[size_t(c)].name}, {"best_iou", iouB[size_t(c)]}});
   j["matched_iou_per_cell"] = perCell;
   nlohmann::json pm = nlohmann::json::array();
   for (const auto& m : matches) {
@@ -191,7 +200,8 @@ int runCompare(const CompareOptions& o) {
   // The worst matched portal's centre error; null when B has portals that A cannot match at all, or none.
   if (unmatched || matches.empty())
     j["portal_centre_error_m"] = nullptr;
-  else j["portal_centre_error_m"] = worst;
+  else
+    j["portal_centre_error_m"] = worst;
   j["seconds"] = ctx.totalSeconds("voxelize") + ctx.totalSeconds("classify");
   if (o.a == "auto") j["decompose_seconds_a"] = a.decomposeSeconds;
   if (o.b == "auto") j["decompose_seconds_b"] = b.decomposeSeconds;
@@ -211,7 +221,8 @@ int runCompare(const CompareOptions& o) {
     std::printf("adjusted Rand index %.4f, mean best-match IoU %.4f\n", *ari, meanIoU);
   else
     std::printf("adjusted Rand index n/a (no room voxel in both), mean best-match IoU %.4f\n", meanIoU);
-  for (int c = 0; c < countB; ++c) std::printf("  cell %-12s best IoU %.4f\n", b.graph.cells[size_t(c)].name.c_str(), iouB[size_t(c)]);
+  for (int c = 0; c < countB; ++c)
+    std::printf("  cell %-12s best IoU %.4f\n", b.graph.cells[size_t(c)].name.c_str(), iouB[size_t(c)]);
   for (const auto& m : matches) {
     if (m.candidate < 0) {
       std::printf("  portal %-16s unmatched\n", portalsB[size_t(m.reference)].name.c_str());
@@ -229,14 +240,16 @@ int runCompare(const CompareOptions& o) {
 }  // namespace
 
 static_assert(CellBakeComparison{}.portals == kBakePortalLight, "compare-cells --bake bakes as bake does");
-static_assert(CellBakeComparison{}.solver.lampRays == kBakeLampRays, "compare-cells --bake bakes as bake does");
+static_assert(CellBakeComparison{}.solver.lampRays == kBakeLampRays,
+              "compare-cells --bake bakes as bake does");
 
 void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "compare-cells",
       "Compare two cell decompositions of SCENE over its empty voxels (adjusted Rand index, best-match IoU, "
-      "portal matches). A and B: `auto`, a scene with cell:/portal: nodes, or a decompose output folder; B is "
+      "portal matches). A and B: `auto`, a scene with cell:/portal: nodes, or a decompose output folder; B "
+      "is "
       "the reference");
   cmd->add_option("scene", o->scene, "The scene both decompositions are of")->required();
   cmd->add_option("a", o->a, "Candidate decomposition")->required();
@@ -246,10 +259,11 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_flag("--json", o->json,
                 "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m; with "
                 "--bake, a bake object: a, b, references, difference_points)");
-  CLI::Option* bake = cmd->add_flag(
-      "--bake", o->bake,
-      "Also bake SCENE with A's and with B's cells (bake --method cells) and give each bake's seconds, shots, "
-      "rounds and relative RMSE against a path-traced reference on the same atlas");
+  CLI::Option* bake =
+      cmd->add_flag("--bake", o->bake,
+                    "Also bake SCENE with A's and with B's cells (bake --method cells) and give each bake's "
+                    "seconds, shots, "
+                    "rounds and relative RMSE against a path-traced reference on the same atlas");
   const OptionScope withBake{.needs = bake};
   addAtlasOptions(*cmd, o->bakeParams.atlas, withBake);
   addSolverOptions(*cmd, o->bakeParams.solver, withBake);

@@ -86,8 +86,13 @@ TEST(VolumeCellsCommand, CompareCellsScoresTheWholeInterior) {
   EXPECT_GE(j["coverage_b"].get<double>(), 0.9);
   EXPECT_GE(j["coverage_a"].get<double>(), 0.9);
   EXPECT_GT(j["interior_voxels"].get<size_t>(), 40000u);  // ~65 m³ of rooms at 0.1 m
-  EXPECT_TRUE(j["portal_centre_error_m"].is_null());      // B (volumes) has no portals to match
-  EXPECT_NE(j["warnings"].dump().find("B has no portals"), std::string::npos) << j["warnings"];
+  // B gives its rooms as volumes alone: its portals are those fitted where the volumes meet
+  // (decompose --from-volumes), matched to A's within a voxel.
+  EXPECT_EQ(j["portals_b_from"], "volumes");
+  EXPECT_EQ(j["portals_a_from"], "cells");
+  ASSERT_TRUE(j["portal_centre_error_m"].is_number()) << j["warnings"];
+  EXPECT_LE(j["portal_centre_error_m"].get<double>(), 0.1);
+  EXPECT_EQ(j["warnings"].dump().find("no portals"), std::string::npos) << j["warnings"];
 }
 
 TEST(VolumeCellsCommand, EmptyComparisonPrintsNoPerfectFigure) {

@@ -139,7 +139,7 @@ int runCompare(const CompareOptions& o) {
                              });
     if (!volumesOnly) return x.graph.portals;
     try {
-      std::vector<PortalQuad> fitted_ =
+      std::vector<PortalQuad> portals =
           decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
       fitted = true;
       return portals;

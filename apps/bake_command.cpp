@@ -57,13 +57,12 @@ int runPlan(const BakeCommand& c) {
 
 int runBake(const BakeCommand& c) {
   if (!c.plan.empty()) return runPlan(c);
-  const BakeRun run;  // the time limit counts from here
-  Context ctx;
+  BakeRun run;  // the time limit counts from here
   auto size = std::make_shared<std::string>();
+  run.sized = [size](const std::string& line) { *size = line; };
+  Context ctx;
   ctx.setProgress(bakeNotes(stderrProgress(c.quiet), c.settings, run.start, size, printNote));
-  BakeRun sized = run;
-  sized.sized = [size](const std::string& line) { *size = line; };
-  const BakeResult r = bake(c.settings, ctx, sized);
+  const BakeResult r = bake(c.settings, ctx, run);
   if (!c.quiet) {
     std::cout << c.settings.output.folder << ": " << r.atlas.validTexels() << " texels, " << r.shots
               << " shots, unshot " << r.unshotFraction * 100.0 << " %, " << r.seconds << " s"

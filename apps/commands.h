@@ -23,13 +23,6 @@ inline const CLI::Validator kPositive(
     },
     "POSITIVE");
 
-/// The command line as main received it (argv[1..]), for a command that records how it was run (bake
-/// --plan keeps its own arguments for the cell jobs).
-inline std::vector<std::string>& commandArguments() {
-  static std::vector<std::string> args;
-  return args;
-}
-
 // void add<Name>Command(CLI::App& app, CommandFn& selected); one per subcommand, in apps/<name>_command.cpp
 void addInfoCommand(CLI::App& app, CommandFn& selected);
 void addGenerateCommand(CLI::App& app, CommandFn& selected);

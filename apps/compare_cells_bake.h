@@ -10,6 +10,7 @@
 #include "core/cell_graph.h"
 #include "core/context.h"
 #include "core/scene.h"
+#include "radiosity/bake/bake_settings.h"
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/gpu/gl_shot_engine.h"
@@ -27,15 +28,11 @@ struct CellsToBake {
 
 struct CellBakeComparison {
   AtlasParams atlas;
-  /// unshotFraction is the whole scene's target, as in `bake --method cells`; lampRays as bake's
-  /// (kBakeLampRays)
-  SolverParams solver = [] {
-    SolverParams p;
-    p.lampRays = 64;
-    return p;
-  }();
-  int maxRounds = 64;
-  PortalLight portals = PortalLight::Binned;  ///< as `bake --method cells` by default (kBakePortalLight)
+  /// unshotFraction is the whole scene's target, as in `bake --method cells`; the rest the bake's defaults
+  /// (radiosity/bake/bake_settings.h: lamp rays kBakeLampRays)
+  SolverParams solver = BakeSettings{}.solver.params;
+  int maxRounds = BakeSettings{}.cells.params.maxRounds;
+  PortalLight portals = BakeSettings{}.cells.params.portals;  ///< as the bake's: kBakePortalLight
   ReferenceParams reference;
 };
 

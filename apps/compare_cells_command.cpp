@@ -239,10 +239,6 @@ int runCompare(const CompareOptions& o) {
 
 }  // namespace
 
-static_assert(CellBakeComparison{}.portals == kBakePortalLight, "compare-cells --bake bakes as bake does");
-static_assert(CellBakeComparison{}.solver.lampRays == kBakeLampRays,
-              "compare-cells --bake bakes as bake does");
-
 void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(

@@ -23,7 +23,6 @@ int main(int argc, char** argv) {
   cpgi::cli::addCompareCellsCommand(app, selected);
   cpgi::cli::addViewCommand(app, selected);
   cpgi::cli::addCellJobCommand(app, selected);
-  cpgi::cli::commandArguments().assign(argv + 1, argv + argc);
 
   try {
     app.parse(argc, argv);

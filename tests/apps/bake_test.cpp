@@ -153,8 +153,7 @@ TEST(Bake, InProcessBakeWritesTheCommandLinesLightmap) {
   s.solver.params.itemBuffer = 128;
   s.output.views.width = 64;
   s.output.views.height = 48;
-  Context ctx;
-  const BakeResult b = bake(s, ctx);
+  const BakeResult b = test::bakeHere(s);
   EXPECT_EQ(slurp(dir / "lib/lightmap.exr"), slurp(dir / "cli/lightmap.exr"));
   EXPECT_EQ(b.report["shots"], nlohmann::json::parse(slurp(dir / "cli/report.json"))["shots"]);
 }

@@ -100,7 +100,7 @@ TEST(SolveDensity, CellsSolveInTwoLevelsWhenAsked) {
   const double emitted = e["emitted_w"].get<double>();
   EXPECT_NEAR(e["absorbed_w"].get<double>() + e["unshot_w"].get<double>() + e["escaped_w"].get<double>(),
               emitted, 1e-3 * emitted);
-  for (const std::string refused : {" --plan '" + dir / "plan" + "'", std::string(" --only-cells A")}) {
+  for (const std::string& refused : {" --plan '" + dir / "plan" + "'", std::string(" --only-cells A")}) {
     const test::CommandRun r = cpgi(
         dir, "bake '" + scene + "' -o '" + dir / "bad" + "' -q" + cells + " --solve-density 5" + refused);
     EXPECT_EQ(r.status, 1) << refused;

@@ -233,7 +233,10 @@ void buildBakeAtlas(
   params.triangleDensity = in.triangleDensity;
   {
     auto t = ctx.time("atlas");
-    in.atlas = buildAtlas(in.loaded.scene, in.quads, params, ctx);
+    TexelBudget budget;
+    in.atlas = fitTexelBudget(in.loaded.scene, in.quads, params, o.densityAuto ? o.autoDensity.maxTexels : 0,
+                              ctx, &budget);
+    if (!budget.note.empty()) ctx.warn(budget.note), in.triangleDensity = params.triangleDensity;
   }
   if (in.atlas.patches.empty()) throw InputError(o.scene, "no surface to bake");
   if (!in.loaded.scene.hasLight()) ctx.warn(o.scene + ": nothing emits light; the lightmap is black");
@@ -780,6 +783,7 @@ int bakeLoaded(const BakeOptions& o, BakeInput& in, const EglContext* given,
     f.ambientShares =
         ambientShares(in.atlas, s.residual, texelCells.values, texelGraph, s.radiosity, &transfer);
   f.cellNames = cellNames(texelGraph);
+  if (s.stopBounded) ctx.warn(roomsAboveShare(f.ambientShares, f.cellNames, o.ambientShare));
   f.ambientEscape = escapeShares(transfer);
   f.ambient = addBakeAmbient(o, in, texelGraph, texelCells, transfer, s);
   const std::pair<const char*, double> totals[] = {{"emitted", s.energy.emitted},
@@ -892,6 +896,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
       ->check(CLI::IsMember({"auto", "gpu", "rays"}))
       ->default_str(o->indirectSolver);
   addDensityToleranceOption(*sub, o->autoDensity.light.tolerance);
+  addMaxTexelsOption(*sub, o->autoDensity.maxTexels);
   sub->add_flag("-q,--quiet", o->quiet, "No progress or summary");
   sub->callback([&selected, o, sub] {
     o->maxShotsGiven = sub->count("--max-shots") > 0;

@@ -65,8 +65,8 @@ TEST(AutoDensityLimits, ThePilotAndTheOutputKeepToTheTexelBudget) {
   AutoDensityData data;
   const std::vector<float> density =
       chooseAutoDensity(s, quads, AtlasParams{}, p, SolverParams{}, rays, ctx, {}, &data);
-  EXPECT_NEAR(data.pilotDensity, std::sqrt(kPilotTexelShare * 2000.0 / area), 1e-4);
-  EXPECT_LE(data.pilotTexels, 2 * size_t(kPilotTexelShare * 2000.0));  // chart borders on top of the area
+  EXPECT_LE(data.pilotDensity, std::sqrt(kPilotTexelShare * 2000.0 / area) + 1e-4);
+  EXPECT_LE(data.pilotTexels, size_t(kPilotTexelShare * 2000.0));  // fitted to its share, borders and all
 
   // The output at 40 a metre everywhere asks 1 600 texels a m²: scaled by one factor to within 2 000.
   AtlasParams out;

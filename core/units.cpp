@@ -97,6 +97,8 @@ UnitsCheck checkUnits(const Scene& scene) {
     out.unit = "inches (Quake units)", out.scale = 0.0254;
   else if (h <= 600.0)
     out.unit = "centimetres", out.scale = 0.01, why = "or inches as in a Quake map: --scale 0.0254";
+  else if (h <= 2000.0)  // millimetres would be rooms under 2 m; a game's open arenas are this tall in inches
+    out.unit = "inches (Quake units)", out.scale = 0.0254;
   else if (h <= 6000.0)
     out.unit = "millimetres", out.scale = 0.001;
   char line[300];

@@ -26,7 +26,10 @@ struct UnitsCheck {
 /// The storey height is measured from up to kUnitsSamples points on the floors (faces whose normal is
 /// within 25° of +y, spread over them by area), each a ray straight up to the nearest face turned down.
 /// Storeys of 10 to 60 units are feet (--scale 0.3048), 60 to 200 inches (0.0254: Quake's units), 200 to
-/// 600 centimetres or inches (a game's tall rooms: the warning names both), 600 to 6 000 millimetres.
+/// 600 centimetres or inches (a game's tall rooms: the warning names both), 600 to 2 000 inches (a game's
+/// open arenas: OpenArena's oa_ctf2 measures 864; millimetres would be rooms under 2 m), 2 000 to 6 000
+/// millimetres. OpenArena's maps measure 144 (dm4ish), 160 (aggressor), 218 (oa_dm1), 256 (kaos), 448
+/// (hydronex), 864 (oa_ctf2).
 inline constexpr int kUnitsSamples = 256;
 UnitsCheck checkUnits(const Scene& scene);
 

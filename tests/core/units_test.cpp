@@ -45,14 +45,15 @@ Scene twoRooms(float w, float d, float height) {
 TEST(Units, MetresPassFeetInchesCentimetresAndMillimetresAreNamed) {
   EXPECT_EQ(checkUnits(twoRooms(4.0f, 5.0f, 2.6f)).warning, "");
   EXPECT_NEAR(checkUnits(twoRooms(4.0f, 5.0f, 2.6f)).storeyHeight, 2.6, 1e-3);
-  // Storeys of 4 m in feet (13 ft), 2.8 m in inches, centimetres and millimetres.
+  // Storeys of 4 m in feet (13 ft), 2.8 m in inches, centimetres and millimetres, a game's tall arena.
   const struct {
     float metres, metresPerUnit;
     const char* flag;
   } cases[] = {{4.0f, 0.3048f, "--scale 0.3048"},
                {2.8f, 0.0254f, "--scale 0.0254"},
                {2.8f, 0.01f, "--scale 0.01"},
-               {2.8f, 0.001f, "--scale 0.001"}};
+               {2.8f, 0.001f, "--scale 0.001"},
+               {22.0f, 0.0254f, "--scale 0.0254"}};  // an arena 22 m tall in inches: 866 units, not mm
   for (const auto& c : cases) {
     const float k = 1.0f / c.metresPerUnit;
     const UnitsCheck u = checkUnits(twoRooms(4.0f * k, 5.0f * k, c.metres * k));

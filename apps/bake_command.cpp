@@ -543,6 +543,8 @@ nlohmann::json bakeReport(const BakeOptions& o, const BakeInput& in, const Solve
   // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
   report["ambient_share_target"] = levels ? nlohmann::json(nullptr) : nlohmann::json(o.ambientShare);
   report["stop_checks"] = s.stopChecks;
+  report["stop_bounded"] = s.stopBounded;  // the loop's bound on the stop per room (progressive_loop.h)
+  report["max_texels"] = o.densityAuto ? nlohmann::json(o.autoDensity.maxTexels) : nlohmann::json(nullptr);
   nlohmann::json shares = nlohmann::json::object();
   for (size_t c = 0; c < f.ambientShares.size(); ++c)
     shares[c < f.cellNames.size() ? f.cellNames[c] : std::string("(no cell)")] = f.ambientShares[c];

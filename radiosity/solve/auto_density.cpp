@@ -89,15 +89,19 @@ LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasPara
   // From the area first: an atlas of the densities asked may be too large to build (a house's 2.96 M).
   if (maxTexels > 0 && params.texelsPerQuad == 0 && byArea > double(maxTexels))
     scaled(std::sqrt(double(maxTexels) / byArea));
-  LightmapAtlas atlas = buildAtlas(scene, quads, params, ctx);
+  // Each layout's warnings (a chart capped at its most texels) are the last one's alone, said once.
+  Context layout;
+  LightmapAtlas atlas = buildAtlas(scene, quads, params, layout);
   if (b.scale == 1.0f) b.asked = atlas.validTexels();
   // Then by the atlas: its charts' borders and rounding add texels the area does not count.
   for (int tries = 0;
        maxTexels > 0 && params.texelsPerQuad == 0 && atlas.validTexels() > maxTexels && tries < 4; ++tries) {
     if (b.scale == 1.0f) b.asked = atlas.validTexels();
     scaled(0.98 * std::sqrt(double(maxTexels) / double(atlas.validTexels())));
-    atlas = buildAtlas(scene, quads, params, ctx);
+    layout = Context();
+    atlas = buildAtlas(scene, quads, params, layout);
   }
+  for (const std::string& w : layout.warnings()) ctx.warn(w);
   if (b.scale < 1.0f) {
     char line[240];
     std::snprintf(line, sizeof line,

@@ -131,6 +131,7 @@ void addSolveOptions(CLI::App& sub, BakeCommand& c) {
       ->check(CLI::IsMember({"auto", "gl", "rays"}))
       ->default_str(c.backend);
   addDensityToleranceOption(sub, s.atlas.autoDensity.light.tolerance);
+  addMaxTexelsOption(sub, s.atlas.autoDensity.maxTexels);
 }
 
 // What the flags leave to be set after parsing: the names they take as the settings' enums.

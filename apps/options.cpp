@@ -54,6 +54,9 @@ constexpr ParameterFlag kFlags[] = {
     {"solve density", "--solve-density"},
     {"lamp coarsening", "--lamp-coarsening"},
     {"density tolerance", "--density-tolerance"},
+    {"maximum texels", "--max-texels"},
+    // Loading, every command
+    {"scale", "--scale"},
     // The sky, sun and ground of an open scene (core/sky.h), bake and reference
     {"sky", "--sky"},
     {"sky irradiance", "--sky-irradiance"},
@@ -415,6 +418,13 @@ void addDensityToleranceOption(CLI::App& cmd, float& tolerance) {
       within(1e-4, 1.0));
 }
 
+void addMaxTexelsOption(CLI::App& cmd, size_t& maxTexels) {
+  addChecked(cmd, {}, "maximum texels", maxTexels,
+             "With --density auto: the most texels the atlas (and the density pilot) lays out; past it every "
+             "surface's texels per metre are scaled down alike to fit, said in one line (0: no limit)",
+             within(0.0, 1e12));
+}
+
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {
   addChecked(cmd, scope, "cell noise", target.meanNoise,
              "Trace the texels of every cell whose mean is noisier than this (relative standard error) again "
@@ -524,6 +534,10 @@ MaterialOverride parseOverride(const std::string& text, const std::string& param
 }
 
 void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
+  addChecked(cmd, {}, "scale", load.scale,
+             "Multiply the scene's coordinates by this to get metres as it loads: a scene in Quake units "
+             "(inches) takes 0.0254, centimetres 0.01, millimetres 0.001",
+             within(1e-6, 1e6));
   auto* strict = cmd.add_flag(flag("strict"), load.strict,
                               "Refuse a scene with zero-area or duplicate triangles (default: drop them, "
                               "with one warning)");

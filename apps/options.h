@@ -63,6 +63,8 @@ void addSppOption(CLI::App& cmd, int& spp, OptionScope scope = {});
 void addSolveDensityOption(CLI::App& cmd, float& density);
 /// --density-tolerance (bake, with --density auto: radiosity/lightmap/light_density.h).
 void addDensityToleranceOption(CLI::App& cmd, float& tolerance);
+/// --max-texels (bake, with --density auto: radiosity/solve/auto_density.h, fitTexelBudget).
+void addMaxTexelsOption(CLI::App& cmd, size_t& maxTexels);
 /// --lamp-coarsening (bake, with --solve-density: radiosity/solve/refined_lamp_shot.h).
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening);
 /// --cell-noise and --max-spp (more paths for the reference's noisy cells,
@@ -70,8 +72,8 @@ void addLampCoarseningOption(CLI::App& cmd, float& coarsening);
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope = {});
 /// --max-bounces (the reference's path depth); returns the option, to tell whether it was given.
 CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope = {});
-/// --strict, --repair (the default, kept for old scripts), --allow-outside-files, --emit MATERIAL=W/m2 and
-/// --albedo MATERIAL=R,G,B (repeatable): every command that loads a scene takes these.
+/// --scale F, --strict, --repair (the default, kept for old scripts), --allow-outside-files, --emit
+/// MATERIAL=W/m2 and --albedo MATERIAL=R,G,B (repeatable): every command that loads a scene takes these.
 void addLoadOptions(CLI::App& cmd, LoadOptions& load);
 /// --allow-dark (bake, reference): go on with a scene nothing lights.
 void addDarkOption(CLI::App& cmd, bool& allowDark);

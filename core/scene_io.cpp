@@ -1,5 +1,6 @@
 // loadScene: dispatch by extension, then the checks every format shares and the cell graph.
 #include "core/scene_io.h"
+#include "core/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -286,6 +287,18 @@ std::vector<char> dropDegenerate(const std::string& path, const Scene& scene, co
   return drop;
 }
 
+// LoadOptions::scale: the file's units to metres.
+static void scaleRaw(RawScene& raw, float scale) {
+  for (Triangle& t : raw.scene.triangles)
+    for (glm::vec3& q : t.p) q *= scale;
+  for (auto* meshes : {&raw.portals, &raw.volumes})
+    for (RawScene::TaggedMesh& m : *meshes)
+      for (Triangle& t : m.triangles)
+        for (glm::vec3& q : t.p) q *= scale;
+  for (Camera& c : raw.scene.cameras) c.position *= scale;
+  for (PunctualLight& l : raw.scene.lights) l.position *= scale, l.range *= scale;
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
@@ -301,6 +314,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
           if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
+  if (options.scale != 1.0) scaleRaw(raw, float(options.scale));
   applyOverrides(path, scene, options.overrides);
   checkMaterials(path, scene);
   const std::vector<char> drop = dropDegenerate(path, scene, options, out.warnings);
@@ -379,6 +393,8 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     out.warnings.insert(out.warnings.end(), v.warnings.begin(), v.warnings.end());
   }
   out.scene = std::move(scene);
+  if (const UnitsCheck units = checkUnits(out.scene); !units.warning.empty())
+    out.warnings.push_back(units.warning);
   // Warnings quote node and material names: kept to one line of sane length, like errors.
   for (std::string& w : out.warnings) w = printable(w, 2000);
   return out;

@@ -31,6 +31,10 @@ struct MaterialOverride {
 };
 
 struct LoadOptions {
+  /// Metres per unit of the file (the CLI's --scale): every position (triangles, portals, cell volumes,
+  /// cameras, lights and their range) is multiplied by it as the scene loads. A scene not in metres is
+  /// told in one warning with the likely unit and its scale (core/units.h).
+  double scale = 1.0;
   /// Zero-area and duplicate triangles (real exports have a few) are dropped with one warning in
   /// LoadedScene::warnings (their count and the first one's node); strict refuses the scene instead
   /// (the CLI's --strict).

@@ -213,6 +213,9 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   f.cellNames = cellNames(texelGraph);
   f.ambientEscape = escapeShares(transfer);
   f.ambient = addBakeAmbient(s, in, x, r);
+  // The loop's bound on the stop per room (radiosity/solve/progressive_loop.h) stopped it: say which rooms
+  // stayed above their share.
+  if (r.stopBounded) ctx.warn(roomsAboveShare(f.ambientShares, f.cellNames, s.solver.ambientShare));
   const std::pair<const char*, double> totals[] = {{"emitted", r.energy.emitted},
                                                    {"shot", r.energy.shot},
                                                    {"received", r.energy.received},

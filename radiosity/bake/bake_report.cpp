@@ -159,6 +159,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
     report["indirect_solver"] = levels->indirectBackend == "rays" ? "rays" : "gpu";
   }
   report["density_option"] = s.atlas.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
+  report["stop_bounded"] = r.stopBounded;  // the loop's bound on the stop per room (progressive_loop.h)
+  report["max_texels"] =
+      s.atlas.densityAuto ? nlohmann::json(s.atlas.autoDensity.maxTexels) : nlohmann::json(nullptr);
   report["auto_density"] = autoDensityReport(s, in);
   if (s.atlas.densityAuto) report["atlas"]["density"] = "auto";
   report["backend"] =

@@ -139,14 +139,14 @@ void from_json(const nlohmann::json& j, SkyRequest& s) {
   if (j.contains("gatherRays")) j.at("gatherRays").get_to(s.gatherRays);
 }
 
-CPGI_JSON_FIELDS(LoadOptions, strict, overrides, allowOutsideFiles, maxFileBytes, maxTriangles)
+CPGI_JSON_FIELDS(LoadOptions, scale, strict, overrides, allowOutsideFiles, maxFileBytes, maxTriangles)
 CPGI_JSON_FIELDS(AtlasParams, texelsPerQuad, density, minTexels, maxTexels, padding, maxSize, mergeTexels,
                  memoryLimit)
 CPGI_JSON_FIELDS(LightDensityParams, minDensity, maxDensity, tolerance, floorShare)
-CPGI_JSON_FIELDS(AutoDensityParams, pilotDensity, light, contacts, maxContactDensity)
+CPGI_JSON_FIELDS(AutoDensityParams, pilotDensity, light, contacts, maxContactDensity, maxTexels)
 CPGI_JSON_FIELDS(SolverParams, unshotFraction, maxShots, farField, regionSize, maxRegions, strongShotRegions,
                  strongShotFraction, visibility, itemBuffer, neighbourhood, jitteredEyes, lampRays,
-                 cullItemBuffers, profilePasses)
+                 cullItemBuffers, profilePasses, coverageRays, eyesPerRegion, strongEyesPerRegion)
 // What a bake reads of CellSolveParams (BakeSettings::Cells::params); the rest is set by the bake.
 CPGI_JSON_FIELDS(CellSolveParams, maxRounds, portals, lobeMinWidth, portalBinRays, jobs)
 CPGI_JSON_FIELDS(ViewParams, width, height, supersample, exposure)

@@ -115,7 +115,12 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
   params.triangleDensity = in.triangleDensity;
   {
     auto t = ctx.time("atlas");
-    in.atlas = buildAtlas(*in.scene, in.quads, params, ctx);
+    // --density auto within its texel budget (AutoDensityParams::maxTexels): the densities scaled down to
+    // fit, said in one line.
+    TexelBudget budget;
+    in.atlas = fitTexelBudget(*in.scene, in.quads, params,
+                              s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0, ctx, &budget);
+    if (!budget.note.empty()) ctx.warn(budget.note), in.triangleDensity = params.triangleDensity;
   }
   if (in.atlas.patches.empty()) throw InputError(s.input.scene, "no surface to bake");
   if (!in.scene->hasLight()) ctx.warn(s.input.scene + ": nothing emits light; the lightmap is black");

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,10 +27,11 @@ float fraction(double x) {
   return float(x - std::floor(x));
 }
 
-// The irradiance at one texel: (π/N) Σ L(ω_k) over the N cosine-distributed directions that leave the
-// scene (pdf cos θ/π, so each sample's estimate of ∫ L cos θ dω is π L).
-float gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origin, const glm::vec3& n,
-               uint64_t texel) {
+// A texel's cosine-distributed directions k in [from, to) that leave the scene, their sky radiance summed
+// into `sum`: the estimate after N directions is (π/N) Σ L(ω_k) (pdf cos θ/π, so each sample's estimate of
+// ∫ L cos θ dω is π L). The same directions in the same order whether gathered in one pass or several.
+void gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origin, const glm::vec3& n,
+              uint64_t texel, int from, int to, double& sum) {
   // An orthonormal frame about n (Duff et al. 2017).
   const float sign = std::copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
@@ -36,8 +39,7 @@ float gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origi
   const uint64_t h = mix64(texel);
   const double shift1 = double(h >> 40) * 0x1p-24, shift2 = double((h >> 16) & 0xffffff) * 0x1p-24;
   constexpr double g = 1.32471795724474602596;  // plastic number: Roberts' R2 sequence
-  double sum = 0.0;
-  for (int k = 0; k < sky.gatherRays; ++k) {
+  for (int k = from; k < to; ++k) {
     const float u1 = fraction(shift1 + double(k) / g), u2 = fraction(shift2 + double(k) / (g * g));
     const float phi = 2.0f * kPi * u1, r = std::sqrt(u2);
     const glm::vec3 dir =
@@ -45,41 +47,90 @@ float gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origi
     const float radiance = skyRadiance(sky, dir);
     if (radiance > 0.0f && !occluders.occluded(origin, dir, 0.0f, 3.0e38f)) sum += radiance;
   }
-  return float(double(kPi) * sum / sky.gatherRays);
+}
+
+// The passes' ray counts per texel: kFirstPassRays (or all of them when fewer), then doubling up to
+// sky.gatherRays. The first pass always completes, so every texel has an estimate before any deadline.
+constexpr int kFirstPassRays = 8;
+std::vector<int> passEnds(int rays) {
+  std::vector<int> ends;
+  for (int n = std::min(kFirstPassRays, rays); n < rays; n *= 2) ends.push_back(n);
+  ends.push_back(rays);
+  return ends;
 }
 
 }  // namespace
 
-void addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct,
-                 Context& ctx) {
-  if (!sky.lights()) return;
+SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas,
+                          DirectLight& direct, Context& ctx, std::chrono::steady_clock::time_point deadline) {
+  SkyGatherData data{.requestedRays = sky.gatherRays, .rays = sky.gatherRays};
+  if (!sky.lights()) return data;
   auto timer = ctx.time("sky light");
   direct.irradiance.resize(atlas.texelCount(), glm::vec3(0.0f));
   // The same offset off the surface as the punctual lights' shadow rays and the reference's paths.
   const float offset = std::max(1e-5f * occluders.diagonal(), 1e-6f);
-  std::vector<float> irradiance(atlas.texelCount(), 0.0f);
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, atlas.texelCount(), 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i)
-          if (atlas.patch[i] >= 0)
-            irradiance[i] =
-                gatherAt(sky, occluders, atlas.position[i] + offset * atlas.normal[i], atlas.normal[i], i);
+  std::vector<size_t> texels;
+  for (size_t i = 0; i < atlas.texelCount(); ++i)
+    if (atlas.patch[i] >= 0) texels.push_back(i);
+  std::vector<double> sums(texels.size(), 0.0);
+  // In passes over every texel, so that a deadline leaves each texel with the same number of directions,
+  // and in chunks, so that progress is reported and the deadline checked every few seconds.
+  constexpr size_t kChunk = size_t(1) << 15;
+  const std::vector<int> ends = passEnds(sky.gatherRays);
+  const double totalRays = double(texels.size()) * sky.gatherRays;
+  int done = 0;  // directions every texel has
+  for (size_t p = 0; p < ends.size(); ++p) {
+    const int from = done, to = ends[p];
+    std::vector<double> next = sums;
+    bool stopped = false;
+    for (size_t c = 0; c < texels.size() && !stopped; c += kChunk) {
+      if (p > 0 && std::chrono::steady_clock::now() >= deadline) {
+        stopped = true;
+        break;
+      }
+      const size_t end = std::min(c + kChunk, texels.size());
+      tbb::parallel_for(tbb::blocked_range<size_t>(c, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t j = r.begin(); j < r.end(); ++j) {
+          const size_t i = texels[j];
+          gatherAt(sky, occluders, atlas.position[i] + offset * atlas.normal[i], atlas.normal[i], i, from, to,
+                   next[j]);
+        }
       });
+      const double raysDone = double(texels.size()) * from + double(end) * (to - from);
+      char status[64];
+      std::snprintf(status, sizeof status, "%d of %d rays a texel, %zu texels", to, sky.gatherRays,
+                    texels.size());
+      ctx.progress("sky light", totalRays > 0.0 ? raysDone / totalRays : 1.0, status);
+    }
+    if (stopped) {
+      data.timedOut = true;
+      break;
+    }
+    sums.swap(next);
+    done = to;
+  }
+  data.rays = done;
   // Summed in texel order: the same total whatever the thread count.
   double landed = 0.0;
-  for (size_t i = 0; i < irradiance.size(); ++i) {
-    if (!(irradiance[i] > 0.0f)) continue;
-    direct.irradiance[i] += glm::vec3(irradiance[i]);
-    landed += 3.0 * double(irradiance[i]) * atlas.area[i];
+  for (size_t j = 0; j < texels.size(); ++j) {
+    const float irradiance = float(double(kPi) * sums[j] / done);
+    if (!(irradiance > 0.0f)) continue;
+    direct.irradiance[texels[j]] += glm::vec3(irradiance);
+    landed += 3.0 * double(irradiance) * atlas.area[texels[j]];
   }
   direct.landed += landed;
   direct.directionalLanded += landed;
+  if (data.timedOut)
+    ctx.warn("sky light: the deadline came after " + std::to_string(done) + " of " +
+             std::to_string(sky.gatherRays) + " rays a texel; the sky's light is their estimate");
+  return data;
 }
 
-DirectLight shootPunctualAndSky(const Scene& scene, const LightmapAtlas& atlas, Context& ctx) {
+DirectLight shootPunctualAndSky(const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
+                                std::chrono::steady_clock::time_point deadline) {
   const RayScene rays(scene);
   DirectLight direct = shootPunctualLights(scene.lights, rays, atlas, ctx);
-  addSkyLight(scene.sky, rays, atlas, direct, ctx);
+  addSkyLight(scene.sky, rays, atlas, direct, ctx, deadline);
   return direct;
 }
 

@@ -11,6 +11,8 @@
 // counts as emitted, and what the surfaces reflect back out of the scene is escaped.
 #pragma once
 
+#include <chrono>
+
 #include "core/context.h"
 #include "core/sky.h"
 #include "radiosity/lightmap/atlas.h"
@@ -19,16 +21,30 @@
 
 namespace cpgi {
 
+/// What a sky gather did: the directions per texel asked (Sky::gatherRays) and gathered.
+struct SkyGatherData {
+  int requestedRays = 0;
+  int rays = 0;           ///< directions every texel's estimate has (fewer than asked after a deadline)
+  bool timedOut = false;  ///< the deadline stopped it after a pass: a valid estimate with fewer rays
+};
+
 /// Adds the sky's irradiance at every valid texel of `atlas` to `direct` (irradiance, landed and
 /// directionalLanded, since an infinite source emits what lands), occluded by `occluders` (the whole
 /// scene). `sky.gatherRays` directions per texel, a randomly shifted low-discrepancy set (Roberts' R2) per
 /// texel seeded by its index, so the result is the same for every run and thread count. A texel whose
 /// hemisphere is closed (inside a closed building) gets exactly 0. Does nothing when !sky.lights().
-void addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct,
-                 Context& ctx);
+/// The directions are gathered in passes over all texels (8, 16, 32, ... up to gatherRays), reported as
+/// progress ("sky light") every few seconds; past `deadline` no pass starts or goes on, and every texel
+/// keeps the estimate of the last whole pass (the first always completes), with a warning. Without a
+/// deadline the result is that of one pass of gatherRays.
+SkyGatherData addSkyLight(
+    const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// The whole first shot made on the CPU: the scene's punctual lights (direct_light.h) and its sky, over
-/// a ray scene of all its triangles.
-DirectLight shootPunctualAndSky(const Scene& scene, const LightmapAtlas& atlas, Context& ctx);
+/// a ray scene of all its triangles; the sky gather stops at `deadline` as addSkyLight says.
+DirectLight shootPunctualAndSky(
+    const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -80,6 +80,11 @@ struct SolveResult {
   /// How often SolveControls::acceptStop was asked (0 without it); it refused all but the last of them
   /// unless another bound stopped the solve first.
   int stopChecks = 0;
+  /// The shot at which acceptStop first refused (0: never), and whether the loop then stopped at its bound
+  /// of kStopRefusedShots × as many shots again (radiosity/solve/progressive_loop.h) with acceptStop still
+  /// refusing: the stop per room not met, its rest left to the ambient term.
+  int stopRefusedAt = 0;
+  bool stopBounded = false;
 
   // A solve of one atlas (gl_shot_engine.h):
   /// With SolveControls::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;

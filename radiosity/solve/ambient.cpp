@@ -1,6 +1,11 @@
 #include "radiosity/solve/ambient.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace cpgi {
 
@@ -163,6 +168,25 @@ std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
   for (size_t c = 0; c < share.size(); ++c)
     if (area[c] > 0.0 && light[c] > litPerArea * area[c]) share[c] = ambient[c] / light[c];
   return share;
+}
+
+std::string roomsAboveShare(const std::vector<double>& shares, const std::vector<std::string>& names,
+                            double target) {
+  std::vector<std::pair<double, std::string>> above;
+  for (size_t c = 0; c < shares.size(); ++c)
+    if (shares[c] > target) above.emplace_back(shares[c], c < names.size() ? names[c] : "(no cell)");
+  if (above.empty()) return {};
+  std::sort(above.begin(), above.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string line = "stop per room: the solve stopped at its bound with " + std::to_string(above.size()) +
+                     " room" + (above.size() > 1 ? "s" : "") + " above the ambient share of " +
+                     std::to_string(int(std::lround(100.0 * target))) + " %:";
+  for (size_t i = 0; i < above.size(); ++i) {
+    char part[96];
+    std::snprintf(part, sizeof part, "%s %s %.1f %%", i ? "," : "", above[i].second.c_str(),
+                  100.0 * above[i].first);
+    line += part;
+  }
+  return line;
 }
 
 }  // namespace cpgi

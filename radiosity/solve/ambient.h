@@ -9,6 +9,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -76,5 +77,11 @@ std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<
                                   std::span<const float> texelCell, const CellGraph& graph,
                                   const std::vector<glm::vec3>& radiosity,
                                   const AmbientTransfer* measured = nullptr);
+
+/// One line naming the rooms whose ambient share (`shares`, per entry of `names` and one more for texels in
+/// no cell) is above `target`, largest first with their shares: what a solve stopped at its bound on the
+/// stop per room (SolveResult::stopBounded, radiosity/solve/progressive_loop.h) left above it. "" if none.
+std::string roomsAboveShare(const std::vector<double>& shares, const std::vector<std::string>& names,
+                            double target);
 
 }  // namespace cpgi

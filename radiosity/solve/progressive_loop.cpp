@@ -67,16 +67,27 @@ float shotScale(const ShotGathered& seen, double shotPower, bool lobedEmission) 
 class LoopProgress {
  public:
   LoopProgress(double strongAt, Context& ctx) : estimate_(strongAt), ctx_(ctx) {}
-  void shot(int shots, bool strong, double power, double unshot, double stopAt, bool nextIsEmitter) {
+  // `bound`: past a refused stop, the shot the loop stops at whatever acceptStop says (0: none yet).
+  void shot(int shots, bool strong, double power, double unshot, double stopAt, int bound,
+            bool nextIsEmitter) {
     const double elapsed = secondsSince(start_);
     if (reflecting_) estimate_.addShot(strong, elapsed - lastShotEnd_, power, unshot);
     lastShotEnd_ = elapsed;
     if (!reflecting_ && !nextIsEmitter) reflecting_ = true;
+    if (bound > 0 && refusedAt_ == 0) refusedAt_ = shots, refusedSeconds_ = elapsed;
     if (elapsed - lastReport_ <= 0.25) return;
     if (reflecting_) estimate_.add({shots, unshot, elapsed});
-    // Towards the current stop: past a refused one (acceptStop), the next ask.
-    const double fraction = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(stopAt), 0.0, 1.0);
-    ctx_.progress(solveProgress(fraction, shots, unshot, estimate_.secondsLeft(stopAt)));
+    // Towards the current stop: past a refused one (acceptStop), the next ask or the bound, whichever
+    // comes first: the shots since the refusal, at their own pace, towards the bound.
+    double fraction = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(stopAt), 0.0, 1.0);
+    double left = estimate_.secondsLeft(stopAt);
+    if (bound > 0 && shots > refusedAt_) {
+      const double perShot = (elapsed - refusedSeconds_) / double(shots - refusedAt_);
+      const double toBound = perShot * double(std::max(bound - shots, 0));
+      fraction = std::max(fraction, double(shots) / double(bound));
+      left = left >= 0.0 ? std::min(left, toBound) : toBound;
+    }
+    ctx_.progress(solveProgress(fraction, shots, unshot, left));
     lastReport_ = elapsed;
   }
 
@@ -86,6 +97,8 @@ class LoopProgress {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   bool reflecting_ = false;  // the emitters' own shots are over
   double lastShotEnd_ = 0.0, lastReport_ = -1.0;
+  int refusedAt_ = 0;  // the shot of the first refused stop, and its time
+  double refusedSeconds_ = 0.0;
 };
 
 }  // namespace
@@ -104,13 +117,22 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
       controls.strongShotPower > 0.0 ? controls.strongShotPower : settings.strongShotFraction * e.emitted;
   LoopProgress progress(strongAt, ctx);
   double stopAt = settings.unshotFraction;
+  int bound = 0;  // past the first refused stop, the shot the loop stops at (kStopRefusedShots)
   ShooterChoice next = backend.next();
   while (e.emitted > 0.0 && result.shots < settings.maxShots && next.valid) {
+    if (bound > 0 && result.shots >= bound) {
+      result.stopBounded = true;
+      break;
+    }
     if (books.unshotShare() <= stopAt) {
       if (!controls.acceptStop) break;
       ++result.stopChecks;
       if (controls.acceptStop(backend.radiosity(), backend.residual())) break;
       stopAt = books.unshotShare() * kStopRecheck;
+      if (bound == 0) {
+        result.stopRefusedAt = result.shots;
+        bound = result.shots + std::max(1, int(std::ceil(kStopRefusedShots * result.shots)));
+      }
     }
     if (next.power < controls.minShotPower) break;
     if (std::chrono::steady_clock::now() >= controls.deadline) {
@@ -135,9 +157,17 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     result.history.push_back(e);
     next = backend.next();
     if (!given)
-      progress.shot(result.shots, strong, shooter.power, books.unshotShare(), stopAt, next.emitting);
+      progress.shot(result.shots, strong, shooter.power, books.unshotShare(), stopAt, bound, next.emitting);
   }
   result.energy = e;
+  if (result.stopBounded) {
+    char note[200];
+    std::snprintf(note, sizeof note,
+                  "the stop per room was still refused after %d shots (first refused at shot %d, unshot "
+                  "%.3f%% now): stopped at the bound of as many shots again",
+                  result.shots, result.stopRefusedAt, 100.0 * books.unshotShare());
+    ctx.warn(note);
+  }
   if (e.created > 1e-4 * e.emitted) {
     char note[160];
     std::snprintf(

@@ -43,9 +43,10 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
 }
 
 // Punctual lights and sky only: their exact shot is the whole first step.
-SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Context& ctx) {
+SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
+                              std::chrono::steady_clock::time_point deadline) {
   SolveResult r;
-  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx);
+  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx, deadline);
   r.incident = d.irradiance;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -86,7 +87,7 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   const int emitters = emitterPatches(atlas);
   if (emitters == 0) {
     if (data) *data = {0, atlas.validTexels(), 0.0, 0.0};
-    return shootPunctualOnly(scene, atlas, ctx);
+    return shootPunctualOnly(scene, atlas, ctx, controls.deadline);
   }
   const auto start = std::chrono::steady_clock::now();
   const LightmapAtlas coarse =

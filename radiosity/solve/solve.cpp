@@ -53,7 +53,7 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
     s.emitted = controls.priorShot->emitted;
     s.any = true;
   } else if (!scene.lights.empty() || scene.sky.lights()) {
-    s.direct = shootPunctualAndSky(scene, atlas, ctx);
+    s.direct = shootPunctualAndSky(scene, atlas, ctx, controls.deadline);
     s.emitted = punctualEmitted(scene.lights, s.direct.directionalLanded);
     s.any = true;
   }

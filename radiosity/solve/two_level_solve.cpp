@@ -151,6 +151,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   out.energy.worstShotGain = std::max(out.energy.worstShotGain, lit.energy.worstShotGain);
   out.unshotFraction = indirect.unshotFraction;
   out.stopChecks = indirect.stopChecks;
+  out.stopRefusedAt = indirect.stopRefusedAt;
+  out.stopBounded = indirect.stopBounded;
   out.timedOut = lit.timedOut || indirect.timedOut;
   out.shooters = lit.shooters;
   out.history = lit.history;

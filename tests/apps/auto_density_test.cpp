@@ -3,6 +3,7 @@
 // `compare-light --scene`, which reads it at the other's texels as an engine would.
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -150,6 +151,39 @@ TEST(AutoDensity, RefusedWhereItDoesNotApply) {
     EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json")) << options;
   }
+}
+
+// `--max-texels N` (issue 46): the automatic density scaled down to fit, said in one line, recorded in
+// report.json; `--scale` as a loading option, with the units check's one line for a scene not in metres.
+TEST(AutoDensity, MaxTexelsScalesTheDensityDownToFitAndScaleLoadsInMetres) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "whole" + "'" + kQuick);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const size_t whole = json::parse(slurp(dir / "whole/report.json"))["texels"].get<size_t>();
+  const size_t budget = whole / 3;
+  r = cpgi(dir, "bake '" + scene + "' -o '" + dir / "fit" + "' --max-texels " + std::to_string(budget) +
+                    " --item-buffer 128 --unshot 0.05");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json a = json::parse(slurp(dir / "fit/report.json"));
+  EXPECT_LE(a["texels"].get<size_t>(), budget);
+  EXPECT_EQ(a["max_texels"].get<size_t>(), budget);
+  EXPECT_TRUE(a["stop_bounded"].is_boolean());
+  size_t lines = 0;
+  for (size_t at = r.err.find("--max-texels"); at != std::string::npos;
+       at = r.err.find("--max-texels", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, 1u) << r.err;
+  EXPECT_NE(r.err.find("scaled by 0."), std::string::npos) << r.err;
+
+  // The same scene blown up to centimetres by --scale 100: `info` says it is not in metres.
+  r = cpgi(dir, "info '" + dir / "seed1.glb" + "' --scale 100");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("not in metres"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--scale 0.01"), std::string::npos) << r.err;
+  r = cpgi(dir, "info '" + scene + "'");
+  EXPECT_EQ(r.err.find("not in metres"), std::string::npos) << r.err;
 }
 
 }  // namespace

@@ -15,6 +15,7 @@ BakeSettings everyFieldChanged() {
   BakeSettings s;
   s.input.scene = "rooms/a b.glb";
   s.input.load.strict = true;
+  s.input.load.scale = 0.0254;
   s.input.load.overrides = {{"lamp", glm::vec3(1, 2, 3), std::nullopt},
                             {"wall", std::nullopt, glm::vec3(0.5f)}};
   s.input.load.allowOutsideFiles = true;
@@ -27,11 +28,13 @@ BakeSettings everyFieldChanged() {
   s.atlas.densityAuto = false;
   AutoDensityParams& d = s.atlas.autoDensity;
   d.pilotDensity = 11, d.light = {5, 41, 0.02f, 0.06f}, d.contacts = false, d.maxContactDensity = 21;
+  d.maxTexels = 123456;
   SolverParams& p = s.solver.params;
   p.unshotFraction = 0.003, p.maxShots = 77, p.farField = 3, p.regionSize = 0.7f, p.maxRegions = 3;
   p.strongShotRegions = 2, p.strongShotFraction = 0.01, p.visibility = Visibility::Hemisphere;
   p.itemBuffer = 256, p.neighbourhood = 1, p.jitteredEyes = false, p.lampRays = 16, p.cullItemBuffers = false;
   p.profilePasses = true;
+  p.coverageRays = 256, p.eyesPerRegion = 3, p.strongEyesPerRegion = 5;
   s.solver.solveDensity = 2.5f, s.solver.lampCoarsening = 3, s.solver.indirect = IndirectSolver::Rays;
   s.solver.backend = Backend::Rays;
   s.solver.ambient = false, s.solver.ambientShare = 0.25;
@@ -58,6 +61,7 @@ BakeSettings everyFieldChanged() {
 void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(a.input.scene, b.input.scene);
   EXPECT_EQ(a.input.load.strict, b.input.load.strict);
+  EXPECT_EQ(a.input.load.scale, b.input.load.scale);
   ASSERT_EQ(a.input.load.overrides.size(), b.input.load.overrides.size());
   for (size_t i = 0; i < a.input.load.overrides.size(); ++i) {
     EXPECT_EQ(a.input.load.overrides[i].material, b.input.load.overrides[i].material);
@@ -82,6 +86,7 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(d.pilotDensity, e.pilotDensity);
   EXPECT_EQ(d.contacts, e.contacts);
   EXPECT_EQ(d.maxContactDensity, e.maxContactDensity);
+  EXPECT_EQ(d.maxTexels, e.maxTexels);
   EXPECT_EQ(d.light.minDensity, e.light.minDensity);
   EXPECT_EQ(d.light.maxDensity, e.light.maxDensity);
   EXPECT_EQ(d.light.tolerance, e.light.tolerance);
@@ -101,9 +106,13 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(p.lampRays, q.lampRays);
   EXPECT_EQ(p.cullItemBuffers, q.cullItemBuffers);
   EXPECT_EQ(p.profilePasses, q.profilePasses);
+  EXPECT_EQ(p.coverageRays, q.coverageRays);
+  EXPECT_EQ(p.eyesPerRegion, q.eyesPerRegion);
+  EXPECT_EQ(p.strongEyesPerRegion, q.strongEyesPerRegion);
   EXPECT_EQ(a.solver.solveDensity, b.solver.solveDensity);
   EXPECT_EQ(a.solver.lampCoarsening, b.solver.lampCoarsening);
   EXPECT_EQ(a.solver.indirect, b.solver.indirect);
+  EXPECT_EQ(a.solver.backend, b.solver.backend);
   EXPECT_EQ(a.solver.ambient, b.solver.ambient);
   EXPECT_EQ(a.solver.ambientShare, b.solver.ambientShare);
   EXPECT_EQ(a.cells.method, b.cells.method);

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/metrics/form_factors.h"
+#include "radiosity/solve/progressive_loop.h"
 #include "radiosity/solve/solve.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -219,6 +221,52 @@ TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
   EXPECT_EQ(late.shots, 0);
   EXPECT_NEAR(late.energy.unshot, 0.6 * priorPower, 1e-4 * priorPower);
   EXPECT_NEAR(late.energy.absorbed + late.energy.unshot, late.energy.emitted, 1e-4 * priorPower);
+}
+
+// A stop per room that never accepts (issue 46: a daylit house shot on past shot 2 900 for a room's last
+// 0.02 %) stops the loop once it has shot as many shots again as it took to reach the first refusal
+// (kStopRefusedShots), the books still balanced; an accepting stop is not bounded.
+TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
+  Scene s;
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), addMaterial(s, glm::vec3(0.7f)));
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
+  std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
+  double priorPower = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t)
+    if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
+      prior[t] = glm::vec3(10.0f), priorPower += 30.0 * atlas.area[t];
+  const PriorShot first{.irradiance = prior, .emitted = priorPower};
+  SolverParams params;
+  params.unshotFraction = 0.05;
+  params.maxShots = 5000;  // a closed box at ρ = 0.7 never runs out of shooters: without a bound, 5000
+  SolveControls c{.priorShot = &first};
+  int asked = 0;
+  c.acceptStop = [&](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) {
+    ++asked;
+    return false;
+  };
+  RayShotEngine rays;
+  const SolveResult r = solveProgressive(s, atlas, params, rays, ctx, c);
+  ASSERT_GT(r.stopRefusedAt, 0);
+  EXPECT_TRUE(r.stopBounded);
+  EXPECT_FALSE(r.timedOut);
+  EXPECT_EQ(r.shots, r.stopRefusedAt + int(std::ceil(kStopRefusedShots * r.stopRefusedAt)));
+  EXPECT_EQ(r.stopChecks, asked);
+  EXPECT_GE(asked, 2);  // asked again on the way (kStopRecheck), refused every time
+  EXPECT_NEAR(r.energy.absorbed + r.energy.unshot + r.energy.escaped(), r.energy.emitted, 1e-4 * priorPower);
+  bool warned = false;
+  for (const std::string& w : ctx.warnings())
+    warned |= w.find("stop per room was still refused") != std::string::npos;
+  EXPECT_TRUE(warned);
+
+  // Accepted at the second ask: no bound reached, the stop is the per-room stop's.
+  int second = 0;
+  c.acceptStop = [&](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) { return ++second >= 2; };
+  const SolveResult ok = solveProgressive(s, atlas, params, rays, ctx, c);
+  EXPECT_FALSE(ok.stopBounded);
+  EXPECT_EQ(ok.stopChecks, 2);
+  EXPECT_LT(ok.shots, 2 * ok.stopRefusedAt + 1);
 }
 
 // The lamps shot first by shadow rays (SolverParams::lampRays) are spent: the rays engine starts from the

@@ -2,8 +2,10 @@
 // uniform sky gets π Lz, under a CIE overcast one 7π Lz / 9; through a hole in a ceiling, π Lz F with F
 // the point-to-square form factor (Lambert's contour formula, inline here: the lightmap library's tests do
 // not link the metrics); a closed box, and the closed seed scene's rooms, get none.
+#include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -68,6 +70,47 @@ TEST(SkyLight, OpenFloorGetsTheWholeSky) {
     EXPECT_NEAR(d.landed, 3.0 * 4.0 * 2.0 * irradiance, 0.002 * d.landed);
     EXPECT_EQ(d.directionalLanded, d.landed);  // an infinite source emits what lands
   }
+}
+
+// A deadline already past (bake --time-limit reached in the density pilot, issue 46) stops the gather
+// after its first pass: every texel keeps an estimate of 8 directions, still the hole's light within their
+// noise and never more than an open sky's, with the gather's data and a warning saying so. Without a
+// deadline the gather in passes is the same as its 1 024 directions in one.
+TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
+  Scene s = testing::boxOpenToTheSky(0.5f);
+  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
+  s.sky.gatherRays = 1024;
+  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  Context ctx;
+  DirectLight late;
+  const SkyGatherData data =
+      addSkyLight(s.sky, RayScene(s), atlas, late, ctx, std::chrono::steady_clock::now());
+  EXPECT_TRUE(data.timedOut);
+  EXPECT_EQ(data.rays, 8);
+  EXPECT_EQ(data.requestedRays, 1024);
+  ASSERT_EQ(ctx.warnings().size(), 1u);
+  EXPECT_NE(ctx.warnings()[0].find("8 of 1024 rays"), std::string::npos);
+  const DirectLight full = gather(s, atlas);
+  double lateSum = 0.0, fullSum = 0.0;
+  size_t lit = 0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) continue;
+    EXPECT_LE(late.irradiance[i].g, 3.0 * kPi * 1.0001);
+    EXPECT_GE(late.irradiance[i].g, 0.0f);
+    lateSum += late.irradiance[i].g * atlas.area[i], fullSum += full.irradiance[i].g * atlas.area[i];
+    lit += late.irradiance[i].g > 0.0f;
+  }
+  EXPECT_GT(lit, 0u);
+  EXPECT_NEAR(lateSum, fullSum, 0.1 * fullSum);  // 8 directions a texel, averaged over the box
+  EXPECT_NEAR(late.landed, 3.0 * lateSum, 1e-4 * late.landed);
+  Context onTime;
+  DirectLight again;
+  const SkyGatherData all = addSkyLight(s.sky, RayScene(s), atlas, again, onTime,
+                                        std::chrono::steady_clock::now() + std::chrono::hours(1));
+  EXPECT_FALSE(all.timedOut);
+  EXPECT_EQ(all.rays, 1024);
+  EXPECT_EQ(again.irradiance, full.irradiance);
+  EXPECT_EQ(again.landed, full.landed);
 }
 
 TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {

@@ -1,0 +1,119 @@
+#include "core/units.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+namespace cpgi {
+
+namespace {
+
+// Distance along +y from `o` to triangle `t` (Möller–Trumbore with the direction (0, 1, 0)); +inf if missed.
+float upHit(const glm::vec3& o, const Triangle& t) {
+  const glm::vec3 d(0.0f, 1.0f, 0.0f);
+  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+  const glm::vec3 p = glm::cross(d, e2);
+  const float det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-20f) return std::numeric_limits<float>::infinity();
+  const glm::vec3 s = o - t.p[0];
+  const float u = glm::dot(s, p) / det;
+  if (u < 0.0f || u > 1.0f) return std::numeric_limits<float>::infinity();
+  const glm::vec3 q = glm::cross(s, e1);
+  const float v = glm::dot(d, q) / det;
+  if (v < 0.0f || u + v > 1.0f) return std::numeric_limits<float>::infinity();
+  const float dist = glm::dot(e2, q) / det;
+  return dist > 0.0f ? dist : std::numeric_limits<float>::infinity();
+}
+
+// The ceilings (faces turned down) binned on a grid over x and z, so a ray up tests only its column's.
+struct CeilingGrid {
+  static constexpr int kCells = 64;
+  glm::vec2 lo{0.0f}, size{1.0f};
+  std::vector<std::vector<uint32_t>> cells = std::vector<std::vector<uint32_t>>(kCells * kCells);
+
+  int index(float x, float z) const {
+    const int i = std::clamp(int((x - lo.x) / size.x * kCells), 0, kCells - 1);
+    const int j = std::clamp(int((z - lo.y) / size.y * kCells), 0, kCells - 1);
+    return j * kCells + i;
+  }
+  CeilingGrid(const Scene& scene) {
+    const Bounds b = scene.bounds();
+    lo = glm::vec2(b.lo.x, b.lo.z);
+    size = glm::max(glm::vec2(b.hi.x - b.lo.x, b.hi.z - b.lo.z), glm::vec2(1e-6f));
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+      const Triangle& tri = scene.triangles[t];
+      if (tri.geometricNormal().y > -0.5f) continue;
+      float x0 = tri.p[0].x, x1 = x0, z0 = tri.p[0].z, z1 = z0;
+      for (const glm::vec3& q : tri.p) {
+        x0 = std::min(x0, q.x), x1 = std::max(x1, q.x);
+        z0 = std::min(z0, q.z), z1 = std::max(z1, q.z);
+      }
+      const int a = index(x0, z0), c = index(x1, z1);
+      for (int j = a / kCells; j <= c / kCells; ++j)
+        for (int i = a % kCells; i <= c % kCells; ++i) cells[size_t(j * kCells + i)].push_back(t);
+    }
+  }
+};
+
+}  // namespace
+
+UnitsCheck checkUnits(const Scene& scene) {
+  UnitsCheck out;
+  // The floors, and points spread over them by area: the k-th at cumulative area (k + ½)/N of the total.
+  std::vector<uint32_t> floors;
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t)
+    if (scene.triangles[t].geometricNormal().y > std::cos(25.0f * 3.14159265f / 180.0f)) {
+      total += scene.triangles[t].area();
+      floors.push_back(t), cumulative.push_back(total);
+    }
+  if (floors.empty() || !(total > 0.0)) return out;
+  const CeilingGrid grid(scene);
+  const float offset = 1e-5f * glm::length(scene.bounds().size());
+  std::vector<float> heights;
+  for (int k = 0; k < kUnitsSamples; ++k) {
+    const double at = (k + 0.5) / kUnitsSamples * total;
+    const size_t f = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
+    const Triangle& t = scene.triangles[floors[std::min(f, floors.size() - 1)]];
+    const glm::vec3 o = t.centroid() + glm::vec3(0.0f, offset, 0.0f);
+    float nearest = std::numeric_limits<float>::infinity();
+    for (uint32_t c : grid.cells[size_t(grid.index(o.x, o.z))])
+      nearest = std::min(nearest, upHit(o, scene.triangles[c]));
+    if (std::isfinite(nearest)) heights.push_back(nearest);
+  }
+  out.samples = int(heights.size());
+  if (out.samples < kUnitsSamples / 8) return out;  // mostly open: no storey to measure
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  const double h = heights[heights.size() / 2];
+  out.storeyHeight = h;
+  if (h <= 10.0) return out;
+  const char* why = nullptr;
+  if (h <= 60.0)
+    out.unit = "feet", out.scale = 0.3048;
+  else if (h <= 200.0)
+    out.unit = "inches (Quake units)", out.scale = 0.0254;
+  else if (h <= 600.0)
+    out.unit = "centimetres", out.scale = 0.01, why = "or inches as in a Quake map: --scale 0.0254";
+  else if (h <= 2000.0)  // millimetres would be rooms under 2 m; a game's open arenas are this tall in inches
+    out.unit = "inches (Quake units)", out.scale = 0.0254;
+  else if (h <= 6000.0)
+    out.unit = "millimetres", out.scale = 0.001;
+  char line[300];
+  if (out.scale > 0.0)
+    std::snprintf(line, sizeof line,
+                  "units: the rooms are %.0f units tall, so the scene is not in metres; it looks like %s: "
+                  "--scale %g makes it metres%s%s%s",
+                  h, out.unit.c_str(), out.scale, why ? " (" : "", why ? why : "", why ? ")" : "");
+  else
+    std::snprintf(line, sizeof line,
+                  "units: the rooms are %.0f units tall, so the scene is not in metres; give --scale F, the "
+                  "metres per unit of the file",
+                  h);
+  out.warning = line;
+  return out;
+}
+
+}  // namespace cpgi

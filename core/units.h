@@ -1,0 +1,36 @@
+// Whether a scene is in metres (issue 46): cpgi takes a file's coordinates as metres (glTF's unit), but a
+// game map comes in Quake units (inches) and a CAD export often in centimetres or millimetres; taken as
+// metres, a level is 1 664 m wide, its pilot atlas and sky gather run for half an hour, and its light
+// (W/m² over areas 1 500 times too large) is wrong. The storey height tells: rays straight up from the
+// floors to the ceilings above them measure it, and a median over ten metres is not a room in metres.
+#pragma once
+
+#include <string>
+
+#include "core/scene.h"
+
+namespace cpgi {
+
+struct UnitsCheck {
+  /// The median, over floors that have a ceiling above them, of the distance up to it (scene units, y up);
+  /// 0 when too few floors have one (an open landscape) to say.
+  double storeyHeight = 0.0;
+  int samples = 0;  ///< floor points whose ray up met a ceiling
+  /// The likely unit and the --scale that makes it metres ("" with scale 0: in metres, or cannot say).
+  std::string unit;
+  double scale = 0.0;
+  /// One line for the user when the scene is not in metres, else "".
+  std::string warning;
+};
+
+/// The storey height is measured from up to kUnitsSamples points on the floors (faces whose normal is
+/// within 25° of +y, spread over them by area), each a ray straight up to the nearest face turned down.
+/// Storeys of 10 to 60 units are feet (--scale 0.3048), 60 to 200 inches (0.0254: Quake's units), 200 to
+/// 600 centimetres or inches (a game's tall rooms: the warning names both), 600 to 2 000 inches (a game's
+/// open arenas: OpenArena's oa_ctf2 measures 864; millimetres would be rooms under 2 m), 2 000 to 6 000
+/// millimetres. OpenArena's maps measure 144 (dm4ish), 160 (aggressor), 218 (oa_dm1), 256 (kaos), 448
+/// (hydronex), 864 (oa_ctf2).
+inline constexpr int kUnitsSamples = 256;
+UnitsCheck checkUnits(const Scene& scene);
+
+}  // namespace cpgi

@@ -1,0 +1,107 @@
+// A scene not in metres (issue 46): its storey height says so in one warning naming the likely unit and
+// the --scale that fixes it, and LoadOptions::scale (--scale) makes it metres as it loads.
+#include "core/units.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/scene_io.h"
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+void addQuad(Scene& s, glm::vec3 o, glm::vec3 u, glm::vec3 v) {
+  const glm::vec3 n = glm::normalize(glm::cross(u, v));
+  Triangle a, b;
+  a.p = {o, o + u, o + u + v};
+  b.p = {o, o + u + v, o + v};
+  a.n = b.n = {n, n, n};
+  s.triangles.push_back(a);
+  s.triangles.push_back(b);
+}
+
+// Two rooms of w × d, `height` tall (y up), side by side, each a floor (normal +y) and a ceiling (−y), a
+// lamp light at head height and a camera: a house in whatever unit `height` is given in.
+Scene twoRooms(float w, float d, float height) {
+  Scene s;
+  s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+  s.nodePaths = {"house"};
+  for (int r = 0; r < 2; ++r) {
+    const glm::vec3 o(float(r) * w, 0.0f, 0.0f);
+    addQuad(s, o, {0, 0, d}, {w, 0, 0});
+    addQuad(s, o + glm::vec3(0, height, 0), {w, 0, 0}, {0, 0, d});
+  }
+  PunctualLight l;
+  l.position = glm::vec3(0.5f * w, 0.6f * height, 0.5f * d), l.intensity = glm::vec3(1.0f),
+  l.range = 2.0f * w;
+  s.lights.push_back(l);
+  s.cameras.push_back(Camera{"view", glm::vec3(w, 0.5f * height, 2.0f * d), glm::vec3(0, 0, -1),
+                             glm::vec3(0, 1, 0), 0.9f, 1.5f});
+  return s;
+}
+
+TEST(Units, MetresPassFeetInchesCentimetresAndMillimetresAreNamed) {
+  EXPECT_EQ(checkUnits(twoRooms(4.0f, 5.0f, 2.6f)).warning, "");
+  EXPECT_NEAR(checkUnits(twoRooms(4.0f, 5.0f, 2.6f)).storeyHeight, 2.6, 1e-3);
+  // Storeys of 4 m in feet (13 ft), 2.8 m in inches, centimetres and millimetres, a game's tall arena.
+  const struct {
+    float metres, metresPerUnit;
+    const char* flag;
+  } cases[] = {{4.0f, 0.3048f, "--scale 0.3048"},
+               {2.8f, 0.0254f, "--scale 0.0254"},
+               {2.8f, 0.01f, "--scale 0.01"},
+               {2.8f, 0.001f, "--scale 0.001"},
+               {22.0f, 0.0254f, "--scale 0.0254"}};  // an arena 22 m tall in inches: 866 units, not mm
+  for (const auto& c : cases) {
+    const float k = 1.0f / c.metresPerUnit;
+    const UnitsCheck u = checkUnits(twoRooms(4.0f * k, 5.0f * k, c.metres * k));
+    EXPECT_NEAR(u.storeyHeight, c.metres * k, 1e-3 * k);
+    EXPECT_FLOAT_EQ(float(u.scale), c.metresPerUnit) << u.warning;
+    EXPECT_NE(u.warning.find(c.flag), std::string::npos) << u.warning;
+    EXPECT_EQ(u.warning.find('\n'), std::string::npos);
+  }
+  // An open landscape (no ceiling over its floors) cannot say.
+  Scene open;
+  open.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+  addQuad(open, {0, 0, 0}, {0, 0, 500}, {500, 0, 0});
+  EXPECT_EQ(checkUnits(open).storeyHeight, 0.0);
+  EXPECT_EQ(checkUnits(open).warning, "");
+}
+
+TEST(Units, AHouseInCentimetresIsToldAndScaleMakesItMetres) {
+  test::TempDir dir;
+  const std::string file = dir / "house_cm.glb";
+  writeGltf(file, twoRooms(400.0f, 500.0f, 270.0f));
+  const LoadedScene asIs = loadScene(file);
+  int told = 0;
+  for (const std::string& w : asIs.warnings)
+    if (w.find("units:") == 0) {
+      ++told;
+      EXPECT_NE(w.find("270 units tall"), std::string::npos) << w;
+      EXPECT_NE(w.find("centimetres: --scale 0.01"), std::string::npos) << w;
+      EXPECT_NE(w.find("--scale 0.0254"), std::string::npos) << w;  // or a Quake map's inches
+    }
+  EXPECT_EQ(told, 1);
+
+  LoadOptions metres;
+  metres.scale = 0.01;
+  const LoadedScene scaled = loadScene(file, metres);
+  for (const std::string& w : scaled.warnings) EXPECT_EQ(w.find("units:"), std::string::npos) << w;
+  const glm::vec3 size = scaled.scene.bounds().size();
+  EXPECT_NEAR(size.x, 8.0f, 1e-4f);
+  EXPECT_NEAR(size.y, 2.7f, 1e-4f);
+  EXPECT_NEAR(size.z, 5.0f, 1e-4f);
+  ASSERT_EQ(scaled.scene.lights.size(), 1u);
+  EXPECT_NEAR(scaled.scene.lights[0].position.y, 0.6f * 2.7f, 1e-4f);
+  EXPECT_NEAR(scaled.scene.lights[0].range, 8.0f, 1e-4f);
+  EXPECT_EQ(scaled.scene.lights[0].intensity, asIs.scene.lights[0].intensity);  // W/sr: no length in it
+  ASSERT_EQ(scaled.scene.cameras.size(), 1u);
+  EXPECT_NEAR(scaled.scene.cameras[0].position.z, 10.0f, 1e-4f);
+  EXPECT_NEAR(scaled.scene.triangles[0].area(), asIs.scene.triangles[0].area() * 1e-4f,
+              1e-6f * asIs.scene.triangles[0].area());
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -182,6 +182,13 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
 BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
                       const std::filesystem::path* gatherPlan) {
   const Clock::time_point deadline = deadlineOf(s, run.start);
+  // Directional and binned portals emit through the GL programs (EngineFeatures::directionalEmission):
+  // said before any work, not at the first cell's solve.
+  if (s.solver.backend == Backend::Rays && s.cells.method == BakeMethod::Cells &&
+      s.cells.params.portals != PortalLight::Diffuse)
+    throw InputError("--portals",
+                     "directional and binned portals need the GL backend; with --backend rays "
+                     "give --portals diffuse");
   std::optional<OutputDir> out;
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
   BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);

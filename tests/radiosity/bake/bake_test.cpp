@@ -93,6 +93,19 @@ TEST_F(BakeSeed1, TheRaysBackendNeedsNoGlAndLightsTheRoomsAsGlDoes) {
   EXPECT_NEAR(b[1] / a[1], 1.0, 0.05) << "B, lit through the doors";
   EXPECT_NEAR(b[2] / a[2], 1.0, 0.03) << "C";
   EXPECT_EQ(rays.report["energy"]["created_w"], 0.0);
+  // Cells through portals that emit with lobes or bins need the GL programs: refused up front.
+  s.cells.method = BakeMethod::Cells;
+  s.cells.params.portals = PortalLight::Binned;
+  try {
+    bake(seed().scene, seed().cells, s, ctx);
+    ADD_FAILURE() << "binned portals on the rays backend";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--portals diffuse"), std::string::npos) << e.what();
+  }
+  s.cells.params.portals = PortalLight::Diffuse;
+  const BakeResult cells = bake(seed().scene, seed().cells, s, ctx);
+  EXPECT_EQ(cells.report["backend"], "rays");
+  EXPECT_GT(cells.shots, 0);
 }
 
 TEST_F(BakeSeed1, WithAFolderWritesTheResultSetOfWhatItReturns) {

@@ -92,6 +92,46 @@ Labelled labelsFor(const std::string& what, const LoadedScene& scene, const std:
   return out;
 }
 
+// A side's portals. Rooms given as cellvolume: meshes alone (an IFC export's) carry none: theirs are the ones
+// the decomposition fits where the volumes meet (decompose --from-volumes), so there is something to match.
+std::vector<PortalQuad> portalsOf(const LoadedScene& loaded, const Labelled& x,
+                                  const decomp::DecomposeParams& params, bool& fitted, Context& ctx) {
+  fitted = false;
+  const bool volumesOnly = x.graph.portals.empty() && !x.graph.cells.empty() &&
+                           std::all_of(x.graph.cells.begin(), x.graph.cells.end(), [](const Cell& c) {
+                             return c.triangles.empty() && !c.volume.empty();
+                           });
+  if (!volumesOnly) return x.graph.portals;
+  try {
+    std::vector<PortalQuad> portals =
+        decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
+    fitted = true;
+    return portals;
+  } catch (const InputError& e) {  // volumes that hold no empty space: nothing to fit, nothing to score
+    ctx.warn(std::string("no portals fitted where the room volumes meet: ") + e.what());
+    return x.graph.portals;
+  }
+}
+
+nlohmann::json portalMatchesJson(const std::vector<decomp::PortalMatch>& matches,
+                                 const std::vector<PortalQuad>& portalsA,
+                                 const std::vector<PortalQuad>& portalsB) {
+  nlohmann::json pm = nlohmann::json::array();
+  for (const auto& m : matches) {
+    nlohmann::json e = {{"reference", portalsB[size_t(m.reference)].name}};
+    if (m.candidate >= 0) {
+      e["candidate"] = portalsA[size_t(m.candidate)].name;
+      e["centre_distance_m"] = m.centreDistance;
+      e["normal_angle_deg"] = m.normalAngle;
+      e["area_ratio"] = m.areaRatio;
+    } else {
+      e["candidate"] = nullptr;
+    }
+    pm.push_back(e);
+  }
+  return pm;
+}
+
 int runCompare(const CompareOptions& o) {
   LoadedScene loaded = loadScene(o.scene, o.load);
   decomp::DecomposeParams params = o.decompose;
@@ -129,27 +169,9 @@ int runCompare(const CompareOptions& o) {
   double meanIoU = 0.0;
   for (double v : iouB) meanIoU += v;
   meanIoU = iouB.empty() ? 0.0 : meanIoU / double(iouB.size());
-  // Rooms given as cellvolume: meshes alone (an IFC export's) carry no portal: theirs are the ones the
-  // decomposition fits where the volumes meet (decompose --from-volumes), so there is something to match.
-  auto portalsOf = [&](const Labelled& x, bool& fitted) {
-    fitted = false;
-    const bool volumesOnly = x.graph.portals.empty() && !x.graph.cells.empty() &&
-                             std::all_of(x.graph.cells.begin(), x.graph.cells.end(), [](const Cell& c) {
-                               return c.triangles.empty() && !c.volume.empty();
-                             });
-    if (!volumesOnly) return x.graph.portals;
-    try {
-      std::vector<PortalQuad> portals =
-          decomp::decomposeFromVolumes(loaded.scene, x.graph, params, {}, ctx).graph.portals;
-      fitted = true;
-      return portals;
-    } catch (const InputError& e) {  // volumes that hold no empty space: nothing to fit, nothing to score
-      ctx.warn(std::string("no portals fitted where the room volumes meet: ") + e.what());
-      return x.graph.portals;
-    }
-  };
   bool fittedA = false, fittedB = false;
-  const std::vector<PortalQuad> portalsA = portalsOf(a, fittedA), portalsB = portalsOf(b, fittedB);
+  const std::vector<PortalQuad> portalsA = portalsOf(loaded, a, params, fittedA, ctx),
+                                portalsB = portalsOf(loaded, b, params, fittedB, ctx);
   const std::vector<decomp::PortalMatch> matches = decomp::matchPortals(portalsB, portalsA);
   double worst = 0.0;
   bool unmatched = false;
@@ -183,20 +205,7 @@ int runCompare(const CompareOptions& o) {
   for (int c = 0; c < countB; ++c)
     perCell.push_back({{"cell", b.graph.cells[size_t(c)].name}, {"best_iou", iouB[size_t(c)]}});
   j["matched_iou_per_cell"] = perCell;
-  nlohmann::json pm = nlohmann::json::array();
-  for (const auto& m : matches) {
-    nlohmann::json e = {{"reference", portalsB[size_t(m.reference)].name}};
-    if (m.candidate >= 0) {
-      e["candidate"] = portalsA[size_t(m.candidate)].name;
-      e["centre_distance_m"] = m.centreDistance;
-      e["normal_angle_deg"] = m.normalAngle;
-      e["area_ratio"] = m.areaRatio;
-    } else {
-      e["candidate"] = nullptr;
-    }
-    pm.push_back(e);
-  }
-  j["portal_matches"] = pm;
+  j["portal_matches"] = portalMatchesJson(matches, portalsA, portalsB);
   // The worst matched portal's centre error; null when B has portals that A cannot match at all, or none.
   if (unmatched || matches.empty())
     j["portal_centre_error_m"] = nullptr;

@@ -90,8 +90,8 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
                   ? "no enclosed empty space"
                   : "no room larger than the minimum cell volume") +
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
-  Decomposition out =
-      finishDecomposition(scene, params, solid, std::move(space.space), distance, std::move(cells), names, ctx);
+  Decomposition out = finishDecomposition(scene, params, solid, std::move(space.space), distance,
+                                          std::move(cells), names, ctx);
   // Cells merged by the leak pass leave gaps in the numbering: the names follow the indices again.
   for (size_t c = 0; c < out.graph.cells.size(); ++c)
     if (int(c) != out.outsideCell) out.graph.cells[c].name = "c" + std::to_string(c);
@@ -101,6 +101,70 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   out.basins = basinCount;
   return out;
 }
+
+namespace {
+
+// Each cell's voxels and their extent in voxel coordinates, walked in storage order (no division per
+// voxel), then its bounds from the extreme voxels' cubes and its volume.
+void measureCells(Decomposition& out, int cellCount, double h) {
+  std::vector<glm::ivec3> lowest(size_t(cellCount), glm::ivec3(INT32_MAX)),
+      highest(size_t(cellCount), glm::ivec3(-1));
+  const GridFrame& f = out.frame;
+  size_t i = 0;
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y)
+      for (int x = 0; x < f.dims.x; ++x, ++i) {
+        const int c = out.voxelCell[i];
+        if (c < 0 || c >= cellCount) continue;
+        ++out.cellStats[size_t(c)].voxels;
+        lowest[size_t(c)] = glm::min(lowest[size_t(c)], glm::ivec3(x, y, z));
+        highest[size_t(c)] = glm::max(highest[size_t(c)], glm::ivec3(x, y, z));
+      }
+  const glm::vec3 half(float(0.5 * h));
+  for (int c = 0; c < cellCount; ++c)
+    if (out.cellStats[size_t(c)].voxels > 0) {
+      Bounds& b = out.cellStats[size_t(c)].bounds;
+      b.extend(f.centre(lowest[size_t(c)]) - half), b.extend(f.centre(highest[size_t(c)]) + half);
+    }
+  for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
+}
+
+// The parts of the portal graph (Decomposition::regions): closed rooms are parts of their own; the
+// outside's part, when it holds no other, is the outside and its pockets (outsidePocket, connectedOpen).
+void markParts(Decomposition& out, int cellCount) {
+  std::vector<int> part(size_t(cellCount), -1);
+  int parts = 0;
+  for (int c = 0; c < cellCount; ++c) {
+    if (part[size_t(c)] >= 0) continue;
+    std::vector<int> todo{c};
+    part[size_t(c)] = parts;
+    while (!todo.empty()) {
+      const int x = todo.back();
+      todo.pop_back();
+      for (int p : out.graph.portalsOf(x)) {
+        const PortalQuad& q = out.graph.portals[size_t(p)];
+        const int y = q.cellA == x ? q.cellB : q.cellA;
+        if (y >= 0 && part[size_t(y)] < 0) part[size_t(y)] = parts, todo.push_back(y);
+      }
+    }
+    ++parts;
+  }
+  out.regions = parts;
+  int closedParts = 0;
+  for (int c = 0; c < cellCount; ++c) closedParts += out.closedRoom[size_t(c)] ? 1 : 0;
+  out.outsidePocket.assign(size_t(cellCount), 0);
+  const int openParts = parts - closedParts;
+  if (out.outsideCell >= 0 && openParts > 1) {
+    // The outside's part is apart from the rooms: it and its pockets are not counted against them.
+    for (int c = 0; c < cellCount; ++c)
+      out.outsidePocket[size_t(c)] = c != out.outsideCell && part[size_t(c)] == part[size_t(out.outsideCell)];
+    out.connectedOpen = openParts - 1 <= 1;
+  } else {
+    out.connectedOpen = openParts <= 1;
+  }
+}
+
+}  // namespace
 
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
                                   std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
@@ -117,7 +181,8 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
-    if (closed.cellOf[c] >= 0) peaks[size_t(closed.cellOf[c])] = std::max(peaks[size_t(closed.cellOf[c])], peaksBefore[c]);
+    if (closed.cellOf[c] >= 0)
+      peaks[size_t(closed.cellOf[c])] = std::max(peaks[size_t(closed.cellOf[c])], peaksBefore[c]);
   std::vector<std::string> keptNames;
   for (int32_t c : closed.keptCell) keptNames.push_back(names[size_t(c)]);
   out.outsideCell = closed.outsideCell;
@@ -139,7 +204,8 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
              " voxel faces join two cells outside any portal");
   out.space = std::move(space);
 
-  Assignment assigned = assignTriangles(scene, out.frame, out.voxelCell, quads, out.outsideCell, params.assign, ctx);
+  Assignment assigned =
+      assignTriangles(scene, out.frame, out.voxelCell, quads, out.outsideCell, params.assign, ctx);
   out.inputTriangles = scene.triangles.size();
   out.scene = std::move(assigned.scene);
   out.splitTriangles = assigned.splitTriangles;
@@ -158,72 +224,20 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
     const int c = assigned.cellOfTriangle[t];
     if (c >= 0 && c < cellCount) out.graph.cells[size_t(c)].triangles.push_back(uint32_t(t));
   }
-  // Each cell's voxels and their extent in voxel coordinates, walked in storage order (no division per
-  // voxel), then its bounds from the extreme voxels' cubes.
-  std::vector<glm::ivec3> lowest(size_t(cellCount), glm::ivec3(INT32_MAX)), highest(size_t(cellCount), glm::ivec3(-1));
-  const GridFrame& f = out.frame;
-  size_t i = 0;
-  for (int z = 0; z < f.dims.z; ++z)
-    for (int y = 0; y < f.dims.y; ++y)
-      for (int x = 0; x < f.dims.x; ++x, ++i) {
-        const int c = out.voxelCell[i];
-        if (c < 0 || c >= cellCount) continue;
-        ++out.cellStats[size_t(c)].voxels;
-        lowest[size_t(c)] = glm::min(lowest[size_t(c)], glm::ivec3(x, y, z));
-        highest[size_t(c)] = glm::max(highest[size_t(c)], glm::ivec3(x, y, z));
-      }
-  const glm::vec3 half(float(0.5 * h));
-  for (int c = 0; c < cellCount; ++c)
-    if (out.cellStats[size_t(c)].voxels > 0) {
-      Bounds& b = out.cellStats[size_t(c)].bounds;
-      b.extend(f.centre(lowest[size_t(c)]) - half), b.extend(f.centre(highest[size_t(c)]) + half);
-    }
-  for (CellStats& s : out.cellStats) s.volume = double(s.voxels) * out.frame.voxelVolume();
+  measureCells(out, cellCount, h);
   out.graph.portals = std::move(quads);
 
   // Closed rooms: no portal (after the leak pass no voxel face touches another cell either).
   out.closedRoom.assign(size_t(cellCount), 0);
   for (int c = 0; c < cellCount; ++c)
     out.closedRoom[size_t(c)] = c != out.outsideCell && out.graph.portalsOf(c).empty();
-  // The parts of the portal graph: closed rooms are parts of their own; the outside's part, when it
-  // holds no other, is the outside and its pockets.
-  {
-    std::vector<int> part(size_t(cellCount), -1);
-    int parts = 0;
-    for (int c = 0; c < cellCount; ++c) {
-      if (part[size_t(c)] >= 0) continue;
-      std::vector<int> todo{c};
-      part[size_t(c)] = parts;
-      while (!todo.empty()) {
-        const int x = todo.back();
-        todo.pop_back();
-        for (int p : out.graph.portalsOf(x)) {
-          const PortalQuad& q = out.graph.portals[size_t(p)];
-          const int y = q.cellA == x ? q.cellB : q.cellA;
-          if (y >= 0 && part[size_t(y)] < 0) part[size_t(y)] = parts, todo.push_back(y);
-        }
-      }
-      ++parts;
-    }
-    out.regions = parts;
-    int closedParts = 0;
-    for (int c = 0; c < cellCount; ++c) closedParts += out.closedRoom[size_t(c)] ? 1 : 0;
-    out.outsidePocket.assign(size_t(cellCount), 0);
-    const int openParts = parts - closedParts;
-    if (out.outsideCell >= 0 && openParts > 1) {
-      // The outside's part is apart from the rooms: it and its pockets are not counted against them.
-      for (int c = 0; c < cellCount; ++c)
-        out.outsidePocket[size_t(c)] = c != out.outsideCell && part[size_t(c)] == part[size_t(out.outsideCell)];
-      out.connectedOpen = openParts - 1 <= 1;
-    } else {
-      out.connectedOpen = openParts <= 1;
-    }
-  }
+  markParts(out, cellCount);
   for (const std::string& w : validateCells(out.scene, out.graph).warnings) {
     // A closed room is said once below, as what it is.
     if (w == "the cell graph is not connected") continue;
     const std::string noPortal = ": has no portal";
-    if (w.size() > noPortal.size() && w.compare(w.size() - noPortal.size(), noPortal.size(), noPortal) == 0) continue;
+    if (w.size() > noPortal.size() && w.compare(w.size() - noPortal.size(), noPortal.size(), noPortal) == 0)
+      continue;
     ctx.warn("decompose: " + params.sourceName + ": " + w);
   }
   for (int c = 0; c < cellCount; ++c)
@@ -231,7 +245,8 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
       ctx.warn("decompose: " + params.sourceName + ": cell " + out.graph.cells[size_t(c)].name +
                " is a closed room: no portal, it touches no other cell");
   if (!out.connectedOpen)
-    ctx.warn("decompose: " + params.sourceName + ": the rooms fall in separate groups that no portal joins "
+    ctx.warn("decompose: " + params.sourceName +
+             ": the rooms fall in separate groups that no portal joins "
              "(walls seal them from each other)");
   if (out.thinWallArea > 0.1)
     ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(out.thinWallArea) +

@@ -37,8 +37,8 @@ PortalQuad grownQuad(const PortalQuad& q, float by) {
 size_t absorbFragments(const GridFrame& f, std::vector<int32_t>& cell) {
   const size_t n = cell.size();
   std::vector<int32_t> piece(n, -1);
-  std::vector<size_t> size;       // per piece
-  std::vector<int32_t> owner;     // per piece: its cell
+  std::vector<size_t> size;    // per piece
+  std::vector<int32_t> owner;  // per piece: its cell
   std::vector<size_t> queue;
   const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
   auto neighbours = [&](size_t i, auto&& visit) {
@@ -130,23 +130,58 @@ bool partOnMovedPortals(const GridFrame& f, std::vector<int32_t>& cell, int firs
   return true;
 }
 
-}  // namespace
+// closeLeaks's state: the portal set being closed, the cells still alive, the pairs the leak rounds moved
+// onto their portals, and what it did.
+class LeakCloser {
+ public:
+  LeakCloser(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
+             const LeakParams& params)
+      : set(set),
+        distance(distance),
+        f(distance.frame),
+        cellCount(cellCount),
+        outsideCell(outsideCell),
+        params(params),
+        alive(size_t(cellCount), 1) {
+    out.cellOf.resize(size_t(cellCount));
+    for (int c = 0; c < cellCount; ++c) out.cellOf[size_t(c)] = c;
+  }
 
-ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
-                       const LeakParams& params, Context& ctx) {
-  auto timer = ctx.time("leaks");
-  const GridFrame& f = distance.frame;
-  ClosedLeaks out;
-  out.cellOf.resize(size_t(cellCount));
-  for (int c = 0; c < cellCount; ++c) out.cellOf[size_t(c)] = c;
-  std::vector<char> alive(size_t(cellCount), 1);
+  ClosedLeaks run() {
+    // Cells in one piece, then no portal between cells that do not touch.
+    absorbFragments(f, set.cell);
+    dropUntouching();
+    if (params.dropRedundant) dropRedundant(false);
+    leakRounds();
+    // Relabelling may have moved a pair onto fewer of its portals: drop the others, then make sure.
+    if (params.dropRedundant && !relabelled.empty()) {
+      dropRedundant(true);
+      leakRounds();
+    }
+    renumber();
+    set.leakingFaces = countLeakingFaces(f, set.cell, quads());
+    return out;
+  }
 
-  auto quads = [&] {
+ private:
+  std::vector<PortalQuad> quads() const {
     std::vector<PortalQuad> q;
     for (const FittedPortal& p : set.portals) q.push_back(p.quad);
     return q;
-  };
-  auto merge = [&](int a, int b) {
+  }
+
+  // Each cell's deepest voxel (SIZE_MAX: none).
+  std::vector<size_t> deepestVoxels() const {
+    std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
+    for (size_t i = 0; i < set.cell.size(); ++i) {
+      const int c = set.cell[i];
+      if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
+        deepest[size_t(c)] = i;
+    }
+    return deepest;
+  }
+
+  void merge(int a, int b) {
     const int keep = b == outsideCell ? b : a == outsideCell ? a : std::min(a, b);
     const int gone = keep == a ? b : a;
     for (int32_t& l : set.cell)
@@ -166,11 +201,9 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
       if (c == gone) c = keep;
     alive[size_t(gone)] = 0;
     ++out.mergedPairs;
-  };
+  }
 
-  // Cells in one piece, then no portal between cells that do not touch.
-  absorbFragments(f, set.cell);
-  {
+  void dropUntouching() {
     std::set<std::pair<int, int>> touching;
     const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
     for (size_t i = 0; i < set.cell.size(); ++i) {
@@ -191,23 +224,18 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
         ++out.droppedPortals;
     set.portals = std::move(kept);
   }
+
   // Redundant portals: a pair joined by several portals whose largest one to three alone cut the two
   // apart (relabelled to meet on them) keeps only those; the others are slivers of the interface that
   // the earlier rounds of fitPortals covered (a stair's landing edge beside its hole's portal), or fringe
   // portals a moved door portal no longer needs.
-  std::set<std::pair<int, int>> relabelled;  // pairs the leak rounds moved onto their portals
-  auto dropRedundant = [&](bool onlyRelabelled) {
+  void dropRedundant(bool onlyRelabelled) {
     std::map<std::pair<int, int>, std::vector<size_t>> byPair;
     for (size_t k = 0; k < set.portals.size(); ++k) {
       const PortalQuad& q = set.portals[k].quad;
       byPair[{std::min(q.cellA, q.cellB), std::max(q.cellA, q.cellB)}].push_back(k);
     }
-    std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
-    for (size_t i = 0; i < set.cell.size(); ++i) {
-      const int c = set.cell[i];
-      if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
-        deepest[size_t(c)] = i;
-    }
+    const std::vector<size_t> deepest = deepestVoxels();
     std::vector<char> dropped(set.portals.size(), 0);
     for (auto& [pair, list] : byPair) {
       if (list.size() < 2 || (onlyRelabelled && !relabelled.count(pair))) continue;
@@ -228,8 +256,9 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
         // level's, are not searched: each try floods the pair).
         std::vector<PortalQuad> quads;
         for (size_t n = 0; n < keep; ++n) quads.push_back(set.portals[list[n]].quad);
-        if (!partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)], quads,
-                                keep == 1 && list.size() <= 3 ? 1 : 0, keep == 1 && list.size() <= 3 ? 2 : 0))
+        if (!partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                                quads, keep == 1 && list.size() <= 3 ? 1 : 0,
+                                keep == 1 && list.size() <= 3 ? 2 : 0))
           continue;
         for (size_t n = 0; n < keep; ++n) set.portals[list[n]].quad = quads[n];
         for (size_t n = keep; n < list.size(); ++n) dropped[list[n]] = 1, ++out.droppedPortals;
@@ -240,73 +269,78 @@ ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCou
     for (size_t k = 0; k < set.portals.size(); ++k)
       if (!dropped[k]) kept.push_back(set.portals[k]);
     set.portals = std::move(kept);
-  };
+  }
 
-  auto leakRounds = [&] {
-  for (int round = 0; round < std::max(1, params.rounds); ++round) {
-    const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());
-    if (leaks.empty()) break;
-    const bool last = params.merge && round + 1 >= std::max(1, params.rounds);
-    // Each cell's deepest voxel: the seeds of the relabelling flood.
-    std::vector<size_t> deepest(size_t(cellCount), SIZE_MAX);
-    for (size_t i = 0; i < set.cell.size(); ++i) {
-      const int c = set.cell[i];
-      if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
-        deepest[size_t(c)] = i;
-    }
-    std::vector<std::pair<size_t, std::pair<int, int>>> order;
-    for (const auto& [pair, faces] : leaks) order.push_back({faces, pair});
-    std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-    std::set<int> touched;
-    for (const auto& [faces, pair] : order) {
-      const auto [a, b] = pair;
-      if (!alive[size_t(a)] || !alive[size_t(b)] || touched.count(a) || touched.count(b)) continue;
-      touched.insert(a), touched.insert(b);
-      std::vector<size_t> own;
-      for (size_t k = 0; k < set.portals.size(); ++k) {
-        const PortalQuad& q = set.portals[k].quad;
-        if ((q.cellA == a && q.cellB == b) || (q.cellA == b && q.cellB == a)) own.push_back(k);
-      }
-      // The outside's deepest voxel may lie anywhere round the building: flood from the room's.
-      const int first = a == outsideCell ? b : a, second = first == a ? b : a;
-      bool separated = false;
-      if (!last && !own.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX) {
-        std::vector<PortalQuad> quads;
-        for (size_t k : own) quads.push_back(set.portals[k].quad);
-        if (partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)], quads,
-                               2, 6)) {
-          for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = quads[n];
-          separated = true;
+  void leakRounds() {
+    for (int round = 0; round < std::max(1, params.rounds); ++round) {
+      const std::map<std::pair<int, int>, size_t> leaks = leakingFacesByPair(f, set.cell, quads());
+      if (leaks.empty()) break;
+      const bool last = params.merge && round + 1 >= std::max(1, params.rounds);
+      const std::vector<size_t> deepest = deepestVoxels();  // the seeds of the relabelling flood
+      std::vector<std::pair<size_t, std::pair<int, int>>> order;
+      for (const auto& [pair, faces] : leaks) order.push_back({faces, pair});
+      std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      std::set<int> touched;
+      for (const auto& [faces, pair] : order) {
+        const auto [a, b] = pair;
+        if (!alive[size_t(a)] || !alive[size_t(b)] || touched.count(a) || touched.count(b)) continue;
+        touched.insert(a), touched.insert(b);
+        std::vector<size_t> own;
+        for (size_t k = 0; k < set.portals.size(); ++k) {
+          const PortalQuad& q = set.portals[k].quad;
+          if ((q.cellA == a && q.cellB == b) || (q.cellA == b && q.cellB == a)) own.push_back(k);
         }
+        // The outside's deepest voxel may lie anywhere round the building: flood from the room's.
+        const int first = a == outsideCell ? b : a, second = first == a ? b : a;
+        bool separated = false;
+        if (!last && !own.empty() && deepest[size_t(a)] != SIZE_MAX && deepest[size_t(b)] != SIZE_MAX) {
+          std::vector<PortalQuad> quads;
+          for (size_t k : own) quads.push_back(set.portals[k].quad);
+          if (partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
+                                 quads, 2, 6)) {
+            for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = quads[n];
+            separated = true;
+          }
+        }
+        if (separated) {
+          relabelled.insert({a, b});
+          ++out.relabelledPairs;
+          continue;
+        }
+        if (params.merge) merge(a, b);
       }
-      if (separated) {
-        relabelled.insert({a, b});
-        ++out.relabelledPairs;
-        continue;
-      }
-      if (params.merge) merge(a, b);
     }
   }
-  };
-  if (params.dropRedundant) dropRedundant(false);
-  leakRounds();
-  // Relabelling may have moved a pair onto fewer of its portals: drop the others, then make sure.
-  if (params.dropRedundant && !relabelled.empty()) {
-    dropRedundant(true);
-    leakRounds();
+
+  void renumber() {
+    // Dense numbering in the old order; the outside, last before, stays last.
+    std::vector<int32_t> index(size_t(cellCount), -1);
+    for (int c = 0; c < cellCount; ++c)
+      if (alive[size_t(c)]) index[size_t(c)] = out.cellCount++, out.keptCell.push_back(c);
+    for (int32_t& l : set.cell)
+      if (l >= 0) l = index[size_t(l)];
+    for (FittedPortal& p : set.portals)
+      p.quad.cellA = index[size_t(p.quad.cellA)], p.quad.cellB = index[size_t(p.quad.cellB)];
+    for (int32_t& c : out.cellOf) c = index[size_t(c)];
+    out.outsideCell = outsideCell >= 0 ? index[size_t(outsideCell)] : -1;
   }
 
-  // Dense numbering in the old order; the outside, last before, stays last.
-  std::vector<int32_t> index(size_t(cellCount), -1);
-  for (int c = 0; c < cellCount; ++c)
-    if (alive[size_t(c)]) index[size_t(c)] = out.cellCount++, out.keptCell.push_back(c);
-  for (int32_t& l : set.cell)
-    if (l >= 0) l = index[size_t(l)];
-  for (FittedPortal& p : set.portals) p.quad.cellA = index[size_t(p.quad.cellA)], p.quad.cellB = index[size_t(p.quad.cellB)];
-  for (int32_t& c : out.cellOf) c = index[size_t(c)];
-  out.outsideCell = outsideCell >= 0 ? index[size_t(outsideCell)] : -1;
-  set.leakingFaces = countLeakingFaces(f, set.cell, quads());
-  return out;
+  PortalSet& set;
+  const DistanceGrid& distance;
+  const GridFrame& f;
+  const int cellCount, outsideCell;
+  const LeakParams& params;
+  std::vector<char> alive;
+  std::set<std::pair<int, int>> relabelled;  // pairs the leak rounds moved onto their portals
+  ClosedLeaks out;
+};
+
+}  // namespace
+
+ClosedLeaks closeLeaks(PortalSet& set, const DistanceGrid& distance, int cellCount, int outsideCell,
+                       const LeakParams& params, Context& ctx) {
+  auto timer = ctx.time("leaks");
+  return LeakCloser(set, distance, cellCount, outsideCell, params).run();
 }
 
 }  // namespace cpgi::decomp

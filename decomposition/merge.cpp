@@ -35,6 +35,52 @@ struct Candidate {
   bool operator<(const Candidate& o) const { return saddle < o.saddle; }
 };
 
+// Against the outside, the rules ask whether the other group is a room of its own: its own volume and
+// peak decide (the outside's are those of the padded grid, not of the world around the building).
+bool shouldMerge(const Group& x, const Group& y, const Interface& iface, const MergeParams& params,
+                 double minVoxels, double h) {
+  const Group& small = x.outside ? y : y.outside ? x : x.volume <= y.volume ? x : y;
+  const float lowPeak = x.outside ? y.peak : y.outside ? x.peak : std::min(x.peak, y.peak);
+  if (small.volume < minVoxels) return true;
+  // Two floors joined through a hole: only a shallow dip merges them.
+  if (!x.outside && !y.outside && params.storeySpread > 0.0 &&
+      std::abs(x.meanY() - y.meanY()) > params.storeySpread * (x.spreadY() + y.spreadY())) {
+    const double floorArea = small.volume / (small.spreadY() * std::sqrt(12.0));  // voxel faces
+    if (double(iface.facesUp) < params.storeyOpening * floorArea)
+      return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
+  }
+  const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
+  if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
+  if (lowPeak - iface.saddle < params.minDepth) return true;
+  const double crossSection = std::pow(small.volume, 2.0 / 3.0) * h * h;
+  return params.openingRatio > 0.0 && double(iface.faces) * h * h > params.openingRatio * crossSection;
+}
+
+// Group `gone` folded into `keep`: its interfaces (the deepest saddle, the faces added), peak, volume and
+// height moments.
+void fold(std::vector<Group>& groups, int keep, int gone) {
+  Group& k = groups[size_t(keep)];
+  Group& g = groups[size_t(gone)];
+  for (const auto& [other, iface] : g.neighbours) {
+    if (other == keep) continue;
+    Interface& merged = k.neighbours[other];
+    merged.saddle = std::max(merged.saddle, iface.saddle);
+    merged.faces += iface.faces;
+    merged.facesUp += iface.facesUp;
+    auto& back = groups[size_t(other)].neighbours;
+    back.erase(gone);
+    back[keep] = merged;
+  }
+  k.neighbours.erase(gone);
+  k.peak = std::max(k.peak, g.peak);
+  k.volume += g.volume;
+  k.outside = k.outside || g.outside;
+  k.sumY += g.sumY, k.sumY2 += g.sumY2;
+  ++k.version;
+  g.alive = false;
+  g.neighbours.clear();
+}
+
 }  // namespace
 
 CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Context& ctx) {
@@ -51,7 +97,8 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     for (int z = 0; z < f.dims.z; ++z)
       for (int y = 0; y < f.dims.y; ++y)
         for (int x = 0; x < f.dims.x; ++x, ++i)
-          if (const int b = basins.basin[i]; b >= 0) groups[size_t(b)].sumY += y, groups[size_t(b)].sumY2 += double(y) * y;
+          if (const int b = basins.basin[i]; b >= 0)
+            groups[size_t(b)].sumY += y, groups[size_t(b)].sumY2 += double(y) * y;
   }
   for (const BasinContact& c : basins.contacts) {
     groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces, c.facesUp};
@@ -66,26 +113,6 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
   for (int b = 0; b < count; ++b) pushAll(b);
 
   const double minVoxels = params.minCellVolume / f.voxelVolume();
-  // Against the outside, the rules ask whether the other group is a room of its own: its own volume and
-  // peak decide (the outside's are those of the padded grid, not of the world around the building).
-  auto shouldMerge = [&](const Group& x, const Group& y, const Interface& iface) {
-    const Group& small = x.outside ? y : y.outside ? x : x.volume <= y.volume ? x : y;
-    const float lowPeak = x.outside ? y.peak : y.outside ? x.peak : std::min(x.peak, y.peak);
-    if (small.volume < minVoxels) return true;
-    // Two floors joined through a hole: only a shallow dip merges them.
-    if (!x.outside && !y.outside && params.storeySpread > 0.0 &&
-        std::abs(x.meanY() - y.meanY()) > params.storeySpread * (x.spreadY() + y.spreadY())) {
-      const double floorArea = small.volume / (small.spreadY() * std::sqrt(12.0));  // voxel faces
-      if (double(iface.facesUp) < params.storeyOpening * floorArea)
-        return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
-    }
-    const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
-    if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
-    if (lowPeak - iface.saddle < params.minDepth) return true;
-    const double crossSection = std::pow(small.volume, 2.0 / 3.0) * h * h;
-    return params.openingRatio > 0.0 && double(iface.faces) * h * h > params.openingRatio * crossSection;
-  };
-
   std::vector<int> mergedInto(static_cast<size_t>(count));
   for (int b = 0; b < count; ++b) mergedInto[size_t(b)] = b;
   while (!queue.empty()) {
@@ -95,30 +122,11 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     Group& gb = groups[size_t(c.b)];
     if (!ga.alive || !gb.alive || ga.version != c.versionA || gb.version != c.versionB) continue;
     const auto it = ga.neighbours.find(c.b);
-    if (it == ga.neighbours.end() || !shouldMerge(ga, gb, it->second)) continue;
+    if (it == ga.neighbours.end() || !shouldMerge(ga, gb, it->second, params, minVoxels, h)) continue;
     // Keep the group with more neighbours, fold the other into it.
     const int keep = ga.neighbours.size() >= gb.neighbours.size() ? c.a : c.b;
     const int gone = keep == c.a ? c.b : c.a;
-    Group& k = groups[size_t(keep)];
-    Group& g = groups[size_t(gone)];
-    for (const auto& [other, iface] : g.neighbours) {
-      if (other == keep) continue;
-      Interface& merged = k.neighbours[other];
-      merged.saddle = std::max(merged.saddle, iface.saddle);
-      merged.faces += iface.faces;
-      merged.facesUp += iface.facesUp;
-      auto& back = groups[size_t(other)].neighbours;
-      back.erase(gone);
-      back[keep] = merged;
-    }
-    k.neighbours.erase(gone);
-    k.peak = std::max(k.peak, g.peak);
-    k.volume += g.volume;
-    k.outside = k.outside || g.outside;
-    k.sumY += g.sumY, k.sumY2 += g.sumY2;
-    ++k.version;
-    g.alive = false;
-    g.neighbours.clear();
+    fold(groups, keep, gone);
     mergedInto[size_t(gone)] = keep;
     pushAll(keep);
   }

@@ -451,56 +451,13 @@ void glazedWindow(BuildingMaker& m, int axis, float at, float from, float to, fl
   m.massing.added.push_back(pane);
 }
 
-// The house in the shape an IFC export has (issue 46): two storeys of rooms behind doorways whose leaves
-// are missing, windows glazed (closed), two exterior doors open, furniture, a shower enclosure of glass
-// and a wardrobe, and a stair of `stair`'s kind from the hall up to the landing through a hole in the
-// floor with a balustrade of spindles round it.
-void ifcHouse(BuildingMaker& m, IfcStair stair) {
-  houseShell(m, 12.0f, 10.0f, 2, 1.0f, 1.0f);
-  const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey, w = 0.15f;  // interior walls 15 cm
-  const float hx = 3.6f;  // the hall's and the landing's east wall
-  m.room("hall", {box(0.2f, 0, 0.2f, hx, H, 6.2f)});
-  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, H, 6.2f)});
-  m.room("kitchen", {box(0.2f, 0, 6.2f + w, 5.0f, H, 9.8f)});
-  m.room("bathroom", {box(5.0f + w, 0, 6.2f + w, 7.6f, H, 9.8f)});
-  m.room("bedroom", {box(7.6f + w, 0, 6.2f + w, 11.8f, H, 9.8f)});
-  m.room("landing", {box(0.2f, y2, 0.2f, hx, H2, 6.2f)});
-  m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
-  m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
-  m.room("bath2", {box(0.2f, y2, 6.2f + w, 5.0f, H2, 9.8f)});
-  m.room("room3", {box(5.0f + w, y2, 6.2f + w, 11.8f, H2, 9.8f)});
-  auto interior = [&](const std::string& name, int axis, float at, float from, float to, float level,
-                      const std::string& a, const std::string& b) {
-    const Box3 h = axis == 0 ? box(at, level, from, at + w, level + kDoorTop, to)
-                             : box(from, level, at, to, level + kDoorTop, at + w);
-    m.opening(name, h, axis, a, b);
-  };
-  m.opening("front-door", hole(2, 0.0f, 2.2f, 3.2f, 0, kDoorTop), 2, "outside", "hall");
-  m.opening("terrace-door", hole(0, 11.8f, 2.0f, 3.6f, 0, 2.2f), 0, "living", "outside");
-  interior("door-hall-living", 0, hx, 1.0f, 1.9f, 0, "hall", "living");
-  interior("door-hall-kitchen", 2, 6.2f, 1.6f, 2.5f, 0, "hall", "kitchen");
-  interior("door-living-bathroom", 2, 6.2f, 5.6f, 6.4f, 0, "living", "bathroom");
-  interior("door-living-bedroom", 2, 6.2f, 9.0f, 9.9f, 0, "living", "bedroom");
-  interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
-  interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
-  interior("door-landing-bath2", 2, 6.2f, 2.4f, 3.3f, y2, "landing", "bath2");
-  interior("door-room1-room3", 2, 6.2f, 6.2f, 7.1f, y2, "room1", "room3");
-  for (float level : {0.0f, y2}) {
-    glazedWindow(m, 2, 0.0f, 5.0f, 7.0f, level + kSill, level + kHead);
-    glazedWindow(m, 2, 0.0f, 8.5f, 10.5f, level + kSill, level + kHead);
-    glazedWindow(m, 2, 9.8f, 1.5f, 3.0f, level + kSill, level + kHead);
-    glazedWindow(m, 2, 9.8f, 8.5f, 10.5f, level + kSill, level + kHead);
-    glazedWindow(m, 0, 11.8f, 7.0f, 8.5f, level + kSill, level + kHead);
-  }
-  glazedWindow(m, 2, 9.8f, 5.6f, 6.8f, 1.4f, kHead);  // the bathroom's high window
-  glazedWindow(m, 0, 0.0f, 3.0f, 4.2f, y2 + kSill, y2 + kHead);  // the landing's
-
-  // The stair, 16 risers up the hall's west side; the hole over it where a person's head would meet the
-  // slab, a balustrade of spindles along the hole's open sides on the landing.
+// The IFC-like house's stair, 16 risers up the hall's west side; returns the hole over it where a person's
+// head would meet the slab.
+Box3 ifcStair(BuildingMaker& m, IfcStair stair) {
+  const float H = kStorey, y2 = kLevel2;
   const int steps = 16;
   const float rise = y2 / float(steps), run = 0.27f, width = 1.0f;
   Box3 hl;
-  const bool spiral = stair == IfcStair::Spiral;
   if (stair == IfcStair::Straight || stair == IfcStair::OpenRiser) {
     const float z0 = 1.2f, zEnd = z0 + steps * run;
     for (int k = 0; k < steps; ++k) {
@@ -518,8 +475,8 @@ void ifcHouse(BuildingMaker& m, IfcStair stair) {
     for (int k = 0; k < first; ++k)
       m.massing.added.push_back(box(0.2f, std::max(0.0f, (k + 1) * rise - 0.35f), z0 + k * run, 0.2f + width,
                                     (k + 1) * rise, z0 + (k + 1) * run));
-    m.massing.added.push_back(box(0.2f, (first + 1) * rise - 0.35f, zl, 0.2f + width, (first + 1) * rise,
-                                  zl + width));
+    m.massing.added.push_back(
+        box(0.2f, (first + 1) * rise - 0.35f, zl, 0.2f + width, (first + 1) * rise, zl + width));
     const float x0 = 0.2f + width;
     for (int k = first + 1; k < steps; ++k) {
       const float x = x0 + float(k - first - 1) * run;
@@ -533,8 +490,14 @@ void ifcHouse(BuildingMaker& m, IfcStair stair) {
     spiralTreads(m, c, steps, rise, 0.1f, 0.95f);
     hl = box(c.x - 1.0f, H, c.y - 1.0f, c.x + 1.0f, y2, c.y + 1.0f);
   }
-  m.opening("stair", hl, 1, "hall", "landing");
+  return hl;
+}
 
+// The IFC-like house's furniture, and a balustrade of spindles along the open sides of the stair's hole
+// `hl` on the landing.
+void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl) {
+  const float y2 = kLevel2, width = 1.0f;
+  const bool spiral = stair == IfcStair::Spiral;
   SceneBuilder b(m.scene());
   Furniture f(b);
   auto in = [&](const char* room) { return b.node(std::string(room) + "/furniture"); };
@@ -593,25 +556,77 @@ void ifcHouse(BuildingMaker& m, IfcStair stair) {
   f.block({{0.3f, y2, 8.9f}, {2.0f, y2 + 0.55f, 9.75f}}, glass, in("bath2"), 0.3f);
 }
 
+// The house in the shape an IFC export has (issue 46): two storeys of rooms behind doorways whose leaves
+// are missing, windows glazed (closed), two exterior doors open, furniture, a shower enclosure of glass
+// and a wardrobe, and a stair of `stair`'s kind from the hall up to the landing through a hole in the
+// floor with a balustrade of spindles round it.
+void ifcHouse(BuildingMaker& m, IfcStair stair) {
+  houseShell(m, 12.0f, 10.0f, 2, 1.0f, 1.0f);
+  const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey, w = 0.15f;  // interior walls 15 cm
+  const float hx = 3.6f;  // the hall's and the landing's east wall
+  m.room("hall", {box(0.2f, 0, 0.2f, hx, H, 6.2f)});
+  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, H, 6.2f)});
+  m.room("kitchen", {box(0.2f, 0, 6.2f + w, 5.0f, H, 9.8f)});
+  m.room("bathroom", {box(5.0f + w, 0, 6.2f + w, 7.6f, H, 9.8f)});
+  m.room("bedroom", {box(7.6f + w, 0, 6.2f + w, 11.8f, H, 9.8f)});
+  m.room("landing", {box(0.2f, y2, 0.2f, hx, H2, 6.2f)});
+  m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
+  m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
+  m.room("bath2", {box(0.2f, y2, 6.2f + w, 5.0f, H2, 9.8f)});
+  m.room("room3", {box(5.0f + w, y2, 6.2f + w, 11.8f, H2, 9.8f)});
+  auto interior = [&](const std::string& name, int axis, float at, float from, float to, float level,
+                      const std::string& a, const std::string& b) {
+    const Box3 h = axis == 0 ? box(at, level, from, at + w, level + kDoorTop, to)
+                             : box(from, level, at, to, level + kDoorTop, at + w);
+    m.opening(name, h, axis, a, b);
+  };
+  m.opening("front-door", hole(2, 0.0f, 2.2f, 3.2f, 0, kDoorTop), 2, "outside", "hall");
+  m.opening("terrace-door", hole(0, 11.8f, 2.0f, 3.6f, 0, 2.2f), 0, "living", "outside");
+  interior("door-hall-living", 0, hx, 1.0f, 1.9f, 0, "hall", "living");
+  interior("door-hall-kitchen", 2, 6.2f, 1.6f, 2.5f, 0, "hall", "kitchen");
+  interior("door-living-bathroom", 2, 6.2f, 5.6f, 6.4f, 0, "living", "bathroom");
+  interior("door-living-bedroom", 2, 6.2f, 9.0f, 9.9f, 0, "living", "bedroom");
+  interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
+  interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
+  interior("door-landing-bath2", 2, 6.2f, 2.4f, 3.3f, y2, "landing", "bath2");
+  interior("door-room1-room3", 2, 6.2f, 6.2f, 7.1f, y2, "room1", "room3");
+  for (float level : {0.0f, y2}) {
+    glazedWindow(m, 2, 0.0f, 5.0f, 7.0f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 0.0f, 8.5f, 10.5f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 9.8f, 1.5f, 3.0f, level + kSill, level + kHead);
+    glazedWindow(m, 2, 9.8f, 8.5f, 10.5f, level + kSill, level + kHead);
+    glazedWindow(m, 0, 11.8f, 7.0f, 8.5f, level + kSill, level + kHead);
+  }
+  glazedWindow(m, 2, 9.8f, 5.6f, 6.8f, 1.4f, kHead);             // the bathroom's high window
+  glazedWindow(m, 0, 0.0f, 3.0f, 4.2f, y2 + kSill, y2 + kHead);  // the landing's
+
+  const Box3 hl = ifcStair(m, stair);
+  m.opening("stair", hl, 1, "hall", "landing");
+  ifcFurniture(m, stair, hl);
+}
+
 }  // namespace
 
 Building makeIfcLikeHouse(const std::string& stair) {
   IfcStair kind = IfcStair::Straight;
-  if (stair == "open-riser") kind = IfcStair::OpenRiser;
-  else if (stair == "l") kind = IfcStair::LShaped;
-  else if (stair == "spiral") kind = IfcStair::Spiral;
-  else if (stair != "straight") throw std::invalid_argument("unknown stair '" + stair + "'");
+  if (stair == "open-riser")
+    kind = IfcStair::OpenRiser;
+  else if (stair == "l")
+    kind = IfcStair::LShaped;
+  else if (stair == "spiral")
+    kind = IfcStair::Spiral;
+  else if (stair != "straight")
+    throw std::invalid_argument("unknown stair '" + stair + "'");
   BuildingMaker m;
   ifcHouse(m, kind);
   return m.finish();
 }
 
 const std::vector<std::string>& buildingNames() {
-  static const std::vector<std::string> names = {"house-open",          "house-stair",   "house-spiral",
-                                                 "open-plan",           "porch",         "house-stair-closed",
-                                                 "house-spiral-closed", "house-gallery", "house-furnished",
-                                                 "ifc-house",           "ifc-house-open-riser",
-                                                 "ifc-house-l-stair",   "ifc-house-spiral"};
+  static const std::vector<std::string> names = {
+      "house-open",           "house-stair",         "house-spiral",    "open-plan",       "porch",
+      "house-stair-closed",   "house-spiral-closed", "house-gallery",   "house-furnished", "ifc-house",
+      "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral"};
   return names;
 }
 

@@ -1,5 +1,7 @@
 #include "apps/options.h"
 
+#include "core/number_list.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -366,10 +368,11 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
              "Merge a room into the outside when the saddle of its opening / its peak exceeds this (exterior "
              "doors are wide)",
              within(0.0, 1.0));
-  addChecked(cmd, scope, "storey spread", params.merge.storeySpread,
-             "Groups whose mean heights are further apart than this x the sum of their heights' standard "
-             "deviations are storeys: a hole in the floor between them stays a portal however wide; 0 disables",
-             kNonNegative);
+  addChecked(
+      cmd, scope, "storey spread", params.merge.storeySpread,
+      "Groups whose mean heights are further apart than this x the sum of their heights' standard "
+      "deviations are storeys: a hole in the floor between them stays a portal however wide; 0 disables",
+      kNonNegative);
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
@@ -480,28 +483,6 @@ std::string parseViewSize(const std::string& text, ViewParams& views) {
   views.height = h;
   return {};
 }
-
-namespace {
-// Comma-separated finite numbers ("1,2.5, 3"); nothing when any part is not one.
-std::optional<std::vector<float>> parseNumberList(const std::string& text) {
-  std::stringstream in(text);
-  std::string part;
-  std::vector<float> values;
-  while (std::getline(in, part, ',')) {
-    size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v))
-      return std::nullopt;
-    values.push_back(v);
-  }
-  return values;
-}
-}  // namespace
 
 glm::vec3 parsePoint(const std::string& text, const std::string& option) {
   const std::optional<std::vector<float>> values = parseNumberList(text);

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "core/memory_limit.h"
+#include "core/number_list.h"
 #include "core/progress.h"
 #include "core/sky.h"
 #include "radiosity/bake/cell_source.h"
@@ -45,19 +46,7 @@ namespace {
 
 // --around's "X,Y,Z" (metres): three finite numbers, else InputError("--around", ...).
 glm::vec3 aroundPoint(const std::string& text) {
-  std::stringstream in(text);
-  std::vector<float> values;
-  for (std::string part; std::getline(in, part, ',');) {
-    size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || part.find_first_not_of(" \t", used) != std::string::npos || !std::isfinite(v)) break;
-    values.push_back(v);
-  }
+  const std::vector<float> values = parseNumberList(text).value_or(std::vector<float>{});
   if (values.size() != 3 || std::count(text.begin(), text.end(), ',') != 2)
     throw InputError("--around", "'" + text + "' is not X,Y,Z (three numbers in metres)");
   return {values[0], values[1], values[2]};

@@ -186,8 +186,8 @@ int main(int argc, char** argv) {
     std::vector<glm::dvec3> gathered(atlas.texelCount(), glm::dvec3(0.0));
     double scale = 0.0;
     for (int d = 0; d < draws; ++d) {
-      controls.firstShotNumber = uint32_t(d);
-      const cpgi::SolveResult r = cpgi::solveProgressive(scene, atlas, sp2, gl, ctx, controls);
+      const cpgi::SolveResult r =
+          cpgi::solveProgressive(scene, atlas, sp2, gl, ctx, controls, {.firstShotNumber = uint32_t(d)});
       const double s = r.shotScales.empty() ? 1.0 : double(r.shotScales[0]);
       scale += s / draws;
       for (size_t t = 0; t < atlas.texelCount(); ++t) gathered[t] += glm::dvec3(r.incident[t]) / (s * draws);

@@ -434,6 +434,7 @@ struct RoundSettings {
   double target = 0.0;
   SolverParams settings;
   SolveControls controls;
+  ShotShape shape;
 };
 
 // The stop replayed from the summaries of rounds 1..through, as solveCells's loop left it before asking
@@ -478,7 +479,8 @@ RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int ro
   RoundSettings s;
   s.target = stop.target();
   s.controls.readTransfer = true;
-  s.settings = roundBudget(params.solver, s.target, r.before, plan.emitted, s.controls, plan.globalPatches);
+  s.settings =
+      roundBudget(params.solver, s.target, r.before, plan.emitted, s.controls, s.shape, plan.globalPatches);
   return s;
 }
 
@@ -504,7 +506,7 @@ void solveJobCells(const fs::path& dir, const CellJobPlan& plan, int round, cons
     if (cellSolvesRound(s, r.target)) {
       for (size_t i = 0; i < s.pending.size(); ++i) s.atlas.emission[i] = s.pending[i];
       auto t = ctx.time("cells: solve");
-      const SolveResult solved = transfer.solve(k, s, r.settings, r.controls, engine, ctx);
+      const SolveResult solved = transfer.solve(k, s, r.settings, r.controls, r.shape, engine, ctx);
       cr = cellRoundOf(k, s, solved, j.links, j.cells, transfer.binRays());
     } else {
       cr = waitingCellRound(k, s);

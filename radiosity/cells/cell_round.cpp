@@ -85,12 +85,12 @@ bool cellSolvesRound(const CellState& s, double target) {
 }
 
 SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
-                         SolveControls& controls, size_t globalPatches) {
+                         SolveControls& controls, ShotShape& shape, size_t globalPatches) {
   SolverParams round = settings;
   round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
   controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
-  controls.strongShotPower = settings.strongShotFraction * emitted;
-  controls.emittersAreLamps = false;  // a cell's emitters are its portals; its lamps shot first, globally
+  shape.strongShotPower = settings.strongShotFraction * emitted;
+  shape.emittersAreLamps = false;  // a cell's emitters are its portals; its lamps shot first, globally
   return round;
 }
 

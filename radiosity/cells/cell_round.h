@@ -87,7 +87,7 @@ bool cellSolvesRound(const CellState& s, double target);
 /// room of many small patches would then take more shots than the whole scene. For the same reason a
 /// shot is strong (more eyes) by the scene's `emitted` power (W), not by the cell's input.
 SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
-                         SolveControls& controls, size_t globalPatches);
+                         SolveControls& controls, ShotShape& shape, size_t globalPatches);
 
 /// Cell `c`'s round after its solve `solved` (of `s`, its pending light as the atlas's emission): its
 /// residual kept, its radiosity gained, and through each of `links` leaving it, the irradiance collected

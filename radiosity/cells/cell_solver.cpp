@@ -94,8 +94,8 @@ SolveResult solveLabelled(const std::string& label, const std::function<SolveRes
 std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
                                   const std::vector<CellState>& cells, const std::vector<size_t>& active,
                                   const std::vector<PortalLink>& links, const SolverParams& settings,
-                                  const SolveControls& controls, const PortalTransfer& transfer,
-                                  CellWorkers& workers, Context& ctx) {
+                                  const SolveControls& controls, const ShotShape& shape,
+                                  const PortalTransfer& transfer, CellWorkers& workers, Context& ctx) {
   std::vector<SolveResult> solvedOf(cells.size());
   std::vector<CellRound> round(cells.size());
   {
@@ -106,7 +106,9 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
                                 std::to_string(active.size()) + "), round " + std::to_string(roundNumber);
       solvedOf[c] = solveLabelled(
           label,
-          [&](Context& cellCtx) { return transfer.solve(c, cells[c], settings, controls, engine, cellCtx); },
+          [&](Context& cellCtx) {
+            return transfer.solve(c, cells[c], settings, controls, shape, engine, cellCtx);
+          },
           taskCtx);
       round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays());
     });
@@ -214,6 +216,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   SolveControls controls;
   controls.readTransfer = true;
   controls.deadline = params.deadline;
+  ShotShape shape;
   const double emitted = result.energy.emitted, target = params.solver.unshotFraction * emitted;
   int& rounds = result.perCell->rounds;
   double unshot = emitted;
@@ -226,11 +229,11 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     }
     ++rounds;
     const SolverParams settings =
-        roundBudget(params.solver, stop.target(), unshot, emitted, controls, global.patches.size());
+        roundBudget(params.solver, stop.target(), unshot, emitted, controls, shape, global.patches.size());
     const std::vector<size_t> active = activeCells(cells, stop.target());
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =
-        solveRound(graph, rounds, cells, active, links, settings, controls, *transfer, workers, ctx);
+        solveRound(graph, rounds, cells, active, links, settings, controls, shape, *transfer, workers, ctx);
     for (size_t c : active) {
       addCellRound(round[c], cells[c], graph, result);
       result.timedOut = result.timedOut || round[c].timedOut;

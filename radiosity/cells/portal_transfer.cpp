@@ -6,27 +6,30 @@
 namespace cpgi {
 
 SolveResult DiffusePortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                  SolveControls controls, ShotEngine& engine, Context& ctx) const {
+                                  const SolveControls& controls, ShotShape shape, ShotEngine& engine,
+                                  Context& ctx) const {
   // A cell's atlas emits what arrived at it (its lamps shot first, over the whole scene:
   // cell_first_shot.h), so nothing in it is a lamp to shoot by rays.
   SolverParams own = settings;
   own.lampRays = 0;
-  return solveProgressive(s.cs.scene, s.atlas, own, engine, ctx, controls);
+  return solveProgressive(s.cs.scene, s.atlas, own, engine, ctx, controls, shape);
 }
 
 SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                      SolveControls controls, ShotEngine& engine, Context& ctx) const {
+                                      const SolveControls& controls, ShotShape shape, ShotEngine& engine,
+                                      Context& ctx) const {
   // No moments yet (the lamps' first shot, or nothing crossed a portal): Lambertian everywhere.
   const std::vector<glm::vec4> none(s.pendingMoments.empty() ? s.atlas.texelCount() : 0, glm::vec4(0.0f));
   const std::vector<glm::vec4> lobes =
       fitEmissionLobes(s.pendingMoments.empty() ? none : s.pendingMoments, s.atlas, lobeMinWidth_);
-  controls.directionalEmission = true;
-  controls.emissionLobes = lobes;
-  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls);
+  shape.directionalEmission = true;
+  shape.emissionLobes = lobes;
+  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls, shape);
 }
 
 SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams& settings,
-                                 SolveControls controls, ShotEngine& engine, Context& ctx) const {
+                                 const SolveControls& controls, ShotShape shape, ShotEngine& engine,
+                                 Context& ctx) const {
   // Texels with bins emit by them; the rest (reflectors, and everything before light crossed a portal)
   // as Lambertians.
   std::vector<glm::vec4> lobes(s.atlas.texelCount(), glm::vec4(0.0f));
@@ -40,11 +43,11 @@ SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams&
     const ArrivalBins f = normalisedEmissionBins(b);
     bins.insert(bins.end(), f.begin(), f.end());
   }
-  controls.directionalEmission = true;
-  controls.arrivalMoments = false;  // the bins are traced after the solve (cell_round.h)
-  controls.emissionLobes = lobes;
-  controls.emissionBins = bins;
-  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls);
+  shape.directionalEmission = true;
+  shape.arrivalMoments = false;  // the bins are traced after the solve (cell_round.h)
+  shape.emissionLobes = lobes;
+  shape.emissionBins = bins;
+  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls, shape);
 }
 
 std::unique_ptr<PortalTransfer> makePortalTransfer(const CellSolveParams& params) {

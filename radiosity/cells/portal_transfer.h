@@ -28,9 +28,11 @@ class PortalTransfer {
   virtual ~PortalTransfer() = default;
 
   /// Solves cell `c` (state `s`), shooting its pending exitance (already its atlas's emission) with
-  /// `controls`. Called side by side for distinct cells within a round.
+  /// `controls`, its shots shaped as `shape` and the model asks. Called side by side for distinct cells
+  /// within a round.
   virtual SolveResult solve(size_t c, const CellState& s, const SolverParams& settings,
-                            SolveControls controls, ShotEngine& engine, Context& ctx) const = 0;
+                            const SolveControls& controls, ShotShape shape, ShotEngine& engine,
+                            Context& ctx) const = 0;
   /// Rays per sending portal texel for the sends' arrival bins (cellRoundOf); 0: the model has none.
   virtual int binRays() const { return 0; }
 };
@@ -38,8 +40,8 @@ class PortalTransfer {
 /// The thesis's portal: the irradiance reaching the opening is re-emitted as a Lambertian area light.
 class DiffusePortals : public PortalTransfer {
  public:
-  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    ShotEngine& engine, Context& ctx) const override;
+  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, const SolveControls& controls,
+                    ShotShape shape, ShotEngine& engine, Context& ctx) const override;
 };
 
 /// Light keeps the direction it arrived in: per texel, the arrival moments of what is pending
@@ -50,8 +52,8 @@ class DirectionalPortals : public PortalTransfer {
  public:
   /// `lobeMinWidth`: CellSolveParams::lobeMinWidth.
   explicit DirectionalPortals(float lobeMinWidth) : lobeMinWidth_(lobeMinWidth) {}
-  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    ShotEngine& engine, Context& ctx) const override;
+  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, const SolveControls& controls,
+                    ShotShape shape, ShotEngine& engine, Context& ctx) const override;
 
  private:
   float lobeMinWidth_;
@@ -63,8 +65,8 @@ class DirectionalPortals : public PortalTransfer {
 class BinnedPortals : public PortalTransfer {
  public:
   explicit BinnedPortals(int rays) : rays_(rays) {}
-  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, SolveControls controls,
-                    ShotEngine& engine, Context& ctx) const override;
+  SolveResult solve(size_t c, const CellState& s, const SolverParams& settings, const SolveControls& controls,
+                    ShotShape shape, ShotEngine& engine, Context& ctx) const override;
   int binRays() const override { return rays_; }
 
  private:

@@ -51,14 +51,15 @@ double channelSum(const glm::vec3& v) {
 class RayShotBackend final : public ShotBackend {
  public:
   RayShotBackend(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                 const FirstShot& first)
+                 const FirstShot& first, uint32_t firstShotNumber)
       : atlas_(atlas),
         first_(first),
         rays_(scene),
         shots_(scene, atlas, rays_),
         layouts_(layoutShooters(scene, atlas, {params.regionSize, params.maxRegions})),
         shotParams_{params.farField, params.coverageRays, params.eyesPerRegion},
-        strongShotParams_{params.farField, params.coverageRays, params.strongEyesPerRegion} {
+        strongShotParams_{params.farField, params.coverageRays, params.strongEyesPerRegion},
+        firstShotNumber_(firstShotNumber) {
     const int strongRegions = params.strongShotRegions > 0 ? params.strongShotRegions : params.maxRegions;
     if (strongRegions != params.maxRegions)
       strongLayouts_ = layoutShooters(scene, atlas, {params.regionSize, strongRegions});
@@ -107,8 +108,7 @@ class RayShotBackend final : public ShotBackend {
     const ShooterLayout& layout = (strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_)[shooter_];
     RayShotParams shot = strong ? strongShotParams_ : shotParams_;
     shot.cull = cull_.next();
-    gain_ =
-        shootByRays(shots_, choice.patch, layout, residual_, first_.firstShotNumber + ++shotNumber_, shot);
+    gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot);
     cull_.measured(gain_);
     return {gain_.gathered, gain_.covered, gain_.open};
   }
@@ -161,20 +161,21 @@ class RayShotBackend final : public ShotBackend {
   CullControl cull_;
   RayShotGain gain_;  // the last shot's, until delivered
   size_t shooter_ = 0;
+  uint32_t firstShotNumber_ = 0;  // ShotShape::firstShotNumber
   uint32_t shotNumber_ = 0;
 };
 
 }  // namespace
 
 std::unique_ptr<ShotBackend> RayShotEngine::backend(const Scene& scene, const LightmapAtlas& atlas,
-                                                    const SolverParams& settings, const SolveControls&,
+                                                    const SolverParams& settings, const ShotShape& shape,
                                                     const FirstShot& first, Context&) {
   if (!(settings.unshotFraction > 0.0 && settings.unshotFraction < 1.0) || settings.maxShots < 1 ||
       settings.farField < 1.0f || settings.coverageRays < 1 || settings.eyesPerRegion < 1 ||
       settings.strongEyesPerRegion < 1 || settings.maxRegions < 1 || settings.strongShotRegions < 0)
     throw InputError("solver", "the ray solver's settings are out of range");
   if (atlas.patches.empty()) return nullptr;
-  return std::make_unique<RayShotBackend>(scene, atlas, settings, first);
+  return std::make_unique<RayShotBackend>(scene, atlas, settings, first, shape.firstShotNumber);
 }
 
 }  // namespace cpgi

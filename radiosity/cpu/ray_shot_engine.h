@@ -24,7 +24,7 @@ class RayShotEngine final : public ShotEngine {
   std::string name() const override { return "rays"; }
   EngineFeatures features() const override { return {}; }
   std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
-                                       const SolverParams& settings, const SolveControls& controls,
+                                       const SolverParams& settings, const ShotShape& shape,
                                        const FirstShot& first, Context& ctx) override;
   std::unique_ptr<ShotEngine> forThisThread() const override { return std::make_unique<RayShotEngine>(); }
 };

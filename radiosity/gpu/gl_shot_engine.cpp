@@ -50,7 +50,7 @@ static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 48 && sizeof(GpuRegio
               sizeof(GpuSelection) == 80);
 
 constexpr int kTile = 8;                         // receiver work groups are kTile × kTile texels
-constexpr uint32_t kNotReceiving = 0x80000000u;  // receive.comp's texel flag: SolveControls::receivers
+constexpr uint32_t kNotReceiving = 0x80000000u;  // receive.comp's texel flag: ShotShape::receivers
 constexpr int kMaxRegions = 4;                   // per chart edge; common.glsl's MAX_REGIONS is its square
 constexpr GLuint kListHeader = 16;               // count + 3 dispatch arguments, in bytes
 constexpr int kCoverageStride = 4;               // shot_coverage.comp's STRIDE
@@ -208,11 +208,11 @@ struct ProgramDefines {
 
 // The user's settings and the caller's controls together, as the passes read them.
 struct SolveConfig : SolverParams {
-  bool directionalEmission = false;          ///< SolveControls::directionalEmission
-  bool arrivalMoments = true;                ///< SolveControls::arrivalMoments
-  std::span<const float> emissionBins = {};  ///< SolveControls::emissionBins
-  std::span<const uint8_t> receivers = {};   ///< SolveControls::receivers
-  bool readLampFlags = false;                ///< SolveControls::readLampFlags
+  bool directionalEmission = false;          ///< ShotShape::directionalEmission
+  bool arrivalMoments = true;                ///< ShotShape::arrivalMoments
+  std::span<const float> emissionBins = {};  ///< ShotShape::emissionBins
+  std::span<const uint8_t> receivers = {};   ///< ShotShape::receivers
+  bool readLampFlags = false;                ///< ShotShape::readLampFlags
   /// The first shot made before the solve (shot_engine.h): its irradiance, its power, the lamps it spent.
   std::span<const glm::vec3> direct = {};
   double directEmitted = 0.0;
@@ -855,7 +855,7 @@ class GlShotBackend final : public ShotBackend {
     texels(incident_, incident, kIncident);
     shotGain_ = gl::makeBuffer(n * sizeof(glm::vec4), nullptr);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kShotGain, shotGain_.get());
-    // receive.comp's per-texel word: bit 31 set where the texel does not receive (SolveControls::receivers),
+    // receive.comp's per-texel word: bit 31 set where the texel does not receive (ShotShape::receivers),
     // the low bits what the lamps' shots found there (LampFlag).
     const bool flags = !params_.receivers.empty() || params_.readLampFlags;
     std::vector<uint32_t> texelFlags(flags ? n : 1, 0u);
@@ -1137,15 +1137,15 @@ class GlShotBackend final : public ShotBackend {
 namespace {
 
 std::unique_ptr<ShotBackend> makeGlBackend(const Scene& scene, const LightmapAtlas& atlas,
-                                           const SolverParams& settings, const SolveControls& controls,
+                                           const SolverParams& settings, const ShotShape& shape,
                                            const FirstShot& first, const EglContext& context,
                                            SolverPrograms& programs) {
   SolveConfig params{settings};
-  params.directionalEmission = controls.directionalEmission;
-  params.arrivalMoments = controls.arrivalMoments;
-  params.emissionBins = controls.emissionBins;
-  params.receivers = controls.receivers;
-  params.readLampFlags = controls.readLampFlags;
+  params.directionalEmission = shape.directionalEmission;
+  params.arrivalMoments = shape.arrivalMoments;
+  params.emissionBins = shape.emissionBins;
+  params.receivers = shape.receivers;
+  params.readLampFlags = shape.readLampFlags;
   params.direct = first.irradiance;
   params.directEmitted = first.emitted;
   params.shotLamps = first.spentEmitters;
@@ -1157,13 +1157,13 @@ std::unique_ptr<ShotBackend> makeGlBackend(const Scene& scene, const LightmapAtl
                                           : nullptr;
   const SolverPrograms::Set* plain =
       params.directionalEmission && !params.arrivalMoments ? &programs.get(params, false) : nullptr;
-  const std::vector<glm::vec4> lobes(controls.emissionLobes.begin(), controls.emissionLobes.end());
+  const std::vector<glm::vec4> lobes(shape.emissionLobes.begin(), shape.emissionLobes.end());
   auto backend = std::make_unique<GlShotBackend>(scene, atlas, params, base, binned, plain,
                                                  lobes.empty() ? nullptr : &lobes);
   // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
   // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
   const auto rayShots = std::count(first.spentEmitters.begin(), first.spentEmitters.end(), 1);
-  backend->countShotsFrom(first.firstShotNumber + uint32_t(rayShots));
+  backend->countShotsFrom(shape.firstShotNumber + uint32_t(rayShots));
   return backend;
 }
 
@@ -1176,10 +1176,9 @@ GlShotEngine::GlShotEngine(std::unique_ptr<EglContext> own) : own_(std::move(own
 GlShotEngine::~GlShotEngine() = default;
 
 std::unique_ptr<ShotBackend> GlShotEngine::backend(const Scene& scene, const LightmapAtlas& atlas,
-                                                   const SolverParams& settings,
-                                                   const SolveControls& controls, const FirstShot& first,
-                                                   Context&) {
-  return makeGlBackend(scene, atlas, settings, controls, first, gl_, programs_);
+                                                   const SolverParams& settings, const ShotShape& shape,
+                                                   const FirstShot& first, Context&) {
+  return makeGlBackend(scene, atlas, settings, shape, first, gl_, programs_);
 }
 
 std::unique_ptr<ShotEngine> GlShotEngine::forThisThread() const {
@@ -1187,9 +1186,10 @@ std::unique_ptr<ShotEngine> GlShotEngine::forThisThread() const {
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                             const EglContext& gl, Context& ctx, const SolveControls& controls) {
+                             const EglContext& gl, Context& ctx, const SolveControls& controls,
+                             const ShotShape& shape) {
   GlShotEngine engine(gl);
-  return solveProgressive(scene, atlas, settings, engine, ctx, controls);
+  return solveProgressive(scene, atlas, settings, engine, ctx, controls, shape);
 }
 
 }  // namespace cpgi

@@ -54,7 +54,7 @@ class GlShotEngine final : public ShotEngine {
   std::string name() const override { return "gl"; }
   EngineFeatures features() const override { return {.lampShots = true, .directionalEmission = true}; }
   std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
-                                       const SolverParams& settings, const SolveControls& controls,
+                                       const SolverParams& settings, const ShotShape& shape,
                                        const FirstShot& first, Context& ctx) override;
   /// A sibling context on the same display, current on the calling thread, with programs of its own.
   std::unique_ptr<ShotEngine> forThisThread() const override;
@@ -69,6 +69,7 @@ class GlShotEngine final : public ShotEngine {
 
 /// A solve on `gl` (radiosity/solve/solve.h on a GlShotEngine of its own, programs compiled for this solve).
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                             const EglContext& gl, Context& ctx, const SolveControls& controls = {});
+                             const EglContext& gl, Context& ctx, const SolveControls& controls = {},
+                             const ShotShape& shape = {});
 
 }  // namespace cpgi

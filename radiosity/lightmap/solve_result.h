@@ -90,14 +90,14 @@ struct SolveResult {
   /// With SolveControls::readTransfer, per atlas texel: irradiance received over the whole solve (W/m²;
   /// a texel of albedo 0 keeps all of it, e.g. a portal) and the residual still unshot at the end.
   std::vector<glm::vec3> incident, residual;
-  /// With SolveControls::directionalEmission, per atlas texel: the arrival moments of everything it received
+  /// With ShotShape::directionalEmission, per atlas texel: the arrival moments of everything it received
   /// (emission_lobes.h, arrivalMoment), to be fitted into a lobe on the far side of a portal.
   std::vector<glm::vec4> arrivals;
   std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
   std::vector<int> shooters;          ///< the patch of every shot, in order
   /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gl_shot_engine.cpp).
   std::vector<float> shotScales;
-  /// With SolveControls::readLampFlags, per atlas texel, LampFlag bits of what the lamps' shots found there.
+  /// With ShotShape::readLampFlags, per atlas texel, LampFlag bits of what the lamps' shots found there.
   std::vector<uint8_t> lampFlags;
   double setupSeconds = 0.0;  ///< programs and textures
 

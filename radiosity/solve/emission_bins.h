@@ -42,12 +42,12 @@ int arrivalBin(const BinFrame& frame, const glm::vec3& omega);
 /// all-zero bins (a Lambertian).
 float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
 
-/// The bins as the solver reads them (SolveControls::emissionBins): f per bin, mean 1; all ones for
+/// The bins as the solver reads them (ShotShape::emissionBins): f per bin, mean 1; all ones for
 /// all-zero bins.
 ArrivalBins normalisedEmissionBins(const ArrivalBins& bins);
 
-/// The emission lobe (SolveControls::emissionLobes) of a texel that emits with the binned slot `slot` ≥ 0
-/// of SolveControls::emissionBins. Must match shaders/directional.glsl.
+/// The emission lobe (ShotShape::emissionLobes) of a texel that emits with the binned slot `slot` ≥ 0
+/// of ShotShape::emissionBins. Must match shaders/directional.glsl.
 inline glm::vec4 binnedLobe(int slot) {
   return glm::vec4(0.0f, 0.0f, 0.0f, -float(slot + 1));
 }

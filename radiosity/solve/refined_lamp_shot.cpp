@@ -29,7 +29,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
 // theirs; the punctual lights and the sky are shot inside on the CPU).
 SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int emitters,
                           const SolverParams& settings, ShotEngine& engine, Context& ctx,
-                          SolveControls controls) {
+                          SolveControls controls, const ShotShape& shape = {}) {
   SolverParams lamps = settings;
   // The emitters' own shots, through item buffers: with lampRays the solver shoots the lamps by rays
   // first and then `emitters` reflectors, whose light the coarse solve shot again (seed3 two-level: the
@@ -39,7 +39,7 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
   lamps.unshotFraction = 1e-12;  // every lamp shoots, whatever the stop
   controls.readTransfer = true;
   controls.minShotPower = 0.0;
-  return solveProgressive(scene, atlas, lamps, engine, ctx, controls);
+  return solveProgressive(scene, atlas, lamps, engine, ctx, controls, shape);
 }
 
 // Punctual lights and sky only: their exact shot is the whole first step.
@@ -100,9 +100,8 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
 
   // 1. The lamps on the coarse atlas, noting per texel where their light has an edge, a penumbra or the
   //    lamp near.
-  SolveControls coarseControls = controls;
-  coarseControls.readLampFlags = true;
-  SolveResult lit = shootEmitters(scene, coarse, emitters, settings, engine, ctx, coarseControls);
+  SolveResult lit =
+      shootEmitters(scene, coarse, emitters, settings, engine, ctx, controls, {.readLampFlags = true});
   const double coarseSeconds = seconds(start);
 
   // 2. The output texels that cannot take it interpolated.
@@ -125,10 +124,8 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
     std::vector<float> scale(atlas.patches.size(), 1.0f);
     for (size_t s = 0; s < lit.shooters.size() && s < lit.shotScales.size(); ++s)
       scale[size_t(lit.shooters[s])] = lit.shotScales[s];
-    SolveControls fineControls = controls;
-    fineControls.receivers = refine;
-    fineControls.patchShotScale = scale;
-    const SolveResult fine = shootEmitters(scene, atlas, emitters, settings, engine, ctx, fineControls);
+    const SolveResult fine = shootEmitters(scene, atlas, emitters, settings, engine, ctx, controls,
+                                           {.receivers = refine, .patchShotScale = scale});
     for (size_t t = 0; t < incident.size(); ++t)
       if (refine[t]) incident[t] = fine.incident[t];
   }

@@ -15,7 +15,7 @@
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/solve/shot_backend.h"
-#include "radiosity/solve/solve_controls.h"
+#include "radiosity/solve/shot_shape.h"
 #include "radiosity/solve/solver_params.h"
 
 namespace cpgi {
@@ -28,16 +28,14 @@ struct FirstShot {
   /// Per patch, 1 for an emitter whose own light that shot carried (lamps shot by rays): its emission
   /// shows in the radiosity but is not unshot. Empty: none.
   std::span<const char> spentEmitters;
-  /// The number the solve's shots count from in the eyes' draw.
-  uint32_t firstShotNumber = 0;
 };
 
 /// What only some engines can do.
 struct EngineFeatures {
   /// An emitter's own shot resampled at its edges, with the lamp flags and a receiver mask
-  /// (SolveControls::receivers, ::readLampFlags: radiosity/solve/refined_lamp_shot.h).
+  /// (ShotShape::receivers, ::readLampFlags: radiosity/solve/refined_lamp_shot.h).
   bool lampShots = false;
-  /// Emission with per-texel lobes or bins and arrival moments (SolveControls::directionalEmission).
+  /// Emission with per-texel lobes or bins and arrival moments (ShotShape::directionalEmission).
   bool directionalEmission = false;
 };
 
@@ -47,11 +45,11 @@ class ShotEngine {
   /// "gl" or "rays" (report.json's `backend`).
   virtual std::string name() const = 0;
   virtual EngineFeatures features() const = 0;
-  /// The backend of one solve of `atlas`, built and ready for start(); null for an atlas without patches
-  /// (once the settings are checked). Throws InputError for settings out of range or an atlas the engine
-  /// cannot hold, SystemError for a device failure.
+  /// The backend of one solve of `atlas` with its shots shaped as `shape` asks, built and ready for start();
+  /// null for an atlas without patches (once the settings are checked). Throws InputError for settings out of
+  /// range or an atlas the engine cannot hold, SystemError for a device failure.
   virtual std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
-                                               const SolverParams& settings, const SolveControls& controls,
+                                               const SolverParams& settings, const ShotShape& shape,
                                                const FirstShot& first, Context& ctx) = 0;
   /// An engine of the same kind for the calling thread (a worker of radiosity/cells/cell_workers.h): the
   /// GL engine's needs a context of its own, current on that thread.

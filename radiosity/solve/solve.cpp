@@ -17,20 +17,20 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-void checkControls(const LightmapAtlas& atlas, const SolveControls& controls, const EngineFeatures& can,
-                   const std::string& engine) {
-  if (!controls.directionalEmission && !controls.emissionLobes.empty())
-    throw InputError("solver", "emission lobes need SolveControls::directionalEmission");
-  if (!controls.receivers.empty() && controls.receivers.size() != atlas.texelCount())
+void checkControls(const LightmapAtlas& atlas, const SolveControls& controls, const ShotShape& shape,
+                   const EngineFeatures& can, const std::string& engine) {
+  if (!shape.directionalEmission && !shape.emissionLobes.empty())
+    throw InputError("solver", "emission lobes need ShotShape::directionalEmission");
+  if (!shape.receivers.empty() && shape.receivers.size() != atlas.texelCount())
     throw InputError("solver", "receivers need one flag per atlas texel");
-  if (!controls.receivers.empty() && controls.patchShotScale.size() != atlas.patches.size())
+  if (!shape.receivers.empty() && shape.patchShotScale.size() != atlas.patches.size())
     throw InputError("solver", "a solve at some receivers needs one shot scale per patch");
   if (controls.priorShot && controls.priorShot->irradiance.size() != atlas.texelCount())
     throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
-  if (controls.directionalEmission && !can.directionalEmission)
+  if (shape.directionalEmission && !can.directionalEmission)
     throw InputError(
         "solver", "directional emission (directional or binned portals) needs the GL backend, not " + engine);
-  if ((!controls.receivers.empty() || controls.readLampFlags) && !can.lampShots)
+  if ((!shape.receivers.empty() || shape.readLampFlags) && !can.lampShots)
     throw InputError("solver", "a lamp shot at some receivers needs the GL backend, not " + engine);
 }
 
@@ -46,7 +46,7 @@ struct DirectStart {
 };
 
 DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                       const SolveControls& controls, Context& ctx) {
+                       const SolveControls& controls, const ShotShape& shape, Context& ctx) {
   DirectStart s;
   if (controls.priorShot) {
     s.direct.irradiance.assign(controls.priorShot->irradiance.begin(), controls.priorShot->irradiance.end());
@@ -57,8 +57,8 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
     s.emitted = punctualEmitted(scene.lights, s.direct.directionalLanded);
     s.any = true;
   }
-  if (settings.lampRays > 0 && !controls.priorShot && controls.receivers.empty() && !controls.readLampFlags &&
-      !controls.directionalEmission) {
+  if (settings.lampRays > 0 && !controls.priorShot && shape.receivers.empty() && !shape.readLampFlags &&
+      !shape.directionalEmission) {
     const std::vector<char> flagged = lampPatches(scene, atlas);
     if (std::find(flagged.begin(), flagged.end(), 1) != flagged.end()) {
       s.lamps =
@@ -79,7 +79,8 @@ SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int 
   if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
   SolverParams settings;
   settings.lampRays = lampRays;
-  const DirectStart first = shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ctx);
+  const DirectStart first =
+      shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ShotShape{}, ctx);
   SolveResult r;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual = r.incident = r.radiosity;
@@ -109,16 +110,16 @@ SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int 
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
-                             ShotEngine& engine, Context& ctx, const SolveControls& controls) {
-  checkControls(atlas, controls, engine.features(), engine.name());
-  const DirectStart direct = shootFirst(scene, atlas, settings, controls, ctx);
+                             ShotEngine& engine, Context& ctx, const SolveControls& controls,
+                             const ShotShape& shape) {
+  checkControls(atlas, controls, shape, engine.features(), engine.name());
+  const DirectStart direct = shootFirst(scene, atlas, settings, controls, shape, ctx);
   FirstShot first;
   if (direct.any) first.irradiance = direct.direct.irradiance, first.emitted = direct.emitted;
   if (!direct.lamps.shot.empty()) first.spentEmitters = direct.lamps.shot;
-  first.firstShotNumber = controls.firstShotNumber;
 
   const auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<ShotBackend> backend = engine.backend(scene, atlas, settings, controls, first, ctx);
+  std::unique_ptr<ShotBackend> backend = engine.backend(scene, atlas, settings, shape, first, ctx);
   if (!backend) {
     SolveResult empty;
     empty.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -130,16 +131,16 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   LoopControls loop;
   loop.acceptStop = controls.acceptStop;
   loop.minShotPower = controls.minShotPower;
-  loop.strongShotPower = controls.strongShotPower;
-  loop.emittersAreLamps = controls.emittersAreLamps;
-  loop.patchShotScale = controls.patchShotScale;
-  loop.lobedEmission = controls.directionalEmission;
+  loop.strongShotPower = shape.strongShotPower;
+  loop.emittersAreLamps = shape.emittersAreLamps;
+  loop.patchShotScale = shape.patchShotScale;
+  loop.lobedEmission = shape.directionalEmission;
   loop.deadline = controls.deadline;
   SolveResult result = runProgressiveLoop(*backend, settings, loop, ctx);
   result.setupSeconds = setupSeconds;
-  backend->readBack({controls.readTransfer, controls.directionalEmission && controls.arrivalMoments,
-                     controls.readLampFlags},
-                    result, ctx);
+  backend->readBack(
+      {controls.readTransfer, shape.directionalEmission && shape.arrivalMoments, shape.readLampFlags}, result,
+      ctx);
   result.seconds = secondsSince(start);
   return result;
 }

@@ -87,7 +87,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
     SolveResult one = solveCoarse
                           ? solveCoarse(atlas, atlasParams, controls)  // no prior: it shoots the lamps
                           : solveProgressive(scene, atlas, settings, engines.lamps, ctx, controls);
-    if (data) *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer};
+    if (data)
+      *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer, std::string()};
     return one;
   }
   const AtlasMapping mapping = mapAtlas(atlas, coarse);
@@ -111,7 +112,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
                0.0,
                lampData.coarseTexels,
                lampData.refinedTexels,
-               settings.itemBuffer};
+               settings.itemBuffer,
+               std::string()};
     return lit;
   }
 
@@ -131,15 +133,9 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   const auto coarseStart = std::chrono::steady_clock::now();
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);
-  // The reflections' engine unless the solve needs what only the lamps' has (lobes, masks).
-  const EngineFeatures can = engines.reflections.features();
-  ShotEngine& indirectEngine =
-      (c.directionalEmission && !can.directionalEmission) || (!c.receivers.empty() && !can.lampShots)
-          ? engines.lamps
-          : engines.reflections;
   SolveResult indirect = solveCoarse
                              ? solveCoarse(coarse, coarseParams, c)
-                             : solveProgressive(scene, coarse, indirectSettings, indirectEngine, ctx, c);
+                             : solveProgressive(scene, coarse, indirectSettings, engines.reflections, ctx, c);
   const double coarseSeconds = seconds(coarseStart);
 
   // Step 3: the coarse solve's light back onto the output texels.
@@ -168,7 +164,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              lampData.coarseTexels,
              lampData.refinedTexels,
              indirectSettings.itemBuffer,
-             solveCoarse ? std::string() : indirectEngine.name()};
+             solveCoarse ? std::string() : engines.reflections.name()};
   return out;
 }
 

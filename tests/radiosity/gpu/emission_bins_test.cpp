@@ -148,10 +148,9 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
     }
   SolverParams sp;
   sp.itemBuffer = 512;
-  const SolveResult r = solveProgressive(
-      scene, atlas, sp, gl, ctx,
-      SolveControls{
-          .readTransfer = true, .directionalEmission = true, .emissionLobes = lobes, .emissionBins = bins});
+  const SolveResult r =
+      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.readTransfer = true},
+                       ShotShape{.directionalEmission = true, .emissionLobes = lobes, .emissionBins = bins});
   ASSERT_EQ(r.shots, 1);
   const BinFrame frame = binFrame(X);
   const int n = 160;
@@ -196,10 +195,10 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
   for (size_t i = 0; i < boxAtlas.texelCount(); ++i)
     if (boxAtlas.patch[i] >= 0 && boxAtlas.emission[i] != glm::vec3(0.0f)) boxLobes[i] = binnedLobe(0);
   sp.itemBuffer = 256;
-  const SolveResult caught = solveProgressive(box, boxAtlas, sp, gl, ctx,
-                                              SolveControls{.directionalEmission = true,
-                                                            .emissionLobes = boxLobes,
-                                                            .emissionBins = std::span<const float>(aimed)});
+  const SolveResult caught = solveProgressive(box, boxAtlas, sp, gl, ctx, SolveControls{},
+                                              ShotShape{.directionalEmission = true,
+                                                        .emissionLobes = boxLobes,
+                                                        .emissionBins = std::span<const float>(aimed)});
   auto wall = [&](glm::vec3 normal) {
     double sum = 0.0;
     for (size_t i = 0; i < boxAtlas.texelCount(); ++i)

@@ -28,7 +28,8 @@ struct Emission {
   glm::dvec3 mean{0.0};  ///< ∫ ω f cos θ dω / ∫ f cos θ dω
 };
 Emission integrate(const glm::vec4& lobe, const glm::vec3& n, int steps = 800, float blur2 = 0.0f) {
-  const glm::vec3 t = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0)));
+  const glm::vec3 t = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                                                          : glm::cross(n, glm::vec3(0, 1, 0)));
   const glm::vec3 b = glm::cross(n, t);
   Emission e;
   const double dt = 0.5 * kPi / steps, dp = 2.0 * kPi / (4 * steps);
@@ -64,7 +65,8 @@ glm::vec4 momentsOfDiffuse(const glm::vec3& n, float weight, int samples = 20000
   glm::vec4 sum(0.0f);
   for (int i = 0; i < samples; ++i) {
     const float r = std::sqrt(u01(rng)), ph = float(2.0 * kPi) * u01(rng);
-    const glm::vec3 w = r * std::cos(ph) * t + r * std::sin(ph) * b + std::sqrt(std::max(0.0f, 1 - r * r)) * n;
+    const glm::vec3 w =
+        r * std::cos(ph) * t + r * std::sin(ph) * b + std::sqrt(std::max(0.0f, 1 - r * r)) * n;
     sum += arrivalMoment(w, n, weight / samples);
   }
   return sum;
@@ -108,7 +110,8 @@ TEST(EmissionLobes, DiffuseArrivalsFitALambertian) {
   const glm::vec4 lobe = fitEmissionLobe(momentsOfDiffuse(kN, 3.0f), kN, 0.05f);
   const float a = glm::dot(glm::vec3(lobe), kN);
   EXPECT_LT(a, 0.03f);
-  for (double deg : {0.0, 30.0, 60.0, 80.0}) EXPECT_NEAR(emissionLobeFactor(lobe, kN, tilted(kN, kT, deg)), 1.0f, 0.05f);
+  for (double deg : {0.0, 30.0, 60.0, 80.0})
+    EXPECT_NEAR(emissionLobeFactor(lobe, kN, tilted(kN, kT, deg)), 1.0f, 0.05f);
 }
 
 TEST(EmissionLobes, ABeamKeepsItsDirection) {
@@ -129,7 +132,8 @@ TEST(EmissionLobes, ABeamKeepsItsDirection) {
 
 TEST(EmissionLobes, HalfBeamHalfDiffuseSplitsInTwo) {
   const glm::vec3 beam = tilted(kN, kT, 40);
-  const glm::vec4 lobe = fitEmissionLobe(momentsOfBeam(beam, kN, 1.0f) + momentsOfDiffuse(kN, 1.0f), kN, 0.05f);
+  const glm::vec4 lobe =
+      fitEmissionLobe(momentsOfBeam(beam, kN, 1.0f) + momentsOfDiffuse(kN, 1.0f), kN, 0.05f);
   EXPECT_NEAR(glm::dot(glm::vec3(lobe), kN), 0.5f, 0.03f);
   // Away from the beam the emission is the diffuse half.
   EXPECT_NEAR(emissionLobeFactor(lobe, kN, tilted(kN, -kT, 40)), 0.5f, 0.03f);
@@ -154,7 +158,8 @@ TEST(EmissionLobes, AimedEmitterOnTheGpu) {
   const uint32_t black = testing::addMaterial(scene, glm::vec3(0.0f));
   const uint32_t lamp = testing::addMaterial(scene, glm::vec3(0.0f), glm::vec3(100.0f));
   testing::addClosedBox(scene, glm::vec3(-1, 0, -1), glm::vec3(1, 2, 1), black);
-  testing::addRect(scene, glm::vec3(-0.1f, 0.001f, -0.1f), glm::vec3(0, 0, 0.2f), glm::vec3(0.2f, 0, 0), lamp);
+  testing::addRect(scene, glm::vec3(-0.1f, 0.001f, -0.1f), glm::vec3(0, 0, 0.2f), glm::vec3(0.2f, 0, 0),
+                   lamp);
   Context ctx;
   EglContext gl(ctx);
   AtlasParams ap;
@@ -168,17 +173,18 @@ TEST(EmissionLobes, AimedEmitterOnTheGpu) {
     if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f))
       lobes[i] = fitEmissionLobe(arrivalMoment(aim, up, 1.0f), up, 0.15f);
   const std::vector<glm::vec4> lambertian(lobes.size(), glm::vec4(0.0f));
-  const SolveResult lambert = solveProgressive(
-      scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = lambertian});
-  const SolveResult aimed =
-      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = lobes});
+  const SolveResult lambert =
+      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{},
+                       ShotShape{.directionalEmission = true, .emissionLobes = lambertian});
+  const SolveResult aimed = solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{},
+                                             ShotShape{.directionalEmission = true, .emissionLobes = lobes});
   ASSERT_EQ(aimed.shots, 1);
   auto wall = [&](const SolveResult& r, glm::vec3 normal) {
     double sum = 0.0;
     for (size_t i = 0; i < atlas.texelCount(); ++i)
       if (atlas.patch[i] >= 0 && glm::dot(atlas.normal[i], normal) > 0.99f)
         sum += double(r.arrivals[i].w) * atlas.area[i];  // arrivals.w: irradiance, R + G + B
-    return sum;  // W caught
+    return sum;                                          // W caught
   };
   const double emitted = aimed.energy.emitted;
   const double px = wall(aimed, {-1, 0, 0}), mx = wall(aimed, {1, 0, 0});
@@ -224,14 +230,15 @@ TEST(EmissionLobes, AimedEmitterLightsTheWallBesideItAsIntegrated) {
   for (const float tilt : {45.0f, 70.0f}) {
     // At height y the lobe is aimed tilt·y towards the wall, with a third of the light 30° sideways.
     auto lobeAt = [&](float y) {
-      return fitEmissionLobe(arrivalMoment(tilted(X, -Z, tilt * y), X, 1.0f) + arrivalMoment(tilted(X, Y, 30), X, 0.5f),
-                             X, 0.05f);
+      return fitEmissionLobe(
+          arrivalMoment(tilted(X, -Z, tilt * y), X, 1.0f) + arrivalMoment(tilted(X, Y, 30), X, 0.5f), X,
+          0.05f);
     };
     std::vector<glm::vec4> lobes(atlas.texelCount(), glm::vec4(0.0f));
     for (size_t i = 0; i < atlas.texelCount(); ++i)
       if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) lobes[i] = lobeAt(atlas.position[i].y);
-    const SolveResult r = solveProgressive(
-        scene, atlas, sp, gl, ctx, SolveControls{.readTransfer = true, .directionalEmission = true, .emissionLobes = lobes});
+    const SolveResult r = solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.readTransfer = true},
+                                           ShotShape{.directionalEmission = true, .emissionLobes = lobes});
     ASSERT_EQ(r.shots, 1);
     // E(x) = ∫ M f(ω) / π cos θs cos θr / d² dA over the emitter (M = 10 per channel), each texel row of
     // the emitter with its own lobe as on the GPU.
@@ -245,7 +252,8 @@ TEST(EmissionLobes, AimedEmitterLightsTheWallBesideItAsIntegrated) {
           const glm::vec3 s(0.0f, (i + 0.5f) / n, (j + 0.5f) / n), v = x - s;
           const float d2 = glm::dot(v, v);
           const glm::vec3 w = v / std::sqrt(d2);
-          if (w.x > 0.0f && w.z < 0.0f) sum += 10.0 * emissionLobeFactor(rowLobe[i], X, w) / kPi * w.x * -w.z / d2;
+          if (w.x > 0.0f && w.z < 0.0f)
+            sum += 10.0 * emissionLobeFactor(rowLobe[i], X, w) / kPi * w.x * -w.z / d2;
         }
       return sum / (n * n);
     };
@@ -274,10 +282,12 @@ TEST(EmissionLobes, LobesNeedTheDirectionalSolver) {
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.texelsPerQuad = 4}, ctx);
   const SolverParams sp;
   const std::vector<glm::vec4> perTexel(atlas.texelCount()), tooFew(3);
-  EXPECT_THROW(solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.emissionLobes = perTexel}), InputError);
   EXPECT_THROW(
-      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.directionalEmission = true, .emissionLobes = tooFew}),
+      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{}, ShotShape{.emissionLobes = perTexel}),
       InputError);
+  EXPECT_THROW(solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{},
+                                ShotShape{.directionalEmission = true, .emissionLobes = tooFew}),
+               InputError);
 }
 
 }  // namespace

@@ -113,9 +113,9 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = s.solver.lampCoarsening;
-    if (cells)  // the cells on the coarse atlas, each solve on the lamps' engine
-      return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.engines.lamps,
-                                ctx, &*levels);
+    if (cells)  // the cells on the coarse atlas, each solve on the reflections' engine
+      return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.engines, ctx,
+                                &*levels);
     return solveTwoLevel(*in.scene, in.quads, in.atlas, s.atlas.params, twoLevels, s.solver.params, x.engines,
                          ctx, controls, &*levels);
   }
@@ -182,13 +182,6 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
 BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
                       const std::filesystem::path* gatherPlan) {
   const Clock::time_point deadline = deadlineOf(s, run.start);
-  // Directional and binned portals emit through the GL programs (EngineFeatures::directionalEmission):
-  // said before any work, not at the first cell's solve.
-  if (s.solver.backend == Backend::Rays && s.cells.method == BakeMethod::Cells &&
-      s.cells.params.portals != PortalLight::Diffuse)
-    throw InputError("--portals",
-                     "directional and binned portals need the GL backend; with --backend rays "
-                     "give --portals diffuse");
   std::optional<OutputDir> out;
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
   BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);

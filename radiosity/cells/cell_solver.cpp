@@ -252,7 +252,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
 
 SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const QuadSet& quads,
                                const LightmapAtlas& global, const TwoLevelParams& levels,
-                               const CellSolveParams& params, ShotEngine& engine, Context& ctx,
+                               const CellSolveParams& params, const ShotEngines& engines, Context& ctx,
                                TwoLevelData* data) {
   if (params.firstShot) throw InputError("cells", "a two-level cells solve shoots its lamps itself");
   const CoarseSolve cellByCell = [&](const LightmapAtlas& coarse, const AtlasParams& coarseParams,
@@ -260,11 +260,11 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
     CellSolveParams p = params;
     p.atlas = coarseParams;
     p.firstShot = c.priorShot;
-    return solveCells(scene, graph, coarse, p, engine, ctx);
+    return solveCells(scene, graph, coarse, p, engines.reflections, ctx);
   };
   SolveControls controls{.readTransfer = true, .deadline = params.deadline};
-  return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, {engine, engine}, ctx,
-                       controls, data, cellByCell);
+  return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, engines, ctx, controls,
+                       data, cellByCell);
 }
 
 AtlasParams coarseAtlasParams(const AtlasParams& atlas) {

@@ -96,11 +96,12 @@ SolveResult solveCellsOnDemand(const Scene& scene, const CellGraph& graph, const
 /// A cells bake in two levels (radiosity/solve/two_level_solve.h): the lamps and punctual lights shoot onto
 /// `global` (the output's atlas, built with `params.atlas` from `quads`) at its own texels where their light
 /// varies, and the cells solve the light they leave on an atlas of `levels.solveDensity` texels per metre
-/// (finer at contacts), which comes back to `global` interpolated. Not for cell jobs (their plan is one
+/// (finer at contacts), which comes back to `global` interpolated: the lamps on `engines.lamps`, the cells'
+/// solves on `engines.reflections`, as a global two-level solve. Not for cell jobs (their plan is one
 /// level). `data` receives the levels' figures when not null.
 SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const QuadSet& quads,
                                const LightmapAtlas& global, const TwoLevelParams& levels,
-                               const CellSolveParams& params, ShotEngine& engine, Context& ctx,
+                               const CellSolveParams& params, const ShotEngines& engines, Context& ctx,
                                TwoLevelData* data = nullptr);
 
 /// The boundary cells' atlas: half the texels per edge of `atlas` (at least 2 per quad edge). Most of a

@@ -9,16 +9,23 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/emission_lobes.h"
+
 namespace cpgi {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
+// A node holding binned texels stands for them whole only beyond this many of its radii, where it looks
+// smaller than about a third of the narrowest bins (shaders/directional.glsl, BIN_FAR).
+constexpr float kBinFar = 10.0f;
 
 // A shooter texel: where it is, its area, its unshot radiosity.
 struct ShooterTexel {
   glm::vec3 position{0.0f};
   float area = 0.0f;
   glm::vec3 radiosity{0.0f};
+  glm::vec4 lobe{0.0f};  // ShooterEmission::lobes; zero: Lambertian
 };
 
 // A piece of a region (a block, or the whole region) as seen from afar: its area and mean radiosity, the
@@ -29,6 +36,9 @@ struct FarPiece {
   float area = 0.0f;
   glm::vec3 radiosity{0.0f};
   glm::vec3 mean{0.0f}, spreadU{0.0f}, spreadV{0.0f};  // world-space: mean ± spreadU ± spreadV
+  /// Its texels' lobes mixed (mixedLobe); a node holding binned texels: (n, −(k + 1)), its bins the k-th
+  /// kArrivalBins of RegionPieces::nodeBins.
+  glm::vec4 lobe{0.0f};
 };
 
 // A node of a region's quadtree (receive.comp walks the GPU's residual pyramid the same way): a texel, or
@@ -44,6 +54,7 @@ struct RegionPieces {
   std::vector<glm::vec3> eyes;   // drawn by power, stratified: each stands for an equal share of it
   std::vector<PieceNode> nodes;  // nodes[0]: the whole region
   std::vector<ShooterTexel> texels;
+  std::vector<float> nodeBins;  // kArrivalBins per binned node (FarPiece::lobe)
   const FarPiece& whole() const { return nodes[0].piece; }
 };
 
@@ -94,9 +105,75 @@ uint32_t regionHash(uint32_t r) {
   return h;
 }
 
+// The moment-matched mixture of lobes (shaders/directional.glsl, addLobe and mixedLobe): weight, centre
+// and spread of the Gaussians by power, which keeps the mixture normalised. Binned lobes do not mix.
+struct LobeMix {
+  glm::vec4 sum{0.0f}, second{0.0f};
+  void add(const glm::vec4& lobe, const glm::vec3& n, float power) {
+    if (lobe.w < 0.0f) {
+      second.w = 1.0f;
+      return;
+    }
+    const float a = glm::dot(glm::vec3(lobe), n);
+    const glm::vec3 s0 = glm::vec3(lobe) - a * n;
+    const float pa = power * std::max(a, 0.0f);
+    sum += glm::vec4(pa * s0, pa);
+    second += glm::vec4(pa * lobe.w, pa * glm::dot(s0, s0), power, 0.0f);
+  }
+  bool binned() const { return second.w > 0.0f; }
+  glm::vec4 mixed(const glm::vec3& n) const {
+    if (!(sum.w > 0.0f) || !(second.z > 0.0f)) return glm::vec4(0.0f);
+    const glm::vec3 s0 = glm::vec3(sum) / sum.w;
+    const float sigma2 = second.x / sum.w + 0.5f * std::max(second.y / sum.w - glm::dot(s0, s0), 0.0f);
+    return glm::vec4(s0 + (sum.w / second.z) * n, sigma2);
+  }
+};
+
+// A piece's bins, kArrivalBins from `bins` (ShooterEmission::bins for a texel, RegionPieces::nodeBins for
+// a node, told apart as the shader does: a node's lobe holds the shooter's normal).
+const float* binsOf(const glm::vec4& lobe, const glm::vec3& n, std::span<const float> texelBins,
+                    std::span<const float> nodeBins) {
+  const size_t k = size_t(-lobe.w) - 1;
+  return (glm::dot(glm::vec3(lobe), n) > 0.5f ? nodeBins.data() : texelBins.data()) + k * kArrivalBins;
+}
+
+// Node `index`'s lobe from its children's (or its texel's), and for one holding binned texels the
+// power-weighted mean of their bins (a Lambertian's all ones: shooter_pyramid.comp, mixNodeBins).
+void mixNodeLobe(const Patch& p, int32_t index, std::span<const float> texelBins, RegionPieces& out) {
+  PieceNode& node = out.nodes[size_t(index)];
+  if (node.texel >= 0) {
+    node.piece.lobe = out.texels[size_t(node.texel)].lobe;
+    return;
+  }
+  LobeMix mix;
+  for (int32_t c : node.children)
+    if (c >= 0) {
+      const FarPiece& f = out.nodes[size_t(c)].piece;
+      mix.add(f.lobe, p.normal, channelSum(f.radiosity) * f.area);
+    }
+  if (!mix.binned()) {
+    node.piece.lobe = mix.mixed(p.normal);
+    return;
+  }
+  std::vector<double> bins(kArrivalBins, 0.0);
+  double sum = 0.0;
+  for (int32_t c : node.children) {
+    if (c < 0) continue;
+    const FarPiece& f = out.nodes[size_t(c)].piece;
+    const double w = double(channelSum(f.radiosity)) * f.area;
+    const float* from = f.lobe.w < 0.0f ? binsOf(f.lobe, p.normal, texelBins, out.nodeBins) : nullptr;
+    for (int b = 0; b < kArrivalBins; ++b) bins[size_t(b)] += w * (from ? double(from[b]) : 1.0);
+    sum += w;
+  }
+  const size_t k = out.nodeBins.size() / kArrivalBins;
+  for (double b : bins) out.nodeBins.push_back(sum > 0.0 ? float(b / sum) : 1.0f);
+  out.nodes[size_t(index)].piece.lobe = glm::vec4(p.normal, -float(k + 1));
+}
+
 // The quadtree over chart texels [lo, hi) of `cells` (all inside it), appended to `out`; its index, or -1
-// when nothing in it has area.
-int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::ivec2 hi, RegionPieces& out) {
+// when nothing in it has area. With `emission`, each node's lobe mixed from its children's.
+int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::ivec2 hi,
+                  const ShooterEmission* emission, RegionPieces& out) {
   const FarPiece piece = farPiece(p, cells);
   if (piece.area <= 0.0f) return -1;
   const int32_t index = int32_t(out.nodes.size());
@@ -104,6 +181,7 @@ int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::
   if (cells.size() == 1 && hi - lo == glm::ivec2(1)) {
     out.nodes[size_t(index)].texel = int32_t(out.texels.size());
     out.texels.push_back(cells[0].second);
+    if (emission) mixNodeLobe(p, index, emission->bins, out);
     return index;
   }
   // Halves along each axis longer than a texel.
@@ -117,16 +195,17 @@ int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::
     if (quarters[size_t(q)].empty()) continue;
     const glm::ivec2 qlo{q & 1 ? mid.x : lo.x, q & 2 ? mid.y : lo.y};
     const glm::ivec2 qhi{q & 1 || size.x == 1 ? hi.x : mid.x, q & 2 || size.y == 1 ? hi.y : mid.y};
-    out.nodes[size_t(index)].children[size_t(q)] = buildNode(p, quarters[size_t(q)], qlo, qhi, out);
+    out.nodes[size_t(index)].children[size_t(q)] = buildNode(p, quarters[size_t(q)], qlo, qhi, emission, out);
   }
+  if (emission) mixNodeLobe(p, index, emission->bins, out);
   return index;
 }
 
 // The region's pieces and its eyes: texels drawn with probability ∝ their unshot power (pick_eyes.comp's
 // sequence: a hashed offset per region, the golden ratio per shot), stratified.
 RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& rect,
-                          std::span<const glm::vec3> residual, uint32_t region, uint32_t shotNumber,
-                          int eyes) {
+                          std::span<const glm::vec3> residual, uint32_t region, uint32_t shotNumber, int eyes,
+                          const ShooterEmission& emission) {
   const Patch& p = s.atlas.patches[size_t(shooter)];
   RegionPieces out;
   ChartTexels all;
@@ -134,12 +213,14 @@ RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& 
     for (int i = rect.x; i < rect.z; ++i) {
       const size_t t = size_t(p.y + j) * s.atlas.width + size_t(p.x + i);
       if (s.atlas.patch[t] != shooter) continue;
-      const ShooterTexel st{s.atlas.position[t], s.atlas.area[t], residual[t]};
+      ShooterTexel st{s.atlas.position[t], s.atlas.area[t], residual[t]};
+      if (!emission.lobes.empty()) st.lobe = emission.lobes[t];
       all.push_back({{i, j}, st});
       out.power += double(channelSum(st.radiosity)) * st.area;
     }
   if (!(out.power > 0.0)) return out;
-  if (buildNode(p, all, {rect.x, rect.y}, {rect.z, rect.w}, out) != 0) {
+  const ShooterEmission* lobed = emission.lobes.empty() ? nullptr : &emission;
+  if (buildNode(p, all, {rect.x, rect.y}, {rect.z, rect.w}, lobed, out) != 0) {
     out.power = 0.0;
     return out;
   }
@@ -161,46 +242,78 @@ RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& 
   return out;
 }
 
-// The form factor kernels of receive.comp: ΔB F(dA_x → piece) with the shooter's normal `ns`.
+// The form factor kernels of receive.comp: ΔB F(dA_x → piece) with the shooter's normal `ns`, times the
+// piece's emission lobe towards the receiver when the shooter is not Lambertian (shaders/directional.glsl).
 struct Gather {
   glm::vec3 x, n, ns;
   float farField;
+  const ShooterEmission* emission = nullptr;  // null: every piece Lambertian
+  std::span<const float> nodeBins = {};       // the region's (RegionPieces::nodeBins)
+  BinFrame frame{};                           // the shooter's bins' frame
+  float receiverArea = 0.0f;                  // m², for the lobe's blur over the receiver texel
 
-  glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b) const {
-    const glm::vec3 v = c - x;
-    const float r2 = glm::dot(v, v), ci = glm::dot(n, v), cs = -glm::dot(ns, v);
-    if (ci <= 0.0f || cs <= 0.0f || r2 <= 0.0f) return glm::vec3(0.0f);
-    return b * (area * ci * cs / (kPi * r2 * r2));
+  // The receiver texel's angular variance seen from the shooter (directional.glsl, receiverBlur): a beam
+  // narrower than the texel would otherwise light it fully or not at all.
+  float receiverBlur(const glm::vec3& v) const {
+    const float r2 = glm::dot(v, v), r = std::sqrt(r2);
+    const float cr = std::abs(glm::dot(n, v)) / r, cs = std::max(std::abs(glm::dot(ns, v)) / r, 0.1f);
+    return std::min(receiverArea * cr / (12.0f * r2 * cs * cs * cs), 0.1f);
   }
-  glm::vec3 disk(const glm::vec3& c, float area, const glm::vec3& b) const {
+  glm::vec3 emitted(const glm::vec3& f, const glm::vec4& lobe, const glm::vec3& v) const {
+    if (!emission || lobe == glm::vec4(0.0f)) return f;
+    const glm::vec3 omega = -glm::normalize(v);
+    if (lobe.w < 0.0f) return f * binsOf(lobe, ns, emission->bins, nodeBins)[arrivalBin(frame, omega)];
+    return f * emissionLobeFactor(lobe, ns, omega, receiverBlur(v));
+  }
+  glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b, const glm::vec4& lobe) const {
     const glm::vec3 v = c - x;
     const float r2 = glm::dot(v, v), ci = glm::dot(n, v), cs = -glm::dot(ns, v);
     if (ci <= 0.0f || cs <= 0.0f || r2 <= 0.0f) return glm::vec3(0.0f);
-    return b * (area * ci * cs / (r2 * (kPi * r2 + area)));
+    return emitted(b * (area * ci * cs / (kPi * r2 * r2)), lobe, v);
+  }
+  glm::vec3 disk(const glm::vec3& c, float area, const glm::vec3& b, const glm::vec4& lobe) const {
+    const glm::vec3 v = c - x;
+    const float r2 = glm::dot(v, v), ci = glm::dot(n, v), cs = -glm::dot(ns, v);
+    if (ci <= 0.0f || cs <= 0.0f || r2 <= 0.0f) return glm::vec3(0.0f);
+    return emitted(b * (area * ci * cs / (r2 * (kPi * r2 + area))), lobe, v);
   }
   bool far(const glm::vec3& c, float radius) const {
     const glm::vec3 d = c - x;
     const float f = farField * radius;
     return glm::dot(d, d) > f * f;
   }
+  // Far enough for a piece (centre c, radius) to stand for its texels, and its lobe wider than the piece
+  // looks from here (directional.glsl, lobeResolvesPiece): a narrow beam through a door is sent from
+  // where each texel sends it, a binned node's only from kBinFar of its radii.
+  bool farFor(const glm::vec3& c, float radius, const glm::vec4& lobe) const {
+    if (!far(c, radius)) return false;
+    if (!emission) return true;
+    const glm::vec3 d = c - x;
+    const float r2 = glm::dot(d, d), rr = radius * radius, a = glm::dot(glm::vec3(lobe), ns);
+    if (lobe.w < 0.0f) return !(a > 0.5f) || r2 >= kBinFar * kBinFar * rr;
+    return !(a > 0.0f) || lobe.w * r2 >= rr;
+  }
+  bool farPieceFor(const FarPiece& f) const { return farFor(f.centre, f.radius, f.lobe); }
   glm::vec3 piece(const FarPiece& f) const {
     const float a = 0.25f * f.area;
     const glm::vec3 &c = f.mean, &u = f.spreadU, &v = f.spreadV;
-    return point(c - u - v, a, f.radiosity) + point(c + u - v, a, f.radiosity) +
-           point(c - u + v, a, f.radiosity) + point(c + u + v, a, f.radiosity);
+    return point(c - u - v, a, f.radiosity, f.lobe) + point(c + u - v, a, f.radiosity, f.lobe) +
+           point(c - u + v, a, f.radiosity, f.lobe) + point(c + u + v, a, f.radiosity, f.lobe);
   }
   glm::vec3 texel(const ShooterTexel& t, const glm::vec3& tu, const glm::vec3& tv, float radius) const {
-    if (far(t.position, radius)) {  // 2×2 Gauss points
+    if (farFor(t.position, radius, t.lobe)) {  // 2×2 Gauss points
       const float g = 0.5f * 0.5773502692f, a = 0.25f * t.area;
       const glm::vec3 u = g * tu, v = g * tv;
-      return point(t.position - u - v, a, t.radiosity) + point(t.position + u - v, a, t.radiosity) +
-             point(t.position - u + v, a, t.radiosity) + point(t.position + u + v, a, t.radiosity);
+      return point(t.position - u - v, a, t.radiosity, t.lobe) +
+             point(t.position + u - v, a, t.radiosity, t.lobe) +
+             point(t.position - u + v, a, t.radiosity, t.lobe) +
+             point(t.position + u + v, a, t.radiosity, t.lobe);
     }
     glm::vec3 sum(0.0f);  // near: 4×4 sub-disks, which keep F finite as r → 0
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 4; ++i)
         sum += disk(t.position + (float(i) - 1.5f) * 0.25f * tu + (float(j) - 1.5f) * 0.25f * tv,
-                    t.area / 16.0f, t.radiosity);
+                    t.area / 16.0f, t.radiosity, t.lobe);
     return sum;
   }
   // The region's light at the receiver through its quadtree, each piece handed to `use(point, light)`:
@@ -220,7 +333,7 @@ struct Gather {
         use(t.position, texel(t, p.texelU, p.texelV, texelRadius));
         continue;
       }
-      if (far(node.piece.centre, node.piece.radius)) {
+      if (farPieceFor(node.piece)) {
         use(node.piece.mean, piece(node.piece));
         continue;
       }
@@ -310,18 +423,21 @@ RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RaySce
 }
 
 RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
-                        std::span<const glm::vec3> residual, uint32_t shotNumber,
-                        const RayShotParams& params) {
+                        std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
+                        const ShooterEmission& emission) {
   const Patch& p = s.atlas.patches[size_t(shooter)];
   std::vector<RegionPieces> regions(layout.rects.size());
   tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
-    regions[r] =
-        regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber, params.eyesPerRegion);
+    regions[r] = regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber,
+                              params.eyesPerRegion, emission);
   });
   std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
   RayShotGain out;
   out.irradiance.assign(s.texels.size(), glm::vec3(0.0f));
+  if (emission.arrivals) out.arrivals.assign(s.texels.size(), glm::vec4(0.0f));
   if (regions.empty()) return out;
+  const bool lobed = !emission.lobes.empty();
+  const BinFrame frame = binFrame(p.normal);
 
   double shotPower = 0.0;
   for (const RegionPieces& r : regions) shotPower += r.power;
@@ -350,6 +466,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   struct Pending {
     uint32_t receiver;
     glm::vec3 light;
+    glm::vec3 source;  // where on the shooter it left (for the arrival moments)
   };
   struct Queued {
     std::vector<RayScene::Segment> segments;
@@ -361,32 +478,34 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
       tbb::blocked_range<size_t>(0, s.texels.size(), 64),
       [&](const tbb::blocked_range<size_t>& range) {
         Queued q;  // per chunk, not per thread: nothing here may share it with another chunk
-        auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light) {
+        auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light,
+                         const glm::vec3& source) {
           const glm::vec3 d = to - from;
           const float length = glm::length(d);
           if (length <= 2.0f * s.offset) return;
           q.segments.push_back({from, length - s.offset, d / length});
-          q.light.push_back({k, light});
+          q.light.push_back({k, light, source});
         };
         for (size_t k = range.begin(); k < range.end(); ++k) {
           const uint32_t t = s.texels[k];
           if (s.atlas.patch[t] == shooter) continue;
           const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t], lifted = x + n * s.offset;
-          const Gather g{x, n, ns, params.farField};
+          Gather g{x, n, ns, params.farField};
+          if (lobed) g.emission = &emission, g.frame = frame, g.receiverArea = s.atlas.area[t];
           for (const RegionPieces& r : regions) {
+            g.nodeBins = r.nodeBins;
             if (params.nearRays && !g.far(r.whole().centre, r.whole().radius)) {
               // Near the region, each piece is gated by its own segment. One eye for the region put a cube
               // standing on a floor in the dark wherever the eye was on its far side (its faces gathered
               // 12–68 % of the floor's light, bench/shot_probe.cpp), and the shot's scaling to its power
               // spread what they missed over every other receiver.
               g.walk(r, p, layout.texelRadius, [&](const glm::vec3& y, const glm::vec3& light) {
-                if (light != glm::vec3(0.0f)) queue(uint32_t(k), lifted, y + ns * s.offset, light);
+                if (light != glm::vec3(0.0f)) queue(uint32_t(k), lifted, y + ns * s.offset, light, y);
               });
               continue;
             }
-            const glm::vec3 f = g.far(r.whole().centre, r.whole().radius)
-                                    ? g.piece(r.whole())
-                                    : g.region(r, p, layout.texelRadius);
+            const glm::vec3 f =
+                g.farPieceFor(r.whole()) ? g.piece(r.whole()) : g.region(r, p, layout.texelRadius);
             if (f == glm::vec3(0.0f)) continue;
             const glm::vec3 share = f / float(r.eyes.size());
             const uint8_t* eyeHides =
@@ -398,14 +517,22 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
               if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]])
                 ++q.saved;
               else
-                queue(uint32_t(k), eye, lifted, share);
+                queue(uint32_t(k), eye, lifted, share, eye);
             }
           }
         }
         q.hidden.resize(q.segments.size());
         s.rays.occluded(q.segments, q.hidden);
-        for (size_t i = 0; i < q.light.size(); ++i)
-          if (!q.hidden[i]) out.irradiance[q.light[i].receiver] += q.light[i].light;
+        for (size_t i = 0; i < q.light.size(); ++i) {
+          if (q.hidden[i]) continue;
+          const Pending& got = q.light[i];
+          out.irradiance[got.receiver] += got.light;
+          if (emission.arrivals) {  // shaders/directional.glsl, noteArrival: travelling from the source
+            const uint32_t t = s.texels[got.receiver];
+            const glm::vec3 omega = glm::normalize(s.atlas.position[t] - got.source);
+            out.arrivals[got.receiver] += arrivalMoment(omega, -s.atlas.normal[t], channelSum(got.light));
+          }
+        }
         saved += q.saved;
       },
       tbb::simple_partitioner());

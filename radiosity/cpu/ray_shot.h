@@ -49,6 +49,17 @@ struct RayShotParams {
   bool cull = true;
 };
 
+/// How the shooters emit where they are not Lambertian (the cells' directional and binned portals,
+/// radiosity/solve/shot_shape.h): per atlas texel a lobe (radiosity/solve/emission_lobes.h; zero:
+/// Lambertian; binnedLobe(slot): by the bins of `bins`' slot, radiosity/solve/emission_bins.h). Empty
+/// `lobes`: every shooter Lambertian, the plain shot. `arrivals`: also note the direction moments of what
+/// each receiver gathers (RayShotGain::arrivals), for directional portals.
+struct ShooterEmission {
+  std::span<const glm::vec4> lobes;
+  std::span<const float> bins;
+  bool arrivals = false;
+};
+
 /// What one shot gave: per valid texel (RayShotScene::texels order), the irradiance it gathered
 /// (W/m²) before any scaling, and what the eyes saw.
 struct RayShotGain {
@@ -58,12 +69,16 @@ struct RayShotGain {
   double open = 0.0;      ///< ... showing nothing at all
   size_t cullTests = 0;   ///< eye–tile pairs the cull tested (each one to three rays)
   size_t cullSaved = 0;   ///< eye segments it left out
+  /// With ShooterEmission::arrivals, per valid texel the arrival moments of what it gathered
+  /// (arrivalMoment, weighted by the gathered irradiance before any scaling); else empty.
+  std::vector<glm::vec4> arrivals;
 };
 
 /// Shoots patch `shooter`'s unshot radiosity `residual` (per atlas texel) with the regions of `layout`,
-/// eyes drawn by the shot's number `shotNumber`. Receivers are every valid texel of the other patches.
+/// eyes drawn by the shot's number `shotNumber`, its texels emitting as `emission` says. Receivers are
+/// every valid texel of the other patches.
 RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
-                        std::span<const glm::vec3> residual, uint32_t shotNumber,
-                        const RayShotParams& params);
+                        std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
+                        const ShooterEmission& emission = {});
 
 }  // namespace cpgi

@@ -51,7 +51,7 @@ double channelSum(const glm::vec3& v) {
 class RayShotBackend final : public ShotBackend {
  public:
   RayShotBackend(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& params,
-                 const FirstShot& first, uint32_t firstShotNumber)
+                 const FirstShot& first, const ShotShape& shape)
       : atlas_(atlas),
         first_(first),
         rays_(scene),
@@ -59,7 +59,9 @@ class RayShotBackend final : public ShotBackend {
         layouts_(layoutShooters(scene, atlas, {params.regionSize, params.maxRegions})),
         shotParams_{params.farField, params.coverageRays, params.eyesPerRegion},
         strongShotParams_{params.farField, params.coverageRays, params.strongEyesPerRegion},
-        firstShotNumber_(firstShotNumber) {
+        emission_{shape.directionalEmission ? shape.emissionLobes : std::span<const glm::vec4>{},
+                  shape.emissionBins, shape.directionalEmission && shape.arrivalMoments},
+        firstShotNumber_(shape.firstShotNumber) {
     const int strongRegions = params.strongShotRegions > 0 ? params.strongShotRegions : params.maxRegions;
     if (strongRegions != params.maxRegions)
       strongLayouts_ = layoutShooters(scene, atlas, {params.regionSize, strongRegions});
@@ -108,7 +110,12 @@ class RayShotBackend final : public ShotBackend {
     const ShooterLayout& layout = (strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_)[shooter_];
     RayShotParams shot = strong ? strongShotParams_ : shotParams_;
     shot.cull = cull_.next();
-    gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot);
+    gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot,
+                        emission_);
+    if (emission_.arrivals) {  // unscaled, as the item buffers note them: only their direction is read
+      if (arrivals_.empty()) arrivals_.assign(atlas_.texelCount(), glm::vec4(0.0f));
+      for (size_t k = 0; k < shots_.texels.size(); ++k) arrivals_[shots_.texels[k]] += gain_.arrivals[k];
+    }
     cull_.measured(gain_);
     return {gain_.gathered, gain_.covered, gain_.open};
   }
@@ -137,6 +144,9 @@ class RayShotBackend final : public ShotBackend {
   void readBack(const ReadBack& what, SolveResult& result, Context&) override {
     result.radiosity = std::move(radiosity_);
     if (what.transfer) result.incident = std::move(incident_), result.residual = std::move(residual_);
+    if (what.arrivals)
+      result.arrivals = arrivals_.empty() ? std::vector<glm::vec4>(atlas_.texelCount(), glm::vec4(0.0f))
+                                          : std::move(arrivals_);
   }
 
  private:
@@ -161,7 +171,9 @@ class RayShotBackend final : public ShotBackend {
   CullControl cull_;
   RayShotGain gain_;  // the last shot's, until delivered
   size_t shooter_ = 0;
-  uint32_t firstShotNumber_ = 0;  // ShotShape::firstShotNumber
+  const ShooterEmission emission_;   // ShotShape's lobes and bins
+  std::vector<glm::vec4> arrivals_;  // per atlas texel, once a shot noted any
+  uint32_t firstShotNumber_ = 0;     // ShotShape::firstShotNumber
   uint32_t shotNumber_ = 0;
 };
 
@@ -175,7 +187,7 @@ std::unique_ptr<ShotBackend> RayShotEngine::backend(const Scene& scene, const Li
       settings.strongEyesPerRegion < 1 || settings.maxRegions < 1 || settings.strongShotRegions < 0)
     throw InputError("solver", "the ray solver's settings are out of range");
   if (atlas.patches.empty()) return nullptr;
-  return std::make_unique<RayShotBackend>(scene, atlas, settings, first, shape.firstShotNumber);
+  return std::make_unique<RayShotBackend>(scene, atlas, settings, first, shape);
 }
 
 }  // namespace cpgi

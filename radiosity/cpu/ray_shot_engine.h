@@ -2,8 +2,9 @@
 // shots of the interreflection on a two-level solve's coarse atlas (radiosity/solve/two_level_solve.h) cost
 // less as rays from each eye than as item buffers drawn by llvmpipe. Every shot is the GL engine's
 // reflector shot (ray_shot.h): the same regions, eyes drawn by power, pieces and form factors; the loop
-// around them (radiosity/solve/progressive_loop.h) scales each to what its eyes saw covered. The lamps' own
-// shots (edges resampled, replicated eyes) and directional emission stay on the GL engine.
+// around them (radiosity/solve/progressive_loop.h) scales each to what its eyes saw covered, and shooters
+// emit with the cells' portal lobes and bins as the GL programs do (shaders/directional.glsl). The lamps'
+// own shots (edges resampled, replicated eyes) stay on the GL engine.
 #pragma once
 
 #include <memory>
@@ -18,11 +19,11 @@ namespace cpgi {
 
 /// The rays engine: a backend per solve, its shots traced through every scene triangle. It has no lamp
 /// shot of its own (an emitter shoots as a reflector does; the lamps' first shot by rays is the solve's,
-/// SolverParams::lampRays) and no directional emission (EngineFeatures).
+/// SolverParams::lampRays).
 class RayShotEngine final : public ShotEngine {
  public:
   std::string name() const override { return "rays"; }
-  EngineFeatures features() const override { return {}; }
+  EngineFeatures features() const override { return {.directionalEmission = true}; }
   std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
                                        const SolverParams& settings, const ShotShape& shape,
                                        const FirstShot& first, Context& ctx) override;

@@ -164,7 +164,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              lampData.coarseTexels,
              lampData.refinedTexels,
              indirectSettings.itemBuffer,
-             solveCoarse ? std::string() : engines.reflections.name()};
+             engines.reflections.name()};
   return out;
 }
 

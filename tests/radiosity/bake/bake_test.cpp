@@ -1,5 +1,6 @@
 // bake() in process on the seed scenes: what comes back without a folder, the files with one (and that
 // they hold what came back), the library's defaults, the backend choice and the settings it refuses.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -93,19 +94,26 @@ TEST_F(BakeSeed1, TheRaysBackendNeedsNoGlAndLightsTheRoomsAsGlDoes) {
   EXPECT_NEAR(b[1] / a[1], 1.0, 0.05) << "B, lit through the doors";
   EXPECT_NEAR(b[2] / a[2], 1.0, 0.03) << "C";
   EXPECT_EQ(rays.report["energy"]["created_w"], 0.0);
-  // Cells through portals that emit with lobes or bins need the GL programs: refused up front.
+  // Cells on rays through each portal model, the portals' lobes and bins too: every room as the GL
+  // engine's cells bake lights it.
   s.cells.method = BakeMethod::Cells;
-  s.cells.params.portals = PortalLight::Binned;
-  try {
-    bake(seed().scene, seed().cells, s, ctx);
-    ADD_FAILURE() << "binned portals on the rays backend";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--portals diffuse"), std::string::npos) << e.what();
+  for (const PortalLight portals : {PortalLight::Binned, PortalLight::Directional, PortalLight::Diffuse}) {
+    s.cells.params.portals = portals;
+    s.solver.backend = Backend::Gl;
+    const BakeResult glCells = bake(seed().scene, seed().cells, s, ctx);
+    s.solver.backend = Backend::Rays;
+    const BakeResult rayCells = bake(seed().scene, seed().cells, s, ctx);
+    EXPECT_EQ(rayCells.report["backend"], "rays");
+    EXPECT_GT(rayCells.shots, 0);
+    const std::vector<double> g = roomLight(glCells), r = roomLight(rayCells);
+    const std::string name = glCells.report["portal_mode"].get<std::string>();
+    EXPECT_NEAR(r[0] / g[0], 1.0, 0.03) << "A, " << name;
+    EXPECT_NEAR(r[1] / g[1], 1.0, 0.05) << "B, " << name;
+    EXPECT_NEAR(r[2] / g[2], 1.0, 0.03) << "C, " << name;
+    EXPECT_EQ(rayCells.report["energy"]["created_w"], 0.0) << name;
+    std::printf("cells %s: rays / gl per room %.4f %.4f %.4f\n", name.c_str(), r[0] / g[0], r[1] / g[1],
+                r[2] / g[2]);
   }
-  s.cells.params.portals = PortalLight::Diffuse;
-  const BakeResult cells = bake(seed().scene, seed().cells, s, ctx);
-  EXPECT_EQ(cells.report["backend"], "rays");
-  EXPECT_GT(cells.shots, 0);
 }
 
 TEST_F(BakeSeed1, WithAFolderWritesTheResultSetOfWhatItReturns) {

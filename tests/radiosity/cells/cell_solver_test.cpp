@@ -224,7 +224,7 @@ TEST(CellSolver, TwoLevelsGiveEachRoomTheLightOfOne) {
   const SolveResult one = solveCells(s.scene, s.cells, atlas, params, gl, ctx);
   TwoLevelData levels;
   const SolveResult two = solveCellsTwoLevel(s.scene, s.cells, quads, atlas,
-                                             TwoLevelParams{.solveDensity = 5.0f}, params, gl, ctx, &levels);
+                                             TwoLevelParams{.solveDensity = 5.0f}, params, {gl, gl}, ctx, &levels);
   expectConserved(two);
   EXPECT_EQ(two.perCell->cells.size(), s.cells.cells.size());
   EXPECT_LT(levels.solveTexels * 2, atlas.validTexels());

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/quads.h"
+#include "radiosity/cpu/ray_shot_engine.h"
 #include "radiosity/gpu/gl_shot_engine.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -117,7 +118,7 @@ ArrivalBins binsOf(const glm::vec3& n, const std::function<float(const glm::vec3
 // (a portal and the reveal beside it), some of it towards one side: what the wall gets, texel by texel
 // and in all, against the integral of the bins' radiance over the emitter by the midpoint rule; and in a
 // closed black box, what the walls catch is what left it.
-TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
+void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, double worstTexel) {
   const glm::vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   // Per emitter row y: the light leans towards −z more the higher the row, and towards +y a little.
   auto binsAt = [&](float y) {
@@ -131,7 +132,6 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
   testing::addRect(scene, glm::vec3(0.0f), Y, Z, lamp);   // x = 0, normal +x
   testing::addRect(scene, glm::vec3(0.0f), X, Y, black);  // z = 0, normal +z
   Context ctx;
-  EglContext gl(ctx);
   const int perQuad = 16;
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.texelsPerQuad = perQuad}, ctx);
   const float texel = 1.0f / float(perQuad);
@@ -149,7 +149,7 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
   SolverParams sp;
   sp.itemBuffer = 512;
   const SolveResult r =
-      solveProgressive(scene, atlas, sp, gl, ctx, SolveControls{.readTransfer = true},
+      solveProgressive(scene, atlas, sp, engine, ctx, SolveControls{.readTransfer = true},
                        ShotShape{.directionalEmission = true, .emissionLobes = lobes, .emissionBins = bins});
   ASSERT_EQ(r.shots, 1);
   const BinFrame frame = binFrame(X);
@@ -177,9 +177,10 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
     cpu += e * atlas.area[t];
     if (e > 0.2) worst = std::max(worst, std::abs(g / e - 1.0));
   }
-  std::printf("binned: wall %.4f of the integral, worst texel %.3f off\n", gpu / cpu, worst);
-  EXPECT_NEAR(gpu / cpu, 1.0, 0.02);
-  EXPECT_LT(worst, 0.15);
+  std::printf("%s binned: wall %.4f of the integral, worst texel %.3f off\n", engine.name().c_str(),
+              gpu / cpu, worst);
+  EXPECT_NEAR(gpu / cpu, 1.0, wallTolerance);
+  EXPECT_LT(worst, worstTexel);
 
   // Closed black box: the light caught is the light emitted, as for a Lambertian.
   Scene box;
@@ -195,7 +196,7 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
   for (size_t i = 0; i < boxAtlas.texelCount(); ++i)
     if (boxAtlas.patch[i] >= 0 && boxAtlas.emission[i] != glm::vec3(0.0f)) boxLobes[i] = binnedLobe(0);
   sp.itemBuffer = 256;
-  const SolveResult caught = solveProgressive(box, boxAtlas, sp, gl, ctx, SolveControls{},
+  const SolveResult caught = solveProgressive(box, boxAtlas, sp, engine, ctx, SolveControls{},
                                               ShotShape{.directionalEmission = true,
                                                         .emissionLobes = boxLobes,
                                                         .emissionBins = std::span<const float>(aimed)});
@@ -209,6 +210,18 @@ TEST(EmissionBins, BinnedEmitterOnTheGpuLightsAsIntegrated) {
   EXPECT_NEAR(caught.energy.received, caught.energy.emitted, 3e-3 * caught.energy.emitted);
   EXPECT_LT(wall({1, 0, 0}), 1e-3 * caught.energy.emitted);  // the wall at −x faces away from the light
   EXPECT_GT(wall({-1, 0, 0}), 0.3 * caught.energy.emitted);
+}
+
+TEST(EmissionBins, BinnedEmitterLightsAsIntegratedOnGl) {
+  Context ctx;
+  EglContext gl(ctx);
+  GlShotEngine engine(gl);
+  binnedEmitterLightsAsIntegrated(engine, 0.02, 0.15);
+}
+
+TEST(EmissionBins, BinnedEmitterLightsAsIntegratedOnRays) {
+  RayShotEngine engine;
+  binnedEmitterLightsAsIntegrated(engine, 0.02, 0.15);
 }
 
 }  // namespace

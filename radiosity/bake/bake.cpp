@@ -109,7 +109,10 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
     };
   CellSolveParams params = cellSolveParams(s, in);
   params.deadline = x.deadline;
-  if (const float solveDensity = chosenSolveDensity(s, in.atlas); solveDensity > 0.0f) {
+  // Cell jobs and on-demand cells are one level: a job's plan has one atlas, and an on-demand bake's
+  // cells outside the selection are lit by the whole atlas's first shot.
+  const bool oneLevel = cells && (x.gatherPlan || in.onDemand.active);
+  if (const float solveDensity = chosenSolveDensity(s, in.atlas); solveDensity > 0.0f && !oneLevel) {
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = s.solver.lampCoarsening;

@@ -97,7 +97,8 @@ struct BakeSettings {
     }();
     /// The interreflection solved on an atlas of this many texels per metre, the lamps' light on the
     /// output's (radiosity/solve/two_level_solve.h); 0: one level; kAutoSolveDensity: chosen by the bake
-    /// (global: two levels past 100 000 output texels or with the automatic density; cells: one level).
+    /// (two levels past 100 000 output texels or with the automatic density; cell jobs and on-demand
+    /// cells: one level).
     /// In [0, 10000] or kAutoSolveDensity.
     float solveDensity = kAutoSolveDensity;
     /// With two levels: the lamps shoot first on an atlas this many times coarser, then at the output's

@@ -169,11 +169,10 @@ CellSolveParams cellSolveParams(const BakeSettings& s, const BakeInput& in) {
 constexpr size_t kAutoTwoLevelTexels = 100'000;
 
 // The option's, or with auto half the output's density (at most 5 texels a metre: RESULTS.md, "Two
-// levels") once the output has more than kAutoTwoLevelTexels texels. A cells bake solves in two levels
-// only when asked (a value): auto keeps it in one, as its cell jobs are (their plan has one atlas).
+// levels") once the output has more than kAutoTwoLevelTexels texels; a cells bake as a global one (its
+// cell jobs and on-demand bakes solve in one level: bake.cpp, solveBake).
 float chosenSolveDensity(const BakeSettings& s, const LightmapAtlas& atlas) {
   const float asked = s.solver.solveDensity;
-  if (s.cells.method == BakeMethod::Cells) return asked > 0.0f ? asked : 0.0f;
   if (asked != kAutoSolveDensity) return asked;
   constexpr float kAutoMost = 5.0f;
   // --density auto: the output is fine only where the lamps' light needs it; the bounced light never does.

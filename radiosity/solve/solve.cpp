@@ -29,7 +29,8 @@ void checkControls(const LightmapAtlas& atlas, const SolveControls& controls, co
     throw InputError("solver", "a prior shot needs one irradiance per atlas texel");
   if (shape.directionalEmission && !can.directionalEmission)
     throw InputError(
-        "solver", "directional emission (directional or binned portals) needs the GL backend, not " + engine);
+        "solver",
+        "directional emission (directional or binned portals) needs an engine that has it, not " + engine);
   if ((!shape.receivers.empty() || shape.readLampFlags) && !can.lampShots)
     throw InputError("solver", "a lamp shot at some receivers needs the GL backend, not " + engine);
 }

@@ -100,9 +100,12 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, engines.lamps,
                                       ctx, lampControls, &lampData);
   const double lampSeconds = seconds(lampStart);
-  if (lit.timedOut) {
+  if (lit.timedOut || std::chrono::steady_clock::now() >= controls.deadline) {
     // The deadline came during the lamps' shot: what they did not shoot is unshot, and no interreflection
     // starts from it (as a prior shot, the light the lamps never sent would count as shot and escaped).
+    // Come at its end, the interreflection's set-up (its coarse solve's scene and programs, tens of seconds
+    // on a house) would run past it for no shot: what the lamps left reflected stays unshot.
+    lit.timedOut = true;
     lit.seconds = seconds(start);
     if (data)
       *data = {coarse.validTexels(),

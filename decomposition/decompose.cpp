@@ -81,6 +81,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
   const int basinCount = basins.basinCount();
   CellLabels cells = mergeBasins(std::move(basins), params.merge, ctx);
+  const FoldedCells folded = foldCellsBehindGeometry(cells, scene, solid, space.space, params.behind, ctx);
   std::vector<std::string> names;
   for (int c = 0; c < cells.cellCount(); ++c)
     names.push_back(c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c));
@@ -99,6 +100,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
     q.name = "portal:" + out.graph.cells[size_t(q.cellA)].name + ":" + out.graph.cells[size_t(q.cellB)].name;
   out.voxelChoice = std::move(empty.voxelChoice);
   out.basins = basinCount;
+  out.foldedBehind = folded.folded;
   return out;
 }
 

@@ -7,6 +7,8 @@
 //                is the outside's marker, so the outside is a basin like a room's
 //   5 merge      basins → cells (keep only real constrictions); the outside is a cell   merge.h
 //                ("outside", last) when a room meets it
+//   5b behind    cells behind the geometry (a level's space behind its walls) folded  behind.h
+//                into the outside or the room they open onto
 //   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
 //                or across the narrowest closed section (a stair's hole)                sections.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
@@ -20,6 +22,7 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "decomposition/assign.h"
+#include "decomposition/behind.h"
 #include "decomposition/classify.h"
 #include "decomposition/distance.h"
 #include "decomposition/leaks.h"
@@ -42,6 +45,7 @@ struct DecomposeParams {
   ClassifyParams classify;
   WatershedParams watershed;
   MergeParams merge;
+  BehindParams behind;
   PortalParams portals;
   LeakParams leaks;
   AssignParams assign;
@@ -68,6 +72,7 @@ struct Decomposition {
   int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                     ///< watershed basins before merging
   int leakMerges = 0;                 ///< pairs of cells merged because they met outside any portal
+  int foldedBehind = 0;               ///< cells behind the geometry folded into another (behind.h)
   /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
   /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.
   std::vector<char> closedRoom;

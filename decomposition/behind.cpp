@@ -80,12 +80,12 @@ FoldedCells foldCellsBehindGeometry(CellLabels& cells, const Scene& scene, const
   std::vector<char> behind(size_t(n), 0);
   for (int c = 0; c < n; ++c)
     behind[size_t(c)] = c != cells.outsideCell && k.back[size_t(c)] > params.backToFront * k.front[size_t(c)];
-  // Only against rooms that face the right way: in a model whose faces all point away from its rooms
+  // Only beside a room that faces the right way: in a model whose faces all point away from its rooms
   // (a flipped export) every room would look behind the geometry, and nothing is folded.
-  uint64_t behindVoxels = 0, roomVoxels = 0;
+  bool anyBehind = false, anyRoom = false;
   for (int c = 0; c < n; ++c)
-    if (c != cells.outsideCell) (behind[size_t(c)] ? behindVoxels : roomVoxels) += cells.volume[size_t(c)];
-  if (behindVoxels == 0 || behindVoxels >= roomVoxels) return out;
+    if (c != cells.outsideCell) (behind[size_t(c)] ? anyBehind : anyRoom) = true;
+  if (!anyBehind || !anyRoom) return out;
   const std::vector<int> group = groupsOf(k, behind);
   // Where each group goes: the outside (kFolded marks it, the outside may be no cell), a room, or nowhere.
   constexpr int kOutside = -2;

@@ -181,6 +181,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   // Every face between two cells on a portal of theirs, or the two merged (leaks.h).
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
+  const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)
@@ -190,6 +191,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   out.outsideCell = closed.outsideCell;
   out.enclosed = closed.cellCount - (out.outsideCell >= 0 ? 1 : 0) > 0;
   out.leakMerges = closed.mergedPairs;
+  out.mergedPortalPieces = merged.merged;
   out.voxelCell = std::move(portals.cell);
   out.leakingFaces = portals.leakingFaces;
   std::vector<PortalQuad> quads;

@@ -11,6 +11,8 @@
 //                into the outside or the room they open onto
 //   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
 //                or across the narrowest closed section (a stair's hole)                sections.h
+//   6b leaks     every voxel face between cells on a portal of theirs, or the two merged leaks.h
+//   6c merge     pieces of one opening (same cells, one plane, touching) one quad  portal_merge.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 
@@ -27,6 +29,7 @@
 #include "decomposition/distance.h"
 #include "decomposition/leaks.h"
 #include "decomposition/merge.h"
+#include "decomposition/portal_merge.h"
 #include "decomposition/portals.h"
 #include "decomposition/watershed.h"
 
@@ -48,6 +51,7 @@ struct DecomposeParams {
   BehindParams behind;
   PortalParams portals;
   LeakParams leaks;
+  PortalMergeParams portalMerge;
   AssignParams assign;
   std::string sourceName = "scene"; ///< the input's name, for messages
 };
@@ -72,6 +76,7 @@ struct Decomposition {
   int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                     ///< watershed basins before merging
   int leakMerges = 0;                 ///< pairs of cells merged because they met outside any portal
+  int mergedPortalPieces = 0;         ///< portal pieces folded into another of the same pair (portal_merge.h)
   int foldedBehind = 0;               ///< cells behind the geometry folded into another (behind.h)
   /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
   /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.

@@ -59,9 +59,11 @@ bool tryMerge(FittedPortal& into, float& pieceArea, const FittedPortal& piece, f
   return true;
 }
 
-// One pair's portals merged greedily, largest first, until no two merge.
-std::vector<FittedPortal> mergePair(std::vector<FittedPortal> list, float h,
-                                    const PortalMergeParams& params) {
+// One pair's portals merged greedily, largest first, until no two merge; `accept` may refuse a merge by
+// the pair's portals it would leave.
+template <typename Accept>
+std::vector<FittedPortal> mergePair(std::vector<FittedPortal> list, float h, const PortalMergeParams& params,
+                                    Accept&& accept) {
   std::sort(list.begin(), list.end(),
             [](const FittedPortal& x, const FittedPortal& y) { return x.quad.area > y.quad.area; });
   std::vector<float> pieceArea;
@@ -70,8 +72,17 @@ std::vector<FittedPortal> mergePair(std::vector<FittedPortal> list, float h,
     changed = false;
     for (size_t i = 0; i < list.size(); ++i)
       for (size_t j = i + 1; j < list.size();) {
-        if (tryMerge(list[i], pieceArea[i], list[j], h, params)) {
-          list.erase(list.begin() + ptrdiff_t(j));
+        FittedPortal merged = list[i];
+        float area = pieceArea[i];
+        std::vector<FittedPortal> candidate;
+        if (tryMerge(merged, area, list[j], h, params)) {
+          candidate = list;
+          candidate[i] = merged;
+          candidate.erase(candidate.begin() + ptrdiff_t(j));
+        }
+        if (!candidate.empty() && accept(candidate)) {
+          list = std::move(candidate);
+          pieceArea[i] = area;
           pieceArea.erase(pieceArea.begin() + ptrdiff_t(j));
           changed = true;
         } else {
@@ -99,7 +110,9 @@ MergedPortals mergePortalPieces(PortalSet& set, const GridFrame& frame, const Po
   std::map<Pair, std::vector<FittedPortal>> before, after;
   for (const FittedPortal& p : set.portals) before[{p.quad.cellA, p.quad.cellB}].push_back(p);
   for (const auto& [pair, list] : before)
-    after[pair] = list.size() < 2 ? list : mergePair(list, float(frame.voxel), params);
+    after[pair] = list.size() < 2
+                      ? list
+                      : mergePair(list, float(frame.voxel), params, [](const auto&) { return true; });
   // In the order the pairs first came, so that an unmerged set comes back as it was.
   auto assemble = [&]() {
     std::vector<FittedPortal> all;
@@ -112,18 +125,24 @@ MergedPortals mergePortalPieces(PortalSet& set, const GridFrame& frame, const Po
     }
     return all;
   };
-  // A merged quad keeps its pieces' plane only within a voxel or two: a pair it leaves leaking keeps its
-  // pieces (leaks elsewhere, there before, are not this stage's).
+  // A merged quad keeps its pieces' plane only within a voxel or two: a pair the merges leave leaking
+  // is merged again one piece at a time, each merge kept only when it uncovers no voxel face of the pair
+  // (leaks elsewhere, there before, are not this stage's).
   const std::map<Pair, size_t> leaksBefore = leakingFacesByPair(frame, set.cell, quadsOf(set.portals));
   const std::map<Pair, size_t> leaksAfter = leakingFacesByPair(frame, set.cell, quadsOf(assemble()));
-  for (const auto& [pair, faces] : leaksAfter) {
-    const Pair key{std::min(pair.first, pair.second), std::max(pair.first, pair.second)};
-    const auto was = leaksBefore.find(pair);
-    if (was != leaksBefore.end() && was->second >= faces) continue;
-    for (const Pair& p : {key, Pair{key.second, key.first}}) {
-      const auto it = before.find(p);
-      if (it != before.end() && after[p].size() != it->second.size()) after[p] = it->second, ++out.pairsKept;
-    }
+  auto leaksOf = [](const std::map<Pair, size_t>& leaks, const Pair& p) {
+    const auto it = leaks.find({std::min(p.first, p.second), std::max(p.first, p.second)});
+    return it == leaks.end() ? size_t(0) : it->second;
+  };
+  for (const auto& [pair, list] : before) {
+    if (after[pair].size() == list.size() || leaksOf(leaksAfter, pair) <= leaksOf(leaksBefore, pair))
+      continue;
+    ++out.pairsKept;
+    const size_t base = leaksOf(leaksBefore, pair);
+    after[pair] =
+        mergePair(list, float(frame.voxel), params, [&](const std::vector<FittedPortal>& candidate) {
+          return leaksOf(leakingFacesByPair(frame, set.cell, quadsOf(candidate)), pair) <= base;
+        });
   }
   set.portals = assemble();
   for (const auto& [pair, list] : before) out.merged += int(list.size() - after[pair].size());

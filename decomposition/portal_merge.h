@@ -4,7 +4,7 @@
 // one plane (within a voxel or two) and touch or nearly touch in it become one quad: the rectangle round
 // them in the largest one's frame, when it is not much larger than the pieces (two doors of one wall with
 // the wall between them stay two). A pair whose merged quads would leave a voxel face between its cells
-// uncovered keeps its pieces.
+// uncovered is merged again one piece at a time, keeping only the merges that uncover none.
 #pragma once
 
 #include "core/context.h"
@@ -25,7 +25,7 @@ struct PortalMergeParams {
 
 struct MergedPortals {
   int merged = 0;     ///< pieces folded into another
-  int pairsKept = 0;  ///< pairs left in their pieces because a merge uncovered a voxel face
+  int pairsKept = 0;  ///< pairs merged again piece by piece: merging all uncovered a face
 };
 
 /// Merges the pieces of `set`'s portals between the same two cells as above, in place (each merged

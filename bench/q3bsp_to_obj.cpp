@@ -5,8 +5,10 @@
 // surfaces a player walks through (texture flagged SURF_NONSOLID, contents not CONTENTS_SOLID: fog
 // volumes' faces, light beams, clear water's surface), which are no walls: on oa_dm7 a pool's surface
 // and a fog layer sealed the whole lower level and the open arena off as rooms without a door
-// (issue 46); --keep-nonsolid keeps them. The data stays outside the repo.
-//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid]
+// (issue 46); --keep-nonsolid keeps them. Sky faces (SURF_SKY) are kept as the level's ceiling, which
+// seals it: no daylight comes in. --open-sky leaves them out, so the level opens onto the sky where a
+// player sees it (the outside then floods the open arenas). The data stays outside the repo.
+//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky]
 //   (default scale 0.03: a 56-unit player is 1.7 m)
 #include <array>
 #include <cmath>
@@ -39,7 +41,25 @@ struct Texture {
   char name[64];
   int32_t flags, contents;
 };
+struct Plane {
+  float normal[3], dist;
+};
+struct Brush {
+  int32_t side, nSides, texture;
+};
+struct BrushSide {
+  int32_t plane, texture;
+};
 static_assert(sizeof(Vertex) == 44 && sizeof(Face) == 104 && sizeof(Model) == 40 && sizeof(Texture) == 72);
+static_assert(sizeof(Plane) == 16 && sizeof(Brush) == 12 && sizeof(BrushSide) == 8);
+
+// The planes of a convex brush (outward normals): p is inside when no plane has it further out than `slack`.
+using Hull = std::vector<Plane>;
+bool inside(const Hull& hull, const double p[3], double slack) {
+  for (const Plane& q : hull)
+    if (q.normal[0] * p[0] + q.normal[1] * p[1] + q.normal[2] * p[2] - q.dist > slack) return false;
+  return true;
+}
 
 template <typename T>
 std::vector<T> lump(const std::string& file, const Lump& l) {
@@ -59,15 +79,16 @@ V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT]\n");
+    std::fprintf(stderr, "usage: q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky]\n");
     return 1;
   }
   double scale = 0.03;
-  bool keepNonsolid = false;
+  bool keepNonsolid = false, openSky = false;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--scale" && a + 1 < argc) scale = std::atof(argv[++a]);
     else if (arg == "--keep-nonsolid") keepNonsolid = true;
+    else if (arg == "--open-sky") openSky = true;
     else {
       std::fprintf(stderr, "q3bsp_to_obj: unknown option %s\n", arg.c_str());
       return 1;
@@ -88,6 +109,9 @@ int main(int argc, char** argv) {
   const auto vertices = lump<Vertex>(file, lumps[10]);
   const auto meshverts = lump<int32_t>(file, lumps[11]);
   const auto faces = lump<Face>(file, lumps[13]);
+  const auto planes = lump<Plane>(file, lumps[2]);
+  const auto brushes = lump<Brush>(file, lumps[8]);
+  const auto brushSides = lump<BrushSide>(file, lumps[9]);
   if (models.empty()) {
     std::fprintf(stderr, "q3bsp_to_obj: %s: no world model\n", argv[1]);
     return 1;
@@ -96,7 +120,7 @@ int main(int argc, char** argv) {
   auto toWorld = [&](const V3& q) { return V3{q[0] * scale, q[2] * scale, -q[1] * scale}; };
   std::vector<V3> points;
   std::vector<std::array<size_t, 3>> tris;
-  size_t skippedNodraw = 0, skippedNonsolid = 0;
+  size_t skippedNodraw = 0, skippedNonsolid = 0, skippedSky = 0;
   auto emit = [&](const V3& a, const V3& b, const V3& c, const V3& facing) {
     // Each triangle faces the same way as its face's normal (into the playable space).
     const bool flip = dot(cross(sub(b, a), sub(c, a)), facing) < 0.0;
@@ -107,6 +131,42 @@ int main(int argc, char** argv) {
     tris.push_back({base, base + 1, base + 2});
   };
   const Model& world = models[0];
+  // Opaque liquids (lava, slime: CONTENTS_LAVA | CONTENTS_SLIME): the faces seen only from inside one
+  // (a pit's walls and floor under the surface, the surface's underside) are left out, as the compiler
+  // leaves out the faces towards the void: no light reaches them, and kept they close the liquid's body
+  // off as a room without a door under its surface (issue 46: oa_dm1's and oa_dm4's lava pits).
+  std::vector<Hull> liquids;
+  for (int32_t b = world.brush; b < world.brush + world.nBrushes && b < int32_t(brushes.size()); ++b) {
+    const Brush& br = brushes[size_t(b)];
+    if (br.texture < 0 || size_t(br.texture) >= textures.size() || !(textures[size_t(br.texture)].contents & (8 | 16)))
+      continue;
+    Hull hull;
+    for (int32_t k = br.side; k < br.side + br.nSides && k < int32_t(brushSides.size()); ++k)
+      if (brushSides[size_t(k)].plane >= 0 && size_t(brushSides[size_t(k)].plane) < planes.size())
+        hull.push_back(planes[size_t(brushSides[size_t(k)].plane)]);
+    if (!hull.empty()) liquids.push_back(hull);
+  }
+  size_t skippedInLiquid = 0;
+  // A face lies in a liquid when all its points are inside (or on) the brush and a point just in front of
+  // its middle is inside too: it looks into the liquid.
+  auto looksIntoLiquid = [&](const Face& f) {
+    if (f.nVertices <= 0 || f.vertex < 0 || size_t(f.vertex + f.nVertices) > vertices.size()) return false;
+    double mid[3] = {0, 0, 0};
+    for (int32_t v = f.vertex; v < f.vertex + f.nVertices; ++v)
+      for (int k = 0; k < 3; ++k) mid[k] += vertices[size_t(v)].pos[k] / f.nVertices;
+    V3 n{f.normal[0], f.normal[1], f.normal[2]};
+    if (f.type != 1 || dot(n, n) < 0.5) return false;  // planar faces only
+    const double ahead[3] = {mid[0] + 2.0 * n[0], mid[1] + 2.0 * n[1], mid[2] + 2.0 * n[2]};
+    for (const Hull& hull : liquids) {
+      bool all = inside(hull, ahead, 0.0);
+      for (int32_t v = f.vertex; all && v < f.vertex + f.nVertices; ++v) {
+        const double p[3] = {vertices[size_t(v)].pos[0], vertices[size_t(v)].pos[1], vertices[size_t(v)].pos[2]};
+        all = inside(hull, p, 0.5);
+      }
+      if (all) return true;
+    }
+    return false;
+  };
   for (int32_t fi = world.face; fi < world.face + world.nFaces && fi < int32_t(faces.size()); ++fi) {
     const Face& f = faces[size_t(fi)];
     if (f.texture >= 0 && size_t(f.texture) < textures.size() && (textures[size_t(f.texture)].flags & 0x80)) {
@@ -116,6 +176,15 @@ int main(int argc, char** argv) {
     if (!keepNonsolid && f.texture >= 0 && size_t(f.texture) < textures.size() &&
         (textures[size_t(f.texture)].flags & 0x4000) && !(textures[size_t(f.texture)].contents & 1)) {
       ++skippedNonsolid;  // SURF_NONSOLID and not CONTENTS_SOLID: fog, beams, clear water
+      continue;
+    }
+    if (looksIntoLiquid(f)) {
+      ++skippedInLiquid;
+      continue;
+    }
+    if (openSky && f.texture >= 0 && size_t(f.texture) < textures.size() &&
+        (textures[size_t(f.texture)].flags & 0x4)) {
+      ++skippedSky;  // SURF_SKY: where the level opens onto the sky, and daylight comes in
       continue;
     }
     auto pos = [&](int32_t v) {
@@ -172,7 +241,9 @@ int main(int argc, char** argv) {
     out << line;
   }
   for (const auto& t : tris) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
-  std::fprintf(stderr, "%s: %zu triangles (%zu nodraw and %zu non-solid see-through faces skipped)\n", argv[2],
-               tris.size(), skippedNodraw, skippedNonsolid);
+  std::fprintf(stderr,
+               "%s: %zu triangles (%zu nodraw, %zu non-solid see-through, %zu inside opaque liquid and %zu sky "
+               "faces skipped)\n",
+               argv[2], tris.size(), skippedNodraw, skippedNonsolid, skippedInLiquid, skippedSky);
   return 0;
 }

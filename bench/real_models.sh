@@ -8,8 +8,11 @@
 # between cells no portal covers, closed rooms (no portal, touching no other cell), the outside's pockets
 # (space behind a sealed level's one-sided walls), whether every room is reachable from every other,
 # and for the houses the portals between the storeys and the adjusted Rand index against the house's
-# own rooms (`cpgi compare-cells SCENE auto SCENE`).
-#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] bench/real_models.sh CPGI_BINARY [VOXEL ...]
+# own rooms (`cpgi compare-cells SCENE auto SCENE`); whether the whole graph is connected (every cell,
+# the outside too, reachable from every other), the cells folded as space behind the geometry, the
+# portal pieces merged into one, and the pairs of cells with more than one portal (pair: count).
+# MAP_VOXELS runs the maps at those voxel sizes too (the automatic one always).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
 # converter is compiled into the work folder with the system's c++ when no build of it is given
 # (Q3BSP_TO_OBJ=path). The data stays outside the repo.
@@ -23,6 +26,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pk3=${OPENARENA_PK3:-/usr/share/games/openarena/baseoa/pak1-maps.pk3}
 maps=(${MAPS-oa_dm1 oa_dm4 oa_dm7 aggressor})
+map_sizes=(${MAP_VOXELS-})
 houses=(${HOUSES-ifc-house ifc-house-open-riser ifc-house-l-stair ifc-house-spiral})
 
 # One row: decompose SCENE (VOXEL 0 = automatic), then the figures from cells.json (and ARI for a house).
@@ -50,20 +54,25 @@ def kind(n):
 stair = [p for p in d["portals"] if "outside" not in p["cells"] and
          abs(cells[p["cells"][0]]["bounds_m"][0][1] - cells[p["cells"][1]]["bounds_m"][0][1]) > 1.5]
 ari = c.get("adjusted_rand_index")
+pairs = {}
+for p in d["portals"]:
+    pairs[tuple(p["cells"])] = pairs.get(tuple(p["cells"]), 0) + 1
 rooms = [r["best_iou"] for r in c.get("matched_iou_per_cell", []) if r["cell"] != "outside"]
 cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["counts"]["portals"],
         ch["leaking_faces"], ch.get("closed_rooms", "-"), ch.get("outside_pockets", "-"),
-        "yes" if ch["connected"] else "NO", ch.get("leak_merges", "-"),
+        "yes" if ch["connected"] else "NO", "yes" if ch.get("graph_connected") else "NO",
+        ch.get("behind_geometry_folded", "-"), ch.get("portal_pieces_merged", "-"), ch.get("leak_merges", "-"),
         (", ".join("%.2f m2 %s" % (p["area_m2"], kind(p["normal"])) for p in stair) or "none") if house == "1" else "-",
         ("%.3f" % ari if ari is not None else "none") if house == "1" else "-",
         "%.2f" % min(rooms) if house == "1" and rooms else "-",
+        ", ".join("%s-%s: %d" % (a, b, n) for (a, b), n in sorted(pairs.items(), key=lambda x: -x[1]) if n > 1) or "none",
         "%.2f" % (user + sys_), "%.2f" % wall, "%.0f" % (rss / 1024)]
 print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
 }
 
-echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | CPU s | wall s | peak MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
   "$cpgi" generate "$h" --volumes-only -o "$work/$h.glb" >/dev/null
   for v in 0 "${sizes[@]}"; do row "$h" "$work/$h.glb" "$v" 1; done
@@ -81,6 +90,6 @@ if [ ${#maps[@]} -gt 0 ]; then
   for m in "${maps[@]}"; do
     unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"
     "$conv" "$work/$m.bsp" "$work/$m.obj" 2>/dev/null
-    row "$m" "$work/$m.obj" 0 0
+    for v in 0 "${map_sizes[@]}"; do row "$m" "$work/$m.obj" "$v" 0; done
   done
 fi

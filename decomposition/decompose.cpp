@@ -81,6 +81,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
   const int basinCount = basins.basinCount();
   CellLabels cells = mergeBasins(std::move(basins), params.merge, ctx);
+  const FoldedCells folded = foldCellsBehindGeometry(cells, scene, solid, space.space, params.behind, ctx);
   std::vector<std::string> names;
   for (int c = 0; c < cells.cellCount(); ++c)
     names.push_back(c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c));
@@ -99,6 +100,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
     q.name = "portal:" + out.graph.cells[size_t(q.cellA)].name + ":" + out.graph.cells[size_t(q.cellB)].name;
   out.voxelChoice = std::move(empty.voxelChoice);
   out.basins = basinCount;
+  out.foldedBehind = folded.folded;
   return out;
 }
 
@@ -179,6 +181,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   // Every face between two cells on a portal of theirs, or the two merged (leaks.h).
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
+  const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)
@@ -188,6 +191,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   out.outsideCell = closed.outsideCell;
   out.enclosed = closed.cellCount - (out.outsideCell >= 0 ? 1 : 0) > 0;
   out.leakMerges = closed.mergedPairs;
+  out.mergedPortalPieces = merged.merged;
   out.voxelCell = std::move(portals.cell);
   out.leakingFaces = portals.leakingFaces;
   std::vector<PortalQuad> quads;

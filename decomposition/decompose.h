@@ -7,8 +7,12 @@
 //                is the outside's marker, so the outside is a basin like a room's
 //   5 merge      basins → cells (keep only real constrictions); the outside is a cell   merge.h
 //                ("outside", last) when a room meets it
+//   5b behind    cells behind the geometry (a level's space behind its walls) folded  behind.h
+//                into the outside or the room they open onto
 //   6 portals    cell interfaces → planar quads (CGAL plane fit + min rectangle)        portals.h
 //                or across the narrowest closed section (a stair's hole)                sections.h
+//   6b leaks     every voxel face between cells on a portal of theirs, or the two merged leaks.h
+//   6c merge     pieces of one opening (same cells, one plane, touching) one quad  portal_merge.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 
@@ -20,10 +24,12 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "decomposition/assign.h"
+#include "decomposition/behind.h"
 #include "decomposition/classify.h"
 #include "decomposition/distance.h"
 #include "decomposition/leaks.h"
 #include "decomposition/merge.h"
+#include "decomposition/portal_merge.h"
 #include "decomposition/portals.h"
 #include "decomposition/watershed.h"
 
@@ -42,8 +48,10 @@ struct DecomposeParams {
   ClassifyParams classify;
   WatershedParams watershed;
   MergeParams merge;
+  BehindParams behind;
   PortalParams portals;
   LeakParams leaks;
+  PortalMergeParams portalMerge;
   AssignParams assign;
   std::string sourceName = "scene"; ///< the input's name, for messages
 };
@@ -68,6 +76,8 @@ struct Decomposition {
   int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                     ///< watershed basins before merging
   int leakMerges = 0;                 ///< pairs of cells merged because they met outside any portal
+  int mergedPortalPieces = 0;         ///< portal pieces folded into another of the same pair (portal_merge.h)
+  int foldedBehind = 0;               ///< cells behind the geometry folded into another (behind.h)
   /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
   /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.
   std::vector<char> closedRoom;

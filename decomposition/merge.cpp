@@ -143,7 +143,8 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     anyRoom = anyRoom || (root(b) != outsideRoot && groups[size_t(root(b))].volume >= minVoxels);
   auto kept = [&](int r) {
     if (r == outsideRoot) return !anyRoom || !groups[size_t(r)].neighbours.empty();
-    return groups[size_t(r)].volume >= minVoxels;
+    const Group& g = groups[size_t(r)];
+    return g.volume >= minVoxels && !(g.neighbours.empty() && g.peak < params.minClosedPeak);
   };
   CellLabels out;
   out.frame = f;

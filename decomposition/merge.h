@@ -28,6 +28,10 @@ struct MergeParams {
   /// WC 2.4 m high holds 2.6 m³) and over the enclosures in rooms that are not rooms: a shower of
   /// 0.9 × 0.9 × 2 m glass holds 1.6 m³, a wardrobe's inside 0.6 × 2 × 2.1 m 2.5 m³.
   double minCellVolume = 2.5;
+  /// A group that meets no other (a closed space) whose peak, metres, is under this is dropped too: a
+  /// cavity nowhere 0.7 m across (the inside of a hollow platform, a game level's sealed gap under a
+  /// floor) is no room, however long. A closed room a person stands in has a peak over 0.45 m.
+  double minClosedPeak = 0.35;
   /// saddleRatio between a room and the outside, in [0, 1]. Higher than saddleRatio: exterior doors are
   /// wide (a 2 m terrace door into a 2.7 m high room has 1.0 / 1.35 = 0.74), and whether a space is a
   /// room or part of the outside is better told by how much of it is open (openingRatio): a porch open

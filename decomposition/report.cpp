@@ -89,7 +89,9 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                  {"closed_rooms", closedRooms},
                  {"outside_pockets", pockets},
                  {"regions", d.regions},
-                 {"leak_merges", d.leakMerges}};
+                 {"leak_merges", d.leakMerges},
+                 {"behind_geometry_folded", d.foldedBehind},
+                 {"portal_pieces_merged", d.mergedPortalPieces}};
   json timings = json::object();
   double total = 0.0;
   for (const Context::Timing& t : ctx.timings()) {

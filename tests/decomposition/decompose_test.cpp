@@ -311,5 +311,20 @@ TEST(Decompose, ASealedRoomIsAClosedRoomAndACupboardNoCell) {
   EXPECT_TRUE(anyWarningContains(ctx, "is a closed room"));
 }
 
+// Issue 46 (oa_dm1 at 0.15 m): a sealed flat cavity, 4 × 0.4 × 4 m inside (6.4 m3, over the minimum
+// cell volume), was a closed room; nowhere 0.7 m across, it is no cell at all.
+TEST(Decompose, ASealedFlatCavityIsNoCell) {
+  Scene scene = testing::makeThreeRooms();
+  SceneBuilder extra;
+  closedRoom(extra, {14.0f, 0.5f, 0.5f}, {18.0f, 0.9f, 4.5f});
+  for (const Triangle& t : extra.scene().triangles) scene.triangles.push_back(t);
+  Context ctx;
+  const Decomposition d = run(scene, 0.1, ctx);
+  EXPECT_EQ(d.graph.cells.size(), 3u);
+  for (char closed : d.closedRoom) EXPECT_FALSE(closed);
+  EXPECT_TRUE(d.graph.connected());
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
 }  // namespace
 }  // namespace cpgi::decomp

@@ -1,0 +1,111 @@
+// Space behind the geometry is no room (decomposition/behind.h), on levels built the way a Quake map is:
+// one-sided faces towards the playable space only, nothing towards the void.
+#include <gtest/gtest.h>
+
+#include "decomposition/decompose.h"
+#include "tests/decomposition/scene_builder.h"
+
+namespace cpgi::decomp {
+namespace {
+
+using testing::SceneBuilder;
+
+// The faces added since `from`, turned over (a box's outward faces become a room's inward ones).
+void flipFrom(SceneBuilder& b, size_t from) {
+  for (size_t t = from; t < b.scene().triangles.size(); ++t) {
+    Triangle& tri = b.scene().triangles[t];
+    std::swap(tri.p[1], tri.p[2]);
+    const glm::vec3 n = tri.geometricNormal();
+    tri.n = {n, n, n};
+  }
+}
+
+// A room as a game level has it: six one-sided faces looking in, no wall thickness behind them.
+void levelRoom(SceneBuilder& b, glm::vec3 lo, glm::vec3 hi) {
+  const size_t from = b.scene().triangles.size();
+  b.box(lo, hi);
+  flipFrom(b, from);
+}
+
+// The back of a brush: a hollow box [lo, hi] whose faces look out of it (its inside sees only their
+// backs), with a square hole of side `hole` in the middle of its +x face.
+void hollowBrush(SceneBuilder& b, glm::vec3 lo, glm::vec3 hi, float hole) {
+  const glm::vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                          {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  b.quad(p[0], p[3], p[2], p[1]);  // -z
+  b.quad(p[4], p[5], p[6], p[7]);  // +z
+  b.quad(p[0], p[4], p[7], p[3]);  // -x
+  b.quad(p[0], p[1], p[5], p[4]);  // -y
+  b.quad(p[3], p[7], p[6], p[2]);  // +y
+  // +x, round the hole: four quads facing +x.
+  const float x = hi.x, ym = 0.5f * (lo.y + hi.y), zm = 0.5f * (lo.z + hi.z), r = 0.5f * hole;
+  auto face = [&](float y0, float y1, float z0, float z1) {
+    b.quad({x, y0, z0}, {x, y1, z0}, {x, y1, z1}, {x, y0, z1});
+  };
+  face(lo.y, ym - r, lo.z, hi.z);
+  face(ym + r, hi.y, lo.z, hi.z);
+  face(ym - r, ym + r, lo.z, zm - r);
+  face(ym - r, ym + r, zm + r, hi.z);
+}
+
+Decomposition run(const Scene& scene, Context& ctx, double backToFront = BehindParams().backToFront) {
+  DecomposeParams p;
+  p.voxelSize = 0.1;
+  p.behind.backToFront = backToFront;
+  return decompose(scene, p, ctx);
+}
+
+// Issue 46 (oa_dm1, oa_dm7): a sealed level's space behind its walls, reached from the void through a
+// narrow gap, was a cell of its own that only the outside reached; the outside then was a cell apart from
+// the rooms and the graph was not connected. It is the outside: folded into it, and the outside, meeting
+// no room, is no cell, as round any closed building.
+TEST(BehindGeometry, ASealedLevelsPocketBehindItsWallsIsTheOutside) {
+  SceneBuilder b;
+  levelRoom(b, {0, 0, 0}, {6, 3, 6});
+  hollowBrush(b, {7, 0, 0}, {10, 3, 3}, 0.4f);
+  Context before;
+  const Decomposition kept = run(b.scene(), before, 0.0);  // the stage off: as before it
+  ASSERT_GE(kept.outsideCell, 0);
+  EXPECT_FALSE(kept.graph.connected());
+  Context ctx;
+  const Decomposition d = run(b.scene(), ctx);
+  EXPECT_EQ(d.foldedBehind, 1);
+  EXPECT_EQ(d.outsideCell, -1);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_TRUE(d.graph.connected());
+  EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0, 20.0);
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
+// Issue 46 (aggressor): a slab of space behind a room's wall, opening into the room through a gap, was
+// a cell joined to the room by slivers. It folds into the room it opens onto; the room keeps its
+// portal to the room beside it.
+TEST(BehindGeometry, ASpaceBehindAWallOpeningIntoARoomFoldsIntoIt) {
+  SceneBuilder b;
+  levelRoom(b, {0, 0, 0}, {8, 3, 8});
+  hollowBrush(b, {1, 0.5f, 1}, {4, 2.5f, 4}, 0.4f);  // a brush standing in the room, its face holed
+  Context before;
+  const Decomposition kept = run(b.scene(), before, 0.0);
+  ASSERT_EQ(kept.graph.cells.size(), 2u);
+  EXPECT_FALSE(kept.graph.portals.empty());
+  Context ctx;
+  const Decomposition d = run(b.scene(), ctx);
+  EXPECT_EQ(d.foldedBehind, 1);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_TRUE(d.graph.portals.empty());
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
+// Folding needs rooms in front of the geometry to trust its faces' sides: in a model whose faces all
+// point away from the space (a flipped export) every cell looks behind the geometry, and none is folded.
+TEST(BehindGeometry, NothingFoldsWithoutRoomsInFrontOfTheGeometry) {
+  SceneBuilder b;
+  b.box({0, 0, 0}, {6, 3, 6});  // outward faces: the room inside sees their backs
+  hollowBrush(b, {7, 0, 0}, {10, 3, 3}, 0.4f);
+  Context ctx;
+  const Decomposition d = run(b.scene(), ctx);
+  EXPECT_EQ(d.foldedBehind, 0);
+}
+
+}  // namespace
+}  // namespace cpgi::decomp

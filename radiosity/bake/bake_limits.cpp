@@ -23,7 +23,7 @@ namespace {
 constexpr double kRaysPerViewRay = 2.0;
 constexpr double kRaysPerViewPixel = 1.0;
 constexpr double kRaysPerFileTexel = 4.0;
-constexpr double kRaysPerPageTexel = 3.0;
+constexpr double kRaysPerPageTexel = 1.0;
 constexpr double kRaysPerTriangle = 10.0;
 constexpr int kProbeRays = 1 << 14;
 
@@ -74,6 +74,7 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
                                double raySeconds) {
   OutputEstimate e;
   e.views = cameras.size();
+  e.raySeconds = raySeconds;
   const int n = std::clamp(views.supersample, 1, 8);
   for (const Camera& c : cameras) {
     const ViewSize v = viewSize(c, views);
@@ -124,17 +125,18 @@ ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const st
       if (views.height > 0) views.height = std::max(kMinViewEdge, views.height * 9 / 10);
     }
     if (largestViewBytes(cameras, views) <= double(limit) - rest) {
-      ctx.warn("views: pictures " + std::to_string(views.width) + " pixels wide to fit `maximum memory` " +
+      ctx.warn("views: pictures " + std::to_string(views.width) + " pixels wide to fit the memory limit of " +
                formatBytes(double(limit)) + " (the largest asked for " + formatBytes(m.views) + ")");
       return views;
     }
   }
-  // Named by the largest share: what the user can lower.
+  // Named by the largest share: what the user can lower. The views shrink by themselves, so they are named
+  // only when the rest fits.
   const std::pair<double, const char*> shares[] = {
       {m.atlas + m.skyGather, "lower `maximum texels` or `texel density`"},
       {m.itemBuffers, "lower `item buffer`"},
       {m.rayScene, "bake a scene of fewer triangles"},
-      {m.views, "lower `view size`"}};
+      {rest > double(limit) ? 0.0 : m.views, "lower `view size`"}};
   const auto largest =
       std::max_element(shares, shares + 4, [](auto& a, auto& b) { return a.first < b.first; });
   std::ostringstream what;

@@ -30,6 +30,7 @@ struct OutputEstimate {
   double viewSeconds = 0.0;   ///< rendering and writing them
   double filesSeconds = 0.0;  ///< lightmap.exr, lightmap.png, baked.glb before the views
   double pageSeconds = 0.0;   ///< report.json and report.html after them
+  double raySeconds = 0.0;    ///< the cost of a ray they are counted in (probeRaySeconds)
   double seconds() const { return viewSeconds + filesSeconds + pageSeconds; }
 };
 

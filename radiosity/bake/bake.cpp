@@ -210,6 +210,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
                  pilotDeadline(beforeOutputs));
+  requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs =
       estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);

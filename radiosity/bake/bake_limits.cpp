@@ -132,19 +132,23 @@ ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const st
   }
   // Named by the largest share: what the user can lower. The views shrink by themselves, so they are named
   // only when the rest fits.
-  const std::pair<double, const char*> shares[] = {
-      {m.atlas + m.skyGather, "lower `maximum texels` or `texel density`"},
-      {m.itemBuffers, "lower `item buffer`"},
-      {m.rayScene, "bake a scene of fewer triangles"},
-      {rest > double(limit) ? 0.0 : m.views, "lower `view size`"}};
-  const auto largest =
-      std::max_element(shares, shares + 4, [](auto& a, auto& b) { return a.first < b.first; });
+  struct Share {
+    double bytes;
+    std::string parameter, remedy;
+  };
+  const std::string texels = s.atlas.densityAuto ? "maximum texels" : atlas.sizeParameter;
+  const Share shares[] = {{m.atlas + m.skyGather, texels, "lower `" + texels + "`"},
+                          {m.itemBuffers, "item buffer", "lower `item buffer`"},
+                          {m.rayScene, "maximum memory", "bake a scene of fewer triangles"},
+                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"}};
+  const Share& largest =
+      *std::max_element(shares, shares + 4, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
   std::ostringstream what;
   what << "the bake (atlas " << formatBytes(m.atlas) << ", item buffers " << formatBytes(m.itemBuffers)
        << ", ray scene " << formatBytes(m.rayScene) << ", sky gather " << formatBytes(m.skyGather)
        << ", largest view " << formatBytes(m.views) << ")";
-  requireMemory(m.total(), limit, "maximum memory", what.str(),
-                std::string(largest->second) + " or raise `maximum memory`");
+  requireMemory(m.total(), limit, largest.parameter, what.str(),
+                largest.remedy + " or raise `maximum memory`");
   return views;
 }
 

@@ -171,8 +171,9 @@ TEST(BakeLimits, ViewsShrinkToTheMemoryLeftAndTheRestIsRefused) {
     bake_steps::requireBakeMemory(s, seed.scene, cameras, in.atlas, ctx);
     ADD_FAILURE() << "a limit of half the solve's memory";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), "maximum memory");
-    EXPECT_NE(e.problem().find("lower `"), std::string::npos) << e.problem();
+    EXPECT_EQ(e.where(), "item buffer");  // seed1's coarse atlas takes less than its item buffers
+    EXPECT_NE(e.problem().find("lower `item buffer` or raise `maximum memory`"), std::string::npos)
+        << e.problem();
   }
 }
 

@@ -15,15 +15,16 @@
 namespace cpgi::bake_steps {
 namespace {
 
-// The outputs' costs in rays of probeRaySeconds, measured on the 2-core llvmpipe machine the bakes are
-// benched on (bench/RESULTS.md, "A bake inside its limits") and doubled: a view's ray (one per supersample,
-// with its bilinear lookup) and a pixel through its EXR and PNG; an atlas texel through the files before
-// the views (dilation, lightmap.exr with its channels, lightmap.png, baked.glb) and after them
-// (report.html, which embeds the glb and the lightmap once more); a triangle through the glb and the page.
-constexpr double kRaysPerViewRay = 2.0;
+// The outputs' costs in rays of probeRaySeconds, from the furnished house at 3 texels a metre on the
+// 2-core llvmpipe machine the bakes are benched on (bench/RESULTS.md, "A bake inside its limits in every
+// stage"), with 1.4-2x to spare: a view's ray (one per supersample, with its bilinear lookup; it took 2.8
+// probe rays) and a pixel through its EXR and PNG; an atlas texel through the files before the views
+// (dilation, lightmap.exr with its channels, lightmap.png, baked.glb) and after them (report.html, which
+// embeds the glb and the lightmap once more); a triangle through the glb and the page.
+constexpr double kRaysPerViewRay = 4.0;
 constexpr double kRaysPerViewPixel = 1.0;
 constexpr double kRaysPerFileTexel = 4.0;
-constexpr double kRaysPerPageTexel = 1.0;
+constexpr double kRaysPerPageTexel = 2.0;
 constexpr double kRaysPerTriangle = 10.0;
 constexpr int kProbeRays = 1 << 14;
 

@@ -14,13 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
-#include "radiosity/bake/lightmap_report.h"
 #include "apps/options.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
 #include "core/scene_io.h"
+#include "radiosity/bake/lightmap_report.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/views.h"
 
@@ -122,11 +122,13 @@ int runView(const ViewOptions& o) {
   const std::string output = o.output.empty() ? (fs::path(o.dir) / "views").string() : o.output;
   OutputDir out(output);
   const std::vector<std::string> names =
-      renderCameraViews(rays, b.loaded.scene, cameras, b.atlas, b.radiosity, out, ctx, o.views);
+      renderCameraViews(rays, b.loaded.scene, cameras, b.atlas, b.radiosity, out, ctx, o.views).written;
   out.commit();
-  if (!o.quiet)
+  if (!o.quiet) {
     for (const std::string& n : names)
       std::cout << (fs::path(output) / ("view-" + n + ".png")).string() << "\n";
+    for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
+  }
   return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
+#include "radiosity/bake/bake_limits.h"
 #include "radiosity/bake/bake_steps.h"
 #include "radiosity/bake/cell_source.h"
 #include "radiosity/bake/lightmap_report.h"
@@ -151,10 +152,12 @@ glm::dvec3 addBakeAmbient(const BakeSettings& s, const BakeInput& in, const Solv
   return ambient;
 }
 
-Clock::time_point deadlineOf(const BakeSettings& s, Clock::time_point start) {
-  if (s.limits.timeLimit <= 0.0) return Clock::time_point::max();
-  return start +
-         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s.limits.timeLimit));
+// The density pilot's share (kPilotTimeShare) of the time from now to `beforeOutputs`.
+Clock::time_point pilotDeadline(Clock::time_point beforeOutputs) {
+  if (beforeOutputs == Clock::time_point::max()) return beforeOutputs;
+  const Clock::time_point now = Clock::now();
+  if (beforeOutputs <= now) return beforeOutputs;
+  return now + std::chrono::duration_cast<Clock::duration>((beforeOutputs - now) * kPilotTimeShare);
 }
 
 // With --density auto, a cell job's texel densities are those its plan recorded: every job lays its
@@ -168,16 +171,18 @@ void usePlannedDensities(const BakeSettings& s, BakeInput& in, const std::filesy
 }
 
 // The light written: the files of the result set (with a folder) and the figures of the report.
-void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, const SolveResult& r,
-               OutputDir* out, BakeFigures& f, Context& ctx) {
+// The views are rendered while `viewsDeadline` leaves time (the report page's share kept back).
+void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, const ViewParams& views,
+               Clock::time_point viewsDeadline, OutputDir* out, BakeFigures& f, Context& ctx) {
   auto t = ctx.time("write");
   if (!out) return;
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-  f.views = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells},
-                                 ctx, s.output.views)
-                .views;
+  LightmapOutputs written = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity,
+                                                 {emissive, x.texelCells}, ctx, views, viewsDeadline);
+  f.views = std::move(written.views);
+  f.skippedViews = std::move(written.skippedViews);
 }
 
 }  // namespace
@@ -189,24 +194,37 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
   BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);
   if (gatherPlan) usePlannedDensities(s, in, *gatherPlan);
+  // The outputs' share of the time limit is kept back from every stage that can stop early: for the pilot
+  // estimated at the texel budget (and the pilot given a share of the rest), for the solve at the atlas
+  // laid out.
+  const std::vector<Camera> cameras = expectedCameras(*in.scene, *in.cells);
+  const double raySeconds = deadline == Clock::time_point::max() ? 0.0 : probeRaySeconds(*in.scene);
+  const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
+  const Clock::time_point beforeOutputs = keepBack(
+      deadline, estimateOutputs(*in.scene, cameras, s.output.views, budget, budget, raySeconds).seconds());
   // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
-                 deadline);
-  requireSolveMemory(s, in.atlas);
+                 pilotDeadline(beforeOutputs));
+  requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
+  const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
+  const OutputEstimate outputs =
+      estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);
+  const Clock::time_point solveDeadline = keepBack(deadline, outputs.seconds());
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
   // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
   // the ambient term.
   const CellGraph& cells = *in.cells;
-  const RoomLabels rooms = cells.empty() || cells.definedByVolumes()
-                               ? labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells)
-                               : RoomLabels{};
+  const RoomLabels rooms =
+      cells.empty() || cells.definedByVolumes()
+          ? labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, solveDeadline)
+          : RoomLabels{};
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
-  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), deadline, gatherPlan};
+  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), solveDeadline, gatherPlan};
   std::optional<TwoLevelData> levels;
   SolveResult r = solveBake(s, in, x, ctx, levels);
   BakeFigures f;
@@ -225,13 +243,14 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                                                    {"absorbed", r.energy.absorbed},
                                                    {"unshot", r.energy.unshot}};
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
-  writeBake(s, in, x, r, out ? &*out : nullptr, f, ctx);
+  writeBake(in, x, r, views, keepBack(deadline, outputs.pageSeconds), out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
+  f.outputs = outputs;
   BakeResult result;
   result.report = bakeReport(s, in, r, levels, engines.gl(), engines.engines().lamps.name(), f, ctx);
   result.shots = r.shots;
   result.unshotFraction = r.unshotFraction;
-  result.partial = r.timedOut;
+  result.partial = r.timedOut || !f.skippedViews.empty();
   result.seconds = f.seconds;
   if (out) {
     writeReport(*out, result.report);
@@ -259,7 +278,7 @@ BakeResult bake(const Scene& scene, const CellGraph& cells, const BakeSettings& 
 }
 
 BakeResult bake(const BakeSettings& settings, Context& ctx, const BakeRun& run) {
-  const BakeScene in = loadBakeScene(settings, ctx);
+  const BakeScene in = loadBakeScene(settings, ctx, run);
   return bake(in.loaded.scene, in.graph, settings, ctx, run);
 }
 

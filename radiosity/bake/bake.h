@@ -45,11 +45,6 @@ struct BakeScene {
 /// allowDark (bake and reference alike).
 void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool allowDark);
 
-/// Step 1: reads settings.input.scene with its load options, applies settings.sky to it (core/sky.h),
-/// refuses a scene nothing lights (unless input.allowDark) and, with BakeMethod::Cells, resolves the cells
-/// of settings.cells.source (cell_source.h). Warnings go to ctx. Throws InputError.
-BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx);
-
 /// What a caller driving bake() sets besides the settings.
 struct BakeRun {
   /// When the bake started (the load included): Limits::timeLimit counts from here.
@@ -64,6 +59,13 @@ struct BakeRun {
   std::function<void(const std::string&)> sized;
 };
 
+/// Step 1: reads settings.input.scene with its load options, applies settings.sky to it (core/sky.h),
+/// refuses a scene nothing lights (unless input.allowDark) and, with BakeMethod::Cells, resolves the cells
+/// of settings.cells.source (cell_source.h). Warnings go to ctx. Throws InputError. Limits::timeLimit counts
+/// from run.start: a load that ends past it is said in a warning (the bake then does only what a valid
+/// result needs), and a decomposition into cells it interrupts is an InputError naming the time limit.
+BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRun& run = {});
+
 struct BakeResult {
   LightmapAtlas atlas;                 ///< the output's atlas
   std::vector<glm::vec3> radiosity;    ///< per atlas texel, W/m² (R, G, B), the ambient term included
@@ -72,7 +74,7 @@ struct BakeResult {
   nlohmann::json report;               ///< report.json (design.md §3 and bake's own keys)
   int shots = 0;
   double unshotFraction = 0.0;  ///< of the emitted power, at the stop
-  bool partial = false;         ///< stopped by Limits::timeLimit
+  bool partial = false;         ///< stopped by Limits::timeLimit (the solve, or the views)
   double seconds = 0.0;         ///< from BakeRun::start to the files written
 };
 

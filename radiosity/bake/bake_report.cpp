@@ -187,14 +187,21 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   // spread by the ambient term unless --no-ambient).
   report["time_limit_s"] =
       s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
-  report["partial"] = r.timedOut;
-  if (r.timedOut) {
-    std::ostringstream why;
+  // The outputs' share kept back from the solve (bake_limits.h), and the views the limit left out.
+  report["output_estimate_s"] = {
+      {"views", f.outputs.viewSeconds}, {"files", f.outputs.filesSeconds}, {"page", f.outputs.pageSeconds}};
+  report["views_skipped"] = f.skippedViews;
+  report["partial"] = r.timedOut || !f.skippedViews.empty();
+  std::ostringstream why;
+  if (r.timedOut)
     why << "time limit of " << s.limits.timeLimit << " s reached after " << r.shots << " shots with "
         << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
         << s.solver.params.unshotFraction * 100.0 << " %)";
-    report["partial_reason"] = why.str();
-  }
+  if (!f.skippedViews.empty())
+    why << (r.timedOut ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached before "
+        << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()
+        << " views were rendered (views_skipped)";
+  if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;
 }

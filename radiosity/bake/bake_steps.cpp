@@ -24,18 +24,25 @@ void requireLight(const LoadedScene& loaded, const std::string& scenePath, bool 
                    "material with `emit` MATERIAL=W/m2, or pass `dark` for a black result");
 }
 
-BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx) {
+BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRun& run) {
   const BakeSettings s = bake_steps::resolved(settings);
+  const bake_steps::Clock::time_point deadline = bake_steps::deadlineOf(s, run.start);
   BakeScene in;
   {
     auto t = ctx.time("load");
     in.loaded = loadScene(s.input.scene, s.input.load);
   }
+  // The loader has no point to stop at; past the limit the bake goes on with the least a valid result
+  // needs (the atlas, the first shot and the sky's first pass, the files but the views).
+  if (bake_steps::Clock::now() >= deadline)
+    ctx.warn("load: the time limit came while " + s.input.scene +
+             " was read; the bake does only what a valid result needs, without views");
   applySky(s.sky, in.loaded.scene);
   requireLight(in.loaded, s.input.scene, s.input.allowDark);
   for (const std::string& w : in.loaded.warnings) ctx.warn(w);
   if (s.cells.method == BakeMethod::Cells)
-    in.graph = resolveCells(s.cells.source, s.input.scene, in.loaded, s.cells.decompose, s.input.load, ctx);
+    in.graph = resolveCells(s.cells.source, s.input.scene, in.loaded, s.cells.decompose, s.input.load, ctx,
+                            deadline);
   else
     in.graph = in.loaded.cells;
   return in;
@@ -53,6 +60,12 @@ glm::vec3 aroundPoint(const std::string& text) {
 }
 
 }  // namespace
+
+Clock::time_point deadlineOf(const BakeSettings& s, Clock::time_point start) {
+  if (s.limits.timeLimit <= 0.0) return Clock::time_point::max();
+  return start +
+         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s.limits.timeLimit));
+}
 
 BakeSettings resolved(const BakeSettings& settings) {
   BakeSettings s = settings;

@@ -14,6 +14,7 @@
 #include "core/quads.h"
 #include "core/scene.h"
 #include "radiosity/bake/bake.h"
+#include "radiosity/bake/bake_limits.h"
 #include "radiosity/bake/bake_settings.h"
 #include "radiosity/cells/cell_selection.h"
 #include "radiosity/cells/cell_solver.h"
@@ -26,6 +27,9 @@
 namespace cpgi::bake_steps {
 
 using Clock = std::chrono::steady_clock;
+
+/// When Limits::timeLimit ends a bake started at `start` (no limit: time_point::max()).
+Clock::time_point deadlineOf(const BakeSettings& s, Clock::time_point start);
 
 /// `s` with Limits::maxMemory (0: 75 % of this machine's) in the atlas's and the decomposition's limits.
 BakeSettings resolved(const BakeSettings& s);
@@ -75,11 +79,13 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
 /// The figures report.json takes from the steps after the solve.
 struct BakeFigures {
   std::vector<std::string> views;
-  std::vector<std::string> cellNames;  ///< of lightmap.exr's "cell" channel
-  glm::dvec3 ambient{0.0};             ///< mean ambient irradiance (W/m²)
-  std::vector<double> ambientShares;   ///< per cell of cellNames (and one for no cell), ambientShares
-  std::vector<double> ambientEscape;   ///< per entry of ambientShares, the share leaving the scene
+  std::vector<std::string> skippedViews;  ///< cameras whose views the time limit left out
+  std::vector<std::string> cellNames;     ///< of lightmap.exr's "cell" channel
+  glm::dvec3 ambient{0.0};                ///< mean ambient irradiance (W/m²)
+  std::vector<double> ambientShares;      ///< per cell of cellNames (and one for no cell), ambientShares
+  std::vector<double> ambientEscape;      ///< per entry of ambientShares, the share leaving the scene
   double seconds = 0.0;
+  OutputEstimate outputs;  ///< the outputs' share kept back from the time limit
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,

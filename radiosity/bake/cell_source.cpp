@@ -11,6 +11,26 @@
 #include "radiosity/lightmap/cell_channel.h"
 
 namespace cpgi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Thrown out of a decomposition that a deadline ends (deadlineContext).
+struct DeadlineReached {};
+
+// A Context for a decomposition run inside a bake: its progress goes on to `outer`'s when `forward`, and
+// past `deadline` its next progress report (the decomposition makes one at the end of each stage, and
+// through the watershed's levels) throws DeadlineReached, which ends it.
+Context deadlineContext(const Context& outer, bool forward, Clock::time_point deadline) {
+  Context inner;
+  inner.setProgress([&outer, forward, deadline](const Progress& p) {
+    if (Clock::now() >= deadline) throw DeadlineReached{};
+    if (forward) outer.progress(p);
+  });
+  return inner;
+}
+
+}  // namespace
 
 CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, const std::string& name,
                             Context& ctx) {
@@ -43,7 +63,8 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 }
 
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
-                       const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx) {
+                       const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx,
+                       Clock::time_point deadline) {
   if (source == "none" || source.empty())
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
   decomp::DecomposeParams p = params;
@@ -57,9 +78,24 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     loaded.scene.sky = sky;
     return std::move(d.graph);
   };
+  // Past the deadline a cells bake has no cells to bake with: one line naming the limit.
+  auto decomposeBy = [&](auto&& run) {
+    Context inner = deadlineContext(ctx, true, deadline);
+    try {
+      decomp::Decomposition d = run(inner);
+      for (const std::string& w : inner.warnings()) ctx.warn(w);
+      for (const Context::Timing& t : inner.timings()) ctx.addTiming(t.stage, t.seconds);
+      return d;
+    } catch (const DeadlineReached&) {
+      throw InputError("time limit", "came during the decomposition of " + scenePath +
+                                         " into cells, before any light was solved; raise it, or decompose "
+                                         "once (cpgi decompose) and give its folder as `cell graph`");
+    }
+  };
   if (source == "auto") {
     auto t = ctx.time("decompose");
-    decomp::Decomposition d = decomp::decompose(loaded.scene, p, ctx);
+    decomp::Decomposition d =
+        decomposeBy([&](Context& inner) { return decomp::decompose(loaded.scene, p, inner); });
     if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
     return takeDecomposition(std::move(d));
   }
@@ -68,7 +104,8 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
   if (!std::filesystem::exists(path)) throw InputError("--cells", path.string() + ": no such file");
   auto fromVolumes = [&](const CellGraph& volumes) {
     auto t = ctx.time("decompose");
-    return takeDecomposition(decomp::decomposeFromVolumes(loaded.scene, volumes, p, {}, ctx));
+    return takeDecomposition(decomposeBy(
+        [&](Context& inner) { return decomp::decomposeFromVolumes(loaded.scene, volumes, p, {}, inner); }));
   };
   // Read back from a file, portals onto the outside may face into their room (outside_portals.h).
   if (std::filesystem::equivalent(path, scenePath)) {
@@ -86,17 +123,23 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
 }
 
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
-                             Context& ctx, const CellGraph& volumes) {
+                             Context& ctx, const CellGraph& volumes, Clock::time_point deadline) {
   auto t = ctx.time("rooms");
   RoomLabels out;
   decomp::Decomposition d;
   try {
-    Context quiet;  // the decomposition's warnings are about cells the user did not ask for
+    // The decomposition's warnings are about cells the user did not ask for.
+    Context quiet = deadlineContext(ctx, false, deadline);
     decomp::DecomposeParams params;
     params.sourceName = scenePath;
     d = volumes.definedByVolumes() ? decomp::decomposeFromVolumes(scene, volumes, params, {}, quiet)
                                    : decomp::decompose(scene, params, quiet);
   } catch (const InputError&) {
+    return out;
+  } catch (const DeadlineReached&) {
+    ctx.warn(
+        "rooms: the time limit came during the decomposition into rooms; the stop per room and the "
+        "ambient term take the scene as one room");
     return out;
   }
   if (d.graph.cells.size() < 2) return out;

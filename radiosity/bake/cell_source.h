@@ -2,6 +2,7 @@
 // `cpgi compare-cells --bake`, so that both bake with exactly the same graph for the same source.
 #pragma once
 
+#include <chrono>
 #include <string>
 
 #include "core/cell_graph.h"
@@ -30,22 +31,29 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 ///    (decomp::decomposeFromVolumes with `params`' voxel size; like auto, it replaces loaded.scene by the
 ///    split scene);
 ///  - another glTF of the same scene: matchCellsToScene.
-/// Throws InputError("--cells", ...) for "none" or a missing file.
-CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
-                       const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx);
+/// Throws InputError("--cells", ...) for "none" or a missing file, and InputError("time limit", ...) when
+/// `deadline` comes during a decomposition (checked at each of its stages): a cells bake has no result
+/// without its cells.
+CellGraph resolveCells(
+    const std::string& source, const std::string& scenePath, LoadedScene& loaded,
+    const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// The rooms of a scene without cells of its own, for its lightmap's "cell" channel (compare-light's
 /// per-cell figures) and the ambient term: the automatic decomposition with default options (so that bake
 /// and reference label alike), each texel given the room in front of it (decomp::cellsFaced); no triangle
 /// is split. `graph` holds the rooms' names and portals, no triangles. Both are empty when the
-/// decomposition finds fewer than two rooms or cannot take the scene: then the scene is one room.
+/// decomposition finds fewer than two rooms or cannot take the scene, or when `deadline` comes during it
+/// (checked at each of its stages; said in a warning): then the scene is one room.
 struct RoomLabels {
   CellGraph graph;
   ExrChannel channel;
 };
 /// With `volumes` (rooms given only as cellvolume: meshes, CellGraph::definedByVolumes), the rooms are
 /// those volumes' cells (decomp::decomposeFromVolumes) instead.
-RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
-                             Context& ctx, const CellGraph& volumes = {});
+RoomLabels labelTexelsByRoom(
+    const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas, Context& ctx,
+    const CellGraph& volumes = {},
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -10,7 +10,8 @@ namespace cpgi {
 LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const CellGraph& cells,
                                      const LightmapAtlas& atlas, std::vector<glm::vec3> radiosity,
                                      const std::vector<ExrChannel>& extra, Context& ctx,
-                                     const ViewParams& viewParams) {
+                                     const ViewParams& viewParams,
+                                     std::chrono::steady_clock::time_point viewsDeadline) {
   dilate(atlas, radiosity);
   const ImageRGB image{atlas.width, atlas.height, radiosity};
   std::vector<ExrChannel> channels{{"area", atlas.area}};
@@ -32,7 +33,9 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   writeGltf(withExtension.string(), scene, gltf);
   std::filesystem::rename(withExtension, staged);
 
-  result.views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams);
+  RenderedViews views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams, viewsDeadline);
+  result.views = std::move(views.written);
+  result.skippedViews = std::move(views.skipped);
   return result;
 }
 

@@ -3,6 +3,7 @@
 // pictures.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,9 @@
 namespace cpgi {
 
 struct LightmapOutputs {
-  float exposure = 1.0f;           ///< used for the glb's texture (viewExposure)
-  std::vector<std::string> views;  ///< camera names, files view-NAME.exr / .png
+  float exposure = 1.0f;                  ///< used for the glb's texture (viewExposure)
+  std::vector<std::string> views;         ///< camera names, files view-NAME.exr / .png
+  std::vector<std::string> skippedViews;  ///< cameras not rendered: the deadline came first
 };
 
 /// Dilates `radiosity` (per atlas texel, W/m², padding ignored) and stages through `out`:
@@ -29,11 +31,12 @@ struct LightmapOutputs {
 ///  - baked.glb: the scene (with `cells` and their portals, when there are any) with the atlas as
 ///    TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
 ///    baked light;
-///  - view-NAME.exr / .png for every camera (renderViews).
+///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for.
 /// Nothing appears in the folder before out.commit().
-LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const CellGraph& cells,
-                                     const LightmapAtlas& atlas, std::vector<glm::vec3> radiosity,
-                                     const std::vector<ExrChannel>& extra, Context& ctx,
-                                     const ViewParams& viewParams = {});
+LightmapOutputs writeLightmapOutputs(
+    OutputDir& out, const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+    std::vector<glm::vec3> radiosity, const std::vector<ExrChannel>& extra, Context& ctx,
+    const ViewParams& viewParams = {},
+    std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

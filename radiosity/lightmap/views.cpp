@@ -32,16 +32,41 @@ float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightm
   return 1.0f;
 }
 
+ViewSize viewSize(const Camera& camera, const ViewParams& params) {
+  ViewSize v;
+  v.width = std::clamp(params.width, kMinViewEdge, kMaxViewEdge);
+  if (params.height > 0) {
+    v.height = std::clamp(params.height, kMinViewEdge, kMaxViewEdge);
+    v.clamped = v.width != params.width || v.height != params.height;
+    return v;
+  }
+  // The vertical field of view is the camera's; its aspect ratio gives the height. A height outside the
+  // edges' range scales both edges, so that the picture keeps the camera's shape while the width can follow.
+  const double aspect = std::isfinite(camera.aspect) && camera.aspect > 0.0f ? camera.aspect : 4.0 / 3.0;
+  double w = v.width, h = w / aspect;
+  if (h > kMaxViewEdge) w *= kMaxViewEdge / h, h = kMaxViewEdge;
+  if (h < kMinViewEdge) w *= kMinViewEdge / h, h = kMinViewEdge;
+  v.clamped = v.width != params.width || w != double(v.width);
+  v.width = std::clamp(int(std::lround(w)), kMinViewEdge, kMaxViewEdge);
+  v.height = std::clamp(int(std::lround(h)), kMinViewEdge, kMaxViewEdge);
+  return v;
+}
+
+double viewBytes(const ViewSize& size) {
+  // The radiance (12 bytes a pixel), the EXR's copy of it and the PNG's 8-bit pixels and deflated stream.
+  constexpr double kBytesPerPixel = 32.0;
+  return double(size.width) * double(size.height) * kBytesPerPixel;
+}
+
 ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas,
-                    std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params) {
+                    std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params,
+                    std::chrono::steady_clock::time_point deadline) {
   if (lightmap.size() != atlas.texelCount())
     throw std::invalid_argument("renderView: the lightmap must have one value per atlas texel");
+  const ViewSize size = viewSize(camera, params);
   ImageRGB image;
-  image.width = std::clamp(params.width, 16, 8192);
-  // The vertical field of view is the camera's; a given height widens or narrows the horizontal one.
-  image.height = params.height > 0
-                     ? std::clamp(params.height, 16, 8192)
-                     : std::max(1, int(std::lround(image.width / std::max(camera.aspect, 1e-3f))));
+  image.width = size.width;
+  image.height = size.height;
   image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
   const int n = std::clamp(params.supersample, 1, 8);
 
@@ -62,7 +87,7 @@ ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtla
     return sampleBilinear(atlas.width, atlas.height, lightmap, at) / std::numbers::pi_v<float>;
   };
 
-  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
+  auto renderRows = [&](const tbb::blocked_range<int>& rows) {
     for (int y = rows.begin(); y < rows.end(); ++y)
       for (int x = 0; x < image.width; ++x) {
         glm::vec3 sum(0.0f);
@@ -76,7 +101,16 @@ ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtla
           }
         image.at(x, y) = sum / float(n * n);
       }
-  });
+  };
+  // Bands of rows, each a fraction of a second even at the widest picture, so that the deadline is seen.
+  constexpr int kBandRows = 32;
+  for (int y = 0; y < image.height; y += kBandRows) {
+    if (std::chrono::steady_clock::now() >= deadline) {
+      image.pixels.clear();
+      return image;
+    }
+    tbb::parallel_for(tbb::blocked_range<int>(y, std::min(y + kBandRows, image.height), 1), renderRows);
+  }
   return image;
 }
 

@@ -4,6 +4,7 @@
 // compared picture by picture (view-*.exr; each PNG's exposure comes from what its camera sees).
 #pragma once
 
+#include <chrono>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,6 +31,26 @@ struct ViewParams {
   float exposure = 0.0f;
 };
 
+/// The longest edge of a view picture, in pixels: the width's range, and the edge a height made from a
+/// camera's aspect ratio is clamped to (an aspect of 0.001 would otherwise ask for 640 × 640 000 pixels).
+inline constexpr int kMaxViewEdge = 8192;
+inline constexpr int kMinViewEdge = 16;
+
+/// A view's picture size for `camera`: params.width (clamped to [16, kMaxViewEdge]) and params.height, or
+/// without one the width over the camera's aspect ratio. When that height leaves [16, kMaxViewEdge] both
+/// edges are scaled to bring it back, keeping the aspect ratio where the other edge allows; `clamped` says
+/// the picture is not the size asked.
+struct ViewSize {
+  int width = 0;
+  int height = 0;
+  bool clamped = false;
+};
+ViewSize viewSize(const Camera& camera, const ViewParams& params);
+
+/// Bytes one view takes while it is rendered and written (its radiance, the PNG's and the EXR's
+/// buffers): the views are made one at a time, so the largest counts.
+double viewBytes(const ViewSize& size);
+
 /// Interior views for a scene that has no cameras of its own (y up, as in glTF), from default_cameras.cpp:
 /// one per cell but "outside", named after it; without cells (or with only "outside"), one named
 /// "overview" for the whole scene, preferring a spot with something overhead. Each eye stands at 1.6 m
@@ -44,25 +65,39 @@ std::vector<Camera> defaultCameras(const RayScene& rays, const Scene& scene, con
 /// lit walls read well and lights saturate. 1 for a black lightmap.
 float viewExposure(const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap);
 
-/// Linear radiance (W/m²/sr) seen by `camera`. Misses, back faces and triangles outside the atlas are
-/// black. `lightmap` is per atlas texel with padding already dilated (see dilate()).
-ImageRGB renderView(const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas,
-                    std::span<const glm::vec3> lightmap, const Camera& camera, const ViewParams& params = {});
+/// Linear radiance (W/m²/sr) seen by `camera`, at viewSize(camera, params). Misses, back faces and
+/// triangles outside the atlas are black. `lightmap` is per atlas texel with padding already dilated (see
+/// dilate()). Rendered in bands of rows; past `deadline` no band starts and the picture comes back empty
+/// (no pixels).
+ImageRGB renderView(
+    const RayScene& rays, const Scene& scene, const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap,
+    const Camera& camera, const ViewParams& params = {},
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// The cameras views are rendered from: the scene's own, or defaultCameras() when it has none.
 std::vector<Camera> viewCameras(const RayScene& rays, const Scene& scene, const CellGraph& cells);
 
+/// The views a call rendered: the NAMEs written, and the cameras' names it did not render because the
+/// deadline came first.
+struct RenderedViews {
+  std::vector<std::string> written;
+  std::vector<std::string> skipped;
+};
+
 /// Renders each of `cameras` and writes `view-NAME.exr` (linear radiance) and `view-NAME.png` (tone-mapped:
 /// params.exposure, or else chosen from what that camera sees, its pixels' 90th percentile of radiance to
-/// 0.8) through `out`; NAME is the camera name made file-safe and unique. Returns the NAMEs written.
-std::vector<std::string> renderCameraViews(const RayScene& rays, const Scene& scene,
-                                           std::span<const Camera> cameras, const LightmapAtlas& atlas,
-                                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                                           const ViewParams& params = {});
+/// 0.8) through `out`; NAME is the camera name made file-safe and unique. A camera whose picture viewSize
+/// clamps is named in one warning. Past `deadline` no view starts, one being rendered is dropped, and the
+/// rest are skipped, said in one warning.
+RenderedViews renderCameraViews(
+    const RayScene& rays, const Scene& scene, std::span<const Camera> cameras, const LightmapAtlas& atlas,
+    std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx, const ViewParams& params = {},
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// renderCameraViews() over viewCameras().
-std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
-                                     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                                     const ViewParams& params = {});
+RenderedViews renderViews(
+    const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+    std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx, const ViewParams& params = {},
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

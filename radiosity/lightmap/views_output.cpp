@@ -34,38 +34,84 @@ std::vector<Camera> viewCameras(const RayScene& rays, const Scene& scene, const 
   return scene.cameras.empty() ? defaultCameras(rays, scene, cells) : scene.cameras;
 }
 
-std::vector<std::string> renderCameraViews(const RayScene& rays, const Scene& scene,
-                                           std::span<const Camera> cameras, const LightmapAtlas& atlas,
-                                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                                           const ViewParams& params) {
+namespace {
+
+// One warning for the cameras whose pictures viewSize clamped: an aspect ratio far from a screen's (a
+// camera exported with 0.001) would otherwise ask for a picture of gigabytes.
+void warnClampedViews(std::span<const Camera> cameras, const ViewParams& params, Context& ctx) {
+  std::string clamped;
+  for (const Camera& c : cameras)
+    if (const ViewSize v = viewSize(c, params); v.clamped)
+      clamped.append(clamped.empty() ? "" : ", ")
+          .append(c.name)
+          .append(" (aspect ratio ")
+          .append(std::to_string(c.aspect))
+          .append(": ")
+          .append(std::to_string(v.width))
+          .append("x")
+          .append(std::to_string(v.height))
+          .append(")");
+  if (!clamped.empty())
+    ctx.warn("views: pictures kept within " + std::to_string(kMinViewEdge) + " to " +
+             std::to_string(kMaxViewEdge) + " pixels an edge for " + clamped);
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out.append(out.empty() ? "" : ", ").append(n);
+  return out;
+}
+
+// A camera's name made file-safe and unique among `used`.
+std::string viewName(const Camera& camera, size_t index, std::set<std::string>& used) {
+  std::string name;
+  for (char ch : camera.name)
+    name += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_') ? ch : '_';
+  // (append rather than string operator+: GCC 12 warns falsely on the latter, PR 105329)
+  if (name.empty()) name.append("camera").append(std::to_string(index));
+  while (!used.insert(name).second) name.append("_").append(std::to_string(index));
+  return name;
+}
+
+}  // namespace
+
+RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::span<const Camera> cameras,
+                                const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap,
+                                OutputDir& out, Context& ctx, const ViewParams& params,
+                                std::chrono::steady_clock::time_point deadline) {
+  warnClampedViews(cameras, params, ctx);
   const float lightmapExposure = viewExposure(atlas, lightmap);
-  std::vector<std::string> names;
+  RenderedViews views;
   std::set<std::string> used;
   for (size_t c = 0; c < cameras.size(); ++c) {
-    std::string name;
-    for (char ch : cameras[c].name)
-      name += (std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_') ? ch : '_';
-    // (append rather than string operator+: GCC 12 warns falsely on the latter, PR 105329)
-    if (name.empty()) name.append("camera").append(std::to_string(c));
-    while (!used.insert(name).second) name.append("_").append(std::to_string(c));
-    const ImageRGB image = renderView(rays, scene, atlas, lightmap, cameras[c], params);
+    const std::string name = viewName(cameras[c], c, used);
+    const ImageRGB image = views.skipped.empty()
+                               ? renderView(rays, scene, atlas, lightmap, cameras[c], params, deadline)
+                               : ImageRGB{};
+    if (image.pixels.empty()) {
+      views.skipped.push_back(cameras[c].name);
+      continue;
+    }
     writeExr(out.file("view-" + name + ".exr").string(), image);
     const float exposure =
         params.exposure > 0.0f ? params.exposure : pictureExposure(image, lightmapExposure);
     writePng(out.file("view-" + name + ".png").string(), image, exposure);
-    names.push_back(name);
+    views.written.push_back(name);
     ctx.progress("views", double(c + 1) / double(cameras.size()), name);
   }
-  return names;
+  if (!views.skipped.empty())
+    ctx.warn("views: the time limit came before " + std::to_string(views.skipped.size()) + " of " +
+             std::to_string(cameras.size()) + " views; not rendered: " + joinNames(views.skipped));
+  return views;
 }
 
-std::vector<std::string> renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
-                                     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                                     const ViewParams& params) {
+RenderedViews renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+                          std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
+                          const ViewParams& params, std::chrono::steady_clock::time_point deadline) {
   auto timer = ctx.time("views");
   const RayScene rays(scene);
   const std::vector<Camera> cameras = viewCameras(rays, scene, cells);
-  return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params);
+  return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params, deadline);
 }
 
 }  // namespace cpgi

@@ -1,13 +1,18 @@
 #include "radiosity/lightmap/views.h"
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 #include <gtest/gtest.h>
 
+#include "core/image_io.h"
+#include "core/output_dir.h"
 #include "core/quads.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "tests/radiosity/test_scenes.h"
+#include "tests/support/temp_dir.h"
 
 namespace cpgi {
 namespace {
@@ -78,6 +83,86 @@ TEST(Views, RadianceIsBilinearLightmapOverPi) {
     }
   EXPECT_GT(inside, 1000);
   EXPECT_GT(outside, 100);
+}
+
+// A camera exported with an aspect ratio of 0.001 asked for a 640 x 640 000 picture (5 GB); the height
+// is kept within kMaxViewEdge and the width follows it, the aspect ratio kept where the width allows.
+TEST(Views, SizesStayWithinTheEdgesKeepingTheAspectWherePossible) {
+  Camera cam = downCamera({1.0f, 1.0f, 2.0f});
+  ViewParams params;  // 640 wide
+  cam.aspect = 4.0f / 3.0f;
+  ViewSize v = viewSize(cam, params);
+  EXPECT_EQ(v.width, 640);
+  EXPECT_EQ(v.height, 480);
+  EXPECT_FALSE(v.clamped);
+  cam.aspect = 0.1f;  // 640 x 6400: the height to 8192 at most, the aspect kept
+  v = viewSize(cam, params);
+  EXPECT_EQ(v.width, 640);
+  EXPECT_EQ(v.height, 6400);
+  EXPECT_FALSE(v.clamped);
+  cam.aspect = 0.01f;
+  v = viewSize(cam, params);
+  EXPECT_EQ(v.height, kMaxViewEdge);
+  EXPECT_EQ(v.width, 82);
+  EXPECT_TRUE(v.clamped);
+  cam.aspect = 0.001f;  // the width cannot follow below the smallest edge
+  v = viewSize(cam, params);
+  EXPECT_EQ(v.height, kMaxViewEdge);
+  EXPECT_EQ(v.width, kMinViewEdge);
+  EXPECT_TRUE(v.clamped);
+  cam.aspect = 1000.0f;
+  v = viewSize(cam, params);
+  EXPECT_EQ(v.height, kMinViewEdge);
+  EXPECT_EQ(v.width, kMaxViewEdge);
+  EXPECT_TRUE(v.clamped);
+  params.height = 100000;  // a height given is clamped alike
+  v = viewSize(cam, params);
+  EXPECT_EQ(v.height, kMaxViewEdge);
+  EXPECT_TRUE(v.clamped);
+}
+
+TEST(Views, AThinCamerasPictureIsClampedAndNamedInOneWarning) {
+  FloorFixture f;
+  const RayScene rays(f.scene);
+  Camera thin = downCamera({0.9f, 1.2f, 2.0f});
+  thin.name = "needle";
+  thin.aspect = 0.001f;
+  const Camera cameras[] = {downCamera({0.9f, 1.2f, 2.0f}), thin};
+  ViewParams params;
+  params.width = 64;
+  params.supersample = 1;
+  test::TempDir dir;
+  Context ctx;
+  OutputDir out(dir.path() / "views");
+  const RenderedViews views =
+      renderCameraViews(rays, f.scene, cameras, f.atlas, f.lightmap, out, ctx, params);
+  out.commit();
+  EXPECT_EQ(views.written, (std::vector<std::string>{"down", "needle"}));
+  EXPECT_TRUE(views.skipped.empty());
+  const ImageRGB needle = readExr(dir / "views/view-needle.exr");
+  EXPECT_EQ(needle.width, kMinViewEdge);
+  EXPECT_EQ(needle.height, kMaxViewEdge);
+  ASSERT_EQ(ctx.warnings().size(), 1u);
+  EXPECT_NE(ctx.warnings()[0].find("needle (aspect ratio 0.001"), std::string::npos) << ctx.warnings()[0];
+  EXPECT_EQ(ctx.warnings()[0].find("down"), std::string::npos) << ctx.warnings()[0];
+}
+
+// Past the deadline no view is rendered: each camera is said skipped, in one warning, and no file written.
+TEST(Views, PastTheDeadlineTheViewsAreSkipped) {
+  FloorFixture f;
+  const RayScene rays(f.scene);
+  const Camera cameras[] = {downCamera({0.9f, 1.2f, 2.0f}), downCamera({1.0f, 1.0f, 3.0f})};
+  test::TempDir dir;
+  Context ctx;
+  OutputDir out(dir.path() / "views");
+  const RenderedViews views = renderCameraViews(rays, f.scene, cameras, f.atlas, f.lightmap, out, ctx, {},
+                                                std::chrono::steady_clock::now());
+  out.commit();
+  EXPECT_TRUE(views.written.empty());
+  EXPECT_EQ(views.skipped, (std::vector<std::string>{"down", "down"}));
+  ASSERT_EQ(ctx.warnings().size(), 1u);
+  EXPECT_EQ(ctx.warnings()[0].rfind("views: the time limit came before 2 of 2 views", 0), 0u);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path() / "views"));
 }
 
 TEST(Views, BackFacesAreBlack) {

@@ -1,0 +1,156 @@
+// The outputs' share of --time-limit and the memory of every stage (bake_limits.h).
+#include "radiosity/bake/bake_limits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "core/memory_limit.h"
+#include "radiosity/lightmap/ray_scene.h"
+
+namespace cpgi::bake_steps {
+namespace {
+
+// The outputs' costs in rays of probeRaySeconds, from the furnished house at 3 texels a metre on the
+// 2-core llvmpipe machine the bakes are benched on (bench/RESULTS.md, "A bake inside its limits in every
+// stage"), with 1.4-2x to spare: a view's ray (one per supersample, with its bilinear lookup; it took 2.8
+// probe rays) and a pixel through its EXR and PNG; an atlas texel through the files before the views
+// (dilation, lightmap.exr with its channels, lightmap.png, baked.glb) and after them (report.html, which
+// embeds the glb and the lightmap once more); a triangle through the glb and the page.
+constexpr double kRaysPerViewRay = 4.0;
+constexpr double kRaysPerViewPixel = 1.0;
+constexpr double kRaysPerFileTexel = 4.0;
+constexpr double kRaysPerPageTexel = 2.0;
+constexpr double kRaysPerTriangle = 10.0;
+constexpr int kProbeRays = 1 << 14;
+
+// Embree's high-quality BVH with its triangles, and RayScene's own copy of them.
+constexpr double kRaySceneBytesPerTriangle = 256.0;
+// The sky gather: per valid texel its index, two sums (the pass's and the last whole pass's) and the
+// irradiance it adds to.
+constexpr double kSkyGatherBytesPerTexel = 8.0 + 16.0 + 12.0;
+
+double largestViewBytes(const std::vector<Camera>& cameras, const ViewParams& views) {
+  double most = 0.0;
+  for (const Camera& c : cameras) most = std::max(most, viewBytes(viewSize(c, views)));
+  return most;
+}
+
+}  // namespace
+
+std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells) {
+  if (!scene.cameras.empty()) return scene.cameras;
+  std::vector<Camera> cameras;
+  for (const Cell& c : cells.cells)
+    if (c.name != "outside") cameras.push_back(Camera{.name = c.name});
+  if (cameras.empty()) cameras.push_back(Camera{.name = "overview"});
+  return cameras;
+}
+
+double probeRaySeconds(const Scene& scene) {
+  if (scene.triangles.empty()) return 0.0;
+  const RayScene rays(scene);
+  const auto built = std::chrono::steady_clock::now();
+  glm::vec3 lo(3.0e38f), hi(-3.0e38f);
+  for (const Triangle& t : scene.triangles)
+    for (const glm::vec3& p : t.p) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec3 middle = 0.5f * (lo + hi);
+  // Directions spread over the sphere (a Fibonacci lattice), as a view's rays spread over a room.
+  tbb::parallel_for(tbb::blocked_range<int>(0, kProbeRays, 256), [&](const tbb::blocked_range<int>& r) {
+    for (int k = r.begin(); k < r.end(); ++k) {
+      const float z = 1.0f - 2.0f * (float(k) + 0.5f) / float(kProbeRays);
+      const float phi = 2.39996323f * float(k), ring = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      rays.intersect(middle, glm::vec3(ring * std::cos(phi), ring * std::sin(phi), z));
+    }
+  });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count() / kProbeRays;
+}
+
+OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
+                               const ViewParams& views, size_t texels, size_t atlasTexels,
+                               double raySeconds) {
+  OutputEstimate e;
+  e.views = cameras.size();
+  e.raySeconds = raySeconds;
+  const int n = std::clamp(views.supersample, 1, 8);
+  for (const Camera& c : cameras) {
+    const ViewSize v = viewSize(c, views);
+    const double pixels = double(v.width) * double(v.height);
+    e.viewPixels += pixels;
+    e.viewSeconds += pixels * (double(n * n) * kRaysPerViewRay + kRaysPerViewPixel) * raySeconds;
+  }
+  const double triangles = double(scene.triangles.size());
+  e.filesSeconds = (double(atlasTexels) * kRaysPerFileTexel + triangles * kRaysPerTriangle) * raySeconds;
+  e.pageSeconds =
+      (double(std::max(texels, atlasTexels)) * kRaysPerPageTexel + triangles * kRaysPerTriangle) * raySeconds;
+  return e;
+}
+
+std::chrono::steady_clock::time_point keepBack(std::chrono::steady_clock::time_point deadline,
+                                               double seconds) {
+  if (deadline == std::chrono::steady_clock::time_point::max()) return deadline;
+  return deadline - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(std::max(0.0, seconds)));
+}
+
+BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas,
+                      double largestViewBytes) {
+  BakeMemory m;
+  m.atlas = double(atlas.texelCount()) * kBakeBytesPerTexel;
+  const double edge = s.solver.params.itemBuffer;
+  const double regions = std::pow(std::max(s.solver.params.maxRegions, s.solver.params.strongShotRegions), 2);
+  // An item and a depth layer (8 bytes a pixel) per region, and half as much again for the GL driver.
+  m.itemBuffers = edge * edge * regions * 12.0;
+  m.rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
+  if (scene.sky.lights()) m.skyGather = double(atlas.validTexels()) * kSkyGatherBytesPerTexel;
+  m.views = largestViewBytes;
+  return m;
+}
+
+ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
+                             const LightmapAtlas& atlas, Context& ctx) {
+  const uint64_t limit = s.atlas.params.memoryLimit;
+  ViewParams views = s.output.views;
+  const BakeMemory m = bakeMemory(s, scene, atlas, largestViewBytes(cameras, views));
+  if (limit == 0 || m.total() <= double(limit)) return views;
+  // The views shrink to what the rest leaves, when that still holds a picture of the smallest size.
+  const double rest = m.total() - m.views;
+  const double smallest = viewBytes(ViewSize{kMinViewEdge, kMinViewEdge});
+  if (m.views > 0.0 && double(limit) - rest >= smallest) {
+    while (largestViewBytes(cameras, views) > double(limit) - rest && views.width > kMinViewEdge) {
+      views.width = std::max(kMinViewEdge, views.width * 9 / 10);
+      if (views.height > 0) views.height = std::max(kMinViewEdge, views.height * 9 / 10);
+    }
+    if (largestViewBytes(cameras, views) <= double(limit) - rest) {
+      ctx.warn("views: pictures " + std::to_string(views.width) + " pixels wide to fit the memory limit of " +
+               formatBytes(double(limit)) + " (the largest asked for " + formatBytes(m.views) + ")");
+      return views;
+    }
+  }
+  // Named by the largest share: what the user can lower. The views shrink by themselves, so they are named
+  // only when the rest fits.
+  struct Share {
+    double bytes;
+    std::string parameter, remedy;
+  };
+  const std::string texels = s.atlas.densityAuto ? "maximum texels" : atlas.sizeParameter;
+  const Share shares[] = {{m.atlas + m.skyGather, texels, "lower `" + texels + "`"},
+                          {m.itemBuffers, "item buffer", "lower `item buffer`"},
+                          {m.rayScene, "maximum memory", "bake a scene of fewer triangles"},
+                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"}};
+  const Share& largest =
+      *std::max_element(shares, shares + 4, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
+  std::ostringstream what;
+  what << "the bake (atlas " << formatBytes(m.atlas) << ", item buffers " << formatBytes(m.itemBuffers)
+       << ", ray scene " << formatBytes(m.rayScene) << ", sky gather " << formatBytes(m.skyGather)
+       << ", largest view " << formatBytes(m.views) << ")";
+  requireMemory(m.total(), limit, largest.parameter, what.str(),
+                largest.remedy + " or raise `maximum memory`");
+  return views;
+}
+
+}  // namespace cpgi::bake_steps

@@ -1,0 +1,72 @@
+// What a bake may take, over every stage (issue 46 item 3): the outputs' share of --time-limit, kept back
+// from the solve so that the views and the files fit before the limit, and the memory of the stages the
+// atlas's per-texel figure leaves out (the ray scene, the sky gather, the views), checked with it against
+// --max-memory. Not for callers outside radiosity/bake/.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+#include "core/cell_graph.h"
+#include "core/context.h"
+#include "core/scene.h"
+#include "radiosity/bake/bake_settings.h"
+#include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/views.h"
+
+namespace cpgi::bake_steps {
+
+/// The seconds of a ray on this machine as it runs now (its load included): the wall time of a few
+/// thousand nearest-hit rays from the middle of the scene's bounds, traced on every core as the views are.
+/// The outputs' estimates are counted in these rays.
+double probeRaySeconds(const Scene& scene);
+
+/// The seconds a bake's outputs take after its solve, from their pixels and texels, each costed in rays
+/// of probeRaySeconds (bench/RESULTS.md, "A bake inside its limits"), with room to spare.
+struct OutputEstimate {
+  size_t views = 0;           ///< cameras whose pictures the bake renders
+  double viewPixels = 0.0;    ///< their pixels, all views
+  double viewSeconds = 0.0;   ///< rendering and writing them
+  double filesSeconds = 0.0;  ///< lightmap.exr, lightmap.png, baked.glb before the views
+  double pageSeconds = 0.0;   ///< report.json and report.html after them
+  double raySeconds = 0.0;    ///< the cost of a ray they are counted in (probeRaySeconds)
+  double seconds() const { return viewSeconds + filesSeconds + pageSeconds; }
+};
+
+/// The cameras the views will have: the scene's own, else one per cell of `cells` but the outside (one
+/// overview without cells), as defaultCameras makes them.
+std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells);
+
+/// The outputs of a bake of `texels` atlas texels (lightmap.exr counts the atlas's width × height,
+/// `atlasTexels`) with the views of `cameras` at `views`' size.
+OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
+                               const ViewParams& views, size_t texels, size_t atlasTexels, double raySeconds);
+
+/// The share of the time before the outputs' that the density pilot may take: it lays out a quarter of
+/// the texel budget, and the output's sky gather, lamps and solve come after it.
+inline constexpr double kPilotTimeShare = 0.25;
+
+/// `deadline` moved `seconds` earlier (no deadline stays none).
+std::chrono::steady_clock::time_point keepBack(std::chrono::steady_clock::time_point deadline,
+                                               double seconds);
+
+/// The memory of a bake at its peak, by what takes it (bytes).
+struct BakeMemory {
+  double atlas = 0.0;        ///< kBakeBytesPerTexel a texel of the atlas (its padding included)
+  double itemBuffers = 0.0;  ///< every visibility region's item and depth layer
+  double rayScene = 0.0;     ///< the Embree scene the lamps' rays, the sky, the ambient term and views use
+  double skyGather = 0.0;    ///< the sky gather's sums and texel list, with a sky
+  double views = 0.0;        ///< the largest view picture (they are made one at a time)
+  double total() const { return atlas + itemBuffers + rayScene + skyGather + views; }
+};
+BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas,
+                      double largestViewBytes);
+
+/// Checks bakeMemory against the limit (s.atlas.params.memoryLimit). When the views are what passes it,
+/// their size is lowered (the aspect kept) to fit, said in one warning, and the view parameters to use
+/// returned; otherwise one InputError naming the largest share and what lowers it.
+ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
+                             const LightmapAtlas& atlas, Context& ctx);
+
+}  // namespace cpgi::bake_steps

@@ -1,0 +1,181 @@
+// A bake inside its limits in every stage: --time-limit reached before the views (the lightmap, glb and
+// report still written, the views skipped and said), during the decompositions, and --max-memory counting
+// the sky gather and the views. The deadline is put in the past by the run's start, so what the report
+// says does not hang on how fast the machine is.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/scene_io.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/bake_limits.h"
+#include "radiosity/bake/bake_steps.h"
+#include "scenes/seed_scenes.h"
+#include "tests/support/in_process_bake.h"
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+// seed1 coarse, as bake_test.cpp's quick bake.
+BakeSettings quick() {
+  BakeSettings s;
+  s.input.scene = "seed1";
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.05;
+  s.solver.params.itemBuffer = 128;
+  s.output.views.width = 32;
+  return s;
+}
+
+// A run whose time limit of one second passed ten seconds before the bake starts.
+BakeRun pastTheLimit(BakeSettings& s) {
+  s.limits.timeLimit = 1.0;
+  BakeRun run;
+  run.gl = &test::sharedGl();
+  run.start = std::chrono::steady_clock::now() - std::chrono::seconds(10);
+  return run;
+}
+
+bool anyWarning(const Context& ctx, const std::string& start) {
+  for (const std::string& w : ctx.warnings())
+    if (w.rfind(start, 0) == 0) return true;
+  return false;
+}
+
+TEST(BakeLimits, PastTheTimeLimitTheViewsAreSkippedAndTheRestIsWritten) {
+  const SeedScene seed = makeSeedScene(1);
+  test::TempDir dir;
+  BakeSettings s = quick();
+  s.output.folder = dir / "out";
+  const BakeRun run = pastTheLimit(s);
+  Context ctx;
+  const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
+  for (const char* f : {"lightmap.exr", "lightmap.png", "baked.glb", "report.json", "report.html"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
+    EXPECT_NE(e.path().filename().string().rfind("view-", 0), 0u) << e.path();
+  EXPECT_TRUE(r.partial);
+  EXPECT_TRUE(r.report["views"].empty());
+  EXPECT_EQ(r.report["views_skipped"], (std::vector<std::string>{"A", "B", "C"}));
+  EXPECT_TRUE(r.report["partial"].get<bool>());
+  EXPECT_NE(r.report["partial_reason"].get<std::string>().find("before 3 of 3 views"), std::string::npos)
+      << r.report["partial_reason"];
+  int viewWarnings = 0;
+  for (const std::string& w : ctx.warnings()) viewWarnings += w.rfind("views: the time limit", 0) == 0;
+  EXPECT_EQ(viewWarnings, 1);
+  // The outputs' share was estimated and kept back from the solve.
+  EXPECT_GT(r.report["output_estimate_s"]["views"].get<double>(), 0.0);
+  EXPECT_GT(r.report["output_estimate_s"]["files"].get<double>(), 0.0);
+  std::ifstream in(dir / "out/report.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["views_skipped"], r.report["views_skipped"]);
+}
+
+TEST(BakeLimits, WithinTheTimeLimitEveryViewIsRendered) {
+  const SeedScene seed = makeSeedScene(1);
+  test::TempDir dir;
+  BakeSettings s = quick();
+  s.output.folder = dir / "out";
+  s.limits.timeLimit = 3600.0;
+  const BakeResult r = test::bakeHere(seed.scene, seed.cells, s);
+  EXPECT_EQ(r.report["views"].size(), 3u);
+  EXPECT_TRUE(r.report["views_skipped"].empty());
+  EXPECT_FALSE(r.partial);
+}
+
+// A scene without cells is labelled by its automatic rooms; past the limit the decomposition stops at its
+// first stage and the scene is one room, said once.
+TEST(BakeLimits, TheRoomsDecompositionStopsAtTheTimeLimit) {
+  const SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  Context ctx;
+  const BakeResult limited = bake(seed.scene, CellGraph{}, s, ctx, pastTheLimit(s));
+  EXPECT_TRUE(anyWarning(ctx, "rooms: the time limit came during the decomposition"));
+  EXPECT_TRUE(limited.cellNames.empty());
+  BakeSettings unlimited = quick();
+  const BakeResult r = test::bakeHere(seed.scene, CellGraph{}, unlimited);
+  EXPECT_EQ(r.cellNames.size(), 3u);  // the three rooms, when there is time
+}
+
+// A cells bake of `--cells auto` cannot go on without its cells: one line naming the time limit.
+TEST(BakeLimits, TheCellsDecompositionPastTheTimeLimitIsRefusedInOneLine) {
+  const SeedScene seed = makeSeedScene(1);
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  writeGltf(scene, seed.scene);
+  BakeSettings s = quick();
+  s.input.scene = scene;
+  s.cells.method = BakeMethod::Cells;
+  s.cells.source = "auto";
+  Context ctx;
+  try {
+    bake(s, ctx, pastTheLimit(s));
+    ADD_FAILURE() << "a cells bake past its time limit in the decomposition";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "time limit");
+    EXPECT_NE(e.problem().find("decomposition of " + scene), std::string::npos) << e.problem();
+  }
+  EXPECT_TRUE(anyWarning(ctx, "load: the time limit came while"));
+}
+
+// The memory model counts the sky gather and the largest view besides the atlas and the item buffers.
+TEST(BakeLimits, MemoryCountsTheSkyGatherAndTheViews) {
+  SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  Context ctx;
+  bake_steps::BakeInput in;
+  in.scene = &seed.scene;
+  in.cells = &seed.cells;
+  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  const double view = viewBytes(ViewSize{640, 480});
+  const bake_steps::BakeMemory dark = bake_steps::bakeMemory(s, seed.scene, in.atlas, view);
+  EXPECT_EQ(dark.skyGather, 0.0);
+  EXPECT_EQ(dark.views, view);
+  EXPECT_GT(dark.rayScene, 0.0);
+  EXPECT_DOUBLE_EQ(dark.total(), dark.atlas + dark.itemBuffers + dark.rayScene + dark.views);
+  seed.scene.sky.zenithRadiance = 10.0f;
+  ASSERT_TRUE(seed.scene.sky.lights());
+  const bake_steps::BakeMemory daylit = bake_steps::bakeMemory(s, seed.scene, in.atlas, view);
+  EXPECT_GE(daylit.skyGather, 24.0 * double(in.atlas.validTexels()));
+}
+
+// Views larger than what --max-memory leaves after the solve shrink to fit, said in one warning; a limit
+// the solve alone passes is refused naming what to lower.
+TEST(BakeLimits, ViewsShrinkToTheMemoryLeftAndTheRestIsRefused) {
+  SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  s.output.views.width = 8192;
+  s.output.views.height = 8192;  // 2 GiB a view
+  Context ctx;
+  bake_steps::BakeInput in;
+  in.scene = &seed.scene;
+  in.cells = &seed.cells;
+  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  const bake_steps::BakeMemory m = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
+  const double rest = m.total();
+  s.atlas.params.memoryLimit = uint64_t(rest + 8.0 * (1 << 20));  // 8 MiB for the views
+  const std::vector<Camera> cameras = bake_steps::expectedCameras(seed.scene, seed.cells);
+  const ViewParams fitted = bake_steps::requireBakeMemory(s, seed.scene, cameras, in.atlas, ctx);
+  EXPECT_LT(fitted.width, 8192);
+  EXPECT_EQ(fitted.width, fitted.height);  // the shape asked for kept
+  EXPECT_LE(viewBytes(viewSize(cameras.front(), fitted)), 8.0 * (1 << 20));
+  EXPECT_TRUE(anyWarning(ctx, "views: pictures"));
+  s.atlas.params.memoryLimit = uint64_t(rest / 2.0);
+  try {
+    bake_steps::requireBakeMemory(s, seed.scene, cameras, in.atlas, ctx);
+    ADD_FAILURE() << "a limit of half the solve's memory";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "item buffer");  // seed1's coarse atlas takes less than its item buffers
+    EXPECT_NE(e.problem().find("lower `item buffer` or raise `maximum memory`"), std::string::npos)
+        << e.problem();
+  }
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -12,6 +12,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImathBox.h>
 #include <ImfStdIO.h>
 
 // Static, so that these symbols cannot clash with the copy libtinygltf pulls in through libstb.
@@ -33,6 +34,35 @@ void checkImage(const ImageRGB& image, const char* who) {
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height)
     throw std::invalid_argument(std::string(who) + ": image size does not match its pixels");
+}
+
+int channelCount(const Imf::ChannelList& channels) {
+  int count = 0;
+  for (auto it = channels.begin(); it != channels.end(); ++it) ++count;
+  return count;
+}
+
+// The most pixels an OpenEXR read allocates (a 16384 × 8192 lightmap or view: 1.6 GB as float RGB), and
+// the most its pixels may unpack to per byte of the file: zlib, EXR's usual compression, cannot do better
+// than about 1 032 to 1, so a 10 KB file whose header announces 20 000² pixels lies about its size.
+constexpr int64_t kMaxExrPixels = int64_t(1) << 27;
+constexpr int64_t kMaxExrExpansion = 4096;
+constexpr int kMaxExrSide = 1 << 17;
+
+// Before anything is allocated: the data window's pixels against the limit and against the file's size.
+void checkExrSize(const std::string& path, const Imath::Box2i& dw, int channels) {
+  const int64_t width = int64_t(dw.max.x) - dw.min.x + 1, height = int64_t(dw.max.y) - dw.min.y + 1;
+  if (width <= 0 || height <= 0) throw InputError(path, "OpenEXR data window is empty");
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width > kMaxExrSide || height > kMaxExrSide || width * height > kMaxExrPixels)
+    throw InputError(path, "OpenEXR data window " + size + " holds more than the " +
+                               std::to_string(kMaxExrPixels) + " pixels cpgi reads");
+  std::error_code ec;
+  const uintmax_t fileBytes = std::filesystem::file_size(path, ec);
+  const double unpacked = double(width) * double(height) * channels * sizeof(float);
+  if (!ec && unpacked > double(fileBytes) * kMaxExrExpansion)
+    throw InputError(path, "OpenEXR data window " + size + " cannot be held in a file of " +
+                               std::to_string(fileBytes) + " bytes (truncated, or its header lies)");
 }
 
 float linearToSrgb(float v) {
@@ -87,17 +117,20 @@ ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not an image");
   try {
+    // OpenEXR sizes its table of chunk offsets from the header as it opens the file: the header's own
+    // sanity check refuses sides past the limit there, before that table is allocated.
+    Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
+    Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
-    ImageRGB image;
-    image.width = dw.max.x - dw.min.x + 1;
-    image.height = dw.max.y - dw.min.y + 1;
-    if (image.width <= 0 || image.height <= 0 || size_t(image.width) * image.height > (size_t(1) << 31))
-      throw InputError(path, "OpenEXR data window is empty or too large");
     const Imf::ChannelList& channels = file.header().channels();
     for (const char* c : {"R", "G", "B"})
       if (!channels.findChannel(c))
         throw InputError(path, std::string("OpenEXR file has no ") + c + " channel");
+    checkExrSize(path, dw, extra ? channelCount(channels) : 3);
+    ImageRGB image;
+    image.width = dw.max.x - dw.min.x + 1;
+    image.height = dw.max.y - dw.min.y + 1;
     image.pixels.assign(size_t(image.width) * image.height, glm::vec3(0.0f));
 
     // Slices are addressed from the data window's origin, which need not be (0, 0).

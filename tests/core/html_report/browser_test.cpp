@@ -120,7 +120,8 @@ TEST(ReportInBrowser, MarkupInNamesNeverRunsAndThePageWorks) {
   door.cellA = 0, door.cellB = 1;
   graph.portals.push_back(door);
   Camera eye;
-  eye.name = "<img src=w onerror=window.__pwned=5>eye";
+  // three.js drops '.', ':', '/' and turns spaces into '_' in node names, so this one has none of them.
+  eye.name = "<b>eye<i>";
   eye.position = {2, 1.6f, 1.5f}, eye.forward = {1, 0, 0};
   scene.cameras = {eye};
 

@@ -12,11 +12,14 @@ namespace cpgi {
 /// no surrogate, at most U+10FFFF), or 0 when none starts there. C1 controls (U+0080 to U+009F) count as
 /// none: some terminals act on them.
 inline size_t utf8SequenceLength(const std::string& text, size_t at) {
-  const auto byte = [&](size_t i) { return at + i < text.size() ? static_cast<unsigned char>(text[at + i]) : 0u; };
+  const auto byte = [&](size_t i) {
+    return at + i < text.size() ? static_cast<unsigned char>(text[at + i]) : 0u;
+  };
   const unsigned lead = byte(0);
-  const size_t length = lead >= 0xC2 && lead <= 0xDF ? 2 : lead >= 0xE0 && lead <= 0xEF ? 3
-                        : lead >= 0xF0 && lead <= 0xF4                        ? 4
-                                                                              : 0;
+  const size_t length = lead >= 0xC2 && lead <= 0xDF   ? 2
+                        : lead >= 0xE0 && lead <= 0xEF ? 3
+                        : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                       : 0;
   if (length == 0) return 0;
   uint32_t code = lead & (0xFF >> (length + 1));
   for (size_t i = 1; i < length; ++i) {

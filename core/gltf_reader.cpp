@@ -540,8 +540,8 @@ class GltfReader {
       fail(what + ": texture has no valid image");
     if (auto known = imageMeans_.find(source); known != imageMeans_.end()) return known->second;
     const std::vector<unsigned char>& encoded = m_.images[source].image;
-    const glm::vec3 mean =
-        meanTextureColour(encoded.data(), encoded.size(), path_, what + ": texture image " + std::to_string(source));
+    const glm::vec3 mean = meanTextureColour(encoded.data(), encoded.size(), path_,
+                                             what + ": texture image " + std::to_string(source));
     imageMeans_.emplace(source, mean);
     return mean;
   }
@@ -679,7 +679,8 @@ class GltfReader {
           raw_.scene.triangles.push_back(t);
           raw_.cellOfTriangle.push_back(cell);
           std::array<glm::vec2, 3> uv{};
-          for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k) uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
+          for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k)
+            uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
           raw_.lightmapUVs.push_back(uv);
           raw_.everyLightmapUV = raw_.everyLightmapUV && !lightmapUVs.empty();
         }

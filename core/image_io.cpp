@@ -7,12 +7,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <ImathBox.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <ImathBox.h>
 #include <ImfStdIO.h>
 
 // Static, so that these symbols cannot clash with the copy libtinygltf pulls in through libstb.

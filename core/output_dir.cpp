@@ -290,8 +290,9 @@ fs::path committedName(const fs::path& path) {
   const std::string name = folder.filename().string();
   const size_t at = name.rfind(kStagingInside);
   if (at == std::string::npos || stagingOwner(name.substr(at), kStagingInside) != ::getpid()) return path;
-  if (at == 0) return folder.parent_path() / path.filename();                  // DIR/.cpgi-new-PID
-  if (name[0] == '.') return folder.parent_path() / name.substr(1, at - 1) / path.filename();  // .DIR.cpgi-new-PID
+  if (at == 0) return folder.parent_path() / path.filename();  // DIR/.cpgi-new-PID
+  if (name[0] == '.')
+    return folder.parent_path() / name.substr(1, at - 1) / path.filename();  // .DIR.cpgi-new-PID
   return path;
 }
 

@@ -54,7 +54,7 @@ class OutputDir {
   std::filesystem::path staging_;  // where file() puts the results
   bool besideTarget_ = false;      // staging_ is a sibling of real_ (a swap is possible)
   std::vector<std::string> resultNames_;
-  std::vector<std::string> staged_;  // names given to file()
+  std::vector<std::string> staged_;   // names given to file()
   std::set<std::string> earlierSet_;  // what the committed run before this one wrote (its manifest)
   bool committed_ = false;
   int lock_ = -1;         // the folder, open and flock()ed while this object lives

@@ -148,10 +148,11 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
           unique.push_back(q);
   // Vertices are counted only for small meshes; a large one is said in triangles alone.
   auto notAQuad = [&] {
-    return InputError(file, node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
-                                std::to_string(triangles.size()) + " triangles" +
-                                (triangles.size() <= 16 ? " and " + std::to_string(unique.size()) + " vertices"
-                                                        : std::string()));
+    return InputError(
+        file,
+        node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
+            std::to_string(triangles.size()) + " triangles" +
+            (triangles.size() <= 16 ? " and " + std::to_string(unique.size()) + " vertices" : std::string()));
   };
   if (triangles.size() != 2 || unique.size() != 4) throw notAQuad();
   auto same = [](const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) <= 1e-6f; };
@@ -313,7 +314,8 @@ static bool beyondBound(const glm::vec3& p) {
 // Every position against kMaxCoordinate, after --scale; one line naming the node.
 static void checkCoordinates(const std::string& path, const RawScene& raw, double scale) {
   const std::string bound = " m from the origin, beyond the 1e6 m cpgi handles";
-  const std::string hint = scale != 1.0 ? " (after --scale " + std::to_string(scale) + ")" : " (is --scale right?)";
+  const std::string hint =
+      scale != 1.0 ? " (after --scale " + std::to_string(scale) + ")" : " (is --scale right?)";
   auto far = [](const glm::vec3& p) {
     std::ostringstream s;
     s << std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});

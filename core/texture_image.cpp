@@ -189,8 +189,9 @@ bool decodeJpeg(JpegDecoder& d, const unsigned char* bytes, size_t size, uint64_
   jpeg_mem_src(&d.info, bytes, static_cast<unsigned long>(size));
   jpeg_read_header(&d.info, TRUE);
   if (uint64_t(d.info.image_width) * d.info.image_height > maxTexels) {
-    std::snprintf(d.errors.message, sizeof d.errors.message, "the JPEG is %ux%u, more than the %s texels cpgi decodes",
-                  d.info.image_width, d.info.image_height, texelCount(maxTexels).c_str());
+    std::snprintf(d.errors.message, sizeof d.errors.message,
+                  "the JPEG is %ux%u, more than the %s texels cpgi decodes", d.info.image_width,
+                  d.info.image_height, texelCount(maxTexels).c_str());
     return false;
   }
   d.info.out_color_space = JCS_RGB;  // from grey or YCbCr; CMYK cannot be, and is refused

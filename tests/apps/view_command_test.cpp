@@ -130,9 +130,11 @@ namespace {
 // does; the output goes through a pipe, out of the limit's reach.
 TEST_F(ViewCommand, FullDiskFailsInOneLineAndCommitsNothing) {
   const std::string out = *dir_ / "full";
-  const std::string view = quote(CPGI_BINARY) + " view " + quote(bake()) + " -o " + quote(out) + " --view-size 32x24";
+  const std::string view =
+      quote(CPGI_BINARY) + " view " + quote(bake()) + " -o " + quote(out) + " --view-size 32x24";
   const test::CommandRun r = test::runCaptured(
-      dir_->path(), "bash -o pipefail -c " + quote("(ulimit -f 0; trap '' XFSZ; exec " + view + " 2>&1) | cat"), "full-");
+      dir_->path(),
+      "bash -o pipefail -c " + quote("(ulimit -f 0; trap '' XFSZ; exec " + view + " 2>&1) | cat"), "full-");
   EXPECT_EQ(r.status, 1) << r.out;
   size_t errors = 0;
   std::istringstream lines(r.out);

@@ -182,7 +182,8 @@ TEST(HostileGltf, NodesInstancingOneMeshAreCappedInTriangles) {
   capped.maxTriangles = 5000;
   const std::string refused = loadError(instances(60), capped);
   EXPECT_NE(refused.find("nodes place more than 5000 triangles"), std::string::npos) << refused;
-  EXPECT_NE(refused.find("a mesh instanced by many nodes counts once per node"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("a mesh instanced by many nodes counts once per node"), std::string::npos)
+      << refused;
   EXPECT_EQ(loadError(instances(50), capped), "no error");
   EXPECT_LE(LoadOptions{}.maxTriangles, size_t(20'000'000));
 }
@@ -202,18 +203,22 @@ TEST(HostileGltf, CoordinatesFarFromTheOriginAreRefusedAfterScale) {
     return g;
   };
   const std::string problem = loadError(at(1e8f));
-  EXPECT_EQ(problem, "node 'far away': a vertex lies 1e+08 m from the origin, beyond the 1e6 m cpgi handles (is "
-                     "--scale right?)");
+  EXPECT_EQ(problem,
+            "node 'far away': a vertex lies 1e+08 m from the origin, beyond the 1e6 m cpgi handles (is "
+            "--scale right?)");
   EXPECT_EQ(loadError(at(9e5f)), "no error");
   // Millimetres: 1e8 mm is 1e5 m.
   EXPECT_EQ(loadError(at(1e8f), LoadOptions{.scale = 0.001}), "no error");
-  EXPECT_NE(loadError(at(2e6f), LoadOptions{.scale = 1.0 + 1e-9}).find("beyond the 1e6 m"), std::string::npos);
+  EXPECT_NE(loadError(at(2e6f), LoadOptions{.scale = 1.0 + 1e-9}).find("beyond the 1e6 m"),
+            std::string::npos);
   test::GlbBuilder lamp = oneTriangle();
   lamp.doc["extensionsUsed"] = {"KHR_lights_punctual"};
   lamp.doc["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "point"}, {"intensity", 1}}}}}}};
-  lamp.addNode({{"name", "lamp"}, {"translation", {0, -3e7, 0}},
+  lamp.addNode({{"name", "lamp"},
+                {"translation", {0, -3e7, 0}},
                 {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-  EXPECT_NE(loadError(lamp).find("light 'lamp' lies 3e+07 m from the origin"), std::string::npos) << loadError(lamp);
+  EXPECT_NE(loadError(lamp).find("light 'lamp' lies 3e+07 m from the origin"), std::string::npos)
+      << loadError(lamp);
 }
 
 // Issue 49, item 12: a portal of 100 vertices was "98 triangles and 0 vertices" (vertices are counted only

@@ -74,7 +74,8 @@ TEST(ImageIo, ExrDataWindowIsCheckedAgainstALimitAndTheFileSizeBeforeAllocating)
       readExr(exrClaiming(dir, 7999, 7999), withExtra ? &extra : nullptr);
       ADD_FAILURE() << "read";
     } catch (const InputError& e) {
-      EXPECT_NE(e.problem().find("OpenEXR data window 8000x8000 cannot be held in a file of "), std::string::npos)
+      EXPECT_NE(e.problem().find("OpenEXR data window 8000x8000 cannot be held in a file of "),
+                std::string::npos)
           << e.problem();
     }
   }
@@ -86,7 +87,8 @@ TEST(ImageIo, ExrDataWindowIsCheckedAgainstALimitAndTheFileSizeBeforeAllocating)
   } catch (const InputError& e) {
     EXPECT_EQ(e.problem(), "OpenEXR data window 20000x20000 holds more than the 134217728 pixels cpgi reads");
   }
-  for (const auto& [x, y] : {std::pair{1 << 20, 0}, std::pair{20000, 20000}, std::pair{int32_t(2147483000), 3}}) {
+  for (const auto& [x, y] :
+       {std::pair{1 << 20, 0}, std::pair{20000, 20000}, std::pair{int32_t(2147483000), 3}}) {
     try {
       readExr(exrClaiming(dir, x, y));
       ADD_FAILURE() << x << " " << y;

@@ -105,7 +105,8 @@ void checkKillAtEveryStep(const std::function<fs::path(const fs::path&)>& makeOu
       for (const auto& e : fs::directory_iterator(folder))
         EXPECT_EQ(e.path().filename().string().find(".cpgi-new-"), std::string::npos) << e.path();
     for (const auto& e : fs::directory_iterator(out))
-      EXPECT_TRUE(e.path().filename().string()[0] != '.' || e.path().filename() == ".cpgi-results") << e.path();
+      EXPECT_TRUE(e.path().filename().string()[0] != '.' || e.path().filename() == ".cpgi-results")
+          << e.path();
   }
   EXPECT_GE(killed, 2) << "the commit has too few steps to have been tested";
 }

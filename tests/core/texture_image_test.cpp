@@ -25,8 +25,9 @@ using nlohmann::json;
 
 // A PNG of `width` × `height` pixels whose samples are `samples` (row-major, as PNG lays them out for
 // `colorType` and `bitDepth`; 16-bit samples big-endian).
-std::string encodePng(int width, int height, int bitDepth, int colorType, const std::vector<unsigned char>& samples,
-                      bool interlaced = false, const std::vector<png_color>& palette = {}) {
+std::string encodePng(int width, int height, int bitDepth, int colorType,
+                      const std::vector<unsigned char>& samples, bool interlaced = false,
+                      const std::vector<png_color>& palette = {}) {
   std::string out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
@@ -114,8 +115,8 @@ const std::string kTruncatedHdr =
     "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 64\n" + std::string("\x02\x02\x00\x40\x80", 5);
 
 // 4 × 2 pixels: two red, two green, two blue, two grey 128 (8-bit sRGB).
-const std::vector<unsigned char> kRgb8 = {255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 255, 0,
-                                          0, 0, 255, 0, 0, 255, 128, 128, 128, 128, 128, 128};
+const std::vector<unsigned char> kRgb8 = {255, 0, 0,   255, 0, 0,   0,   255, 0,   0,   255, 0,
+                                          0,   0, 255, 0,   0, 255, 128, 128, 128, 128, 128, 128};
 glm::vec3 rgb8Mean() {
   const float grey = float(srgbToLinear(128 / 255.0));
   return glm::vec3(2 + 2 * grey) / 8.0f;
@@ -132,7 +133,8 @@ TEST(TextureImage, PngOfEveryLayoutDecodesToItsLinearMean) {
 
   // Alpha is left out of the colour; grey is grey in every channel; a palette is looked up.
   std::vector<unsigned char> rgba;
-  for (size_t i = 0; i < kRgb8.size(); i += 3) rgba.insert(rgba.end(), {kRgb8[i], kRgb8[i + 1], kRgb8[i + 2], 7});
+  for (size_t i = 0; i < kRgb8.size(); i += 3)
+    rgba.insert(rgba.end(), {kRgb8[i], kRgb8[i + 1], kRgb8[i + 2], 7});
   expectNear(mean(encodePng(4, 2, 8, PNG_COLOR_TYPE_RGBA, rgba)), rgb8Mean(), 1e-5f);
   const float grey = float(srgbToLinear(128 / 255.0));
   expectNear(mean(encodePng(2, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, {128, 0, 128, 255})), glm::vec3(grey), 1e-5f);
@@ -148,8 +150,8 @@ TEST(TextureImage, JpegBaselineProgressiveAndGreyDecodeToTheirLinearMean) {
   const glm::vec3 expected(srgbToLinear(200 / 255.0), srgbToLinear(100 / 255.0), srgbToLinear(50 / 255.0));
   expectNear(mean(encodeJpeg(16, 16, 3, flat)), expected, 0.01f);
   expectNear(mean(encodeJpeg(16, 16, 3, flat, true)), expected, 0.01f);
-  expectNear(mean(encodeJpeg(8, 8, 1, std::vector<unsigned char>(64, 128))), glm::vec3(srgbToLinear(128 / 255.0)),
-             0.01f);
+  expectNear(mean(encodeJpeg(8, 8, 1, std::vector<unsigned char>(64, 128))),
+             glm::vec3(srgbToLinear(128 / 255.0)), 0.01f);
 }
 
 TEST(TextureImage, OtherFormatsAreRefusedByName) {
@@ -165,7 +167,8 @@ TEST(TextureImage, TruncatedOrCorruptDataIsRefused) {
   const std::string png = encodePng(4, 2, 8, PNG_COLOR_TYPE_RGB, kRgb8);
   for (size_t keep : {size_t(8), size_t(20), size_t(33), png.size() - 20}) {
     const std::string problem = refusal(png.substr(0, keep));
-    EXPECT_NE(problem.find("texture image 0: cannot decode the PNG"), std::string::npos) << keep << ": " << problem;
+    EXPECT_NE(problem.find("texture image 0: cannot decode the PNG"), std::string::npos)
+        << keep << ": " << problem;
   }
   std::string badCrc = png;
   badCrc[29] ^= 1;  // the header's CRC
@@ -180,19 +183,23 @@ TEST(TextureImage, SizeIsCheckedFromTheHeaderBeforeDecoding) {
   const std::string png = encodePng(4, 2, 8, PNG_COLOR_TYPE_RGB, kRgb8);
   EXPECT_EQ(refusal(png, {7}), "texture image 0: the PNG is 4x2, more than the 7 texels cpgi decodes");
   const std::string jpeg = encodeJpeg(16, 16, 3, std::vector<unsigned char>(16 * 16 * 3, 90));
-  EXPECT_EQ(refusal(jpeg, {16 * 16 - 1}), "texture image 0: the JPEG is 16x16, more than the 255 texels cpgi decodes");
-  EXPECT_EQ(refusal(jpeg, {15 * 15}), "texture image 0: the JPEG is 16x16, more than the 15x15 texels cpgi decodes");
+  EXPECT_EQ(refusal(jpeg, {16 * 16 - 1}),
+            "texture image 0: the JPEG is 16x16, more than the 255 texels cpgi decodes");
+  EXPECT_EQ(refusal(jpeg, {15 * 15}),
+            "texture image 0: the JPEG is 16x16, more than the 15x15 texels cpgi decodes");
 }
 
 // One image shared by a hundred materials (the round's 8192² PNG took 68-98 s, decoded once each).
 TEST(TextureImage, AnImageUsedByManyMaterialsIsDecodedOnce) {
   test::GlbBuilder g;
   const std::string png = encodePng(4, 2, 8, PNG_COLOR_TYPE_RGB, kRgb8);
-  g.doc["images"] = json::array({{{"bufferView", g.addView(png.data(), png.size())}, {"mimeType", "image/png"}}});
+  g.doc["images"] =
+      json::array({{{"bufferView", g.addView(png.data(), png.size())}, {"mimeType", "image/png"}}});
   g.doc["textures"] = json::array({{{"source", 0}}, {{"source", 0}}});
   for (int m = 0; m < 100; ++m) {
-    const int material = g.addMaterial(
-        {{"name", "m" + std::to_string(m)}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", m % 2}}}}}});
+    const int material =
+        g.addMaterial({{"name", "m" + std::to_string(m)},
+                       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", m % 2}}}}}});
     const float x = float(m);
     g.addNode({{"mesh", g.addMesh({x, 0, 0, x + 1, 0, 0, x, 1, 0}, {}, material)}});
   }
@@ -210,9 +217,11 @@ TEST(TextureImage, AnImageUsedByManyMaterialsIsDecodedOnce) {
 TEST(TextureImage, SceneWithAnImageOfAnotherFormatIsRefusedNamingIt) {
   for (const std::string& image : {kPgm16, kTruncatedHdr}) {
     test::GlbBuilder g;
-    g.doc["images"] = json::array({{{"bufferView", g.addView(image.data(), image.size())}, {"mimeType", "image/png"}}});
+    g.doc["images"] =
+        json::array({{{"bufferView", g.addView(image.data(), image.size())}, {"mimeType", "image/png"}}});
     g.doc["textures"] = json::array({{{"source", 0}}});
-    const int m = g.addMaterial({{"name", "wall"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+    const int m =
+        g.addMaterial({{"name", "wall"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
     g.addNode({{"mesh", g.addMesh({0, 0, 0, 1, 0, 0, 0, 1, 0}, {}, m)}});
     test::TempDir dir;
     g.writeGlb(dir / "scene.glb");

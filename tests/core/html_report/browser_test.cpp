@@ -107,8 +107,9 @@ TEST(ReportInBrowser, MarkupInNamesNeverRunsAndThePageWorks) {
   for (int c = 0; c < 2; ++c) {
     Cell cell{cellNames[c], {}, {}};
     const float x0 = 4.0f * float(c), x1 = x0 + 4.0f;
-    for (const Triangle& t : {triangle({x0, 0, 0}, {x0, 0, 3}, {x1, 0, 0}), triangle({x1, 0, 0}, {x0, 0, 3}, {x1, 0, 3}),
-                              triangle({x0, 3, 0}, {x1, 3, 0}, {x0, 3, 3}), triangle({x0, 0, 0}, {x1, 0, 0}, {x1, 3, 0})}) {
+    for (const Triangle& t :
+         {triangle({x0, 0, 0}, {x0, 0, 3}, {x1, 0, 0}), triangle({x1, 0, 0}, {x0, 0, 3}, {x1, 0, 3}),
+          triangle({x0, 3, 0}, {x1, 3, 0}, {x0, 3, 3}), triangle({x0, 0, 0}, {x1, 0, 0}, {x1, 3, 0})}) {
       cell.triangles.push_back(uint32_t(scene.triangles.size()));
       scene.triangles.push_back(t);
     }

@@ -113,7 +113,8 @@ TEST(HtmlReport, NoNameCanOpenACommentOrScriptInsideTheInlineData) {
   CellGraph graph;
   const std::vector<std::string> names = {"<!--<script>", "<script>alert(1)</script>", "a\u2028b\u2029c</",
                                           "<img src=x onerror=alert(1)>", "&lt;not an entity&gt;"};
-  for (size_t i = 0; i < names.size(); ++i) addRoom(scene, graph, names[i], 4.0f * float(i), 4.0f, 3.0f, 2.0f);
+  for (size_t i = 0; i < names.size(); ++i)
+    addRoom(scene, graph, names[i], 4.0f * float(i), 4.0f, 3.0f, 2.0f);
   HtmlReportInput input;
   input.title = "<!--<script>";
   input.kind = "bake";

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,12 +38,6 @@ void checkImage(const ImageRGB& image, const char* who) {
     throw std::invalid_argument(std::string(who) + ": image size does not match its pixels");
 }
 
-int channelCount(const Imf::ChannelList& channels) {
-  int count = 0;
-  for (auto it = channels.begin(); it != channels.end(); ++it) ++count;
-  return count;
-}
-
 // The most pixels an OpenEXR read allocates (a 16384 × 8192 lightmap or view: 1.6 GB as float RGB), and
 // the most its pixels may unpack to per byte of the file: zlib, EXR's usual compression, cannot do better
 // than about 1 032 to 1, so a 10 KB file whose header announces 20 000² pixels lies about its size.
@@ -63,6 +59,63 @@ void checkExrSize(const std::string& path, const Imath::Box2i& dw, int channels)
   if (!ec && unpacked > double(fileBytes) * kMaxExrExpansion)
     throw InputError(path, "OpenEXR data window " + size + " cannot be held in a file of " +
                                std::to_string(fileBytes) + " bytes (truncated, or its header lies)");
+}
+
+// What checkExrHeader reads of a header before OpenEXR opens the file.
+struct ExrHeaderFacts {
+  Imath::Box2i dataWindow;
+  int channels = 0;
+};
+
+// OpenEXR allocates each header attribute at the size the file declares, and its table of chunk offsets
+// from the data window, before it reads either: a 500-byte file may ask for gigabytes. The header is
+// walked here first: every attribute must fit in what is left of the file, and the data window is read
+// for checkExrSize. Tiled, deep and multi-part files (version flags 0x200, 0x800, 0x1000) are not images
+// cpgi writes, and are refused.
+ExrHeaderFacts checkExrHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code ec;
+  const uint64_t fileBytes = std::filesystem::file_size(path, ec);
+  unsigned char start[8] = {};
+  if (ec || !in.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f ||
+      start[2] != 0x31 || start[3] != 0x01)
+    throw InputError(path, "not an OpenEXR file (no magic number)");
+  if (start[5] & 0x1a)
+    throw InputError(path, "a tiled, deep or multi-part OpenEXR file; cpgi reads single-part scanline images");
+  auto readName = [&](std::string& name) {
+    name.clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return true;
+      if (name.size() == 255) return false;
+      name += c;
+    }
+    return false;
+  };
+  ExrHeaderFacts facts;
+  bool window = false;
+  for (std::string name, type;;) {
+    if (!readName(name)) throw InputError(path, "OpenEXR header is truncated or malformed");
+    if (name.empty()) break;  // the end of the header
+    int32_t size = 0;
+    if (!readName(type) || !in.read(reinterpret_cast<char*>(&size), 4) || size < 0 ||
+        uint64_t(size) > fileBytes - uint64_t(in.tellg()))
+      throw InputError(path, "OpenEXR header attribute '" + printable(name) + "' runs past the end of the file");
+    std::string data(size_t(size), '\0');
+    if (!in.read(data.data(), size)) throw InputError(path, "OpenEXR header is truncated");
+    if (name == "dataWindow" && type == "box2i" && size == 16) {
+      std::memcpy(&facts.dataWindow, data.data(), 16);  // xMin yMin xMax yMax, little-endian as the file
+      window = true;
+    } else if (name == "channels" && type == "chlist") {
+      // Each channel: its name, a NUL, 16 bytes of type and sampling; a NUL ends the list.
+      for (size_t at = 0; at < data.size() && data[at] != '\0'; ++facts.channels) {
+        const size_t end = data.find('\0', at);
+        if (end == std::string::npos) break;
+        at = end + 17;
+      }
+    }
+  }
+  if (!window) throw InputError(path, "OpenEXR header has no data window");
+  return facts;
 }
 
 float linearToSrgb(float v) {
@@ -121,13 +174,15 @@ ImageRGB readExr(const std::string& path, std::vector<ExrChannel>* extra) {
     // sanity check refuses sides past the limit there, before that table is allocated.
     Imf::Header::setMaxImageSize(kMaxExrSide, kMaxExrSide);
     Imf::Header::setMaxTileSize(kMaxExrSide, kMaxExrSide);
+    const ExrHeaderFacts facts = checkExrHeader(path);
+    checkExrSize(path, facts.dataWindow, extra ? std::max(facts.channels, 3) : 3);
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
     const Imf::ChannelList& channels = file.header().channels();
     for (const char* c : {"R", "G", "B"})
       if (!channels.findChannel(c))
         throw InputError(path, std::string("OpenEXR file has no ") + c + " channel");
-    checkExrSize(path, dw, extra ? channelCount(channels) : 3);
+    if (dw != facts.dataWindow) throw InputError(path, "OpenEXR header read two ways differs");
     ImageRGB image;
     image.width = dw.max.x - dw.min.x + 1;
     image.height = dw.max.y - dw.min.y + 1;

@@ -100,6 +100,37 @@ TEST(ImageIo, ExrDataWindowIsCheckedAgainstALimitAndTheFileSizeBeforeAllocating)
   EXPECT_EQ(readExr(dir / "small.exr").width, 4);
 }
 
+// OpenEXR allocates a header attribute at its declared size before reading it: a 500-byte file declaring
+// an attribute of 2 GB (found by the exr fuzz target) is refused from the header walk, as are tiled files.
+TEST(ImageIo, ExrHeaderAttributesMustFitInTheFile) {
+  test::TempDir dir;
+  writeExr(dir / "small.exr", gradient(4, 4));
+  std::ifstream in(dir / "small.exr", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string lying = bytes;
+  const std::string attribute("pixelAspectRatio\0float\0", 23);
+  const size_t at = lying.find(attribute);
+  ASSERT_NE(at, std::string::npos);
+  const int32_t huge = 0x7ffff000;
+  std::memcpy(&lying[at + attribute.size()], &huge, 4);
+  std::ofstream(dir / "lying.exr", std::ios::binary) << lying;
+  try {
+    readExr(dir / "lying.exr");
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.problem(), "OpenEXR header attribute 'pixelAspectRatio' runs past the end of the file");
+  }
+  std::string tiled = bytes;
+  tiled[5] |= 0x02;
+  std::ofstream(dir / "tiled.exr", std::ios::binary) << tiled;
+  try {
+    readExr(dir / "tiled.exr");
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("a tiled, deep or multi-part OpenEXR file"), std::string::npos) << e.problem();
+  }
+}
+
 TEST(ImageIo, ReadExrErrorsNameTheFile) {
   test::TempDir dir;
   std::ofstream(dir / "junk.exr") << "this is not an exr";

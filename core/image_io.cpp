@@ -81,7 +81,8 @@ ExrHeaderFacts checkExrHeader(const std::string& path) {
       start[2] != 0x31 || start[3] != 0x01)
     throw InputError(path, "not an OpenEXR file (no magic number)");
   if (start[5] & 0x1a)
-    throw InputError(path, "a tiled, deep or multi-part OpenEXR file; cpgi reads single-part scanline images");
+    throw InputError(path,
+                     "a tiled, deep or multi-part OpenEXR file; cpgi reads single-part scanline images");
   auto readName = [&](std::string& name) {
     name.clear();
     for (char c; in.get(c);) {
@@ -99,7 +100,8 @@ ExrHeaderFacts checkExrHeader(const std::string& path) {
     int32_t size = 0;
     if (!readName(type) || !in.read(reinterpret_cast<char*>(&size), 4) || size < 0 ||
         uint64_t(size) > fileBytes - uint64_t(in.tellg()))
-      throw InputError(path, "OpenEXR header attribute '" + printable(name) + "' runs past the end of the file");
+      throw InputError(path,
+                       "OpenEXR header attribute '" + printable(name) + "' runs past the end of the file");
     std::string data(size_t(size), '\0');
     if (!in.read(data.data(), size)) throw InputError(path, "OpenEXR header is truncated");
     if (name == "dataWindow" && type == "box2i" && size == 16) {

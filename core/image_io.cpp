@@ -61,6 +61,35 @@ void checkExrSize(const std::string& path, const Imath::Box2i& dw, int channels)
                                std::to_string(fileBytes) + " bytes (truncated, or its header lies)");
 }
 
+// OpenEXR reads a typed attribute by its type, not by its declared size (a box2i is 16 bytes whatever the
+// size says; a channel list runs to its empty name; a preview allocates width × height × 4 bytes): where
+// the two disagree, its reading and the walk in checkExrHeader part ways. So the declared size must be
+// the one the type gives; a preview is refused, and a type OpenEXR does not know is read by its size.
+void checkExrAttributeSize(const std::string& path, const std::string& name, const std::string& type,
+                           const std::string& data) {
+  static const std::pair<const char*, size_t> fixed[] = {
+      {"box2i", 16},   {"box2f", 16},      {"v2i", 8},       {"v2f", 8},     {"v2d", 16},
+      {"v3i", 12},     {"v3f", 12},        {"v3d", 24},      {"int", 4},     {"float", 4},
+      {"double", 8},   {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},  {"deepImageState", 1},
+      {"m33f", 36},    {"m33d", 72},       {"m44f", 64},     {"m44d", 128},  {"chromaticities", 32},
+      {"keycode", 28}, {"timecode", 8},    {"rational", 8},  {"tiledesc", 9}};
+  bool fits = true;
+  for (const auto& [kind, bytes] : fixed)
+    if (type == kind) fits = data.size() == bytes;
+  if (type == "preview") fits = false;
+  if (type == "chlist") {
+    size_t at = 0;  // each channel: its name, a NUL, 16 bytes of type and sampling; a NUL ends the list
+    while (at < data.size() && data[at] != '\0') {
+      const size_t end = data.find('\0', at);
+      at = end == std::string::npos ? data.size() + 1 : end + 17;
+    }
+    fits = at + 1 == data.size();
+  }
+  if (!fits)
+    throw InputError(path, "OpenEXR header attribute '" + printable(name) + "' of type '" + printable(type) +
+                               "' has a size its type does not give");
+}
+
 // What checkExrHeader reads of a header before OpenEXR opens the file.
 struct ExrHeaderFacts {
   Imath::Box2i dataWindow;
@@ -104,8 +133,11 @@ ExrHeaderFacts checkExrHeader(const std::string& path) {
                        "OpenEXR header attribute '" + printable(name) + "' runs past the end of the file");
     std::string data(size_t(size), '\0');
     if (!in.read(data.data(), size)) throw InputError(path, "OpenEXR header is truncated");
-    if (name == "dataWindow" && type == "box2i" && size == 16) {
-      std::memcpy(&facts.dataWindow, data.data(), 16);  // xMin yMin xMax yMax, little-endian as the file
+    checkExrAttributeSize(path, name, type, data);
+    if (name == "dataWindow" && type == "box2i") {
+      int32_t box[4];  // xMin yMin xMax yMax, little-endian as the file
+      std::memcpy(box, data.data(), 16);
+      facts.dataWindow = Imath::Box2i(Imath::V2i(box[0], box[1]), Imath::V2i(box[2], box[3]));
       window = true;
     } else if (name == "channels" && type == "chlist") {
       // Each channel: its name, a NUL, 16 bytes of type and sampling; a NUL ends the list.

@@ -11,6 +11,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libcgal-dev libglm-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libopenexr-dev libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev
+  libpng-dev libjpeg62-turbo-dev
   libembree-dev libtbb-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   chromium

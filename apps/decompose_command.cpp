@@ -53,12 +53,9 @@ int runDecompose(DecomposeOptions o) {
 
   GltfWriteOptions gltf;
   gltf.cells = &d.graph;
-  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
-  const std::filesystem::path staged = dir.file("cells.glb");
-  std::filesystem::path withExtension = staged;
-  withExtension += ".glb";
-  writeGltf(withExtension.string(), d.scene, gltf);
-  std::filesystem::rename(withExtension, staged);
+  // A staged name keeps its extension, by which writeGltf picks the format; a write error names the file
+  // as the user knows it (DIR/cells.glb).
+  writeGltf(dir.file("cells.glb").string(), d.scene, gltf);
   {
     auto timer = ctx.time("picture");
     writePng(dir.file("decomposition.png").string(), decomp::drawDecomposition(d));

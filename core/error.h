@@ -1,30 +1,60 @@
 // User-facing errors: one line that names the stage, the input and the problem (style.md point 7).
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 namespace cpgi {
 
-/// `text` fit for a one-line message: control characters escaped (a node name may hold a newline), at
-/// most `maxChars` characters kept (a data URI can be megabytes long), the full length said when cut.
+/// The length of the well-formed UTF-8 sequence starting at text[at] (2 to 4 bytes: no overlong form,
+/// no surrogate, at most U+10FFFF), or 0 when none starts there. C1 controls (U+0080 to U+009F) count as
+/// none: some terminals act on them.
+inline size_t utf8SequenceLength(const std::string& text, size_t at) {
+  const auto byte = [&](size_t i) {
+    return at + i < text.size() ? static_cast<unsigned char>(text[at + i]) : 0u;
+  };
+  const unsigned lead = byte(0);
+  const size_t length = lead >= 0xC2 && lead <= 0xDF   ? 2
+                        : lead >= 0xE0 && lead <= 0xEF ? 3
+                        : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                       : 0;
+  if (length == 0) return 0;
+  uint32_t code = lead & (0xFF >> (length + 1));
+  for (size_t i = 1; i < length; ++i) {
+    if ((byte(i) & 0xC0) != 0x80) return 0;
+    code = (code << 6) | (byte(i) & 0x3F);
+  }
+  const uint32_t least[] = {0, 0, 0xA0, 0x800, 0x10000};
+  if (code < least[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
+  return length;
+}
+
+/// `text` fit for a one-line message: control characters and bytes that are not UTF-8 escaped (a node
+/// name may hold a newline, or bytes a terminal would act on), at most `maxChars` characters kept (a data
+/// URI can be megabytes long), the full length said when cut.
 inline std::string printable(const std::string& text, size_t maxChars = 80) {
+  static const char* hex = "0123456789abcdef";
   std::string out;
   size_t kept = 0;
-  for (unsigned char c : text) {
+  for (size_t i = 0; i < text.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
     if (kept++ == maxChars) {
       out += "... (" + std::to_string(text.size()) + " characters)";
       break;
     }
+    const size_t sequence = c >= 0x80 ? utf8SequenceLength(text, i) : 0;
     if (c == '\n') {
       out += "\\n";
     } else if (c == '\r') {
       out += "\\r";
     } else if (c == '\t') {
       out += "\\t";
-    } else if (c < 0x20 || c == 0x7f) {
-      static const char* hex = "0123456789abcdef";
+    } else if (sequence > 0) {
+      out.append(text, i, sequence);
+      i += sequence - 1;
+    } else if (c < 0x20 || c >= 0x7f) {
       out += "\\x";
       out += hex[c >> 4];
       out += hex[c & 15];

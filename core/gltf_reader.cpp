@@ -11,7 +11,9 @@
 #include <set>
 #include <sstream>
 
-#include <stb_image.h>
+// Texture images are decoded by core/texture_image.h, never by tinygltf's stb_image (keepImageEncoded).
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -22,6 +24,7 @@
 #include "core/lights.h"
 #include "core/scene_files.h"
 #include "core/scene_io_detail.h"
+#include "core/texture_image.h"
 
 namespace cpgi::detail {
 namespace {
@@ -159,12 +162,6 @@ std::string modeName(int mode) {
     default:
       return std::to_string(mode);
   }
-}
-
-glm::vec3 srgbToLinear(glm::vec3 c) {
-  for (int i = 0; i < 3; ++i)
-    c[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
-  return c;
 }
 
 // tinygltf's file callbacks, so that every buffer and image it loads goes through the scene's reference
@@ -532,50 +529,21 @@ class GltfReader {
     return out;
   }
 
-  // Texture images are decoded only up to this size (8-bit RGB: 200 MB), checked from the header first.
-  static constexpr uint64_t kMaxTexels = uint64_t(8192) * 8192;
-
   // Linear mean colour of a texture (glTF colour textures are sRGB-encoded), or 1 without one. The image
-  // is still encoded (keepImageEncoded); it is decoded here, once its header says its size is sane.
+  // is still encoded (keepImageEncoded); it is decoded here once per image, however many materials use it
+  // (a scene may give a hundred materials one 8192² texture).
   glm::vec3 textureMean(int textureIndex, const std::string& what) {
     if (textureIndex < 0) return glm::vec3(1.0f);
     if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
     const int source = m_.textures[textureIndex].source;
     if (source < 0 || source >= static_cast<int>(m_.images.size()))
       fail(what + ": texture has no valid image");
+    if (auto known = imageMeans_.find(source); known != imageMeans_.end()) return known->second;
     const std::vector<unsigned char>& encoded = m_.images[source].image;
-    int width = 0, height = 0, channels = 0;
-    if (encoded.empty() || encoded.size() > size_t(INT32_MAX) ||
-        !stbi_info_from_memory(encoded.data(), int(encoded.size()), &width, &height, &channels) ||
-        width <= 0 || height <= 0) {
-      raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
-      return glm::vec3(1.0f);
-    }
-    if (uint64_t(width) * uint64_t(height) > kMaxTexels)
-      fail(what + ": texture image " + std::to_string(source) + " is " + std::to_string(width) + "x" +
-           std::to_string(height) + ", more than the 8192x8192 texels cpgi decodes");
-    const bool sixteen = stbi_is_16_bit_from_memory(encoded.data(), int(encoded.size()));
-    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(encoded.data(), int(encoded.size()),
-                                                                         &width, &height, &channels, 3))
-                           : static_cast<void*>(stbi_load_from_memory(encoded.data(), int(encoded.size()),
-                                                                      &width, &height, &channels, 3));
-    if (!pixels) {
-      raw_.warnings.push_back(what + ": texture image could not be decoded; using the factor alone");
-      return glm::vec3(1.0f);
-    }
-    std::unique_ptr<void, void (*)(void*)> owned(pixels, stbi_image_free);
-    const size_t texels = size_t(width) * size_t(height);
-    std::array<float, 256> lut8{};
-    for (int i = 0; i < 256; ++i) lut8[i] = srgbToLinear(glm::vec3(i / 255.0f)).r;
-    glm::dvec3 sum(0.0);
-    for (size_t t = 0; t < texels * 3; t += 3) {
-      glm::vec3 c;
-      for (int ch = 0; ch < 3; ++ch)
-        c[ch] = sixteen ? srgbToLinear(glm::vec3(static_cast<const uint16_t*>(pixels)[t + ch] / 65535.0f)).r
-                        : lut8[static_cast<const unsigned char*>(pixels)[t + ch]];
-      sum += glm::dvec3(c);
-    }
-    return glm::vec3(sum / double(texels));
+    const glm::vec3 mean = meanTextureColour(encoded.data(), encoded.size(), path_,
+                                             what + ": texture image " + std::to_string(source));
+    imageMeans_.emplace(source, mean);
+    return mean;
   }
 
   // tinygltf::Value::Get asserts on a value of the wrong type; a file may hold anything there.
@@ -711,7 +679,8 @@ class GltfReader {
           raw_.scene.triangles.push_back(t);
           raw_.cellOfTriangle.push_back(cell);
           std::array<glm::vec2, 3> uv{};
-          for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k) uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
+          for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k)
+            uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
           raw_.lightmapUVs.push_back(uv);
           raw_.everyLightmapUV = raw_.everyLightmapUV && !lightmapUVs.empty();
         }
@@ -725,6 +694,7 @@ class GltfReader {
   size_t placed_ = 0;  // triangles placed so far, tagged meshes included
   RawScene raw_;
   std::vector<int> materialIndex_;
+  std::map<int, glm::vec3> imageMeans_;  // by image index: each image is decoded once
   int defaultMaterial_ = -1;
   std::vector<char> visited_;
 };

@@ -62,6 +62,20 @@ pid_t stagingOwner(const std::string& name, const std::string& prefix) {
   return std::to_string(pid) == name.substr(prefix.size()) ? pid : 0;
 }
 
+// The names the last committed run wrote, one a line, kept in the folder: a name matching a pattern
+// ("view-*") is replaced or removed only when that run wrote it; a user's own view-holiday.png stays.
+const std::string kManifest = ".cpgi-results";
+
+std::set<std::string> readManifest(const fs::path& folder) {
+  std::set<std::string> names;
+  std::error_code ec;
+  if (fs::file_size(folder / kManifest, ec) > (1u << 20) || ec) return names;
+  std::ifstream in(folder / kManifest);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.find('/') == std::string::npos) names.insert(line);
+  return names;
+}
+
 bool isDead(pid_t pid) {
   return pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH;
 }
@@ -187,8 +201,12 @@ fs::path OutputDir::staged(const std::string& name) const {
 }
 
 bool OutputDir::isResultName(const std::string& name) const {
+  if (name == kManifest) return true;
   for (const std::string& r : resultNames_) {
-    if (!r.empty() && r.back() == '*' ? name.compare(0, r.size() - 1, r, 0, r.size() - 1) == 0 : name == r)
+    if (r.empty()) continue;
+    if (r.back() != '*' && name == r) return true;
+    // A pattern names a file of the earlier set only if that run wrote it (its manifest says so).
+    if (r.back() == '*' && name.compare(0, r.size() - 1, r, 0, r.size() - 1) == 0 && earlierSet_.count(name))
       return true;
   }
   return false;
@@ -199,6 +217,15 @@ void OutputDir::step(const char* name) const {
 }
 
 void OutputDir::commit() {
+  earlierSet_ = readManifest(real_);
+  std::string manifest;
+  std::set<std::string> listed;
+  for (const std::string& name : staged_) {
+    std::error_code ec;
+    if (listed.insert(name).second && fs::exists(staging_ / name, ec)) manifest += name + "\n";
+  }
+  writeFileAtomically(staging_ / kManifest, manifest);
+  staged_.push_back(kManifest);
   step("staged");
   if (!(besideTarget_ && swapIn())) moveIn();
   committed_ = true;
@@ -254,20 +281,53 @@ void OutputDir::moveIn() {
   staging_.clear();
 }
 
+namespace {
+
+// The name the user will know `path` by: a file in a staging folder is named as it will be once
+// committed (DIR/view-a.png, not DIR/.cpgi-new-123/view-a.png or ../.DIR.cpgi-new-123/view-a.png).
+fs::path committedName(const fs::path& path) {
+  const fs::path folder = path.parent_path();
+  const std::string name = folder.filename().string();
+  const size_t at = name.rfind(kStagingInside);
+  if (at == std::string::npos || stagingOwner(name.substr(at), kStagingInside) != ::getpid()) return path;
+  if (at == 0) return folder.parent_path() / path.filename();  // DIR/.cpgi-new-PID
+  if (name[0] == '.')
+    return folder.parent_path() / name.substr(1, at - 1) / path.filename();  // .DIR.cpgi-new-PID
+  return path;
+}
+
+// write(2) until every byte is out; the error number of the failure, or 0.
+int writeAll(int fd, const std::string& bytes) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    if (n == 0) return EIO;
+    done += size_t(n);
+  }
+  return 0;
+}
+
+}  // namespace
+
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
   const fs::path temp = temporaryName(path.parent_path(), path.filename().string());
-  {
-    std::ofstream out(temp, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out) {
-      std::error_code ec;
-      fs::remove(temp, ec);
-      throw SystemError(path.string() + ": cannot write");
-    }
+  // Every step is checked, close() too: a full disk (or a quota, or NFS) may tell only there, and a file
+  // cut short must never be renamed into place as if it were whole.
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  int error = fd < 0 ? errno : writeAll(fd, bytes);
+  if (fd >= 0 && ::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) {
+    ::unlink(temp.c_str());
+    throw SystemError(committedName(path).string() + ": cannot write: " + std::strerror(error));
   }
   std::error_code ec;
   fs::rename(temp, path, ec);
-  if (ec) throw SystemError(path.string() + ": cannot move result into place: " + ec.message());
+  if (ec) {
+    ::unlink(temp.c_str());
+    throw SystemError(committedName(path).string() + ": cannot move result into place: " + ec.message());
+  }
 }
 
 }  // namespace cpgi

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,9 @@ class OutputDir {
   /// removes what killed runs left in and beside it. Throws InputError(DIR, ...) with the reason when it
   /// cannot create, write or lock it (another run holds it).
   /// @param resultNames  names of files an earlier run of the same command may have left in `dir`
-  ///   ("view-*" ends in a star: every name with that prefix). Those this run does not write are removed
-  ///   on commit(); files of any other name are the user's and are kept.
+  ///   ("view-*" ends in a star: every name with that prefix that an earlier run wrote, as the hidden
+  ///   manifest `.cpgi-results` it left says). Those this run does not write are removed on commit();
+  ///   files of any other name, or matching a pattern but not written by cpgi, are the user's and kept.
   explicit OutputDir(std::filesystem::path dir, std::vector<std::string> resultNames = {});
   ~OutputDir();
   OutputDir(const OutputDir&) = delete;
@@ -52,7 +54,8 @@ class OutputDir {
   std::filesystem::path staging_;  // where file() puts the results
   bool besideTarget_ = false;      // staging_ is a sibling of real_ (a swap is possible)
   std::vector<std::string> resultNames_;
-  std::vector<std::string> staged_;  // names given to file()
+  std::vector<std::string> staged_;   // names given to file()
+  std::set<std::string> earlierSet_;  // what the committed run before this one wrote (its manifest)
   bool committed_ = false;
   int lock_ = -1;         // the folder, open and flock()ed while this object lives
   int stagingLock_ = -1;  // the staging folder likewise: after a swap it is the folder

@@ -114,15 +114,28 @@ std::optional<std::string> readReferencedFile(ReferencePolicy& policy, const std
   const fs::path relative(reference);
   if (relative.is_absolute() && !policy.allowOutsideFiles)
     throw InputError(policy.sceneFile, what + "is an absolute path, outside the scene's folder" + hint);
+  // Where the name leads, symlinks and `..` resolved, is checked before anything is opened: opening
+  // has effects of its own on some files (a device, a FIFO), and a file outside the folder is no business
+  // of the scene's. The check after opening (realPathOf) still catches a path swapped in between.
+  std::error_code ec;
+  const fs::path resolved = fs::canonical(policy.folder / relative, ec);
+  if (ec) {
+    if (ec == std::errc::no_such_file_or_directory || ec == std::errc::not_a_directory) return std::nullopt;
+    throw InputError(policy.sceneFile, what + "cannot resolve: " + ec.message());
+  }
+  if (!policy.allowOutsideFiles && resolved != policy.folder && !isInside(resolved, policy.folder))
+    throw InputError(policy.sceneFile, what + "resolves outside the scene's folder" + hint);
+  struct stat st {};
+  if (::stat(resolved.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw InputError(policy.sceneFile, what + "is " + kindOf(st) + ", not a regular file");
   FileDescriptor file;
-  file.fd = openForReading(policy.folder / relative);
+  file.fd = openForReading(resolved);
   if (file.fd < 0) {
     if (errno == ENOENT || errno == ENOTDIR) return std::nullopt;
     throw InputError(policy.sceneFile, what + "cannot open: " + std::strerror(errno));
   }
   if (!policy.allowOutsideFiles && !isInside(realPathOf(file.fd), policy.folder))
     throw InputError(policy.sceneFile, what + "resolves outside the scene's folder" + hint);
-  struct stat st {};
   if (::fstat(file.fd, &st) != 0)
     throw InputError(policy.sceneFile, what + "cannot stat: " + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
@@ -138,6 +151,11 @@ std::optional<std::string> readReferencedFile(ReferencePolicy& policy, const std
 }
 
 std::string readSceneFile(const std::string& path, uint64_t maxFileBytes) {
+  // A device or FIFO is refused before it is opened (opening one may block or act).
+  struct stat before {};
+  if (::stat(path.c_str(), &before) == 0 && !S_ISREG(before.st_mode))
+    throw InputError(path, S_ISDIR(before.st_mode) ? std::string("is a directory, not a scene file")
+                                                   : "is " + kindOf(before) + ", not a regular file");
   FileDescriptor file;
   file.fd = openForReading(path);
   if (file.fd < 0) {

@@ -42,6 +42,11 @@ std::string lowerExtension(const std::string& path) {
 // Far above any room's lamps (a 100 W bulb), far below float's 3.4e38 once the solver sums and scales.
 constexpr double kMaxEmittedPower = 1e20;
 
+// The farthest a position may lie from the origin once in metres. Float positions there are 6 cm apart
+// (a room's walls already blur), Embree's ray checks fail past about 1e8 m, and the voxel grids and
+// atlases sized from the bounds would ask for more than any machine has long before.
+constexpr float kMaxCoordinate = 1e6f;
+
 bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -141,10 +146,13 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
         if (std::none_of(unique.begin(), unique.end(),
                          [&](const glm::vec3& u) { return glm::length(u - q) <= 1e-6f; }))
           unique.push_back(q);
+  // Vertices are counted only for small meshes; a large one is said in triangles alone.
   auto notAQuad = [&] {
-    return InputError(file, node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
-                                std::to_string(triangles.size()) + " triangles and " +
-                                std::to_string(unique.size()) + " vertices");
+    return InputError(
+        file,
+        node + ": a portal must be one quad (2 triangles, 4 vertices), found " +
+            std::to_string(triangles.size()) + " triangles" +
+            (triangles.size() <= 16 ? " and " + std::to_string(unique.size()) + " vertices" : std::string()));
   };
   if (triangles.size() != 2 || unique.size() != 4) throw notAQuad();
   auto same = [](const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) <= 1e-6f; };
@@ -299,6 +307,37 @@ static void scaleRaw(RawScene& raw, float scale) {
   for (PunctualLight& l : raw.scene.lights) l.position *= scale, l.range *= scale;
 }
 
+static bool beyondBound(const glm::vec3& p) {
+  return std::abs(p.x) > kMaxCoordinate || std::abs(p.y) > kMaxCoordinate || std::abs(p.z) > kMaxCoordinate;
+}
+
+// Every position against kMaxCoordinate, after --scale; one line naming the node.
+static void checkCoordinates(const std::string& path, const RawScene& raw, double scale) {
+  const std::string bound = " m from the origin, beyond the 1e6 m cpgi handles";
+  const std::string hint =
+      scale != 1.0 ? " (after --scale " + std::to_string(scale) + ")" : " (is --scale right?)";
+  auto far = [](const glm::vec3& p) {
+    std::ostringstream s;
+    s << std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return s.str();
+  };
+  for (const Triangle& t : raw.scene.triangles)
+    for (const glm::vec3& q : t.p)
+      if (beyondBound(q))
+        throw InputError(path, "node '" + nodeOf(raw.scene, t) + "': a vertex lies " + far(q) + bound + hint);
+  for (const auto* meshes : {&raw.portals, &raw.volumes})
+    for (const RawScene::TaggedMesh& m : *meshes)
+      for (const Triangle& t : m.triangles)
+        for (const glm::vec3& q : t.p)
+          if (beyondBound(q)) throw InputError(path, m.node + ": a vertex lies " + far(q) + bound + hint);
+  for (const Camera& c : raw.scene.cameras)
+    if (beyondBound(c.position))
+      throw InputError(path, "camera '" + c.name + "' lies " + far(c.position) + bound + hint);
+  for (const PunctualLight& l : raw.scene.lights)
+    if (l.kind != PunctualLight::Kind::Directional && beyondBound(l.position))
+      throw InputError(path, "light '" + l.name + "' lies " + far(l.position) + bound + hint);
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
@@ -315,6 +354,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
         for (const glm::vec3& q : t.p)
           if (!isFinite(q)) throw InputError(path, m.node + ": a vertex position is not finite (NaN or inf)");
   if (options.scale != 1.0) scaleRaw(raw, float(options.scale));
+  checkCoordinates(path, raw, options.scale);
   applyOverrides(path, scene, options.overrides);
   checkMaterials(path, scene);
   const std::vector<char> drop = dropDegenerate(path, scene, options, out.warnings);

@@ -1,6 +1,7 @@
 #include "core/html_report/html_report.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -40,9 +41,39 @@ std::string base64(const std::vector<T>& values) {
   return base64(values.data(), values.size() * sizeof(T));
 }
 
-// Text placed inside <script>: "</" could close the element early. "<\/" means the same in JSON
-// strings and in the script's string and regular-expression literals, the only places it can occur.
-std::string escapeForScript(std::string text) {
+// JSON placed inside <script type="application/json">: besides "</", which closes the element, "<!--"
+// followed by "<script" would make the HTML parser read past the element's end tag (its "double
+// escaped" state), so no '<' may appear at all. Outside strings JSON has none, and inside them \u003c
+// means the same to JSON.parse; '>' and '&' likewise, and U+2028/U+2029, which end a line in older
+// JavaScript, are written as escapes too.
+std::string escapeJsonForScript(const std::string& json) {
+  std::string out;
+  out.reserve(json.size());
+  for (size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<')
+      out += "\\u003c";
+    else if (c == '>')
+      out += "\\u003e";
+    else if (c == '&')
+      out += "\\u0026";
+    else if (c == '\xe2' && i + 2 < json.size() && json[i + 1] == '\x80' &&
+             (json[i + 2] == '\xa8' || json[i + 2] == '\xa9'))
+      out += json[i + 2] == '\xa8' ? "\\u2028" : "\\u2029", i += 2;
+    else
+      out += c;
+  }
+  return out;
+}
+
+// cpgi's own script (viewer.js and three.js) inside <script>: "</" becomes "<\/", the same in its string
+// and regular-expression literals, the only places it can occur. "<!--" and "<script" cannot be escaped
+// so without knowing where they stand; the code has none, and a change that brings one is refused here.
+std::string escapeScript(std::string text) {
+  std::string lower = text;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower.find("<!--") != std::string::npos || lower.find("<script") != std::string::npos)
+    throw std::logic_error("renderHtmlReport: the viewer script holds \"<!--\" or \"<script\"");
   for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3))
     text.replace(at, 2, "<\\/");
   return text;
@@ -151,9 +182,9 @@ std::string renderHtmlReport(const HtmlReportInput& in) {
   if (!in.bench.is_null()) data["bench"] = in.bench;
   return fillTemplate(
       embedded::kPageTemplate,
-      {{"@CPGI_DATA@", escapeForScript(data.dump(-1, ' ', false, json::error_handler_t::replace))},
+      {{"@CPGI_DATA@", escapeJsonForScript(data.dump(-1, ' ', false, json::error_handler_t::replace))},
        {"@CPGI_GLB@", base64(in.glb.data(), in.glb.size())},
-       {"@CPGI_SCRIPT@", escapeForScript(embedded::kViewerScript)}});
+       {"@CPGI_SCRIPT@", escapeScript(embedded::kViewerScript)}});
 }
 
 void writeHtmlReport(OutputDir& out, const HtmlReportInput& input) {

@@ -121,3 +121,34 @@ TEST_F(ViewCommand, BadRequestsFailWithOneLine) {
 
 }  // namespace
 }  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+// Issue 49, item 8: on a full disk small view files were committed empty with exit status 0 (the write
+// error came only at close, unchecked). A file size limit of 0 makes every write fail as a full disk
+// does; the output goes through a pipe, out of the limit's reach.
+TEST_F(ViewCommand, FullDiskFailsInOneLineAndCommitsNothing) {
+  const std::string out = *dir_ / "full";
+  const std::string view =
+      quote(CPGI_BINARY) + " view " + quote(bake()) + " -o " + quote(out) + " --view-size 32x24";
+  const test::CommandRun r = test::runCaptured(
+      dir_->path(),
+      "bash -o pipefail -c " + quote("(ulimit -f 0; trap '' XFSZ; exec " + view + " 2>&1) | cat"), "full-");
+  EXPECT_EQ(r.status, 1) << r.out;
+  size_t errors = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("cpgi: ", 0) == 0) {
+      ++errors;
+      EXPECT_EQ(line.rfind("cpgi: " + out + "/view-", 0), 0u) << line;
+      EXPECT_NE(line.find(": cannot write: File too large"), std::string::npos) << line;
+    }
+  EXPECT_EQ(errors, 1u) << r.out;
+  if (fs::exists(out))
+    for (const auto& e : fs::directory_iterator(out))
+      EXPECT_NE(e.path().filename().string().rfind("view-", 0), 0u) << "committed: " << e.path();
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -23,11 +23,13 @@ using Files = std::map<std::string, std::string>;
 
 const std::vector<std::string> kResultNames = {"lightmap.exr", "report.json", "view-*"};
 
-// Every entry of `dir` by name, with the contents of files ("<dir>" for folders).
+// Every entry of `dir` by name, with the contents of files ("<dir>" for folders); the hidden list of what
+// the last run wrote (.cpgi-results) left out.
 Files listing(const fs::path& dir) {
   Files files;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
+    if (name == ".cpgi-results") continue;
     if (e.is_directory()) {
       files[name] = "<dir>";
       continue;
@@ -103,7 +105,8 @@ void checkKillAtEveryStep(const std::function<fs::path(const fs::path&)>& makeOu
       for (const auto& e : fs::directory_iterator(folder))
         EXPECT_EQ(e.path().filename().string().find(".cpgi-new-"), std::string::npos) << e.path();
     for (const auto& e : fs::directory_iterator(out))
-      EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+      EXPECT_TRUE(e.path().filename().string()[0] != '.' || e.path().filename() == ".cpgi-results")
+          << e.path();
   }
   EXPECT_GE(killed, 2) << "the commit has too few steps to have been tested";
 }
@@ -152,6 +155,24 @@ TEST(OutputDirSet, FolderThatIsTheWorkingDirectoryIsKept) {
   ::stat(out.c_str(), &after);
   EXPECT_EQ(before.st_ino, after.st_ino);
   EXPECT_EQ(listing(out), (Files{{"lightmap.exr", "1"}}));
+}
+
+// Issue 49, item 10: a name that matches a pattern of results ("view-*") but that no run of cpgi wrote is
+// the user's, and stays through every later run, whether the commit swaps the folder or moves file by
+// file (a subfolder of the user's forces the latter); the views an earlier run wrote still go.
+TEST(OutputDirSet, UsersOwnFileMatchingAResultPatternStays) {
+  for (const bool withSubfolder : {false, true}) {
+    test::TempDir root;
+    const fs::path out = root.path() / "out";
+    fs::create_directories(out);
+    if (withSubfolder) fs::create_directories(out / "sub");
+    std::ofstream(out / "view-holiday.png") << "mine";
+    writeRun(out, {{"lightmap.exr", "1"}, {"view-a.png", "1"}});
+    writeRun(out, {{"lightmap.exr", "2"}, {"view-b.png", "2"}});
+    Files expected = {{"lightmap.exr", "2"}, {"view-b.png", "2"}, {"view-holiday.png", "mine"}};
+    if (withSubfolder) expected["sub"] = "<dir>";
+    EXPECT_EQ(listing(out), expected) << (withSubfolder ? "moved file by file" : "swapped");
+  }
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // The reference policy (issue 15, defect 4): a scene's buffers, images and mtllib files are read inside
 // the scene's folder only, regular files only, size-checked first; the scene file itself is a regular
 // file. Every refusal is one line naming the scene file and the reference.
+#include <sys/inotify.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <fstream>
 
@@ -219,6 +221,37 @@ TEST(SceneFiles, HugeDataUriAndNewlinesInNamesStayOneShortLine) {
   const InputError n = loadFailure(f.scene("b.glb"));
   EXPECT_EQ(std::string(n.what()).find('\n'), std::string::npos) << n.what();
   EXPECT_NE(n.problem().find("portal:A\\nB"), std::string::npos) << n.what();
+}
+
+}  // namespace
+}  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+// Issue 49, item 11: a reference is checked to lie inside the folder (symlinks resolved) before it is
+// opened; opening may act by itself (a device, a FIFO), so a file outside is never opened at all. inotify
+// sees every open of the file outside.
+TEST(SceneFiles, SymlinkOutsideIsRefusedWithoutOpeningItsTarget) {
+  SceneFolder f;
+  test::GlbBuilder g;
+  write(f.scene("a.gltf"), gltfWithBuffer("link.bin", g));
+  write(f.root / "secret.bin", g.bin);
+  fs::create_symlink(f.root / "secret.bin", f.scene("link.bin"));
+  const int watch = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+  ASSERT_GE(watch, 0);
+  ASSERT_GE(::inotify_add_watch(watch, (f.root / "secret.bin").c_str(), IN_OPEN), 0);
+  expectOneLineNaming(loadFailure(f.scene("a.gltf")), f.scene("a.gltf"), "outside the scene's folder");
+  alignas(inotify_event) char events[4096];
+  EXPECT_LE(::read(watch, events, sizeof events), 0) << "the file outside the folder was opened";
+  ::close(watch);
+}
+
+// `mtllib .` names the scene's folder: a directory, not a file outside it.
+TEST(SceneFiles, MtllibNamingTheFolderItselfIsADirectoryNotOutside) {
+  SceneFolder f;
+  write(f.scene("a.obj"), "mtllib .\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  expectOneLineNaming(loadFailure(f.scene("a.obj")), f.scene("a.obj"), "is a directory, not a regular file");
 }
 
 }  // namespace

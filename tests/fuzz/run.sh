@@ -11,7 +11,7 @@ root="$(cd "$(dirname "$0")/../.." && pwd)"
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(gltf glb obj scene_checks)
+((${#targets[@]})) || targets=(gltf glb obj scene_checks exr texture)
 build="${BUILD_DIR:-$root/build-fuzz}"
 main_build="${CPGI_BUILD_DIR:-$root/build}"  # the ordinary build: its cpgi makes seeds, its web/ configures
 

@@ -12,7 +12,7 @@ export function formatNumber(x) {
 }
 
 function escapeHtml(text) {
-  return String(text).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
+  return String(text).replace(/[&<>"']/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;', "'": '&#39;' })[c]);
 }
 
 function table(id, columns, rows) {
@@ -102,10 +102,10 @@ function timingsSection(report) {
   if (!timings.length) return '';
   const total = report.seconds || raw.total || timings.reduce((s, [, t]) => s + t, 0);
   const rows = timings
-    .map(([stage, t]) => `<tr><td>${escapeHtml(stage)}</td><td class="num">${formatNumber(t)}</td>
-      <td><span class="bar" style="width:${Math.max(0.5, (100 * t) / total).toFixed(1)}%"></span></td></tr>`)
+    .map(([stage, t]) => `<tr><td>${escapeHtml(stage)}</td><td class="num">${escapeHtml(formatNumber(t))}</td>
+      <td><span class="bar" style="width:${Math.max(0.5, (100 * Number(t)) / Number(total) || 0).toFixed(1)}%"></span></td></tr>`)
     .join('');
-  return section(`Timings (${formatNumber(total)} s in all)`,
+  return section(`Timings (${escapeHtml(formatNumber(total))} s in all)`,
     `<table id="timings-table"><thead><tr><th>stage</th><th>s</th><th></th></tr></thead><tbody>${rows}</tbody></table>`);
 }
 

@@ -524,12 +524,23 @@ class Viewer {
     const open = document.getElementById('open-walls');
     if (open) open.checked = this.openWalls;
     const legend = document.getElementById('legend');
-    if (legend) legend.innerHTML = this.legend();
+    if (!legend) return;
+    // Cell names come from the scene file: text nodes, never markup.
+    if (this.mode === 'cells') {
+      legend.replaceChildren();
+      this.cells.forEach((c, i) => {
+        const swatch = document.createElement('span');
+        swatch.className = 'swatch';
+        swatch.style.background = '#' + cellColour(i).getHexString();
+        legend.append(swatch, document.createTextNode(String(c.name) + ' '));
+      });
+    } else {
+      legend.innerHTML = this.legend();
+    }
   }
 
+  // The legend of the modes other than 'cells', as markup made only of cpgi's own text and numbers.
   legend() {
-    if (this.mode === 'cells')
-      return this.cells.map((c, i) => `<span class="swatch" style="background:#${cellColour(i).getHexString()}"></span>${c.name}`).join(' ');
     if (this.mode === 'error')
       return `(A − B) / RMS(B), per texel: <span class="swatch" style="background:#00f"></span>−${ERROR_SCALE * 100} % or less
         <span class="swatch" style="background:#fff"></span>0 <span class="swatch" style="background:#f00"></span>+${ERROR_SCALE * 100} % or more`;

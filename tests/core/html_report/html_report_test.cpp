@@ -105,6 +105,36 @@ TEST(HtmlReport, PageCarriesItsDataIntact) {
   EXPECT_EQ(data["portals"][0]["corners"][2], nlohmann::json({4.0, 2.0, 1.5}));
 }
 
+// Issue 49, item 7: a name "<!--<script>" put the HTML parser in its double-escaped state, where the data
+// element's end tag no longer ends it and the page's own script became data. Inside the inline JSON no
+// '<' is left at all (nor '>', '&', U+2028, U+2029), and the data reads back the same.
+TEST(HtmlReport, NoNameCanOpenACommentOrScriptInsideTheInlineData) {
+  Scene scene;
+  CellGraph graph;
+  const std::vector<std::string> names = {"<!--<script>", "<script>alert(1)</script>", "a\u2028b\u2029c</",
+                                          "<img src=x onerror=alert(1)>", "&lt;not an entity&gt;"};
+  for (size_t i = 0; i < names.size(); ++i)
+    addRoom(scene, graph, names[i], 4.0f * float(i), 4.0f, 3.0f, 2.0f);
+  HtmlReportInput input;
+  input.title = "<!--<script>";
+  input.kind = "bake";
+  input.report = {{"warnings", names}, {"<!--", "<script"}};
+  input.glb = "glTF";
+  input.cells = &graph;
+  const std::string page = renderHtmlReport(input);
+  EXPECT_EQ(count(page, "</script>"), 3u);
+  EXPECT_EQ(count(page, "<!--"), 0u);
+  EXPECT_EQ(count(page, "<script"), 3u);  // the page's own three elements
+  const std::string inline_ = scriptText(page, "cpgi-data");
+  for (const char* forbidden : {"<", ">", "&", "\u2028", "\u2029"})
+    EXPECT_EQ(inline_.find(forbidden), std::string::npos) << forbidden;
+  const nlohmann::json data = nlohmann::json::parse(inline_);
+  EXPECT_EQ(data["title"], input.title);
+  EXPECT_EQ(data["report"], input.report);
+  ASSERT_EQ(data["cells"].size(), names.size());
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(data["cells"][i]["name"], names[i]);
+}
+
 TEST(HtmlReport, RefusesALightmapOfTheWrongSize) {
   ReportLightmap lightmap;
   lightmap.width = 2, lightmap.height = 2;

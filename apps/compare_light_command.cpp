@@ -18,10 +18,11 @@
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
 #include "apps/compare_light_resample.h"
+#include "apps/compare_light_seams.h"
 #include "apps/options.h"
-#include "radiosity/bake/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "radiosity/bake/report_page.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/metrics/metrics.h"
 #include "radiosity/metrics/texel_sample.h"
@@ -91,6 +92,13 @@ std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> w
     signal += weight[i] * glm::dot(r, r);
   }
   return signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
+}
+
+// The texels' weights without the lamps.
+std::vector<float> reflectorArea(std::vector<float> area, const std::vector<float>& emissive) {
+  for (size_t i = 0; i < area.size(); ++i)
+    if (emissive[i] > 0.5f) area[i] = 0.0f;
+  return area;
 }
 
 // --report DIR: the page with the error per texel; the heat map leaves out the lamps as the figures
@@ -217,6 +225,10 @@ int runCompareLight(const CompareLightOptions& o) {
   j["reference_noise_nonemissive"] = orNull(noiseReflectors);
   j["cells"] = cellsJson(cells);
   j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
+  std::string seamsWhy;
+  j["portal_seams"] = portalSeamsJson(o.scene.empty() ? recordedScene(o.b, o.a) : o.scene, o.b, a.rgb.pixels,
+                                      b.rgb.pixels, reflectors ? reflectorArea(area, emissive) : area, b.area,
+                                      b.rgb.width, b.rgb.height, seamsWhy);
   if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive, bench);
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -243,6 +255,9 @@ int runCompareLight(const CompareLightOptions& o) {
   }
   if (noiseReflectors) std::printf("reference noise w/o lamps  %.4f%%\n", 100.0 * *noiseReflectors);
   if (!cells.empty()) printCells(cells);
+  if (j["portal_seams"].is_null())
+    std::printf("portal seams               not measured: %s\n", seamsWhy.c_str());
+  printPortalSeams(j["portal_seams"]);
   if (noise && e.relRmse < 2.0 * *noise)
     std::printf("note: rel_rmse is within 2x the reference's noise; trace the reference with more --spp\n");
   return 0;

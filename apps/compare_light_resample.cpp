@@ -31,8 +31,9 @@ AtlasParams recordedAtlasParams(const std::string& dir) {
   const nlohmann::json perQuad = atlas.value("texels_per_quad", nlohmann::json()),
                        density = atlas.value("density", nlohmann::json());
   if (density == "auto")
-    throw InputError(path.string(), "is a bake at --density auto, whose atlas cannot be rebuilt; give as B a "
-                                    "reference or bake at a fixed --density or --texels-per-quad");
+    throw InputError(path.string(),
+                     "is a bake at --density auto, whose atlas cannot be rebuilt; give as B a "
+                     "reference or bake at a fixed --density or --texels-per-quad");
   if (!perQuad.is_number() || !density.is_number())
     throw InputError(path.string(), "does not record its atlas (texels_per_quad, density)");
   AtlasParams params;
@@ -43,22 +44,29 @@ AtlasParams recordedAtlasParams(const std::string& dir) {
 
 }  // namespace
 
-ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
-                                const std::string& bDir, const std::vector<float>& bArea, int bWidth,
-                                int bHeight) {
-  const LoadedScene scene = loadScene(scenePath);
+LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scenePath, const std::string& bDir,
+                                    const std::vector<float>& bArea, int bWidth, int bHeight) {
   Context ctx;
-  const LightmapAtlas atlas = buildAtlas(scene.scene, findQuads(scene.scene), recordedAtlasParams(bDir), ctx);
+  LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), recordedAtlasParams(bDir), ctx);
   bool same = atlas.width == bWidth && atlas.height == bHeight && atlas.area.size() == bArea.size();
   for (size_t i = 0; same && i < bArea.size(); ++i)
     same = std::abs(atlas.area[i] - bArea[i]) <= 1e-4f * std::max(atlas.area[i], bArea[i]);
   if (!same)
     throw InputError(scenePath, "does not give " + bDir +
                                     "'s atlas with the options its report.json records (another scene?)");
+  return atlas;
+}
+
+ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
+                                const std::string& bDir, const std::vector<float>& bArea, int bWidth,
+                                int bHeight) {
+  const LoadedScene scene = loadScene(scenePath);
+  const LightmapAtlas atlas = rebuildReferenceAtlas(scene.scene, scenePath, bDir, bArea, bWidth, bHeight);
 
   const fs::path glb = fs::path(aDir) / "baked.glb";
   if (!fs::is_regular_file(glb))
-    throw InputError(glb.string(), "no such file (A must be a bake or a full reference to be read at B's texels)");
+    throw InputError(glb.string(),
+                     "no such file (A must be a bake or a full reference to be read at B's texels)");
   const LoadedScene baked = loadScene(glb.string());
   if (baked.lightmapUVs.size() != baked.scene.triangles.size())
     throw InputError(glb.string(), "has no lightmap coordinates (TEXCOORD_1) on every triangle");

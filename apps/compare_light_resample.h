@@ -6,8 +6,16 @@
 #include <vector>
 
 #include "core/image_io.h"
+#include "core/scene.h"
+#include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
+
+/// B's atlas rebuilt from `scene` (read from `scenePath`) with the atlas options `bDir`/report.json records;
+/// throws InputError naming the file when those options are not there (a bake at --density auto) or the
+/// atlas does not give B's texel areas (`bArea`, bWidth × bHeight).
+LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scenePath, const std::string& bDir,
+                                    const std::vector<float>& bArea, int bWidth, int bHeight);
 
 /// A's lightmap (`aImage`, from `aDir`/lightmap.exr) at each texel centre of B's atlas: B's atlas is
 /// rebuilt from `scenePath` with the atlas options in `bDir`/report.json and must give B's texel areas

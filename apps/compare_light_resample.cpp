@@ -1,8 +1,10 @@
 #include "apps/compare_light_resample.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -42,6 +44,58 @@ AtlasParams recordedAtlasParams(const std::string& dir) {
   return params;
 }
 
+// Barycentric weights of `x` in triangle t's plane, and its distance from that plane.
+glm::dvec3 planeBarycentric(const Triangle& t, glm::vec3 x, double& distance) {
+  const glm::dvec3 a(t.p[0]), e1 = glm::dvec3(t.p[1]) - a, e2 = glm::dvec3(t.p[2]) - a, d = glm::dvec3(x) - a;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double n2 = glm::dot(n, n);
+  if (!(n2 > 0.0)) {
+    distance = std::numeric_limits<double>::max();
+    return glm::dvec3(-1.0);
+  }
+  distance = std::abs(glm::dot(d, n)) / std::sqrt(n2);
+  const double v = glm::dot(glm::cross(d, e2), n) / n2, w = glm::dot(glm::cross(e1, d), n) / n2;
+  return {1.0 - v - w, v, w};
+}
+
+// The texels whose scene triangle A's baked.glb does not hold as it is (a bake on the automatic cells
+// splits the triangles that cross its portal planes): read on the piece, among the baked triangles no
+// scene triangle matched, whose plane and area hold the texel's point. Returns the texels still unread.
+size_t sampleOnSplitTriangles(const LightmapAtlas& atlas, const std::vector<int32_t>& source,
+                              const LoadedScene& baked, const ImageRGB& aImage, std::vector<glm::vec3>& out) {
+  std::vector<char> matched(baked.scene.triangles.size(), 0);
+  for (int32_t s : source)
+    if (s >= 0) matched[size_t(s)] = 1;
+  std::vector<size_t> pieces;
+  for (size_t t = 0; t < matched.size(); ++t)
+    if (!matched[t]) pieces.push_back(t);
+  size_t unread = 0;
+  for (int y = 0; y < atlas.height; ++y)
+    for (int x = 0; x < atlas.width; ++x) {
+      const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
+      if (atlas.patch[t] < 0) continue;
+      const Patch& p = atlas.patches[size_t(atlas.patch[t])];
+      const int32_t triangle = texelTriangle(p, x - p.x, y - p.y);
+      if (triangle >= 0 && source[size_t(triangle)] >= 0) continue;
+      bool found = false;
+      for (size_t piece : pieces) {
+        const Triangle& tri = baked.scene.triangles[piece];
+        double distance = 0.0;
+        const glm::dvec3 w = planeBarycentric(tri, atlas.position[t], distance);
+        if (distance > 1e-3 || glm::dot(tri.geometricNormal(), atlas.normal[t]) < 0.999f ||
+            std::min({w.x, w.y, w.z}) < -1e-4)
+          continue;
+        const std::array<glm::vec2, 3>& uv = baked.lightmapUVs[piece];
+        const glm::vec2 at(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
+        out[t] = sampleBilinear(aImage.width, aImage.height, aImage.pixels, at);
+        found = true;
+        break;
+      }
+      unread += !found;
+    }
+  return unread;
+}
+
 }  // namespace
 
 LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scenePath, const std::string& bDir,
@@ -75,6 +129,7 @@ ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string&
   ImageRGB out{bWidth, bHeight, {}};
   out.pixels = sampleAtTexels(atlas, scene.scene, source, baked.lightmapUVs, aImage.width, aImage.height,
                               aImage.pixels, &missing);
+  if (missing > 0) missing = sampleOnSplitTriangles(atlas, source, baked, aImage, out.pixels);
   if (missing > 0)
     throw InputError(glb.string(), std::to_string(missing) + " of " + bDir +
                                        "'s texels lie on triangles it does not hold (not a bake of " +

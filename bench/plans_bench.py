@@ -25,9 +25,9 @@ import time
 
 METHODS = {
     "global": [],
-    "cells-binned": ["--method", "cells", "--portals", "binned"],
-    "cells-directional": ["--method", "cells", "--portals", "directional"],
-    "cells-diffuse": ["--method", "cells", "--portals", "diffuse"],
+    "cells-binned": ["--method", "cells", "--cells", "{plan}", "--portals", "binned"],
+    "cells-directional": ["--method", "cells", "--cells", "{plan}", "--portals", "directional"],
+    "cells-diffuse": ["--method", "cells", "--cells", "{plan}", "--portals", "diffuse"],
     "cells-auto": ["--method", "cells", "--cells", "auto"],
 }
 
@@ -128,7 +128,8 @@ def run_plan(args, seed):
         if method in record["runs"]:
             continue
         out = os.path.join(folder, method)
-        ok, cpu, wall = timed([args.cpgi, "bake", glb, "-o", out, "-q"] + METHODS[method] + views,
+        options = [a.replace("{plan}", glb) for a in METHODS[method]]
+        ok, cpu, wall = timed([args.cpgi, "bake", glb, "-o", out, "-q"] + options + views,
                               out + ".log")
         run = {"ok": ok, "cpu_s": cpu, "wall_s": wall}
         if ok:

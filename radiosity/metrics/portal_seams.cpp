@@ -70,16 +70,32 @@ std::vector<PortalSeam> measurePortalSeams(const SeamTexels& t, const std::vecto
       w1 = std::max(w1, glm::dot(c, wu));
     }
     const float plane = glm::dot(p.corners[0], nu);
-    std::vector<BandTexel> sides[2];
+    // The floor texels near the plane, then on each side the row nearest to it: those within 0.4 texel
+    // of the nearest one, so that a row of texels thinner across the plane than along it (a thin wall's
+    // threshold keeps two texels across each half) gives its first row alone.
+    struct Candidate {
+      size_t texel;
+      float along, distance;
+    };
+    std::vector<Candidate> near[2];
+    float nearest[2] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
     for (size_t i = 0; i < n; ++i) {
       if (!(t.area[i] > 0.0f) || glm::dot(t.normal[i], up) < kUpCosine) continue;
       const glm::vec3 x = t.position[i];
       if (std::abs(glm::dot(x, up) - lowest) > kHeightTolerance) continue;
       const float along = glm::dot(x, wu), d = glm::dot(x, nu) - plane, size = std::sqrt(t.area[i]);
-      if (along < w0 || along > w1 || d == 0.0f || std::abs(d) > size) continue;
-      const glm::dvec3 v(t.value[i]);
-      sides[d > 0.0f ? 1 : 0].push_back({along, (v.x + v.y + v.z) / 3.0, double(t.area[i])});
+      if (along < w0 || along > w1 || d == 0.0f || std::abs(d) > 2.0f * size) continue;
+      const int side = d > 0.0f ? 1 : 0;
+      near[side].push_back({i, along, std::abs(d)});
+      nearest[side] = std::min(nearest[side], std::abs(d));
     }
+    std::vector<BandTexel> sides[2];
+    for (int side = 0; side < 2; ++side)
+      for (const Candidate& c : near[side]) {
+        if (c.distance > nearest[side] + 0.4f * std::sqrt(t.area[c.texel])) continue;
+        const glm::dvec3 v(t.value[c.texel]);
+        sides[side].push_back({c.along, (v.x + v.y + v.z) / 3.0, double(t.area[c.texel])});
+      }
     const BandFigures a = bandFigures(std::move(sides[0])), b = bandFigures(std::move(sides[1]));
     seam.texelsA = a.texels, seam.texelsB = b.texels;
     seam.meanA = a.mean, seam.meanB = b.mean;

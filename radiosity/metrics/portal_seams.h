@@ -31,8 +31,9 @@ struct SeamTexels {
 
 /// One portal's seam: the floor band on each side. "Floor" is every texel facing up (within 8°) at the
 /// portal's lowest edge's height (within 2 cm): a room's floor under a door in a thin wall, a door's
-/// threshold in a thick one, a window's sill. The band on a side holds the texels whose sample point lies
-/// within one texel (√area) of the portal's plane on that side, and within the portal's width.
+/// threshold in a thick one, a window's sill. The band on a side is the row of those texels nearest to the
+/// portal's plane on that side (sample points within two texels, √area, of the plane and within 0.4 texel
+/// of the nearest one), within the portal's width.
 struct PortalSeam {
   std::string name;
   size_t texelsA = 0, texelsB = 0;  ///< in the band on the side of corners' normal's tail (A) and head (B)

@@ -77,6 +77,28 @@ TEST(PortalSeams, WithoutNoiseTheNoiseIsTheSmoothChangeAlongTheBandOnly) {
   EXPECT_NEAR(s.noise, 0.05 / std::sqrt(2.0) / 8.0, 0.001);
 }
 
+// A 0.1 m wall's threshold, cut at the mid-plane, keeps two texels 2.5 cm deep across each half: the band
+// is the row against the plane alone (its light 10 and 12 here, the rows behind 5).
+TEST(PortalSeams, AThinThresholdGivesItsRowAgainstThePlaneAlone) {
+  Floor f(0.0, 0.0);
+  f.position.clear(), f.normal.clear(), f.value.clear(), f.area.clear();
+  for (int k = 0; k < 10; ++k)
+    for (int row = 0; row < 2; ++row) {
+      const float z = 0.5f + (k + 0.5f) * kTexel, d = (row + 0.5f) * 0.025f;
+      f.add({2.0f - d, 0.0f, z}, {0, 1, 0}, row == 0 ? 10.0f : 5.0f);
+      f.add({2.0f + d, 0.0f, z}, {0, 1, 0}, row == 0 ? 12.0f : 5.0f);
+    }
+  for (float& a : f.area) a = 0.025f * kTexel;
+  const PortalSeam s = measurePortalSeams(f.texels(), {door()})[0];
+  ASSERT_TRUE(s.measured);
+  EXPECT_EQ(s.texelsA, 10u);
+  EXPECT_EQ(s.texelsB, 10u);
+  EXPECT_NEAR(s.meanA, 10.0, 1e-5);
+  EXPECT_NEAR(s.meanB, 12.0, 1e-5);
+  EXPECT_NEAR(s.step, 2.0 / 11.0, 1e-6);
+  EXPECT_NEAR(s.noise, 0.0, 1e-9);
+}
+
 TEST(PortalSeams, PortalsWithNoFloorAcrossThemAreNotMeasured) {
   const Floor f(0.2, 0.0);
   const SeamPortal window{"portal:A:B.window", {{{2, 1, 0.5f}, {2, 1, 1.5f}, {2, 2, 1.5f}, {2, 2, 0.5f}}}};

@@ -162,57 +162,68 @@ def pct(x):
     return "-" if x is None or x != x else "%.1f" % (100.0 * x)
 
 
+def method_rooms(records, method):
+    """Per room of every plan the method baked: (mean error, RMSE without the reference's noise, R/G, B/G,
+    "plan/room", openings from a lamp); the measured seams: (excess, over noise, "plan/portal"); CPU s."""
+    rooms, seams, cpus = [], [], []
+    for rec in records:
+        run = rec["runs"].get(method)
+        if not run or not run.get("ok") or "cells" not in run:
+            continue
+        cpus.append(run["cpu_s"])
+        for c in run["cells"]:
+            if c["ratio_of_means"] is None:
+                continue
+            rooms.append((c["ratio_of_means"] - 1.0, c["rel_rmse_without_noise"], c.get("red_green_ratio"),
+                          c.get("blue_green_ratio"), "%d/%s" % (rec["seed"], c["name"]),
+                          rec["openings_from_lamp"].get(c["name"], -1)))
+        for s in run.get("portal_seams") or []:
+            if s["measured"]:
+                seams.append((s["excess"], s["seam"], "%d/%s" % (rec["seed"], s["name"][7:])))
+    return rooms, seams, cpus
+
+
+def worst(rows, key, fmt):
+    if not rows:
+        return "-"
+    r = max(rows, key=key)
+    return fmt(r) + " (%s)" % r[4]
+
+
 def table(records, methods):
-    lines = []
-    lines.append("| method | plans | rooms | mean error: median / p90 / worst (plan/room) | RMSE: median / p90 / "
-                 "worst (plan/room) | R/G: worst (plan/room) | B/G: worst (plan/room) | seams over noise | "
-                 "worst seam excess (plan/portal) | CPU s: median plan / total |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+    lines = ["| method | plans | rooms | mean error, median / p90 / worst (plan/room) | rooms off > 3 % | "
+             "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
+             "worst B/G | seams over noise | worst seam excess (plan/portal) | CPU s, median plan / total |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     split = {}
     for method in methods:
-        rooms, seams, cpus, plans = [], [], [], 0
-        for rec in records:
-            run = rec["runs"].get(method)
-            if not run or not run.get("ok") or "cells" not in run:
-                continue
-            plans += 1
-            cpus.append(run["cpu_s"])
-            for c in run["cells"]:
-                if c["ratio_of_means"] is None:
-                    continue
-                d = rec["openings_from_lamp"].get(c["name"], -1)
-                rooms.append((c["ratio_of_means"] - 1.0, c["rel_rmse"], c.get("red_green_ratio"),
-                              c.get("blue_green_ratio"), "%d/%s" % (rec["seed"], c["name"]), d))
-            for s in run.get("portal_seams") or []:
-                if s["measured"]:
-                    seams.append((s["excess"], s["seam"], "%d/%s" % (rec["seed"], s["name"][7:])))
+        rooms, seams, cpus = method_rooms(records, method)
         if not rooms:
-            lines.append("| %s | 0 | | | | | | | | |" % method)
+            lines.append("| %s | 0 |" % method + " |" * 10)
             continue
         err = [abs(r[0]) for r in rooms]
-        worst_err = max(rooms, key=lambda r: abs(r[0]))
-        worst_rmse = max(rooms, key=lambda r: r[1])
+        rmse = [r[1] for r in rooms if r[1] is not None]
         rg = [r for r in rooms if r[2] is not None]
         bg = [r for r in rooms if r[3] is not None]
-        worst_rg = max(rg, key=lambda r: abs(r[2] - 1.0)) if rg else None
-        worst_bg = max(bg, key=lambda r: abs(r[3] - 1.0)) if bg else None
+        colour_off = sum(1 for r in rooms if (r[2] is not None and abs(r[2] - 1) > 0.03) or
+                         (r[3] is not None and abs(r[3] - 1) > 0.03))
         worst_seam = max(seams, key=lambda s: abs(s[0])) if seams else None
-        lines.append("| %s | %d | %d | %s / %s / %+.1f (%s) | %s / %s / %s (%s) | %s | %s | %d of %d | %s | %.1f / %.0f |" % (
-            method, plans, len(rooms), pct(quantile(err, 0.5)), pct(quantile(err, 0.9)), 100 * worst_err[0],
-            worst_err[4], pct(quantile([r[1] for r in rooms], 0.5)), pct(quantile([r[1] for r in rooms], 0.9)),
-            pct(worst_rmse[1]), worst_rmse[4],
-            "%.3f (%s)" % (worst_rg[2], worst_rg[4]) if worst_rg else "-",
-            "%.3f (%s)" % (worst_bg[3], worst_bg[4]) if worst_bg else "-",
+        lines.append("| %s | %d | %d | %s / %s / %s | %d | %s / %s / %s | %d | %s | %s | %d of %d | %s | %.1f / %.0f |" % (
+            method, len(cpus), len(rooms), pct(quantile(err, 0.5)), pct(quantile(err, 0.9)),
+            worst(rooms, lambda r: abs(r[0]), lambda r: "%+.1f" % (100 * r[0])),
+            sum(1 for e in err if e > 0.03),
+            pct(quantile(rmse, 0.5)), pct(quantile(rmse, 0.9)),
+            worst([r for r in rooms if r[1] is not None], lambda r: r[1], lambda r: pct(r[1])),
+            colour_off,
+            worst(rg, lambda r: abs(r[2] - 1), lambda r: "%.3f" % r[2]),
+            worst(bg, lambda r: abs(r[3] - 1), lambda r: "%.3f" % r[3]),
             sum(1 for s in seams if s[1]), len(seams),
             "%+.1f %% (%s)" % (100 * worst_seam[0], worst_seam[2]) if worst_seam else "-",
             quantile(cpus, 0.5), sum(cpus)))
         for r in rooms:
             split.setdefault(method, {}).setdefault(min(r[5], 3), []).append(abs(r[0]))
-    lines.append("")
-    lines.append("Mean error per room by openings from the nearest lamp (median / worst |ratio of means - 1|, %, rooms):")
-    lines.append("")
-    lines.append("| method | lit (0) | 1 | 2 | 3 or more |")
-    lines.append("|---|---|---|---|---|")
+    lines += ["", "Mean error per room by openings from the nearest lamp (median / worst |ratio of means - 1|, %, "
+              "rooms):", "", "| method | lit (0) | 1 | 2 | 3 or more |", "|---|---|---|---|---|"]
     for method in methods:
         cols = []
         for d in range(4):
@@ -220,9 +231,8 @@ def table(records, methods):
             cols.append("%s / %s (%d)" % (pct(quantile(v, 0.5)), pct(max(v)) if v else "-", len(v)))
         lines.append("| %s | %s |" % (method, " | ".join(cols)))
     ref_cpu = [rec["runs"]["reference"]["cpu_s"] for rec in records if rec["runs"].get("reference", {}).get("ok")]
-    lines.append("")
-    lines.append("Reference: %d plans, CPU s median %.0f, total %.0f." % (len(ref_cpu), quantile(ref_cpu, 0.5),
-                                                                        sum(ref_cpu)))
+    lines += ["", "Reference: %d plans, CPU s median %.0f, total %.0f." % (len(ref_cpu), quantile(ref_cpu, 0.5),
+                                                                        sum(ref_cpu))]
     return "\n".join(lines)
 
 

@@ -88,9 +88,10 @@ TEST_F(RandomPlanBake, ThePlanHasARoomTwoOpeningsFromItsLampAndBothBakesOneAtlas
   ASSERT_EQ(runs().cells.atlas.area, runs().global.atlas.area);
 }
 
-// Every room within 10 % of the reference's mean, its RMSE (the reference's noise taken out) under 25 %
-// and its colour within 10 %: generous at 4 texels a metre, but a room the portals starve or flood (the
-// diffuse portal's +12 % behind a door, issue 47) or a leak through a wall reads far outside it.
+// Every room within 6 % of the reference's mean and colour, its RMSE (the reference's noise taken out)
+// under 35 %: generous at 4 texels a metre (measured: global +2.5 % and 23 % in R1, two openings from the
+// lamp; binned portals -1.9 % and 9 %), but a room the portals starve or flood (the diffuse portal's +12 %
+// behind a door, issue 47) or a leak through a wall reads outside it.
 TEST_F(RandomPlanBake, EveryRoomOfTheGlobalAndTheCellsBakeIsNearTheReference) {
   for (const BakeResult* r : {&runs().global, &runs().cells}) {
     const std::string method = r->report["method"].get<std::string>();
@@ -98,10 +99,10 @@ TEST_F(RandomPlanBake, EveryRoomOfTheGlobalAndTheCellsBakeIsNearTheReference) {
     ASSERT_EQ(rooms.size(), runs().plan.rooms.size());
     for (const CellError& e : rooms) {
       const std::string what = method + " " + e.name;
-      EXPECT_NEAR(e.ratioOfMeans, 1.0, 0.10) << what;
-      EXPECT_LT(e.relRmseWithoutNoise, 0.25) << what << " (with the reference's noise " << e.relRmse << ")";
-      EXPECT_NEAR(e.redGreenRatio, 1.0, 0.10) << what;
-      EXPECT_NEAR(e.blueGreenRatio, 1.0, 0.10) << what;
+      EXPECT_NEAR(e.ratioOfMeans, 1.0, 0.06) << what;
+      EXPECT_LT(e.relRmseWithoutNoise, 0.35) << what << " (with the reference's noise " << e.relRmse << ")";
+      EXPECT_NEAR(e.redGreenRatio, 1.0, 0.06) << what;
+      EXPECT_NEAR(e.blueGreenRatio, 1.0, 0.06) << what;
     }
   }
 }

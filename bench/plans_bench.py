@@ -190,7 +190,7 @@ def worst(rows, key, fmt):
     return fmt(r) + " (%s)" % r[4]
 
 
-def table(records, methods):
+def table(records, methods, work):
     lines = ["| method | plans | rooms | mean error, median / p90 / worst (plan/room) | rooms off > 3 % | "
              "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
              "worst B/G | seams over noise | worst seam excess (plan/portal) | CPU s, median plan / total |",
@@ -230,6 +230,16 @@ def table(records, methods):
             v = split.get(method, {}).get(d, [])
             cols.append("%s / %s (%d)" % (pct(quantile(v, 0.5)), pct(max(v)) if v else "-", len(v)))
         lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    auto = []
+    for rec in records:
+        report = os.path.join(work, "plan-%d" % rec["seed"], "cells-auto", "report.json")
+        if os.path.exists(report):
+            auto.append((json.load(open(report)).get("cells"), len(rec["openings_from_lamp"])))
+    if auto:
+        lines += ["", "Automatic cells (`--cells auto`) against the plan's rooms: %d plans, as many in %d, one fewer in "
+                  "%d, more in %d, two or more fewer in %d." % (
+                      len(auto), sum(1 for c, r in auto if c == r), sum(1 for c, r in auto if c == r - 1),
+                      sum(1 for c, r in auto if c > r), sum(1 for c, r in auto if c <= r - 2))]
     ref_cpu = [rec["runs"]["reference"]["cpu_s"] for rec in records if rec["runs"].get("reference", {}).get("ok")]
     lines += ["", "Reference: %d plans, CPU s median %.0f, total %.0f." % (len(ref_cpu), quantile(ref_cpu, 0.5),
                                                                         sum(ref_cpu))]
@@ -259,7 +269,7 @@ def main():
                 records.append(json.load(open(path)))
             continue
         records.append(run_plan(args, seed))
-    print(table(records, args.methods))
+    print(table(records, args.methods, args.work))
 
 
 if __name__ == "__main__":

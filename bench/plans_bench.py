@@ -164,7 +164,8 @@ def pct(x):
 
 def method_rooms(records, method):
     """Per room of every plan the method baked: (mean error, RMSE without the reference's noise, R/G, B/G,
-    "plan/room", openings from a lamp); the measured seams: (excess, over noise, "plan/portal"); CPU s."""
+    "plan/room", openings from a lamp); the measured seams: (excess, over noise, "plan/portal", |excess| over
+    the larger texel noise); CPU s."""
     rooms, seams, cpus = [], [], []
     for rec in records:
         run = rec["runs"].get(method)
@@ -179,7 +180,9 @@ def method_rooms(records, method):
                           rec["openings_from_lamp"].get(c["name"], -1)))
         for s in run.get("portal_seams") or []:
             if s["measured"]:
-                seams.append((s["excess"], s["seam"], "%d/%s" % (rec["seed"], s["name"][7:])))
+                tolerance = max(s["noise"], s["noise_reference"])
+                seams.append((s["excess"], s["seam"], "%d/%s" % (rec["seed"], s["name"][7:]),
+                              abs(s["excess"]) / tolerance if tolerance > 0 else float("inf")))
     return rooms, seams, cpus
 
 
@@ -193,7 +196,7 @@ def worst(rows, key, fmt):
 def table(records, methods, work):
     lines = ["| method | plans | rooms | mean error, median / p90 / worst (plan/room) | rooms off > 3 % | "
              "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
-             "worst B/G | seams over noise | worst seam excess (plan/portal) | CPU s, median plan / total |",
+             "worst B/G | seams over noise | worst seam: excess, over its noise (plan/portal) | CPU s, median plan / total |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     split = {}
     for method in methods:
@@ -207,7 +210,9 @@ def table(records, methods, work):
         bg = [r for r in rooms if r[3] is not None]
         colour_off = sum(1 for r in rooms if (r[2] is not None and abs(r[2] - 1) > 0.03) or
                          (r[3] is not None and abs(r[3] - 1) > 0.03))
-        worst_seam = max(seams, key=lambda s: abs(s[0])) if seams else None
+        # The seam farthest past its tolerance: the reference's texel noise in a room lit through two or
+        # three openings reaches tens of per cent at 512 paths, so the largest excess alone is its noise.
+        worst_seam = max(seams, key=lambda s: s[3]) if seams else None
         lines.append("| %s | %d | %d | %s / %s / %s | %d | %s / %s / %s | %d | %s | %s | %d of %d | %s | %.1f / %.0f |" % (
             method, len(cpus), len(rooms), pct(quantile(err, 0.5)), pct(quantile(err, 0.9)),
             worst(rooms, lambda r: abs(r[0]), lambda r: "%+.1f" % (100 * r[0])),
@@ -218,7 +223,8 @@ def table(records, methods, work):
             worst(rg, lambda r: abs(r[2] - 1), lambda r: "%.3f" % r[2]),
             worst(bg, lambda r: abs(r[3] - 1), lambda r: "%.3f" % r[3]),
             sum(1 for s in seams if s[1]), len(seams),
-            "%+.1f %% (%s)" % (100 * worst_seam[0], worst_seam[2]) if worst_seam else "-",
+            "%+.1f %%, %.1f× its noise (%s)" % (100 * worst_seam[0], worst_seam[3], worst_seam[2])
+            if worst_seam else "-",
             quantile(cpus, 0.5), sum(cpus)))
         for r in rooms:
             split.setdefault(method, {}).setdefault(min(r[5], 3), []).append(abs(r[0]))

@@ -146,8 +146,15 @@ void readOnAtlasOf(const CompareLightOptions& o, const Lightmap& b, Lightmap& a)
       std::cerr << "compare-light: the atlases differ; " << o.a << " is read at " << o.b
                 << "'s texels through " << scene << "\n";
   }
-  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
-  a.area = b.area;
+  std::vector<char> unread;
+  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height, &unread);
+  a.area = b.area;  // 0 where A has nothing to read: left out of every figure
+  const size_t left = size_t(std::count(unread.begin(), unread.end(), char(1)));
+  for (size_t i = 0; i < unread.size(); ++i)
+    if (unread[i]) a.area[i] = 0.0f;
+  if (left > 0)
+    std::cerr << "compare-light: warning: " << left << " of " << o.b << "'s texels lie on surfaces " << o.a
+              << "/baked.glb does not hold; left out\n";
   a.emissive.clear();
   a.cell.clear();
 }
@@ -167,6 +174,8 @@ int runCompareLight(const CompareLightOptions& o) {
   const bool sparse = !b.sampleWeight.empty();
   const size_t valid = size_t(std::count_if(b.area.begin(), b.area.end(), [](float x) { return x > 0.0f; }));
   std::vector<float> area = b.area;
+  for (size_t i = 0; i < area.size(); ++i)
+    if (!(a.area[i] > 0.0f)) area[i] = 0.0f;
   if (sparse)
     for (size_t i = 0; i < area.size(); ++i) area[i] *= b.sampleWeight[i];
   const LightmapError e = compareLightmaps(a.rgb.pixels, b.rgb.pixels, area);

@@ -44,6 +44,8 @@ AtlasParams recordedAtlasParams(const std::string& dir) {
   return params;
 }
 
+constexpr double kPieceReach = 0.02;  // metres
+
 // Barycentric weights of `x` in triangle t's plane, and its distance from that plane.
 glm::dvec3 planeBarycentric(const Triangle& t, glm::vec3 x, double& distance) {
   const glm::dvec3 a(t.p[0]), e1 = glm::dvec3(t.p[1]) - a, e2 = glm::dvec3(t.p[2]) - a, d = glm::dvec3(x) - a;
@@ -60,16 +62,19 @@ glm::dvec3 planeBarycentric(const Triangle& t, glm::vec3 x, double& distance) {
 
 // The texels whose scene triangle A's baked.glb does not hold as it is (a bake on the automatic cells
 // splits the triangles that cross its portal planes): read on the piece, among the baked triangles no
-// scene triangle matched, whose plane and area hold the texel's point. Returns the texels still unread.
+// scene triangle matched, whose plane and area hold the texel's point. Returns the texels still unread,
+// marked in `unread`.
 size_t sampleOnSplitTriangles(const LightmapAtlas& atlas, const std::vector<int32_t>& source,
-                              const LoadedScene& baked, const ImageRGB& aImage, std::vector<glm::vec3>& out) {
+                              const LoadedScene& baked, const ImageRGB& aImage, std::vector<glm::vec3>& out,
+                              std::vector<char>& unread) {
   std::vector<char> matched(baked.scene.triangles.size(), 0);
   for (int32_t s : source)
     if (s >= 0) matched[size_t(s)] = 1;
   std::vector<size_t> pieces;
   for (size_t t = 0; t < matched.size(); ++t)
     if (!matched[t]) pieces.push_back(t);
-  size_t unread = 0;
+  size_t unreadCount = 0;
+  unread.assign(atlas.texelCount(), 0);
   for (int y = 0; y < atlas.height; ++y)
     for (int x = 0; x < atlas.width; ++x) {
       const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
@@ -77,23 +82,34 @@ size_t sampleOnSplitTriangles(const LightmapAtlas& atlas, const std::vector<int3
       const Patch& p = atlas.patches[size_t(atlas.patch[t])];
       const int32_t triangle = texelTriangle(p, x - p.x, y - p.y);
       if (triangle >= 0 && source[size_t(triangle)] >= 0) continue;
-      bool found = false;
-      for (size_t piece : pieces) {
-        const Triangle& tri = baked.scene.triangles[piece];
+      // The piece that holds the point, else the nearest in its plane within kPieceReach (a sliver
+      // the split left too thin to keep, dropped as the baked.glb was read, leaves a gap that thin).
+      size_t best = pieces.size();
+      double bestGap = kPieceReach;
+      glm::dvec3 bestWeights(0.0);
+      for (size_t k = 0; k < pieces.size() && bestGap > 0.0; ++k) {
+        const Triangle& tri = baked.scene.triangles[pieces[k]];
         double distance = 0.0;
-        const glm::dvec3 w = planeBarycentric(tri, atlas.position[t], distance);
-        if (distance > 1e-3 || glm::dot(tri.geometricNormal(), atlas.normal[t]) < 0.999f ||
-            std::min({w.x, w.y, w.z}) < -1e-4)
-          continue;
-        const std::array<glm::vec2, 3>& uv = baked.lightmapUVs[piece];
+        glm::dvec3 w = planeBarycentric(tri, atlas.position[t], distance);
+        if (distance > 1e-3 || glm::dot(tri.geometricNormal(), atlas.normal[t]) < 0.99f) continue;
+        w = glm::max(w, glm::dvec3(0.0));
+        w /= w.x + w.y + w.z;
+        const glm::dvec3 on =
+            w.x * glm::dvec3(tri.p[0]) + w.y * glm::dvec3(tri.p[1]) + w.z * glm::dvec3(tri.p[2]);
+        const double gap = glm::length(on - glm::dvec3(atlas.position[t])) - distance;
+        if (gap < bestGap) best = k, bestGap = std::max(gap, 0.0), bestWeights = w;
+      }
+      const bool found = best < pieces.size();
+      if (found) {
+        const std::array<glm::vec2, 3>& uv = baked.lightmapUVs[pieces[best]];
+        const glm::dvec3& w = bestWeights;
         const glm::vec2 at(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
         out[t] = sampleBilinear(aImage.width, aImage.height, aImage.pixels, at);
-        found = true;
-        break;
       }
-      unread += !found;
+      unread[t] = !found;
+      unreadCount += !found;
     }
-  return unread;
+  return unreadCount;
 }
 
 }  // namespace
@@ -113,7 +129,7 @@ LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scene
 
 ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
                                 const std::string& bDir, const std::vector<float>& bArea, int bWidth,
-                                int bHeight) {
+                                int bHeight, std::vector<char>* unreadTexels) {
   const LoadedScene scene = loadScene(scenePath);
   const LightmapAtlas atlas = rebuildReferenceAtlas(scene.scene, scenePath, bDir, bArea, bWidth, bHeight);
 
@@ -129,7 +145,14 @@ ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string&
   ImageRGB out{bWidth, bHeight, {}};
   out.pixels = sampleAtTexels(atlas, scene.scene, source, baked.lightmapUVs, aImage.width, aImage.height,
                               aImage.pixels, &missing);
-  if (missing > 0) missing = sampleOnSplitTriangles(atlas, source, baked, aImage, out.pixels);
+  std::vector<char> unread;
+  if (missing > 0) missing = sampleOnSplitTriangles(atlas, source, baked, aImage, out.pixels, unread);
+  // A few texels on surfaces the automatic cells' bake does not hold at all (one face of a zero-thickness
+  // wall the decomposition left out) are left out of the comparison; more is another scene.
+  if (missing > 0 && unreadTexels && missing * 100 <= atlas.validTexels()) {
+    *unreadTexels = std::move(unread);
+    return out;
+  }
   if (missing > 0)
     throw InputError(glb.string(), std::to_string(missing) + " of " + bDir +
                                        "'s texels lie on triangles it does not hold (not a bake of " +

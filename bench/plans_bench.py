@@ -193,7 +193,15 @@ def worst(rows, key, fmt):
     return fmt(r) + " (%s)" % r[4]
 
 
+def complete(rec, methods):
+    return all(rec["runs"].get(m, {}).get("ok") and "cells" in rec["runs"][m] for m in methods)
+
+
 def table(records, methods, work):
+    """The distributions over the plans every method has baked and been compared on (so that the rows
+    compare the methods on the same rooms), and a line naming the plans left out."""
+    partial = [rec["seed"] for rec in records if not complete(rec, methods)]
+    records = [rec for rec in records if complete(rec, methods)]
     lines = ["| method | plans | rooms | mean error, median / p90 / worst (plan/room) | rooms off > 3 % | "
              "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
              "worst B/G | seams over noise | worst seam: excess, over its noise (plan/portal) | CPU s, median plan / total |",
@@ -249,6 +257,9 @@ def table(records, methods, work):
     ref_cpu = [rec["runs"]["reference"]["cpu_s"] for rec in records if rec["runs"].get("reference", {}).get("ok")]
     lines += ["", "Reference: %d plans, CPU s median %.0f, total %.0f." % (len(ref_cpu), quantile(ref_cpu, 0.5),
                                                                         sum(ref_cpu))]
+    lines.append("Plans: %s%s." % (", ".join(str(rec["seed"]) for rec in records),
+                                   "; left out, not every method done: " + ", ".join(map(str, partial))
+                                   if partial else ""))
     return "\n".join(lines)
 
 

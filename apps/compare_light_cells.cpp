@@ -41,7 +41,9 @@ nlohmann::json cellsJson(const std::vector<CellError>& cells) {
                    {"ratio_error", number(c.ratioError)},
                    {"rel_rmse", number(c.relRmse)},
                    {"rel_rmse_without_noise", number(c.relRmseWithoutNoise)},
-                   {"reference_noise", number(c.referenceNoise)}});
+                   {"reference_noise", number(c.referenceNoise)},
+                   {"red_green_ratio", number(c.redGreenRatio)},
+                   {"blue_green_ratio", number(c.blueGreenRatio)}});
   return out;
 }
 

@@ -18,10 +18,11 @@
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
 #include "apps/compare_light_resample.h"
+#include "apps/compare_light_seams.h"
 #include "apps/options.h"
-#include "radiosity/bake/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "radiosity/bake/report_page.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/metrics/metrics.h"
 #include "radiosity/metrics/texel_sample.h"
@@ -93,6 +94,13 @@ std::optional<double> referenceNoise(const Lightmap& b, std::span<const float> w
   return signal > 0.0 ? std::sqrt(noise / signal) : 0.0;
 }
 
+// The texels' weights without the lamps.
+std::vector<float> reflectorArea(std::vector<float> area, const std::vector<float>& emissive) {
+  for (size_t i = 0; i < area.size(); ++i)
+    if (emissive[i] > 0.5f) area[i] = 0.0f;
+  return area;
+}
+
 // --report DIR: the page with the error per texel; the heat map leaves out the lamps as the figures
 // without lamps do, and the untraced texels of a sample (`area` is 0 there).
 void writeReportPage(const CompareLightOptions& o, const nlohmann::json& figures, const Lightmap& a,
@@ -138,8 +146,15 @@ void readOnAtlasOf(const CompareLightOptions& o, const Lightmap& b, Lightmap& a)
       std::cerr << "compare-light: the atlases differ; " << o.a << " is read at " << o.b
                 << "'s texels through " << scene << "\n";
   }
-  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height);
-  a.area = b.area;
+  std::vector<char> unread;
+  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height, &unread);
+  a.area = b.area;  // 0 where A has nothing to read: left out of every figure
+  const size_t left = size_t(std::count(unread.begin(), unread.end(), char(1)));
+  for (size_t i = 0; i < unread.size(); ++i)
+    if (unread[i]) a.area[i] = 0.0f;
+  if (left > 0)
+    std::cerr << "compare-light: warning: " << left << " of " << o.b << "'s texels lie on surfaces " << o.a
+              << "/baked.glb does not hold; left out\n";
   a.emissive.clear();
   a.cell.clear();
 }
@@ -159,6 +174,8 @@ int runCompareLight(const CompareLightOptions& o) {
   const bool sparse = !b.sampleWeight.empty();
   const size_t valid = size_t(std::count_if(b.area.begin(), b.area.end(), [](float x) { return x > 0.0f; }));
   std::vector<float> area = b.area;
+  for (size_t i = 0; i < area.size(); ++i)
+    if (!(a.area[i] > 0.0f)) area[i] = 0.0f;
   if (sparse)
     for (size_t i = 0; i < area.size(); ++i) area[i] *= b.sampleWeight[i];
   const LightmapError e = compareLightmaps(a.rgb.pixels, b.rgb.pixels, area);
@@ -217,6 +234,10 @@ int runCompareLight(const CompareLightOptions& o) {
   j["reference_noise_nonemissive"] = orNull(noiseReflectors);
   j["cells"] = cellsJson(cells);
   j["worst_cell"] = worst ? nlohmann::json(cells[*worst].name) : nlohmann::json(nullptr);
+  std::string seamsWhy;
+  j["portal_seams"] = portalSeamsJson(o.scene.empty() ? recordedScene(o.b, o.a) : o.scene, o.b, a.rgb.pixels,
+                                      b.rgb.pixels, reflectors ? reflectorArea(area, emissive) : area, b.area,
+                                      b.rgb.width, b.rgb.height, seamsWhy);
   if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive, bench);
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -243,6 +264,9 @@ int runCompareLight(const CompareLightOptions& o) {
   }
   if (noiseReflectors) std::printf("reference noise w/o lamps  %.4f%%\n", 100.0 * *noiseReflectors);
   if (!cells.empty()) printCells(cells);
+  if (j["portal_seams"].is_null())
+    std::printf("portal seams               not measured: %s\n", seamsWhy.c_str());
+  printPortalSeams(j["portal_seams"]);
   if (noise && e.relRmse < 2.0 * *noise)
     std::printf("note: rel_rmse is within 2x the reference's noise; trace the reference with more --spp\n");
   return 0;

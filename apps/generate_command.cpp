@@ -9,6 +9,7 @@
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/scene_io.h"
+#include "scenes/random_plans.h"
 #include "scenes/stability_scenes.h"
 
 namespace cpgi::cli {
@@ -17,8 +18,9 @@ namespace {
 struct GenerateOptions {
   std::string name;
   std::string output;
-  bool noCells = false;  ///< the raw model, as a user would bring it
+  bool noCells = false;      ///< the raw model, as a user would bring it
   bool volumesOnly = false;  ///< the rooms as cellvolume: meshes alone, as an IFC export gives them
+  RandomPlanOptions plan;    ///< name "plan": a random floor plan (scenes/random_plans.h)
 };
 
 int runGenerate(const GenerateOptions& o) {
@@ -26,11 +28,11 @@ int runGenerate(const GenerateOptions& o) {
   if (ext != ".glb" && ext != ".gltf") throw InputError(o.output, "output must end in .glb or .gltf");
   SeedScene scene;
   try {
-    scene = makeBuiltinScene(o.name);
+    scene = o.name == "plan" ? makeRandomPlan(o.plan) : makeBuiltinScene(o.name);
   } catch (const std::invalid_argument&) {
     std::string known;
     for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
-    throw InputError(o.name, "unknown built-in scene (known: " + known + ")");
+    throw InputError(o.name, "unknown built-in scene (known: " + known + ", plan)");
   }
   const auto parent = std::filesystem::path(o.output).parent_path();
   std::error_code ec;
@@ -58,6 +60,7 @@ void addGenerateCommand(CLI::App& app, CommandFn& selected) {
   auto options = std::make_shared<GenerateOptions>();
   std::string names;
   for (const std::string& n : builtinSceneNames()) names += (names.empty() ? "" : ", ") + n;
+  names += ", plan (a random floor plan: --seed, --rooms)";
   CLI::App* sub = app.add_subcommand("generate", "Write a built-in scene as glTF, with its hand-made cells");
   sub->add_option("name", options->name, names)->required();
   sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required();
@@ -67,7 +70,16 @@ void addGenerateCommand(CLI::App& app, CommandFn& selected) {
                 "Give the rooms only as cellvolume: meshes (no cell: or portal: nodes), as an IFC export's "
                 "rooms come; the buildings have them")
       ->excludes("--no-cells");
-  sub->callback([&selected, options] { selected = [options] { return runGenerate(*options); }; });
+  sub->add_option("--seed", options->plan.seed, "With plan: the plan's seed; each gives another plan")
+      ->check(CLI::Range(uint64_t(0), uint64_t(1) << 53));
+  sub->add_option("--rooms", options->plan.rooms,
+                  "With plan: the number of rooms, 3-12 (default: from the seed)")
+      ->check(CLI::Range(3, 12));
+  sub->callback([&selected, options, sub] {
+    if (options->name != "plan" && (sub->count("--seed") > 0 || sub->count("--rooms") > 0))
+      throw CLI::ValidationError("--seed, --rooms", "only with the scene name plan");
+    selected = [options] { return runGenerate(*options); };
+  });
 }
 
 }  // namespace cpgi::cli

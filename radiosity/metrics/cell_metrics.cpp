@@ -18,6 +18,7 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
   const size_t count = names.size();
   struct Sums {
     double b = 0, r = 0, squaredError = 0, squaredReference = 0, noise = 0, meanNoise = 0;
+    glm::dvec3 bColour{0.0}, rColour{0.0};
     size_t texels = 0;
   };
   std::vector<Sums> s(count);
@@ -33,6 +34,8 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     Sums& x = s[size_t(c)];
     x.b += w * (b.x + b.y + b.z);
     x.r += w * (r.x + r.y + r.z);
+    x.bColour += w * b;
+    x.rColour += w * r;
     x.squaredError += w * glm::dot(d, d);
     x.squaredReference += w * glm::dot(r, r);
     if (!sigma.empty()) {
@@ -54,13 +57,18 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (s[c].texels == 0 || !(s[c].r > 0.0)) {
       out[c].ratioOfMeans = out[c].relRmse = out[c].referenceNoise = out[c].ratioError = nan;
-      out[c].relRmseWithoutNoise = nan;
+      out[c].relRmseWithoutNoise = out[c].redGreenRatio = out[c].blueGreenRatio = nan;
       continue;
     }
     out[c].ratioOfMeans = s[c].b / s[c].r;
     out[c].relRmse = std::sqrt(s[c].squaredError / s[c].squaredReference);
     out[c].referenceNoise = std::sqrt(s[c].noise / s[c].squaredReference);
-    out[c].relRmseWithoutNoise = std::sqrt(std::max(s[c].squaredError - s[c].noise, 0.0) / s[c].squaredReference);
+    out[c].relRmseWithoutNoise =
+        std::sqrt(std::max(s[c].squaredError - s[c].noise, 0.0) / s[c].squaredReference);
+    const glm::dvec3 bc = s[c].bColour, rc = s[c].rColour;
+    const bool green = bc.y > 0.0 && rc.y > 0.0 && rc.x > 0.0 && rc.z > 0.0;
+    out[c].redGreenRatio = green ? (bc.x / bc.y) / (rc.x / rc.y) : nan;
+    out[c].blueGreenRatio = green ? (bc.z / bc.y) / (rc.z / rc.y) : nan;
   }
   if (sparse)
     for (size_t i = 0; i < n; ++i) {

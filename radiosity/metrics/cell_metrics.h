@@ -31,6 +31,10 @@ struct CellError {
   /// Standard error of ratioOfMeans from the reference: its per-texel noise (√3 |σ|, channels taken as
   /// fully correlated, which bounds the sum's error) and, on a sparse reference, the texel sampling.
   double ratioError = 0.0;
+  /// The cell's colour against the reference's: (ΣB_r / ΣB_g) / (ΣR_r / ΣR_g) over its weighted texels,
+  /// and the same for blue over green; 1 when the light that bounced off coloured walls next door came
+  /// through with its colour (NaN where a channel of either sum is 0).
+  double redGreenRatio = 0.0, blueGreenRatio = 0.0;
 };
 
 /// Per-cell figures of `test` against `reference`; `weight` is area × sample weight (0: not compared,

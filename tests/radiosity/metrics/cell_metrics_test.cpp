@@ -81,3 +81,22 @@ TEST(CellMetrics, CellsWithoutTexelsAreNaNAndNeverWorst) {
 
 }  // namespace
 }  // namespace cpgi
+
+namespace cpgi {
+namespace {
+
+TEST(CellMetrics, ColourRatiosAgainstTheReference) {
+  // Cell 0 as bright as the reference but bluer (its red lost), cell 1 the reference's colour twice over.
+  const std::vector<glm::vec3> reference = {{0.6f, 0.3f, 0.1f}, {0.6f, 0.3f, 0.1f}, {1, 1, 1}};
+  const std::vector<glm::vec3> test = {{0.3f, 0.3f, 0.4f}, {0.3f, 0.3f, 0.4f}, {2, 2, 2}};
+  const std::vector<float> weight = {1, 1, 1}, cell = {0, 0, 1};
+  const std::vector<CellError> e = compareCells(test, reference, weight, {}, cell, {}, 3, {"A", "B"});
+  EXPECT_NEAR(e[0].ratioOfMeans, 1.0, 1e-6);
+  EXPECT_NEAR(e[0].redGreenRatio, 1.0 / 2.0, 1e-6);
+  EXPECT_NEAR(e[0].blueGreenRatio, (0.4 / 0.3) / (0.1 / 0.3), 1e-5);
+  EXPECT_NEAR(e[1].redGreenRatio, 1.0, 1e-6);
+  EXPECT_NEAR(e[1].blueGreenRatio, 1.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -26,12 +26,9 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   gltf.cells = cells.empty() ? nullptr : &cells;
   gltf.lightmapPng = encodePng(image, result.exposure / std::numbers::pi_v<float>);
   writeFileAtomically(out.file("lightmap.png"), gltf.lightmapPng);
-  // writeGltf picks the format by extension, which OutputDir's temporary name does not end in.
-  const std::filesystem::path staged = out.file("baked.glb");
-  std::filesystem::path withExtension = staged;
-  withExtension += ".glb";
-  writeGltf(withExtension.string(), scene, gltf);
-  std::filesystem::rename(withExtension, staged);
+  // A staged name keeps its extension, by which writeGltf picks the format; a write error names the file
+  // as the user knows it (DIR/baked.glb).
+  writeGltf(out.file("baked.glb").string(), scene, gltf);
 
   RenderedViews views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams, viewsDeadline);
   result.views = std::move(views.written);

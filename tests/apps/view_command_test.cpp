@@ -145,9 +145,11 @@ TEST_F(ViewCommand, FullDiskFailsInOneLineAndCommitsNothing) {
       EXPECT_NE(line.find(": cannot write: File too large"), std::string::npos) << line;
     }
   EXPECT_EQ(errors, 1u) << r.out;
-  if (fs::exists(out))
-    for (const auto& e : fs::directory_iterator(out))
+  if (fs::exists(out)) {
+    for (const auto& e : fs::directory_iterator(out)) {
       EXPECT_NE(e.path().filename().string().rfind("view-", 0), 0u) << "committed: " << e.path();
+    }
+  }
 }
 
 }  // namespace

@@ -75,7 +75,9 @@ TEST(RandomPlans, OpeningsLieInsideTheWallsTheyPierce) {
         EXPECT_LE(o.t1 - o.t0, 2.0f + 1e-4f) << seed;
       }
       for (const PlanOpening& q : p.openings)
-        if (&q != &o && q.a == o.a && q.b == o.b) EXPECT_FALSE(overlap1(o.t0, o.t1, q.t0, q.t1)) << seed;
+        if (&q != &o && q.a == o.a && q.b == o.b) {
+          EXPECT_FALSE(overlap1(o.t0, o.t1, q.t0, q.t1)) << seed;
+        }
     }
   }
 }

@@ -127,7 +127,9 @@ TEST(ReportInBrowser, MarkupInNamesNeverRunsAndThePageWorks) {
   scene.cameras = {eye};
 
   test::TempDir dir;
-  writeGltf(dir / "cells.glb", scene, GltfWriteOptions{.cells = &graph});
+  GltfWriteOptions cellsOnly;
+  cellsOnly.cells = &graph;
+  writeGltf(dir / "cells.glb", scene, cellsOnly);
   HtmlReportInput input;
   input.title = title;
   input.kind = "decomposition";

@@ -165,25 +165,12 @@ class BuildingMaker {
     CellGraph& cells = out_.seed.cells;
     cellsFromNodePaths(out_.seed.scene, names, cells);
     for (size_t r = 0; r < out_.rooms.size(); ++r)
-      for (const Box3& box : out_.rooms[r].boxes) addBoxMesh(box, cells.cells[r].volume);
+      for (const Box3& box : out_.rooms[r].boxes) appendBoxVolume(box.lo, box.hi, cells.cells[r].volume);
     for (const BuildingOpening& o : out_.openings) cells.portals.push_back(portalOf(o));
     return std::move(out_);
   }
 
  private:
-  static void addBoxMesh(const Box3& b, std::vector<Triangle>& out) {
-    Scene tmp;
-    SceneBuilder sb(tmp);
-    sb.material("volume", glm::vec3(0.0f));
-    const uint32_t node = sb.node("volume");
-    for (int a = 0; a < 3; ++a) {
-      const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-      sb.rect(a, b.lo[a], -1, {b.lo[a1], b.lo[a2]}, {b.hi[a1], b.hi[a2]}, 0, node);
-      sb.rect(a, b.hi[a], +1, {b.lo[a1], b.lo[a2]}, {b.hi[a1], b.hi[a2]}, 0, node);
-    }
-    out.insert(out.end(), tmp.triangles.begin(), tmp.triangles.end());
-  }
-
   PortalQuad portalOf(const BuildingOpening& o) const {
     const int a = o.axis, a1 = (a + 1) % 3, a2 = (a + 2) % 3;
     const float mid = 0.5f * (o.box.lo[a] + o.box.hi[a]);

@@ -334,19 +334,6 @@ PortalQuad portalOf(const RandomPlan& plan, const PlanOpening& o) {
   return p;
 }
 
-void addBoxMesh(glm::vec3 lo, glm::vec3 hi, std::vector<Triangle>& out) {
-  Scene tmp;
-  SceneBuilder sb(tmp);
-  sb.material("volume", glm::vec3(0.0f));
-  const uint32_t node = sb.node("volume");
-  for (int a = 0; a < 3; ++a) {
-    const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
-    sb.rect(a, lo[a], -1, {lo[a1], lo[a2]}, {hi[a1], hi[a2]}, 0, node);
-    sb.rect(a, hi[a], +1, {lo[a1], lo[a2]}, {hi[a1], hi[a2]}, 0, node);
-  }
-  out.insert(out.end(), tmp.triangles.begin(), tmp.triangles.end());
-}
-
 // A wall colour: a light neutral most of the time, one of a few strong colours (red, green, blue, yellow)
 // in about one wall of four, so that colour bleeding through a door is measurable.
 glm::vec3 wallColour(Draw& draw) {
@@ -433,7 +420,8 @@ SeedScene buildRandomPlan(const RandomPlan& plan) {
   cellsFromNodePaths(out.scene, names, out.cells);
   for (size_t r = 0; r < plan.rooms.size(); ++r) {
     const PlanRoom& room = plan.rooms[r];
-    addBoxMesh({room.lo.x, 0.0f, room.lo.y}, {room.hi.x, plan.height, room.hi.y}, out.cells.cells[r].volume);
+    appendBoxVolume({room.lo.x, 0.0f, room.lo.y}, {room.hi.x, plan.height, room.hi.y},
+                    out.cells.cells[r].volume);
   }
   for (const PlanOpening& o : plan.openings) out.cells.portals.push_back(portalOf(plan, o));
   return out;

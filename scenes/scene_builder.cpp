@@ -132,4 +132,17 @@ void cellsFromNodePaths(const Scene& scene, const std::vector<std::string>& name
   }
 }
 
+void appendBoxVolume(glm::vec3 lo, glm::vec3 hi, std::vector<Triangle>& out) {
+  Scene tmp;
+  SceneBuilder sb(tmp);
+  sb.material("volume", glm::vec3(0.0f));
+  const uint32_t node = sb.node("volume");
+  for (int a = 0; a < 3; ++a) {
+    const int a1 = (a + 1) % 3, a2 = (a + 2) % 3;
+    sb.rect(a, lo[a], -1, {lo[a1], lo[a2]}, {hi[a1], hi[a2]}, 0, node);
+    sb.rect(a, hi[a], +1, {lo[a1], lo[a2]}, {hi[a1], hi[a2]}, 0, node);
+  }
+  out.insert(out.end(), tmp.triangles.begin(), tmp.triangles.end());
+}
+
 }  // namespace cpgi

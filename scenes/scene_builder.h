@@ -61,6 +61,10 @@ class SceneBuilder {
 /// A 60° camera at `eye` looking at `target`, y up.
 Camera lookAt(const std::string& name, glm::vec3 eye, glm::vec3 target);
 
+/// The twelve triangles of the box [lo, hi], its faces outward, appended to `out`: a room given as a volume
+/// (CellGraph's cell volume).
+void appendBoxVolume(glm::vec3 lo, glm::vec3 hi, std::vector<Triangle>& out);
+
 /// One cell per name; each triangle goes to the cell named by the first component of its node path
 /// ("B/door-AB" belongs to B), the convention of every generated scene.
 void cellsFromNodePaths(const Scene& scene, const std::vector<std::string>& names, CellGraph& cells);

@@ -160,11 +160,14 @@ CPGI_JSON_FIELDS(BakeSettings::Limits, timeLimit, maxMemory, refuseEndless)
 namespace decomp {
 CPGI_JSON_FIELDS(ClassifyParams, minComponentVolume)
 CPGI_JSON_FIELDS(WatershedParams, levelStep)
-CPGI_JSON_FIELDS(MergeParams, saddleRatio, minDepth, openingRatio, minCellVolume, outsideSaddleRatio)
+CPGI_JSON_FIELDS(MergeParams, saddleRatio, minDepth, openingRatio, minCellVolume, minClosedPeak,
+                 outsideSaddleRatio)
+CPGI_JSON_FIELDS(BehindParams, backToFront)
+CPGI_JSON_FIELDS(PortalMergeParams, maxAngleDegrees, maxGapVoxels, maxFill)
 CPGI_JSON_FIELDS(PortalParams, marginVoxels, searchRange, extraRounds)
 CPGI_JSON_FIELDS(AssignParams, sampleSpacing, maxSamplesPerEdge, maxSplitDepth, backSearch)
 CPGI_JSON_FIELDS(DecomposeParams, voxelSize, minAutoVoxel, autoVoxelBudget, sealRadius, memoryLimit,
-                 outsideMargin, classify, watershed, merge, portals, assign, sourceName)
+                 outsideMargin, classify, watershed, merge, behind, portals, portalMerge, assign, sourceName)
 }  // namespace decomp
 
 CPGI_JSON_FIELDS(BakeSettings::Cells, method, source, params, decompose, onlyCells, around, depth, boundary)

@@ -21,6 +21,19 @@ inline const EglContext& sharedGl() {
   return *gl;
 }
 
+/// seed1 at a coarse fixed resolution and an early stop: a bake of seconds, not minutes, for the suites
+/// that test what a bake does rather than how well it lights.
+inline BakeSettings quickSeed1() {
+  BakeSettings s;
+  s.input.scene = "seed1";
+  s.atlas.densityAuto = false;
+  s.atlas.params.texelsPerQuad = 4;
+  s.solver.params.unshotFraction = 0.05;
+  s.solver.params.itemBuffer = 128;
+  s.output.views.width = 32;
+  return s;
+}
+
 /// bake() of `scene` with its `cells` (the scene's own for a global bake) on the shared context.
 inline BakeResult bakeHere(const Scene& scene, const CellGraph& cells, const BakeSettings& settings) {
   Context ctx;

@@ -22,16 +22,8 @@
 namespace cpgi {
 namespace {
 
-// seed1 coarse, as bake_test.cpp's quick bake.
 BakeSettings quick() {
-  BakeSettings s;
-  s.input.scene = "seed1";
-  s.atlas.densityAuto = false;
-  s.atlas.params.texelsPerQuad = 4;
-  s.solver.params.unshotFraction = 0.05;
-  s.solver.params.itemBuffer = 128;
-  s.output.views.width = 32;
-  return s;
+  return test::quickSeed1();
 }
 
 // A run whose time limit of one second passed ten seconds before the bake starts.

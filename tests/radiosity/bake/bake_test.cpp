@@ -12,21 +12,14 @@
 #include "radiosity/bake/bake.h"
 #include "radiosity/bake/bake_jobs.h"
 #include "scenes/seed_scenes.h"
+#include "tests/support/in_process_bake.h"
 #include "tests/support/temp_dir.h"
 
 namespace cpgi {
 namespace {
 
-// seed1 at a coarse fixed resolution and an early stop: seconds, not minutes.
 BakeSettings quick() {
-  BakeSettings s;
-  s.input.scene = "seed1";
-  s.atlas.densityAuto = false;
-  s.atlas.params.texelsPerQuad = 4;
-  s.solver.params.unshotFraction = 0.05;
-  s.solver.params.itemBuffer = 128;
-  s.output.views.width = 32;
-  return s;
+  return test::quickSeed1();
 }
 
 class BakeSeed1 : public testing::Test {

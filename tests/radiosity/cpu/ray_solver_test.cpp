@@ -188,6 +188,19 @@ TEST(RaySolver, AUniformClosedBoxReachesItsClosedForm) {
   ASSERT_EQ(r.shotScales.size(), size_t(r.shots));
 }
 
+// 10 W/m² on the floor (z = 0) of an atlas, as a lamp above it would have left, and its power (W, R + G + B).
+struct FloorShot {
+  std::vector<glm::vec3> irradiance;
+  double power = 0.0;
+};
+FloorShot floorShot(const LightmapAtlas& atlas) {
+  FloorShot f{std::vector<glm::vec3>(atlas.texelCount(), glm::vec3(0.0f)), 0.0};
+  for (size_t t = 0; t < atlas.texelCount(); ++t)
+    if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
+      f.irradiance[t] = glm::vec3(10.0f), f.power += 30.0 * atlas.area[t];
+  return f;
+}
+
 // A prior shot starts the books (its power emitted and shot); a refused stop shoots on; a deadline that
 // has passed stops before the first shot with everything left counted unshot.
 TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
@@ -195,12 +208,9 @@ TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), addMaterial(s, glm::vec3(0.6f)));
   Context ctx;
   const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
-  // 10 W/m² on the floor (z = 0), as a lamp above it would have left.
-  std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
-  double priorPower = 0.0;
-  for (size_t t = 0; t < atlas.texelCount(); ++t)
-    if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
-      prior[t] = glm::vec3(10.0f), priorPower += 30.0 * atlas.area[t];
+  const FloorShot floor = floorShot(atlas);
+  const std::vector<glm::vec3>& prior = floor.irradiance;
+  const double priorPower = floor.power;
   int asked = 0;
   const PriorShot first{.irradiance = prior, .emitted = priorPower};
   SolveControls c{.priorShot = &first};
@@ -231,11 +241,9 @@ TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), addMaterial(s, glm::vec3(0.7f)));
   Context ctx;
   const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.density = 4.0f}, ctx);
-  std::vector<glm::vec3> prior(atlas.texelCount(), glm::vec3(0.0f));
-  double priorPower = 0.0;
-  for (size_t t = 0; t < atlas.texelCount(); ++t)
-    if (atlas.patch[t] >= 0 && atlas.normal[t].z > 0.9f)
-      prior[t] = glm::vec3(10.0f), priorPower += 30.0 * atlas.area[t];
+  const FloorShot floor = floorShot(atlas);
+  const std::vector<glm::vec3>& prior = floor.irradiance;
+  const double priorPower = floor.power;
   const PriorShot first{.irradiance = prior, .emitted = priorPower};
   SolverParams params;
   params.unshotFraction = 0.05;

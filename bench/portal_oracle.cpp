@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
         const float w = (b.r + b.g + b.b) / float(arrivalRays);
         const glm::vec3 omega = -d;  // the light travels into dest
         pt.moments += arrivalMoment(omega, nOut, w);
-        pt.bins[size_t(arrivalBin(bins, omega))] += w;
+        pt.bins[size_t(arrivalBin(bins, omega))] += b / float(arrivalRays);
       }
       pt.lobe = fitEmissionLobe(pt.moments, nOut, lobeWidth);
     });
@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
           const float cs = std::max(cy, 0.1f);
           const float blur = std::min(atlas.area[t] * cx / (12.0f * r2 * cs * cs * cs), 0.1f);
           sum[3] += m * g * emissionLobeFactor(pt.lobe, nOut, omega, blur);
-          sum[4] += m * g * binnedEmissionFactor(pt.bins, bins, omega);
+          sum[4] += g * glm::dot(pt.irradiance, binnedEmissionFactor(pt.bins, bins, omega));
         }
       }
       got[q] = sum;

@@ -1,5 +1,6 @@
 // Where a bake's error lies: every texel a reference traced, with its position, normal, cell, distance to
-// its chart's edge, the bake's and the reference's radiosity (R + G + B) and the reference's noise, as CSV
+// its chart's edge, the bake's and the reference's radiosity (R + G + B, then per channel), its chart's
+// material and the reference's noise, as CSV
 // for a script to group (by cell, by distance to an edge, by surface). The atlas is rebuilt from the scene
 // with the bake's atlas options, so that texel positions come without a glTF reader.
 //
@@ -50,7 +51,8 @@ int main(int argc, char** argv) {
     const std::vector<float>* sigma = channel(refChannels, "stderr");
     const std::vector<float>* cell = channel(refChannels, "cell");
     const std::vector<float>* emissive = channel(refChannels, "emissive");
-    std::printf("x,y,z,nx,ny,nz,area,cell,emissive,edge,patch,bake,ref,sigma,weight\n");
+    std::printf("x,y,z,nx,ny,nz,area,cell,emissive,edge,patch,bake,ref,sigma,weight,material,"
+                "bake_r,bake_g,bake_b,ref_r,ref_g,ref_b\n");
     for (const Patch& p : atlas.patches)
       for (int j = 0; j < p.h; ++j)
         for (int i = 0; i < p.w; ++i) {
@@ -61,10 +63,11 @@ int main(int argc, char** argv) {
           const int edge = std::min(std::min(i, p.w - 1 - i), std::min(j, p.h - 1 - j));
           const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
           const glm::vec3 b = bake.pixels[t], r = ref.pixels[t];
-          std::printf("%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.6g,%g,%g,%d,%d,%.6g,%.6g,%.4g,%.4g\n", x.x, x.y, x.z,
+          std::printf("%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.6g,%g,%g,%d,%d,%.6g,%.6g,%.4g,%.4g,%u,%.6g,%.6g,%.6g,"
+                      "%.6g,%.6g,%.6g\n", x.x, x.y, x.z,
                       n.x, n.y, n.z, atlas.area[t], cell ? (*cell)[t] : -1.0f,
                       emissive ? (*emissive)[t] : 0.0f, edge, atlas.patch[t], b.r + b.g + b.b,
-                      r.r + r.g + r.b, sigma ? (*sigma)[t] : 0.0f, w);
+                      r.r + r.g + r.b, sigma ? (*sigma)[t] : 0.0f, w, p.material, b.r, b.g, b.b, r.r, r.g, r.b);
         }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -7,16 +7,19 @@
 layout(std430, binding = 17) readonly buffer EmissionLobes { vec4 emissionLobe[]; };  // 0 = Lambertian
 layout(std430, binding = 18) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
 layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
-// Binned emission (radiosity/gpu/emission_bins.h): a texel whose lobe is (0, 0, 0, −(k + 1)) emits with f
-// per bin from emissionLobe[k …], four bins a vec4 after the texels' lobes (llvmpipe allows a compute
-// shader 16 storage blocks, all taken), f normalised to mean 1 over equal-area bins of the projected disk.
+// Binned emission (radiosity/solve/emission_bins.h): a texel whose lobe is (0, 0, 0, −(k + 1)) emits with
+// f per bin and channel from emissionLobe[k …], four bins a vec4 after the texels' lobes (llvmpipe allows
+// a compute shader 16 storage blocks, all taken): the red channel's bins, then the green's, then the
+// blue's, each normalised to mean 1 over equal-area bins of the projected disk.
 #define BIN_RINGS 8
 #define BIN_SECTORS 16
 
 #ifdef BINNED
-#define BIN_VEC4 (BIN_RINGS * BIN_SECTORS / 4)
+#define BIN_VEC4 (BIN_RINGS * BIN_SECTORS / 4)  // one channel's bins
+#define BIN_SLOT_VEC4 (3 * BIN_VEC4)             // an emitter's three channels
 // A pyramid node holding binned texels has the lobe (n, −(node + 1)) and the power-weighted mean of its
-// texels' bins (a Lambertian's all ones) at nodeLobe[uNodeBins + node · BIN_VEC4 …]. It stands for them
+// texels' bins, each channel by its own power (a Lambertian's all ones), at
+// nodeLobe[uNodeBins + node · BIN_SLOT_VEC4 …]. It stands for them
 // whole only beyond BIN_FAR of its radii, where it looks smaller than about a third of the narrowest
 // bins (the rings near the horizon are 7–10° wide): without node bins every receiver took a binned portal
 // texel by texel, and openings' cells bake took 1.5× the time.
@@ -35,12 +38,18 @@ int binOf(vec3 omega) {
 }
 float component(vec4 four, int c) { return c == 0 ? four.x : c == 1 ? four.y : c == 2 ? four.z : four.w; }
 
-// f(ω) of a binned texel's lobe (0, 0, 0, −(first + 1)) or a binned node's (n, −(node + 1)), n the
-// shooter's normal.
-float binnedFactor(vec4 lobe, vec3 n, vec3 omega) {
+// f(ω) per channel of a binned texel's lobe (0, 0, 0, −(first + 1)) or a binned node's (n, −(node + 1)),
+// n the shooter's normal.
+vec3 binnedFactor(vec4 lobe, vec3 n, vec3 omega) {
   int bin = binOf(omega), k = int(-lobe.w) - 1;
-  if (dot(lobe.xyz, n) > 0.5) return component(nodeLobe[uNodeBins + k * BIN_VEC4 + (bin >> 2)], bin & 3);
-  return component(emissionLobe[k + (bin >> 2)], bin & 3);
+  int q = bin >> 2, c = bin & 3;
+  if (dot(lobe.xyz, n) > 0.5) {
+    int at = uNodeBins + k * BIN_SLOT_VEC4 + q;
+    return vec3(component(nodeLobe[at], c), component(nodeLobe[at + BIN_VEC4], c),
+                component(nodeLobe[at + 2 * BIN_VEC4], c));
+  }
+  return vec3(component(emissionLobe[k + q], c), component(emissionLobe[k + BIN_VEC4 + q], c),
+              component(emissionLobe[k + 2 * BIN_VEC4 + q], c));
 }
 #endif
 

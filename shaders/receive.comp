@@ -60,7 +60,7 @@ vec3 emitted(vec3 f, vec4 lobe, vec3 v, vec3 n) {
   if (uShooterLobes)
 #ifdef BINNED
     f *= lobe.w < 0.0 ? binnedFactor(lobe, uShooterNormal, -normalize(v))
-                      : lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
+                      : vec3(lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea)));
 #else
     f *= lobeFactor(lobe, uShooterNormal, -normalize(v), receiverBlur(v, n, uShooterNormal, gReceiverArea));
 #endif

@@ -17,53 +17,57 @@ uniform int uRegionCount;
 uniform float uTexelRadius;  // half the longer diagonal of one texel, m
 
 #ifdef BINNED
-// The node's bins (directional.glsl): its texels' or children's, weighted by power (a Lambertian's all
-// ones; by area where there is no power), summed in a fixed order.
+// The node's bins (directional.glsl): its texels' or children's, each channel weighted by its power (a
+// Lambertian's all ones; by area where the node has none of it), summed in a fixed order.
 void mixNodeBins(int self, int r, ivec2 node) {
-  int out0 = uNodeBins + self * BIN_VEC4;
-  for (int q = 0; q < BIN_VEC4; ++q) nodeLobe[out0 + q] = vec4(0.0);
-  float total = 0.0, totalArea = 0.0;
+  int out0 = uNodeBins + self * BIN_SLOT_VEC4;
+  for (int q = 0; q < BIN_SLOT_VEC4; ++q) nodeLobe[out0 + q] = vec4(0.0);
+  vec3 total = vec3(0.0);
+  float totalArea = 0.0;
   ivec4 rect = regions[r].rect;
   ivec2 below = uLevel == 1 ? rect.zw - rect.xy : levelDims(rect, uLevel - 1);
   int base = uLevel == 1 ? 0 : regions[r].levelOffset[uLevel - 1];
   ivec2 lo = 2 * node, hi = min(lo + 2, below);
-  for (int pass = 0; pass < 2; ++pass)  // by power; again by area when the node has none
+  for (int pass = 0; pass < 2; ++pass)  // by power; again by area for the channels the node has none of
     for (int y = lo.y; y < hi.y; ++y)
       for (int x = lo.x; x < hi.x; ++x) {
         vec4 lobe;
-        float w, area;
+        vec3 b;
+        float area;
         if (uLevel == 1) {
           int t = texel(rect.xy + ivec2(x, y));
           if (int(normalPatch[t].w) != uShooter) continue;
-          vec3 b = residual[t].rgb;
+          b = residual[t].rgb;
           area = posArea[t].w;
-          w = (b.r + b.g + b.b) * area;
           lobe = emissionLobe[t];
         } else {
           int c = base + y * below.x + x;
           Node child = nodes[c];
-          vec3 b = child.radiosityRadius.rgb;
+          b = child.radiosityRadius.rgb;
           area = child.centreArea.w;
-          w = (b.r + b.g + b.b) * area;
           lobe = nodeLobe[c];
         }
+        vec3 w = b * area;
         if (pass == 1) {
-          if (total > 0.0) continue;
-          w = area;
+          if (all(greaterThan(total, vec3(0.0)))) continue;
+          w = area * vec3(lessThanEqual(total, vec3(0.0)));
         }
-        if (!(w > 0.0)) continue;
+        w = max(w, vec3(0.0));
+        if (!(w.r + w.g + w.b > 0.0)) continue;
         if (pass == 0) total += w;
-        else totalArea += w;
+        else totalArea += area;
         bool binned = lobe.w < 0.0;
         int k = int(-lobe.w) - 1;
-        int from = uLevel == 1 ? k : uNodeBins + k * BIN_VEC4;
-        for (int q = 0; q < BIN_VEC4; ++q) {
+        int from = uLevel == 1 ? k : uNodeBins + k * BIN_SLOT_VEC4;
+        for (int q = 0; q < BIN_SLOT_VEC4; ++q) {
           vec4 f = !binned ? vec4(1.0) : uLevel == 1 ? emissionLobe[from + q] : nodeLobe[from + q];
-          nodeLobe[out0 + q] += w * f;
+          nodeLobe[out0 + q] += w[q / BIN_VEC4] * f;
         }
       }
-  float sum = total > 0.0 ? total : totalArea;
-  for (int q = 0; q < BIN_VEC4; ++q) nodeLobe[out0 + q] = sum > 0.0 ? nodeLobe[out0 + q] / sum : vec4(1.0);
+  for (int q = 0; q < BIN_SLOT_VEC4; ++q) {
+    float sum = total[q / BIN_VEC4] > 0.0 ? total[q / BIN_VEC4] : totalArea;
+    nodeLobe[out0 + q] = sum > 0.0 ? nodeLobe[out0 + q] / sum : vec4(1.0);
+  }
 }
 #endif
 

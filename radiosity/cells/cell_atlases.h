@@ -51,7 +51,7 @@ struct CellState {
   /// fitted into its emission lobes at the next solve; empty with diffuse portals.
   std::vector<glm::vec4> pendingMoments;
   /// Binned portals: per texel holding pending light that crossed a portal, its arrival bins
-  /// (radiosity/solve/emission_bins.h), weighted so that they sum to its pending exitance's R + G + B.
+  /// (radiosity/solve/emission_bins.h), weighted so that each channel sums to that of its pending exitance.
   std::map<int32_t, ArrivalBins> pendingBins;
   bool boundary = false;  ///< an on-demand boundary cell: coarse atlas, texels not written
 };

@@ -25,8 +25,8 @@
 namespace cpgi {
 
 /// 2: directional portals' moments; 3: binned portals' bins; 4: the figures of the stop per cell
-/// (round_stop.h)
-inline constexpr uint32_t kCellJobFormat = 4;
+/// (round_stop.h); 5: binned portals' bins per channel
+inline constexpr uint32_t kCellJobFormat = 5;
 
 enum class CellJobRecord : uint32_t {
   CellState = 1,       ///< a cell's own light after a round: kept, carried, radiosity gained

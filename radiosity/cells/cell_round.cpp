@@ -45,9 +45,9 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
     for (const auto& [tt, ft] : link.texels) send.moments.push_back(solved.arrivals[ft] * weight);
   }
   if (rays && binRays > 0) {
-    std::vector<float> weights;
+    std::vector<glm::vec3> weights;
     weights.reserve(send.exitance.size());
-    for (const auto& [tt, e] : send.exitance) weights.push_back(e.r + e.g + e.b);
+    for (const auto& [tt, e] : send.exitance) weights.push_back(e);
     send.bins = portalArrivalBins(s, solved, *rays, link, weights, binRays);
   }
   return send;
@@ -96,18 +96,17 @@ SolverParams roundBudget(const SolverParams& settings, double target, double uns
 
 std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
                                            const RayScene& rays, const PortalLink& link,
-                                           const std::vector<float>& weights, int rayCount) {
+                                           const std::vector<glm::vec3>& weights, int rayCount) {
   const LightmapAtlas& a = s.atlas;
-  // What texel t shot in this solve towards ω (R + G + B, W/m²): its pending exitance (the atlas's
+  // What texel t shot in this solve towards ω (W/m² per channel): its pending exitance (the atlas's
   // emission) and what it gained, less what it left unshot; a binned emitter (a portal of this cell
   // re-emitting its neighbour's light) shapes it by its own bins.
   const ExitanceToward shotToward = [&](size_t t, const glm::vec3& omega) {
-    const glm::vec3 shot = a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t];
-    float m = std::max(shot.r + shot.g + shot.b, 0.0f);
-    if (m > 0.0f)
+    glm::vec3 shot = glm::max(a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t], glm::vec3(0.0f));
+    if (shot.r + shot.g + shot.b > 0.0f)
       if (auto own = s.pendingBins.find(int32_t(t)); own != s.pendingBins.end())
-        m *= binnedEmissionFactor(own->second, binFrame(a.normal[t]), omega);
-    return m;
+        shot *= binnedEmissionFactor(own->second, binFrame(a.normal[t]), omega);
+    return shot;
   };
   std::vector<ArrivalBins> bins(link.texels.size());
   tbb::parallel_for(size_t(0), link.texels.size(), [&](size_t k) {
@@ -120,11 +119,12 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
     for (int axis = 0; axis < 3; ++axis) seed = (seed ^ std::bit_cast<uint32_t>(origin[axis])) * 0x01000193u;
     ArrivalBins b =
         traceArrivalBins(rays, a, origin, p.texelU, p.texelV, a.normal[ft], rayCount, seed, shotToward);
-    double sum = 0.0;
-    for (float w : b) sum += w;
-    const float w = k < weights.size() ? weights[k] : 0.0f;
-    // No ray met the light the solve delivered (a sliver the rays missed): spread it as a Lambertian.
-    for (float& x : b) x = sum > 0.0 ? float(double(x) * w / sum) : w / float(kArrivalBins);
+    const glm::dvec3 sum = binTotals(b);
+    const glm::vec3 w = k < weights.size() ? weights[k] : glm::vec3(0.0f);
+    // Each channel scaled to the light the solve delivered; a channel no ray met (a sliver the rays
+    // missed) spread as a Lambertian.
+    for (int c = 0; c < 3; ++c)
+      for (glm::vec3& x : b) x[c] = sum[c] > 0.0 ? float(double(x[c]) * w[c] / sum[c]) : w[c] / float(kArrivalBins);
     bins[k] = b;
   });
   return bins;
@@ -145,11 +145,13 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
   // A texel's residual is the part of its pending exitance it did not shoot (portal texels have albedo 0
   // and gain none), so its moments (and bins) are the pending ones scaled by the same share.
   for (const auto& [t, bins] : s.pendingBins) {
-    const float pending = s.pending[size_t(t)].r + s.pending[size_t(t)].g + s.pending[size_t(t)].b;
-    const float left = r.kept[size_t(t)].r + r.kept[size_t(t)].g + r.kept[size_t(t)].b;
-    if (!(pending > 0.0f && left > 0.0f)) continue;
+    const glm::vec3 pending = s.pending[size_t(t)], left = r.kept[size_t(t)];
+    if (!(pending.r + pending.g + pending.b > 0.0f && left.r + left.g + left.b > 0.0f)) continue;
+    glm::vec3 share(0.0f);
+    for (int c = 0; c < 3; ++c)
+      if (pending[c] > 0.0f) share[c] = std::clamp(left[c] / pending[c], 0.0f, 1.0f);
     ArrivalBins kept = bins;
-    for (float& x : kept) x *= std::min(left / pending, 1.0f);
+    for (glm::vec3& x : kept) x *= share;
     r.keptBins.emplace(t, kept);
   }
   if (!s.pendingMoments.empty()) {

@@ -101,11 +101,11 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
 
 /// Per entry of `link.texels`, the arrival bins at its sending texel by `rays` rays into cell `s`, each
 /// taking the exitance the texel it meets shot in `solved` (what it held pending, plus what it gained,
-/// less what it left unshot), shaped by that texel's own bins where it has any; scaled to sum to
-/// `weights[k]`. Deterministic: the rays of a texel depend on where it is only.
+/// less what it left unshot), shaped by that texel's own bins where it has any; each channel scaled to
+/// sum to that channel of `weights[k]`. Deterministic: the rays of a texel depend on where it is only.
 std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
                                            const RayScene& rays, const PortalLink& link,
-                                           const std::vector<float>& weights, int rayCount);
+                                           const std::vector<glm::vec3>& weights, int rayCount);
 
 /// Cell `c`'s round when it waits: its pending light kept, nothing sent.
 CellRound waitingCellRound(size_t c, const CellState& s);

@@ -34,13 +34,12 @@ SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams&
   // as Lambertians.
   std::vector<glm::vec4> lobes(s.atlas.texelCount(), glm::vec4(0.0f));
   std::vector<float> bins;
-  bins.reserve(s.pendingBins.size() * kArrivalBins);
+  bins.reserve(s.pendingBins.size() * kBinSlotFloats);
   for (const auto& [t, b] : s.pendingBins) {
-    double sum = 0.0;
-    for (float w : b) sum += w;
-    if (!(sum > 0.0) || size_t(t) >= lobes.size()) continue;
-    lobes[size_t(t)] = binnedLobe(int(bins.size() / kArrivalBins));
-    const ArrivalBins f = normalisedEmissionBins(b);
+    const glm::dvec3 sum = binTotals(b);
+    if (!(sum.r + sum.g + sum.b > 0.0) || size_t(t) >= lobes.size()) continue;
+    lobes[size_t(t)] = binnedLobe(int(bins.size() / kBinSlotFloats));
+    const EmissionBinSlot f = normalisedEmissionBins(b);
     bins.insert(bins.end(), f.begin(), f.end());
   }
   shape.directionalEmission = true;

@@ -37,7 +37,7 @@ struct FarPiece {
   glm::vec3 radiosity{0.0f};
   glm::vec3 mean{0.0f}, spreadU{0.0f}, spreadV{0.0f};  // world-space: mean ± spreadU ± spreadV
   /// Its texels' lobes mixed (mixedLobe); a node holding binned texels: (n, −(k + 1)), its bins the k-th
-  /// kArrivalBins of RegionPieces::nodeBins.
+  /// slot (kBinSlotFloats) of RegionPieces::nodeBins.
   glm::vec4 lobe{0.0f};
 };
 
@@ -54,7 +54,7 @@ struct RegionPieces {
   std::vector<glm::vec3> eyes;   // drawn by power, stratified: each stands for an equal share of it
   std::vector<PieceNode> nodes;  // nodes[0]: the whole region
   std::vector<ShooterTexel> texels;
-  std::vector<float> nodeBins;  // kArrivalBins per binned node (FarPiece::lobe)
+  std::vector<float> nodeBins;  // kBinSlotFloats per binned node (FarPiece::lobe)
   const FarPiece& whole() const { return nodes[0].piece; }
 };
 
@@ -129,16 +129,23 @@ struct LobeMix {
   }
 };
 
-// A piece's bins, kArrivalBins from `bins` (ShooterEmission::bins for a texel, RegionPieces::nodeBins for
-// a node, told apart as the shader does: a node's lobe holds the shooter's normal).
+// A piece's bins, a slot of kBinSlotFloats from `bins` (ShooterEmission::bins for a texel,
+// RegionPieces::nodeBins for a node, told apart as the shader does: a node's lobe holds the shooter's
+// normal).
 const float* binsOf(const glm::vec4& lobe, const glm::vec3& n, std::span<const float> texelBins,
                     std::span<const float> nodeBins) {
   const size_t k = size_t(-lobe.w) - 1;
-  return (glm::dot(glm::vec3(lobe), n) > 0.5f ? nodeBins.data() : texelBins.data()) + k * kArrivalBins;
+  return (glm::dot(glm::vec3(lobe), n) > 0.5f ? nodeBins.data() : texelBins.data()) + k * kBinSlotFloats;
+}
+
+// f of bin `b` of a slot, per channel.
+glm::vec3 binFactor(const float* slot, int b) {
+  return {slot[b], slot[kArrivalBins + b], slot[2 * kArrivalBins + b]};
 }
 
 // Node `index`'s lobe from its children's (or its texel's), and for one holding binned texels the
-// power-weighted mean of their bins (a Lambertian's all ones: shooter_pyramid.comp, mixNodeBins).
+// power-weighted mean of their bins, each channel by its own power (a Lambertian's all ones:
+// shooter_pyramid.comp, mixNodeBins).
 void mixNodeLobe(const Patch& p, int32_t index, std::span<const float> texelBins, RegionPieces& out) {
   PieceNode& node = out.nodes[size_t(index)];
   if (node.texel >= 0) {
@@ -155,18 +162,21 @@ void mixNodeLobe(const Patch& p, int32_t index, std::span<const float> texelBins
     node.piece.lobe = mix.mixed(p.normal);
     return;
   }
-  std::vector<double> bins(kArrivalBins, 0.0);
-  double sum = 0.0;
+  std::vector<double> bins(kBinSlotFloats, 0.0);
+  glm::dvec3 sum(0.0);
   for (int32_t c : node.children) {
     if (c < 0) continue;
     const FarPiece& f = out.nodes[size_t(c)].piece;
-    const double w = double(channelSum(f.radiosity)) * f.area;
+    const glm::dvec3 w = glm::dvec3(f.radiosity) * double(f.area);
     const float* from = f.lobe.w < 0.0f ? binsOf(f.lobe, p.normal, texelBins, out.nodeBins) : nullptr;
-    for (int b = 0; b < kArrivalBins; ++b) bins[size_t(b)] += w * (from ? double(from[b]) : 1.0);
+    for (int i = 0; i < kBinSlotFloats; ++i) bins[size_t(i)] += w[i / kArrivalBins] * (from ? double(from[i]) : 1.0);
     sum += w;
   }
-  const size_t k = out.nodeBins.size() / kArrivalBins;
-  for (double b : bins) out.nodeBins.push_back(sum > 0.0 ? float(b / sum) : 1.0f);
+  const size_t k = out.nodeBins.size() / kBinSlotFloats;
+  for (int i = 0; i < kBinSlotFloats; ++i) {
+    const double total = sum[i / kArrivalBins];
+    out.nodeBins.push_back(total > 0.0 ? float(bins[size_t(i)] / total) : 1.0f);
+  }
   out.nodes[size_t(index)].piece.lobe = glm::vec4(p.normal, -float(k + 1));
 }
 
@@ -262,7 +272,7 @@ struct Gather {
   glm::vec3 emitted(const glm::vec3& f, const glm::vec4& lobe, const glm::vec3& v) const {
     if (!emission || lobe == glm::vec4(0.0f)) return f;
     const glm::vec3 omega = -glm::normalize(v);
-    if (lobe.w < 0.0f) return f * binsOf(lobe, ns, emission->bins, nodeBins)[arrivalBin(frame, omega)];
+    if (lobe.w < 0.0f) return f * binFactor(binsOf(lobe, ns, emission->bins, nodeBins), arrivalBin(frame, omega));
     return f * emissionLobeFactor(lobe, ns, omega, receiverBlur(v));
   }
   glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b, const glm::vec4& lobe) const {

@@ -922,8 +922,8 @@ class GlShotBackend final : public ShotBackend {
     const size_t n = atlas_.texelCount();
     if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
     const std::span<const float> bins = params_.emissionBins;
-    if (bins.size() % kArrivalBins != 0) throw InputError("solver", "emission bins must come in whole slots");
-    const size_t slots = bins.size() / kArrivalBins, perSlot = kArrivalBins / 4;
+    if (bins.size() % kBinSlotFloats != 0) throw InputError("solver", "emission bins must come in whole slots");
+    const size_t slots = bins.size() / kBinSlotFloats, perSlot = kBinSlotFloats / 4;
     if (n + slots * perSlot >= (size_t(1) << 24))
       throw InputError("solver", "too many texels and emission bins for the lobes' float indices");
     std::vector<glm::vec4> data(n + slots * perSlot, glm::vec4(0.0f));

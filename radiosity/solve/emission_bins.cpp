@@ -39,20 +39,29 @@ int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
   return ring * kBinSectors + sector;
 }
 
-float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
-  if (!(glm::dot(omega, frame.n) > 0.0f)) return 0.0f;
-  double total = 0.0;
-  for (float w : bins) total += std::max(w, 0.0f);
-  if (!(total > 0.0)) return 1.0f;
-  return float(std::max(bins[size_t(arrivalBin(frame, omega))], 0.0f) * double(kArrivalBins) / total);
+glm::dvec3 binTotals(const ArrivalBins& bins) {
+  glm::dvec3 total(0.0);
+  for (const glm::vec3& w : bins) total += glm::dvec3(glm::max(w, glm::vec3(0.0f)));
+  return total;
 }
 
-ArrivalBins normalisedEmissionBins(const ArrivalBins& bins) {
-  double total = 0.0;
-  for (float w : bins) total += std::max(w, 0.0f);
-  ArrivalBins f;
-  for (size_t b = 0; b < f.size(); ++b)
-    f[b] = total > 0.0 ? float(std::max(bins[b], 0.0f) * double(kArrivalBins) / total) : 1.0f;
+glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
+  if (!(glm::dot(omega, frame.n) > 0.0f)) return glm::vec3(0.0f);
+  const glm::dvec3 total = binTotals(bins);
+  const glm::vec3 w = glm::max(bins[size_t(arrivalBin(frame, omega))], glm::vec3(0.0f));
+  glm::vec3 f(1.0f);
+  for (int c = 0; c < 3; ++c)
+    if (total[c] > 0.0) f[c] = float(double(w[c]) * double(kArrivalBins) / total[c]);
+  return f;
+}
+
+EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins) {
+  const glm::dvec3 total = binTotals(bins);
+  EmissionBinSlot f;
+  for (int c = 0; c < 3; ++c)
+    for (size_t b = 0; b < bins.size(); ++b)
+      f[size_t(c) * kArrivalBins + b] =
+          total[c] > 0.0 ? float(std::max(double(bins[b][c]), 0.0) * double(kArrivalBins) / total[c]) : 1.0f;
   return f;
 }
 
@@ -70,7 +79,8 @@ int64_t texelAtHit(const LightmapAtlas& atlas, int32_t triangle, float u, float 
 ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
                              const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
                              int rayCount, uint32_t seed, const ExitanceToward& exitance) {
-  ArrivalBins bins{};
+  ArrivalBins bins;
+  bins.fill(glm::vec3(0.0f));
   if (rayCount <= 0) return bins;
   const BinFrame far = binFrame(-facing);
   SplitMix rng{uint64_t(seed) * 0x2545F4914F6CDD1Dull + 1};
@@ -91,8 +101,8 @@ ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, c
     const int64_t t = texelAtHit(atlas, hit.triangle, hit.u, hit.v);
     if (t < 0) continue;
     const glm::vec3 omega = -d;  // the light travels from the hit towards the point, and on
-    const float m = exitance(size_t(t), omega);
-    if (m > 0.0f) bins[size_t(arrivalBin(far, omega))] += m / float(rayCount);
+    const glm::vec3 m = glm::max(exitance(size_t(t), omega), glm::vec3(0.0f));
+    if (m.r + m.g + m.b > 0.0f) bins[size_t(arrivalBin(far, omega))] += m / float(rayCount);
   }
   return bins;
 }

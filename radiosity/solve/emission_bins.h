@@ -4,6 +4,11 @@
 // Equal areas there are equal projected solid angles, so f normalised to mean 1 over the bins gives
 // ∫ f cos θ dω = π exactly: the exitance, hence the bookkeeping, does not depend on the shape.
 //
+// Each colour channel has its own f: the light a door passes in one direction is the colour of the wall it
+// came from (a red wall straight through the door, a white ceiling above it), and one shape for the three
+// channels handed every direction the texel's mean colour: a room lit through two doors in a row came out
+// bluer than the path tracer's (random plan 3's room R6, blue/green 1.25).
+//
 // Why bins and not the moment-fitted lobe (emission_lobes.h): through openings' narrow door the lobe gave
 // the wall beside it 0.79 of the light and the far part 1.12 (bench/portal_oracle.cpp), the gradient a
 // cells bake showed there; 8 × 16 bins give 0.97–1.02 on both of that scene's portals (bench/RESULTS.md).
@@ -25,7 +30,13 @@
 namespace cpgi {
 
 inline constexpr int kBinRings = 8, kBinSectors = 16, kArrivalBins = kBinRings * kBinSectors;
-using ArrivalBins = std::array<float, kArrivalBins>;
+/// Irradiance per arrival bin, per channel (W/m²).
+using ArrivalBins = std::array<glm::vec3, kArrivalBins>;
+/// The factors of one binned emitter as the solver reads them: f of the red channel's bins, then the
+/// green's, then the blue's (kArrivalBins each, each normalised to mean 1). Must match
+/// shaders/directional.glsl.
+inline constexpr int kBinSlotFloats = 3 * kArrivalBins;
+using EmissionBinSlot = std::array<float, kBinSlotFloats>;
 
 /// The tangent frame the bins of a surface of unit normal n are laid out in; a function of n alone, so
 /// the two sides of a portal (normals n and −n seen from the far side) agree. Must match
@@ -38,13 +49,16 @@ BinFrame binFrame(const glm::vec3& n);
 /// The bin of unit direction ω leaving the surface (ω · n > 0).
 int arrivalBin(const BinFrame& frame, const glm::vec3& omega);
 
-/// f(ω) of bins holding any non-negative weights (normalised here to mean 1): 0 behind the surface, 1 for
-/// all-zero bins (a Lambertian).
-float binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
+/// f(ω) per channel of bins holding any non-negative weights (each channel normalised here to mean 1): 0
+/// behind the surface, 1 for a channel whose bins are all zero (a Lambertian).
+glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
 
-/// The bins as the solver reads them (ShotShape::emissionBins): f per bin, mean 1; all ones for
-/// all-zero bins.
-ArrivalBins normalisedEmissionBins(const ArrivalBins& bins);
+/// The bins as the solver reads them (ShotShape::emissionBins): f per bin and channel, mean 1 in each
+/// channel; all ones for a channel whose bins are all zero.
+EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins);
+
+/// The sum over the bins, per channel.
+glm::dvec3 binTotals(const ArrivalBins& bins);
 
 /// The emission lobe (ShotShape::emissionLobes) of a texel that emits with the binned slot `slot` ≥ 0
 /// of ShotShape::emissionBins. Must match shaders/directional.glsl.
@@ -52,11 +66,11 @@ inline glm::vec4 binnedLobe(int slot) {
   return glm::vec4(0.0f, 0.0f, 0.0f, -float(slot + 1));
 }
 
-/// Per texel of `atlas` and a direction of travel ω (unit), the exitance (R + G + B, W/m²) it sent
+/// Per texel of `atlas` and a direction of travel ω (unit), the exitance (W/m², per channel) it sent
 /// towards ω: its Lambertian shot, or that times its own emission shape.
-using ExitanceToward = std::function<float(size_t texel, const glm::vec3& omega)>;
+using ExitanceToward = std::function<glm::vec3(size_t texel, const glm::vec3& omega)>;
 
-/// Irradiance per arrival bin (R + G + B, W/m²) at the parallelogram origin + [0,1]·edgeU + [0,1]·edgeV of
+/// Irradiance per arrival bin and channel (W/m²) at the parallelogram origin + [0,1]·edgeU + [0,1]·edgeV of
 /// a surface of unit normal `facing` (towards where the light comes from), by `rayCount` cosine-weighted
 /// rays from points stratified over it; the bins are those of the far side (normal −facing), on which the
 /// light travels on. A ray that hits nothing or a texel outside the atlas brings nothing. Deterministic

@@ -1,6 +1,7 @@
 // Binned directional emission (radiosity/solve/emission_bins.h): equal-area bins make ∫ f cos θ dω = π for
-// any weights; a square above a point gives, by rays, its closed-form irradiance, all of it in the bins its
-// directions fall in.
+// any weights, in each channel; a square above a point gives, by rays, its closed-form irradiance, all of
+// it in the bins its directions fall in; an emitter whose colour depends on the direction lights a wall
+// with the colour each part of it gets.
 #include "radiosity/solve/emission_bins.h"
 
 #include <cmath>
@@ -21,19 +22,23 @@ using namespace testing;
 
 constexpr double kPi = std::numbers::pi;
 
-// (1/π) ∫ f cos θ dω by cosine-weighted sampling: 1 for a normalised emission.
-double meanFactor(const ArrivalBins& bins, const glm::vec3& n, int samples) {
+// (1/π) ∫ f cos θ dω per channel by cosine-weighted sampling: 1 for a normalised emission.
+glm::dvec3 meanFactor(const ArrivalBins& bins, const glm::vec3& n, int samples) {
   const BinFrame frame = binFrame(n);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> U(0.0f, 1.0f);
-  double sum = 0.0;
+  glm::dvec3 sum(0.0);
   for (int k = 0; k < samples; ++k) {
     const float r = std::sqrt(U(rng)), phi = float(2.0 * kPi) * U(rng);
     const glm::vec3 w = r * std::cos(phi) * frame.t1 + r * std::sin(phi) * frame.t2 +
                         std::sqrt(std::max(0.0f, 1.0f - r * r)) * frame.n;
-    sum += binnedEmissionFactor(bins, frame, glm::normalize(w));
+    sum += glm::dvec3(binnedEmissionFactor(bins, frame, glm::normalize(w)));
   }
-  return sum / samples;
+  return sum / double(samples);
+}
+
+void expectEachChannel(const glm::dvec3& v, double expected, double tolerance) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], expected, tolerance) << "channel " << c;
 }
 
 TEST(EmissionBins, AnyWeightsKeepTheExitance) {
@@ -42,10 +47,12 @@ TEST(EmissionBins, AnyWeightsKeepTheExitance) {
   for (const glm::vec3 n :
        {glm::vec3(0, 0, 1), glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.8f, 0.5f))}) {
     ArrivalBins bins{};
-    for (float& b : bins) b = U(rng) < 0.3f ? 10.0f * U(rng) : 0.0f;  // spiky, with empty bins
-    EXPECT_NEAR(meanFactor(bins, n, 400000), 1.0, 0.01);
-    EXPECT_NEAR(meanFactor(ArrivalBins{}, n, 1000), 1.0, 1e-9);    // no weights: a Lambertian
-    EXPECT_EQ(binnedEmissionFactor(bins, binFrame(n), -n), 0.0f);  // nothing behind the surface
+    for (glm::vec3& b : bins)  // spiky, with empty bins, each channel its own way; no blue at all
+      b = glm::vec3(U(rng) < 0.3f ? 10.0f * U(rng) : 0.0f, U(rng) < 0.1f ? U(rng) : 0.0f, 0.0f);
+    expectEachChannel(meanFactor(bins, n, 400000), 1.0, 0.01);
+    EXPECT_EQ(binnedEmissionFactor(bins, binFrame(n), n).b, 1.0f);  // a channel without weights: Lambertian
+    expectEachChannel(meanFactor(ArrivalBins{}, n, 1000), 1.0, 1e-9);
+    EXPECT_EQ(binnedEmissionFactor(bins, binFrame(n), -n), glm::vec3(0.0f));  // nothing behind the surface
   }
 }
 
@@ -81,25 +88,28 @@ TEST(EmissionBins, RaysGiveASquaresIrradianceInItsDirections) {
   const float side = 0.01f;
   const ArrivalBins bins = traceArrivalBins(rays, atlas, {-0.5f * side, -0.5f * side, 0.0f},
                                             {side, 0.0f, 0.0f}, {0.0f, side, 0.0f}, {0.0f, 0.0f, 1.0f},
-                                            160000, 5, [](size_t, const glm::vec3&) { return 1.0f; });
-  double total = 0.0, outer = 0.0;
+                                            160000, 5,
+                                            [](size_t, const glm::vec3&) { return glm::vec3(1.0f, 0.5f, 0.0f); });
+  glm::dvec3 total(0.0), outer(0.0);
   for (int b = 0; b < kArrivalBins; ++b) {
-    total += bins[size_t(b)];
-    if (b / kBinSectors >= 3) outer += bins[size_t(b)];
+    total += glm::dvec3(bins[size_t(b)]);
+    if (b / kBinSectors >= 3) outer += glm::dvec3(bins[size_t(b)]);
   }
   const double expected = 2.0 / kPi * (2.0 * 0.5 / std::sqrt(1.25) * std::atan(0.5 / std::sqrt(1.25)));
-  EXPECT_NEAR(total, expected, 0.015 * expected);  // 3σ of 160k rays
-  EXPECT_EQ(outer, 0.0);
+  EXPECT_NEAR(total.r, expected, 0.015 * expected);  // 3σ of 160k rays
+  EXPECT_NEAR(total.g, 0.5 * expected, 0.015 * expected);
+  EXPECT_EQ(total.b, 0.0);
+  EXPECT_EQ(outer, glm::dvec3(0.0));
   // The same light seen as one emitter of the far side: its f is 0 outside those rings, and it still
-  // keeps the exitance.
+  // keeps the exitance; blue, which no ray brought, is Lambertian.
   const BinFrame far = binFrame({0.0f, 0.0f, -1.0f});
-  EXPECT_EQ(binnedEmissionFactor(bins, far, glm::normalize(glm::vec3(1.0f, 0.0f, -0.2f))), 0.0f);
-  EXPECT_GT(binnedEmissionFactor(bins, far, glm::vec3(0.0f, 0.0f, -1.0f)), 1.5f);
-  EXPECT_NEAR(meanFactor(bins, far.n, 400000), 1.0, 0.01);
+  EXPECT_EQ(binnedEmissionFactor(bins, far, glm::normalize(glm::vec3(1.0f, 0.0f, -0.2f))), glm::vec3(0, 0, 1));
+  EXPECT_GT(binnedEmissionFactor(bins, far, glm::vec3(0.0f, 0.0f, -1.0f)).r, 1.5f);
+  expectEachChannel(meanFactor(bins, far.n, 400000), 1.0, 0.01);
 }
 
-// Bins of cosine-weighted directions around n weighted by w(ω).
-ArrivalBins binsOf(const glm::vec3& n, const std::function<float(const glm::vec3&)>& w,
+// Bins of cosine-weighted directions around n weighted by w(ω) per channel.
+ArrivalBins binsOf(const glm::vec3& n, const std::function<glm::vec3(const glm::vec3&)>& w,
                    int samples = 200000) {
   const BinFrame frame = binFrame(n);
   std::mt19937 rng(21);
@@ -115,15 +125,18 @@ ArrivalBins binsOf(const glm::vec3& n, const std::function<float(const glm::vec3
 }
 
 // A 1 m² emitter whose bins send most of its light towards a wall at right angles to it, sharing an edge
-// (a portal and the reveal beside it), some of it towards one side: what the wall gets, texel by texel
-// and in all, against the integral of the bins' radiance over the emitter by the midpoint rule; and in a
-// closed black box, what the walls catch is what left it.
+// (a portal and the reveal beside it), some of it towards one side, its red and blue each their own way:
+// what the wall gets in each channel, texel by texel and in all, against the integral of the bins'
+// radiance over the emitter by the midpoint rule; and in a closed black box, what the walls catch is what
+// left it.
 void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, double worstTexel) {
   const glm::vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
   // Per emitter row y: the light leans towards −z more the higher the row, and towards +y a little.
   auto binsAt = [&](float y) {
     return binsOf(X, [&](const glm::vec3& d) {
-      return 0.2f + std::pow(std::max(0.0f, -d.z), 2.0f) * (1.0f + 4.0f * y) + 0.5f * std::max(0.0f, d.y);
+      const float towardsWall = std::pow(std::max(0.0f, -d.z), 2.0f) * (1.0f + 4.0f * y);
+      const float sideways = std::max(0.0f, d.y), away = std::max(0.0f, d.z);
+      return glm::vec3(0.2f + towardsWall + 0.5f * sideways, 0.2f + towardsWall, 0.1f + 2.0f * away + sideways);
     });
   };
   Scene scene;
@@ -136,15 +149,15 @@ void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, d
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.texelsPerQuad = perQuad}, ctx);
   const float texel = 1.0f / float(perQuad);
   std::vector<ArrivalBins> rowBins(static_cast<size_t>(perQuad));
-  for (int i = 0; i < perQuad; ++i)
-    rowBins[size_t(i)] = normalisedEmissionBins(binsAt((float(i) + 0.5f) * texel));
+  for (int i = 0; i < perQuad; ++i) rowBins[size_t(i)] = binsAt((float(i) + 0.5f) * texel);
   std::vector<glm::vec4> lobes(atlas.texelCount(), glm::vec4(0.0f));
   std::vector<float> bins;
   for (size_t i = 0; i < atlas.texelCount(); ++i)
     if (atlas.patch[i] >= 0 && atlas.emission[i] != glm::vec3(0.0f)) {
       const int row = std::clamp(int(atlas.position[i].y / texel), 0, perQuad - 1);
-      lobes[i] = binnedLobe(int(bins.size() / kArrivalBins));
-      bins.insert(bins.end(), rowBins[size_t(row)].begin(), rowBins[size_t(row)].end());
+      lobes[i] = binnedLobe(int(bins.size() / kBinSlotFloats));
+      const EmissionBinSlot f = normalisedEmissionBins(rowBins[size_t(row)]);
+      bins.insert(bins.end(), f.begin(), f.end());
     }
   SolverParams sp;
   sp.itemBuffer = 512;
@@ -155,32 +168,38 @@ void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, d
   const BinFrame frame = binFrame(X);
   const int n = 160;
   auto irradiance = [&](const glm::vec3& x) {
-    double sum = 0.0;
+    glm::dvec3 sum(0.0);
     for (int i = 0; i < n; ++i) {
       const ArrivalBins& b = rowBins[size_t(std::min(int((i + 0.5f) / n / texel), perQuad - 1))];
       for (int j = 0; j < n; ++j) {
         const glm::vec3 s(0.0f, (i + 0.5f) / n, (j + 0.5f) / n), v = x - s;
         const float d2 = glm::dot(v, v);
         const glm::vec3 w = v / std::sqrt(d2);
-        if (w.x > 0.0f && w.z < 0.0f) sum += 10.0 * binnedEmissionFactor(b, frame, w) / kPi * w.x * -w.z / d2;
+        if (w.x > 0.0f && w.z < 0.0f)
+          sum += 10.0 * glm::dvec3(binnedEmissionFactor(b, frame, w)) / kPi * double(w.x * -w.z / d2);
       }
     }
-    return sum / (n * n);
+    return sum / double(n * n);
   };
-  double gpu = 0.0, cpu = 0.0, worst = 0.0;
+  glm::dvec3 gpu(0.0), cpu(0.0), worst(0.0);
   for (size_t t = 0; t < atlas.texelCount(); ++t) {
     if (atlas.patch[t] < 0 || atlas.normal[t].z < 0.99f) continue;
     const glm::vec3 c = atlas.position[t];
     if (c.x < 2.0f * texel) continue;  // a lamp shot's near receivers, as in EmissionLobes
-    const double e = irradiance(c), g = r.incident[t].r;
-    gpu += g * atlas.area[t];
-    cpu += e * atlas.area[t];
-    if (e > 0.2) worst = std::max(worst, std::abs(g / e - 1.0));
+    const glm::dvec3 e = irradiance(c), g = glm::dvec3(r.incident[t]);
+    gpu += g * double(atlas.area[t]);
+    cpu += e * double(atlas.area[t]);
+    for (int k = 0; k < 3; ++k)
+      if (e[k] > 0.2) worst[k] = std::max(worst[k], std::abs(g[k] / e[k] - 1.0));
   }
-  std::printf("%s binned: wall %.4f of the integral, worst texel %.3f off\n", engine.name().c_str(),
-              gpu / cpu, worst);
-  EXPECT_NEAR(gpu / cpu, 1.0, wallTolerance);
-  EXPECT_LT(worst, worstTexel);
+  std::printf("%s binned: wall R %.4f G %.4f B %.4f of the integral, worst texel %.3f %.3f %.3f off\n",
+              engine.name().c_str(), gpu.r / cpu.r, gpu.g / cpu.g, gpu.b / cpu.b, worst.r, worst.g, worst.b);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(gpu[k] / cpu[k], 1.0, wallTolerance) << "channel " << k;
+    EXPECT_LT(worst[k], worstTexel) << "channel " << k;
+  }
+  // The colour goes where its bins send it: the wall gets the blue that leans away from it only a little.
+  EXPECT_LT(cpu.b / cpu.r, 0.5);
 
   // Closed black box: the light caught is the light emitted, as for a Lambertian.
   Scene box;
@@ -190,8 +209,8 @@ void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, d
   testing::addRect(box, glm::vec3(-0.1f, 0.001f, -0.1f), glm::vec3(0, 0, 0.2f), glm::vec3(0.2f, 0, 0),
                    boxLamp);
   const LightmapAtlas boxAtlas = buildAtlas(box, findQuads(box), AtlasParams{.texelsPerQuad = 32}, ctx);
-  const ArrivalBins aimed =
-      normalisedEmissionBins(binsOf(Y, [](const glm::vec3& d) { return d.x > 0.3f ? 1.0f : 0.0f; }));
+  const EmissionBinSlot aimed = normalisedEmissionBins(
+      binsOf(Y, [](const glm::vec3& d) { return glm::vec3(d.x > 0.3f ? 1.0f : 0.0f); }));
   std::vector<glm::vec4> boxLobes(boxAtlas.texelCount(), glm::vec4(0.0f));
   for (size_t i = 0; i < boxAtlas.texelCount(); ++i)
     if (boxAtlas.patch[i] >= 0 && boxAtlas.emission[i] != glm::vec3(0.0f)) boxLobes[i] = binnedLobe(0);

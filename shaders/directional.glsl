@@ -8,48 +8,50 @@ layout(std430, binding = 17) readonly buffer EmissionLobes { vec4 emissionLobe[]
 layout(std430, binding = 18) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u + |u|² n_far), Σ w
 layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
 // Binned emission (radiosity/solve/emission_bins.h): a texel whose lobe is (0, 0, 0, −(k + 1)) emits with
-// f per bin and channel from emissionLobe[k …], four bins a vec4 after the texels' lobes (llvmpipe allows
-// a compute shader 16 storage blocks, all taken): the red channel's bins, then the green's, then the
-// blue's, each normalised to mean 1 over equal-area bins of the projected disk.
-#define BIN_RINGS 8
-#define BIN_SECTORS 16
+// f per bin and channel from emissionLobe[k …], a bin a vec4 (red, green, blue, unused) after the texels'
+// lobes (llvmpipe allows a compute shader 16 storage blocks, all taken), each channel normalised to mean 1
+// over equal-area bins of the projected disk.
+#define BIN_GRID 12
 
 #ifdef BINNED
-#define BIN_VEC4 (BIN_RINGS * BIN_SECTORS / 4)  // one channel's bins
-#define BIN_SLOT_VEC4 (3 * BIN_VEC4)             // an emitter's three channels
+#define BIN_SLOT_VEC4 (BIN_GRID * BIN_GRID)  // an emitter's bins
 // A pyramid node holding binned texels has the lobe (n, −(node + 1)) and the power-weighted mean of its
 // texels' bins, each channel by its own power (a Lambertian's all ones), at
-// nodeLobe[uNodeBins + node · BIN_SLOT_VEC4 …]. It stands for them
-// whole only beyond BIN_FAR of its radii, where it looks smaller than about a third of the narrowest
-// bins (the rings near the horizon are 7–10° wide): without node bins every receiver took a binned portal
-// texel by texel, and openings' cells bake took 1.5× the time.
+// nodeLobe[uNodeBins + node · BIN_SLOT_VEC4 …]. It stands for them whole only beyond BIN_FAR of its radii,
+// where it looks smaller than about half the narrowest bins (10° across): without node bins every
+// receiver took a binned portal texel by texel, and openings' cells bake took 1.5× the time.
 uniform int uNodeBins;
 uniform vec3 uBinT1, uBinT2;  // the shooter's binFrame (receive.comp only), set from the CPU's
 #define BIN_FAR 10.0
 
-// The bin of unit ω leaving the shooter (ω · n > 0), as arrivalBin of its binFrame.
-int binOf(vec3 omega) {
+// Where unit ω leaving the shooter (ω · n > 0) lies in the concentric map's square, in cells, as
+// binSquarePoint of its binFrame.
+vec2 binSquarePoint(vec3 omega) {
   float a = dot(omega, uBinT1), b = dot(omega, uBinT2);
-  int ring = min(int(clamp(a * a + b * b, 0.0, 1.0) * float(BIN_RINGS)), BIN_RINGS - 1);
-  float phi = atan(b, a);
-  if (phi < 0.0) phi += 2.0 * PI;
-  int sector = min(int(phi * (float(BIN_SECTORS) / (2.0 * PI))), BIN_SECTORS - 1);
-  return ring * BIN_SECTORS + sector;
+  float r = min(sqrt(a * a + b * b), 1.0), phi = atan(b, a);
+  if (phi < -0.25 * PI) phi += 2.0 * PI;
+  vec2 xy;
+  if (phi < 0.25 * PI) xy = vec2(r, r * phi * (4.0 / PI));
+  else if (phi < 0.75 * PI) xy = vec2(-r * (phi - 0.5 * PI) * (4.0 / PI), r);
+  else if (phi < 1.25 * PI) xy = vec2(-r, -r * (phi - PI) * (4.0 / PI));
+  else xy = vec2(r * (phi - 1.5 * PI) * (4.0 / PI), -r);
+  return clamp((xy + 1.0) * (0.5 * float(BIN_GRID)), vec2(0.0), vec2(float(BIN_GRID)));
 }
-float component(vec4 four, int c) { return c == 0 ? four.x : c == 1 ? four.y : c == 2 ? four.z : four.w; }
+// f per channel of bin b of the slot whose first vec4 is at `at` in emissionLobe (node: in nodeLobe).
+vec3 binValue(bool node, int at, int b) { return node ? nodeLobe[at + b].rgb : emissionLobe[at + b].rgb; }
 
 // f(ω) per channel of a binned texel's lobe (0, 0, 0, −(first + 1)) or a binned node's (n, −(node + 1)),
-// n the shooter's normal.
+// n the shooter's normal: bilinear between the bins' centres, as binTaps.
 vec3 binnedFactor(vec4 lobe, vec3 n, vec3 omega) {
-  int bin = binOf(omega), k = int(-lobe.w) - 1;
-  int q = bin >> 2, c = bin & 3;
-  if (dot(lobe.xyz, n) > 0.5) {
-    int at = uNodeBins + k * BIN_SLOT_VEC4 + q;
-    return vec3(component(nodeLobe[at], c), component(nodeLobe[at + BIN_VEC4], c),
-                component(nodeLobe[at + 2 * BIN_VEC4], c));
-  }
-  return vec3(component(emissionLobe[k + q], c), component(emissionLobe[k + BIN_VEC4 + q], c),
-              component(emissionLobe[k + 2 * BIN_VEC4 + q], c));
+  int k = int(-lobe.w) - 1;
+  bool node = dot(lobe.xyz, n) > 0.5;
+  int at = node ? uNodeBins + k * BIN_SLOT_VEC4 : k;
+  vec2 s = binSquarePoint(omega) - 0.5, lo = floor(s), t = s - lo;
+  ivec2 i0 = clamp(ivec2(lo), ivec2(0), ivec2(BIN_GRID - 1)), i1 = clamp(ivec2(lo) + 1, ivec2(0), ivec2(BIN_GRID - 1));
+  return (1.0 - t.x) * (1.0 - t.y) * binValue(node, at, i0.y * BIN_GRID + i0.x) +
+         t.x * (1.0 - t.y) * binValue(node, at, i0.y * BIN_GRID + i1.x) +
+         (1.0 - t.x) * t.y * binValue(node, at, i1.y * BIN_GRID + i0.x) +
+         t.x * t.y * binValue(node, at, i1.y * BIN_GRID + i1.x);
 }
 #endif
 

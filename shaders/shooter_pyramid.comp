@@ -61,13 +61,12 @@ void mixNodeBins(int self, int r, ivec2 node) {
         int from = uLevel == 1 ? k : uNodeBins + k * BIN_SLOT_VEC4;
         for (int q = 0; q < BIN_SLOT_VEC4; ++q) {
           vec4 f = !binned ? vec4(1.0) : uLevel == 1 ? emissionLobe[from + q] : nodeLobe[from + q];
-          nodeLobe[out0 + q] += w[q / BIN_VEC4] * f;
+          nodeLobe[out0 + q] += vec4(w, 0.0) * f;
         }
       }
-  for (int q = 0; q < BIN_SLOT_VEC4; ++q) {
-    float sum = total[q / BIN_VEC4] > 0.0 ? total[q / BIN_VEC4] : totalArea;
-    nodeLobe[out0 + q] = sum > 0.0 ? nodeLobe[out0 + q] / sum : vec4(1.0);
-  }
+  vec3 sum = mix(vec3(totalArea), total, greaterThan(total, vec3(0.0)));
+  for (int q = 0; q < BIN_SLOT_VEC4; ++q)
+    nodeLobe[out0 + q] = vec4(mix(vec3(1.0), nodeLobe[out0 + q].rgb / sum, greaterThan(sum, vec3(0.0))), 1.0);
 }
 #endif
 

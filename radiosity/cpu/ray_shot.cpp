@@ -17,7 +17,7 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 // A node holding binned texels stands for them whole only beyond this many of its radii, where it looks
-// smaller than about a third of the narrowest bins (shaders/directional.glsl, BIN_FAR).
+// smaller than about half the narrowest bins (shaders/directional.glsl, BIN_FAR).
 constexpr float kBinFar = 10.0f;
 
 // A shooter texel: where it is, its area, its unshot radiosity.
@@ -138,9 +138,14 @@ const float* binsOf(const glm::vec4& lobe, const glm::vec3& n, std::span<const f
   return (glm::dot(glm::vec3(lobe), n) > 0.5f ? nodeBins.data() : texelBins.data()) + k * kBinSlotFloats;
 }
 
-// f of bin `b` of a slot, per channel.
-glm::vec3 binFactor(const float* slot, int b) {
-  return {slot[b], slot[kArrivalBins + b], slot[2 * kArrivalBins + b]};
+// f of a slot towards a direction, per channel, interpolated between its bins (emission_bins.h).
+glm::vec3 binFactor(const float* slot, const BinTaps& taps) {
+  glm::vec3 f(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const int b = taps.bin[size_t(k)];
+    f += taps.weight[size_t(k)] * glm::vec3(slot[4 * b], slot[4 * b + 1], slot[4 * b + 2]);
+  }
+  return f;
 }
 
 // Node `index`'s lobe from its children's (or its texel's), and for one holding binned texels the
@@ -169,12 +174,13 @@ void mixNodeLobe(const Patch& p, int32_t index, std::span<const float> texelBins
     const FarPiece& f = out.nodes[size_t(c)].piece;
     const glm::dvec3 w = glm::dvec3(f.radiosity) * double(f.area);
     const float* from = f.lobe.w < 0.0f ? binsOf(f.lobe, p.normal, texelBins, out.nodeBins) : nullptr;
-    for (int i = 0; i < kBinSlotFloats; ++i) bins[size_t(i)] += w[i / kArrivalBins] * (from ? double(from[i]) : 1.0);
+    for (int i = 0; i < kBinSlotFloats; ++i)
+      if (i % 4 < 3) bins[size_t(i)] += w[i % 4] * (from ? double(from[i]) : 1.0);
     sum += w;
   }
   const size_t k = out.nodeBins.size() / kBinSlotFloats;
   for (int i = 0; i < kBinSlotFloats; ++i) {
-    const double total = sum[i / kArrivalBins];
+    const double total = i % 4 < 3 ? sum[i % 4] : 0.0;
     out.nodeBins.push_back(total > 0.0 ? float(bins[size_t(i)] / total) : 1.0f);
   }
   out.nodes[size_t(index)].piece.lobe = glm::vec4(p.normal, -float(k + 1));
@@ -272,7 +278,7 @@ struct Gather {
   glm::vec3 emitted(const glm::vec3& f, const glm::vec4& lobe, const glm::vec3& v) const {
     if (!emission || lobe == glm::vec4(0.0f)) return f;
     const glm::vec3 omega = -glm::normalize(v);
-    if (lobe.w < 0.0f) return f * binFactor(binsOf(lobe, ns, emission->bins, nodeBins), arrivalBin(frame, omega));
+    if (lobe.w < 0.0f) return f * binFactor(binsOf(lobe, ns, emission->bins, nodeBins), binTaps(frame, omega));
     return f * emissionLobeFactor(lobe, ns, omega, receiverBlur(v));
   }
   glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b, const glm::vec4& lobe) const {

@@ -7,7 +7,7 @@
 namespace cpgi {
 namespace {
 
-constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
+constexpr float kPi = std::numbers::pi_v<float>, kTwoPi = 2.0f * kPi;
 
 // A small counter-based generator: the same rays for the same seed on every machine and thread.
 struct SplitMix {
@@ -29,14 +29,36 @@ BinFrame binFrame(const glm::vec3& n) {
   return {n, t1, glm::cross(n, t1)};
 }
 
-int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
+glm::vec2 binSquarePoint(const BinFrame& frame, const glm::vec3& omega) {
+  // The inverse of the concentric map: the disk point at radius r and angle φ comes from the square's
+  // boundary of half-width r, φ measured along it from the right edge's middle.
   const float a = glm::dot(omega, frame.t1), b = glm::dot(omega, frame.t2);
-  const float r2 = std::clamp(a * a + b * b, 0.0f, 1.0f);
-  const int ring = std::min(int(r2 * float(kBinRings)), kBinRings - 1);
+  const float r = std::min(std::sqrt(a * a + b * b), 1.0f);
   float phi = std::atan2(b, a);
-  if (phi < 0.0f) phi += kTwoPi;
-  const int sector = std::min(int(phi * (float(kBinSectors) / kTwoPi)), kBinSectors - 1);
-  return ring * kBinSectors + sector;
+  if (phi < -0.25f * kPi) phi += kTwoPi;
+  glm::vec2 xy;
+  if (phi < 0.25f * kPi)
+    xy = {r, r * phi * (4.0f / kPi)};
+  else if (phi < 0.75f * kPi)
+    xy = {-r * (phi - 0.5f * kPi) * (4.0f / kPi), r};
+  else if (phi < 1.25f * kPi)
+    xy = {-r, -r * (phi - kPi) * (4.0f / kPi)};
+  else
+    xy = {r * (phi - 1.5f * kPi) * (4.0f / kPi), -r};
+  return glm::clamp((xy + 1.0f) * (0.5f * float(kBinGrid)), 0.0f, float(kBinGrid));
+}
+
+int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
+  const glm::ivec2 ij = glm::min(glm::ivec2(binSquarePoint(frame, omega)), kBinGrid - 1);
+  return ij.y * kBinGrid + ij.x;
+}
+
+BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega) {
+  const glm::vec2 s = binSquarePoint(frame, omega) - 0.5f;
+  const glm::vec2 lo = glm::floor(s), t = s - lo;
+  const glm::ivec2 i0 = glm::clamp(glm::ivec2(lo), 0, kBinGrid - 1), i1 = glm::clamp(glm::ivec2(lo) + 1, 0, kBinGrid - 1);
+  return {{i0.y * kBinGrid + i0.x, i0.y * kBinGrid + i1.x, i1.y * kBinGrid + i0.x, i1.y * kBinGrid + i1.x},
+          {(1.0f - t.x) * (1.0f - t.y), t.x * (1.0f - t.y), (1.0f - t.x) * t.y, t.x * t.y}};
 }
 
 glm::dvec3 binTotals(const ArrivalBins& bins) {
@@ -48,7 +70,9 @@ glm::dvec3 binTotals(const ArrivalBins& bins) {
 glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
   if (!(glm::dot(omega, frame.n) > 0.0f)) return glm::vec3(0.0f);
   const glm::dvec3 total = binTotals(bins);
-  const glm::vec3 w = glm::max(bins[size_t(arrivalBin(frame, omega))], glm::vec3(0.0f));
+  const BinTaps taps = binTaps(frame, omega);
+  glm::vec3 w(0.0f);
+  for (int k = 0; k < 4; ++k) w += taps.weight[size_t(k)] * glm::max(bins[size_t(taps.bin[size_t(k)])], glm::vec3(0.0f));
   glm::vec3 f(1.0f);
   for (int c = 0; c < 3; ++c)
     if (total[c] > 0.0) f[c] = float(double(w[c]) * double(kArrivalBins) / total[c]);
@@ -57,10 +81,10 @@ glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, c
 
 EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins) {
   const glm::dvec3 total = binTotals(bins);
-  EmissionBinSlot f;
-  for (int c = 0; c < 3; ++c)
-    for (size_t b = 0; b < bins.size(); ++b)
-      f[size_t(c) * kArrivalBins + b] =
+  EmissionBinSlot f{};
+  for (size_t b = 0; b < bins.size(); ++b)
+    for (int c = 0; c < 3; ++c)
+      f[4 * b + size_t(c)] =
           total[c] > 0.0 ? float(std::max(double(bins[b][c]), 0.0) * double(kArrivalBins) / total[c]) : 1.0f;
   return f;
 }

@@ -1,8 +1,15 @@
 // Binned directional emission, for portals whose light is more concentrated than one lobe can say: a
 // portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f piecewise constant over kArrivalBins
-// bins of equal area on the projected disk (u = ω_t, |u| = sin θ; rings at √(k / rings), equal sectors).
-// Equal areas there are equal projected solid angles, so f normalised to mean 1 over the bins gives
-// ∫ f cos θ dω = π exactly: the exitance, hence the bookkeeping, does not depend on the shape.
+// bins of equal area on the projected disk (u = ω_t, |u| = sin θ), the cells of a kBinGrid × kBinGrid
+// square mapped onto the disk by Shirley and Chiu's concentric map, which keeps areas and keeps the cells
+// near square everywhere. Equal areas there are equal projected solid angles, so f normalised to mean 1
+// over the bins gives ∫ f cos θ dω = π exactly: the exitance, hence the bookkeeping, does not depend on
+// the shape.
+//
+// Why that grid, not rings and sectors: light that goes straight through two doors in a row leaves the
+// second near its normal, where 8 rings of 16 sectors were wedges 21° long meeting at the pole; the beam
+// spread over them, and the wall facing the doors got 7 % too little (random plan 3, room R8), the rest
+// of the room too much. A 12 × 12 grid has cells 10° across at the pole.
 //
 // Each colour channel has its own f: the light a door passes in one direction is the colour of the wall it
 // came from (a red wall straight through the door, a white ceiling above it), and one shape for the three
@@ -29,13 +36,13 @@
 
 namespace cpgi {
 
-inline constexpr int kBinRings = 8, kBinSectors = 16, kArrivalBins = kBinRings * kBinSectors;
+inline constexpr int kBinGrid = 12, kArrivalBins = kBinGrid * kBinGrid;
 /// Irradiance per arrival bin, per channel (W/m²).
 using ArrivalBins = std::array<glm::vec3, kArrivalBins>;
-/// The factors of one binned emitter as the solver reads them: f of the red channel's bins, then the
-/// green's, then the blue's (kArrivalBins each, each normalised to mean 1). Must match
-/// shaders/directional.glsl.
-inline constexpr int kBinSlotFloats = 3 * kArrivalBins;
+/// The factors of one binned emitter as the solver reads them: per bin f of red, green and blue and an
+/// unused fourth (a vec4 a bin for the shaders), each channel normalised to mean 1 over the bins. Must
+/// match shaders/directional.glsl.
+inline constexpr int kBinSlotFloats = 4 * kArrivalBins;
 using EmissionBinSlot = std::array<float, kBinSlotFloats>;
 
 /// The tangent frame the bins of a surface of unit normal n are laid out in; a function of n alone, so
@@ -46,8 +53,24 @@ struct BinFrame {
 };
 BinFrame binFrame(const glm::vec3& n);
 
-/// The bin of unit direction ω leaving the surface (ω · n > 0).
+/// Where unit direction ω leaving the surface (ω · n > 0) lies in the concentric map's square, in cells:
+/// [0, kBinGrid)² (column, row).
+glm::vec2 binSquarePoint(const BinFrame& frame, const glm::vec3& omega);
+
+/// The bin of unit direction ω leaving the surface (ω · n > 0): row · kBinGrid + column of its cell in the
+/// concentric map's square. The histogram a portal's arrival is gathered into.
 int arrivalBin(const BinFrame& frame, const glm::vec3& omega);
+
+/// The four bins and weights that f(ω) interpolates between: bilinear in the square between the cells'
+/// centres, each edge cell's value held out to the edge. The emission reads f so, not as steps: a beam
+/// narrower than a bin lit a wall with the bin's hard edges, a step of 0.6 to 1.3 across half a metre
+/// (random plan 3, room R4). Interpolated that way, the mean over the square of f is still the mean of
+/// its bins, so the exitance does not change. Must match shaders/directional.glsl.
+struct BinTaps {
+  std::array<int, 4> bin;
+  std::array<float, 4> weight;
+};
+BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega);
 
 /// f(ω) per channel of bins holding any non-negative weights (each channel normalised here to mean 1): 0
 /// behind the surface, 1 for a channel whose bins are all zero (a Lambertian).

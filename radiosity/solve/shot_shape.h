@@ -27,8 +27,8 @@ struct ShotShape {
   /// spot-door's cells bake every reflector shot cost 1.6× the plain one for moments nobody read.
   bool arrivalMoments = true;
   /// Binned emission (radiosity/solve/emission_bins.h) for the texels whose lobe is binnedLobe(slot): slot
-  /// after slot, kBinSlotFloats factors f each: per channel kArrivalBins, normalised to mean 1
-  /// (normalisedEmissionBins).
+  /// after slot, kBinSlotFloats factors f each: per bin red, green, blue and an unused fourth, each
+  /// channel normalised to mean 1 (normalisedEmissionBins).
   std::span<const float> emissionBins = {};
 
   /// Whether the emitters' own shots are a lamp's (resampled at beam edges and near the emitter, with

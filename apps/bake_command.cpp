@@ -73,6 +73,7 @@ int runBake(const BakeCommand& c) {
 }
 
 void addOnDemandOptions(CLI::App& sub, BakeSettings::Cells& c) {
+  const OptionGroup group(sub, "Cells");
   auto* only =
       sub.add_option("--only-cells", c.onlyCells,
                      "With --method cells: bake only these cells (comma-separated names); the others "
@@ -94,7 +95,9 @@ void addMethodOptions(CLI::App& sub, BakeCommand& c) {
                  "global: one progressive radiosity solve over the whole scene; cells: cell by cell, light "
                  "handed on through portals (needs --cells)")
       ->check(CLI::IsMember({"global", "cells"}))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->group("Solver");
+  const OptionGroup group(sub, "Cells");
   sub.add_option("--cells", c.settings.cells.source,
                  "With --method cells: a glTF with cell:/portal: nodes or with rooms given as cellvolume: "
                  "meshes alone (the scene itself when it has them), a decompose output folder, or auto (the "
@@ -117,6 +120,7 @@ void addSolveOptions(CLI::App& sub, BakeCommand& c) {
   addTimeLimitOption(sub, s.limits.timeLimit);
   addSolveDensityOption(sub, s.solver.solveDensity);
   addLampCoarseningOption(sub, s.solver.lampCoarsening);
+  const OptionGroup group(sub, "Solver");
   sub.add_option("--indirect-solver", c.indirect,
                  "With two levels (--solve-density): shoot the interreflection on the coarse atlas by item "
                  "buffers on the GL device (gpu), by Embree rays on the CPU (rays), or by rays where the GL "
@@ -133,6 +137,16 @@ void addSolveOptions(CLI::App& sub, BakeCommand& c) {
   addDensityToleranceOption(sub, s.atlas.autoDensity.light.tolerance);
   addMaxTexelsOption(sub, s.atlas.autoDensity.maxTexels);
 }
+
+// --help's last lines.
+constexpr const char* kBakeExamples =
+    "Examples:\n"
+    "  cpgi bake scene.glb -o out/scene                     # the defaults\n"
+    "  cpgi bake scene.glb -o out/scene --time-limit 120    # a result within two minutes\n"
+    "  cpgi bake scene.glb -o out/scene --method cells --cells auto\n"
+    "  cpgi bake house.glb -o out/house --sky cie-overcast --sun 0.3,0.8,0.2,500\n"
+    "  cpgi bake scene.glb -o out/scene --density 10 --view-size 1280x720\n"
+    "Every option: docs/commands/bake.md";
 
 // What the flags leave to be set after parsing: the names they take as the settings' enums.
 void finishSettings(BakeCommand& c, const CLI::App& sub) {
@@ -157,15 +171,19 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   auto c = std::make_shared<BakeCommand>();
   CLI::App* sub =
       app.add_subcommand("bake", "Bake diffuse global illumination into a lightmap (GPU radiosity)");
+  sub->footer(kBakeExamples);
   sub->add_option("scene", c->settings.input.scene, "Scene (.glb, .gltf, .obj)")->required();
-  sub->add_option("-o,--output", c->settings.output.folder, "Output folder")->required();
+  sub->add_option("-o,--output", c->settings.output.folder,
+                  "Output folder: lightmap.exr/.png, baked.glb, report.html/.json, view-*.png")
+      ->required()
+      ->group("Output");
   addMethodOptions(*sub, *c);
   addSolveOptions(*sub, *c);
   addViewOptions(*sub, c->settings.output.views);
   addLoadOptions(*sub, c->settings.input.load);
   addDarkOption(*sub, c->settings.input.allowDark);
   addSkyOptions(*sub, c->settings.sky, true);
-  sub->add_flag("-q,--quiet", c->quiet, "No progress or summary");
+  sub->add_flag("-q,--quiet", c->quiet, "No progress or summary")->group("Output");
   sub->callback([&selected, c, sub] {
     finishSettings(*c, *sub);
     selected = [c] { return runBake(*c); };

@@ -263,12 +263,14 @@ void addCompareCellsCommand(CLI::App& app, CommandFn& selected) {
   addLoadOptions(*cmd, o->load);
   cmd->add_flag("--json", o->json,
                 "Print JSON (adjusted_rand_index, matched_iou, portal_matches, portal_centre_error_m; with "
-                "--bake, a bake object: a, b, references, difference_points)");
+                "--bake, a bake object: a, b, references, difference_points)")
+      ->group("Output");
   CLI::Option* bake =
       cmd->add_flag("--bake", o->bake,
                     "Also bake SCENE with A's and with B's cells (bake --method cells) and give each bake's "
                     "seconds, shots, "
-                    "rounds and relative RMSE against a path-traced reference on the same atlas");
+                    "rounds and relative RMSE against a path-traced reference on the same atlas")
+          ->group("Solver");
   const OptionScope withBake{.needs = bake};
   addAtlasOptions(*cmd, o->bakeParams.atlas, withBake);
   addSolverOptions(*cmd, o->bakeParams.solver, withBake);

@@ -284,17 +284,20 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("B_DIR", opts->b, "Output folder of the reference lightmap (full, or a --texels sample)")
       ->required();
   cmd->add_flag("--json", opts->json,
-                "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)");
+                "Print JSON (rel_rmse, rel_mean_error, max_abs, texels, reference_noise, ...)")
+      ->group("Output");
   addReportOption(*cmd, opts->report);
   cmd->add_option("--bench", opts->bench,
                   "With --report: also chart speed against accuracy from this results.json of "
                   "bench/speed_accuracy.py")
-      ->needs(cmd->get_option("--report"));
+      ->needs(cmd->get_option("--report"))
+      ->group("Output");
   cmd->add_option("--scene", opts->scene,
                   "When A's atlas is not B's (another density, or --density auto): the scene both were made "
                   "from; A is read at B's texel centres as an engine reads A's baked.glb (bilinear), B's "
                   "atlas rebuilt from the scene with the options its report.json records (default: the scene "
-                  "B's or A's report.json names, when that file is there)");
+                  "B's or A's report.json names, when that file is there)")
+      ->group("Input");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }
 

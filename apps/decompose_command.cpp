@@ -8,7 +8,6 @@
 
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "radiosity/bake/report_page.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
@@ -18,6 +17,7 @@
 #include "decomposition/picture.h"
 #include "decomposition/report.h"
 #include "decomposition/volume_cells.h"
+#include "radiosity/bake/report_page.h"
 
 namespace cpgi::cli {
 namespace {
@@ -77,7 +77,8 @@ int runDecompose(DecomposeOptions o) {
   std::printf("grid %d x %d x %d; %zu triangles in, %zu out (%zu split at portals)\n", d.frame.dims.x,
               d.frame.dims.y, d.frame.dims.z, d.inputTriangles, d.scene.triangles.size(), d.splitTriangles);
   std::printf("outside: %s; voxel faces between cells not covered by a portal: %zu\n",
-              d.outsideCell >= 0 ? "a cell (\"outside\")" : "not a cell (no room opens onto it)", d.leakingFaces);
+              d.outsideCell >= 0 ? "a cell (\"outside\")" : "not a cell (no room opens onto it)",
+              d.leakingFaces);
   std::string closed, pockets;
   for (size_t c = 0; c < d.closedRoom.size(); ++c)
     if (d.closedRoom[c]) closed += (closed.empty() ? "" : ", ") + d.graph.cells[c].name;
@@ -87,8 +88,10 @@ int runDecompose(DecomposeOptions o) {
               closed.empty() ? "none" : closed.c_str(),
               d.connectedOpen ? "all reachable from each other" : "NOT all reachable from each other");
   if (!pockets.empty())
-    std::printf("sealed from the outside: no portal joins the rooms to it; only it reaches %s (space behind "
-                "one-sided walls)\n", pockets.c_str());
+    std::printf(
+        "sealed from the outside: no portal joins the rooms to it; only it reaches %s (space behind "
+        "one-sided walls)\n",
+        pockets.c_str());
   if (d.leakMerges > 0)
     std::printf("%d pairs of cells merged: they met outside any portal of theirs\n", d.leakMerges);
   for (const Context::Timing& t : ctx.timings()) std::printf("  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
@@ -108,15 +111,17 @@ void addDecomposeCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("scene", o->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--out", o->out,
                   "Output folder for cells.glb, cells.json, decomposition.png, report.html")
-      ->required();
+      ->required()
+      ->group("Output");
   addDecomposeOptions(*cmd, o->params);
   addMemoryOption(*cmd, o->params.memoryLimit);
   addLoadOptions(*cmd, o->load);
   cmd->add_flag(
-      "--from-volumes", o->fromVolumes,
-      "The cells of the scene's own rooms given as cellvolume: meshes alone (as `bake --cells SCENE` "
-      "makes them): portals where they meet an opening, every surface in the room it faces");
-  cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary");
+         "--from-volumes", o->fromVolumes,
+         "The cells of the scene's own rooms given as cellvolume: meshes alone (as `bake --cells SCENE` "
+         "makes them): portals where they meet an opening, every surface in the room it faces")
+      ->group("Cells");
+  cmd->add_flag("--json", o->json, "Print cells.json to stdout instead of the summary")->group("Output");
   cmd->callback([o, &selected] { selected = [o] { return runDecompose(*o); }; });
 }
 

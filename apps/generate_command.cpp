@@ -63,7 +63,7 @@ void addGenerateCommand(CLI::App& app, CommandFn& selected) {
   names += ", plan (a random floor plan: --seed, --rooms)";
   CLI::App* sub = app.add_subcommand("generate", "Write a built-in scene as glTF, with its hand-made cells");
   sub->add_option("name", options->name, names)->required();
-  sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required();
+  sub->add_option("-o,--output", options->output, "Output .glb or .gltf")->required()->group("Output");
   sub->add_flag("--no-cells", options->noCells,
                 "Leave out the hand-made cells and portals: the raw model, as a user would bring it");
   sub->add_flag("--volumes-only", options->volumesOnly,

@@ -143,7 +143,7 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
   CLI::App* sub =
       app.add_subcommand("info", "Describe a scene: triangles, quads, materials, emitters, cameras, cells");
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
-  sub->add_flag("--json", options->json, "Print JSON instead of text");
+  sub->add_flag("--json", options->json, "Print JSON instead of text")->group("Output");
   addLoadOptions(*sub, options->load);
   sub->callback([options, &selected] {
     selected = [options] {

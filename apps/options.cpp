@@ -3,9 +3,11 @@
 #include "core/number_list.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -192,6 +194,7 @@ std::string userMessage(const InputError& e) {
 
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool* densityAuto,
                      uint64_t* memoryLimit) {
+  const OptionGroup group(cmd, "Atlas");
   auto* tpq = scoped(cmd.add_option(flag("texels per quad"), atlas.texelsPerQuad,
                                     help(scope, "N×N texels per quad whatever its size (the thesis's mode)"))
                          ->check(within(1, 4096)),
@@ -229,6 +232,7 @@ void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool*
 }
 
 void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope) {
+  const OptionGroup group(cmd, "Limits");
   limit = defaultMemoryLimit();
   scoped(cmd.add_option_function<std::string>(
                 flag("maximum memory"), [&limit](const std::string& text) { limit = parseByteSize(text); },
@@ -247,6 +251,7 @@ void addMemoryOption(CLI::App& cmd, uint64_t& limit, OptionScope scope) {
 }
 
 void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
+  const OptionGroup group(cmd, "Solver");
   addChecked(cmd, scope, "unshot fraction", solver.unshotFraction,
              "Stop when this fraction of the emitted power is still unshot", within(1e-9, 0.999999));
   addChecked(cmd, scope, "maximum shots", solver.maxShots, "Stop after this many shots",
@@ -304,6 +309,7 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
 }
 
 void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
+  const OptionGroup group(cmd, "Solver");
   cmd.add_flag(flag("no ambient term"), noAmbient,
                "Leave out the ambient term for the power still unshot at the stop (Cohen et al. 1988)");
   addChecked(
@@ -315,6 +321,7 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
 }
 
 void addTimeLimitOption(CLI::App& cmd, double& seconds) {
+  const OptionGroup group(cmd, "Limits");
   addChecked(cmd, OptionScope{}, "time limit", seconds,
              "Stop shooting once the bake has run this many seconds (wall clock, from its start; 0: no "
              "limit) and write what it has, marked partial in report.json; the writing comes on top",
@@ -322,6 +329,7 @@ void addTimeLimitOption(CLI::App& cmd, double& seconds) {
 }
 
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
+  const OptionGroup group(cmd, "Cells");
   scoped(addChoice(cmd, flag("portal light"), cells.portals,
                    {{"diffuse", PortalLight::Diffuse},
                     {"directional", PortalLight::Directional},
@@ -347,6 +355,7 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
 }
 
 void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionScope scope) {
+  const OptionGroup group(cmd, "Cells");
   // --max-memory is the atlas's option where a command has both; the command copies it here.
   params.memoryLimit = defaultMemoryLimit();
   addChecked(cmd, scope, "voxel size", params.voxelSize,
@@ -376,11 +385,13 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {
+  const OptionGroup group(cmd, "Solver");
   addChecked(cmd, scope, "samples per texel", spp, "Reference paths per texel (noise falls as 1/sqrt(spp))",
              within(2, 1 << 20));
 }
 
 void addSolveDensityOption(CLI::App& cmd, float& density) {
+  const OptionGroup group(cmd, "Solver");
   cmd.add_option_function<std::string>(
          "--solve-density",
          [&density](const std::string& given) {
@@ -405,6 +416,7 @@ void addSolveDensityOption(CLI::App& cmd, float& density) {
 }
 
 void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
+  const OptionGroup group(cmd, "Solver");
   addChecked(
       cmd, {}, "lamp coarsening", coarsening,
       "With --solve-density: the lamps shoot first on an atlas this many times coarser than the output's "
@@ -414,6 +426,7 @@ void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
 }
 
 void addDensityToleranceOption(CLI::App& cmd, float& tolerance) {
+  const OptionGroup group(cmd, "Atlas");
   addChecked(
       cmd, {}, "density tolerance", tolerance,
       "With --density auto: the RMS miss of the lightmap's interpolation allowed over a quad, a share of "
@@ -422,6 +435,7 @@ void addDensityToleranceOption(CLI::App& cmd, float& tolerance) {
 }
 
 void addMaxTexelsOption(CLI::App& cmd, size_t& maxTexels) {
+  const OptionGroup group(cmd, "Atlas");
   addChecked(cmd, {}, "maximum texels", maxTexels,
              "With --density auto: the most texels the atlas (and the density pilot) lays out; past it every "
              "surface's texels per metre are scaled down alike to fit, said in one line (0: no limit)",
@@ -429,6 +443,7 @@ void addMaxTexelsOption(CLI::App& cmd, size_t& maxTexels) {
 }
 
 void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope scope) {
+  const OptionGroup group(cmd, "Solver");
   addChecked(cmd, scope, "cell noise", target.meanNoise,
              "Trace the texels of every cell whose mean is noisier than this (relative standard error) again "
              "with more paths, until none is or --max-spp is reached; 0: off",
@@ -438,6 +453,7 @@ void addCellNoiseOptions(CLI::App& cmd, CellNoiseTarget& target, OptionScope sco
 }
 
 CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope scope) {
+  const OptionGroup group(cmd, "Solver");
   return addChecked(
       cmd, scope, "maximum bounces", maxBounces,
       "Bounces a reference path may take at most (Russian roulette ends most far sooner); giving "
@@ -446,6 +462,7 @@ CLI::Option* addMaxBouncesOption(CLI::App& cmd, int& maxBounces, OptionScope sco
 }
 
 void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {
+  const OptionGroup group(cmd, "Cells");
   addChoice(
       cmd, flag("boundary"), mode, {{"coarse", BoundaryMode::Coarse}, {"dark", BoundaryMode::Dark}},
       "On demand: coarse (cells next to the baked ones are solved on a coarse atlas, so their lamps and "
@@ -453,6 +470,7 @@ void addBoundaryOption(CLI::App& cmd, BoundaryMode& mode) {
 }
 
 void addViewOptions(CLI::App& cmd, ViewParams& views) {
+  const OptionGroup group(cmd, "Output");
   cmd.add_option_function<std::string>(
          flag("view size"), [&views](const std::string& text) { parseViewSize(text, views); },
          "Size of the view-*.png/.exr pictures, WxH pixels (default 640 wide at the camera's aspect; the "
@@ -466,6 +484,7 @@ void addViewOptions(CLI::App& cmd, ViewParams& views) {
 }
 
 void addReportOption(CLI::App& cmd, std::string& dir) {
+  const OptionGroup group(cmd, "Output");
   cmd.add_option(flag("report folder"), dir,
                  "Also write DIR/report.html: A's baked.glb in 3D with a per-texel error heat map against B "
                  "and the per-cell figures");
@@ -515,6 +534,7 @@ MaterialOverride parseOverride(const std::string& text, const std::string& param
 }
 
 void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
+  const OptionGroup group(cmd, "Input");
   addChecked(cmd, {}, "scale", load.scale,
              "Multiply the scene's coordinates by this to get metres as it loads: a scene in Quake units "
              "(inches) takes 0.0254, centimetres 0.01, millimetres 0.001",
@@ -548,12 +568,14 @@ void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
 }
 
 void addDarkOption(CLI::App& cmd, bool& allowDark) {
+  const OptionGroup group(cmd, "Input");
   cmd.add_flag(flag("dark"), allowDark,
                "Go on when nothing lights the scene (no emissive material, no punctual light, no --emit): "
                "the result is black");
 }
 
 void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {
+  const OptionGroup group(cmd, "Sky");
   auto* kind = addChoice(
       cmd, flag("sky"), sky.kind,
       {{"none", Sky::Kind::None}, {"uniform", Sky::Kind::Uniform}, {"cie-overcast", Sky::Kind::CieOvercast}},
@@ -608,6 +630,217 @@ void addSkyOptions(CLI::App& cmd, SkyRequest& sky, bool gatherRays) {
   if (gatherRays)
     addChecked(cmd, OptionScope{}, "sky rays", sky.gatherRays,
                "Directions per texel the first shot gathers the sky and ground from", within(1, 65536));
+}
+
+OptionGroup::OptionGroup(CLI::App& cmd, std::string_view name)
+    : cmd_(cmd), previous_(cmd.option_defaults()->get_group()) {
+  cmd.option_defaults()->group(std::string(name));
+}
+
+OptionGroup::~OptionGroup() {
+  cmd_.option_defaults()->group(previous_);
+}
+
+std::vector<std::string> wrapWords(const std::string& text, size_t width) {
+  std::vector<std::string> lines;
+  std::istringstream paragraphs(text);
+  for (std::string paragraph; std::getline(paragraphs, paragraph);) {
+    if (paragraph.size() <= width) {  // as written: an example's spacing lines up its comments
+      lines.push_back(paragraph);
+      continue;
+    }
+    // A line's own indent (an example's) is kept on its first line.
+    const size_t indent = paragraph.find_first_not_of(' ');
+    std::string line = indent == std::string::npos ? "" : paragraph.substr(0, indent);
+    std::istringstream words(paragraph);
+    bool empty = true;
+    for (std::string word; words >> word;) {
+      if (!empty && line.size() + 1 + word.size() > width) {
+        lines.push_back(line);
+        line.clear();
+        empty = true;
+      }
+      line += (empty ? "" : " ") + word;
+      empty = false;
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+namespace {
+
+std::string joinLines(const std::vector<std::string>& lines, const std::string& indent) {
+  std::string out;
+  for (size_t i = 0; i < lines.size(); ++i) out += (i ? indent : "") + lines[i] + "\n";
+  return out;
+}
+
+// CLI11's formatter with the groups in kHelpGroups' order and every line wrapped at kHelpColumns: a name
+// on the left (itself wrapped when its choices and defaults run long), its description in a column
+// beside it or, when the name reaches that column, on the lines below.
+class GroupedHelp : public CLI::Formatter {
+ public:
+  GroupedHelp() { column_width(30); }
+
+  std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override {
+    if (mode == CLI::AppFormatMode::Sub) return make_expanded(app);
+    return make_description(app) + joinLines(wrapWords(make_usage(app, name), kHelpColumns), "    ") +
+           make_positionals(app) + orderedGroups(app, mode) + make_subcommands(app, mode) + "\n" +
+           make_footer(app);
+  }
+
+  std::string make_option(const CLI::Option* opt, bool positional) const override {
+    return column("  " + make_option_name(opt, positional) + make_option_opts(opt), make_option_desc(opt));
+  }
+
+  std::string make_subcommand(const CLI::App* sub) const override {
+    return column("  " + sub->get_display_name(), sub->get_description());
+  }
+
+  std::string make_description(const CLI::App* app) const override {
+    const std::string text = CLI::Formatter::make_description(app);
+    return text.empty() ? text : joinLines(wrapWords(text, kHelpColumns), "");
+  }
+
+  std::string make_footer(const CLI::App* app) const override {
+    const std::string text = app->get_footer();
+    return text.empty() ? text : joinLines(wrapWords(text, kHelpColumns), "");
+  }
+
+ private:
+  // CLI11's make_groups (not virtual) with the groups sorted by kHelpGroups.
+  std::string orderedGroups(const CLI::App* app, CLI::AppFormatMode mode) const {
+    std::vector<std::string> groups = app->get_groups();
+    std::stable_sort(groups.begin(), groups.end(),
+                     [](const std::string& a, const std::string& b) { return rank(a) < rank(b); });
+    std::string out;
+    for (const std::string& group : groups) {
+      const std::vector<const CLI::Option*> options =
+          app->get_options([app, mode, &group](const CLI::Option* o) {
+            return o->get_group() == group && o->nonpositional() &&
+                   (mode != CLI::AppFormatMode::Sub ||
+                    (app->get_help_ptr() != o && app->get_help_all_ptr() != o));
+          });
+      if (!group.empty() && !options.empty()) out += make_group(group, false, options);
+    }
+    return out;
+  }
+
+  static size_t rank(const std::string& group) {
+    for (size_t i = 0; i < std::size(kHelpGroups); ++i)
+      if (kHelpGroups[i] == group) return i + 1;
+    return 0;
+  }
+
+  std::string column(const std::string& name, const std::string& description) const {
+    const size_t width = get_column_width();
+    const std::vector<std::string> left = wrapWords(name, kHelpColumns - 6);
+    std::string out = joinLines(left, "      ");
+    if (description.empty()) return out;
+    const std::vector<std::string> right = wrapWords(description, kHelpColumns - width);
+    const std::string pad(width, ' ');
+    if (left.size() == 1 && left[0].size() + 2 <= width) {
+      out = left[0] + std::string(width - left[0].size(), ' ');
+      return out + joinLines(right, pad);
+    }
+    return out + pad + joinLines(right, pad);
+  }
+};
+
+// Optimal string alignment distance: inserts, deletes, changes and swaps of neighbours cost one each.
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+std::string lowered(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+// An option's name as typed ("--density", "-o"), not a value that happens to start with '-' ("-4",
+// "-0.3,1,0,500").
+bool isOptionName(const std::string& arg) {
+  if (arg.size() < 2 || arg[0] != '-') return false;
+  const size_t letter = arg[1] == '-' ? 2 : 1;
+  return letter < arg.size() && std::isalpha(static_cast<unsigned char>(arg[letter]));
+}
+
+std::vector<std::string> optionNames(const CLI::App& cmd) {
+  std::vector<std::string> names;
+  for (const CLI::Option* o : cmd.get_options()) {
+    for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    for (const std::string& n : o->get_snames()) names.push_back("-" + n);
+  }
+  return names;
+}
+
+std::string suggestion(const std::string& given, const std::vector<std::string>& names) {
+  const std::string near = nearestName(given, names);
+  return near.empty() ? "" : "; did you mean " + near + "?";
+}
+
+}  // namespace
+
+std::shared_ptr<CLI::Formatter> groupedHelpFormatter() {
+  return std::make_shared<GroupedHelp>();
+}
+
+std::string nearestName(const std::string& given, const std::vector<std::string>& names) {
+  const std::string typed = lowered(given);
+  const size_t letters = typed.size() - std::min(typed.find_first_not_of('-'), typed.size());
+  const size_t allowed = std::max<size_t>(1, letters / 4);
+  std::string best, onlyPrefix;
+  size_t bestDistance = allowed + 1, prefixes = 0;
+  for (const std::string& name : names) {
+    const std::string candidate = lowered(name);
+    const size_t d = editDistance(typed, candidate);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = name;
+    }
+    if (letters >= 3 && candidate.rfind(typed, 0) == 0) {
+      ++prefixes;
+      onlyPrefix = name;
+    }
+  }
+  if (!best.empty()) return best;
+  return prefixes == 1 ? onlyPrefix : "";
+}
+
+std::string unknownNameMessage(const CLI::App& app, const std::vector<std::string>& args) {
+  const CLI::App* cmd = nullptr;
+  const std::vector<const CLI::App*> commands = app.get_subcommands([](const CLI::App*) { return true; });
+  for (const std::string& arg : args) {
+    if (arg == "--") break;
+    if (isOptionName(arg)) {
+      const CLI::App& in = cmd ? *cmd : app;
+      const std::string name = arg.substr(0, arg.find('='));
+      if (in.get_option_no_throw(name)) continue;
+      const std::string where = cmd ? cmd->get_name() + ": " : "";
+      return where + name + " is not an option" + suggestion(name, optionNames(in));
+    }
+    if (cmd) continue;  // a value or a positional argument of the command
+    for (const CLI::App* c : commands)
+      if (c->check_name(arg)) cmd = c;
+    if (cmd) continue;
+    std::vector<std::string> names;
+    for (const CLI::App* c : commands) names.push_back(c->get_name());
+    const std::string near = suggestion(arg, names);
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    return printable(arg) + " is not a command" + (near.empty() ? " (the commands: " + list + ")" : near);
+  }
+  return {};
 }
 
 }  // namespace cpgi::cli

@@ -10,19 +10,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "radiosity/bake/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
-#include "radiosity/bake/lightmap_report.h"
 #include "apps/options.h"
-#include "radiosity/bake/report_page.h"
 #include "core/error.h"
-#include "radiosity/bake/bake.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/cell_source.h"
+#include "radiosity/bake/lightmap_report.h"
+#include "radiosity/bake/report_page.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
@@ -274,11 +274,13 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   cmd->add_option("SCENE", opts->scene, "Scene file (.glb, .gltf, .obj)")->required();
   cmd->add_option("-o,--output", opts->outDir,
                   "Output folder (lightmap.exr, report.json, report.html, baked.glb, view-*)")
-      ->required();
+      ->required()
+      ->group("Output");
   addAtlasOptions(*cmd, opts->atlas);
   addSppOption(*cmd, opts->trace.spp);
   auto* maxBounces = addMaxBouncesOption(*cmd, opts->trace.maxBounces);
   addCellNoiseOptions(*cmd, opts->cellNoise);
+  const OptionGroup solver(*cmd, "Solver");
   cmd->add_option("--seed", opts->trace.seed, "Random seed (same seed, same result)")->capture_default_str();
   auto* texels =
       cmd->add_option("--texels", opts->texels,
@@ -292,7 +294,7 @@ void addReferenceCommand(CLI::App& app, CommandFn& selected) {
   addLoadOptions(*cmd, opts->load);
   addDarkOption(*cmd, opts->allowDark);
   addSkyOptions(*cmd, opts->sky, false);
-  cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line");
+  cmd->add_flag("-q,--quiet", opts->quiet, "No progress and no summary line")->group("Output");
   cmd->callback([opts, texels, maxBounces, &selected] {
     opts->texelsGiven = texels->count() > 0;
     opts->maxBouncesGiven = maxBounces->count() > 0;

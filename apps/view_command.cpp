@@ -140,6 +140,7 @@ void addViewCommand(CLI::App& app, CommandFn& selected) {
       "view",
       "Render views of an existing bake or reference (its baked.glb and lightmap.exr) without baking");
   sub->add_option("dir", o->dir, "Output folder of cpgi bake or cpgi reference")->required();
+  const OptionGroup output(*sub, "Output");
   auto* camera =
       sub->add_option("--camera", o->camera,
                       "Only this camera: one of the scene's, or of the default ones (a cell's name, "

@@ -1,8 +1,12 @@
 #include "decomposition/decompose.h"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "decomposition/distance.h"
@@ -69,6 +73,32 @@ EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params,
   return e;
 }
 
+std::vector<std::string> roomNames(const std::vector<CellStats>& stats, int outsideCell) {
+  // Storeys: the cells' floors (the bottom of their empty voxels) sorted, a new storey wherever one
+  // floor stands 1.5 m or more above the one below it, as decomposition.png's plans are cut.
+  std::vector<size_t> order;
+  for (size_t c = 0; c < stats.size(); ++c)
+    if (int(c) != outsideCell) order.push_back(c);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return stats[a].bounds.lo.y < stats[b].bounds.lo.y; });
+  std::vector<int> storey(stats.size(), 0);
+  for (size_t k = 0; k < order.size(); ++k)
+    storey[order[k]] = k == 0 ? 1
+                              : storey[order[k - 1]] +
+                                    (stats[order[k]].bounds.lo.y - stats[order[k - 1]].bounds.lo.y >= 1.5f);
+  std::vector<std::string> names(stats.size());
+  std::map<std::string, int> taken;
+  for (size_t c = 0; c < stats.size(); ++c) {
+    if (int(c) == outsideCell) continue;
+    const double height = std::max(1e-6, double(stats[c].bounds.size().y));
+    const long area = std::lround(stats[c].volume / height);
+    const std::string name = "s" + std::to_string(storey[c]) + "-" + std::to_string(area) + "m2";
+    const int seen = ++taken[name];
+    names[c] = seen == 1 ? name : name + "-" + std::to_string(seen);
+  }
+  return names;
+}
+
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
   checkDecomposeInput(scene, params);
   EmptySpace empty = voxelizeEmptySpace(scene, params, ctx);
@@ -93,9 +123,10 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
   Decomposition out = finishDecomposition(scene, params, solid, std::move(space.space), distance,
                                           std::move(cells), names, ctx);
-  // Cells merged by the leak pass leave gaps in the numbering: the names follow the indices again.
+  // Named once merged (the leak pass merges too): by storey and floor area, as a person would find them.
+  const std::vector<std::string> rooms = roomNames(out.cellStats, out.outsideCell);
   for (size_t c = 0; c < out.graph.cells.size(); ++c)
-    if (int(c) != out.outsideCell) out.graph.cells[c].name = "c" + std::to_string(c);
+    if (int(c) != out.outsideCell) out.graph.cells[c].name = rooms[c];
   for (PortalQuad& q : out.graph.portals)
     q.name = "portal:" + out.graph.cells[size_t(q.cellA)].name + ":" + out.graph.cells[size_t(q.cellB)].name;
   out.voxelChoice = std::move(empty.voxelChoice);

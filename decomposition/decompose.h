@@ -39,10 +39,10 @@ struct DecomposeParams {
   /// Voxel edge, metres; 0 = choose from the scene: max(minAutoVoxel, cbrt(padded bounds volume /
   /// autoVoxelBudget)), rounded up to a whole millimetre. Explicit values must be in (0, 10].
   double voxelSize = 0.0;
-  double minAutoVoxel = 0.05;       ///< metres: finer than needed for 0.7 m doors at 14 voxels
-  double autoVoxelBudget = 4.0e6;   ///< voxels the automatic choice aims at
-  double sealRadius = 0.0;          ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
-  uint64_t memoryLimit = 0;         ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
+  double minAutoVoxel = 0.05;      ///< metres: finer than needed for 0.7 m doors at 14 voxels
+  double autoVoxelBudget = 4.0e6;  ///< voxels the automatic choice aims at
+  double sealRadius = 0.0;         ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
+  uint64_t memoryLimit = 0;        ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
   /// Metres of open space kept around the covered part of the scene, see VoxelizeParams::outsideMargin.
   double outsideMargin = VoxelizeParams().outsideMargin;
   ClassifyParams classify;
@@ -53,31 +53,36 @@ struct DecomposeParams {
   LeakParams leaks;
   PortalMergeParams portalMerge;
   AssignParams assign;
-  std::string sourceName = "scene"; ///< the input's name, for messages
+  std::string sourceName = "scene";  ///< the input's name, for messages
 };
 
 struct CellStats {
-  double volume = 0.0;   ///< m³ of its empty voxels
-  Bounds bounds;         ///< of its empty voxels' cubes
-  float peak = 0.0f;     ///< largest distance to the geometry, metres (half the room's smallest extent)
+  double volume = 0.0;  ///< m³ of its empty voxels
+  Bounds bounds;        ///< of its empty voxels' cubes
+  float peak = 0.0f;    ///< largest distance to the geometry, metres (half the room's smallest extent)
   size_t voxels = 0;
 };
 
+/// The automatic cells' names, by storey and floor area: "s1-24m2" is a cell on the lowest storey
+/// (floors 1.5 m or more apart make storeys) whose volume over its height is 24 m²; a second such cell
+/// is "s1-24m2-2". The outside cell's entry is empty (it is named "outside").
+std::vector<std::string> roomNames(const std::vector<CellStats>& stats, int outsideCell);
+
 struct Decomposition {
   Scene scene;      ///< the input, triangles split on portal planes where needed
-  CellGraph graph;  ///< cells (names "c0", "c1", …) and portals, indexing `scene`
+  CellGraph graph;  ///< cells (named by roomNames, and "outside") and portals, indexing `scene`
   std::vector<CellStats> cellStats;
   std::vector<FittedPortal> portals;  ///< per graph portal: its constriction and fit
   GridFrame frame;
-  std::vector<Space> space;           ///< per voxel
-  std::vector<int32_t> voxelCell;     ///< per voxel: the final cell, -1 for none
-  std::string voxelChoice;            ///< how the voxel size was chosen, in words
-  bool enclosed = true;               ///< false: no room was found; the outside is the only cell
-  int outsideCell = -1;               ///< the cell named "outside" (always the last), -1 when none
-  int basins = 0;                     ///< watershed basins before merging
-  int leakMerges = 0;                 ///< pairs of cells merged because they met outside any portal
-  int mergedPortalPieces = 0;         ///< portal pieces folded into another of the same pair (portal_merge.h)
-  int foldedBehind = 0;               ///< cells behind the geometry folded into another (behind.h)
+  std::vector<Space> space;        ///< per voxel
+  std::vector<int32_t> voxelCell;  ///< per voxel: the final cell, -1 for none
+  std::string voxelChoice;         ///< how the voxel size was chosen, in words
+  bool enclosed = true;            ///< false: no room was found; the outside is the only cell
+  int outsideCell = -1;            ///< the cell named "outside" (always the last), -1 when none
+  int basins = 0;                  ///< watershed basins before merging
+  int leakMerges = 0;              ///< pairs of cells merged because they met outside any portal
+  int mergedPortalPieces = 0;      ///< portal pieces folded into another of the same pair (portal_merge.h)
+  int foldedBehind = 0;            ///< cells behind the geometry folded into another (behind.h)
   /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
   /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.
   std::vector<char> closedRoom;
@@ -89,11 +94,11 @@ struct Decomposition {
   /// its pockets when no portal joins them to the rest (a sealed level), are left out.
   bool connectedOpen = true;
   int regions = 0;  ///< connected parts of the portal graph, closed rooms and the outside's part included
-  size_t leakingFaces = 0;            ///< see PortalSet::leakingFaces
+  size_t leakingFaces = 0;  ///< see PortalSet::leakingFaces
   size_t inputTriangles = 0;
   size_t splitTriangles = 0;
   size_t fallbackTriangles = 0;
-  double thinWallArea = 0.0;          ///< m², see Assignment::thinWallArea
+  double thinWallArea = 0.0;  ///< m², see Assignment::thinWallArea
   size_t sealedVoxels = 0;
 };
 

@@ -156,8 +156,8 @@ class BuildingMaker {
       if (panelLamps)
         b_.rect(1, box.hi.y - 0.01f, -1, {c.z - half, c.x - half}, {c.z + half, c.x + half}, lamp_,
                 b_.node(r.name + "/lamp"));
-      out_.seed.scene.cameras.push_back(lookAt(r.name, {box.lo.x + 0.4f, box.lo.y + 1.6f, box.lo.z + 0.4f},
-                                               {box.hi.x, box.lo.y + 0.8f, box.hi.z}));
+      // No camera of its own: a fixed corner of the room stood inside the furnished house's fridge (its
+      // kitchen view was black); a bake's default cameras find each room's empty floor by rays.
       names.push_back(r.name);
     }
     names.push_back("outside");

@@ -3,7 +3,9 @@
 #include "apps/options.h"
 
 #include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -147,6 +149,74 @@ TEST(CellSelection, ParsePoint) {
   EXPECT_EQ(parsePoint("1,-2.5, 3e1", "--around"), glm::vec3(1.0f, -2.5f, 30.0f));
   for (const char* bad : {"", "1,2", "1,2,3,4", "1,x,3", "1,2,3m", "1,nan,3", "1,,3"})
     EXPECT_THROW(parsePoint(bad, "--around"), InputError) << bad;
+}
+
+}  // namespace
+}  // namespace cpgi::cli
+
+namespace cpgi::cli {
+namespace {
+
+TEST(Options, NearestNameForgivesWhatAUserMistypes) {
+  const std::vector<std::string> names = {"--density", "--density-tolerance", "--voxel", "--seal", "-o",
+                                          "--output"};
+  EXPECT_EQ(nearestName("--densty", names), "--density");                 // a letter left out
+  EXPECT_EQ(nearestName("--desnity", names), "--density");                // two swapped
+  EXPECT_EQ(nearestName("--VOXLE", names), "--voxel");                    // case, a swap
+  EXPECT_EQ(nearestName("--density-tol", names), "--density-tolerance");  // the only one it begins
+  EXPECT_EQ(nearestName("--bananas", names), "");
+  EXPECT_EQ(nearestName("genrate", {"info", "generate", "bake"}), "generate");
+}
+
+TEST(Options, UnknownNameMessageNamesTheCommandAndTheNearestOption) {
+  CLI::App app;
+  CLI::App* bake = app.add_subcommand("bake");
+  AtlasParams atlas;
+  bool densityAuto = true;
+  addAtlasOptions(*bake, atlas, {}, &densityAuto);
+  bake->add_option("scene");
+  EXPECT_EQ(unknownNameMessage(app, {"bake", "s.glb", "--densty", "5"}),
+            "bake: --densty is not an option; did you mean --density?");
+  EXPECT_EQ(unknownNameMessage(app, {"bake", "s.glb", "--densty=5"}),
+            "bake: --densty is not an option; did you mean --density?");
+  EXPECT_EQ(unknownNameMessage(app, {"bkae", "s.glb"}), "bkae is not a command; did you mean bake?");
+  // Every name known (the error is another): nothing to say; values that start with '-' are no names.
+  EXPECT_EQ(unknownNameMessage(app, {"bake", "s.glb", "--density", "-4"}), "");
+  EXPECT_EQ(unknownNameMessage(app, {"bake", "--", "--densty"}), "");
+}
+
+TEST(Options, WrapWordsKeepsLinesWithinTheWidth) {
+  const std::vector<std::string> lines = wrapWords("one two three four five six\n  indented line", 12);
+  for (const std::string& line : lines) EXPECT_LE(line.size(), 12u) << line;
+  EXPECT_EQ(lines, (std::vector<std::string>{"one two", "three four", "five six", "  indented", "line"}));
+  EXPECT_EQ(wrapWords("  a   b", 12).front(), "  a   b");  // a line that fits stays as written
+  EXPECT_EQ(wrapWords("averyveryverylongword x", 5).front(), "averyveryverylongword");
+}
+
+// The groups of --help: each add*Options files its flags under its topic, the group before restored.
+TEST(Options, OptionsFallUnderTheirTopics) {
+  CLI::App app;
+  AtlasParams atlas;
+  SolverParams solver;
+  SkyRequest sky;
+  LoadOptions load;
+  addAtlasOptions(app, atlas);
+  addSolverOptions(app, solver);
+  addSkyOptions(app, sky, true);
+  addLoadOptions(app, load);
+  app.add_flag("--mine");
+  EXPECT_EQ(app.get_option("--density")->get_group(), "Atlas");
+  EXPECT_EQ(app.get_option("--max-memory")->get_group(), "Limits");
+  EXPECT_EQ(app.get_option("--unshot")->get_group(), "Solver");
+  EXPECT_EQ(app.get_option("--sun")->get_group(), "Sky");
+  EXPECT_EQ(app.get_option("--scale")->get_group(), "Input");
+  EXPECT_EQ(app.get_option("--mine")->get_group(), "Options");
+  app.formatter(groupedHelpFormatter());
+  const std::string help = app.help();
+  EXPECT_LT(help.find("\nInput:"), help.find("\nAtlas:"));
+  EXPECT_LT(help.find("\nSky:"), help.find("\nLimits:"));
+  std::istringstream in(help);
+  for (std::string line; std::getline(in, line);) EXPECT_LE(line.size(), kHelpColumns) << line;
 }
 
 }  // namespace

@@ -68,6 +68,29 @@ TEST(DefaultCameras, OnePerRoomOfEveryBuildingInsideItsRoomAboveItsFloor) {
   }
 }
 
+// The cameras a bake of a generated building renders (it brings none of its own, so the defaults) stand in
+// empty space: the furnished house's kitchen once had its camera inside the fridge, and rendered black.
+TEST(DefaultCameras, GeneratedBuildingsViewFromEmptySpace) {
+  for (const std::string& name : buildingNames()) {
+    SCOPED_TRACE(name);
+    const Building b = makeBuilding(name);
+    EXPECT_TRUE(b.seed.scene.cameras.empty());
+    const RayScene rays(b.seed.scene);
+    for (const Camera& cam : defaultCameras(rays, b.seed.scene, b.seed.cells)) {
+      int backFaces = 0;
+      for (int k = 0; k < 27; ++k) {  // the directions to a cube's faces, edges and corners
+        const glm::vec3 d(float(k % 3) - 1.0f, float(k / 3 % 3) - 1.0f, float(k / 9) - 1.0f);
+        if (d == glm::vec3(0.0f)) continue;
+        const RayScene::Hit hit = rays.intersect(cam.position, glm::normalize(d));
+        backFaces +=
+            hit && glm::dot(b.seed.scene.triangles[size_t(hit.triangle)].geometricNormal(), d) > 0.0f;
+      }
+      EXPECT_LE(backFaces, 2) << cam.name << " sees the inside of something in " << backFaces
+                              << " of 26 directions";
+    }
+  }
+}
+
 /// The share of a grid of rays across the camera's field of view whose first surface is one of `cell`'s.
 float shareSeeingCell(const RayScene& rays, const std::vector<int>& triangleCell, const Camera& cam,
                       int cell) {

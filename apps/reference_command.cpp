@@ -10,19 +10,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "radiosity/bake/cell_source.h"
 #include "apps/commands.h"
 #include "apps/compare_light_cells.h"
-#include "radiosity/bake/lightmap_report.h"
 #include "apps/options.h"
-#include "radiosity/bake/report_page.h"
 #include "core/error.h"
-#include "radiosity/bake/bake.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/cell_source.h"
+#include "radiosity/bake/lightmap_report.h"
+#include "radiosity/bake/report_page.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/bounce_limit.h"
 #include "radiosity/lightmap/cell_channel.h"
@@ -157,6 +157,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
                   .cellNames = f.cellNames};
   nlohmann::json report = lightmapReport(run, ctx);
   report["texels_traced"] = f.traced;
+  report["engine_lightmap"] = written.engine;
   report["atlas_width"] = atlas.width;
   report["atlas_height"] = atlas.height;
   report["patches"] = atlas.patches.size();

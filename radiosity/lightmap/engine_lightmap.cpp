@@ -90,9 +90,14 @@ LightmapRange lightmapRange(const LightmapAtlas& atlas, const std::vector<glm::v
   range.ldrScale = levels[k].first;
   if (!(range.ldrScale > 0.0f)) range.ldrScale = range.max > 0.0f ? range.max : 1.0f;
   if (!(range.max > 0.0f)) range.max = 1.0f;
-  double clipped = 0.0;
-  for (const auto& [level, area] : levels) clipped += level > range.ldrScale ? area : 0.0f;
+  range.rgbmRange = std::min(range.max, kRgbmHeadroom * range.ldrScale);
+  double clipped = 0.0, rgbmClipped = 0.0;
+  for (const auto& [level, area] : levels) {
+    clipped += level > range.ldrScale ? area : 0.0f;
+    rgbmClipped += level > range.rgbmRange ? area : 0.0f;
+  }
   range.clippedArea = total > 0.0 ? clipped / total : 0.0;
+  range.rgbmClippedArea = total > 0.0 ? rgbmClipped / total : 0.0;
   return range;
 }
 

@@ -41,14 +41,19 @@ glm::vec3 decodeRgbm(const RgbmImage& image, size_t i);
 /// texel's alpha, plus float rounding.
 float rgbmTolerance(const RgbmImage& image, size_t i);
 
-/// The range of an HDR lightmap's 8-bit encodings: the largest channel of any valid texel (so RGBM clips
-/// nothing), and the scale of the plain sRGB lightmap in the glb (value 1 = `ldrScale` W/m²): the level
-/// that `ldrQuantile` of the valid texels' area lies under (their largest channel), so that the bright spots
-/// right under a lamp clip rather than darken every wall into the PNG's few lowest steps.
+/// The ranges of an HDR lightmap's 8-bit encodings. The plain sRGB lightmap in the glb has value 1 =
+/// `ldrScale` W/m²: the level that `ldrQuantile` of the valid texels' area lies under (their largest
+/// channel), so that the bright spots right under a lamp clip rather than darken every wall into the PNG's
+/// few lowest steps. RGBM's range is the largest channel of any valid texel, but at most kRgbmHeadroom
+/// times ldrScale: a lamp shade lit at a thousand times the walls would otherwise leave the walls steps
+/// of range/255² that are a few per cent of their light (the EXR keeps every value exactly).
+inline constexpr float kRgbmHeadroom = 64.0f;
 struct LightmapRange {
   float max = 0.0f;
   float ldrScale = 1.0f;
   double clippedArea = 0.0;  ///< the share of the valid texels' area above ldrScale
+  float rgbmRange = 1.0f;
+  double rgbmClippedArea = 0.0;  ///< the share of the valid texels' area above rgbmRange
 };
 LightmapRange lightmapRange(const LightmapAtlas& atlas, const std::vector<glm::vec3>& irradiance,
                             double ldrQuantile = 0.995);

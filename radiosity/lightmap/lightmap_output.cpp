@@ -65,13 +65,14 @@ nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGr
   const EngineLayout layout = engineLayout(scene, atlas, std::move(irradiance), params.uv, ctx);
   const ImageRGB image{layout.width, layout.height, layout.irradiance};
   writeExr(out.file("lightmap_irradiance.exr").string(), image, {}, ExrPrecision::Half);
-  const RgbmImage rgbm = encodeRgbm(image.width, image.height, image.pixels, range.max);
+  const RgbmImage rgbm = encodeRgbm(image.width, image.height, image.pixels, range.rgbmRange);
   writeFileAtomically(out.file("lightmap_irradiance_rgbm.png"),
                       encodePng8(rgbm.width, rgbm.height, 4, rgbm.rgba));
 
   nlohmann::json report = {{"irradiance_exr", "lightmap_irradiance.exr"},
                            {"rgbm_png", "lightmap_irradiance_rgbm.png"},
                            {"rgbm_range", rgbm.range},
+                           {"rgbm_clipped_area_fraction", range.rgbmClippedArea},
                            {"max_irradiance", range.max},
                            {"half_overflow", range.max > 65504.0f},
                            {"unknown_irradiance_texels", unknown},

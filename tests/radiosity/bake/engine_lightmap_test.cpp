@@ -52,7 +52,10 @@ TEST(EngineLightmap, IrradianceTimesAlbedoIsTheRadiosityOfEveryTexel) {
   float largest = 0.0f;
   for (size_t i = 0; i < e.pixels.size(); ++i)
     if (r.atlas.patch[i] >= 0) largest = std::max({largest, e.pixels[i].r, e.pixels[i].g, e.pixels[i].b});
-  EXPECT_NEAR(report["rgbm_range"].get<double>(), largest, largest * 1e-3);  // half float's rounding
+  EXPECT_NEAR(report["max_irradiance"].get<double>(), largest, largest * 1e-3);  // half float's rounding
+  // seed1's brightest texel is within RGBM's headroom over the glb's scale: nothing clips.
+  EXPECT_NEAR(report["rgbm_range"].get<double>(), largest, largest * 1e-3);
+  EXPECT_EQ(report["rgbm_clipped_area_fraction"], 0.0);
   EXPECT_GT(report["glb_lightmap_intensity"].get<double>(), 0.0);
   EXPECT_LE(report["glb_clipped_area_fraction"].get<double>(), 0.006);
 
@@ -116,6 +119,8 @@ TEST(EngineLightmap, AChannelWithoutAlbedoIsZeroAndCounted) {
   EXPECT_EQ(range.max, 5.0f);
   EXPECT_EQ(range.ldrScale, 4.0f);
   EXPECT_DOUBLE_EQ(range.clippedArea, 0.5);
+  EXPECT_EQ(range.rgbmRange, 5.0f);  // within kRgbmHeadroom × 4
+  EXPECT_DOUBLE_EQ(range.rgbmClippedArea, 0.0);
 }
 
 }  // namespace

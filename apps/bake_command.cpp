@@ -34,6 +34,7 @@ struct BakeCommand {
   std::string indirect = indirectSolverName(BakeSettings{}.solver.indirect);
   std::string backend = backendName(BakeSettings{}.solver.backend);
   bool noAmbient = false;
+  std::string uv = "auto";  ///< --uv: where the engine lightmap lies (EngineOutputParams::uv)
   /// --plan DIR: the cell jobs' plan (radiosity/bake/bake_jobs.h, docs/cell-jobs.md) instead of the bake.
   std::string plan;
   bool quiet = false;
@@ -148,6 +149,24 @@ constexpr const char* kBakeExamples =
     "  cpgi bake scene.glb -o out/scene --density 10 --view-size 1280x720\n"
     "Every option: docs/commands/bake.md";
 
+// The files for engines (issue 48; docs/engines.md): baked.glb's helpers and the lightmap's layout.
+void addEngineOptions(CLI::App& sub, BakeCommand& c) {
+  sub.add_flag("--keep-helpers", c.settings.output.engine.keepHelpers,
+               "Keep in baked.glb the portal: quads, cellvolume: meshes and KHR_lights_punctual lamps "
+               "(left out by default: an engine would draw them, or light the baked scene twice; preview.glb "
+               "keeps them always)")
+      ->group("Output");
+  sub.add_option(
+         "--uv", c.uv,
+         "Where the engine lightmap (baked.glb's TEXCOORD_1, lightmap_irradiance.*) lies: cpgi's own "
+         "atlas (own), the scene's TEXCOORD_1 (scene: refused, naming the mesh, when it leaves [0,1], "
+         "overlaps or is missing), or the scene's when it passes those checks, else own with a warning "
+         "(auto)")
+      ->check(CLI::IsMember({"auto", "own", "scene"}))
+      ->default_str(c.uv)
+      ->group("Output");
+}
+
 // What the flags leave to be set after parsing: the names they take as the settings' enums.
 void finishSettings(BakeCommand& c, const CLI::App& sub) {
   BakeSettings& s = c.settings;
@@ -157,6 +176,7 @@ void finishSettings(BakeCommand& c, const CLI::App& sub) {
                                             : IndirectSolver::Auto;
   s.solver.backend = c.backend == "rays" ? Backend::Rays : c.backend == "gl" ? Backend::Gl : Backend::Auto;
   s.solver.ambient = !c.noAmbient;
+  s.output.engine.uv = c.uv == "own" ? UvSource::Own : c.uv == "scene" ? UvSource::Scene : UvSource::Auto;
   // --max-shots bounds the solve: no refusal of a scene that would need more.
   s.limits.refuseEndless = sub.count("--max-shots") == 0;
   // The options' tables fill the machine's memory in as the default; the library's default (0) is the
@@ -180,6 +200,7 @@ void addBakeCommand(CLI::App& app, CommandFn& selected) {
   addMethodOptions(*sub, *c);
   addSolveOptions(*sub, *c);
   addViewOptions(*sub, c->settings.output.views);
+  addEngineOptions(*sub, *c);
   addLoadOptions(*sub, c->settings.input.load);
   addDarkOption(*sub, c->settings.input.allowDark);
   addSkyOptions(*sub, c->settings.sky, true);

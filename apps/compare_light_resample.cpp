@@ -13,6 +13,7 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/lightmap_sampling.h"
 
 namespace cpgi::cli {
@@ -133,7 +134,7 @@ ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string&
   const LoadedScene scene = loadScene(scenePath);
   const LightmapAtlas atlas = rebuildReferenceAtlas(scene.scene, scenePath, bDir, bArea, bWidth, bHeight);
 
-  const fs::path glb = fs::path(aDir) / "baked.glb";
+  const fs::path glb = previewGlb(aDir);
   if (!fs::is_regular_file(glb))
     throw InputError(glb.string(),
                      "no such file (A must be a bake or a full reference to be read at B's texels)");

@@ -157,6 +157,7 @@ nlohmann::json referenceReport(const ReferenceOptions& o, const LoadedScene& loa
                   .cellNames = f.cellNames};
   nlohmann::json report = lightmapReport(run, ctx);
   report["texels_traced"] = f.traced;
+  report["engine_lightmap"] = written.engine;
   report["atlas_width"] = atlas.width;
   report["atlas_height"] = atlas.height;
   report["patches"] = atlas.patches.size();

@@ -1,8 +1,8 @@
 // `cpgi view DIR [--camera NAME | --eye X,Y,Z --look X,Y,Z] [--view-size WxH] [-o OUT]`: pictures of an
 // existing bake (or reference) without solving again. The scene, its cells and the lightmap's atlas
-// coordinates come from DIR/baked.glb (TEXCOORD_1), the radiosity from DIR/lightmap.exr; the pictures are
-// rendered and exposed as the bake's own view-*.png (radiosity/lightmap/views.h) and written to OUT
-// (default DIR/views), all or nothing.
+// coordinates come from DIR/preview.glb (TEXCOORD_1; baked.glb in a folder from before it), the radiosity
+// from DIR/lightmap.exr; the pictures are rendered and exposed as the bake's own view-*.png
+// (radiosity/lightmap/views.h) and written to OUT (default DIR/views), all or nothing.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +21,7 @@
 #include "core/progress.h"
 #include "core/scene_io.h"
 #include "radiosity/bake/lightmap_report.h"
+#include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/views.h"
 
@@ -57,7 +58,7 @@ BakedLightmap readBake(const std::string& dirName) {
   const fs::path dir(dirName);
   if (!fs::is_directory(dir)) throw InputError(dirName, "no such folder (give the output folder of a bake)");
   const fs::path reportPath = requireFile(dir, "report.json");
-  const fs::path glb = requireFile(dir, "baked.glb");
+  const fs::path glb = requireFile(dir, previewGlb(dir).filename().string());
   const fs::path exr = requireFile(dir, "lightmap.exr");
   {
     std::ifstream in(reportPath);
@@ -138,7 +139,7 @@ void addViewCommand(CLI::App& app, CommandFn& selected) {
   auto o = std::make_shared<ViewOptions>();
   CLI::App* sub = app.add_subcommand(
       "view",
-      "Render views of an existing bake or reference (its baked.glb and lightmap.exr) without baking");
+      "Render views of an existing bake or reference (its preview.glb and lightmap.exr) without baking");
   sub->add_option("dir", o->dir, "Output folder of cpgi bake or cpgi reference")->required();
   const OptionGroup output(*sub, "Output");
   auto* camera =

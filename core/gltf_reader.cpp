@@ -502,6 +502,26 @@ class GltfReader {
     return out;
   }
 
+  /// Texture coordinates: float, or normalized unsigned byte or short (glTF's three kinds); empty for
+  /// anything else.
+  std::vector<glm::vec2> readTexcoords(int index, const std::string& what) const {
+    const View v = view(index, what);
+    if (v.components != 2) return {};
+    if (v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return readFloatVec2(index, what);
+    const bool bytes = v.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    if (!bytes && v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) return {};
+    if (!m_.accessors[index].normalized) return {};
+    std::vector<glm::vec2> out(v.count, glm::vec2(0.0f));
+    for (size_t i = 0; v.data && i < v.count; ++i)
+      for (int c = 0; c < 2; ++c) {
+        const unsigned char* p = v.data + i * v.stride + c * (bytes ? 1 : 2);
+        uint16_t s = *p;
+        if (!bytes) std::memcpy(&s, p, 2);
+        out[i][c] = float(s) / (bytes ? 255.0f : 65535.0f);
+      }
+    return out;
+  }
+
   std::vector<uint32_t> readIndices(int index, const std::string& what) const {
     const View v = view(index, what);
     if (v.components != 1) fail(what + ": indices must be scalars");
@@ -561,6 +581,62 @@ class GltfReader {
     return true;
   }
 
+  // A glTF texture read through TEXCOORD_0, as SceneLooks::textures index (−1: none, or one the engine
+  // glb cannot carry: another coordinate set, an image neither PNG nor JPEG).
+  int lookTexture(int textureIndex, int texCoord, const std::string& what) {
+    if (textureIndex < 0 || texCoord != 0) return -1;
+    if (textureIndex >= static_cast<int>(m_.textures.size())) fail(what + ": texture index out of range");
+    if (auto known = lookTextures_.find(textureIndex); known != lookTextures_.end()) return known->second;
+    const tinygltf::Texture& gt = m_.textures[textureIndex];
+    if (gt.source < 0 || gt.source >= static_cast<int>(m_.images.size())) return -1;
+    SceneLooks& looks = raw_.scene.looks;
+    auto image = lookImages_.find(gt.source);
+    if (image == lookImages_.end()) {
+      const std::vector<unsigned char>& encoded = m_.images[gt.source].image;
+      const ImageFormat format = imageFormat(encoded.data(), encoded.size());
+      if (format == ImageFormat::Other) return lookTextures_[textureIndex] = -1;
+      looks.images.push_back({m_.images[gt.source].name,
+                              format == ImageFormat::Png ? "image/png" : "image/jpeg",
+                              std::string(encoded.begin(), encoded.end())});
+      image = lookImages_.emplace(gt.source, int(looks.images.size() - 1)).first;
+    }
+    SurfaceTexture texture{uint32_t(image->second)};
+    if (gt.sampler >= 0 && gt.sampler < static_cast<int>(m_.samplers.size())) {
+      const tinygltf::Sampler& s = m_.samplers[gt.sampler];
+      texture.magFilter = s.magFilter, texture.minFilter = s.minFilter;
+      texture.wrapS = s.wrapS, texture.wrapT = s.wrapT;
+    }
+    looks.textures.push_back(texture);
+    return lookTextures_[textureIndex] = int(looks.textures.size() - 1);
+  }
+
+  // The material as an engine shows it (SceneLooks::materials), beside the albedo the solve reads.
+  void addLook(const tinygltf::Material& gm, const Material& mat, const std::string& what) {
+    std::vector<MaterialLook>& looks = raw_.scene.looks.materials;
+    // A material cpgi made up (the default one) looks as its albedo.
+    while (looks.size() + 1 < raw_.scene.materials.size()) {
+      MaterialLook plain;
+      plain.baseColorFactor = glm::vec4(raw_.scene.materials[looks.size()].albedo, 1.0f);
+      looks.push_back(plain);
+    }
+    MaterialLook look;
+    const auto& pbr = gm.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+      look.baseColorFactor = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                                       pbr.baseColorFactor[3]);
+    look.baseColorTexture = lookTexture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, what);
+    // Without its texture, the base colour is the albedo baked with (the texture's mean folded in).
+    if (look.baseColorTexture < 0)
+      look.baseColorFactor = glm::vec4(mat.albedo, look.baseColorFactor.a), look.baseColorTexture = -1;
+    look.normalTexture = lookTexture(gm.normalTexture.index, gm.normalTexture.texCoord, what);
+    look.normalScale = float(gm.normalTexture.scale);
+    look.emissiveTexture = lookTexture(gm.emissiveTexture.index, gm.emissiveTexture.texCoord, what);
+    look.metallicFactor = float(std::clamp(pbr.metallicFactor, 0.0, 1.0));
+    look.roughnessFactor = float(std::clamp(pbr.roughnessFactor, 0.0, 1.0));
+    look.doubleSided = gm.doubleSided;
+    looks.push_back(look);
+  }
+
   uint32_t materialFor(int index) {
     if (index < 0) {
       if (defaultMaterial_ < 0) {
@@ -604,6 +680,7 @@ class GltfReader {
     }
     materialIndex_[index] = static_cast<int>(raw_.scene.materials.size());
     raw_.scene.materials.push_back(mat);
+    addLook(gm, mat, what);
     return static_cast<uint32_t>(materialIndex_[index]);
   }
 
@@ -631,10 +708,15 @@ class GltfReader {
       }
       // A baked lightmap's atlas coordinates (our own baked.glb), for `cpgi view`. Other files may store
       // them as normalized integers or not at all: then the scene simply has none.
-      std::vector<glm::vec2> lightmapUVs;
+      std::vector<glm::vec2> lightmapUVs, textureUVs;
       if (auto uv = prim.attributes.find("TEXCOORD_1"); uv != prim.attributes.end() && !tagged) {
-        lightmapUVs = readFloatVec2(uv->second, what + " TEXCOORD_1");
+        lightmapUVs = readTexcoords(uv->second, what + " TEXCOORD_1");
         if (lightmapUVs.size() != positions.size()) lightmapUVs.clear();
+      }
+      // The material's texture coordinates, kept for the glb written for engines.
+      if (auto uv = prim.attributes.find("TEXCOORD_0"); uv != prim.attributes.end() && !tagged) {
+        textureUVs = readTexcoords(uv->second, what + " TEXCOORD_0");
+        if (textureUVs.size() != positions.size()) textureUVs.clear();
       }
       std::vector<uint32_t> indices;
       if (prim.indices >= 0) {
@@ -678,10 +760,14 @@ class GltfReader {
         } else {
           raw_.scene.triangles.push_back(t);
           raw_.cellOfTriangle.push_back(cell);
-          std::array<glm::vec2, 3> uv{};
+          std::array<glm::vec2, 3> uv{}, uv0{};
           for (int k = 0; k < 3 && !lightmapUVs.empty(); ++k)
             uv[k] = lightmapUVs[c[mirrored && k > 0 ? 3 - k : k]];
+          for (int k = 0; k < 3 && !textureUVs.empty(); ++k)
+            uv0[k] = textureUVs[c[mirrored && k > 0 ? 3 - k : k]];
           raw_.lightmapUVs.push_back(uv);
+          raw_.textureUVs.push_back(uv0);
+          raw_.uvSets.push_back(uint8_t((textureUVs.empty() ? 0 : 1) | (lightmapUVs.empty() ? 0 : 2)));
           raw_.everyLightmapUV = raw_.everyLightmapUV && !lightmapUVs.empty();
         }
       }
@@ -694,7 +780,8 @@ class GltfReader {
   size_t placed_ = 0;  // triangles placed so far, tagged meshes included
   RawScene raw_;
   std::vector<int> materialIndex_;
-  std::map<int, glm::vec3> imageMeans_;  // by image index: each image is decoded once
+  std::map<int, glm::vec3> imageMeans_;           // by image index: each image is decoded once
+  std::map<int, int> lookTextures_, lookImages_;  // glTF texture and image → SceneLooks index
   int defaultMaterial_ = -1;
   std::vector<char> visited_;
 };

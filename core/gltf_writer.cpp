@@ -193,12 +193,15 @@ class SceneWriter {
     for (const Triangle& t : scene_.triangles)
       if (t.material >= scene_.materials.size())
         throw std::invalid_argument("writeGltf: material index out of range");
-    writeMaterials();
+    if (options_.forEngines)
+      writeEngineMaterials();
+    else
+      writeMaterials();
     buildTree();
     for (int r : tree_.roots) sceneRoots_.push_back(emitTreeNode(r));
-    if (options_.cells) writeCellExtras();
+    if (options_.cells && options_.keepHelpers) writeCellExtras();
     writeCameras();
-    writeLights();
+    if (options_.keepHelpers) writeLights();
     b_.doc["scenes"] = json::array({{{"nodes", sceneRoots_}}});
     b_.doc["scene"] = 0;
     return b_.finish(binary);
@@ -229,20 +232,94 @@ class SceneWriter {
         mat["pbrMetallicRoughness"] = {{"baseColorFactor", {m.albedo.r, m.albedo.g, m.albedo.b, 1.0}},
                                        {"metallicFactor", 0.0},
                                        {"roughnessFactor", 1.0}};
-        if (m.isEmitter()) {
-          // emissiveFactor is limited to [0,1]; the rest goes into KHR_materials_emissive_strength.
-          const double strength =
-              std::max({double(m.emission.r), double(m.emission.g), double(m.emission.b)});
-          if (strength > 1.0) {
-            mat["emissiveFactor"] = {m.emission.r / strength, m.emission.g / strength,
-                                     m.emission.b / strength};
-            mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
-            b_.useExtension("KHR_materials_emissive_strength");
-          } else {
-            mat["emissiveFactor"] = vec(m.emission);
-          }
-        }
+        setEmission(mat, m);
       }
+      b_.push("materials", mat);
+    }
+  }
+
+  // glTF's emissive factor is limited to [0,1]; the rest goes into KHR_materials_emissive_strength.
+  void setEmission(json& mat, const Material& m) {
+    if (!m.isEmitter()) return;
+    const double strength = std::max({double(m.emission.r), double(m.emission.g), double(m.emission.b)});
+    if (strength > 1.0) {
+      mat["emissiveFactor"] = {m.emission.r / strength, m.emission.g / strength, m.emission.b / strength};
+      mat["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
+      b_.useExtension("KHR_materials_emissive_strength");
+    } else {
+      mat["emissiveFactor"] = vec(m.emission);
+    }
+  }
+
+  // A scene texture as a texture of the file written: its image and sampler, each once.
+  int engineTexture(int index) {
+    const SceneLooks& looks = scene_.looks;
+    if (index < 0 || index >= int(looks.textures.size()) ||
+        looks.textures[index].image >= looks.images.size())
+      return -1;
+    if (auto it = textureIndex_.find(index); it != textureIndex_.end()) return it->second;
+    const SurfaceTexture& t = looks.textures[index];
+    auto image = imageIndex_.find(t.image);
+    if (image == imageIndex_.end()) {
+      const SurfaceImage& si = looks.images[t.image];
+      const int view = b_.addView(si.bytes.data(), si.bytes.size(), 0);
+      json img = {{"bufferView", view}, {"mimeType", si.mimeType}};
+      if (!si.name.empty()) img["name"] = si.name;
+      image = imageIndex_.emplace(t.image, b_.push("images", img)).first;
+    }
+    json sampler = {{"wrapS", t.wrapS}, {"wrapT", t.wrapT}};
+    if (t.magFilter > 0) sampler["magFilter"] = t.magFilter;
+    if (t.minFilter > 0) sampler["minFilter"] = t.minFilter;
+    const int samplerIndex = b_.push("samplers", sampler);
+    return textureIndex_[index] = b_.push("textures", {{"source", image->second}, {"sampler", samplerIndex}});
+  }
+
+  // The scene's own materials, as the file gave them, with the irradiance lightmap referenced by each.
+  void writeEngineMaterials() {
+    int lightmap = -1;
+    if (options_.lightmapUVs && !options_.lightmapPng.empty()) {
+      const int view = b_.addView(options_.lightmapPng.data(), options_.lightmapPng.size(), 0);
+      const int image =
+          b_.push("images", {{"bufferView", view}, {"mimeType", "image/png"}, {"name", "lightmap"}});
+      const int sampler =
+          b_.push("samplers", {{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}});
+      lightmap = b_.push("textures", {{"source", image}, {"sampler", sampler}, {"name", "lightmap"}});
+      json extras =
+          options_.lightmapExtrasJson.empty() ? json::object() : json::parse(options_.lightmapExtrasJson);
+      extras.update({{"texture", lightmap},
+                     {"texCoord", 1},
+                     {"intensity", options_.lightmapIntensity},
+                     {"colorSpace", "srgb"},
+                     {"quantity", "irradiance W/m2 (light arriving, without albedo)"}});
+      b_.doc["extras"]["cpgi_lightmap"] = extras;
+      b_.useExtension("MOZ_lightmap");
+    }
+    const SceneLooks& looks = scene_.looks;
+    for (size_t k = 0; k < scene_.materials.size(); ++k) {
+      const Material& m = scene_.materials[k];
+      MaterialLook look;
+      if (k < looks.materials.size())
+        look = looks.materials[k];
+      else
+        look.baseColorFactor = glm::vec4(m.albedo, 1.0f);
+      const glm::vec4& f = look.baseColorFactor;
+      json pbr = {{"baseColorFactor", {f.r, f.g, f.b, f.a}},
+                  {"metallicFactor", look.metallicFactor},
+                  {"roughnessFactor", look.roughnessFactor}};
+      if (const int t = engineTexture(look.baseColorTexture); t >= 0)
+        pbr["baseColorTexture"] = {{"index", t}};
+      json mat = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
+      if (const int t = engineTexture(look.normalTexture); t >= 0)
+        mat["normalTexture"] = {{"index", t}, {"scale", look.normalScale}};
+      setEmission(mat, m);
+      if (const int t = engineTexture(look.emissiveTexture); t >= 0 && m.isEmitter())
+        mat["emissiveTexture"] = {{"index", t}};
+      if (look.doubleSided) mat["doubleSided"] = true;
+      if (lightmap >= 0)
+        mat["extensions"]["MOZ_lightmap"] = {
+            {"index", lightmap}, {"texCoord", 1}, {"intensity", options_.lightmapIntensity}};
+      // The albedo and emission baked with, which a texture's mean gave: read back as they were.
+      if (lightmap >= 0) mat["extras"] = {{"cpgi_albedo", vec(m.albedo)}, {"cpgi_emission", vec(m.emission)}};
       b_.push("materials", mat);
     }
   }
@@ -276,17 +353,24 @@ class SceneWriter {
     json primitives = json::array();
     for (const auto& [material, tris] : byMaterial) {
       std::vector<glm::vec3> pos, nrm;
-      std::vector<glm::vec2> uv;
+      std::vector<glm::vec2> uv, uv0;
       for (uint32_t i : tris) {
         const Triangle& t = scene_.triangles[i];
+        const SurfaceUV* own = t.uv < scene_.looks.uvs.size() ? &scene_.looks.uvs[t.uv] : nullptr;
         for (int k = 0; k < 3; ++k) {
           pos.push_back(t.p[k]);
           nrm.push_back(t.n[k]);
           if (options_.lightmapUVs) uv.push_back((*options_.lightmapUVs)[i][k]);
+          if (options_.forEngines) uv0.push_back(own && own->has(0) ? own->at(t.p[k], 0) : glm::vec2(0.0f));
         }
       }
       json attributes = {{"POSITION", b_.addVec3(pos, true)}, {"NORMAL", b_.addVec3(nrm, false)}};
-      if (options_.lightmapUVs) {
+      if (options_.forEngines) {
+        // The material's own coordinates first, the lightmap's second (three.js's uv1, Godot's UV2,
+        // Blender's second UV map).
+        attributes["TEXCOORD_0"] = b_.addVec2(uv0);
+        if (options_.lightmapUVs) attributes["TEXCOORD_1"] = b_.addVec2(uv);
+      } else if (options_.lightmapUVs) {
         // The lightmap is the second UV set, where engines look for one (Godot's UV2, Blender's second
         // map, three.js's uv1). glTF wants sets numbered from 0 and the scene keeps no texture
         // coordinates of its own, so TEXCOORD_0 shares the same accessor.
@@ -429,6 +513,8 @@ class SceneWriter {
   GltfBuilder b_;
   Tree tree_;
   json sceneRoots_ = json::array();
+  std::map<int, int> textureIndex_;     // scene texture → texture written
+  std::map<uint32_t, int> imageIndex_;  // scene image → image written
 };
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
+#include <half.h>
 
 // Static, so that these symbols cannot clash with the copy libtinygltf pulls in through libstb.
 #define STB_IMAGE_WRITE_STATIC
@@ -159,30 +160,44 @@ float linearToSrgb(float v) {
 
 }  // namespace
 
-void writeExr(const std::string& path, const ImageRGB& image, const std::vector<ExrChannel>& extra) {
+void writeExr(const std::string& path, const ImageRGB& image, const std::vector<ExrChannel>& extra,
+              ExrPrecision precision) {
   checkImage(image, "writeExr");
   const size_t n = image.pixels.size();
   for (const ExrChannel& c : extra)
     if (c.values.size() != n || c.name.empty() || c.name == "R" || c.name == "G" || c.name == "B")
       throw std::invalid_argument("writeExr: channel '" + c.name + "' has the wrong size or a reserved name");
 
+  const Imf::PixelType type = precision == ExrPrecision::Half ? Imf::HALF : Imf::FLOAT;
   Imf::Header header(image.width, image.height);
-  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-  for (const ExrChannel& c : extra) header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(type));
+  for (const ExrChannel& c : extra) header.channels().insert(c.name, Imf::Channel(type));
   header.compression() = Imf::ZIP_COMPRESSION;
 
   Imf::FrameBuffer frame;
-  char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data()));
-  const size_t xStride = sizeof(glm::vec3), yStride = xStride * image.width;
-  for (int c = 0; c < 3; ++c)
-    frame.insert(c == 0   ? "R"
-                 : c == 1 ? "G"
-                          : "B",
-                 Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
-  for (const ExrChannel& c : extra)
-    frame.insert(c.name,
-                 Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(c.values.data())),
-                            sizeof(float), sizeof(float) * image.width));
+  // Half pixels are converted here, each channel a plane of its own (R, G, B, then the extra ones).
+  std::vector<Imath::half> halves;
+  if (precision == ExrPrecision::Half) {
+    halves.resize(n * (3 + extra.size()));
+    auto toHalf = [](float v) { return Imath::half(std::isnan(v) ? v : std::clamp(v, -65504.0f, 65504.0f)); };
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) halves[size_t(c) * n + i] = toHalf(image.pixels[i][c]);
+    for (size_t k = 0; k < extra.size(); ++k)
+      for (size_t i = 0; i < n; ++i) halves[(3 + k) * n + i] = toHalf(extra[k].values[i]);
+  }
+  auto slice = [&](size_t plane, const char* floatBase, size_t floatStride) {
+    if (precision == ExrPrecision::Float)
+      return Imf::Slice(Imf::FLOAT, const_cast<char*>(floatBase), floatStride, floatStride * image.width);
+    return Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + plane * n), sizeof(Imath::half),
+                      sizeof(Imath::half) * image.width);
+  };
+  const char* base = reinterpret_cast<const char*>(image.pixels.data());
+  const char* names[] = {"R", "G", "B"};
+  for (size_t c = 0; c < 3; ++c)
+    frame.insert(names[c], slice(c, base + c * sizeof(float), sizeof(glm::vec3)));
+  for (size_t k = 0; k < extra.size(); ++k)
+    frame.insert(extra[k].name,
+                 slice(3 + k, reinterpret_cast<const char*>(extra[k].values.data()), sizeof(float)));
 
   std::ostringstream bytes;
   try {
@@ -272,6 +287,19 @@ std::string encodePng(const ImageRGB& image, float exposure) {
   };
   if (!stbi_write_png_to_func(append, &out, image.width, image.height, 3, rgb.data(), image.width * 3))
     throw SystemError("encodePng: PNG encoding failed");
+  return out;
+}
+
+std::string encodePng8(int width, int height, int channels, const std::vector<uint8_t>& pixels) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+      pixels.size() != size_t(width) * size_t(height) * size_t(channels))
+    throw std::invalid_argument("encodePng8: the pixels do not match the size");
+  std::string out;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, width, height, channels, pixels.data(), width * channels))
+    throw SystemError("encodePng8: PNG encoding failed");
   return out;
 }
 

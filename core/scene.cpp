@@ -36,3 +36,33 @@ bool Scene::hasLight() const {
 }
 
 }  // namespace cpgi
+
+namespace cpgi {
+
+void SurfaceUV::fit(const std::array<glm::vec3, 3>& p, const std::array<glm::vec2, 3>& uv, int set) {
+  if (sets == 0) origin = p[0];
+  // Over the plane, p = p0 + a·e1 + b·e2: a and b by the Gram matrix of the edges, whose gradients
+  // carry each coordinate's change along the two edges. Relative to `origin`, which another set may
+  // have placed at this same corner.
+  const glm::dvec3 e1 = glm::dvec3(p[1]) - glm::dvec3(p[0]), e2 = glm::dvec3(p[2]) - glm::dvec3(p[0]);
+  const double g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
+  const double det = g11 * g22 - g12 * g12;
+  glm::dvec3 gradA(0.0), gradB(0.0);
+  if (det > 0.0) gradA = (g22 * e1 - g12 * e2) / det, gradB = (g11 * e2 - g12 * e1) / det;
+  const glm::dvec3 fromOrigin = glm::dvec3(p[0]) - glm::dvec3(origin);
+  for (int c = 0; c < 2; ++c) {
+    const double d1 = double(uv[1][c]) - uv[0][c], d2 = double(uv[2][c]) - uv[0][c];
+    const glm::dvec3 g = d1 * gradA + d2 * gradB;
+    gradient[size_t(2 * set + c)] = glm::vec3(g);
+    atOrigin[2 * set + c] = float(double(uv[0][c]) - glm::dot(g, fromOrigin));
+  }
+  sets = uint8_t(sets | (1u << set));
+}
+
+glm::vec2 SurfaceUV::at(const glm::vec3& q, int set) const {
+  const glm::vec3 d = q - origin;
+  return {atOrigin[2 * set] + glm::dot(gradient[size_t(2 * set)], d),
+          atOrigin[2 * set + 1] + glm::dot(gradient[size_t(2 * set + 1)], d)};
+}
+
+}  // namespace cpgi

@@ -24,10 +24,14 @@ struct Material {
 
 /// One triangle, positions and shading normals already in world space (node transforms applied).
 struct Triangle {
+  static constexpr uint32_t kNoUV = 0xFFFFFFFFu;
   std::array<glm::vec3, 3> p{};
   std::array<glm::vec3, 3> n{};  ///< per-vertex normals; the geometric normal where the file has none
   uint32_t material = 0;         ///< index into Scene::materials
   uint32_t node = 0;             ///< index into Scene::nodePaths
+  /// Index into SceneLooks::uvs: the file's texture coordinates over this triangle; kNoUV: none. Pieces of
+  /// a triangle split on a portal's plane keep their source's, which holds for any point of its plane.
+  uint32_t uv = kNoUV;
 
   glm::vec3 geometricNormal() const;  ///< unit normal by the winding order; zero for a degenerate triangle
   float area() const;
@@ -60,6 +64,57 @@ struct PunctualLight {
   float range = 0.0f;  ///< point and spot: metres where glTF's smooth window reaches 0; 0 = unlimited
 };
 
+/// An image a material's texture shows, as the file holds it (PNG or JPEG bytes), kept for the glb written
+/// for engines; the solve uses only its mean colour (Material::albedo).
+struct SurfaceImage {
+  std::string name;
+  std::string mimeType;  ///< "image/png" or "image/jpeg"
+  std::string bytes;
+};
+
+/// A glTF texture: its image and its sampler in glTF's codes (filters −1: unset).
+struct SurfaceTexture {
+  uint32_t image = 0;  ///< index into SceneLooks::images
+  int magFilter = -1, minFilter = -1, wrapS = 10497, wrapT = 10497;
+};
+
+/// How a material looks to an engine beyond the albedo the solve uses (that is baseColorFactor times its
+/// texture's mean): the file's own factors and textures (indices into SceneLooks::textures, −1: none, each
+/// read through TEXCOORD_0).
+struct MaterialLook {
+  glm::vec4 baseColorFactor{1.0f};
+  int baseColorTexture = -1;
+  int normalTexture = -1;
+  float normalScale = 1.0f;
+  int emissiveTexture = -1;
+  float metallicFactor = 0.0f, roughnessFactor = 1.0f;
+  bool doubleSided = false;
+};
+
+/// A triangle's texture coordinates as affine maps of the world position over its plane, so that any piece
+/// of it has them: uv(p) = atOrigin + (gradient · (p − origin)) per coordinate. Set 0 is glTF's TEXCOORD_0
+/// (the material's textures), set 1 its TEXCOORD_1 (an artist's lightmap coordinates).
+struct SurfaceUV {
+  glm::vec3 origin{0.0f};
+  std::array<glm::vec3, 4> gradient{};  ///< of u0, v0, u1, v1 per metre
+  glm::vec4 atOrigin{0.0f};             ///< u0, v0, u1, v1 at origin
+  uint8_t sets = 0;                     ///< bit 0: set 0 given; bit 1: set 1 given
+
+  /// The map through the corners `p` with coordinates `uv` in `set` (added to the sets already held).
+  void fit(const std::array<glm::vec3, 3>& p, const std::array<glm::vec2, 3>& uv, int set);
+  glm::vec2 at(const glm::vec3& q, int set) const;
+  bool has(int set) const { return (sets >> set) & 1; }
+};
+
+/// What the scene's file gives for engines beyond what the solve reads: images, textures, each material's
+/// look and the triangles' texture coordinates. Empty for a file without them (an OBJ, a raw model).
+struct SceneLooks {
+  std::vector<SurfaceImage> images;
+  std::vector<SurfaceTexture> textures;
+  std::vector<MaterialLook> materials;  ///< per Scene::materials entry, or empty
+  std::vector<SurfaceUV> uvs;           ///< Triangle::uv indexes it
+};
+
 struct Bounds {
   glm::vec3 lo{std::numeric_limits<float>::max()};
   glm::vec3 hi{-std::numeric_limits<float>::max()};
@@ -75,7 +130,8 @@ struct Scene {
   std::vector<std::string> nodePaths;
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;  ///< KHR_lights_punctual point, spot and directional lights
-  Sky sky;  ///< the surroundings' light (core/sky.h): none unless a command is asked for one (--sky)
+  Sky sky;           ///< the surroundings' light (core/sky.h): none unless a command is asked for one (--sky)
+  SceneLooks looks;  ///< the file's textures and texture coordinates, for the glb written for engines
 
   Bounds bounds() const;
   /// Total emitted power, W per channel: Σ emission × area over emissive triangles.

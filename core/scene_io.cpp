@@ -181,12 +181,18 @@ std::array<glm::vec3, 4> portalCorners(const std::string& file, const std::strin
 void applyOverrides(const std::string& path, Scene& scene, const std::vector<MaterialOverride>& overrides) {
   for (const MaterialOverride& o : overrides) {
     bool found = false;
-    for (Material& m : scene.materials)
-      if (m.name == o.material) {
-        found = true;
-        if (o.emission) m.emission = *o.emission;
-        if (o.albedo) m.albedo = *o.albedo;
+    for (size_t k = 0; k < scene.materials.size(); ++k) {
+      Material& m = scene.materials[k];
+      if (m.name != o.material) continue;
+      found = true;
+      if (o.emission) m.emission = *o.emission;
+      if (o.albedo) m.albedo = *o.albedo;
+      if (o.albedo && k < scene.looks.materials.size()) {  // the engine's base colour is the one baked with
+        MaterialLook& look = scene.looks.materials[k];
+        look.baseColorFactor = glm::vec4(*o.albedo, look.baseColorFactor.a);
+        look.baseColorTexture = -1;
       }
+    }
     if (found) continue;
     std::string names;
     for (size_t i = 0; i < scene.materials.size() && i < 12; ++i)
@@ -338,6 +344,15 @@ static void checkCoordinates(const std::string& path, const RawScene& raw, doubl
       throw InputError(path, "light '" + l.name + "' lies " + far(l.position) + bound + hint);
 }
 
+// The file's texture coordinates of raw triangle `i` (placed as `t`, scaled) as maps over its plane.
+static uint32_t keepSurfaceUV(RawScene& raw, size_t i, const Triangle& t) {
+  SurfaceUV uv;
+  if (raw.uvSets[i] & 1) uv.fit(t.p, raw.textureUVs[i], 0);
+  if (raw.uvSets[i] & 2) uv.fit(t.p, raw.lightmapUVs[i], 1);
+  raw.scene.looks.uvs.push_back(uv);
+  return uint32_t(raw.scene.looks.uvs.size() - 1);
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
@@ -370,6 +385,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       if (!drop[i]) {
         kept.push_back(scene.triangles[i]), cellOf.push_back(raw.cellOfTriangle[i]);
         if (lightmapUVs) out.lightmapUVs.push_back(raw.lightmapUVs[i]);
+        if (i < raw.uvSets.size() && raw.uvSets[i]) kept.back().uv = keepSurfaceUV(raw, i, kept.back());
       }
     scene.triangles = std::move(kept);
   }

@@ -69,6 +69,18 @@ struct GltfWriteOptions {
   /// PNG bytes of the baked lightmap. With lightmapUVs, every material becomes unlit
   /// (KHR_materials_unlit) with this texture as base colour, so any viewer shows the baked light.
   std::string lightmapPng;
+  /// The glb for engines instead (issue 48): the scene's own materials, textures and TEXCOORD_0
+  /// (Scene::looks; coordinates (0, 0) on triangles the file gave none), lightmapUVs as TEXCOORD_1, and
+  /// lightmapPng (the irradiance, sRGB-encoded, 1 = lightmapIntensity W/m²) referenced by every material
+  /// as Mozilla Hubs's MOZ_lightmap {index, texCoord 1, intensity} (three.js: material.lightMap with
+  /// channel 1 and lightMapIntensity) and by the root's extras.cpgi_lightmap.
+  bool forEngines = false;
+  float lightmapIntensity = 1.0f;
+  /// Root extras.cpgi_lightmap's other keys (the HDR files beside the glb and their ranges).
+  std::string lightmapExtrasJson;
+  /// The helpers (portal: quads, cellvolume: meshes) and the KHR_lights_punctual lamps, which an engine
+  /// would draw, or light the baked scene with a second time; `cell:` nodes stay as names either way.
+  bool keepHelpers = true;
 };
 
 /// Writes `.glb` (binary) or `.gltf` (embedded buffers) by the extension, atomically.

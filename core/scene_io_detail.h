@@ -38,6 +38,10 @@ struct RawScene {
   /// atlas); kept only when every triangle has them (`everyLightmapUV`).
   std::vector<std::array<glm::vec2, 3>> lightmapUVs;
   bool everyLightmapUV = true;
+  /// Per scene triangle, its corners' first texture coordinates (glTF TEXCOORD_0), and which sets it has
+  /// (bit 0: TEXCOORD_0, bit 1: TEXCOORD_1): finishScene keeps them as SceneLooks::uvs.
+  std::vector<std::array<glm::vec2, 3>> textureUVs;
+  std::vector<uint8_t> uvSets;
 
   /// Index of the cell called `name`, added if new.
   int cellIndex(const std::string& name);

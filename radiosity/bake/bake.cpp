@@ -173,14 +173,16 @@ void usePlannedDensities(const BakeSettings& s, BakeInput& in, const std::filesy
 // The light written: the files of the result set (with a folder) and the figures of the report.
 // The views are rendered while `viewsDeadline` leaves time (the report page's share kept back).
 void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, const ViewParams& views,
-               Clock::time_point viewsDeadline, OutputDir* out, BakeFigures& f, Context& ctx) {
+               const EngineOutputParams& engine, Clock::time_point viewsDeadline, OutputDir* out,
+               BakeFigures& f, Context& ctx) {
   auto t = ctx.time("write");
   if (!out) return;
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
   LightmapOutputs written = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity,
-                                                 {emissive, x.texelCells}, ctx, views, viewsDeadline);
+                                                 {emissive, x.texelCells}, ctx, views, viewsDeadline, engine);
+  f.engine = std::move(written.engine);
   f.views = std::move(written.views);
   f.skippedViews = std::move(written.skippedViews);
 }
@@ -207,6 +209,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
                  pilotDeadline(beforeOutputs));
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
+  requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv);  // --uv scene refused before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs =
       estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);
@@ -243,7 +246,8 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                                                    {"absorbed", r.energy.absorbed},
                                                    {"unshot", r.energy.unshot}};
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
-  writeBake(in, x, r, views, keepBack(deadline, outputs.pageSeconds), out ? &*out : nullptr, f, ctx);
+  writeBake(in, x, r, views, s.output.engine, keepBack(deadline, outputs.pageSeconds), out ? &*out : nullptr,
+            f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
   f.outputs = outputs;
   BakeResult result;

@@ -130,6 +130,7 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
                   .views = f.views,
                   .cellNames = f.cellNames};
   nlohmann::json report = lightmapReport(run, ctx);
+  report["engine_lightmap"] = f.engine;
   report["unshot_target"] = s.solver.params.unshotFraction;
   report["visibility"] = visibilityName(s.solver.params.visibility);
   report["item_buffer"] = s.solver.params.itemBuffer;

@@ -77,6 +77,7 @@ CPGI_JSON_ENUM(PortalLight, {{PortalLight::Diffuse, "diffuse"},
                              {PortalLight::Directional, "directional"},
                              {PortalLight::Binned, "binned"}})
 CPGI_JSON_ENUM(BoundaryMode, {{BoundaryMode::Coarse, "coarse"}, {BoundaryMode::Dark, "dark"}})
+CPGI_JSON_ENUM(UvSource, {{UvSource::Own, "own"}, {UvSource::Scene, "scene"}, {UvSource::Auto, "auto"}})
 CPGI_JSON_ENUM(Sky::Kind, {{Sky::Kind::None, "none"},
                            {Sky::Kind::Uniform, "uniform"},
                            {Sky::Kind::CieOvercast, "cie-overcast"}})
@@ -154,7 +155,8 @@ CPGI_JSON_FIELDS(BakeSettings::Input, scene, load, allowDark)
 CPGI_JSON_FIELDS(BakeSettings::Atlas, params, densityAuto, autoDensity)
 CPGI_JSON_FIELDS(BakeSettings::Solver, params, solveDensity, lampCoarsening, indirect, backend, ambient,
                  ambientShare)
-CPGI_JSON_FIELDS(BakeSettings::Output, folder, views)
+CPGI_JSON_FIELDS(EngineOutputParams, keepHelpers, uv)
+CPGI_JSON_FIELDS(BakeSettings::Output, folder, views, engine)
 CPGI_JSON_FIELDS(BakeSettings::Limits, timeLimit, maxMemory, refuseEndless)
 
 namespace decomp {

@@ -19,6 +19,7 @@
 #include "radiosity/cells/cell_solver.h"
 #include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/views.h"
 #include "radiosity/solve/ambient.h"
 #include "radiosity/solve/auto_density.h"
@@ -140,10 +141,12 @@ struct BakeSettings {
 
   /// What is written.
   struct Output {
-    /// The result folder (lightmap.exr, lightmap.png, baked.glb, report.json, report.html, view-*),
+    /// The result folder (lightmap.exr, lightmap.png, lightmap_irradiance.*, baked.glb, preview.glb,
+    /// report.json, report.html, view-*),
     /// swapped in as a set at the end (core/output_dir.h); empty: nothing is written, bake() returns it.
     std::string folder;
-    ViewParams views;  ///< the view-*.png / .exr pictures
+    ViewParams views;           ///< the view-*.png / .exr pictures
+    EngineOutputParams engine;  ///< baked.glb and the irradiance lightmap for engines
   } output;
 
   /// What the bake may take.

@@ -86,6 +86,7 @@ struct BakeFigures {
   std::vector<double> ambientEscape;      ///< per entry of ambientShares, the share leaving the scene
   double seconds = 0.0;
   OutputEstimate outputs;  ///< the outputs' share kept back from the time limit
+  nlohmann::json engine;   ///< report.json's "engine_lightmap" (LightmapOutputs::engine); null: none written
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,

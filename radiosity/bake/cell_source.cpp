@@ -69,13 +69,15 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
   decomp::DecomposeParams p = params;
   p.sourceName = scenePath;
-  // The decomposition splits triangles: the scene becomes the split one, with the same lights and sky.
+  // The decomposition splits triangles: the scene becomes the split one, with the same lights, sky and looks.
   auto takeDecomposition = [&](decomp::Decomposition d) {
     std::vector<PunctualLight> lights = std::move(loaded.scene.lights);
     const Sky sky = loaded.scene.sky;
+    SceneLooks looks = std::move(loaded.scene.looks);  // the pieces keep their source's Triangle::uv
     loaded.scene = std::move(d.scene);
     loaded.scene.lights = std::move(lights);
     loaded.scene.sky = sky;
+    loaded.scene.looks = std::move(looks);
     return std::move(d.graph);
   };
   // Past the deadline a cells bake has no cells to bake with: one line naming the limit.

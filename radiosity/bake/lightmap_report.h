@@ -51,8 +51,15 @@ nlohmann::json skyReport(const Scene& scene);
 /// The names of a bake's or a reference's result set (OutputDir's resultNames): those of an earlier run
 /// that a new one does not write (views of other cameras, a sampled reference's missing baked.glb) go
 /// when the new set is committed.
-inline const std::vector<std::string> kLightmapResultNames = {"lightmap.exr", "lightmap.png", "baked.glb",
-                                                              "report.json",  "report.html",  "view-*"};
+inline const std::vector<std::string> kLightmapResultNames = {"lightmap.exr",
+                                                              "lightmap.png",
+                                                              "lightmap_irradiance.exr",
+                                                              "lightmap_irradiance_rgbm.png",
+                                                              "baked.glb",
+                                                              "preview.glb",
+                                                              "report.json",
+                                                              "report.html",
+                                                              "view-*"};
 
 /// Stages `report` as report.json in `out` (visible at out.commit()).
 void writeReport(OutputDir& out, const nlohmann::json& report);

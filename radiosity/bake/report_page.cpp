@@ -1,4 +1,5 @@
 #include "radiosity/bake/report_page.h"
+#include "radiosity/lightmap/lightmap_output.h"
 
 #include <cmath>
 #include <filesystem>
@@ -38,7 +39,7 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   input.title = title;
   input.kind = kind;
   input.report = report;
-  input.glb = readFileBytes(out.staged("baked.glb").string());
+  input.glb = readFileBytes(out.staged("preview.glb").string());
   input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
   input.lightmap = &lightmap;
@@ -60,10 +61,10 @@ void writeDecompositionReportPage(OutputDir& out, const std::string& title, cons
 void writeComparisonReportPage(const std::string& dir, const std::string& aDir, const nlohmann::json& figures,
                                const ImageRGB& a, const ImageRGB& b, const std::vector<float>& area,
                                const std::vector<float>& weight, const nlohmann::json& bench) {
-  const std::string glbPath = (std::filesystem::path(aDir) / "baked.glb").string();
+  const std::string glbPath = previewGlb(aDir).string();
   if (!std::filesystem::exists(glbPath))
     throw InputError(glbPath,
-                     "no such file (--report shows A's baked.glb; A must be a bake or reference folder)");
+                     "no such file (--report shows A's preview.glb; A must be a bake or reference folder)");
   const LoadedScene baked = loadScene(glbPath);  // for its cells and portals
 
   double signal = 0.0, weights = 0.0;

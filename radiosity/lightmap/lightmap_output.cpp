@@ -1,34 +1,148 @@
 #include "radiosity/lightmap/lightmap_output.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 
+#include "core/error.h"
 #include "core/scene_io.h"
+#include "radiosity/lightmap/engine_lightmap.h"
+#include "radiosity/lightmap/scene_uv.h"
 
 namespace cpgi {
+namespace {
+
+// The engine lightmap's layout: cpgi's atlas, or the scene's TEXCOORD_1 with the light read into it.
+struct EngineLayout {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> irradiance;                 ///< dilated
+  std::vector<std::array<glm::vec2, 3>> triangleUV;  ///< TEXCOORD_1 of baked.glb
+  std::string source = "own";
+};
+
+// Lines of `problems` joined for one message (the first few, and how many more).
+std::string joined(const std::vector<std::string>& problems) {
+  std::string text;
+  for (size_t i = 0; i < problems.size() && i < 4; ++i) text += (i ? "; " : "") + problems[i];
+  if (problems.size() > 4) text += "; and " + std::to_string(problems.size() - 4) + " more";
+  return text;
+}
+
+bool anySceneUV(const Scene& scene) {
+  return std::any_of(scene.triangles.begin(), scene.triangles.end(), [&](const Triangle& t) {
+    return t.uv < scene.looks.uvs.size() && scene.looks.uvs[t.uv].has(1);
+  });
+}
+
+EngineLayout engineLayout(const Scene& scene, const LightmapAtlas& atlas, std::vector<glm::vec3> irradiance,
+                          UvSource uv, Context& ctx) {
+  EngineLayout own{atlas.width, atlas.height, std::move(irradiance), atlas.triangleUV, "own"};
+  if (uv == UvSource::Own || !anySceneUV(scene)) return own;
+  requireSceneUVs(scene, atlas, uv);
+  const int size = sceneUvSize(scene, atlas.validTexels());
+  const SceneUvCheck check = checkSceneUVs(scene, size);
+  if (!check.usable()) {
+    ctx.warn("engine lightmap: the scene's TEXCOORD_1 is not used, cpgi's own atlas is (" +
+             joined(check.refusals) + "); --uv own says so without this warning");
+    return own;
+  }
+  for (const std::string& w : check.warnings)
+    ctx.warn("engine lightmap: " + w + " (the light there is blurred)");
+  EngineLayout layout{size, size, {}, {}, "scene"};
+  layout.irradiance = resampleToSceneUVs(scene, atlas, own.irradiance, size, layout.triangleUV);
+  return layout;
+}
+
+// The engine's lightmap files (lightmap_irradiance.exr, its RGBM PNG) and baked.glb; returns report.json's
+// "engine_lightmap".
+nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGraph& cells,
+                                const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
+                                const EngineOutputParams& params, Context& ctx) {
+  size_t unknown = 0;
+  std::vector<glm::vec3> irradiance = irradianceFromRadiosity(atlas, radiosity, &unknown);
+  const LightmapRange range = lightmapRange(atlas, irradiance);
+  dilate(atlas, irradiance);
+  const EngineLayout layout = engineLayout(scene, atlas, std::move(irradiance), params.uv, ctx);
+  const ImageRGB image{layout.width, layout.height, layout.irradiance};
+  writeExr(out.file("lightmap_irradiance.exr").string(), image, {}, ExrPrecision::Half);
+  const RgbmImage rgbm = encodeRgbm(image.width, image.height, image.pixels, range.rgbmRange);
+  writeFileAtomically(out.file("lightmap_irradiance_rgbm.png"),
+                      encodePng8(rgbm.width, rgbm.height, 4, rgbm.rgba));
+
+  nlohmann::json report = {{"irradiance_exr", "lightmap_irradiance.exr"},
+                           {"rgbm_png", "lightmap_irradiance_rgbm.png"},
+                           {"rgbm_range", rgbm.range},
+                           {"rgbm_clipped_area_fraction", range.rgbmClippedArea},
+                           {"max_irradiance", range.max},
+                           {"half_overflow", range.max > 65504.0f},
+                           {"unknown_irradiance_texels", unknown},
+                           {"glb", "baked.glb"},
+                           {"glb_lightmap_intensity", range.ldrScale},
+                           {"glb_clipped_area_fraction", range.clippedArea},
+                           {"preview_glb", "preview.glb"},
+                           {"helpers_kept", params.keepHelpers},
+                           {"uv", layout.source},
+                           {"width", layout.width},
+                           {"height", layout.height}};
+  GltfWriteOptions gltf;
+  gltf.forEngines = true;
+  gltf.keepHelpers = params.keepHelpers;
+  gltf.lightmapUVs = &layout.triangleUV;
+  gltf.cells = cells.empty() ? nullptr : &cells;
+  gltf.lightmapPng = encodePng(image, 1.0f / range.ldrScale);
+  gltf.lightmapIntensity = range.ldrScale;
+  gltf.lightmapExtrasJson = nlohmann::json{
+      {"irradiance_exr", "lightmap_irradiance.exr"},
+      {"rgbm_png", "lightmap_irradiance_rgbm.png"},
+      {"rgbm_range",
+       rgbm.range}}.dump();
+  writeGltf(out.file("baked.glb").string(), scene, gltf);
+  return report;
+}
+
+}  // namespace
+
+void requireSceneUVs(const Scene& scene, const LightmapAtlas& atlas, UvSource uv) {
+  if (uv != UvSource::Scene) return;
+  if (!anySceneUV(scene)) throw InputError("--uv scene", "the scene has no TEXCOORD_1 on any triangle");
+  const SceneUvCheck check = checkSceneUVs(scene, sceneUvSize(scene, atlas.validTexels()));
+  if (!check.usable())
+    throw InputError("--uv scene",
+                     "the scene's TEXCOORD_1 cannot hold a lightmap: " + joined(check.refusals));
+}
+
+std::filesystem::path previewGlb(const std::filesystem::path& dir) {
+  // A folder from before has no engine files, and its baked.glb is the preview.
+  std::error_code ec;
+  const bool before = !std::filesystem::exists(dir / "lightmap_irradiance.exr", ec) &&
+                      std::filesystem::exists(dir / "baked.glb", ec);
+  return before ? dir / "baked.glb" : dir / "preview.glb";
+}
 
 LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const CellGraph& cells,
                                      const LightmapAtlas& atlas, std::vector<glm::vec3> radiosity,
                                      const std::vector<ExrChannel>& extra, Context& ctx,
                                      const ViewParams& viewParams,
-                                     std::chrono::steady_clock::time_point viewsDeadline) {
+                                     std::chrono::steady_clock::time_point viewsDeadline,
+                                     const EngineOutputParams& engine) {
+  LightmapOutputs result;
+  result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, ctx);
   dilate(atlas, radiosity);
   const ImageRGB image{atlas.width, atlas.height, radiosity};
   std::vector<ExrChannel> channels{{"area", atlas.area}};
   channels.insert(channels.end(), extra.begin(), extra.end());
   writeExr(out.file("lightmap.exr").string(), image, channels);
 
-  LightmapOutputs result;
   result.exposure = viewParams.exposure > 0.0f ? viewParams.exposure : viewExposure(atlas, radiosity);
   GltfWriteOptions gltf;
   gltf.lightmapUVs = &atlas.triangleUV;
-  // Keep the cells and portals, so the baked file still loads with its graph.
+  // Keep the cells and portals, so the preview still loads with its graph (cpgi view, compare-light).
   gltf.cells = cells.empty() ? nullptr : &cells;
   gltf.lightmapPng = encodePng(image, result.exposure / std::numbers::pi_v<float>);
   writeFileAtomically(out.file("lightmap.png"), gltf.lightmapPng);
   // A staged name keeps its extension, by which writeGltf picks the format; a write error names the file
-  // as the user knows it (DIR/baked.glb).
-  writeGltf(out.file("baked.glb").string(), scene, gltf);
+  // as the user knows it (DIR/preview.glb).
+  writeGltf(out.file("preview.glb").string(), scene, gltf);
 
   RenderedViews views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams, viewsDeadline);
   result.views = std::move(views.written);

@@ -1,13 +1,15 @@
 // The files every lightmap producer writes (design.md §3), in one place so that `cpgi bake` and
-// `cpgi reference` stay comparable file for file: lightmap.exr, lightmap.png, baked.glb and the view
-// pictures.
+// `cpgi reference` stay comparable file for file: lightmap.exr, lightmap.png, the engine's lightmap
+// (lightmap_irradiance.exr, lightmap_irradiance_rgbm.png), baked.glb, preview.glb and the view pictures.
 #pragma once
 
 #include <chrono>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/cell_graph.h"
 #include "core/context.h"
@@ -19,24 +21,50 @@
 
 namespace cpgi {
 
+/// Where the engine's lightmap lies (`--uv`): cpgi's own atlas, the scene's TEXCOORD_1 (an artist's
+/// lightmap coordinates; the light resampled into them), or the scene's when they pass the checks of
+/// radiosity/lightmap/scene_uv.h, else cpgi's own with a warning naming the meshes.
+enum class UvSource { Own, Scene, Auto };
+
+/// How the files for engines are written.
+struct EngineOutputParams {
+  bool keepHelpers = false;  ///< baked.glb keeps portal: quads, cellvolume: meshes and punctual lamps
+  UvSource uv = UvSource::Auto;
+};
+
 struct LightmapOutputs {
   float exposure = 1.0f;                  ///< used for the glb's texture (viewExposure)
   std::vector<std::string> views;         ///< camera names, files view-NAME.exr / .png
   std::vector<std::string> skippedViews;  ///< cameras not rendered: the deadline came first
+  nlohmann::json engine;                  ///< report.json's "engine_lightmap": the engine files and ranges
 };
 
 /// Dilates `radiosity` (per atlas texel, W/m², padding ignored) and stages through `out`:
 ///  - lightmap.exr: R, G, B = radiosity B; channel "area" (m² per texel, 0 on padding) and any `extra`;
-///  - lightmap.png: the lightmap as radiance B/π at `exposure`, as the glb shows it;
-///  - baked.glb: the scene (with `cells` and their portals, when there are any) with the atlas as
-///    TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture, so any glTF viewer shows the
-///    baked light;
+///  - lightmap.png: the lightmap as radiance B/π at `exposure`, as preview.glb shows it;
+///  - lightmap_irradiance.exr (half float) and lightmap_irradiance_rgbm.png: the light arriving, E =
+///    (B − Le)/ρ in W/m² (radiosity/lightmap/engine_lightmap.h), on the atlas `engine.uv` chooses;
+///  - baked.glb, for engines: the scene's own materials, textures and TEXCOORD_0, the irradiance on
+///    TEXCOORD_1 (core/scene_io.h, GltfWriteOptions::forEngines), no helpers or lamps unless kept;
+///  - preview.glb, for viewers: the scene (with `cells` and their portals, when there are any) with the
+///    atlas as TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture;
 ///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for.
-/// Nothing appears in the folder before out.commit().
+/// Nothing appears in the folder before out.commit(). Throws InputError for `--uv scene` on a scene whose
+/// TEXCOORD_1 fails its checks.
 LightmapOutputs writeLightmapOutputs(
     OutputDir& out, const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
     std::vector<glm::vec3> radiosity, const std::vector<ExrChannel>& extra, Context& ctx,
     const ViewParams& viewParams = {},
-    std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max(),
+    const EngineOutputParams& engine = {});
+
+/// With UvSource::Scene, throws InputError("--uv scene", ...) naming the meshes when the scene's TEXCOORD_1
+/// fails the checks of scene_uv.h (or there is none): called before the solve, so a refusal costs no bake.
+void requireSceneUVs(const Scene& scene, const LightmapAtlas& atlas, UvSource uv);
+
+/// The glb a bake or reference folder shows its light with on cpgi's atlas (TEXCOORD_1) and cells:
+/// DIR/preview.glb, or DIR/baked.glb in a folder written before baked.glb became the engine's (one
+/// without lightmap_irradiance.exr).
+std::filesystem::path previewGlb(const std::filesystem::path& dir);
 
 }  // namespace cpgi

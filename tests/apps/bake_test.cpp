@@ -78,7 +78,7 @@ TEST(Bake, SeedSceneWritesAllOutputs) {
   EXPECT_GT(lit, 0.0);
 }
 
-TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
+TEST(Bake, PreviewGlbKeepsTheCellsAndPortals) {
   test::TempDir dir;
   ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + dir / "seed1.glb" + "'").status, 0);
   BakeSettings s;  // in process: --texels-per-quad 2 --unshot 0.2
@@ -88,9 +88,13 @@ TEST(Bake, BakedGlbKeepsTheCellsAndPortals) {
   s.atlas.params.texelsPerQuad = 2;
   s.solver.params.unshotFraction = 0.2;
   test::bakeHere(s);
-  const LoadedScene baked = loadScene(dir / "out/baked.glb", LoadOptions{});
-  EXPECT_EQ(baked.cells.cells.size(), 3u);
-  EXPECT_EQ(baked.cells.portals.size(), 2u);
+  const LoadedScene preview = loadScene(dir / "out/preview.glb", LoadOptions{});
+  EXPECT_EQ(preview.cells.cells.size(), 3u);
+  EXPECT_EQ(preview.cells.portals.size(), 2u);
+  // The engine's glb keeps the rooms as node names, without the portals' helper quads.
+  const LoadedScene engine = loadScene(dir / "out/baked.glb", LoadOptions{});
+  EXPECT_EQ(engine.cells.cells.size(), 3u);
+  EXPECT_EQ(engine.cells.portals.size(), 0u);
 }
 
 TEST(Bake, BadOptionsFailWithOneLine) {

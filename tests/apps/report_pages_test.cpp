@@ -61,16 +61,16 @@ TEST(ReportPages, ComparisonCarriesTheErrorPerTexel) {
   EXPECT_GT(data["report"]["cells"][0]["rel_rmse"].get<double>(), 0.0);
   EXPECT_TRUE(data["report"]["worst_cell"].is_string());
 
-  // A has no baked.glb: one line naming it, no page.
+  // A has no preview.glb: one line naming it, no page.
   const test::CommandRun bad = cpgi(dir, "compare-light " + quote(dir / "ref") + " " + quote(dir / "ref") +
                                              " --report " + quote(dir / "bad"));
-  std::filesystem::remove(dir / "ref/baked.glb");
+  std::filesystem::remove(dir / "ref/preview.glb");
   const test::CommandRun missing = cpgi(dir, "compare-light " + quote(dir / "ref") + " " +
                                                  quote(dir / "bake") + " --report " + quote(dir / "bad2"));
   EXPECT_EQ(bad.status, 0) << bad.err;  // a reference folder is a valid A
   EXPECT_EQ(missing.status, 1);
   ASSERT_EQ(missing.errLines().size(), 1u) << missing.err;
-  EXPECT_NE(missing.err.find("baked.glb"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("preview.glb"), std::string::npos) << missing.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad2/report.html"));
 }
 

@@ -1,5 +1,5 @@
 // `cpgi view DIR`: pictures of an existing bake without baking again. With the bake's own settings it
-// draws the very pictures the bake drew (the atlas comes back from baked.glb's TEXCOORD_1); it picks one
+// draws the very pictures the bake drew (the atlas comes back from preview.glb's TEXCOORD_1); it picks one
 // camera by name or places one by hand; a folder that is not a bake fails with one line.
 #include <algorithm>
 #include <cmath>

@@ -221,7 +221,7 @@ int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::
 // sequence: a hashed offset per region, the golden ratio per shot), stratified.
 RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& rect,
                           std::span<const glm::vec3> residual, uint32_t region, uint32_t shotNumber, int eyes,
-                          const ShooterEmission& emission) {
+                          float oneEyeRadius, const ShooterEmission& emission) {
   const Patch& p = s.atlas.patches[size_t(shooter)];
   RegionPieces out;
   ChartTexels all;
@@ -240,6 +240,9 @@ RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& 
     out.power = 0.0;
     return out;
   }
+  // One eye where more would see the same: every draw lands on a region of one texel, and eyes on a
+  // region a hand's width across (a book's spine) sit closer together than the coarse texels that receive.
+  if (all.size() == 1 || out.whole().radius < oneEyeRadius) eyes = 1;
   const float u = float((regionHash(region) + shotNumber * 0x9E3779B9u) >> 8) / 16777216.0f;
   for (int k = 0; k < eyes; ++k) {
     const double target = double(std::fmod(u + float(k) / float(eyes), 1.0f)) * out.power;
@@ -445,7 +448,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   std::vector<RegionPieces> regions(layout.rects.size());
   tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
     regions[r] = regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber,
-                              params.eyesPerRegion, emission);
+                              params.eyesPerRegion, params.oneEyeRadius, emission);
   });
   std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
   RayShotGain out;

@@ -47,6 +47,9 @@ struct RayShotParams {
   bool nearRays = true;
   /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
   bool cull = true;
+  /// A region whose bounding radius is under this (m) is seen from one eye: on a furnished house's books
+  /// and handles the eyes fell within a coarse texel of each other, each costing a ray per receiver.
+  float oneEyeRadius = 0.25f;
 };
 
 /// How the shooters emit where they are not Lambertian (the cells' directional and binned portals,

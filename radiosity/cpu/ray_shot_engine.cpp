@@ -119,6 +119,8 @@ class RayShotBackend final : public ShotBackend {
     cull_.measured(gain_);
     return {gain_.gathered, gain_.covered, gain_.open};
   }
+  // The receivers' unshot power grows by what they reflect, patch by patch, and the shooter's is spent:
+  // summing every texel's residual again after each shot was a twentieth of a furnished house's solve.
   double deliver(float scale) override {
     double received = 0.0, absorbed = 0.0;
     for (size_t k = 0; k < shots_.texels.size(); ++k) {
@@ -129,11 +131,12 @@ class RayShotBackend final : public ShotBackend {
       incident_[t] += g, radiosity_[t] += r, residual_[t] += r;
       received += channelSum(g) * atlas_.area[t];
       absorbed += channelSum(g - r) * atlas_.area[t];
+      patchPower_[size_t(atlas_.patch[t])] += channelSum(r) * atlas_.area[t];
     }
     for (uint32_t t : shots_.patchTexels[shooter_]) residual_[t] = glm::vec3(0.0f);
+    patchPower_[shooter_] = 0.0;
     sums_.received += received;
     sums_.absorbed += absorbed;
-    measurePatches();
     sums_.unshot = 0.0;
     for (double w : patchPower_) sums_.unshot += w;
     return received;

@@ -44,17 +44,26 @@ std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, floa
     // (a chair's leg on a floor) shades less than the texel the coarse solve smears it over.
     std::array<float, kContactPoints> nearest;
     nearest.fill(reach);
+    int points = 0, open = 0;  // probe points, and those that find nothing within reach
     for (int a = 0; a <= steps; ++a)
       for (int b = 0; a + b <= steps; ++b) {
         const float u = (float(a) + 1.0f / 3.0f) / float(steps + 1),
                     v = (float(b) + 1.0f / 3.0f) / float(steps + 1);
         if (u + v >= 1.0f) continue;
         const glm::vec3 p = (1.0f - u - v) * t.p[0] + u * t.p[1] + v * t.p[2];
-        if (const RayScene::Hit hit = rays.intersect(p + offset * n, n, 0.0f, nearest.back())) {
+        ++points;
+        const RayScene::Hit hit = rays.intersect(p + offset * n, n, 0.0f, reach);
+        if (!hit) {
+          ++open;
+        } else if (hit.t < nearest.back()) {
           nearest.back() = hit.t;
           std::sort(nearest.begin(), nearest.end());
         }
       }
+    // A surface covered all over (a book's side against the next book, a wardrobe's back against the
+    // wall, a cube's face on the floor) lies wholly in its contact's shade: its bounced light has no edge
+    // to resolve but within about the gap of its rim, so it keeps the coarse texels.
+    if (open == 0 && points >= kContactPoints) return;
     const float gap = nearest.back();
     if (gap < reach) density[i] = std::clamp(2.0f / std::max(gap, 1e-4f), coarse, fine[i]);
   });

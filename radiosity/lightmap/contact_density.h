@@ -22,7 +22,8 @@ std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCoun
 /// Per scene triangle, `coarse`, or where something lies within 2 / coarse metres in front of it (rays
 /// along its normal from points about half a coarse texel apart, at least 4 of them hitting: about a
 /// coarse texel's area), 2 / that gap (the 4th nearest hit), at most `fine` of the triangle (and never
-/// below `coarse`, unless `fine` is: never finer than the output).
+/// below `coarse`, unless `fine` is: never finer than the output). A triangle whose every point finds
+/// something within 2 / coarse metres is covered all over and keeps `coarse`: its shade has no edge inside.
 std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, float coarse,
                                   std::span<const float> fine);
 

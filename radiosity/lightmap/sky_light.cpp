@@ -59,6 +59,39 @@ std::vector<int> passEnds(int rays) {
   return ends;
 }
 
+// The order of the texels in every pass (`texels`, atlas order, as indices into it): first the seeds, each
+// chart row's first texel and every kSeedStride-th after it, then the others by a halving stride, so that
+// a first pass cut short has gathered a texel every few along every row. seedOf: per texel, the seed at
+// or before it in its row, whose estimate it takes when the first pass stops before reaching it.
+constexpr size_t kSeedStride = 16;
+struct PassOrder {
+  std::vector<uint32_t> order;
+  size_t seeds = 0;
+  std::vector<uint32_t> seedOf;
+};
+PassOrder passOrder(const LightmapAtlas& atlas, const std::vector<size_t>& texels) {
+  PassOrder o;
+  o.seedOf.resize(texels.size());
+  std::vector<uint8_t> phase(texels.size());  // position in its row mod kSeedStride
+  size_t rowStart = 0;
+  for (size_t j = 0; j < texels.size(); ++j) {
+    if (j == 0 || texels[j] != texels[j - 1] + 1 || atlas.patch[texels[j]] != atlas.patch[texels[j - 1]])
+      rowStart = j;
+    phase[j] = uint8_t((j - rowStart) % kSeedStride);
+    o.seedOf[j] = uint32_t(j - phase[j]);
+  }
+  // Phases by their bits reversed: 0, 8, 4, 12, 2, ...
+  for (size_t k = 0; k < kSeedStride; ++k) {
+    size_t want = 0;
+    for (size_t bit = 1, rev = kSeedStride / 2; bit < kSeedStride; bit <<= 1, rev >>= 1)
+      if (k & bit) want |= rev;
+    for (size_t j = 0; j < texels.size(); ++j)
+      if (phase[j] == want) o.order.push_back(uint32_t(j));
+    if (k == 0) o.seeds = o.order.size();
+  }
+  return o;
+}
+
 }  // namespace
 
 SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas,
@@ -78,29 +111,41 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
   constexpr size_t kChunk = size_t(1) << 15;
   const std::vector<int> ends = passEnds(sky.gatherRays);
   const double totalRays = double(texels.size()) * sky.gatherRays;
-  int done = 0;  // directions every texel has
+  const PassOrder order = passOrder(atlas, texels);
+  int done = 0;          // directions every texel has
+  size_t firstPass = 0;  // texels the first pass gathered itself, when a deadline cut it
   for (size_t p = 0; p < ends.size(); ++p) {
     const int from = done, to = ends[p];
     std::vector<double> next = sums;
     bool stopped = false;
     for (size_t c = 0; c < texels.size() && !stopped; c += kChunk) {
-      if (p > 0 && std::chrono::steady_clock::now() >= deadline) {
+      // The first pass goes on until its seeds have their directions; every later one stops at once.
+      if ((p > 0 || c >= order.seeds) && std::chrono::steady_clock::now() >= deadline) {
         stopped = true;
         break;
       }
       const size_t end = std::min(c + kChunk, texels.size());
       tbb::parallel_for(tbb::blocked_range<size_t>(c, end, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t j = r.begin(); j < r.end(); ++j) {
-          const size_t i = texels[j];
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+          const size_t j = order.order[k], i = texels[j];
           gatherAt(sky, occluders, atlas.position[i] + offset * atlas.normal[i], atlas.normal[i], i, from, to,
                    next[j]);
         }
       });
+      if (p == 0) firstPass = end;
       const double raysDone = double(texels.size()) * from + double(end) * (to - from);
       char status[64];
       std::snprintf(status, sizeof status, "%d of %d rays a texel, %zu texels", to, sky.gatherRays,
                     texels.size());
       ctx.progress("sky light", totalRays > 0.0 ? raysDone / totalRays : 1.0, status);
+    }
+    if (stopped && p == 0) {  // the texels not reached take their row's seed's estimate
+      std::vector<uint8_t> reached(texels.size(), 0);
+      for (size_t k = 0; k < firstPass; ++k) reached[order.order[k]] = 1;
+      for (size_t j = 0; j < texels.size(); ++j)
+        if (!reached[j]) next[j] = next[order.seedOf[j]];
+      sums.swap(next);
+      done = to;
     }
     if (stopped) {
       data.timedOut = true;
@@ -120,9 +165,18 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
   }
   direct.landed += landed;
   direct.directionalLanded += landed;
-  if (data.timedOut)
+  if (data.timedOut && firstPass < texels.size()) {
+    char note[320];
+    std::snprintf(
+        note, sizeof note,
+        "sky light: the deadline came in the first pass, after %zu of %zu texels had their %d rays; "
+        "each other texel took the estimate of one up to %zu texels before it in its chart's row",
+        firstPass, texels.size(), done, kSeedStride - 1);
+    ctx.warn(note);
+  } else if (data.timedOut) {
     ctx.warn("sky light: the deadline came after " + std::to_string(done) + " of " +
              std::to_string(sky.gatherRays) + " rays a texel; the sky's light is their estimate");
+  }
   return data;
 }
 

@@ -35,8 +35,10 @@ struct SkyGatherData {
 /// hemisphere is closed (inside a closed building) gets exactly 0. Does nothing when !sky.lights().
 /// The directions are gathered in passes over all texels (8, 16, 32, ... up to gatherRays), reported as
 /// progress ("sky light") every few seconds; past `deadline` no pass starts or goes on, and every texel
-/// keeps the estimate of the last whole pass (the first always completes), with a warning. Without a
-/// deadline the result is that of one pass of gatherRays.
+/// keeps the estimate of the last whole pass, with a warning. The first pass goes first over every chart
+/// row's first texel and every 16th after it, then over the others by a halving stride: cut short past
+/// those, every texel it did not reach takes the estimate of the one before it in its row (within 15
+/// texels). Without a deadline the result is that of one pass of gatherRays.
 SkyGatherData addSkyLight(
     const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct, Context& ctx,
     std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());

@@ -134,6 +134,32 @@ TEST(RayShot, ACubeOnTheFloorGetsTheLightInFrontOfIt) {
   }
 }
 
+// A 0.2 m square 2 m over a 4 m floor, a 1 m panel half under it at 1 m: a region this small is seen from
+// one eye (RayShotParams::oneEyeRadius), and the floor still gathers the light the exact rays give it,
+// shadow and all, as it does from two eyes.
+TEST(RayShot, ASmallShooterSeenFromOneEyeCastsTheExactShadow) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addRect(s, {1.9f, 1.9f, 2.0f}, {0, 0.2f, 0}, {0.2f, 0, 0}, m);  // the shooter, normal −z
+  addRect(s, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}, m);                 // the floor, normal +z
+  addRect(s, {1, 1.5f, 1}, {1, 0, 0}, {0, 1, 0}, m);              // the panel, normal +z
+  const OneShot shot(std::move(s), 5.0f, {0, 0, -1});
+  ASSERT_LT(glm::length(shot.atlas.patches[size_t(shot.shooter)].texelU), 0.25f);
+  for (const float radius : {RayShotParams{}.oneEyeRadius, 0.0f}) {
+    const std::vector<double> e = shot.gathered(4, RayShotParams{.oneEyeRadius = radius});
+    double got = 0.0, want = 0.0, shadowed = 0.0;
+    for (size_t t = 0; t < shot.atlas.texelCount(); ++t) {
+      if (shot.atlas.patch[t] < 0 || shot.atlas.position[t].z > 0.5f) continue;  // the floor's texels
+      const double exact = shot.exact(t);
+      got += e[t] * shot.atlas.area[t], want += exact * shot.atlas.area[t];
+      const glm::vec3 x = shot.atlas.position[t];
+      if (x.x > 1.2f && x.x < 1.8f && x.y > 1.7f && x.y < 2.2f) shadowed += e[t];  // deep under the panel
+    }
+    EXPECT_NEAR(got / want, 1.0, 0.03) << "one eye below " << radius << " m";
+    EXPECT_EQ(shadowed, 0.0) << "one eye below " << radius << " m";
+  }
+}
+
 // Two rooms of a 6 × 3 m box, a partition with a door between them, the floor shooting: the eyes'
 // segments to the receivers a single surface hides whole are left out (occluder_cull.h), and no
 // receiver's light changes for it.

@@ -113,6 +113,39 @@ TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
   EXPECT_EQ(again.landed, full.landed);
 }
 
+// A deadline already past on an atlas of more texels than a chunk of the gather (32 768) stops even the
+// first pass once every chart row has a texel in 16 gathered: the others take the estimate of the one
+// before them in their row, so every texel of the open box has sky light to within the 8 directions' noise.
+TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
+  Scene s = testing::boxOpenToTheSky(0.5f);
+  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
+  s.sky.gatherRays = 32;  // the whole gather to compare with, kept short
+  const LightmapAtlas atlas = atlasOf(s, 80.0f);
+  ASSERT_GT(atlas.validTexels(), 3u * 32768u);
+  Context ctx;
+  DirectLight late;
+  const SkyGatherData data =
+      addSkyLight(s.sky, RayScene(s), atlas, late, ctx, std::chrono::steady_clock::now());
+  EXPECT_TRUE(data.timedOut);
+  EXPECT_EQ(data.rays, 8);
+  ASSERT_EQ(ctx.warnings().size(), 1u);
+  EXPECT_NE(ctx.warnings()[0].find("in the first pass"), std::string::npos) << ctx.warnings()[0];
+  const DirectLight full = gather(s, atlas);
+  double lateSum = 0.0, fullSum = 0.0;
+  size_t copied = 0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) continue;
+    EXPECT_LE(late.irradiance[i].g, 3.0 * kPi * 1.0001);
+    // Within a row the copies run after their seed: a texel with the one before it in its row.
+    if (i > 0 && atlas.patch[i - 1] == atlas.patch[i] && late.irradiance[i] == late.irradiance[i - 1])
+      ++copied;
+    lateSum += late.irradiance[i].g * atlas.area[i], fullSum += full.irradiance[i].g * atlas.area[i];
+  }
+  EXPECT_GT(copied, atlas.validTexels() / 4);  // most of the texels were not reached
+  EXPECT_NEAR(lateSum, fullSum, 0.1 * fullSum);
+  EXPECT_NEAR(late.landed, 3.0 * lateSum, 1e-4 * late.landed);
+}
+
 TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {
   Scene s = testing::boxOpenToTheSky(0.5f);
   s.sky = skyOf(Sky::Kind::Uniform, 3.0f);

@@ -25,10 +25,10 @@
 #include "core/image_io.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
-#include "radiosity/solve/emission_bins.h"
-#include "radiosity/solve/emission_lobes.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/solve/emission_bins.h"
+#include "radiosity/solve/emission_lobes.h"
 
 namespace {
 

@@ -51,8 +51,9 @@ int main(int argc, char** argv) {
     const std::vector<float>* sigma = channel(refChannels, "stderr");
     const std::vector<float>* cell = channel(refChannels, "cell");
     const std::vector<float>* emissive = channel(refChannels, "emissive");
-    std::printf("x,y,z,nx,ny,nz,area,cell,emissive,edge,patch,bake,ref,sigma,weight,material,"
-                "bake_r,bake_g,bake_b,ref_r,ref_g,ref_b\n");
+    std::printf(
+        "x,y,z,nx,ny,nz,area,cell,emissive,edge,patch,bake,ref,sigma,weight,material,"
+        "bake_r,bake_g,bake_b,ref_r,ref_g,ref_b\n");
     for (const Patch& p : atlas.patches)
       for (int j = 0; j < p.h; ++j)
         for (int i = 0; i < p.w; ++i) {
@@ -63,11 +64,12 @@ int main(int argc, char** argv) {
           const int edge = std::min(std::min(i, p.w - 1 - i), std::min(j, p.h - 1 - j));
           const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
           const glm::vec3 b = bake.pixels[t], r = ref.pixels[t];
-          std::printf("%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.6g,%g,%g,%d,%d,%.6g,%.6g,%.4g,%.4g,%u,%.6g,%.6g,%.6g,"
-                      "%.6g,%.6g,%.6g\n", x.x, x.y, x.z,
-                      n.x, n.y, n.z, atlas.area[t], cell ? (*cell)[t] : -1.0f,
-                      emissive ? (*emissive)[t] : 0.0f, edge, atlas.patch[t], b.r + b.g + b.b,
-                      r.r + r.g + r.b, sigma ? (*sigma)[t] : 0.0f, w, p.material, b.r, b.g, b.b, r.r, r.g, r.b);
+          std::printf(
+              "%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.6g,%g,%g,%d,%d,%.6g,%.6g,%.4g,%.4g,%u,%.6g,%.6g,%.6g,"
+              "%.6g,%.6g,%.6g\n",
+              x.x, x.y, x.z, n.x, n.y, n.z, atlas.area[t], cell ? (*cell)[t] : -1.0f,
+              emissive ? (*emissive)[t] : 0.0f, edge, atlas.patch[t], b.r + b.g + b.b, r.r + r.g + r.b,
+              sigma ? (*sigma)[t] : 0.0f, w, p.material, b.r, b.g, b.b, r.r, r.g, r.b);
         }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

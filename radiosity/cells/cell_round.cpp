@@ -102,7 +102,8 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
   // emission) and what it gained, less what it left unshot; a binned emitter (a portal of this cell
   // re-emitting its neighbour's light) shapes it by its own bins.
   const ExitanceToward shotToward = [&](size_t t, const glm::vec3& omega) {
-    glm::vec3 shot = glm::max(a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t], glm::vec3(0.0f));
+    glm::vec3 shot =
+        glm::max(a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t], glm::vec3(0.0f));
     if (shot.r + shot.g + shot.b > 0.0f)
       if (auto own = s.pendingBins.find(int32_t(t)); own != s.pendingBins.end())
         shot *= binnedEmissionFactor(own->second, binFrame(a.normal[t]), omega);
@@ -124,7 +125,8 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
     // Each channel scaled to the light the solve delivered; a channel no ray met (a sliver the rays
     // missed) spread as a Lambertian.
     for (int c = 0; c < 3; ++c)
-      for (glm::vec3& x : b) x[c] = sum[c] > 0.0 ? float(double(x[c]) * w[c] / sum[c]) : w[c] / float(kArrivalBins);
+      for (glm::vec3& x : b)
+        x[c] = sum[c] > 0.0 ? float(double(x[c]) * w[c] / sum[c]) : w[c] / float(kArrivalBins);
     bins[k] = b;
   });
   return bins;

@@ -281,7 +281,8 @@ struct Gather {
   glm::vec3 emitted(const glm::vec3& f, const glm::vec4& lobe, const glm::vec3& v) const {
     if (!emission || lobe == glm::vec4(0.0f)) return f;
     const glm::vec3 omega = -glm::normalize(v);
-    if (lobe.w < 0.0f) return f * binFactor(binsOf(lobe, ns, emission->bins, nodeBins), binTaps(frame, omega));
+    if (lobe.w < 0.0f)
+      return f * binFactor(binsOf(lobe, ns, emission->bins, nodeBins), binTaps(frame, omega));
     return f * emissionLobeFactor(lobe, ns, omega, receiverBlur(v));
   }
   glm::vec3 point(const glm::vec3& c, float area, const glm::vec3& b, const glm::vec4& lobe) const {

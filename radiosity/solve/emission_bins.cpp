@@ -56,7 +56,8 @@ int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
 BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega) {
   const glm::vec2 s = binSquarePoint(frame, omega) - 0.5f;
   const glm::vec2 lo = glm::floor(s), t = s - lo;
-  const glm::ivec2 i0 = glm::clamp(glm::ivec2(lo), 0, kBinGrid - 1), i1 = glm::clamp(glm::ivec2(lo) + 1, 0, kBinGrid - 1);
+  const glm::ivec2 i0 = glm::clamp(glm::ivec2(lo), 0, kBinGrid - 1),
+                   i1 = glm::clamp(glm::ivec2(lo) + 1, 0, kBinGrid - 1);
   return {{i0.y * kBinGrid + i0.x, i0.y * kBinGrid + i1.x, i1.y * kBinGrid + i0.x, i1.y * kBinGrid + i1.x},
           {(1.0f - t.x) * (1.0f - t.y), t.x * (1.0f - t.y), (1.0f - t.x) * t.y, t.x * t.y}};
 }
@@ -72,7 +73,8 @@ glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, c
   const glm::dvec3 total = binTotals(bins);
   const BinTaps taps = binTaps(frame, omega);
   glm::vec3 w(0.0f);
-  for (int k = 0; k < 4; ++k) w += taps.weight[size_t(k)] * glm::max(bins[size_t(taps.bin[size_t(k)])], glm::vec3(0.0f));
+  for (int k = 0; k < 4; ++k)
+    w += taps.weight[size_t(k)] * glm::max(bins[size_t(taps.bin[size_t(k)])], glm::vec3(0.0f));
   glm::vec3 f(1.0f);
   for (int c = 0; c < 3; ++c)
     if (total[c] > 0.0) f[c] = float(double(w[c]) * double(kArrivalBins) / total[c]);

@@ -11,12 +11,26 @@
 namespace cpgi::decomp {
 namespace {
 
+// The two-storey house with a stair and its cells at 0.1 m voxels, decomposed once for the tests that
+// draw it.
+struct DecomposedHouse {
+  Building building;
+  Decomposition cells;
+};
+const DecomposedHouse& houseStairAt10cm() {
+  static const DecomposedHouse house = [] {
+    Building b = makeBuilding("house-stair");
+    DecomposeParams params;
+    params.voxelSize = 0.1;
+    Context ctx;
+    Decomposition d = decompose(b.seed.scene, params, ctx);
+    return DecomposedHouse{std::move(b), std::move(d)};
+  }();
+  return house;
+}
+
 TEST(Picture, TwoStoreyHouseShowsEveryRoomOfBothFloorsWhereItIs) {
-  const Building b = makeBuilding("house-stair");
-  DecomposeParams params;
-  params.voxelSize = 0.1;
-  Context ctx;
-  const Decomposition d = decompose(b.seed.scene, params, ctx);
+  const auto& [b, d] = houseStairAt10cm();
   const PictureParams picture;
   const ImageRGB img = drawDecomposition(d, picture);
   const GridFrame& f = d.frame;
@@ -57,11 +71,7 @@ TEST(Picture, TwoStoreyHouseShowsEveryRoomOfBothFloorsWhereItIs) {
 // The names and the scale bar are drawn: a room's name covers its middle in dark ink on a light box, and
 // each plan's bottom left corner holds the bar (dark pixels where the plan shows only outside).
 TEST(Picture, NamesEveryRoomAndHasAScaleBar) {
-  const Building b = makeBuilding("house-stair");
-  DecomposeParams params;
-  params.voxelSize = 0.1;
-  Context ctx;
-  const Decomposition d = decompose(b.seed.scene, params, ctx);
+  const auto& [b, d] = houseStairAt10cm();
   const ImageRGB img = drawDecomposition(d);
   const GridFrame& f = d.frame;
   const int scale = std::max(1, PictureParams{}.targetWidth / std::max(f.dims.x, f.dims.z));

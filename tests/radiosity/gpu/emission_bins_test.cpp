@@ -86,15 +86,15 @@ TEST(EmissionBins, RaysGiveASquaresIrradianceInItsDirections) {
   const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), params, ctx);
   const RayScene rays(scene);
   const float side = 0.01f;
-  const ArrivalBins bins = traceArrivalBins(rays, atlas, {-0.5f * side, -0.5f * side, 0.0f},
-                                            {side, 0.0f, 0.0f}, {0.0f, side, 0.0f}, {0.0f, 0.0f, 1.0f},
-                                            160000, 5,
-                                            [](size_t, const glm::vec3&) { return glm::vec3(1.0f, 0.5f, 0.0f); });
+  const ArrivalBins bins = traceArrivalBins(
+      rays, atlas, {-0.5f * side, -0.5f * side, 0.0f}, {side, 0.0f, 0.0f}, {0.0f, side, 0.0f},
+      {0.0f, 0.0f, 1.0f}, 160000, 5, [](size_t, const glm::vec3&) { return glm::vec3(1.0f, 0.5f, 0.0f); });
   glm::dvec3 total(0.0), outer(0.0);
   for (int b = 0; b < kArrivalBins; ++b) {
     total += glm::dvec3(bins[size_t(b)]);
     const int i = b % kBinGrid, j = b / kBinGrid;  // cells wholly past 2/3 of the square's half-width
-    if (std::min({i, j, kBinGrid - 1 - i, kBinGrid - 1 - j}) < kBinGrid / 6) outer += glm::dvec3(bins[size_t(b)]);
+    if (std::min({i, j, kBinGrid - 1 - i, kBinGrid - 1 - j}) < kBinGrid / 6)
+      outer += glm::dvec3(bins[size_t(b)]);
   }
   const double expected = 2.0 / kPi * (2.0 * 0.5 / std::sqrt(1.25) * std::atan(0.5 / std::sqrt(1.25)));
   EXPECT_NEAR(total.r, expected, 0.015 * expected);  // 3σ of 160k rays
@@ -104,7 +104,8 @@ TEST(EmissionBins, RaysGiveASquaresIrradianceInItsDirections) {
   // The same light seen as one emitter of the far side: its f is 0 outside those rings, and it still
   // keeps the exitance; blue, which no ray brought, is Lambertian.
   const BinFrame far = binFrame({0.0f, 0.0f, -1.0f});
-  EXPECT_EQ(binnedEmissionFactor(bins, far, glm::normalize(glm::vec3(1.0f, 0.0f, -0.2f))), glm::vec3(0, 0, 1));
+  EXPECT_EQ(binnedEmissionFactor(bins, far, glm::normalize(glm::vec3(1.0f, 0.0f, -0.2f))),
+            glm::vec3(0, 0, 1));
   EXPECT_GT(binnedEmissionFactor(bins, far, glm::vec3(0.0f, 0.0f, -1.0f)).r, 1.5f);
   expectEachChannel(meanFactor(bins, far.n, 400000), 1.0, 0.01);
 }
@@ -137,7 +138,8 @@ void binnedEmitterLightsAsIntegrated(ShotEngine& engine, double wallTolerance, d
     return binsOf(X, [&](const glm::vec3& d) {
       const float towardsWall = std::pow(std::max(0.0f, -d.z), 2.0f) * (1.0f + 4.0f * y);
       const float sideways = std::max(0.0f, d.y), away = std::max(0.0f, d.z);
-      return glm::vec3(0.2f + towardsWall + 0.5f * sideways, 0.2f + towardsWall, 0.1f + 2.0f * away + sideways);
+      return glm::vec3(0.2f + towardsWall + 0.5f * sideways, 0.2f + towardsWall,
+                       0.1f + 2.0f * away + sideways);
     });
   };
   Scene scene;

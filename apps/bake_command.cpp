@@ -102,7 +102,8 @@ void addMethodOptions(CLI::App& sub, BakeCommand& c) {
   sub.add_option("--cells", c.settings.cells.source,
                  "With --method cells: a glTF with cell:/portal: nodes or with rooms given as cellvolume: "
                  "meshes alone (the scene itself when it has them), a decompose output folder, or auto (the "
-                 "automatic decomposition, with the decomposition options below)")
+                 "automatic decomposition, with the decomposition options below); without it, the scene's "
+                 "own cells when it has them, else auto")
       ->capture_default_str();
   addCellOptions(sub, c.settings.cells.params);
   addOnDemandOptions(sub, c.settings.cells);

@@ -118,8 +118,9 @@ struct BakeSettings {
   struct Cells {
     BakeMethod method = BakeMethod::Global;
     /// With Cells: "auto" (the automatic decomposition with `decompose`), the scene file itself (its own
-    /// cells or room volumes), a decompose output folder or another glTF of the scene (loadBakeScene).
-    std::string source = "none";
+    /// cells or room volumes), a decompose output folder or another glTF of the scene (loadBakeScene);
+    /// empty: the scene's own cells when it has them, else "auto".
+    std::string source;
     /// Read: portals (kBakePortalLight), lobeMinWidth, portalBinRays, maxRounds, jobs. Its solver and
     /// atlas are Solver's and Atlas's; the rest is set by the bake.
     CellSolveParams params = [] {

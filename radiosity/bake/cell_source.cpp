@@ -65,7 +65,12 @@ CellGraph matchCellsToScene(const Scene& scene, const LoadedScene& cellsFile, co
 CellGraph resolveCells(const std::string& source, const std::string& scenePath, LoadedScene& loaded,
                        const decomp::DecomposeParams& params, const LoadOptions& load, Context& ctx,
                        Clock::time_point deadline) {
-  if (source == "none" || source.empty())
+  // No cells named: the scene's own (cell:/portal: nodes or room volumes) when it has them, else the
+  // automatic ones, as a user asking for the cells method on a scene that holds its rooms expects.
+  if (source.empty())
+    return resolveCells(loaded.cells.empty() ? "auto" : scenePath, scenePath, loaded, params, load, ctx,
+                        deadline);
+  if (source == "none")
     throw InputError("--cells", "--method cells needs cells: a glTF with cell:/portal: nodes, or auto");
   decomp::DecomposeParams p = params;
   p.sourceName = scenePath;

@@ -124,6 +124,30 @@ TEST(CellsBake, AutomaticCells) {
 
 // --cells auto decomposes with the decomposition options (apps/options.h): a voxel size out of range is
 // refused by the decomposition, naming the flag.
+// --method cells without --cells: the scene's own cells when it has them (seed1's three rooms, as
+// generated), else the automatic ones (the same rooms found in the raw model).
+TEST(CellsBake, WithoutCellsNamedTheScenesOwnElseAutomatic) {
+  test::TempDir dir;
+  for (const std::string& raw : {std::string(""), std::string(" --no-cells")}) {
+    const std::string scene = dir / ("seed1" + std::string(raw.empty() ? "" : "-raw") + ".glb");
+    ASSERT_EQ(cpgi(dir, "generate seed1" + raw + " -o '" + scene + "'").status, 0);
+    BakeSettings s = test::cellsBake(scene, "");
+    s.atlas.densityAuto = false;
+    s.atlas.params.texelsPerQuad = 2;
+    s.solver.params.unshotFraction = 0.1;
+    s.solver.params.itemBuffer = 128;
+    s.output.views.width = 32;
+    Context ctx;
+    const nlohmann::json report = test::bakeHere(s, ctx).report;
+    EXPECT_EQ(report["cells"], 3) << raw;
+    EXPECT_EQ(report["portals"], 2) << raw;
+    // The automatic decomposition ran for the raw model only.
+    bool decomposed = false;
+    for (const Context::Timing& t : ctx.timings()) decomposed = decomposed || t.stage == "decompose";
+    EXPECT_EQ(decomposed, !raw.empty()) << raw;
+  }
+}
+
 TEST(CellsBake, DecompositionOptionsReachAutoCells) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb";

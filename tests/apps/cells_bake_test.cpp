@@ -131,12 +131,9 @@ TEST(CellsBake, WithoutCellsNamedTheScenesOwnElseAutomatic) {
   for (const std::string& raw : {std::string(""), std::string(" --no-cells")}) {
     const std::string scene = dir / ("seed1" + std::string(raw.empty() ? "" : "-raw") + ".glb");
     ASSERT_EQ(cpgi(dir, "generate seed1" + raw + " -o '" + scene + "'").status, 0);
-    BakeSettings s = test::cellsBake(scene, "");
-    s.atlas.densityAuto = false;
-    s.atlas.params.texelsPerQuad = 2;
-    s.solver.params.unshotFraction = 0.1;
-    s.solver.params.itemBuffer = 128;
-    s.output.views.width = 32;
+    BakeSettings s = test::quickSeed1();
+    s.input.scene = scene;
+    s.cells.method = BakeMethod::Cells;
     Context ctx;
     const nlohmann::json report = test::bakeHere(s, ctx).report;
     EXPECT_EQ(report["cells"], 3) << raw;

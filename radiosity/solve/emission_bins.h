@@ -1,10 +1,10 @@
 // Binned directional emission, for portals whose light is more concentrated than one lobe can say: a
-// portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f piecewise constant over kArrivalBins
-// bins of equal area on the projected disk (u = ω_t, |u| = sin θ), the cells of a kBinGrid × kBinGrid
-// square mapped onto the disk by Shirley and Chiu's concentric map, which keeps areas and keeps the cells
-// near square everywhere. Equal areas there are equal projected solid angles, so f normalised to mean 1
-// over the bins gives ∫ f cos θ dω = π exactly: the exitance, hence the bookkeeping, does not depend on
-// the shape.
+// portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f given per bin of kArrivalBins bins of
+// equal area on the projected disk (u = ω_t, |u| = sin θ), the cells of a kBinGrid × kBinGrid square
+// mapped onto the disk by Shirley and Chiu's concentric map, which keeps areas and keeps the cells near
+// square everywhere, and read bilinearly between the cells' centres (binTaps). Equal areas there are
+// equal projected solid angles, so f normalised to mean 1 over the bins gives ∫ f cos θ dω = π exactly:
+// the exitance, hence the bookkeeping, does not depend on the shape.
 //
 // Why that grid, not rings and sectors: light that goes straight through two doors in a row leaves the
 // second near its normal, where 8 rings of 16 sectors were wedges 21° long meeting at the pole; the beam

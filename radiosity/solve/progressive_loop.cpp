@@ -103,6 +103,12 @@ class LoopProgress {
 
 }  // namespace
 
+int refusedStopBound(int shots, size_t receivers, double texelShots) {
+  const double extra =
+      std::max(kStopRefusedShots * double(shots), texelShots / double(std::max<size_t>(receivers, 1)));
+  return shots + std::max(1, int(std::min(std::ceil(extra), 1e9)));
+}
+
 SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& settings,
                                const LoopControls& controls, Context& ctx) {
   const auto start = std::chrono::steady_clock::now();
@@ -127,11 +133,12 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     if (books.unshotShare() <= stopAt) {
       if (!controls.acceptStop) break;
       ++result.stopChecks;
-      if (controls.acceptStop(backend.radiosity(), backend.residual())) break;
+      const std::vector<glm::vec3> radiosity = backend.radiosity();
+      if (controls.acceptStop(radiosity, backend.residual())) break;
       stopAt = books.unshotShare() * kStopRecheck;
       if (bound == 0) {
         result.stopRefusedAt = result.shots;
-        bound = result.shots + std::max(1, int(std::ceil(kStopRefusedShots * result.shots)));
+        bound = refusedStopBound(result.shots, radiosity.size(), controls.refusedStopTexelShots);
       }
     }
     if (next.power < controls.minShotPower) break;
@@ -164,7 +171,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     char note[200];
     std::snprintf(note, sizeof note,
                   "the stop per room was still refused after %d shots (first refused at shot %d, unshot "
-                  "%.3f%% now): stopped at the bound of as many shots again",
+                  "%.3f%% now): stopped at its bound",
                   result.shots, result.stopRefusedAt, 100.0 * books.unshotShare());
     ctx.warn(note);
   }

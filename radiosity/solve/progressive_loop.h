@@ -16,19 +16,13 @@
 #include "radiosity/lightmap/shot_settings.h"
 #include "radiosity/lightmap/solve_result.h"
 #include "radiosity/solve/shot_backend.h"
+#include "radiosity/solve/solve_controls.h"
 
 namespace cpgi {
 
-/// A refused stop (LoopControls::acceptStop) is asked again once the unshot share has fallen to this
-/// fraction of the share it was refused at.
-inline constexpr double kStopRecheck = 0.7;
-
-/// After the first refused stop (LoopControls::acceptStop), the loop shoots at most this many times as
-/// many shots again as it took to reach it, then stops whatever acceptStop says (SolveResult::stopBounded).
-/// Without a bound the stop per room kept a daylit house shooting for a room's last fraction of a per
-/// cent: unshot under 1 % by shot 200, still shooting at shot 2 900 (0.02 % unshot) after 25 minutes
-/// (issue 46). What is left unshot is the ambient term's (radiosity/solve/ambient.h).
-inline constexpr double kStopRefusedShots = 1.0;
+/// The shot the loop stops at, past a stop first refused after `shots` shots over `receivers` texels,
+/// with at least `texelShots` (kStopRefusedTexelShots) of work allowed.
+int refusedStopBound(int shots, size_t receivers, double texelShots);
 
 /// What a caller driving the loop sets besides the user's ShotSettings.
 struct LoopControls {
@@ -57,6 +51,8 @@ struct LoopControls {
   /// Shoot no more after this instant: the result is the shots so far, SolveResult::timedOut set and
   /// what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// The least work the stop per room may add past its first refusal (refusedStopBound).
+  double refusedStopTexelShots = kStopRefusedTexelShots;
 };
 
 /// Runs the loop on `backend` (after construction, before start()) until a stop. Fills SolveResult's

@@ -137,6 +137,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   loop.patchShotScale = shape.patchShotScale;
   loop.lobedEmission = shape.directionalEmission;
   loop.deadline = controls.deadline;
+  loop.refusedStopTexelShots = controls.refusedStopTexelShots;
   SolveResult result = runProgressiveLoop(*backend, settings, loop, ctx);
   result.setupSeconds = setupSeconds;
   backend->readBack(

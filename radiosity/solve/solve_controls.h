@@ -10,6 +10,25 @@
 
 namespace cpgi {
 
+/// A refused stop (SolveControls::acceptStop) is asked again once the unshot share has fallen to this
+/// fraction of the share it was refused at.
+inline constexpr double kStopRecheck = 0.7;
+
+/// After the first refused stop (SolveControls::acceptStop), the loop shoots at most this many times as
+/// many shots again as it took to reach it, or kStopRefusedTexelShots' worth if that is more, then stops
+/// whatever acceptStop says (SolveResult::stopBounded). Without a bound the stop per room kept a daylit
+/// house shooting for a room's last fraction of a per cent: unshot under 1 % by shot 200, still shooting
+/// at shot 2 900 (0.02 % unshot) after 25 minutes (issue 46). What is left unshot is the ambient term's
+/// (radiosity/solve/ambient.h).
+inline constexpr double kStopRefusedShots = 1.0;
+
+/// The least the stop per room may shoot on past its first refusal, in shots × receiver texels (a shot
+/// costs about its receivers): some CPU seconds. Where shots are cheap, as many shots again is too few
+/// for a room three openings from the lamp, whose light arrives after the rest of the scene's is shot:
+/// random plans stopped at the bound with such rooms 60–70 % ambient term and their means 6–10 % off,
+/// within 2 % after a few hundred shots more (bench/RESULTS.md, "The stop per room's bound").
+inline constexpr double kStopRefusedTexelShots = 2.0e7;
+
 /// A first shot made before the solve, elsewhere (radiosity/solve/two_level_solve.h: the lamps shot on the
 /// output's atlas, the rest solved on a coarser one): the solve starts after it, as after any shot.
 struct PriorShot {
@@ -42,6 +61,9 @@ struct SolveControls {
   /// Shoot no more after this instant (bake --time-limit): the result is what the shots so far gave,
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// The least work, in shots × receiver texels, the stop per room may add past its first refusal
+  /// (kStopRefusedTexelShots; tests set 0 to see the bound in shots alone).
+  double refusedStopTexelShots = kStopRefusedTexelShots;
 };
 
 }  // namespace cpgi

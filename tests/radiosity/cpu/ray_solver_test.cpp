@@ -261,7 +261,8 @@ TEST(RaySolver, PriorShotStopAndDeadlineKeepTheBooks) {
 
 // A stop per room that never accepts (issue 46: a daylit house shot on past shot 2 900 for a room's last
 // 0.02 %) stops the loop once it has shot as many shots again as it took to reach the first refusal
-// (kStopRefusedShots), the books still balanced; an accepting stop is not bounded.
+// (kStopRefusedShots; the work floor, kStopRefusedTexelShots, set to 0 here), the books still balanced; an
+// accepting stop is not bounded.
 TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
   Scene s;
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), addMaterial(s, glm::vec3(0.7f)));
@@ -274,7 +275,7 @@ TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
   SolverParams params;
   params.unshotFraction = 0.05;
   params.maxShots = 5000;  // a closed box at ρ = 0.7 never runs out of shooters: without a bound, 5000
-  SolveControls c{.priorShot = &first};
+  SolveControls c{.priorShot = &first, .refusedStopTexelShots = 0.0};
   int asked = 0;
   c.acceptStop = [&](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) {
     ++asked;
@@ -301,6 +302,22 @@ TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
   EXPECT_FALSE(ok.stopBounded);
   EXPECT_EQ(ok.stopChecks, 2);
   EXPECT_LT(ok.shots, 2 * ok.stopRefusedAt + 1);
+
+  // Where shots are cheap (few receivers), the work floor lets it shoot on longer than as many again.
+  const int floorShots = 600;
+  c.refusedStopTexelShots = double(floorShots) * double(atlas.texelCount());
+  c.acceptStop = [](const std::vector<glm::vec3>&, const std::vector<glm::vec3>&) { return false; };
+  const SolveResult cheap = solveProgressive(s, atlas, params, rays, ctx, c);
+  EXPECT_TRUE(cheap.stopBounded);
+  EXPECT_GT(floorShots, cheap.stopRefusedAt);
+  EXPECT_EQ(cheap.shots, cheap.stopRefusedAt + floorShots);
+}
+
+TEST(RaySolver, RefusedStopBoundIsTheLargerOfShotsAgainAndTheWorkFloor) {
+  EXPECT_EQ(refusedStopBound(100, 1'000'000, kStopRefusedTexelShots), 200);  // dear shots: as many again
+  EXPECT_EQ(refusedStopBound(100, 10'000, kStopRefusedTexelShots),
+            100 + int(std::ceil(kStopRefusedTexelShots / 10'000.0)));  // cheap shots: the work floor
+  EXPECT_EQ(refusedStopBound(0, 0, 0.0), 1);
 }
 
 // The lamps shot first by shadow rays (SolverParams::lampRays) are spent: the rays engine starts from the

@@ -337,7 +337,7 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
                    help(scope,
                         "Portal light with --method cells: diffuse (re-emits the irradiance as a "
                         "Lambertian area light), directional (keeps the directions the light arrived "
-                        "with, as one lobe) or binned (keeps them in 8 x 16 bins found by rays)")),
+                        "with, as one lobe) or binned (keeps them per colour channel in 12 x 12 bins found by rays)")),
          scope);
   addChecked(cmd, scope, "portal lobe width", cells.lobeMinWidth,
              "With --portals directional: the narrowest lobe a portal texel re-emits, as the standard "
@@ -407,10 +407,10 @@ void addSolveDensityOption(CLI::App& cmd, float& density) {
            density = float(d);
          },
          "Solve the light the lamps' light leaves on the surfaces on an atlas of this many texels per metre, "
-         "the lamps' own shots on the output's; 0: all on the output's atlas; auto (the default): half the "
-         "output's density (at most 5) when the output has more than 100 000 texels, else 0 (global method); "
-         "with --method cells, auto is 0 and a value solves the cells on that atlas (not with --plan, "
-         "--only-cells or --around)")
+         "the lamps' own shots on the output's; 0: all on the output's atlas; auto (the default): 5 with "
+         "--density auto, else half the output's density (at most 5) when the output has more than 100 000 "
+         "texels, else 0; --method cells as global, but cell jobs (--plan), --only-cells and --around solve "
+         "in one level")
       ->type_name("auto|T")
       ->default_str("auto");
 }

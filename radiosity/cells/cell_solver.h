@@ -28,7 +28,7 @@ namespace cpgi {
 /// How a portal re-emits on the far side what reached it: diffuse (the thesis: a Lambertian area light) or
 /// directional (the light keeps the directions it arrived with; radiosity/solve/emission_lobes.h). One
 /// PortalTransfer class per model (radiosity/cells/portal_transfer.h).
-/// Binned: the directions kept in 8 × 16 bins found by rays in the sending cell
+/// Binned: the directions kept per channel in kBinGrid² bins found by rays in the sending cell
 /// (radiosity/solve/emission_bins.h), for light more concentrated than one lobe can say.
 enum class PortalLight { Diffuse, Directional, Binned };
 const char* portalLightName(PortalLight p);

@@ -26,9 +26,13 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
   const LightmapAtlas pilot =
       fitTexelBudget(scene, quads, pilotParams,
                      params.maxTexels > 0 ? size_t(kPilotTexelShare * double(params.maxTexels)) : 0, ctx);
-  // The direct light alone: what bounces is smooth but for the contacts, found by rays below.
-  const SolveResult lit = shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{}, settings,
-                                            engine, ctx, controls);
+  // The direct light alone: what bounces is smooth but for the contacts, found by rays below. On the GL
+  // engine through its item buffers, coarse and then refined where the light varies, whatever lampRays
+  // says: the pilot only places texels, and shadow rays at every pilot texel cost more than it does.
+  SolverParams pilotSettings = settings;
+  pilotSettings.lampRays = 0;
+  const SolveResult lit = shootLampsRefined(scene, quads, pilot, pilotParams, RefinedLampParams{},
+                                            pilotSettings, engine, ctx, controls);
   std::vector<float> density = lightDensity(pilot, lit.incident, scene.triangles.size(), params.light);
   size_t contactTriangles = 0;
   if (params.contacts) {

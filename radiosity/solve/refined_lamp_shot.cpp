@@ -77,7 +77,11 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
                               const SolverParams& settings, ShotEngine& engine, Context& ctx,
                               const SolveControls& controls, RefinedLampData* data) {
-  if (!engine.features().lampShots) {  // the lamps by shadow rays on the CPU, at every output texel
+  // The lamps by shadow rays on the CPU at every output texel, as a one-level solve shoots them
+  // (SolverParams::lampRays), and on an engine without lamp shots. Through the GL item buffers, the few
+  // eyes on a lamp see a door's jambs from a few points only: a room lit through a door came out 10 %
+  // dark, the floor along the door 36 % (bench/RESULTS.md, "Lamps through doors at two levels").
+  if (settings.lampRays > 0 || !engine.features().lampShots) {
     const auto start = std::chrono::steady_clock::now();
     SolveResult byRays = shootFirstOnCpu(
         scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls.deadline);

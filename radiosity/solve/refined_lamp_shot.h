@@ -42,9 +42,10 @@ inline constexpr int kLampRaysOnCpu = 64;
 /// The first shot of every emitter patch (and the scene's punctual lights and sky, as solveProgressive
 /// shoots them) over `atlas`, the output's atlas built from `quads` with `atlasParams`: radiosity, incident
 /// (the direct irradiance) and residual per texel, energy as one solve's after those shots (received never
-/// above what was shot), shots, shooters and their scales. On an engine without lamp shots
-/// (EngineFeatures::lampShots: the rays), the lamps are shot by shadow rays at every output texel instead
-/// (shootFirstOnCpu, SolverParams::lampRays or kLampRaysOnCpu).
+/// above what was shot), shots, shooters and their scales. With SolverParams::lampRays, or on an engine
+/// without lamp shots (EngineFeatures::lampShots: the rays), the lamps are shot by shadow rays at every
+/// output texel instead (shootFirstOnCpu, SolverParams::lampRays or kLampRaysOnCpu); the coarse and
+/// refined item-buffer shots are for `lampRays` 0 on the GL engine.
 SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,
                               const AtlasParams& atlasParams, const RefinedLampParams& params,
                               const SolverParams& settings, ShotEngine& engine, Context& ctx,

@@ -93,7 +93,10 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   }
   const AtlasMapping mapping = mapAtlas(atlas, coarse);
   const auto lampStart = std::chrono::steady_clock::now();
-  // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies.
+  // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies. The
+  // solve starts here for the progress line (the bake's size note waits for it), whether or not a loop
+  // follows: by shadow rays the lamps' shot runs no loop, and a time limit may stop it.
+  ctx.progress(Progress{"solve", 0.0, "the lamps' shot"});
   RefinedLampData lampData;
   SolveControls lampControls = controls;
   lampControls.acceptStop = {};  // the stop is the interreflection's, asked below

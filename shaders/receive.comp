@@ -39,6 +39,8 @@ uniform vec3 uEyes[MAX_REGIONS];
 uniform vec3 uRegionOrigins[MAX_REGIONS];
 uniform mat3 uToShooter;
 uniform vec3 uShooterNormal;
+// The most sub-disks per edge of a binned texel near a receiver (fromTexel; ray_shot.cpp, kNearBinSubdisks).
+#define NEAR_BIN_SUBDISKS 32
 uniform vec3 uTexelU, uTexelV;  // the shooter's texel edges (m)
 uniform float uTexelRadius;
 uniform float uFarField;
@@ -150,12 +152,24 @@ vec3 fromTexel(vec3 x, vec3 n, ivec2 t) {
     return point(x, n, pa.xyz - hu - hv, a, b, l) + point(x, n, pa.xyz + hu - hv, a, b, l) +
            point(x, n, pa.xyz - hu + hv, a, b, l) + point(x, n, pa.xyz + hu + hv, a, b, l);
   }
-  // Near: 4×4 sub-disks, where the disk form keeps F finite as r → 0.
+  // Near: k×k sub-disks, where the disk form keeps F finite as r → 0: 4, or for a binned texel enough
+  // that their spacing is at most a quarter of the receiver's distance from its plane (its bins are read
+  // at each sub-disk's direction, and next to the plane a step along it is a large step in direction:
+  // ray_shot.cpp, Gather::nearSubdisks).
+  int k = 4;
+#ifdef BINNED
+  if (l.w < 0.0) {
+    float edge = max(length(uTexelU), length(uTexelV));
+    float distance = max(abs(dot(x - pa.xyz, uShooterNormal)), 1e-4);
+    k = clamp(int(ceil(4.0 * edge / distance)), 4, NEAR_BIN_SUBDISKS);
+  }
+#endif
+  float step = 1.0 / float(k);
   vec3 sum = vec3(0.0);
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      vec3 c = pa.xyz + (float(i) - 1.5) * 0.25 * uTexelU + (float(j) - 1.5) * 0.25 * uTexelV;
-      sum += disk(x, n, c, pa.w / 16.0, b, l);
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      vec3 c = pa.xyz + ((float(i) + 0.5) * step - 0.5) * uTexelU + ((float(j) + 0.5) * step - 0.5) * uTexelV;
+      sum += disk(x, n, c, pa.w * step * step, b, l);
     }
   return sum;
 }

@@ -19,6 +19,9 @@ constexpr float kPi = 3.14159265358979f;
 // A node holding binned texels stands for them whole only beyond this many of its radii, where it looks
 // smaller than about half the narrowest bins (shaders/directional.glsl, BIN_FAR).
 constexpr float kBinFar = 10.0f;
+// The most sub-disks per edge of a binned texel near a receiver (Gather::nearSubdisks; receive.comp's
+// NEAR_BIN_SUBDISKS).
+constexpr int kNearBinSubdisks = 32;
 
 // A shooter texel: where it is, its area, its unshot radiosity.
 struct ShooterTexel {
@@ -320,6 +323,18 @@ struct Gather {
     return point(c - u - v, a, f.radiosity, f.lobe) + point(c + u - v, a, f.radiosity, f.lobe) +
            point(c - u + v, a, f.radiosity, f.lobe) + point(c + u + v, a, f.radiosity, f.lobe);
   }
+  // Sub-disks per edge of a near shooter texel: 4, or for a binned texel (a portal's) enough that their
+  // spacing is at most a quarter of the receiver's distance from its plane, up to kNearBinSubdisks. Its bins
+  // are read at each sub-disk's direction, and next to the plane a step along it is a large step in
+  // direction (at 1.5 cm from it, sub-disks 2.5 cm apart are 40° apart): read that sparsely, the bins'
+  // peaks were missed and the floor beside a door's plane came out 17 % dark, a seam along every portal
+  // (bench/RESULTS.md, "The seam on a portal's plane").
+  int nearSubdisks(const glm::vec3& c, const glm::vec4& lobe, const glm::vec3& tu, const glm::vec3& tv) const {
+    if (!emission || !(lobe.w < 0.0f)) return 4;
+    const float edge = std::max(glm::length(tu), glm::length(tv));
+    const float distance = std::max(std::abs(glm::dot(x - c, ns)), 1e-4f);
+    return std::clamp(int(std::ceil(4.0f * edge / distance)), 4, kNearBinSubdisks);
+  }
   glm::vec3 texel(const ShooterTexel& t, const glm::vec3& tu, const glm::vec3& tv, float radius) const {
     if (farFor(t.position, radius, t.lobe)) {  // 2×2 Gauss points
       const float g = 0.5f * 0.5773502692f, a = 0.25f * t.area;
@@ -329,11 +344,14 @@ struct Gather {
              point(t.position - u + v, a, t.radiosity, t.lobe) +
              point(t.position + u + v, a, t.radiosity, t.lobe);
     }
-    glm::vec3 sum(0.0f);  // near: 4×4 sub-disks, which keep F finite as r → 0
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i)
-        sum += disk(t.position + (float(i) - 1.5f) * 0.25f * tu + (float(j) - 1.5f) * 0.25f * tv,
-                    t.area / 16.0f, t.radiosity, t.lobe);
+    // Near: k×k sub-disks, which keep F finite as r → 0 (k as nearSubdisks says).
+    const int k = nearSubdisks(t.position, t.lobe, tu, tv);
+    const float step = 1.0f / float(k), a = t.area / float(k * k);
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i)
+        sum += disk(t.position + ((float(i) + 0.5f) * step - 0.5f) * tu + ((float(j) + 0.5f) * step - 0.5f) * tv,
+                    a, t.radiosity, t.lobe);
     return sum;
   }
   // The region's light at the receiver through its quadtree, each piece handed to `use(point, light)`:

@@ -123,5 +123,22 @@ TEST_F(RandomPlanBake, TheGlobalBakesFloorStepsAtTheDoorsAsTheReferences) {
   EXPECT_GE(measured, 2);
 }
 
+// The cells bake's two sides of a door are solved in different cells, the floor running through: across
+// every door its step is the reference's within their texel noise too (issue 47's seam; at 4 texels a
+// metre the half-threshold's texels are too far from the plane for the near portal texels' sub-disks to
+// matter: bench/RESULTS.md, "The seam on a portal's plane", measures those at 10).
+TEST_F(RandomPlanBake, TheCellsBakesFloorStepsAtTheDoorsAsTheReferences) {
+  const std::vector<PortalSeam> bake = seams(runs().cells, runs().cells.radiosity),
+                                truth = seams(runs().cells, runs().reference.radiosity);
+  int measured = 0;
+  for (size_t i = 0; i < bake.size(); ++i) {
+    if (!bake[i].measured || !truth[i].measured) continue;
+    ++measured;
+    EXPECT_LT(std::abs(bake[i].step - truth[i].step), std::max(bake[i].noise, truth[i].noise))
+        << bake[i].name << ": " << bake[i].step << " against " << truth[i].step;
+  }
+  EXPECT_GE(measured, 2);
+}
+
 }  // namespace
 }  // namespace cpgi

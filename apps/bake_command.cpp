@@ -176,6 +176,14 @@ void addEngineOptions(CLI::App& sub, BakeCommand& c) {
       ->check(CLI::Range(4, 65536))
       ->default_val(c.settings.output.engine.directionalRays)
       ->group("Output");
+  sub.add_flag("--probes", c.settings.output.engine.probes,
+               "Also write light probes through the rooms' empty space (probes.json, baked.glb's extras): L2 "
+               "spherical harmonics of the light arriving, for objects that move")
+      ->group("Output");
+  sub.add_option("--probe-spacing", c.settings.output.engine.probeSpacing, "Metres between light probes")
+      ->check(CLI::Range(0.05, 100.0))
+      ->default_val(c.settings.output.engine.probeSpacing)
+      ->group("Output");
 }
 
 // What the flags leave to be set after parsing: the names they take as the settings' enums.

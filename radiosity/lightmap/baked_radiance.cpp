@@ -48,6 +48,9 @@ BakedRadiance::BakedRadiance(const Scene& scene, const RayScene& rays, const Lig
     emitterCdf_.push_back(total);
   }
   for (double& c : emitterCdf_) c /= total;
+  emitterChance_.assign(atlas.texelCount(), 0.0f);
+  for (size_t k = 0; k < emitters_.size(); ++k)
+    emitterChance_[emitters_[k]] = float(emitterCdf_[k] - (k > 0 ? emitterCdf_[k - 1] : 0.0));
   dilate(atlas, reflected_);
   // The offset of the bake's own rays (radiosity/lightmap/direct_light.cpp), so both see the same thin
   // occluders.
@@ -62,21 +65,26 @@ void BakedRadiance::gather(const glm::vec3& x, const glm::vec3& normal, uint64_t
                            const GatherParams& params, std::vector<ArrivalSample>& out) const {
   out.clear();
   const glm::vec3 origin = x + offset_ * normal;
-  gatherDirections(origin, normal, seed, params.rays, out);
-  gatherEmitters(origin, normal, seed, params.emitterSamples, out);
+  const int side = std::max(1, int(std::lround(std::sqrt(double(std::max(params.rays, 1))))));
+  const int emitterSamples = emitters_.empty() ? 0 : std::max(params.emitterSamples, 0);
+  gatherDirections(origin, normal, seed, side, emitterSamples, out);
+  gatherEmitters(origin, normal, seed, side * side, emitterSamples, out);
   gatherLights(origin, normal, out);
 }
 
+float BakedRadiance::emitterDensity(uint32_t texel, float r2, float cosEmitter) const {
+  return emitterChance_[texel] * r2 / (atlas_.area[texel] * cosEmitter);
+}
+
 // Stratified directions, uniform by solid angle over the hemisphere of `normal` (the sphere when it is
-// zero): what each ray finds stands for 2π/N (4π/N) of solid angle. Emissive surfaces bring only their
-// reflected light here; their emission is gatherEmitters'.
+// zero): what each ray finds stands for 2π/N (4π/N) of solid angle. An emissive surface's Le is weighted
+// against the emitter draws' density there (power heuristic).
 void BakedRadiance::gatherDirections(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed,
-                                     int rays, std::vector<ArrivalSample>& out) const {
+                                     int side, int emitterSamples, std::vector<ArrivalSample>& out) const {
   const bool sphere = normal == glm::vec3(0.0f);
   glm::vec3 t(1, 0, 0), b(0, 1, 0), n(0, 0, 1);
   if (!sphere) n = normal, frameOf(n, t, b);
-  const int side = std::max(1, int(std::lround(std::sqrt(double(std::max(rays, 1))))));
-  const float weight = (sphere ? 4.0f : 2.0f) * kPi / float(side * side);
+  const float directionDensity = float(side * side) / ((sphere ? 4.0f : 2.0f) * kPi);  // N p_d
   const bool sky = scene_.sky.lights();
   for (int j = 0; j < side; ++j)
     for (int i = 0; i < side; ++i) {
@@ -94,17 +102,30 @@ void BakedRadiance::gatherDirections(const glm::vec3& origin, const glm::vec3& n
         const std::array<glm::vec2, 3>& uv = atlas_.triangleUV[size_t(hit.triangle)];
         const glm::vec2 at = (1.0f - hit.u - hit.v) * uv[0] + hit.u * uv[1] + hit.v * uv[2];
         radiance = sampleBilinear(atlas_.width, atlas_.height, reflected_, at) / kPi;
+        const int tx = std::clamp(int(at.x * float(atlas_.width)), 0, atlas_.width - 1);
+        const int ty = std::clamp(int(at.y * float(atlas_.height)), 0, atlas_.height - 1);
+        const uint32_t texel = uint32_t(ty) * uint32_t(atlas_.width) + uint32_t(tx);
+        if (atlas_.patch[texel] >= 0 && atlas_.emission[texel] != glm::vec3(0.0f)) {
+          const float cosEmitter = -glm::dot(atlas_.normal[texel], w);
+          float weight = 1.0f;
+          if (emitterSamples > 0 && emitterChance_[texel] > 0.0f && cosEmitter > 0.0f) {
+            const float drawn = float(emitterSamples) * emitterDensity(texel, hit.t * hit.t, cosEmitter);
+            weight =
+                directionDensity * directionDensity / (directionDensity * directionDensity + drawn * drawn);
+          }
+          radiance += weight * atlas_.emission[texel] / kPi;
+        }
       }
-      if (radiance != glm::vec3(0.0f)) out.push_back({w, radiance * weight});
+      if (radiance != glm::vec3(0.0f)) out.push_back({w, radiance / directionDensity});
     }
   traced_ += uint64_t(side) * uint64_t(side);
 }
 
-// Points on the emissive texels, texel drawn by its power and the point uniform over its parallelogram:
-// L dω = Le/π · A cosθ_e / (r² p N).
+// Points on the emissive texels, texel drawn by its power and the point uniform over its parallelogram.
 void BakedRadiance::gatherEmitters(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed,
-                                   int samples, std::vector<ArrivalSample>& out) const {
+                                   int directions, int samples, std::vector<ArrivalSample>& out) const {
   if (emitters_.empty() || samples <= 0) return;
+  const float directionDensity = float(directions) / ((normal == glm::vec3(0.0f) ? 4.0f : 2.0f) * kPi);
   const uint64_t base = 1ull << 40;  // apart from gatherDirections' draws
   for (int s = 0; s < samples; ++s) {
     const float pick = (float(s) + uniform01(seed, base + 3 * uint64_t(s))) / float(samples);
@@ -125,9 +146,10 @@ void BakedRadiance::gatherEmitters(const glm::vec3& origin, const glm::vec3& nor
     if (cosEmitter <= 0.0f || (normal != glm::vec3(0.0f) && glm::dot(normal, w) <= 0.0f)) continue;
     ++traced_;
     if (rays_.occluded(origin, w, 0.0f, r * (1.0f - 1e-4f) - offset_)) continue;
-    const double prob = emitterCdf_[k] - (k > 0 ? emitterCdf_[k - 1] : 0.0);
-    const float solidAngle = float(double(atlas_.area[texel]) * cosEmitter / (r2 * prob * samples));
-    out.push_back({w, atlas_.emission[texel] / kPi * solidAngle});
+    // Le/π / (M p_e) times the power heuristic's weight (M p_e)² / ((N p_d)² + (M p_e)²).
+    const float drawn = float(samples) * emitterDensity(texel, r2, cosEmitter);
+    out.push_back(
+        {w, atlas_.emission[texel] / kPi * drawn / (directionDensity * directionDensity + drawn * drawn)});
   }
 }
 

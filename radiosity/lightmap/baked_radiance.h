@@ -2,8 +2,11 @@
 // light probes). Whatever engine solved the bake (GL item buffers or Embree rays), its result is radiosity
 // per atlas texel, and that is all this reads: a ray from the point that hits a surface brings that
 // surface's reflected radiance (B − Le)/π, read bilinearly at the hit as an engine reads the lightmap; the
-// emissive texels are sampled by area (next-event estimation, drawn by power) rather than found by chance;
-// the punctual lights are traced to exactly; a ray that leaves the scene brings the sky's radiance.
+// emitted radiance Le/π is found both by those rays and by points drawn on the emissive texels by power
+// (next-event estimation), the two combined by the power heuristic (Veach's multiple importance
+// sampling): the points find a small lamp far away, the rays a lit wall next to the point (the balance
+// heuristic left one ray's chance hit on a small lamp 3 % of a texel's light); the punctual
+// lights are traced to exactly; a ray that leaves the scene brings the sky's radiance.
 // Stratified directions over the point's hemisphere (a surface) or sphere (a probe).
 #pragma once
 
@@ -49,10 +52,14 @@ class BakedRadiance {
   uint64_t raysTraced() const;
 
  private:
-  void gatherDirections(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed, int rays,
-                        std::vector<ArrivalSample>& out) const;
-  void gatherEmitters(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed, int samples,
-                      std::vector<ArrivalSample>& out) const;
+  // Both take the two techniques' sample counts for the power heuristic's weights.
+  void gatherDirections(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed, int side,
+                        int emitterSamples, std::vector<ArrivalSample>& out) const;
+  void gatherEmitters(const glm::vec3& origin, const glm::vec3& normal, uint64_t seed, int directions,
+                      int samples, std::vector<ArrivalSample>& out) const;
+  /// The solid-angle density of one emitter draw landing on emissive texel `texel` seen at distance² r2
+  /// and cosine cosEmitter.
+  float emitterDensity(uint32_t texel, float r2, float cosEmitter) const;
   void gatherLights(const glm::vec3& origin, const glm::vec3& normal, std::vector<ArrivalSample>& out) const;
 
   const Scene& scene_;
@@ -61,6 +68,7 @@ class BakedRadiance {
   std::vector<glm::vec3> reflected_;  ///< per texel, (B − Le), dilated for bilinear reads
   std::vector<uint32_t> emitters_;    ///< emissive valid texels
   std::vector<double> emitterCdf_;    ///< their power's running share, last = 1
+  std::vector<float> emitterChance_;  ///< per texel, the chance one emitter draw picks it (0: none)
   float offset_ = 0.0f;               ///< ray origins lifted off surfaces (m)
   mutable std::atomic<uint64_t> traced_{0};
 };

@@ -93,7 +93,8 @@ nlohmann::json writeDirectionalFiles(OutputDir& out, const Scene& scene, const L
 // "engine_lightmap".
 nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGraph& cells,
                                 const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
-                                const EngineOutputParams& params, Context& ctx) {
+                                const EngineOutputParams& params, const nlohmann::json& probes,
+                                Context& ctx) {
   size_t unknown = 0;
   std::vector<glm::vec3> irradiance = irradianceFromRadiosity(atlas, radiosity, &unknown);
   const LightmapRange range = lightmapRange(atlas, irradiance);
@@ -130,6 +131,7 @@ nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGr
     extras["directional_sh"] = {{"files", report["directional"]["files"]},
                                 {"convention", report["directional"]["convention"]}};
   }
+  if (!probes.is_null()) extras["probes"] = probes;
   GltfWriteOptions gltf;
   gltf.forEngines = true;
   gltf.keepHelpers = params.keepHelpers;
@@ -166,9 +168,9 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
                                      const std::vector<ExrChannel>& extra, Context& ctx,
                                      const ViewParams& viewParams,
                                      std::chrono::steady_clock::time_point viewsDeadline,
-                                     const EngineOutputParams& engine) {
+                                     const EngineOutputParams& engine, const nlohmann::json& probes) {
   LightmapOutputs result;
-  result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, ctx);
+  result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, probes, ctx);
   dilate(atlas, radiosity);
   const ImageRGB image{atlas.width, atlas.height, radiosity};
   std::vector<ExrChannel> channels{{"area", atlas.area}};

@@ -35,6 +35,10 @@ struct EngineOutputParams {
   /// lightmaps") and 12 floats a texel.
   bool directional = false;
   int directionalRays = 256;  ///< directions per texel of its gather (GatherParams::rays)
+  /// Also light probes through the rooms (radiosity/bake/light_probes.h): probes.json and baked.glb's
+  /// extras.cpgi_lightmap.probes. Off by default.
+  bool probes = false;
+  float probeSpacing = 1.0f;  ///< metres between probes (ProbeParams::spacing)
 };
 
 struct LightmapOutputs {
@@ -54,6 +58,7 @@ struct LightmapOutputs {
 ///    (directional_lightmap.h), on the same atlas as the irradiance;
 ///  - baked.glb, for engines: the scene's own materials, textures and TEXCOORD_0, the irradiance on
 ///    TEXCOORD_1 (core/scene_io.h, GltfWriteOptions::forEngines), no helpers or lamps unless kept;
+///  - with `probes` (lightProbesJson, not null), baked.glb's extras.cpgi_lightmap.probes holds them;
 ///  - preview.glb, for viewers: the scene (with `cells` and their portals, when there are any) with the
 ///    atlas as TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture;
 ///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for.
@@ -64,7 +69,7 @@ LightmapOutputs writeLightmapOutputs(
     std::vector<glm::vec3> radiosity, const std::vector<ExrChannel>& extra, Context& ctx,
     const ViewParams& viewParams = {},
     std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max(),
-    const EngineOutputParams& engine = {});
+    const EngineOutputParams& engine = {}, const nlohmann::json& probes = {});
 
 /// With UvSource::Scene, throws InputError("--uv scene", ...) naming the meshes when the scene's TEXCOORD_1
 /// fails the checks of scene_uv.h (or there is none): called before the solve, so a refusal costs no bake.

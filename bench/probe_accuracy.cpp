@@ -68,13 +68,15 @@ int main(int argc, char** argv) {
     errors[room].push_back(e);
     unprojected[room].push_back(std::sqrt(direct2 / 6.0) / mean);
   }
-  for (auto& [room, list] : errors) {
-    std::sort(list.begin(), list.end());
-    const size_t within = size_t(std::count_if(list.begin(), list.end(), [](double e) { return e <= 0.05; }));
-    std::printf("room %s: %zu probes, error median %.4f, 90th %.4f, worst %.4f; within 5 %%: %zu\n",
-                room.c_str(), list.size(), list[list.size() / 2],
-                list[std::min(list.size() - 1, list.size() * 9 / 10)], list.back(), within);
-  }
+  for (auto* table : {&errors, &unprojected})
+    for (auto& [room, list] : *table) {
+      std::sort(list.begin(), list.end());
+      const size_t within =
+          size_t(std::count_if(list.begin(), list.end(), [](double e) { return e <= 0.05; }));
+      std::printf("%s room %s: %zu probes, error median %.4f, 90th %.4f, worst %.4f; within 5 %%: %zu\n",
+                  table == &errors ? "L2 SH" : "no SH", room.c_str(), list.size(), list[list.size() / 2],
+                  list[std::min(list.size() - 1, list.size() * 9 / 10)], list.back(), within);
+    }
   std::printf("worst probe %.4f; the reference's noise (standard error, worst probe) %.4f at %d spp\n", worst,
               noise, ref.spp);
   return 0;

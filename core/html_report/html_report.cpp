@@ -180,6 +180,7 @@ std::string renderHtmlReport(const HtmlReportInput& in) {
   data["portals"] = portalsJson(in.cells);
   if (in.lightmap) data["lightmap"] = lightmapJson(*in.lightmap);
   if (!in.bench.is_null()) data["bench"] = in.bench;
+  if (!in.probes.is_null()) data["probes"] = in.probes;
   return fillTemplate(
       embedded::kPageTemplate,
       {{"@CPGI_DATA@", escapeJsonForScript(data.dump(-1, ' ', false, json::error_handler_t::replace))},

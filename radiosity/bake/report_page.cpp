@@ -43,6 +43,10 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
   input.lightmap = &lightmap;
+  // A bake with light probes staged probes.json: the page lights a sphere with them.
+  const nlohmann::json engine = report.value("engine_lightmap", nlohmann::json::object());
+  if (engine.is_object() && engine.contains("probes"))
+    input.probes = nlohmann::json::parse(readFileBytes(out.staged("probes.json").string()));
   writeHtmlReport(out, input);
 }
 

@@ -7,6 +7,7 @@
 //   #cpgi-data (JSON): kind, title, report (report.json), cells [{name, eye, look}], portals
 //     [{name, cell_a, cell_b, corners}], lightmap {width, height, rgb (base64 half floats, RGBA,
 //     radiosity W/m²), cell (base64 int16 per texel, -1 for none), area (base64 float32 m² per texel)}
+//     probes (probes.json of bake --probes, when written): L2 SH light probes through the rooms
 //   #cpgi-glb: baked.glb (or cells.glb) as base64.
 // window.cpgiViewer is the handle the browser test (core/html_report/web/browser_test.mjs) drives.
 import * as THREE from 'three';
@@ -156,6 +157,52 @@ const fragmentShader = /* glsl */ `
     outColour = vec4(toSrgb(clamp(colour, 0.0, 1.0)), 1.0);
   }`;
 
+// A sphere lit by the light probes (bake --probes): the L2 SH of the probes around it, blended, give the
+// irradiance E(n) of Ramamoorthi & Hanrahan on each normal; shown as a grey of albedo 0.8, radiance
+// 0.8 E/π, with the lightmap's exposure and tone map. SH basis and order of probes.json's convention.
+const probeVertexShader = /* glsl */ `
+  out vec3 vNormal;
+  void main() {
+    vNormal = normalize(mat3(modelMatrix) * normal);
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+  }`;
+const probeFragmentShader = /* glsl */ `
+  uniform vec3 sh[9];
+  uniform float exposure;
+  in vec3 vNormal;
+  out vec4 outColour;
+  vec3 toSrgb(vec3 c) {
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+  }
+  void main() {
+    vec3 n = normalize(vNormal);
+    const float pi = 3.14159265;
+    vec3 e = pi * 0.282095 * sh[0]
+           + 2.0 * pi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x)
+           + pi / 4.0 * (1.092548 * (sh[4] * n.x * n.y + sh[5] * n.y * n.z + sh[7] * n.x * n.z)
+                         + 0.315392 * sh[6] * (3.0 * n.z * n.z - 1.0) + 0.546274 * sh[8] * (n.x * n.x - n.y * n.y));
+    vec3 light = 1.0 - exp(-max(e, 0.0) * 0.8 / pi * exposure);
+    outColour = vec4(toSrgb(clamp(light, 0.0, 1.0)), 1.0);
+  }`;
+
+// The probes' SH at `point`: the eight nearest blended by inverse squared distance (an array of nine
+// [r, g, b]); null without probes.
+export function probeShAt(probes, point) {
+  if (!probes || !probes.length) return null;
+  const near = probes
+    .map((p) => ({ p, d2: (p.position[0] - point.x) ** 2 + (p.position[1] - point.y) ** 2 + (p.position[2] - point.z) ** 2 }))
+    .sort((a, b) => a.d2 - b.d2)
+    .slice(0, 8);
+  const sh = Array.from({ length: 9 }, () => [0, 0, 0]);
+  let total = 0;
+  for (const { p, d2 } of near) {
+    const w = 1 / (d2 + 1e-4);
+    total += w;
+    for (let k = 0; k < 9; ++k) for (let c = 0; c < 3; ++c) sh[k][c] += w * p.sh[k][c];
+  }
+  return sh.map((v) => v.map((x) => x / total));
+}
+
 class Viewer {
   constructor(data, glb) {
     this.data = data;
@@ -183,7 +230,38 @@ class Viewer {
     this.portalGroup = new THREE.Group();
     this.portalGroup.visible = false;
     this.scene.add(this.portalGroup);
+    this.buildProbeSphere();
     this.load(glb);
+  }
+
+  // The probe-lit sphere, 0.3 m across, hidden until asked for; it then stands 1.5 m ahead of the camera
+  // and follows it (orbit, or walk through the rooms).
+  buildProbeSphere() {
+    this.probes = this.data.probes?.probes || [];
+    if (!this.probes.length) return;
+    const uniforms = { sh: { value: Array.from({ length: 9 }, () => new THREE.Vector3()) }, exposure: { value: this.exposure } };
+    this.probeSphere = new THREE.Mesh(new THREE.SphereGeometry(0.15, 48, 24), new THREE.ShaderMaterial({
+      uniforms, vertexShader: probeVertexShader, fragmentShader: probeFragmentShader, glslVersion: THREE.GLSL3,
+    }));
+    this.probeSphere.visible = false;
+    this.scene.add(this.probeSphere);
+  }
+
+  setProbeSphere(shown) {
+    if (!this.probeSphere) return;
+    this.probeSphere.visible = shown;
+    this.requestRender();
+  }
+
+  // Moves the sphere ahead of the camera and lights it from the probes there.
+  placeProbeSphere() {
+    const ahead = new THREE.Vector3();
+    this.camera.getWorldDirection(ahead);
+    this.probeSphere.position.copy(this.camera.position).addScaledVector(ahead, 1.5);
+    const sh = probeShAt(this.probes, this.probeSphere.position);
+    const uniforms = this.probeSphere.material.uniforms;
+    sh.forEach((c, k) => uniforms.sh.value[k].set(c[0], c[1], c[2]));
+    uniforms.exposure.value = this.exposure;
   }
 
   buildDom() {
@@ -493,6 +571,9 @@ class Viewer {
     const outside = add('<label><input id="outside" type="checkbox"> the outside</label>');
     if (this.outsideCell < 0) outside.style.display = 'none';
     outside.querySelector('input').addEventListener('change', (e) => this.setOutside(e.target.checked));
+    const sphere = add('<label><input id="probe-sphere" type="checkbox"> probe-lit sphere (1.5 m ahead)</label>');
+    if (!this.probeSphere) sphere.style.display = 'none';
+    sphere.querySelector('input').addEventListener('change', (e) => this.setProbeSphere(e.target.checked));
     const walk = add('<label><input id="walk" type="checkbox"> walk (drag to look, W A S D Q E to move)</label>');
     walk.querySelector('input').addEventListener('change', (e) => this.setWalking(e.target.checked));
     const views = add('view <select id="views"></select>');
@@ -556,6 +637,7 @@ class Viewer {
   }
 
   render() {
+    if (this.probeSphere?.visible) this.placeProbeSphere();
     this.renderer.render(this.scene, this.camera);
     const w = this.canvas.clientWidth, h = this.canvas.clientHeight, v = new THREE.Vector3();
     const visible = this.portalGroup.visible ? this.meshes.filter((m) => m.visible) : [];

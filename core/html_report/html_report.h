@@ -3,6 +3,7 @@
 // file://: the viewer script, the glTF and the lightmap are all inside the file.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct ReportLightmap {
   /// A comparison only (else empty): per texel, |A − B| / RMS(B) with the sign of A's luminance minus B's,
   /// RMS over the reference's texels weighted by area; the page's error heat map.
   std::vector<float> error;
+  /// A bake with --directional on cpgi's own atlas (else empty): per texel the vector irradiance V =
+  /// ∫ L ω dω, its x, y and z components (RGB each; radiosity/lightmap/directional_lightmap.h), dilated;
+  /// the page's normal-mapped test surface.
+  std::array<std::vector<glm::vec3>, 3> irradianceVector;
 };
 
 struct HtmlReportInput {

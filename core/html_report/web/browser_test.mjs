@@ -7,7 +7,8 @@
 //    the error heat map change the picture;
 //  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
 //  - the tables of report.json are there, and the bench chart when the page has bench rows;
-//  - with light probes, the probe-lit sphere shows, lit from above more than from below.
+//  - with light probes, the probe-lit sphere shows, lit from above more than from below; with the
+//    directional lightmap, the normal-mapped surfaces change the picture.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
@@ -161,6 +162,16 @@ try {
     check(probe.top > probe.bottom + 10, `probe sphere: its top (${probe.top.toFixed(1)}) is not brighter than its underside (${probe.bottom.toFixed(1)})`);
     check(probe.bottom > 5, `probe sphere: its underside is black (${probe.bottom.toFixed(1)})`);
     await page.click('#probe-sphere');
+  }
+  // 1c. A bake with --directional: the normal-mapped surface shows bumps lit by the directional lightmap.
+  if (await page.evaluate(() => !!window.cpgiViewer.lightmap?.vector.length)) {
+    await page.click('#bumps');
+    await capture('bumps');
+    summary.bumps = { changed: await meanAbsDiff('light', 'bumps', true), meanDiff: await meanAbsDiff('light', 'bumps') };
+    // The bumps shade most pixels by a few levels (tone-mapped), the dark sides of bumps by more.
+    check(summary.bumps.meanDiff > 4, `normal map: the picture changed by only ${summary.bumps.meanDiff} levels`);
+    check(summary.bumps.changed > 0.005, `normal map: only ${summary.bumps.changed} of the pixels changed by 24 levels`);
+    await page.click('#bumps');
   }
   // 2. Colour by cell, from the overview where every cell shows.
   await page.evaluate(() => { window.cpgiViewer.showView('overview'); });

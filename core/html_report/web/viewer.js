@@ -114,22 +114,32 @@ function lightmapTextures(lm, cells) {
   const densityTexture = nearest(densityBytes);
 
   const density = { min: 1 / Math.sqrt(hi), max: 1 / Math.sqrt(lo) };
-  return { radiosity, cellTexture, densityTexture, errorTexture, rgb, cell, area, count, density };
+  // A bake with --directional: the vector irradiance's x, y, z components (RGB each), filtered.
+  const vector = (lm.vector || []).map((b64) => {
+    const t = new THREE.DataTexture(new Uint16Array(base64Bytes(b64).buffer), lm.width, lm.height, THREE.RGBAFormat, THREE.HalfFloatType);
+    t.magFilter = t.minFilter = THREE.LinearFilter;
+    t.needsUpdate = true;
+    return t;
+  });
+  return { radiosity, cellTexture, densityTexture, errorTexture, rgb, cell, area, count, density, vector };
 }
 
 const vertexShader = /* glsl */ `
   in vec2 uv1;
   out vec2 vLightmapUv;
+  out vec3 vWorld;
   void main() {
     vLightmapUv = uv1;
+    vWorld = (modelMatrix * vec4(position, 1.0)).xyz;
     gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
   }`;
 
 // Radiance B/π times the exposure, tone-mapped (1 − e^−x) and encoded as sRGB. Colour by cell keeps the
 // light's shading so that the rooms stay recognisable; the density view draws the texel grid.
 const fragmentShader = /* glsl */ `
-  uniform sampler2D radiosity, cellColours, density, error;
-  uniform bool cellsPerTexel;
+  uniform sampler2D radiosity, cellColours, density, error, vectorX, vectorY, vectorZ;
+  uniform bool cellsPerTexel, bumps;
+  in vec3 vWorld;
   uniform vec3 cellColour;
   uniform vec2 atlasSize;
   uniform float exposure;
@@ -140,8 +150,24 @@ const fragmentShader = /* glsl */ `
   vec3 toSrgb(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
   }
+  // The normal-mapped test surface (bake --directional): egg-crate bumps 0.3 m across, slopes up to 0.6,
+  // lit by the directional lightmap: each channel's light times max(0, V · n_bumped) / (V · n_surface),
+  // V the vector irradiance (docs/engines.md).
+  vec3 bumped(vec3 b) {
+    vec3 n = normalize(cross(dFdx(vWorld), dFdy(vWorld)));
+    vec3 vx = texture(vectorX, vLightmapUv).rgb, vy = texture(vectorY, vLightmapUv).rgb, vz = texture(vectorZ, vLightmapUv).rgb;
+    vec3 lum = vec3(dot(vx, vec3(1.0)), dot(vy, vec3(1.0)), dot(vz, vec3(1.0)));
+    if (dot(lum, n) < 0.0) n = -n;
+    vec3 t = normalize(cross(abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0), n)), u = cross(n, t);
+    float k = 6.2831853 / 0.3, s = dot(vWorld, t) * k, v = dot(vWorld, u) * k;
+    vec3 m = normalize(n - 0.6 * cos(s) * sin(v) * t - 0.6 * sin(s) * cos(v) * u);
+    vec3 level = vx * n.x + vy * n.y + vz * n.z, lit = max(vx * m.x + vy * m.y + vz * m.z, 0.0);
+    return b * lit / max(level, vec3(1e-6));
+  }
   void main() {
-    vec3 light = toneMap(texture(radiosity, vLightmapUv).rgb / 3.14159265 * exposure);
+    vec3 b = texture(radiosity, vLightmapUv).rgb;
+    if (bumps) b = bumped(b);
+    vec3 light = toneMap(b / 3.14159265 * exposure);
     vec3 colour = light;
     if (mode == 1) {
       float shade = dot(light, vec3(0.2126, 0.7152, 0.0722));
@@ -245,6 +271,13 @@ class Viewer {
     }));
     this.probeSphere.visible = false;
     this.scene.add(this.probeSphere);
+  }
+
+  // Every surface normal-mapped and lit by the directional lightmap (a bake with --directional).
+  setBumps(shown) {
+    if (!this.sharedUniforms || !this.lightmap.vector.length) return;
+    this.sharedUniforms.bumps.value = shown;
+    this.requestRender();
   }
 
   setProbeSphere(shown) {
@@ -371,6 +404,10 @@ class Viewer {
         atlasSize: { value: new THREE.Vector2(lm.width, lm.height) },
         exposure: { value: this.exposure },
         mode: { value: 0 },
+        bumps: { value: false },
+        vectorX: { value: this.lightmap.vector[0] || null },
+        vectorY: { value: this.lightmap.vector[1] || null },
+        vectorZ: { value: this.lightmap.vector[2] || null },
       };
     }
     return new THREE.ShaderMaterial({
@@ -571,6 +608,9 @@ class Viewer {
     const outside = add('<label><input id="outside" type="checkbox"> the outside</label>');
     if (this.outsideCell < 0) outside.style.display = 'none';
     outside.querySelector('input').addEventListener('change', (e) => this.setOutside(e.target.checked));
+    const bumps = add('<label><input id="bumps" type="checkbox"> normal map (directional lightmap)</label>');
+    if (!this.lightmap?.vector.length) bumps.style.display = 'none';
+    bumps.querySelector('input').addEventListener('change', (e) => this.setBumps(e.target.checked));
     const sphere = add('<label><input id="probe-sphere" type="checkbox"> probe-lit sphere (1.5 m ahead)</label>');
     if (!this.probeSphere) sphere.style.display = 'none';
     sphere.querySelector('input').addEventListener('change', (e) => this.setProbeSphere(e.target.checked));

@@ -16,8 +16,9 @@
 namespace cpgi {
 namespace {
 
-// The lattice: every `spacing`-th voxel centre of the enclosed empty space that lies `clearance` clear of
-// the surfaces (a voxel's distance is to the nearest solid voxel's centre, the surface half a voxel nearer).
+// The lattice: every `spacing`-th voxel centre of the enclosed or roofed empty space that lies `clearance`
+// clear of the surfaces (a voxel's distance is to the nearest solid voxel's centre, the surface half a voxel
+// nearer).
 std::vector<glm::vec3> probePoints(const Scene& scene, const ProbeParams& p, Context& ctx) {
   decomp::VoxelizeParams v;
   v.voxelSize = p.voxel;
@@ -25,13 +26,25 @@ std::vector<glm::vec3> probePoints(const Scene& scene, const ProbeParams& p, Con
   const decomp::SpaceGrid space = decomp::classifySpace(scene, solid, {}, ctx);
   const decomp::DistanceGrid distance = decomp::distanceToGeometry(solid, space, ctx);
   const decomp::GridFrame& f = solid.frame;
+  // A room with an open door or window is reachable from outside, so its voxels are "outside" too: those
+  // under a roof (solid above and below them in their column) count as well.
+  std::vector<int> lowest(size_t(f.dims.x) * f.dims.z, f.dims.y), highest(lowest.size(), -1);
+  for (int z = 0; z < f.dims.z; ++z)
+    for (int y = 0; y < f.dims.y; ++y)
+      for (int x = 0; x < f.dims.x; ++x)
+        if (space.space[f.index(x, y, z)] == decomp::Space::Solid) {
+          const size_t c = size_t(z) * f.dims.x + x;
+          lowest[c] = std::min(lowest[c], y), highest[c] = std::max(highest[c], y);
+        }
   const int step = std::max(1, int(std::lround(p.spacing / p.voxel)));
   std::vector<glm::vec3> points;
   for (int z = step / 2; z < f.dims.z; z += step)
     for (int y = step / 2; y < f.dims.y; y += step)
       for (int x = step / 2; x < f.dims.x; x += step) {
-        const size_t i = f.index(x, y, z);
-        if (space.space[i] == decomp::Space::Inside && distance.metres(i) - 0.5 * f.voxel >= p.clearance)
+        const size_t i = f.index(x, y, z), c = size_t(z) * f.dims.x + x;
+        const bool covered = space.space[i] == decomp::Space::Outside && lowest[c] < y && y < highest[c];
+        if ((space.space[i] == decomp::Space::Inside || covered) &&
+            distance.metres(i) - 0.5 * f.voxel >= p.clearance)
           points.push_back(f.centre(glm::ivec3(x, y, z)));
       }
   return points;
@@ -66,7 +79,17 @@ LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const 
   const auto start = std::chrono::steady_clock::now();
   LightProbes out;
   out.params = params;
-  const std::vector<glm::vec3> points = probePoints(scene, params, ctx);
+  std::vector<glm::vec3> points;
+  try {
+    points = probePoints(scene, params, ctx);
+  } catch (const InputError& e) {
+    // The voxels' own limits name the decomposition's options; here they are the probes'.
+    throw InputError("--probes",
+                     std::string("the empty space is too large to find at 0.1 m voxels (") + e.what() + ")");
+  }
+  if (points.empty())
+    ctx.warn("probes: no enclosed or roofed empty space " + std::to_string(params.clearance) +
+             " m clear of the surfaces; probes.json holds none");
   const RayScene rays(scene);
   const BakedRadiance baked(scene, rays, atlas, radiosity);
   const std::vector<int> cellOfTriangle = cells.cellOfTriangle(scene.triangles.size());

@@ -5,7 +5,8 @@
 // Ramamoorthi & Hanrahan's E(n) = Σ Â_l L_lm Y_lm(n), as Godot's LightmapGI probes do.
 //
 // Where: a lattice of `spacing` through the empty space the decomposition's voxels find enclosed
-// (decomposition/classify.h: inside, not outside or behind a wall), at least `clearance` from any surface
+// (decomposition/classify.h: inside, not behind a wall) or roofed (outside, with a surface above and below
+// it: a room whose door stands open is reachable from outside), at least `clearance` from any surface
 // (decomposition/distance.h). Which room: the cell most of a probe's rays land in (the cell of the
 // triangle hit), so hand-made and automatic cells alike. The light: gathered by rays from the baked
 // result (radiosity/lightmap/baked_radiance.h), over the whole sphere.

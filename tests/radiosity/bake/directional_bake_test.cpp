@@ -28,7 +28,7 @@ BakeSettings directionalSeed1() {
   return s;
 }
 
-TEST(DirectionalBake, TheIrradianceAtEachTexelsNormalIsTheIrradianceLightmap) {
+TEST(DirectionalLightmapBake, TheIrradianceAtEachTexelsNormalIsTheIrradianceLightmap) {
   test::TempDir dir;
   BakeSettings s = directionalSeed1();
   s.output.folder = dir / "out";
@@ -80,7 +80,7 @@ double litPower(const LightmapAtlas& atlas, const std::vector<glm::vec3>& e) {
   return sum;
 }
 
-TEST(DirectionalBake, TheGatherFindsTheLightTheSolveFound) {
+TEST(DirectionalLightmapBake, TheGatherFindsTheLightTheSolveFound) {
   const SeedScene seed1 = makeSeedScene(1);
   const BakeResult r = test::bakeHere(seed1.scene, seed1.cells, directionalSeed1());
   const std::vector<glm::vec3> e = irradianceFromRadiosity(r.atlas, r.radiosity);
@@ -94,7 +94,7 @@ TEST(DirectionalBake, TheGatherFindsTheLightTheSolveFound) {
   EXPECT_EQ(map.undirected, 0u);
 }
 
-TEST(DirectionalBake, TheGlAndTheRayEnginesGiveTheSameDirections) {
+TEST(DirectionalLightmapBake, TheGlAndTheRayEnginesGiveTheSameDirections) {
   const SeedScene seed1 = makeSeedScene(1);
   std::array<DirectionalLightmap, 2> maps;
   std::array<double, 2> power{};

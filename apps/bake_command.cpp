@@ -166,6 +166,24 @@ void addEngineOptions(CLI::App& sub, BakeCommand& c) {
       ->check(CLI::IsMember({"auto", "own", "scene"}))
       ->default_str(c.uv)
       ->group("Output");
+  // Directional light for normal maps (issue 48; docs/engines.md, "Directional lightmaps").
+  sub.add_flag("--directional", c.settings.output.engine.directional,
+               "Also write the directional lightmap: the L1 spherical harmonics of the light arriving per "
+               "texel (lightmap_sh_l0/l1y/l1z/l1x.exr), for normal maps, gathered by rays from the bake")
+      ->group("Output");
+  sub.add_option("--directional-rays", c.settings.output.engine.directionalRays,
+                 "Directions per texel of the directional lightmap's gather")
+      ->check(CLI::Range(4, 65536))
+      ->default_val(c.settings.output.engine.directionalRays)
+      ->group("Output");
+  sub.add_flag("--probes", c.settings.output.engine.probes,
+               "Also write light probes through the rooms' empty space (probes.json, baked.glb's extras): L2 "
+               "spherical harmonics of the light arriving, for objects that move")
+      ->group("Output");
+  sub.add_option("--probe-spacing", c.settings.output.engine.probeSpacing, "Metres between light probes")
+      ->check(CLI::Range(0.05, 100.0))
+      ->default_val(c.settings.output.engine.probeSpacing)
+      ->group("Output");
 }
 
 // What the flags leave to be set after parsing: the names they take as the settings' enums.

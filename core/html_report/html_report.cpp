@@ -110,15 +110,25 @@ json lightmapJson(const ReportLightmap& lm) {
       (!lm.cellOfTexel.empty() && lm.cellOfTexel.size() != count) ||
       (!lm.error.empty() && lm.error.size() != count))
     throw std::invalid_argument("renderHtmlReport: lightmap arrays do not match its width × height");
+  for (const auto& v : lm.irradianceVector)
+    if (!v.empty() && v.size() != count)
+      throw std::invalid_argument("renderHtmlReport: lightmap arrays do not match its width × height");
   // Half floats, RGBA: what WebGL 2 filters linearly everywhere; A unused.
-  std::vector<uint16_t> rgba(4 * count);
-  for (size_t i = 0; i < count; ++i) {
-    const glm::vec3 b = lm.radiosity[i];
-    for (int k = 0; k < 3; ++k)
-      rgba[4 * i + k] = uint16_t(glm::packHalf1x16(std::isfinite(b[k]) ? b[k] : 0.0f));
-    rgba[4 * i + 3] = uint16_t(glm::packHalf1x16(1.0f));
-  }
-  json out = {{"width", lm.width}, {"height", lm.height}, {"rgb", base64(rgba)}, {"area", base64(lm.area)}};
+  const auto halves = [&](const std::vector<glm::vec3>& values) {
+    std::vector<uint16_t> rgba(4 * count);
+    for (size_t i = 0; i < count; ++i) {
+      const glm::vec3 b = values[i];
+      for (int k = 0; k < 3; ++k)
+        rgba[4 * i + k] = uint16_t(glm::packHalf1x16(std::isfinite(b[k]) ? b[k] : 0.0f));
+      rgba[4 * i + 3] = uint16_t(glm::packHalf1x16(1.0f));
+    }
+    return base64(rgba);
+  };
+  json out = {
+      {"width", lm.width}, {"height", lm.height}, {"rgb", halves(lm.radiosity)}, {"area", base64(lm.area)}};
+  if (!lm.irradianceVector[0].empty())
+    out["vector"] = {halves(lm.irradianceVector[0]), halves(lm.irradianceVector[1]),
+                     halves(lm.irradianceVector[2])};
   if (!lm.cellOfTexel.empty()) {
     std::vector<int16_t> cell(count);
     for (size_t i = 0; i < count; ++i)
@@ -180,6 +190,7 @@ std::string renderHtmlReport(const HtmlReportInput& in) {
   data["portals"] = portalsJson(in.cells);
   if (in.lightmap) data["lightmap"] = lightmapJson(*in.lightmap);
   if (!in.bench.is_null()) data["bench"] = in.bench;
+  if (!in.probes.is_null()) data["probes"] = in.probes;
   return fillTemplate(
       embedded::kPageTemplate,
       {{"@CPGI_DATA@", escapeJsonForScript(data.dump(-1, ' ', false, json::error_handler_t::replace))},

@@ -3,6 +3,7 @@
 // file://: the viewer script, the glTF and the lightmap are all inside the file.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -25,21 +26,28 @@ struct ReportLightmap {
   /// A comparison only (else empty): per texel, |A − B| / RMS(B) with the sign of A's luminance minus B's,
   /// RMS over the reference's texels weighted by area; the page's error heat map.
   std::vector<float> error;
+  /// A bake with --directional on cpgi's own atlas (else empty): per texel the vector irradiance V =
+  /// ∫ L ω dω, its x, y and z components (RGB each; radiosity/lightmap/directional_lightmap.h), dilated;
+  /// the page's normal-mapped test surface.
+  std::array<std::vector<glm::vec3>, 3> irradianceVector;
 };
 
 struct HtmlReportInput {
-  std::string title;                 ///< shown on top, e.g. "bake of seed1.glb"
-  std::string kind;                  ///< "bake", "reference", "comparison" or "decomposition"
-  nlohmann::json report;             ///< report.json as written beside the page
-  std::string glb;                   ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
+  std::string title;      ///< shown on top, e.g. "bake of seed1.glb"
+  std::string kind;       ///< "bake", "reference", "comparison" or "decomposition"
+  nlohmann::json report;  ///< report.json as written beside the page
+  std::string glb;        ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
   /// Where a person would stand in each cell (radiosity/lightmap/views.h's defaultCameras), by the cell's
   /// name; the page offers a view from each. A cell without one gets none.
   std::vector<Camera> cellCameras;
-  const CellGraph* cells = nullptr;  ///< cells and portals (may be null or empty)
+  const CellGraph* cells = nullptr;          ///< cells and portals (may be null or empty)
   const ReportLightmap* lightmap = nullptr;  ///< null for a decomposition
   /// Rows of bench/speed_accuracy.py's results.json (scene, method, resolution, seconds, rel_rmse,
   /// rel_rmse_nonemissive ...) for the speed-against-accuracy chart; null for none.
   nlohmann::json bench;
+  /// probes.json of a bake with light probes (radiosity/bake/light_probes.h): the page's probe-lit sphere;
+  /// null for none.
+  nlohmann::json probes;
 };
 
 /// The page's HTML. Throws std::invalid_argument when the lightmap's arrays do not match its size.
@@ -50,6 +58,5 @@ void writeHtmlReport(OutputDir& out, const HtmlReportInput& input);
 
 /// Reads a staged or finished file whole (to embed baked.glb). Throws SystemError naming it.
 std::string readFileBytes(const std::string& path);
-
 
 }  // namespace cpgi

@@ -14,6 +14,7 @@
 #include "radiosity/bake/bake_limits.h"
 #include "radiosity/bake/bake_steps.h"
 #include "radiosity/bake/cell_source.h"
+#include "radiosity/bake/light_probes.h"
 #include "radiosity/bake/lightmap_report.h"
 #include "radiosity/bake/report_page.h"
 #include "radiosity/cells/cell_jobs.h"
@@ -180,9 +181,24 @@ void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, c
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-  LightmapOutputs written = writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity,
-                                                 {emissive, x.texelCells}, ctx, views, viewsDeadline, engine);
+  nlohmann::json probes, probesReport;
+  if (engine.probes) {
+    ProbeParams params;
+    params.spacing = engine.probeSpacing;
+    const LightProbes gathered = gatherLightProbes(*in.scene, *in.cells, in.atlas, r.radiosity, params, ctx);
+    probes = lightProbesJson(gathered, *in.cells);
+    writeFileAtomically(out->file("probes.json"), probes.dump());
+    probesReport = {{"file", "probes.json"},
+                    {"count", gathered.probes.size()},
+                    {"spacing_m", params.spacing},
+                    {"rays", gathered.rays},
+                    {"seconds", gathered.seconds}};
+  }
+  LightmapOutputs written =
+      writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
+                           views, viewsDeadline, engine, probes);
   f.engine = std::move(written.engine);
+  if (engine.probes) f.engine["probes"] = probesReport;
   f.views = std::move(written.views);
   f.skippedViews = std::move(written.skippedViews);
 }

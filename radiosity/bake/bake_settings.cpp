@@ -155,7 +155,7 @@ CPGI_JSON_FIELDS(BakeSettings::Input, scene, load, allowDark)
 CPGI_JSON_FIELDS(BakeSettings::Atlas, params, densityAuto, autoDensity)
 CPGI_JSON_FIELDS(BakeSettings::Solver, params, solveDensity, lampCoarsening, indirect, backend, ambient,
                  ambientShare)
-CPGI_JSON_FIELDS(EngineOutputParams, keepHelpers, uv)
+CPGI_JSON_FIELDS(EngineOutputParams, keepHelpers, uv, directional, directionalRays, probes, probeSpacing)
 CPGI_JSON_FIELDS(BakeSettings::Output, folder, views, engine)
 CPGI_JSON_FIELDS(BakeSettings::Limits, timeLimit, maxMemory, refuseEndless)
 

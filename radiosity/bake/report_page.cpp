@@ -7,9 +7,11 @@
 
 #include "core/error.h"
 #include "core/html_report/html_report.h"
+#include "core/image_io.h"
 #include "core/scene_io.h"
 #include "radiosity/lightmap/cell_channel.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/spherical_harmonics.h"
 #include "radiosity/lightmap/views.h"
 
 namespace cpgi {
@@ -43,6 +45,19 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
   input.lightmap = &lightmap;
+  // A bake with light probes staged probes.json: the page lights a sphere with them; one with --directional
+  // on cpgi's atlas, its SH files: the page's normal-mapped test surface.
+  const nlohmann::json engine = report.value("engine_lightmap", nlohmann::json::object());
+  if (engine.is_object() && engine.contains("directional") && engine.value("uv", "") == "own") {
+    const char* files[3] = {"lightmap_sh_l1x.exr", "lightmap_sh_l1y.exr", "lightmap_sh_l1z.exr"};
+    for (size_t k = 0; k < 3; ++k) {
+      ImageRGB sh = readExr(out.staged(files[k]).string());
+      for (glm::vec3& c : sh.pixels) c /= kShY1;
+      lightmap.irradianceVector[k] = std::move(sh.pixels);
+    }
+  }
+  if (engine.is_object() && engine.contains("probes"))
+    input.probes = nlohmann::json::parse(readFileBytes(out.staged("probes.json").string()));
   writeHtmlReport(out, input);
 }
 

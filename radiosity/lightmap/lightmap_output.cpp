@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/scene_io.h"
+#include "radiosity/lightmap/directional_lightmap.h"
 #include "radiosity/lightmap/engine_lightmap.h"
 #include "radiosity/lightmap/scene_uv.h"
 
@@ -53,14 +54,51 @@ EngineLayout engineLayout(const Scene& scene, const LightmapAtlas& atlas, std::v
   return layout;
 }
 
+// The directional lightmap's files, one half-float EXR per L1 SH coefficient on the engine lightmap's
+// layout; returns report.json's "directional" entry.
+const std::array<const char*, 4> kShFiles = {"lightmap_sh_l0.exr", "lightmap_sh_l1y.exr",
+                                             "lightmap_sh_l1z.exr", "lightmap_sh_l1x.exr"};
+
+nlohmann::json writeDirectionalFiles(OutputDir& out, const Scene& scene, const LightmapAtlas& atlas,
+                                     const std::vector<glm::vec3>& radiosity,
+                                     const std::vector<glm::vec3>& irradiance, const EngineLayout& layout,
+                                     const EngineOutputParams& params, Context& ctx) {
+  GatherParams gather;
+  gather.rays = params.directionalRays;
+  DirectionalLightmap map = gatherDirectionalLightmap(scene, atlas, radiosity, irradiance, gather, ctx);
+  for (size_t k = 0; k < 4; ++k) {
+    std::vector<glm::vec3>& values = map.sh[k];
+    dilate(atlas, values);
+    if (layout.source == "scene") {
+      std::vector<std::array<glm::vec2, 3>> uvs;
+      values = resampleToSceneUVs(scene, atlas, values, layout.width, uvs);
+    }
+    writeExr(out.file(kShFiles[k]).string(), ImageRGB{layout.width, layout.height, values}, {},
+             ExrPrecision::Half);
+  }
+  return {{"files", kShFiles},
+          {"convention",
+           "L1 SH of radiance, basis and order of Godot's LightmapGI and Unity's "
+           "SphericalHarmonicsL2: L00, L1-1 (y), L10 (z), L11 (x), scene axes; "
+           "(L11, L1-1, L10) / 0.488603 · n_surface = irradiance"},
+          {"rays_per_texel", gather.rays},
+          {"emitter_samples_per_texel", gather.emitterSamples},
+          {"texels", map.texels},
+          {"undirected_channels", map.undirected},
+          {"rays", map.rays},
+          {"seconds", map.seconds}};
+}
+
 // The engine's lightmap files (lightmap_irradiance.exr, its RGBM PNG) and baked.glb; returns report.json's
 // "engine_lightmap".
 nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGraph& cells,
                                 const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
-                                const EngineOutputParams& params, Context& ctx) {
+                                const EngineOutputParams& params, const nlohmann::json& probes,
+                                Context& ctx) {
   size_t unknown = 0;
   std::vector<glm::vec3> irradiance = irradianceFromRadiosity(atlas, radiosity, &unknown);
   const LightmapRange range = lightmapRange(atlas, irradiance);
+  std::vector<glm::vec3> undilated = params.directional ? irradiance : std::vector<glm::vec3>{};
   dilate(atlas, irradiance);
   const EngineLayout layout = engineLayout(scene, atlas, std::move(irradiance), params.uv, ctx);
   const ImageRGB image{layout.width, layout.height, layout.irradiance};
@@ -84,6 +122,16 @@ nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGr
                            {"uv", layout.source},
                            {"width", layout.width},
                            {"height", layout.height}};
+  nlohmann::json extras = {{"irradiance_exr", "lightmap_irradiance.exr"},
+                           {"rgbm_png", "lightmap_irradiance_rgbm.png"},
+                           {"rgbm_range", rgbm.range}};
+  if (params.directional) {
+    report["directional"] =
+        writeDirectionalFiles(out, scene, atlas, radiosity, undilated, layout, params, ctx);
+    extras["directional_sh"] = {{"files", report["directional"]["files"]},
+                                {"convention", report["directional"]["convention"]}};
+  }
+  if (!probes.is_null()) extras["probes"] = probes;
   GltfWriteOptions gltf;
   gltf.forEngines = true;
   gltf.keepHelpers = params.keepHelpers;
@@ -91,11 +139,7 @@ nlohmann::json writeEngineFiles(OutputDir& out, const Scene& scene, const CellGr
   gltf.cells = cells.empty() ? nullptr : &cells;
   gltf.lightmapPng = encodePng(image, 1.0f / range.ldrScale);
   gltf.lightmapIntensity = range.ldrScale;
-  gltf.lightmapExtrasJson = nlohmann::json{
-      {"irradiance_exr", "lightmap_irradiance.exr"},
-      {"rgbm_png", "lightmap_irradiance_rgbm.png"},
-      {"rgbm_range",
-       rgbm.range}}.dump();
+  gltf.lightmapExtrasJson = extras.dump();
   writeGltf(out.file("baked.glb").string(), scene, gltf);
   return report;
 }
@@ -124,9 +168,9 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
                                      const std::vector<ExrChannel>& extra, Context& ctx,
                                      const ViewParams& viewParams,
                                      std::chrono::steady_clock::time_point viewsDeadline,
-                                     const EngineOutputParams& engine) {
+                                     const EngineOutputParams& engine, const nlohmann::json& probes) {
   LightmapOutputs result;
-  result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, ctx);
+  result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, probes, ctx);
   dilate(atlas, radiosity);
   const ImageRGB image{atlas.width, atlas.height, radiosity};
   std::vector<ExrChannel> channels{{"area", atlas.area}};

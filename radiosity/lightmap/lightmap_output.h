@@ -30,6 +30,15 @@ enum class UvSource { Own, Scene, Auto };
 struct EngineOutputParams {
   bool keepHelpers = false;  ///< baked.glb keeps portal: quads, cellvolume: meshes and punctual lamps
   UvSource uv = UvSource::Auto;
+  /// Also the directional lightmap (directional_lightmap.h): lightmap_sh_l0.exr, _l1y, _l1z, _l1x. Off by
+  /// default: its gather costs about as much as the lamps' first shot (bench/RESULTS.md, "Directional
+  /// lightmaps") and 12 floats a texel.
+  bool directional = false;
+  int directionalRays = 256;  ///< directions per texel of its gather (GatherParams::rays)
+  /// Also light probes through the rooms (radiosity/bake/light_probes.h): probes.json and baked.glb's
+  /// extras.cpgi_lightmap.probes. Off by default.
+  bool probes = false;
+  float probeSpacing = 1.0f;  ///< metres between probes (ProbeParams::spacing)
 };
 
 struct LightmapOutputs {
@@ -44,8 +53,12 @@ struct LightmapOutputs {
 ///  - lightmap.png: the lightmap as radiance B/π at `exposure`, as preview.glb shows it;
 ///  - lightmap_irradiance.exr (half float) and lightmap_irradiance_rgbm.png: the light arriving, E =
 ///    (B − Le)/ρ in W/m² (radiosity/lightmap/engine_lightmap.h), on the atlas `engine.uv` chooses;
+///  - with engine.directional, lightmap_sh_l0.exr, lightmap_sh_l1y.exr, lightmap_sh_l1z.exr and
+///    lightmap_sh_l1x.exr (half float): the L1 SH coefficients L00, L1−1, L10, L11 of the light arriving
+///    (directional_lightmap.h), on the same atlas as the irradiance;
 ///  - baked.glb, for engines: the scene's own materials, textures and TEXCOORD_0, the irradiance on
 ///    TEXCOORD_1 (core/scene_io.h, GltfWriteOptions::forEngines), no helpers or lamps unless kept;
+///  - with `probes` (lightProbesJson, not null), baked.glb's extras.cpgi_lightmap.probes holds them;
 ///  - preview.glb, for viewers: the scene (with `cells` and their portals, when there are any) with the
 ///    atlas as TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture;
 ///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for.
@@ -56,7 +69,7 @@ LightmapOutputs writeLightmapOutputs(
     std::vector<glm::vec3> radiosity, const std::vector<ExrChannel>& extra, Context& ctx,
     const ViewParams& viewParams = {},
     std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max(),
-    const EngineOutputParams& engine = {});
+    const EngineOutputParams& engine = {}, const nlohmann::json& probes = {});
 
 /// With UvSource::Scene, throws InputError("--uv scene", ...) naming the meshes when the scene's TEXCOORD_1
 /// fails the checks of scene_uv.h (or there is none): called before the solve, so a refusal costs no bake.

@@ -6,7 +6,9 @@
 //  - colour by cell paints several cells in distinct hues; texel density, portals and (for a comparison)
 //    the error heat map change the picture;
 //  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
-//  - the tables of report.json are there, and the bench chart when the page has bench rows.
+//  - the tables of report.json are there, and the bench chart when the page has bench rows;
+//  - with light probes, the probe-lit sphere shows, lit from above more than from below; with the
+//    directional lightmap, the normal-mapped surfaces change the picture.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
@@ -139,6 +141,38 @@ try {
   check(lit > 1.5 * dark + 5, `light: lit surfaces (${lit.toFixed(1)}) not brighter than dark ones (${dark.toFixed(1)})`);
 
   lap('light');
+  // 1b. A bake with light probes: the probe-lit sphere, 1.5 m ahead in the same view, shows, and its top
+  // (facing the room's ceiling lamp) is brighter than its underside (facing the floor).
+  if (await page.evaluate(() => !!window.cpgiViewer.probeSphere)) {
+    await page.click('#probe-sphere');
+    const sphere = await capture('probe-sphere');
+    const probe = await page.evaluate(() => {
+      const v = window.cpgiViewer, s = v.probeSphere, w = v.canvas.width, h = v.canvas.height, pixels = window.shots['probe-sphere'];
+      const at = (dy) => {
+        const p = s.position.clone();
+        p.y += dy;
+        p.project(v.camera);
+        const x = Math.floor(((p.x + 1) / 2) * w), y = Math.floor(((1 - p.y) / 2) * h), i = 4 * (y * w + x);
+        return 0.2126 * pixels[i] + 0.7152 * pixels[i + 1] + 0.0722 * pixels[i + 2];
+      };
+      return { top: at(0.1), bottom: at(-0.1), probes: v.probes.length };
+    });
+    summary.probeSphere = { ...probe, changed: await meanAbsDiff('light', 'probe-sphere', true) };
+    check(summary.probeSphere.changed > 0.002, `probe sphere: the picture did not change (${summary.probeSphere.changed})`);
+    check(probe.top > probe.bottom + 10, `probe sphere: its top (${probe.top.toFixed(1)}) is not brighter than its underside (${probe.bottom.toFixed(1)})`);
+    check(probe.bottom > 5, `probe sphere: its underside is black (${probe.bottom.toFixed(1)})`);
+    await page.click('#probe-sphere');
+  }
+  // 1c. A bake with --directional: the normal-mapped surface shows bumps lit by the directional lightmap.
+  if (await page.evaluate(() => !!window.cpgiViewer.lightmap?.vector.length)) {
+    await page.click('#bumps');
+    await capture('bumps');
+    summary.bumps = { changed: await meanAbsDiff('light', 'bumps', true), meanDiff: await meanAbsDiff('light', 'bumps') };
+    // The bumps shade most pixels by a few levels (tone-mapped), the dark sides of bumps by more.
+    check(summary.bumps.meanDiff > 4, `normal map: the picture changed by only ${summary.bumps.meanDiff} levels`);
+    check(summary.bumps.changed > 0.005, `normal map: only ${summary.bumps.changed} of the pixels changed by 24 levels`);
+    await page.click('#bumps');
+  }
   // 2. Colour by cell, from the overview where every cell shows.
   await page.evaluate(() => { window.cpgiViewer.showView('overview'); });
   const overview = await capture('overview');

@@ -7,6 +7,7 @@
 //   #cpgi-data (JSON): kind, title, report (report.json), cells [{name, eye, look}], portals
 //     [{name, cell_a, cell_b, corners}], lightmap {width, height, rgb (base64 half floats, RGBA,
 //     radiosity W/m²), cell (base64 int16 per texel, -1 for none), area (base64 float32 m² per texel)}
+//     probes (probes.json of bake --probes, when written): L2 SH light probes through the rooms
 //   #cpgi-glb: baked.glb (or cells.glb) as base64.
 // window.cpgiViewer is the handle the browser test (core/html_report/web/browser_test.mjs) drives.
 import * as THREE from 'three';
@@ -113,22 +114,32 @@ function lightmapTextures(lm, cells) {
   const densityTexture = nearest(densityBytes);
 
   const density = { min: 1 / Math.sqrt(hi), max: 1 / Math.sqrt(lo) };
-  return { radiosity, cellTexture, densityTexture, errorTexture, rgb, cell, area, count, density };
+  // A bake with --directional: the vector irradiance's x, y, z components (RGB each), filtered.
+  const vector = (lm.vector || []).map((b64) => {
+    const t = new THREE.DataTexture(new Uint16Array(base64Bytes(b64).buffer), lm.width, lm.height, THREE.RGBAFormat, THREE.HalfFloatType);
+    t.magFilter = t.minFilter = THREE.LinearFilter;
+    t.needsUpdate = true;
+    return t;
+  });
+  return { radiosity, cellTexture, densityTexture, errorTexture, rgb, cell, area, count, density, vector };
 }
 
 const vertexShader = /* glsl */ `
   in vec2 uv1;
   out vec2 vLightmapUv;
+  out vec3 vWorld;
   void main() {
     vLightmapUv = uv1;
+    vWorld = (modelMatrix * vec4(position, 1.0)).xyz;
     gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
   }`;
 
 // Radiance B/π times the exposure, tone-mapped (1 − e^−x) and encoded as sRGB. Colour by cell keeps the
 // light's shading so that the rooms stay recognisable; the density view draws the texel grid.
 const fragmentShader = /* glsl */ `
-  uniform sampler2D radiosity, cellColours, density, error;
-  uniform bool cellsPerTexel;
+  uniform sampler2D radiosity, cellColours, density, error, vectorX, vectorY, vectorZ;
+  uniform bool cellsPerTexel, bumps;
+  in vec3 vWorld;
   uniform vec3 cellColour;
   uniform vec2 atlasSize;
   uniform float exposure;
@@ -139,8 +150,24 @@ const fragmentShader = /* glsl */ `
   vec3 toSrgb(vec3 c) {
     return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
   }
+  // The normal-mapped test surface (bake --directional): egg-crate bumps 0.3 m across, slopes up to 0.6,
+  // lit by the directional lightmap: each channel's light times max(0, V · n_bumped) / (V · n_surface),
+  // V the vector irradiance (docs/engines.md).
+  vec3 bumped(vec3 b) {
+    vec3 n = normalize(cross(dFdx(vWorld), dFdy(vWorld)));
+    vec3 vx = texture(vectorX, vLightmapUv).rgb, vy = texture(vectorY, vLightmapUv).rgb, vz = texture(vectorZ, vLightmapUv).rgb;
+    vec3 lum = vec3(dot(vx, vec3(1.0)), dot(vy, vec3(1.0)), dot(vz, vec3(1.0)));
+    if (dot(lum, n) < 0.0) n = -n;
+    vec3 t = normalize(cross(abs(n.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0), n)), u = cross(n, t);
+    float k = 6.2831853 / 0.3, s = dot(vWorld, t) * k, v = dot(vWorld, u) * k;
+    vec3 m = normalize(n - 0.6 * cos(s) * sin(v) * t - 0.6 * sin(s) * cos(v) * u);
+    vec3 level = vx * n.x + vy * n.y + vz * n.z, lit = max(vx * m.x + vy * m.y + vz * m.z, 0.0);
+    return b * lit / max(level, vec3(1e-6));
+  }
   void main() {
-    vec3 light = toneMap(texture(radiosity, vLightmapUv).rgb / 3.14159265 * exposure);
+    vec3 b = texture(radiosity, vLightmapUv).rgb;
+    if (bumps) b = bumped(b);
+    vec3 light = toneMap(b / 3.14159265 * exposure);
     vec3 colour = light;
     if (mode == 1) {
       float shade = dot(light, vec3(0.2126, 0.7152, 0.0722));
@@ -155,6 +182,52 @@ const fragmentShader = /* glsl */ `
     }
     outColour = vec4(toSrgb(clamp(colour, 0.0, 1.0)), 1.0);
   }`;
+
+// A sphere lit by the light probes (bake --probes): the L2 SH of the probes around it, blended, give the
+// irradiance E(n) of Ramamoorthi & Hanrahan on each normal; shown as a grey of albedo 0.8, radiance
+// 0.8 E/π, with the lightmap's exposure and tone map. SH basis and order of probes.json's convention.
+const probeVertexShader = /* glsl */ `
+  out vec3 vNormal;
+  void main() {
+    vNormal = normalize(mat3(modelMatrix) * normal);
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0);
+  }`;
+const probeFragmentShader = /* glsl */ `
+  uniform vec3 sh[9];
+  uniform float exposure;
+  in vec3 vNormal;
+  out vec4 outColour;
+  vec3 toSrgb(vec3 c) {
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+  }
+  void main() {
+    vec3 n = normalize(vNormal);
+    const float pi = 3.14159265;
+    vec3 e = pi * 0.282095 * sh[0]
+           + 2.0 * pi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x)
+           + pi / 4.0 * (1.092548 * (sh[4] * n.x * n.y + sh[5] * n.y * n.z + sh[7] * n.x * n.z)
+                         + 0.315392 * sh[6] * (3.0 * n.z * n.z - 1.0) + 0.546274 * sh[8] * (n.x * n.x - n.y * n.y));
+    vec3 light = 1.0 - exp(-max(e, 0.0) * 0.8 / pi * exposure);
+    outColour = vec4(toSrgb(clamp(light, 0.0, 1.0)), 1.0);
+  }`;
+
+// The probes' SH at `point`: the eight nearest blended by inverse squared distance (an array of nine
+// [r, g, b]); null without probes.
+export function probeShAt(probes, point) {
+  if (!probes || !probes.length) return null;
+  const near = probes
+    .map((p) => ({ p, d2: (p.position[0] - point.x) ** 2 + (p.position[1] - point.y) ** 2 + (p.position[2] - point.z) ** 2 }))
+    .sort((a, b) => a.d2 - b.d2)
+    .slice(0, 8);
+  const sh = Array.from({ length: 9 }, () => [0, 0, 0]);
+  let total = 0;
+  for (const { p, d2 } of near) {
+    const w = 1 / (d2 + 1e-4);
+    total += w;
+    for (let k = 0; k < 9; ++k) for (let c = 0; c < 3; ++c) sh[k][c] += w * p.sh[k][c];
+  }
+  return sh.map((v) => v.map((x) => x / total));
+}
 
 class Viewer {
   constructor(data, glb) {
@@ -183,7 +256,45 @@ class Viewer {
     this.portalGroup = new THREE.Group();
     this.portalGroup.visible = false;
     this.scene.add(this.portalGroup);
+    this.buildProbeSphere();
     this.load(glb);
+  }
+
+  // The probe-lit sphere, 0.3 m across, hidden until asked for; it then stands 1.5 m ahead of the camera
+  // and follows it (orbit, or walk through the rooms).
+  buildProbeSphere() {
+    this.probes = this.data.probes?.probes || [];
+    if (!this.probes.length) return;
+    const uniforms = { sh: { value: Array.from({ length: 9 }, () => new THREE.Vector3()) }, exposure: { value: this.exposure } };
+    this.probeSphere = new THREE.Mesh(new THREE.SphereGeometry(0.15, 48, 24), new THREE.ShaderMaterial({
+      uniforms, vertexShader: probeVertexShader, fragmentShader: probeFragmentShader, glslVersion: THREE.GLSL3,
+    }));
+    this.probeSphere.visible = false;
+    this.scene.add(this.probeSphere);
+  }
+
+  // Every surface normal-mapped and lit by the directional lightmap (a bake with --directional).
+  setBumps(shown) {
+    if (!this.sharedUniforms || !this.lightmap.vector.length) return;
+    this.sharedUniforms.bumps.value = shown;
+    this.requestRender();
+  }
+
+  setProbeSphere(shown) {
+    if (!this.probeSphere) return;
+    this.probeSphere.visible = shown;
+    this.requestRender();
+  }
+
+  // Moves the sphere ahead of the camera and lights it from the probes there.
+  placeProbeSphere() {
+    const ahead = new THREE.Vector3();
+    this.camera.getWorldDirection(ahead);
+    this.probeSphere.position.copy(this.camera.position).addScaledVector(ahead, 1.5);
+    const sh = probeShAt(this.probes, this.probeSphere.position);
+    const uniforms = this.probeSphere.material.uniforms;
+    sh.forEach((c, k) => uniforms.sh.value[k].set(c[0], c[1], c[2]));
+    uniforms.exposure.value = this.exposure;
   }
 
   buildDom() {
@@ -293,6 +404,10 @@ class Viewer {
         atlasSize: { value: new THREE.Vector2(lm.width, lm.height) },
         exposure: { value: this.exposure },
         mode: { value: 0 },
+        bumps: { value: false },
+        vectorX: { value: this.lightmap.vector[0] || null },
+        vectorY: { value: this.lightmap.vector[1] || null },
+        vectorZ: { value: this.lightmap.vector[2] || null },
       };
     }
     return new THREE.ShaderMaterial({
@@ -493,6 +608,12 @@ class Viewer {
     const outside = add('<label><input id="outside" type="checkbox"> the outside</label>');
     if (this.outsideCell < 0) outside.style.display = 'none';
     outside.querySelector('input').addEventListener('change', (e) => this.setOutside(e.target.checked));
+    const bumps = add('<label><input id="bumps" type="checkbox"> normal map (directional lightmap)</label>');
+    if (!this.lightmap?.vector.length) bumps.style.display = 'none';
+    bumps.querySelector('input').addEventListener('change', (e) => this.setBumps(e.target.checked));
+    const sphere = add('<label><input id="probe-sphere" type="checkbox"> probe-lit sphere (1.5 m ahead)</label>');
+    if (!this.probeSphere) sphere.style.display = 'none';
+    sphere.querySelector('input').addEventListener('change', (e) => this.setProbeSphere(e.target.checked));
     const walk = add('<label><input id="walk" type="checkbox"> walk (drag to look, W A S D Q E to move)</label>');
     walk.querySelector('input').addEventListener('change', (e) => this.setWalking(e.target.checked));
     const views = add('view <select id="views"></select>');
@@ -556,6 +677,7 @@ class Viewer {
   }
 
   render() {
+    if (this.probeSphere?.visible) this.placeProbeSphere();
     this.renderer.render(this.scene, this.camera);
     const w = this.canvas.clientWidth, h = this.canvas.clientHeight, v = new THREE.Vector3();
     const visible = this.portalGroup.visible ? this.meshes.filter((m) => m.visible) : [];

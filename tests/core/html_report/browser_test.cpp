@@ -43,8 +43,8 @@ TEST(ReportInBrowser, Seed1CellsBakeShowsLitSceneCellsAndPortals) {
   test::TempDir dir;
   const std::string scene = dir / "seed1.glb", out = dir / "bake";
   ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(scene)).status, 0);
-  const test::CommandRun bake = cpgi(
-      dir, "bake " + quote(scene) + " -o " + quote(out) + " --method cells --cells " + quote(scene) + " -q");
+  const test::CommandRun bake = cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) +
+                                              " --method cells --cells " + quote(scene) + " --probes --directional -q");
   ASSERT_EQ(bake.status, 0) << bake.err;
   ASSERT_TRUE(std::filesystem::exists(out + "/report.html"));
   expectPageWorks(dir, out + "/report.html", "seed1");

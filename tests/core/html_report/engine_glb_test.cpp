@@ -172,6 +172,20 @@ TEST_F(EngineGlbInThreeJs, Seed1IsLitByItsLightmapOnTexcoord1) {
   expectLit(dir / "seed1", "engine-seed1");
 }
 
+// Issue 48 item 6: the directional lightmap on a normal map and a probe-lit sphere, in three.js
+// (core/html_report/web/engine_directional_test.mjs says what the screenshot is checked for).
+TEST_F(EngineGlbInThreeJs, Seed1DirectionalLightmapShowsANormalMapAndProbesLightASphere) {
+  const std::string seed1 = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(seed1)).status, 0);
+  bake(seed1, dir / "seed1", " --directional --probes");
+  const std::string shots = std::string(CPGI_SCREENSHOTS) + "/engine-seed1-directional";
+  const test::CommandRun r =
+      test::runNodeScript(dir.path(), "engine_directional_test.mjs",
+                          quote(CPGI_CHROMIUM) + " " + quote(dir / "seed1") + " " + quote(shots));
+  std::cout << "figures: " << r.out << "\nscreenshots: " << shots << "\n";
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
 TEST_F(EngineGlbInThreeJs, TexturedSceneKeepsItsTexturesAndIsLit) {
   bake(writeTexturedSeed1(dir), dir / "textured");
   expectLit(dir / "textured", "engine-textured", "textured");

@@ -56,7 +56,7 @@ BakeSettings everyFieldChanged() {
   s.sky.towardsSun = glm::vec3(0, 1, 1);
   s.sky.sunIrradiance = 300, s.sky.groundAlbedo = std::nullopt, s.sky.gatherRays = 64;
   s.output.folder = "out", s.output.views = {320, 200, 3, 1.5f};
-  s.output.engine = {true, UvSource::Scene};
+  s.output.engine = {true, UvSource::Scene, true, 64, true, 0.5f};
   s.limits = {60.0, uint64_t(1) << 33, false};
   return s;
 }
@@ -172,6 +172,10 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(a.output.views.exposure, b.output.views.exposure);
   EXPECT_EQ(a.output.engine.keepHelpers, b.output.engine.keepHelpers);
   EXPECT_EQ(a.output.engine.uv, b.output.engine.uv);
+  EXPECT_EQ(a.output.engine.directional, b.output.engine.directional);
+  EXPECT_EQ(a.output.engine.directionalRays, b.output.engine.directionalRays);
+  EXPECT_EQ(a.output.engine.probes, b.output.engine.probes);
+  EXPECT_EQ(a.output.engine.probeSpacing, b.output.engine.probeSpacing);
   EXPECT_EQ(a.limits.timeLimit, b.limits.timeLimit);
   EXPECT_EQ(a.limits.maxMemory, b.limits.maxMemory);
   EXPECT_EQ(a.limits.refuseEndless, b.limits.refuseEndless);

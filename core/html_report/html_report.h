@@ -28,19 +28,27 @@ struct ReportLightmap {
 };
 
 struct HtmlReportInput {
-  std::string title;                 ///< shown on top, e.g. "bake of seed1.glb"
-  std::string kind;                  ///< "bake", "reference", "comparison" or "decomposition"
-  nlohmann::json report;             ///< report.json as written beside the page
-  std::string glb;                   ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
+  std::string title;      ///< shown on top, e.g. "bake of seed1.glb"
+  std::string kind;       ///< "bake", "reference", "comparison" or "decomposition"
+  nlohmann::json report;  ///< report.json as written beside the page
+  std::string glb;        ///< the glTF binary shown: baked.glb (TEXCOORD_1 = atlas) or cells.glb
   /// Where a person would stand in each cell (radiosity/lightmap/views.h's defaultCameras), by the cell's
   /// name; the page offers a view from each. A cell without one gets none.
   std::vector<Camera> cellCameras;
   const CellGraph* cells = nullptr;  ///< cells and portals (may be null or empty)
+  /// What the overview frames (buildingBounds); empty: the whole model.
+  Bounds frame;
   const ReportLightmap* lightmap = nullptr;  ///< null for a decomposition
   /// Rows of bench/speed_accuracy.py's results.json (scene, method, resolution, seconds, rel_rmse,
   /// rel_rmse_nonemissive ...) for the speed-against-accuracy chart; null for none.
   nlohmann::json bench;
 };
+
+/// The building in `scene`, for the overview to frame rather than the terrain around it: the bounds of the
+/// triangles of every cell but the outside when `cells` gives rooms; else of the triangles whose centre
+/// lies in the box of the middle 96 % of the triangles' centres on each axis, grown by a quarter of its size
+/// (a ground plane or sky box many times the building's size is two triangles among thousands).
+Bounds buildingBounds(const Scene& scene, const CellGraph* cells);
 
 /// The page's HTML. Throws std::invalid_argument when the lightmap's arrays do not match its size.
 std::string renderHtmlReport(const HtmlReportInput& input);
@@ -50,6 +58,5 @@ void writeHtmlReport(OutputDir& out, const HtmlReportInput& input);
 
 /// Reads a staged or finished file whole (to embed baked.glb). Throws SystemError naming it.
 std::string readFileBytes(const std::string& path);
-
 
 }  // namespace cpgi

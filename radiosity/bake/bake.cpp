@@ -299,7 +299,7 @@ Context::ProgressFn bakeNotes(Context::ProgressFn inner, const BakeSettings& set
   const bool global = settings.cells.method == BakeMethod::Global;
   return [inner, said, size, note, global, limit = settings.limits.timeLimit, start](const Progress& p) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!said->first && p.stage == "solve" && !size->empty()) {
+    if (!said->first && !size->empty()) {  // said once the atlas is laid out, before the set-up
       said->first = true;
       note(*size + " (" + formatDuration(std::max(elapsed, 1.0)) + " so far)");
     }

@@ -78,6 +78,7 @@ std::string ProgressPrinter::line(const Progress& p, double stageSeconds, double
 
 void ProgressPrinter::emit(double now) {
   const std::string text = line(last_, now - stageStart_, now - lastReportAt_);
+  shown_ = text;
   if (settings_.live) {
     sink_("\r" + text + "\033[K");  // erase what a longer earlier line left
     openLine_ = last_.fraction < 1.0;
@@ -112,8 +113,8 @@ void ProgressPrinter::tick() {
   std::lock_guard lock(mutex_);
   if (!any_ || last_.fraction >= 1.0) return;
   const double now = clock_();
-  if (settings_.live) {
-    if (openLine_) emit(now);
+  if (settings_.live) {  // redrawn only when its text changed (the time so far, the time left)
+    if (openLine_ && line(last_, now - stageStart_, now - lastReportAt_) != shown_) emit(now);
     return;
   }
   const bool firstDue = !stageShown_ && now - stageStart_ >= settings_.firstLineAfter;

@@ -67,6 +67,7 @@ class ProgressPrinter {
   bool stageShown_ = false;    ///< plain mode: the stage has had a line
   double lastLine_ = 0.0;      ///< plain mode: when the last line went out
   bool openLine_ = false;      ///< live mode: a line is shown without its newline
+  std::string shown_;          ///< the text of the last line
   // The ticker thread (Settings::tickSeconds > 0).
   std::condition_variable wake_;
   bool stopping_ = false;

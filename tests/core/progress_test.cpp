@@ -92,6 +92,21 @@ TEST(Progress, TheTickerShowsAQuietStage) {
   EXPECT_EQ(r.text, "");  // over as it began: neither shown late nor repeated
 }
 
+// On a terminal the ticker redraws the live line when its text changes (the time so far), not otherwise.
+TEST(Progress, TheTickerRedrawsALiveLineWhenItsTextChanges) {
+  Recorder r;
+  ProgressPrinter p = r.make(true, 5.0);
+  p.report({"load", 0.0, "house.glb"});
+  r.now = 0.5;
+  p.tick();
+  EXPECT_EQ(r.text, "\rload   0% house.glb\033[K");
+  r.now = 1.2;
+  p.tick();
+  r.now = 1.3;
+  p.tick();
+  EXPECT_EQ(r.text, "\rload   0% house.glb\033[K\rload   0% house.glb, 1 s so far\033[K");
+}
+
 // A pre-pass's solve is shown as its stage: never "solve 0% -> 100%" before the bake's solve, and its
 // shots and time left are not the bake's.
 TEST(Progress, AStageScopeRenamesWhatRunsInside) {

@@ -8,17 +8,11 @@
 #include <exception>
 #include <mutex>
 #include <string>
-#include <vector>
 
 #include "core/progress.h"
 #include "radiosity/bake/bake.h"
 
 namespace {
-
-struct Row {
-  double wall, cpu;
-  cpgi::Progress p;
-};
 
 // The status as one CSV field: no commas or quotes inside.
 std::string field(std::string text) {
@@ -37,15 +31,25 @@ int main(int argc, char** argv) {
   cpgi::BakeSettings settings;  // the defaults of `cpgi bake`
   settings.input.scene = argv[1];
   settings.output.folder = argv[2];
+  // Written row by row as the reports come, so a bake stopped early (one that outlasts the machine's
+  // time) still leaves its solve's history.
+  FILE* csv = std::fopen(argv[3], "w");
+  if (!csv) {
+    std::fprintf(stderr, "cpgi_progress_estimate: %s: cannot write\n", argv[3]);
+    return 1;
+  }
+  std::fprintf(csv, "wall_s,cpu_s,stage,fraction,shots,unshot,seconds_left,cpu_seconds_left,status\n");
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = cpgi::processCpuSeconds();
   std::mutex mutex;
-  std::vector<Row> rows;
   cpgi::Context ctx;
   ctx.setProgress([&](const cpgi::Progress& p) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::lock_guard lock(mutex);
-    rows.push_back({wall, cpgi::processCpuSeconds() - cpuStart, p});
+    std::fprintf(csv, "%.4f,%.4f,%s,%.5f,%d,%.6g,%.4f,%.4f,%s\n", wall, cpgi::processCpuSeconds() - cpuStart,
+                 field(p.stage).c_str(), p.fraction, p.shots, p.unshot, p.secondsLeft, p.cpuSecondsLeft,
+                 field(p.status).c_str());
+    std::fflush(csv);
   });
   try {
     const cpgi::BakeResult r = cpgi::bake(settings, ctx);
@@ -53,17 +57,8 @@ int main(int argc, char** argv) {
                 r.shots, r.seconds, cpgi::processCpuSeconds() - cpuStart);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cpgi_progress_estimate: %s\n", e.what());
+    std::fclose(csv);
     return 1;
   }
-  FILE* csv = std::fopen(argv[3], "w");
-  if (!csv) {
-    std::fprintf(stderr, "cpgi_progress_estimate: %s: cannot write\n", argv[3]);
-    return 1;
-  }
-  std::fprintf(csv, "wall_s,cpu_s,stage,fraction,shots,unshot,seconds_left,cpu_seconds_left,status\n");
-  for (const Row& r : rows)
-    std::fprintf(csv, "%.4f,%.4f,%s,%.5f,%d,%.6g,%.4f,%.4f,%s\n", r.wall, r.cpu, field(r.p.stage).c_str(),
-                 r.p.fraction, r.p.shots, r.p.unshot, r.p.secondsLeft, r.p.cpuSecondsLeft,
-                 field(r.p.status).c_str());
   return std::fclose(csv) == 0 ? 0 : 1;
 }

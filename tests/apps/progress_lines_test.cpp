@@ -19,7 +19,7 @@ test::CommandRun cpgiEvery(const test::TempDir& dir, const std::string& period, 
 }
 
 bool hasLine(const test::CommandRun& r, const std::string& start) {
-  for (const std::string& line : r.errLines())
+  for (const std::string& line : r.allErrLines())
     if (line.rfind(start, 0) == 0 && line.find('%') != std::string::npos) return true;
   return false;
 }
@@ -70,7 +70,7 @@ TEST(ProgressLines, EveryLongCommandReportsItsStagesInAPipe) {
                 "bake " + quote(scene) + " -o " + quote(dir / "quiet") + atlas + " --unshot 0.2");
   ASSERT_EQ(r.status, 0) << r.err;
   std::string previous;
-  for (const std::string& line : r.errLines()) {
+  for (const std::string& line : r.allErrLines()) {
     if (line.rfind("progress: ", 0) != 0) continue;
     const std::string stage = line.substr(10, line.find(' ', 10) - 10);
     EXPECT_NE(stage, previous) << r.err;

@@ -50,6 +50,8 @@ int runDecompose(DecomposeOptions o) {
                                 ? decomp::decomposeFromVolumes(loaded.scene, loaded.cells, o.params, {}, ctx)
                                 : decomp::decompose(loaded.scene, o.params, ctx);
   d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it
+  // The watershed's rooms take the names of the scene's own room volumes where one covers them.
+  if (!o.fromVolumes) decomp::nameCellsByVolumes(d, loaded.cells);
 
   GltfWriteOptions gltf;
   gltf.cells = &d.graph;

@@ -14,12 +14,16 @@ namespace cpgi {
 /// One report of a long stage, as data: a printer formats it, a caller reads the numbers (no parsing of
 /// text). The fields after `status` are set by the stages that know them and negative otherwise.
 struct Progress {
-  std::string stage;        ///< "solve", "atlas", "reference", ...
-  double fraction = 0;      ///< of the stage, in [0, 1]
-  std::string status;       ///< short text such as "shots 120, unshot 3.2%"
-  int shots = -1;           ///< a solve: shots so far
-  double unshot = -1;       ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
-  double secondsLeft = -1;  ///< the stage's own estimate of its time left (s), from a model of its work
+  std::string stage;           ///< "solve", "atlas", "reference", ...
+  double fraction = 0;         ///< of the stage, in [0, 1]
+  std::string status;          ///< short text such as "shots 120, unshot 3.2%"
+  int shots = -1;              ///< a solve: shots so far
+  double unshot = -1;          ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
+  double secondsLeft = -1;     ///< the stage's own estimate of its time left (s), from a model of its work
+  double cpuSecondsLeft = -1;  ///< the same estimate in the process's CPU seconds (what load does not skew)
+  /// The stage estimates its own time left (a solve: its fraction is not linear in time), so a printer
+  /// must not extrapolate one from the fraction while secondsLeft is still unknown.
+  bool ownsTimeLeft = false;
 };
 
 class Context {
@@ -31,6 +35,7 @@ class Context {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   void setProgress(ProgressFn fn) { progress_ = std::move(fn); }
+  const ProgressFn& progressFn() const { return progress_; }
   void progress(const Progress& p) const {
     if (progress_) progress_(p);
   }

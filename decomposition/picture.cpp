@@ -268,38 +268,6 @@ void drawScaleBar(ImageRGB& img, double voxel, int scale, const TextBox& panel) 
 
 }  // namespace
 
-glm::vec3 cellColour(int c) {
-  const float hue = std::fmod(0.11f + 0.61803398875f * float(c), 1.0f);
-  // HSV with s = 0.55, v = 0.95, to linear (approximately: square the sRGB-ish value).
-  const float s = 0.55f, val = 0.95f;
-  const float hh = hue * 6.0f;
-  const int sector = int(hh) % 6;
-  const float frac = hh - std::floor(hh);
-  const float p = val * (1 - s), q = val * (1 - s * frac), t = val * (1 - s * (1 - frac));
-  glm::vec3 rgb;
-  switch (sector) {
-    case 0:
-      rgb = {val, t, p};
-      break;
-    case 1:
-      rgb = {q, val, p};
-      break;
-    case 2:
-      rgb = {p, val, t};
-      break;
-    case 3:
-      rgb = {p, q, val};
-      break;
-    case 4:
-      rgb = {t, p, val};
-      break;
-    default:
-      rgb = {val, p, q};
-      break;
-  }
-  return rgb * rgb;
-}
-
 ImageRGB drawDecomposition(const Decomposition& d, const PictureParams& params) {
   const GridFrame& f = d.frame;
   const int longest = std::max(f.dims.x, f.dims.z);

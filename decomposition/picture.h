@@ -4,6 +4,7 @@
 // plan and front areas, not its volume.
 #pragma once
 
+#include "core/cell_palette.h"  // cellColour: the same colours as report.html
 #include "core/image_io.h"
 #include "decomposition/decompose.h"
 
@@ -21,8 +22,5 @@ struct PictureParams {
 /// belong to. Every panel has a scale bar. Walls dark grey, outside white, void (inside closed solids)
 /// mid grey. Linear colours in [0, 1] for writePng.
 ImageRGB drawDecomposition(const Decomposition& d, const PictureParams& params = {});
-
-/// A distinct colour for cell c (golden-ratio hue steps), linear RGB.
-glm::vec3 cellColour(int c);
 
 }  // namespace cpgi::decomp

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -226,10 +227,45 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   // The rooms are the user's: a pair the leak pass cannot part keeps its leaking faces, never merges.
   DecomposeParams roomsKept = params;
   roomsKept.leaks.merge = false;
-  Decomposition out =
-      finishDecomposition(scene, roomsKept, solid, std::move(space.space), distance, std::move(cells), names, ctx);
+  Decomposition out = finishDecomposition(scene, roomsKept, solid, std::move(space.space), distance,
+                                          std::move(cells), names, ctx);
   out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
   return out;
+}
+
+int nameCellsByVolumes(Decomposition& d, const CellGraph& rooms, double leastShare) {
+  const size_t cellCount = d.graph.cells.size();
+  std::vector<int32_t> room(d.voxelCell.size(), -1);
+  for (size_t r = 0; r < rooms.cells.size(); ++r)
+    if (!rooms.cells[r].volume.empty() && rooms.cells[r].name != "outside")
+      labelVolumeVoxels(rooms.cells[r].volume, d.frame, d.space, int32_t(r), room);
+  // Per cell, its voxels under each room volume.
+  std::vector<std::map<int32_t, size_t>> under(cellCount);
+  std::vector<size_t> voxels(cellCount, 0);
+  for (size_t i = 0; i < d.voxelCell.size(); ++i) {
+    const int32_t c = d.voxelCell[i];
+    if (c < 0 || size_t(c) >= cellCount || c == d.outsideCell) continue;
+    ++voxels[size_t(c)];
+    if (room[i] >= 0) ++under[size_t(c)][room[i]];
+  }
+  std::set<std::string> taken;
+  for (const Cell& c : d.graph.cells) taken.insert(c.name);
+  int renamed = 0;
+  for (size_t c = 0; c < cellCount; ++c) {
+    if (int(c) == d.outsideCell || under[c].empty()) continue;
+    const auto best = std::max_element(under[c].begin(), under[c].end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (double(best->second) < leastShare * double(voxels[c])) continue;
+    const std::string& name = rooms.cells[size_t(best->first)].name;
+    std::string unique = name;
+    for (int k = 2; taken.count(unique); ++k) unique = name + "-" + std::to_string(k);
+    taken.insert(unique);
+    d.graph.cells[c].name = unique;
+    ++renamed;
+  }
+  for (PortalQuad& q : d.graph.portals)
+    q.name = "portal:" + d.graph.cells[size_t(q.cellA)].name + ":" + d.graph.cells[size_t(q.cellB)].name;
+  return renamed;
 }
 
 }  // namespace cpgi::decomp

@@ -40,4 +40,12 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
                                    const DecomposeParams& params, const VolumeCellsParams& volumeParams,
                                    Context& ctx);
 
+/// The automatic cells of `d` named after the room volumes of `rooms` (cellvolume: meshes, as an IFC
+/// export's IfcSpace rooms come) that cover them: a cell takes the name of the volume that holds the most
+/// of its empty voxels when that is at least `leastShare` of them; a second cell under the same volume is
+/// NAME-2, and a name another cell holds already is never taken twice. Cells no volume covers keep their
+/// names (roomNames: storey and size); the outside keeps "outside". The portals are renamed after their
+/// cells. Returns how many cells were renamed.
+int nameCellsByVolumes(Decomposition& d, const CellGraph& rooms, double leastShare = 0.5);
+
 }  // namespace cpgi::decomp

@@ -11,6 +11,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "core/cell_palette.h"
 #include "core/error.h"
 #include "core/html_report/embedded_web.h"  // generated: kViewerScript (viewer.js + three.js), kPageTemplate
 
@@ -155,7 +156,7 @@ json cellsJson(const HtmlReportInput& in) {
       power[c] += double(b.r + b.g + b.b) / 3.0 * in.lightmap->area[i];
     }
   for (size_t c = 0; c < in.cells->cells.size(); ++c) {
-    json cell = {{"name", in.cells->cells[c].name}};
+    json cell = {{"name", in.cells->cells[c].name}, {"colour", cellColourHex(int(c))}};
     for (const Camera& cam : in.cellCameras)
       if (cam.name == in.cells->cells[c].name)
         cell["eye"] = vec(cam.position), cell["look"] = vec(cam.position + cam.forward);
@@ -182,13 +183,58 @@ json portalsJson(const CellGraph* graph) {
   return portals;
 }
 
+// The bounds of the triangles whose centre lies within `box` grown by a quarter of its size, whole.
+Bounds trianglesWithin(const Scene& scene, const Bounds& box) {
+  const glm::vec3 margin = 0.25f * box.size();
+  Bounds out;
+  for (const Triangle& t : scene.triangles) {
+    const glm::vec3 centre = (t.p[0] + t.p[1] + t.p[2]) / 3.0f;
+    if (glm::all(glm::greaterThanEqual(centre, box.lo - margin)) &&
+        glm::all(glm::lessThanEqual(centre, box.hi + margin)))
+      for (const glm::vec3& q : t.p) out.extend(q);
+  }
+  return out;
+}
+
 }  // namespace
+
+Bounds buildingBounds(const Scene& scene, const CellGraph* cells) {
+  Bounds rooms;
+  if (cells && !cells->empty()) {
+    const std::vector<int> cellOf = cells->cellOfTriangle(scene.triangles.size());
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+      const int c = cellOf[t];
+      if (c < 0 || size_t(c) >= cells->cells.size() || cells->cells[size_t(c)].name == "outside") continue;
+      for (const glm::vec3& q : scene.triangles[t].p) rooms.extend(q);
+    }
+    for (const Cell& c : cells->cells)  // rooms given as volumes alone hold no triangles
+      if (c.name != "outside")
+        for (const Triangle& t : c.volume)
+          for (const glm::vec3& q : t.p) rooms.extend(q);
+  }
+  if (!rooms.empty() || scene.triangles.empty()) return rooms;
+  Bounds middle;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<float> centres;
+    centres.reserve(scene.triangles.size());
+    for (const Triangle& t : scene.triangles)
+      centres.push_back((t.p[0][axis] + t.p[1][axis] + t.p[2][axis]) / 3.0f);
+    const size_t lo = centres.size() * 2 / 100, hi = centres.size() - 1 - lo;
+    std::nth_element(centres.begin(), centres.begin() + long(lo), centres.end());
+    middle.lo[axis] = centres[lo];
+    std::nth_element(centres.begin(), centres.begin() + long(hi), centres.end());
+    middle.hi[axis] = centres[hi];
+  }
+  const Bounds within = trianglesWithin(scene, middle);
+  return within.empty() ? middle : within;
+}
 
 std::string renderHtmlReport(const HtmlReportInput& in) {
   json data = {{"kind", in.kind}, {"title", in.title}, {"report", in.report}};
   data["cells"] = cellsJson(in);
   data["portals"] = portalsJson(in.cells);
   if (in.lightmap) data["lightmap"] = lightmapJson(*in.lightmap);
+  if (!in.frame.empty()) data["frame"] = {vec(in.frame.lo), vec(in.frame.hi)};
   if (!in.bench.is_null()) data["bench"] = in.bench;
   if (!in.probes.is_null()) data["probes"] = in.probes;
   return fillTemplate(

@@ -40,7 +40,9 @@ struct HtmlReportInput {
   /// Where a person would stand in each cell (radiosity/lightmap/views.h's defaultCameras), by the cell's
   /// name; the page offers a view from each. A cell without one gets none.
   std::vector<Camera> cellCameras;
-  const CellGraph* cells = nullptr;          ///< cells and portals (may be null or empty)
+  const CellGraph* cells = nullptr;  ///< cells and portals (may be null or empty)
+  /// What the overview frames (buildingBounds); empty: the whole model.
+  Bounds frame;
   const ReportLightmap* lightmap = nullptr;  ///< null for a decomposition
   /// Rows of bench/speed_accuracy.py's results.json (scene, method, resolution, seconds, rel_rmse,
   /// rel_rmse_nonemissive ...) for the speed-against-accuracy chart; null for none.
@@ -49,6 +51,12 @@ struct HtmlReportInput {
   /// null for none.
   nlohmann::json probes;
 };
+
+/// The building in `scene`, for the overview to frame rather than the terrain around it: the bounds of the
+/// triangles of every cell but the outside when `cells` gives rooms; else of the triangles whose centre
+/// lies in the box of the middle 96 % of the triangles' centres on each axis, grown by a quarter of its size
+/// (a ground plane or sky box many times the building's size is two triangles among thousands).
+Bounds buildingBounds(const Scene& scene, const CellGraph* cells);
 
 /// The page's HTML. Throws std::invalid_argument when the lightmap's arrays do not match its size.
 std::string renderHtmlReport(const HtmlReportInput& input);

@@ -69,6 +69,7 @@ AmbientTransfer bakeAmbientTransfer(const BakeSettings& s, const BakeInput& in, 
                                     const ExrChannel& texelCells, Context& ctx) {
   if (!s.solver.ambient) return {};
   auto t = ctx.time("ambient transfer");
+  ctx.progress("set-up", 0.0, "where each room's light lands");
   const RayScene rays(*in.scene);
   return measureAmbientTransfer(in.atlas, rays, texelCells.values, texelGraph.cells.size());
 }
@@ -178,6 +179,7 @@ void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, c
                BakeFigures& f, Context& ctx) {
   auto t = ctx.time("write");
   if (!out) return;
+  ctx.progress("write", 0.0, "lightmaps and glb files");
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
@@ -236,6 +238,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
   // the ambient term.
   const CellGraph& cells = *in.cells;
+  ctx.progress("set-up", 0.0, "the rooms of the texels");
   const RoomLabels rooms =
       cells.empty() || cells.definedByVolumes()
           ? labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, solveDeadline)
@@ -273,10 +276,12 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   result.partial = r.timedOut || !f.skippedViews.empty();
   result.seconds = f.seconds;
   if (out) {
+    ctx.progress("write", 0.9, "report.json, report.html");
     writeReport(*out, result.report);
     writeBakeReportPage(*out, "bake of " + s.input.scene, result.report, *in.scene, cells, in.atlas,
                         r.radiosity);
     out->commit();
+    ctx.progress("write", 1.0, "done");
   }
   result.texelCell = texelCells.values;
   result.cellNames = std::move(f.cellNames);
@@ -310,7 +315,7 @@ Context::ProgressFn bakeNotes(Context::ProgressFn inner, const BakeSettings& set
   const bool global = settings.cells.method == BakeMethod::Global;
   return [inner, said, size, note, global, limit = settings.limits.timeLimit, start](const Progress& p) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!said->first && p.stage == "solve" && !size->empty()) {
+    if (!said->first && !size->empty()) {  // said once the atlas is laid out, before the set-up
       said->first = true;
       note(*size + " (" + formatDuration(std::max(elapsed, 1.0)) + " so far)");
     }

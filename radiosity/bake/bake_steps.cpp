@@ -30,6 +30,7 @@ BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRu
   BakeScene in;
   {
     auto t = ctx.time("load");
+    ctx.progress("load", 0.0, s.input.scene);
     in.loaded = loadScene(s.input.scene, s.input.load);
   }
   // The loader has no point to stop at; past the limit the bake goes on with the least a valid result
@@ -102,11 +103,14 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
                     Clock::time_point deadline) {
   {
     auto t = ctx.time("atlas");
+    ctx.progress("atlas", 0.0, "patches");
     in.quads = findQuads(*in.scene);
   }
   if (s.atlas.densityAuto && in.triangleDensity.empty()) {
     if (!pilot) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a shot engine");
     auto t = ctx.time("auto density");
+    // The pilot's own atlas and solve report as this stage, not as the bake's solve.
+    const ProgressStage stage(ctx, "auto density", "a coarse pilot solve");
     AutoDensityData data;
     in.triangleDensity =
         chooseAutoDensity(*in.scene, in.quads, s.atlas.params, s.atlas.autoDensity, s.solver.params, *pilot,
@@ -117,6 +121,7 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
   params.triangleDensity = in.triangleDensity;
   {
     auto t = ctx.time("atlas");
+    ctx.progress("atlas", 0.0, "layout");
     // --density auto within its texel budget (AutoDensityParams::maxTexels): the densities scaled down to
     // fit, said in one line.
     TexelBudget budget;

@@ -104,6 +104,7 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
     decomp::Decomposition d =
         decomposeBy([&](Context& inner) { return decomp::decompose(loaded.scene, p, inner); });
     if (d.graph.cells.size() < 2) ctx.warn(scenePath + ": the automatic decomposition found one cell");
+    decomp::nameCellsByVolumes(d, loaded.cells);  // named by the scene's room volumes where one covers them
     return takeDecomposition(std::move(d));
   }
   std::filesystem::path path = source;

@@ -44,6 +44,7 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   input.glb = readFileBytes(out.staged("preview.glb").string());
   input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
+  input.frame = buildingBounds(scene, &cells);
   input.lightmap = &lightmap;
   // A bake with light probes staged probes.json: the page lights a sphere with them; one with --directional
   // on cpgi's atlas, its SH files: the page's normal-mapped test surface.
@@ -70,6 +71,7 @@ void writeDecompositionReportPage(OutputDir& out, const std::string& title, cons
   input.glb = readFileBytes(out.staged("cells.glb").string());
   input.cellCameras = cellCameras(scene, cells);
   input.cells = &cells;
+  input.frame = buildingBounds(scene, &cells);
   writeHtmlReport(out, input);
 }
 
@@ -107,6 +109,7 @@ void writeComparisonReportPage(const std::string& dir, const std::string& aDir, 
   input.glb = readFileBytes(glbPath);
   input.cellCameras = cellCameras(baked.scene, baked.cells);
   input.cells = &baked.cells;
+  input.frame = buildingBounds(baked.scene, &baked.cells);
   input.lightmap = &lightmap;
   input.bench = bench;
   writeHtmlReport(out, input);

@@ -85,6 +85,8 @@ RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::s
   std::set<std::string> used;
   for (size_t c = 0; c < cameras.size(); ++c) {
     const std::string name = viewName(cameras[c], c, used);
+    // A view of a large scene takes seconds: say which one is being rendered.
+    ctx.progress("views", double(c) / double(cameras.size()), "rendering " + name);
     const ImageRGB image = views.skipped.empty()
                                ? renderView(rays, scene, atlas, lightmap, cameras[c], params, deadline)
                                : ImageRGB{};
@@ -97,7 +99,7 @@ RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::s
         params.exposure > 0.0f ? params.exposure : pictureExposure(image, lightmapExposure);
     writePng(out.file("view-" + name + ".png").string(), image, exposure);
     views.written.push_back(name);
-    ctx.progress("views", double(c + 1) / double(cameras.size()), name);
+    ctx.progress("views", double(c + 1) / double(cameras.size()), name + " written");
   }
   if (!views.skipped.empty())
     ctx.warn("views: the time limit came before " + std::to_string(views.skipped.size()) + " of " +

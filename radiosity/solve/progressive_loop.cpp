@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+
+#include "core/progress.h"
 
 #include "radiosity/solve/solve_estimate.h"
 
@@ -13,15 +16,18 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// A report of the loop: how far towards the stop, the shots, the unshot share and the time left
-// (negative: no estimate yet).
-Progress solveProgress(double fraction, int shots, double unshot, double secondsLeft) {
+// A report of the loop: how far towards the stop, the shots, the unshot share and the time left in wall
+// and CPU seconds (negative: no estimate yet; the loop owns its estimate, so a printer never extrapolates
+// one from the fraction, which is not linear in time).
+Progress solveProgress(double fraction, int shots, double unshot, double secondsLeft, double cpuSecondsLeft) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "shots %d, unshot %.2f%%", shots, 100.0 * unshot);
   Progress p{"solve", fraction, buf};
   p.shots = shots;
   p.unshot = unshot;
   p.secondsLeft = secondsLeft;
+  p.cpuSecondsLeft = cpuSecondsLeft;
+  p.ownsTimeLeft = true;
   return p;
 }
 
@@ -63,42 +69,64 @@ float shotScale(const ShotGathered& seen, double shotPower, bool lobedEmission) 
   return 1.0f;
 }
 
-// The progress line and the time estimate (solve_estimate.h) from the reflectors' shots.
+// The progress line and the time estimate (solve_estimate.h) from the reflectors' shots. The estimate is
+// made in the process's CPU seconds, which a machine loaded by others does not stretch, and said in wall
+// seconds at the CPU rate of the last kRateWindow seconds: a load that changes after that skews the wall
+// figure by as much (bench/RESULTS.md, "Progress from the first second").
 class LoopProgress {
  public:
   LoopProgress(double strongAt, Context& ctx) : estimate_(strongAt), ctx_(ctx) {}
-  // `bound`: past a refused stop, the shot the loop stops at whatever acceptStop says (0: none yet).
-  void shot(int shots, bool strong, double power, double unshot, double stopAt, int bound,
-            bool nextIsEmitter) {
-    const double elapsed = secondsSince(start_);
-    if (reflecting_) estimate_.addShot(strong, elapsed - lastShotEnd_, power, unshot);
-    lastShotEnd_ = elapsed;
+  // `unshot`: the stop's share; `emittedShare`: the unshot against the emitted power, shown instead while
+  // the emitters still shoot (the stop's share weighs the unshot against the light reflected so far, and
+  // with lamps yet to shoot that is over 100 %). `bound`: past a refused stop, the shot the loop stops at
+  // whatever acceptStop says (0: none yet).
+  void shot(int shots, bool strong, double power, double unshot, double emittedShare, double stopAt,
+            int bound, bool nextIsEmitter) {
+    const double elapsed = secondsSince(start_), cpu = processCpuSeconds() - cpuStart_;
+    if (reflecting_) estimate_.addShot(strong, cpu - lastShotCpu_, power, unshot);
+    lastShotCpu_ = cpu;
     if (!reflecting_ && !nextIsEmitter) reflecting_ = true;
-    if (bound > 0 && refusedAt_ == 0) refusedAt_ = shots, refusedSeconds_ = elapsed;
-    if (elapsed - lastReport_ <= 0.25) return;
-    if (reflecting_) estimate_.add({shots, unshot, elapsed});
+    if (bound > 0 && refusedAt_ == 0) refusedAt_ = shots, refusedCpu_ = cpu;
+    if (elapsed - lastReport_ <= kReportSeconds) return;
+    rates_.push_back({elapsed, cpu});
+    while (rates_.size() > 2 && rates_[1].wall < elapsed - kRateWindow) rates_.pop_front();
+    if (reflecting_) estimate_.add({shots, unshot, cpu});
     // Towards the current stop: past a refused one (acceptStop), the next ask or the bound, whichever
     // comes first: the shots since the refusal, at their own pace, towards the bound.
     double fraction = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(stopAt), 0.0, 1.0);
     double left = estimate_.secondsLeft(stopAt);
     if (bound > 0 && shots > refusedAt_) {
-      const double perShot = (elapsed - refusedSeconds_) / double(shots - refusedAt_);
+      const double perShot = (cpu - refusedCpu_) / double(shots - refusedAt_);
       const double toBound = perShot * double(std::max(bound - shots, 0));
       fraction = std::max(fraction, double(shots) / double(bound));
       left = left >= 0.0 ? std::min(left, toBound) : toBound;
     }
-    ctx_.progress(solveProgress(fraction, shots, unshot, left));
+    const double shown = reflecting_ ? std::min(unshot, 1.0) : emittedShare;
+    ctx_.progress(solveProgress(fraction, shots, shown, left >= 0.0 ? left / cpuRate() : -1.0, left));
     lastReport_ = elapsed;
   }
 
  private:
+  static constexpr double kReportSeconds = 0.25, kRateWindow = 20.0;
+  struct Stamp {
+    double wall, cpu;
+  };
+  // CPU seconds per wall second over the window (1 before a quarter of a second of it).
+  double cpuRate() const {
+    const double wall = rates_.back().wall - rates_.front().wall;
+    const double cpu = rates_.back().cpu - rates_.front().cpu;
+    return wall >= kReportSeconds && cpu > 0.0 ? cpu / wall : 1.0;
+  }
+
   SolveEstimate estimate_;
   Context& ctx_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double cpuStart_ = processCpuSeconds();
+  std::deque<Stamp> rates_{{0.0, 0.0}};
   bool reflecting_ = false;  // the emitters' own shots are over
-  double lastShotEnd_ = 0.0, lastReport_ = -1.0;
-  int refusedAt_ = 0;  // the shot of the first refused stop, and its time
-  double refusedSeconds_ = 0.0;
+  double lastShotCpu_ = 0.0, lastReport_ = -1.0;
+  int refusedAt_ = 0;  // the shot of the first refused stop, and its CPU time
+  double refusedCpu_ = 0.0;
 };
 
 }  // namespace
@@ -118,7 +146,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   result.history.push_back(e);
   // Before the first shot, once the settings are checked and the backend is built: the CLI prints the
   // bake's size here (apps/bake_command.cpp).
-  ctx.progress(solveProgress(0.0, 0, e.emitted > 0.0 ? e.unshot / e.emitted : 0.0, -1.0));
+  ctx.progress(solveProgress(0.0, 0, std::min(books.unshotShare(), 1.0), -1.0, -1.0));
   const double strongAt =
       controls.strongShotPower > 0.0 ? controls.strongShotPower : settings.strongShotFraction * e.emitted;
   LoopProgress progress(strongAt, ctx);
@@ -164,7 +192,8 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     result.history.push_back(e);
     next = backend.next();
     if (!given)
-      progress.shot(result.shots, strong, shooter.power, books.unshotShare(), stopAt, bound, next.emitting);
+      progress.shot(result.shots, strong, shooter.power, books.unshotShare(), e.unshot / e.emitted, stopAt,
+                    bound, next.emitting);
   }
   result.energy = e;
   if (result.stopBounded) {
@@ -185,7 +214,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   }
   result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
   ctx.addTiming("solve: shots", secondsSince(start));
-  ctx.progress(solveProgress(1.0, result.shots, result.unshotFraction, -1.0));
+  ctx.progress(solveProgress(1.0, result.shots, std::min(books.unshotShare(), 1.0), -1.0, -1.0));
   return result;
 }
 

@@ -120,6 +120,7 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   if (!direct.lamps.shot.empty()) first.spentEmitters = direct.lamps.shot;
 
   const auto start = std::chrono::steady_clock::now();
+  ctx.progress("set-up", 0.0, "the " + std::string(engine.name()) + " engine");  // tens of seconds on a house
   std::unique_ptr<ShotBackend> backend = engine.backend(scene, atlas, settings, shape, first, ctx);
   if (!backend) {
     SolveResult empty;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/progress.h"
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/ray_scene.h"
@@ -75,6 +76,7 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   coarseParams.texelsPerQuad = 0;
   coarseParams.density = levels.solveDensity;
   coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
+  ctx.progress("set-up", 0.0, "the interreflection's atlas");
   size_t refined = 0;
   if (levels.refineContacts) {
     std::vector<float> fine = outputDensity(atlas, scene.triangles.size());
@@ -93,15 +95,16 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   }
   const AtlasMapping mapping = mapAtlas(atlas, coarse);
   const auto lampStart = std::chrono::steady_clock::now();
-  // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies. The
-  // solve starts here for the progress line (the bake's size note waits for it), whether or not a loop
-  // follows: by shadow rays the lamps' shot runs no loop, and a time limit may stop it.
-  ctx.progress(Progress{"solve", 0.0, "the lamps' shot"});
+  // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies.
   RefinedLampData lampData;
   SolveControls lampControls = controls;
   lampControls.acceptStop = {};  // the stop is the interreflection's, asked below
-  SolveResult lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, engines.lamps,
-                                      ctx, lampControls, &lampData);
+  SolveResult lit;
+  {
+    const ProgressStage stage(ctx, "lamps");  // the lamps' own pass, not the solve's 0 → 100 %
+    lit = shootLampsRefined(scene, quads, atlas, atlasParams, levels.lamps, settings, engines.lamps, ctx,
+                            lampControls, &lampData);
+  }
   const double lampSeconds = seconds(lampStart);
   if (lit.timedOut || std::chrono::steady_clock::now() >= controls.deadline) {
     // The deadline came during the lamps' shot: what they did not shoot is unshot, and no interreflection

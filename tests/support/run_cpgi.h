@@ -19,7 +19,15 @@ namespace cpgi::test {
 struct CommandRun {
   int status = -1;  ///< exit status; 128 + signal when the process was killed (a crash)
   std::string out, err;
+  /// The messages on stderr, without the progress lines a stage that lasts a second prints in a pipe
+  /// (core/progress.h): a refusal after a long stage is still one line of message.
   std::vector<std::string> errLines() const {
+    std::vector<std::string> lines;
+    for (const std::string& line : allErrLines())
+      if (line.rfind("progress: ", 0) != 0) lines.push_back(line);
+    return lines;
+  }
+  std::vector<std::string> allErrLines() const {
     std::vector<std::string> lines;
     std::istringstream in(err);
     for (std::string line; std::getline(in, line);) lines.push_back(line);

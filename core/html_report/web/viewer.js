@@ -25,10 +25,16 @@ function base64Bytes(text) {
   return bytes;
 }
 
-// A colour per cell, far apart in hue for neighbouring indices (golden-ratio steps).
+// Each cell's colour as cpgi gave it (core/cell_palette.h: the same as decomposition.png's), "#rrggbb"
+// in sRGB, by the cell's index; grey for no cell.
+let cellPalette = [];
+export function setCellPalette(cells) {
+  const hex = (c) => (typeof c.colour === 'string' && /^#[0-9a-f]{6}$/i.test(c.colour) ? c.colour : null);
+  cellPalette = (cells || []).map(hex);
+}
 export function cellColour(index) {
-  if (index < 0) return new THREE.Color(0.35, 0.35, 0.35);
-  return new THREE.Color().setHSL((index * 0.618033988749895) % 1, 0.65, 0.55);
+  const hex = index >= 0 ? cellPalette[index] : null;
+  return hex ? new THREE.Color(hex) : new THREE.Color(0.35, 0.35, 0.35);
 }
 
 // Radiance of the brightest surfaces a person would look at: the area-weighted 90th percentile of B/π
@@ -383,6 +389,12 @@ class Viewer {
     this.setOutside(this.showOutside);
     this.scene.add(root);
     this.bounds = new THREE.Box3().setFromObject(root);
+    // The overview frames the building cpgi measured (html_report.h, buildingBounds), not a terrain or
+    // sky around it many times its size.
+    const f = this.data.frame;
+    this.frameBounds = Array.isArray(f) && f.length === 2
+      ? new THREE.Box3(new THREE.Vector3(...f[0]), new THREE.Vector3(...f[1]))
+      : this.bounds.clone();
     this.buildPortals();
     this.buildCameraList();
     this.home();
@@ -473,7 +485,8 @@ class Viewer {
     if (!v) throw new Error('no such view');
     this.currentView = v.name;
     if (v.overview) {
-      const size = this.bounds.getSize(new THREE.Vector3()), centre = this.bounds.getCenter(new THREE.Vector3());
+      const size = this.frameBounds.getSize(new THREE.Vector3());
+      const centre = this.frameBounds.getCenter(new THREE.Vector3());
       const radius = Math.max(size.length() * 0.5, 0.5);
       this.camera.position.copy(centre).add(new THREE.Vector3(0.6, 1.1, 0.9).normalize().multiplyScalar(radius * 1.8));
       this.controls.target.copy(centre);
@@ -740,6 +753,7 @@ function main() {
     return;
   }
   const glb = base64Bytes(document.getElementById('cpgi-glb').textContent);
+  setCellPalette(data.cells);
   window.cpgiViewer = new Viewer(data, glb);
   window.cpgiViewer.cellColour = (i) => '#' + cellColour(i).getHexString();
 }

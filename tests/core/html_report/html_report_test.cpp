@@ -1,9 +1,14 @@
 // report.html's writer: the page carries its data intact (lightmap, cells, portals, report.json) and
 // nothing in the data can end its script elements early; each cell's view is the camera given for it.
+#include <cmath>
+#include <set>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "core/cell_palette.h"
 #include "core/html_report/html_report.h"
 
 namespace cpgi {
@@ -143,6 +148,61 @@ TEST(HtmlReport, RefusesALightmapOfTheWrongSize) {
   HtmlReportInput input;
   input.lightmap = &lightmap;
   EXPECT_THROW(renderHtmlReport(input), std::invalid_argument);
+}
+
+// One palette for every output (issue 50 item 4): each cell reaches the page with the colour
+// decomposition.png paints it, by its index, as sRGB hex; distinct cells get distinct colours.
+TEST(HtmlReport, EachCellCarriesThePicturesColour) {
+  Scene scene;
+  CellGraph graph;
+  for (int i = 0; i < 6; ++i)
+    addRoom(scene, graph, "room" + std::to_string(i), 4.0f * float(i), 4.0f, 3.0f, 2.0f);
+  HtmlReportInput input;
+  input.cells = &graph;
+  const nlohmann::json data = nlohmann::json::parse(scriptText(renderHtmlReport(input), "cpgi-data"));
+  ASSERT_EQ(data["cells"].size(), 6u);
+  std::set<std::string> seen;
+  for (int i = 0; i < 6; ++i) {
+    const std::string hex = data["cells"][size_t(i)]["colour"];
+    EXPECT_EQ(hex, cellColourHex(i));
+    EXPECT_TRUE(seen.insert(hex).second) << hex;
+    // The hex is the linear colour the picture writes, sRGB-encoded (within a step of 8 bits).
+    const glm::vec3 linear = cellColour(i);
+    const float red = float(std::stoi(hex.substr(1, 2), nullptr, 16)) / 255.0f;
+    const float encoded =
+        linear.r <= 0.0031308f ? 12.92f * linear.r : 1.055f * std::pow(linear.r, 1.0f / 2.4f) - 0.055f;
+    EXPECT_NEAR(red, encoded, 0.5f / 255.0f + 1e-6f);
+  }
+  EXPECT_EQ(cellColourHex(-1), "#a0a0a0");  // no cell: the page's grey (0.35 linear)
+}
+
+// The overview frames the building, not a terrain many times its size: the rooms' triangles when cells
+// are known (the outside's left out), else the triangles within the middle of the triangles' centres.
+TEST(HtmlReport, TheOverviewFramesTheBuildingNotTheTerrain) {
+  Scene scene;
+  CellGraph graph;
+  addRoom(scene, graph, "hall", 0.0f, 4.0f, 3.0f, 2.0f);
+  addRoom(scene, graph, "kitchen", 4.0f, 2.0f, 3.0f, 2.0f);
+  addRoom(scene, graph, "outside", -200.0f, 400.0f, 0.1f, 400.0f);  // the terrain
+  Bounds b = buildingBounds(scene, &graph);
+  EXPECT_NEAR(b.lo.x, 0.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.x, 6.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.z, 2.0f, 1e-5f);
+  // Without cells: many small triangles of the building and two of a huge ground plane.
+  Scene raw;
+  CellGraph none;
+  for (int i = 0; i < 30; ++i) addRoom(raw, none, "r", 0.5f * float(i), 0.5f, 3.0f, 8.0f);
+  raw.triangles.push_back(triangle({-500, -0.1f, -500}, {-500, -0.1f, 500}, {500, -0.1f, -500}));
+  raw.triangles.push_back(triangle({500, -0.1f, -500}, {-500, -0.1f, 500}, {500, -0.1f, 500}));
+  b = buildingBounds(raw, nullptr);
+  EXPECT_NEAR(b.lo.x, 0.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.x, 15.0f, 1e-5f);
+  EXPECT_NEAR(b.hi.z, 8.0f, 1e-5f);
+  // The page carries it for the viewer.
+  HtmlReportInput input;
+  input.frame = b;
+  const nlohmann::json data = nlohmann::json::parse(scriptText(renderHtmlReport(input), "cpgi-data"));
+  EXPECT_EQ(data["frame"][1], nlohmann::json({15.0, 3.0, 8.0}));
 }
 
 }  // namespace

@@ -117,6 +117,7 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
     levels.emplace();
     TwoLevelParams twoLevels{.solveDensity = solveDensity};
     twoLevels.lamps.coarsening = s.solver.lampCoarsening;
+    if (s.solver.solveDensity == kAutoSolveDensity) twoLevels.maxSolveTexels = kAutoSolveTexels;
     if (cells)  // the cells on the coarse atlas, each solve on the reflections' engine
       return solveCellsTwoLevel(*in.scene, *in.cells, in.quads, in.atlas, twoLevels, params, x.engines, ctx,
                                 &*levels);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
@@ -83,6 +84,14 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
     for (float d : coarseParams.triangleDensity) refined += d > levels.solveDensity;
   }
   LightmapAtlas coarse = buildAtlas(scene, quads, coarseParams, ctx);
+  // Over the budget, every density scaled by the square root of budget / texels; twice at most, since the
+  // charts' fewest texels do not scale.
+  for (int k = 0; k < 2 && levels.maxSolveTexels > 0 && coarse.validTexels() > levels.maxSolveTexels; ++k) {
+    const float scale = std::sqrt(float(levels.maxSolveTexels) / float(coarse.validTexels()));
+    coarseParams.density *= scale;
+    for (float& d : coarseParams.triangleDensity) d *= scale;
+    coarse = buildAtlas(scene, quads, coarseParams, ctx);
+  }
   if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
     SolveResult one = solveCoarse
                           ? solveCoarse(atlas, atlasParams, controls)  // no prior: it shoots the lamps
@@ -116,7 +125,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
                lampData.coarseTexels,
                lampData.refinedTexels,
                settings.itemBuffer,
-               std::string()};
+               std::string(),
+               coarseParams.density};
     return lit;
   }
 
@@ -167,7 +177,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              lampData.coarseTexels,
              lampData.refinedTexels,
              indirectSettings.itemBuffer,
-             engines.reflections.name()};
+             engines.reflections.name(),
+             coarseParams.density};
   return out;
 }
 

@@ -77,7 +77,10 @@ struct TexelBudget {
 /// valid texels (0: no limit): over it, every triangle's density is scaled by one factor, first by the
 /// texels the area asks (Σ area × density² over the triangles), then again by the atlas built until it
 /// fits (the charts' borders and rounding). `params.triangleDensity` is left with the densities used.
-LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels,
-                             Context& ctx, TexelBudget* budget = nullptr);
+/// Each layout stops at `deadline` as buildAtlas does (AtlasLayoutStopped).
+LightmapAtlas fitTexelBudget(
+    const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels, Context& ctx,
+    TexelBudget* budget = nullptr,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -62,9 +62,6 @@ float pilotDensity(const Scene& scene, const AutoDensityParams& params) {
   return float(std::min(double(params.pilotDensity), std::sqrt(budget / area)));
 }
 
-namespace {
-
-// The valid texels `density` (per triangle) asks, by the area: Σ area × density².
 double texelsByArea(const Scene& scene, const std::vector<float>& density, float uniform) {
   double texels = 0.0;
   for (size_t t = 0; t < scene.triangles.size(); ++t) {
@@ -73,8 +70,6 @@ double texelsByArea(const Scene& scene, const std::vector<float>& density, float
   }
   return texels;
 }
-
-}  // namespace
 
 LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels,
                              Context& ctx, TexelBudget* budget,

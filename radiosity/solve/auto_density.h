@@ -65,6 +65,10 @@ inline constexpr double kPilotTexelShare = 0.25;
 /// triangle) takes at most kPilotTexelShare × params.maxTexels texels at it.
 float pilotDensity(const Scene& scene, const AutoDensityParams& params);
 
+/// The valid texels `density` (per scene triangle; empty: `uniform` everywhere) asks, by the area:
+/// Σ area × density² (the charts' borders and rounding not counted).
+double texelsByArea(const Scene& scene, const std::vector<float>& density, float uniform);
+
 /// What fitTexelBudget did.
 struct TexelBudget {
   size_t asked = 0;    ///< valid texels at the densities asked (estimated from the area when over budget)

@@ -12,7 +12,15 @@
 # the outside too, reachable from every other), the cells folded as space behind the geometry, the
 # portal pieces merged into one, and the pairs of cells with more than one portal (pair: count).
 # MAP_VOXELS runs the maps at those voxel sizes too (the automatic one always).
-#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] bench/real_models.sh CPGI_BINARY [VOXEL ...]
+# BAKE=1 also bakes every model with daylight at the defaults (`cpgi bake MODEL -o DIR --sky uniform --sun
+# 0.3,1,0.2,500`, and again with `--time-limit LIMIT` when LIMIT is given), one process each under
+# /usr/bin/time, as a second table: CPU seconds (user + sys), peak memory, texels, solve texels, shots, the
+# unshot share, the energy (emitted, absorbed, escaped W), how far past the limit it ended (wall), and with
+# REFS=DIR (a reference per model, DIR/MODEL, from `cpgi reference MODEL -o DIR/MODEL --sky uniform --sun
+# 0.3,1,0.2,500 --texels 40000 --spp 1024`) the worst room's ratio of means and each room's. The maps are
+# converted with --open-sky there (OPEN_SKY=0 keeps the sky faces, which seal a level from the daylight).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [REFS=DIR]]
+#   bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
 # converter is compiled into the work folder with the system's c++ when no build of it is given
 # (Q3BSP_TO_OBJ=path). The data stays outside the repo.
@@ -71,6 +79,40 @@ print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
 }
 
+# One bake row: MODEL's daylit bake at the defaults (with EXTRA options), its figures from report.json.
+bake_row() {
+  local name=$1 scene=$2 limit=$3 out="$work/bake"
+  rm -rf "$out"
+  local extra=()
+  [ "$limit" != "-" ] && extra=(--time-limit "$limit")
+  local t0 t1
+  t0=$(date +%s.%N)
+  /usr/bin/time -f "%U %S %M" -o "$work/btime.txt" "$cpgi" bake "$scene" -o "$out" --sky uniform \
+    --sun 0.3,1,0.2,500 "${extra[@]}" >"$work/blog.txt" 2>&1 || { echo "| $name | $limit | bake failed: $(tail -1 "$work/blog.txt") |"; return; }
+  t1=$(date +%s.%N)
+  echo '{}' >"$work/bcmp.json"
+  if [ -n "${REFS:-}" ] && [ -d "$REFS/$name" ]; then
+    "$cpgi" compare-light "$out" "$REFS/$name" --scene "$scene" --json >"$work/bcmp.json" 2>/dev/null || echo '{}' >"$work/bcmp.json"
+  fi
+  read -r user sys rss <"$work/btime.txt"
+  python3 - "$name" "$limit" "$out/report.json" "$work/bcmp.json" "$user" "$sys" "$rss" "$t0" "$t1" <<'PY'
+import json, sys
+name, limit, report, cmp_json = sys.argv[1:5]
+user, sys_, rss, t0, t1 = map(float, sys.argv[5:])
+r = json.load(open(report)); c = json.load(open(cmp_json))
+e = r["energy"]
+past = "%+.1f s" % (t1 - t0 - float(limit)) if limit != "-" else "-"
+rooms = c.get("cells", [])
+worst = max(rooms, key=lambda x: abs(x["ratio_of_means"] - 1)) if rooms else None
+cols = [name, limit, "%.0f" % (user + sys_), "%.0f" % (rss / 1024), r["texels"], r.get("solve_texels", "-"),
+        r["shots"], "%.3f %%" % (100 * r["unshot_fraction"]), "yes" if r.get("partial") else "no",
+        "%.0f / %.0f / %.0f" % (e["emitted_w"], e["absorbed_w"], e["escaped_w"]), past,
+        "%s %.3f" % (worst["name"], worst["ratio_of_means"]) if worst else "-",
+        ", ".join("%s %.3f ± %.1f %%" % (x["name"], x["ratio_of_means"], 100 * x["reference_noise"]) for x in rooms) or "-"]
+print("| " + " | ".join(str(x) for x in cols) + " |")
+PY
+}
+
 echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
@@ -93,3 +135,16 @@ if [ ${#maps[@]} -gt 0 ]; then
     for v in 0 "${map_sizes[@]}"; do row "$m" "$work/$m.obj" "$v" 0; done
   done
 fi
+[ "${BAKE:-0}" = 1 ] || exit 0
+echo
+echo "| model | --time-limit s | CPU s | peak MB | texels | solve texels | shots | unshot | partial | emitted / absorbed / escaped W | ended past the limit (wall) | worst room | rooms: ratio of means ± reference noise |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+for h in "${houses[@]}"; do
+  for l in - ${LIMIT:-}; do bake_row "$h" "$work/$h.glb" "$l"; done
+done
+for m in "${maps[@]}"; do
+  sky=(--open-sky)
+  [ "${OPEN_SKY:-1}" = 0 ] && sky=()
+  "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" 2>/dev/null
+  for l in - ${LIMIT:-}; do bake_row "$m" "$work/$m.obj" "$l"; done
+done

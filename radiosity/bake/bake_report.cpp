@@ -142,8 +142,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["lamp_rays"] = s.solver.params.lampRays;
   // Two levels (radiosity/solve/two_level_solve.h): the lamps on the output's atlas, the rest on a coarser
   // one.
-  report["solve_density"] =
-      levels ? nlohmann::json(chosenSolveDensity(s, in.atlas)) : nlohmann::json(nullptr);
+  report["solve_density"] = !levels                       ? nlohmann::json(nullptr)
+                            : levels->solveDensity > 0.0f ? nlohmann::json(levels->solveDensity)
+                                                          : nlohmann::json(chosenSolveDensity(s, in.atlas));
   report["solve_density_option"] = s.solver.solveDensity == kAutoSolveDensity
                                        ? nlohmann::json("auto")
                                        : nlohmann::json(s.solver.solveDensity);

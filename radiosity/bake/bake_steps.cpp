@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -99,8 +100,38 @@ OnDemand resolveOnDemand(const BakeSettings& s, const Scene& scene, const CellGr
   return d;
 }
 
+namespace {
+
+// The output's atlas within `deadline` (--time-limit): past it in the middle of a large layout
+// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels,
+// said in one warning; the solve after it stops at once and the result is written as partial.
+LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
+                           Context& ctx, Clock::time_point deadline) {
+  const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
+  try {
+    return fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, deadline);
+  } catch (const AtlasLayoutStopped& stopped) {
+    AtlasParams coarse = params;
+    coarse.texelsPerQuad = params.texelsPerQuad > 0 ? std::max(2, params.texelsPerQuad / 4) : 0;
+    coarse.density = params.density / 4.0f;
+    for (float& d : coarse.triangleDensity) d /= 4.0f;
+    Context quiet;  // the coarse layout's own warnings (charts capped) are not the user's resolution's
+    LightmapAtlas atlas = fitTexelBudget(*in.scene, in.quads, coarse, maxTexels, quiet, &budget);
+    char line[240];
+    std::snprintf(line, sizeof line,
+                  "atlas: the time limit came while laying out the lightmap (%zu of %zu texels filled): laid "
+                  "out again at a quarter of the texels per metre, %zu texels",
+                  stopped.filledTexels, stopped.texels, atlas.validTexels());
+    ctx.warn(line);
+    params = coarse;
+    return atlas;
+  }
+}
+
+}  // namespace
+
 void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
-                    Clock::time_point deadline) {
+                    Clock::time_point deadline, Clock::time_point layoutDeadline) {
   {
     auto t = ctx.time("atlas");
     ctx.progress("atlas", 0.0, "patches");
@@ -125,9 +156,9 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
     // --density auto within its texel budget (AutoDensityParams::maxTexels): the densities scaled down to
     // fit, said in one line.
     TexelBudget budget;
-    in.atlas = fitTexelBudget(*in.scene, in.quads, params,
-                              s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0, ctx, &budget);
-    if (!budget.note.empty()) ctx.warn(budget.note), in.triangleDensity = params.triangleDensity;
+    in.atlas = layOutWithin(s, in, params, budget, ctx, layoutDeadline);
+    if (!budget.note.empty()) ctx.warn(budget.note);
+    if (!in.triangleDensity.empty()) in.triangleDensity = params.triangleDensity;
   }
   if (in.atlas.patches.empty()) throw InputError(s.input.scene, "no surface to bake");
   if (!in.scene->hasLight()) ctx.warn(s.input.scene + ": nothing emits light; the lightmap is black");

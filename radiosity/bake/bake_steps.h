@@ -56,9 +56,11 @@ struct BakeInput {
 };
 
 /// The atlas; with --density auto and no densities yet, after a pilot shot of the lamps on `pilot` that
-/// shoots no more after `deadline`.
+/// shoots no more after `deadline`. A large layout still going at `layoutDeadline` is laid out again at a
+/// sixteenth of the texels, with a warning.
 void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
-                    Clock::time_point deadline = Clock::time_point::max());
+                    Clock::time_point deadline = Clock::time_point::max(),
+                    Clock::time_point layoutDeadline = Clock::time_point::max());
 /// The bytes the solve takes: the atlas's texels and the item buffers of every visibility region.
 double solveBytes(const BakeSettings& s, const LightmapAtlas& atlas);
 void requireSolveMemory(const BakeSettings& s, const LightmapAtlas& atlas);

@@ -414,6 +414,22 @@ glm::dvec2 eyeCoverage(const RayShotScene& s, const ShooterLayout& l, const glm:
   return glm::dvec2(covered, open) / double(side * side);
 }
 
+// The shot's coverage and open share (RayShotGain::covered, open): each region's eyes' by its power.
+glm::dvec2 shotCoverage(const RayShotScene& s, const ShooterLayout& layout,
+                        const std::vector<RegionPieces>& regions, int coverageRays, uint32_t shotNumber) {
+  double shotPower = 0.0;
+  for (const RegionPieces& r : regions) shotPower += r.power;
+  std::vector<glm::dvec2> seen(regions.size());
+  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
+    for (const glm::vec3& eye : regions[r].eyes)
+      seen[r] += eyeCoverage(s, layout, eye, coverageRays / int(regions[r].eyes.size()), shotNumber) /
+                 double(regions[r].eyes.size());
+  });
+  glm::dvec2 out(0.0);
+  for (size_t r = 0; r < regions.size(); ++r) out += regions[r].power / shotPower * seen[r];
+  return out;
+}
+
 // Per eye of the shot (regions in order) and receiver tile, 1 when one surface hides the whole tile from
 // the eye (occluder_cull.h). A tile that no eye segment could reach anyway (facing away from the eye, or
 // behind the shooter), of a few texels, or the shooter's own is not tested: its ray would cost as much as
@@ -477,20 +493,10 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   const bool lobed = !emission.lobes.empty();
   const BinFrame frame = binFrame(p.normal);
 
-  double shotPower = 0.0;
-  for (const RegionPieces& r : regions) shotPower += r.power;
-  std::vector<glm::dvec2> seen(regions.size());
-  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
-    for (const glm::vec3& eye : regions[r].eyes)
-      seen[r] += eyeCoverage(s, layout, eye, params.coverageRays / int(regions[r].eyes.size()), shotNumber) /
-                 double(regions[r].eyes.size());
-  });
-  for (size_t r = 0; r < regions.size(); ++r) {
-    const double share = regions[r].power / shotPower;
-    out.covered += share * seen[r].x, out.open += share * seen[r].y;
-  }
+  const glm::dvec2 seen = shotCoverage(s, layout, regions, params.coverageRays, shotNumber);
+  out.covered = seen.x, out.open = seen.y;
 
-  const glm::vec3 ns = p.normal;
+  const glm::vec3 ns = p.normal, plane = regions.front().whole().centre;
   std::vector<size_t> eyeBase(regions.size(), 0);  // each region's first eye among all the shot's
   for (size_t r = 1; r < regions.size(); ++r) eyeBase[r] = eyeBase[r - 1] + regions[r - 1].eyes.size();
   const std::vector<uint8_t> hidden =
@@ -528,9 +534,14 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
           const uint32_t t = s.texels[k];
           if (s.atlas.patch[t] == shooter) continue;
           const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t], lifted = x + n * s.offset;
+          // Behind the shooter's plane every piece's cosine is ≤ 0: the receiver gets nothing, its form
+          // factors spared (the margin keeps receivers on the plane on the whole path).
+          if (glm::dot(ns, x - plane) < -s.offset) continue;
           Gather g{x, n, ns, params.farField};
           if (lobed) g.emission = &emission, g.frame = frame, g.receiverArea = s.atlas.area[t];
           for (const RegionPieces& r : regions) {
+            // Facing away from the whole region (its bounding disk): nothing of it reaches the receiver.
+            if (glm::dot(n, r.whole().centre - x) < -(r.whole().radius + s.offset)) continue;
             g.nodeBins = r.nodeBins;
             if (params.nearRays && !g.far(r.whole().centre, r.whole().radius)) {
               // Near the region, each piece is gated by its own segment. One eye for the region put a cube

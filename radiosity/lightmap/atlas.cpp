@@ -358,7 +358,8 @@ ChartLayout layOutCharts(const Scene& scene, const QuadSet& quads, const AtlasPa
 }  // namespace
 
 LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
-                         const std::vector<uint32_t>& subset) {
+                         const std::vector<uint32_t>& subset,
+                         std::chrono::steady_clock::time_point deadline) {
   checkParams(params);
   const size_t triangleCount = scene.triangles.size();
   if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
@@ -391,13 +392,23 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   atlas.emission.assign(n, glm::vec3(0.0f));
   atlas.area.assign(n, 0.0f);
   atlas.triangleUV.assign(triangleCount, {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
+  size_t filled = 0, sinceCheck = 0;
+  auto check = [&](size_t texels) {
+    filled += texels, sinceCheck += texels;
+    if (sinceCheck < kAtlasDeadlineTexels) return;
+    sinceCheck = 0;
+    if (std::chrono::steady_clock::now() >= deadline) throw AtlasLayoutStopped(filled, n);
+  };
   for (size_t i = 0; i < atlas.patches.size(); ++i) {
     const Patch& p = atlas.patches[i];
     if (p.quad >= 0)
       fillQuad(atlas, int(i), layout.corners[i], scene);
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
+    check(size_t(p.w) * size_t(p.h));
   }
+  if (filled >= kAtlasDeadlineTexels && std::chrono::steady_clock::now() >= deadline)
+    throw AtlasLayoutStopped(filled, n);
   atlas.gutter = seamGutters(atlas, scene, params.padding);
   return atlas;
 }

@@ -7,8 +7,8 @@
 //    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
 //    texels = the patch's area);
 //  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
-//    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each quad
-//    keeping the texels it would have alone;
+//    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each
+//    quad keeping the texels it would have alone;
 //  - loose triangles: a right-triangle layout in a square chart; texels whose centre lies inside the
 //    triangle are valid, each with area = triangle area / valid texel count;
 //  - padding texels (patch == -1) get no light of their own: dilation copies their nearest valid
@@ -16,7 +16,9 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -55,9 +57,9 @@ struct AtlasParams {
 inline constexpr double kBakeBytesPerTexel = 400.0;
 
 struct Patch {
-  int quad = -1;                  ///< the (first) quad in the QuadSet, or -1 for a loose triangle
-  std::vector<int32_t> quads;     ///< a merged grid's quads, row-major (grid.y rows of grid.x); one quad: itself
-  glm::ivec2 grid{1, 1};          ///< quads along the chart's x and y; each covers (w/grid.x) × (h/grid.y) texels
+  int quad = -1;               ///< the (first) quad in the QuadSet, or -1 for a loose triangle
+  std::vector<int32_t> quads;  ///< a merged grid's quads, row-major (grid.y rows of grid.x); one quad: itself
+  glm::ivec2 grid{1, 1};  ///< quads along the chart's x and y; each covers (w/grid.x) × (h/grid.y) texels
   std::vector<int32_t> triangles;  ///< scene triangles: two per quad in `quads` order, or the loose one
   uint32_t material = 0;
   glm::vec3 normal{0.0f};
@@ -112,10 +114,26 @@ struct LightmapAtlas {
 /// of its quad's two in a merged grid (row-major, each quad w/grid.x × h/grid.y texels), else the chart's.
 int32_t texelTriangle(const Patch& p, int i, int j);
 
+/// Thrown by buildAtlas when its deadline passes while it fills a large atlas: the charts filled so far
+/// and all of them, in texels.
+struct AtlasLayoutStopped : std::runtime_error {
+  size_t filledTexels = 0, texels = 0;
+  AtlasLayoutStopped(size_t filled, size_t all)
+      : std::runtime_error("atlas: the deadline came during the layout"), filledTexels(filled), texels(all) {}
+};
+
+/// An atlas's deadline is looked at after every this many texels filled (and before its gutters): a small
+/// atlas is always laid out whole, and a large one (a million texels: seconds on a loaded machine) stops
+/// within a fraction of a second of it.
+inline constexpr size_t kAtlasDeadlineTexels = size_t(1) << 17;
+
 /// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
-/// Deterministic: the same scene and params give the same atlas.
-LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
-                         const std::vector<uint32_t>& subset = {});
+/// Deterministic: the same scene and params give the same atlas. Past `deadline`, once kAtlasDeadlineTexels
+/// have been filled, throws AtlasLayoutStopped.
+LightmapAtlas buildAtlas(
+    const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
+    const std::vector<uint32_t>& subset = {},
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// Fills padding texels so that bilinear lookups at chart edges don't pull in black: those of
 /// `atlas.gutter` with the neighbouring chart's light at their point, the others with the value of their

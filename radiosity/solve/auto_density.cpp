@@ -66,9 +66,6 @@ float pilotDensity(const Scene& scene, const AutoDensityParams& params) {
   return float(std::min(double(params.pilotDensity), std::sqrt(budget / area)));
 }
 
-namespace {
-
-// The valid texels `density` (per triangle) asks, by the area: Σ area × density².
 double texelsByArea(const Scene& scene, const std::vector<float>& density, float uniform) {
   double texels = 0.0;
   for (size_t t = 0; t < scene.triangles.size(); ++t) {
@@ -78,10 +75,9 @@ double texelsByArea(const Scene& scene, const std::vector<float>& density, float
   return texels;
 }
 
-}  // namespace
-
 LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels,
-                             Context& ctx, TexelBudget* budget) {
+                             Context& ctx, TexelBudget* budget,
+                             std::chrono::steady_clock::time_point deadline) {
   TexelBudget b;
   auto scaled = [&](double factor) {
     if (params.triangleDensity.empty()) params.density *= float(factor);
@@ -95,7 +91,7 @@ LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasPara
     scaled(std::sqrt(double(maxTexels) / byArea));
   // Each layout's warnings (a chart capped at its most texels) are the last one's alone, said once.
   Context layout;
-  LightmapAtlas atlas = buildAtlas(scene, quads, params, layout);
+  LightmapAtlas atlas = buildAtlas(scene, quads, params, layout, {}, deadline);
   if (b.scale == 1.0f) b.asked = atlas.validTexels();
   // Then by the atlas: its charts' borders and rounding add texels the area does not count.
   for (int tries = 0;
@@ -103,7 +99,7 @@ LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasPara
     if (b.scale == 1.0f) b.asked = atlas.validTexels();
     scaled(0.98 * std::sqrt(double(maxTexels) / double(atlas.validTexels())));
     layout = Context();
-    atlas = buildAtlas(scene, quads, params, layout);
+    atlas = buildAtlas(scene, quads, params, layout, {}, deadline);
   }
   for (const std::string& w : layout.warnings()) ctx.warn(w);
   if (b.scale < 1.0f) {

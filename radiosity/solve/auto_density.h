@@ -65,6 +65,10 @@ inline constexpr double kPilotTexelShare = 0.25;
 /// triangle) takes at most kPilotTexelShare × params.maxTexels texels at it.
 float pilotDensity(const Scene& scene, const AutoDensityParams& params);
 
+/// The valid texels `density` (per scene triangle; empty: `uniform` everywhere) asks, by the area:
+/// Σ area × density² (the charts' borders and rounding not counted).
+double texelsByArea(const Scene& scene, const std::vector<float>& density, float uniform);
+
 /// What fitTexelBudget did.
 struct TexelBudget {
   size_t asked = 0;    ///< valid texels at the densities asked (estimated from the area when over budget)
@@ -77,7 +81,10 @@ struct TexelBudget {
 /// valid texels (0: no limit): over it, every triangle's density is scaled by one factor, first by the
 /// texels the area asks (Σ area × density² over the triangles), then again by the atlas built until it
 /// fits (the charts' borders and rounding). `params.triangleDensity` is left with the densities used.
-LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels,
-                             Context& ctx, TexelBudget* budget = nullptr);
+/// Each layout stops at `deadline` as buildAtlas does (AtlasLayoutStopped).
+LightmapAtlas fitTexelBudget(
+    const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels, Context& ctx,
+    TexelBudget* budget = nullptr,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/progress.h"
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/solve/auto_density.h"
 #include "radiosity/solve/refined_lamp_shot.h"
 
 namespace cpgi {
@@ -59,6 +61,25 @@ SolveResult lightOnOutput(const AtlasMapping& mapping, const LightmapAtlas& atla
   return out;
 }
 
+// The coarse atlas of `params`, within `maxTexels` valid texels (0: any): over it, every density scaled by
+// the square root of budget / texels, first by the area (a large level's atlas at the density asked takes
+// seconds to lay out), then by the atlas built, twice at most (the charts' fewest texels do not scale).
+LightmapAtlas coarseAtlas(const Scene& scene, const QuadSet& quads, AtlasParams& params, size_t maxTexels,
+                          Context& ctx) {
+  auto scale = [&](double f) {
+    params.density *= float(f);
+    for (float& d : params.triangleDensity) d *= float(f);
+  };
+  const double byArea = texelsByArea(scene, params.triangleDensity, params.density);
+  if (maxTexels > 0 && byArea > double(maxTexels)) scale(std::sqrt(double(maxTexels) / byArea));
+  LightmapAtlas coarse = buildAtlas(scene, quads, params, ctx);
+  for (int k = 0; k < 2 && maxTexels > 0 && coarse.validTexels() > maxTexels; ++k) {
+    scale(std::sqrt(double(maxTexels) / double(coarse.validTexels())));
+    coarse = buildAtlas(scene, quads, params, ctx);
+  }
+  return coarse;
+}
+
 }  // namespace
 
 int indirectItemBuffer(int itemBuffer, float solveDensity) {
@@ -78,14 +99,17 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
   ctx.progress("set-up", 0.0, "the interreflection's atlas");
   size_t refined = 0;
-  if (levels.refineContacts) {
+  // Past the deadline already, the lamps' shot below stops at once and returns: no coarse atlas for it.
+  const bool late = std::chrono::steady_clock::now() >= controls.deadline;
+  if (levels.refineContacts && !late) {
     std::vector<float> fine = outputDensity(atlas, scene.triangles.size());
     for (float& d : fine) d = std::min(d, std::max(levels.maxContactDensity, levels.solveDensity));
     coarseParams.triangleDensity = contactDensity(scene, RayScene(scene), levels.solveDensity, fine);
     for (float d : coarseParams.triangleDensity) refined += d > levels.solveDensity;
   }
-  LightmapAtlas coarse = buildAtlas(scene, quads, coarseParams, ctx);
-  if (coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
+  LightmapAtlas coarse =
+      late ? LightmapAtlas{} : coarseAtlas(scene, quads, coarseParams, levels.maxSolveTexels, ctx);
+  if (!late && coarse.validTexels() >= atlas.validTexels()) {  // the output is as coarse already: one level
     SolveResult one = solveCoarse
                           ? solveCoarse(atlas, atlasParams, controls)  // no prior: it shoots the lamps
                           : solveProgressive(scene, atlas, settings, engines.lamps, ctx, controls);
@@ -93,7 +117,6 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
       *data = {atlas.validTexels(), refined, 0, 0.0, one.seconds, 0, 0, settings.itemBuffer, std::string()};
     return one;
   }
-  const AtlasMapping mapping = mapAtlas(atlas, coarse);
   const auto lampStart = std::chrono::steady_clock::now();
   // Step 1: the lamps' shots on the output atlas, at its own texels only where their light varies.
   RefinedLampData lampData;
@@ -122,10 +145,12 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
                lampData.coarseTexels,
                lampData.refinedTexels,
                settings.itemBuffer,
-               std::string()};
+               std::string(),
+               coarseParams.density};
     return lit;
   }
 
+  const AtlasMapping mapping = mapAtlas(atlas, coarse);
   // Step 2: the coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that
   // first shot, with the emitted power of the lamps.
   std::fill(coarse.emission.begin(), coarse.emission.end(), glm::vec3(0.0f));
@@ -173,7 +198,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
              lampData.coarseTexels,
              lampData.refinedTexels,
              indirectSettings.itemBuffer,
-             engines.reflections.name()};
+             engines.reflections.name(),
+             coarseParams.density};
   return out;
 }
 

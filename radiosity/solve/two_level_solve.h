@@ -34,10 +34,20 @@ struct TwoLevelParams {
   /// inside): the interreflection on a book's spine is one value, and a furnished house's 22 000 small
   /// charts at the output's 2 × 2 were 115 000 of its solve texels at 5 a metre, 83 000 at 1.
   int minTexels = 1;
+  /// At most this many valid texels in the coarse atlas (0: no bound): past it, the solve density and the
+  /// contacts' densities are scaled down together until it fits. Every shot of the interreflection visits
+  /// every coarse texel, so a large level at solveDensity made each shot as costly as its output's:
+  /// OpenArena's oa_dm7 (16 700 m² of surface) held 651 320 solve texels at 5 a metre against a house's 143
+  /// 000–163 000.
+  size_t maxSolveTexels = 0;
   /// The lamps' shot on the output atlas: at a coarser one first, then at the output's texels where that
   /// one's light varies (refined_lamp_shot.h).
   RefinedLampParams lamps = {};
 };
+
+/// The coarse atlas's texel budget of an automatic solve density (TwoLevelParams::maxSolveTexels): above
+/// the houses' 143 000–163 000 at 5 texels a metre, so they keep it.
+inline constexpr size_t kAutoSolveTexels = 200'000;
 
 /// What the two levels were, beside the SolveResult.
 struct TwoLevelData {
@@ -50,6 +60,7 @@ struct TwoLevelData {
   size_t lampRefinedTexels = 0;  ///< output texels the lamps shot at their own resolution
   int indirectItemBuffer = 0;    ///< the interreflection's item buffer (indirectItemBuffer())
   std::string indirectBackend;   ///< the engine of the interreflection (ShotEngine::name)
+  float solveDensity = 0.0f;     ///< the coarse atlas's texels per metre (maxSolveTexels may lower it)
 };
 
 /// The item buffer of the interreflection on the coarse atlas: `itemBuffer` (the user's, sized for 10

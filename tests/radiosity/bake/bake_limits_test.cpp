@@ -81,6 +81,46 @@ TEST(BakeLimits, WithinTheTimeLimitEveryViewIsRendered) {
   EXPECT_FALSE(r.partial);
 }
 
+// A large atlas still being laid out at the limit stops part-way and is laid out again at a sixteenth of
+// the texels, and the sky gather stops after its first pass: each said in one warning, the result set
+// written whole (its lightmap the coarse atlas's) and marked partial. Seed1 at 64 × 64 texels a quad is
+// 172 032 texels, past the atlas's first deadline check (kAtlasDeadlineTexels).
+TEST(BakeLimits, TheAtlasLayoutAndTheFirstSkyPassStopAtTheTimeLimit) {
+  SeedScene seed = makeSeedScene(1);
+  seed.scene.sky.kind = Sky::Kind::Uniform;
+  seed.scene.sky.zenithRadiance = 10.0f;
+  test::TempDir dir;
+  BakeSettings s = quick();
+  s.atlas.params.texelsPerQuad = 64;
+  s.output.folder = dir / "out";
+  const BakeRun run = pastTheLimit(s);
+  Context ctx;
+  const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
+  EXPECT_TRUE(anyWarning(ctx, "atlas: the time limit came while laying out the lightmap"));
+  // The coarse atlas's 10 752 texels are one chunk of the sky's first pass, which runs whole; a larger
+  // one stops in it after its seeds (SkyLight tests).
+  EXPECT_TRUE(anyWarning(ctx, "sky light: the deadline came after 8 of"));
+  // The coarse layout: 16 × 16 texels a quad.
+  Context whole;
+  bake_steps::BakeInput in;
+  in.scene = &seed.scene;
+  in.cells = &seed.cells;
+  BakeSettings coarse = quick();
+  coarse.atlas.params.texelsPerQuad = 16;
+  bake_steps::buildBakeAtlas(coarse, in, nullptr, whole);
+  EXPECT_EQ(r.report["texels"].get<size_t>(), in.atlas.validTexels());
+  EXPECT_LT(r.report["texels"].get<size_t>(), kAtlasDeadlineTexels);
+  EXPECT_TRUE(r.partial);
+  std::ifstream written(dir / "out/report.json");
+  const nlohmann::json report = nlohmann::json::parse(written);
+  EXPECT_EQ(report["texels"], r.report["texels"]);
+  EXPECT_TRUE(report["partial"].get<bool>());
+  const ImageRGB lightmap = readExr(dir / "out/lightmap.exr");
+  EXPECT_EQ(size_t(lightmap.width) * size_t(lightmap.height), in.atlas.texelCount());
+  for (const char* f : {"lightmap.png", "baked.glb", "report.html"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
+}
+
 // A scene without cells is labelled by its automatic rooms; past the limit the decomposition stops at its
 // first stage and the scene is one room, said once.
 TEST(BakeLimits, TheRoomsDecompositionStopsAtTheTimeLimit) {

@@ -11,16 +11,13 @@
 // JSON summary; exits 1 with one line per failed check.
 import fs from 'node:fs';
 import path from 'node:path';
-import { createRequire } from 'node:module';
+import { Checks, launchPage, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots] = process.argv.slice(2);
 if (!shots) {
   console.error('usage: node engine_directional_test.mjs NODE_MODULES_DIR CHROMIUM BAKE_DIR SCREENSHOT_DIR');
   process.exit(2);
 }
-const require = createRequire(path.join(path.resolve(modules), 'noop.js'));
-const puppeteer = require('puppeteer-core');
-const esbuild = require('esbuild');
 fs.mkdirSync(shots, { recursive: true });
 
 const entry = `
@@ -180,36 +177,19 @@ window.directionalTest = async () => {
   };
 };
 `;
-const bundle = esbuild.buildSync({
-  stdin: { contents: entry, resolveDir: path.resolve(modules) },
-  bundle: true, format: 'iife', write: false, nodePaths: [path.resolve(modules)], logLevel: 'error',
-}).outputFiles[0].text;
-const b64 = (file) => fs.readFileSync(path.join(bakeDir, file)).toString('base64');
-const html = `<!doctype html><html><body style="margin:0"><canvas id="view" width="640" height="480"></canvas>
-<script id="glb" type="application/octet-stream">${b64('baked.glb')}</script>
-<script id="e" type="application/octet-stream">${b64('lightmap_irradiance.exr')}</script>
-<script id="x" type="application/octet-stream">${b64('lightmap_sh_l1x.exr')}</script>
-<script id="y" type="application/octet-stream">${b64('lightmap_sh_l1y.exr')}</script>
-<script id="z" type="application/octet-stream">${b64('lightmap_sh_l1z.exr')}</script>
-<script>${bundle.replace(/<\/script/gi, '<\\/script')}</script></body></html>`;
 const pagePath = path.join(shots, 'directional-page.html');
-fs.writeFileSync(pagePath, html);
+const files = {
+  glb: 'baked.glb', e: 'lightmap_irradiance.exr', x: 'lightmap_sh_l1x.exr', y: 'lightmap_sh_l1y.exr',
+  z: 'lightmap_sh_l1z.exr',
+};
+writeBundlePage(modules, entry,
+  Object.fromEntries(Object.entries(files).map(([id, f]) => [id, path.join(bakeDir, f)])), pagePath);
 
-const failures = [];
-const check = (ok, message) => { if (!ok) failures.push(message); };
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-dev-shm-usage', '--no-first-run'],
-});
+const checks = new Checks();
+const check = (ok, message) => checks.check(ok, message);
+const { browser, page, errors } = await launchPage(modules, chromium);
 let s = {};
 try {
-  const page = await browser.newPage();
-  await page.setViewport({ width: 640, height: 480 });
-  const errors = [];
-  page.on('pageerror', (e) => errors.push('page error: ' + e.message));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push('console error: ' + m.text().slice(0, 600)); });
   await page.goto('file://' + path.resolve(pagePath), { waitUntil: 'load', timeout: 120000 });
   s = await page.evaluate(() => window.directionalTest());
   await page.screenshot({ path: path.join(shots, 'directional-bumps.png') });
@@ -227,7 +207,4 @@ try {
   await browser.close();
 }
 console.log(JSON.stringify(s));
-if (failures.length) {
-  for (const f of failures) console.error('FAILED: ' + f);
-  process.exit(1);
-}
+checks.exit('FAILED: ');

@@ -11,16 +11,13 @@
 // failed check.
 import fs from 'node:fs';
 import path from 'node:path';
-import { createRequire } from 'node:module';
+import { Checks, launchPage, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots, mode] = process.argv.slice(2);
 if (!shots) {
   console.error('usage: node engine_glb_test.mjs NODE_MODULES_DIR CHROMIUM BAKE_DIR SCREENSHOT_DIR [textured]');
   process.exit(2);
 }
-const require = createRequire(path.join(path.resolve(modules), 'noop.js'));
-const puppeteer = require('puppeteer-core');
-const esbuild = require('esbuild');
 fs.mkdirSync(shots, { recursive: true });
 
 // The page's script: three.js, its GLTFLoader and EXRLoader, and the steps of docs/engines.md.
@@ -122,33 +119,15 @@ window.engineTest = async () => {
   };
 };
 `;
-const bundle = esbuild.buildSync({
-  stdin: { contents: entry, resolveDir: path.resolve(modules) },
-  bundle: true, format: 'iife', write: false, nodePaths: [path.resolve(modules)], logLevel: 'error',
-}).outputFiles[0].text;
-const b64 = (file) => fs.readFileSync(path.join(bakeDir, file)).toString('base64');
-const html = `<!doctype html><html><body style="margin:0"><canvas id="view" width="640" height="480"></canvas>
-<script id="glb" type="application/octet-stream">${b64('baked.glb')}</script>
-<script id="exr" type="application/octet-stream">${b64('lightmap_irradiance.exr')}</script>
-<script>${bundle.replace(/<\/script/gi, '<\\/script')}</script></body></html>`;
 const pagePath = path.join(shots, 'engine-page.html');
-fs.writeFileSync(pagePath, html);
+writeBundlePage(modules, entry,
+  { glb: path.join(bakeDir, 'baked.glb'), exr: path.join(bakeDir, 'lightmap_irradiance.exr') }, pagePath);
 
-const failures = [];
-const check = (ok, message) => { if (!ok) failures.push(message); };
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-dev-shm-usage', '--no-first-run'],
-});
+const checks = new Checks();
+const check = (ok, message) => checks.check(ok, message);
+const { browser, page, errors } = await launchPage(modules, chromium);
 let summary = {};
 try {
-  const page = await browser.newPage();
-  await page.setViewport({ width: 640, height: 480 });
-  const errors = [];
-  page.on('pageerror', (e) => errors.push('page error: ' + e.message));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push('console error: ' + m.text()); });
   await page.goto('file://' + path.resolve(pagePath), { waitUntil: 'load', timeout: 120000 });
   summary = await page.evaluate(() => window.engineTest());
   await page.screenshot({ path: path.join(shots, 'engine-exr.png') });
@@ -169,7 +148,4 @@ try {
   await browser.close();
 }
 console.log(JSON.stringify(summary));
-if (failures.length) {
-  for (const f of failures) console.error('FAILED: ' + f);
-  process.exit(1);
-}
+checks.exit('FAILED: ');

@@ -8,30 +8,19 @@
 // Exits 1 with one line per failed check.
 import fs from 'node:fs';
 import path from 'node:path';
-import { createRequire } from 'node:module';
+import { Checks, launchPage } from './page_harness.mjs';
 
 const [modules, chromium, report, namesFile] = process.argv.slice(2);
 if (!namesFile) {
   console.error('usage: node hostile_names_test.mjs NODE_MODULES_DIR CHROMIUM REPORT.html NAMES.json');
   process.exit(2);
 }
-const puppeteer = createRequire(path.join(path.resolve(modules), 'noop.js'))('puppeteer-core');
 const names = JSON.parse(fs.readFileSync(namesFile, 'utf8'));
-const failures = [];
-const check = (ok, message) => { if (!ok) failures.push(message); };
+const checks = new Checks();
+const check = (ok, message) => checks.check(ok, message);
 
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
-    '--disable-dev-shm-usage', '--no-first-run'],
-});
+const { browser, page, errors } = await launchPage(modules, chromium);
 try {
-  const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push('page error: ' + e.message));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push('console error: ' + m.text()); });
-  page.on('dialog', async (d) => { errors.push('a dialog opened: ' + d.message()); await d.dismiss(); });
   await page.goto('file://' + path.resolve(report), { waitUntil: 'load', timeout: 120000 });
   await page.waitForFunction(() => window.cpgiViewer !== undefined || document.getElementById('status')?.textContent,
     { timeout: 60000 });
@@ -67,5 +56,4 @@ try {
 } finally {
   await browser.close();
 }
-for (const f of failures) console.error('hostile names test: ' + f);
-process.exit(failures.length ? 1 : 0);
+checks.exit('hostile names test: ');

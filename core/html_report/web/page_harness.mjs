@@ -1,0 +1,52 @@
+// What the browser tests share (engine_glb_test, engine_directional_test, hostile_names_test): the npm
+// packages of MODULES_DIR, a page bundling a script with the bake's files embedded, headless Chromium with
+// software WebGL whose page errors are collected, and the checks that failed.
+import fs from 'node:fs';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+
+// `require` of the packages installed in `modules` (build/web/node_modules).
+export const modulesRequire = (modules) => createRequire(path.join(path.resolve(modules), 'noop.js'));
+
+// Writes to `pagePath` a page of a 640 × 480 canvas (id "view"), each file of `files` ({ id: path }) as
+// base64 in a <script id=…> block, and `entry` bundled by esbuild from `modules` (an inline script: the
+// page reads its data without a server).
+export function writeBundlePage(modules, entry, files, pagePath) {
+  const bundle = modulesRequire(modules)('esbuild').buildSync({
+    stdin: { contents: entry, resolveDir: path.resolve(modules) },
+    bundle: true, format: 'iife', write: false, nodePaths: [path.resolve(modules)], logLevel: 'error',
+  }).outputFiles[0].text;
+  const blocks = Object.entries(files).map(([id, file]) =>
+    `<script id="${id}" type="application/octet-stream">${fs.readFileSync(file).toString('base64')}</script>`);
+  fs.writeFileSync(pagePath, `<!doctype html><html><body style="margin:0">` +
+    `<canvas id="view" width="640" height="480"></canvas>\n${blocks.join('\n')}\n` +
+    `<script>${bundle.replace(/<\/script/gi, '<\\/script')}</script></body></html>`);
+}
+
+// Headless Chromium (software WebGL through SwiftShader) with one page whose script errors, console errors
+// and dialogs are collected in `errors`; the caller navigates and closes `browser`.
+export async function launchPage(modules, chromium, viewport = { width: 640, height: 480 }) {
+  const browser = await modulesRequire(modules)('puppeteer-core').launch({
+    executablePath: chromium,
+    headless: true,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+      '--disable-dev-shm-usage', '--no-first-run'],
+  });
+  const page = await browser.newPage();
+  await page.setViewport(viewport);
+  const errors = [];
+  page.on('pageerror', (e) => errors.push('page error: ' + e.message));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push('console error: ' + m.text().slice(0, 600)); });
+  page.on('dialog', async (d) => { errors.push('a dialog opened: ' + d.message()); await d.dismiss(); });
+  return { browser, page, errors };
+}
+
+// The failed checks, each a line; `exit` prints them with `prefix` and ends the process (1 if any failed).
+export class Checks {
+  failures = [];
+  check(ok, message) { if (!ok) this.failures.push(message); }
+  exit(prefix) {
+    for (const f of this.failures) console.error(prefix + f);
+    process.exit(this.failures.length ? 1 : 0);
+  }
+}

@@ -329,7 +329,8 @@ struct Gather {
   // direction (at 1.5 cm from it, sub-disks 2.5 cm apart are 40° apart): read that sparsely, the bins'
   // peaks were missed and the floor beside a door's plane came out 17 % dark, a seam along every portal
   // (bench/RESULTS.md, "The seam on a portal's plane").
-  int nearSubdisks(const glm::vec3& c, const glm::vec4& lobe, const glm::vec3& tu, const glm::vec3& tv) const {
+  int nearSubdisks(const glm::vec3& c, const glm::vec4& lobe, const glm::vec3& tu,
+                   const glm::vec3& tv) const {
     if (!emission || !(lobe.w < 0.0f)) return 4;
     const float edge = std::max(glm::length(tu), glm::length(tv));
     const float distance = std::max(std::abs(glm::dot(x - c, ns)), 1e-4f);
@@ -350,8 +351,9 @@ struct Gather {
     glm::vec3 sum(0.0f);
     for (int j = 0; j < k; ++j)
       for (int i = 0; i < k; ++i)
-        sum += disk(t.position + ((float(i) + 0.5f) * step - 0.5f) * tu + ((float(j) + 0.5f) * step - 0.5f) * tv,
-                    a, t.radiosity, t.lobe);
+        sum +=
+            disk(t.position + ((float(i) + 0.5f) * step - 0.5f) * tu + ((float(j) + 0.5f) * step - 0.5f) * tv,
+                 a, t.radiosity, t.lobe);
     return sum;
   }
   // The region's light at the receiver through its quadtree, each piece handed to `use(point, light)`:

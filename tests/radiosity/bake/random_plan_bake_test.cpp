@@ -77,6 +77,19 @@ class RandomPlanBake : public testing::Test {
     return measurePortalSeams({r.atlas.position, r.atlas.normal, values, r.atlas.area}, portals);
   }
 
+  // Across every door with floor on both sides, `r`'s step is the reference's within their texel noise.
+  static void expectStepsAsTheReferences(const BakeResult& r) {
+    const std::vector<PortalSeam> bake = seams(r, r.radiosity), truth = seams(r, runs().reference.radiosity);
+    int measured = 0;
+    for (size_t i = 0; i < bake.size(); ++i) {
+      if (!bake[i].measured || !truth[i].measured) continue;
+      ++measured;
+      EXPECT_LT(std::abs(bake[i].step - truth[i].step), std::max(bake[i].noise, truth[i].noise))
+          << bake[i].name << ": " << bake[i].step << " against " << truth[i].step;
+    }
+    EXPECT_GE(measured, 2);
+  }
+
  private:
   static Runs* runs_;
 };
@@ -111,16 +124,7 @@ TEST_F(RandomPlanBake, EveryRoomOfTheGlobalAndTheCellsBakeIsNearTheReference) {
 // the reference's within their texel noise (the light's own fall-off across a door over a 0.25 m texel is
 // in both).
 TEST_F(RandomPlanBake, TheGlobalBakesFloorStepsAtTheDoorsAsTheReferences) {
-  const std::vector<PortalSeam> bake = seams(runs().global, runs().global.radiosity),
-                                truth = seams(runs().global, runs().reference.radiosity);
-  int measured = 0;
-  for (size_t i = 0; i < bake.size(); ++i) {
-    if (!bake[i].measured || !truth[i].measured) continue;
-    ++measured;
-    EXPECT_LT(std::abs(bake[i].step - truth[i].step), std::max(bake[i].noise, truth[i].noise))
-        << bake[i].name << ": " << bake[i].step << " against " << truth[i].step;
-  }
-  EXPECT_GE(measured, 2);
+  expectStepsAsTheReferences(runs().global);
 }
 
 // The cells bake's two sides of a door are solved in different cells, the floor running through: across
@@ -128,16 +132,7 @@ TEST_F(RandomPlanBake, TheGlobalBakesFloorStepsAtTheDoorsAsTheReferences) {
 // metre the half-threshold's texels are too far from the plane for the near portal texels' sub-disks to
 // matter: bench/RESULTS.md, "The seam on a portal's plane", measures those at 10).
 TEST_F(RandomPlanBake, TheCellsBakesFloorStepsAtTheDoorsAsTheReferences) {
-  const std::vector<PortalSeam> bake = seams(runs().cells, runs().cells.radiosity),
-                                truth = seams(runs().cells, runs().reference.radiosity);
-  int measured = 0;
-  for (size_t i = 0; i < bake.size(); ++i) {
-    if (!bake[i].measured || !truth[i].measured) continue;
-    ++measured;
-    EXPECT_LT(std::abs(bake[i].step - truth[i].step), std::max(bake[i].noise, truth[i].noise))
-        << bake[i].name << ": " << bake[i].step << " against " << truth[i].step;
-  }
-  EXPECT_GE(measured, 2);
+  expectStepsAsTheReferences(runs().cells);
 }
 
 }  // namespace

@@ -93,7 +93,6 @@ struct SolveInput {
   const ShotEngines& engines;
   Clock::time_point deadline;
   const std::filesystem::path* gatherPlan;
-  std::shared_ptr<RoomStop> roomStop;  // the global solve's stop per room
 };
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -105,10 +104,11 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
   if (!cells && s.solver.ambientShare > 0.0)
-    controls.acceptStop = [&, stop = x.roomStop](const std::vector<glm::vec3>& radiosity,
-                                                 const std::vector<glm::vec3>& residual) {
-      return stop->accept(
-          ambientShares(in.atlas, residual, x.texelCells.values, x.texelGraph, radiosity, &x.transfer));
+    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
+                              const std::vector<glm::vec3>& residual) {
+      const std::vector<double> shares =
+          ambientShares(in.atlas, residual, x.texelCells.values, x.texelGraph, radiosity, &x.transfer);
+      return *std::max_element(shares.begin(), shares.end()) <= s.solver.ambientShare;
     };
   CellSolveParams params = cellSolveParams(s, in);
   params.deadline = x.deadline;
@@ -247,13 +247,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
-  const SolveInput x{texelGraph,
-                     texelCells,
-                     transfer,
-                     engines.engines(),
-                     solveDeadline,
-                     gatherPlan,
-                     std::make_shared<RoomStop>(s.solver.ambientShare)};
+  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), solveDeadline, gatherPlan};
   std::optional<TwoLevelData> levels;
   SolveResult r = solveBake(s, in, x, ctx, levels);
   BakeFigures f;
@@ -266,9 +260,6 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // The loop's bound on the stop per room (radiosity/solve/progressive_loop.h) stopped it: say which rooms
   // stayed above their share.
   if (r.stopBounded) ctx.warn(roomsAboveShare(f.ambientShares, f.cellNames, s.solver.ambientShare));
-  if (!r.stopBounded && x.roomStop->stalled())
-    ctx.warn(roomsAboveShare(f.ambientShares, f.cellNames, s.solver.ambientShare,
-                             "when their shares had stopped coming down"));
   const std::pair<const char*, double> totals[] = {{"emitted", r.energy.emitted},
                                                    {"shot", r.energy.shot},
                                                    {"received", r.energy.received},

@@ -170,25 +170,14 @@ std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
   return share;
 }
 
-bool RoomStop::accept(const std::vector<double>& shares) {
-  const bool refused = std::any_of(shares.begin(), shares.end(), [&](double a) { return a > target_; });
-  if (!refused) return true;
-  bool progress = last_.size() != shares.size();  // the first refusal, or cells that changed
-  for (size_t c = 0; c < shares.size() && !progress; ++c)
-    progress = shares[c] > target_ && shares[c] < kRoomStopProgress * last_[c];
-  last_ = shares;
-  stalled_ = !progress;
-  return stalled_;
-}
-
 std::string roomsAboveShare(const std::vector<double>& shares, const std::vector<std::string>& names,
-                            double target, const std::string& how) {
+                            double target) {
   std::vector<std::pair<double, std::string>> above;
   for (size_t c = 0; c < shares.size(); ++c)
     if (shares[c] > target) above.emplace_back(shares[c], c < names.size() ? names[c] : "(no cell)");
   if (above.empty()) return {};
   std::sort(above.begin(), above.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::string line = "stop per room: the solve stopped " + how + " with " + std::to_string(above.size()) +
+  std::string line = "stop per room: the solve stopped at its bound with " + std::to_string(above.size()) +
                      " room" + (above.size() > 1 ? "s" : "") + " above the ambient share of " +
                      std::to_string(int(std::lround(100.0 * target))) + " %:";
   for (size_t i = 0; i < above.size(); ++i) {

@@ -78,36 +78,10 @@ std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<
                                   const std::vector<glm::vec3>& radiosity,
                                   const AmbientTransfer* measured = nullptr);
 
-/// A refused stop per room is taken at the next ask when none of the rooms above the share has come down
-/// to this fraction of its share at the ask before (RoomStop).
-inline constexpr double kRoomStopProgress = 0.9;
-
-/// The bake's stop per room (LoopControls::acceptStop): accepts once no room's ambient share is above
-/// `target`, or, asked again after a refusal (at kStopRecheck of the unshot share), once none of the rooms
-/// above it came down to kRoomStopProgress of its share at the ask before: the shooter is the patch of most
-/// unshot power anywhere, and a dim room's own patches come last, so shots elsewhere leave its share
-/// where it was. OpenArena's oa_dm7 with its sky open: three small rooms at 29-55 % after as many shots
-/// again as the first refusal's 2 207, half the bake's shots; what is left there is the ambient term's.
-class RoomStop {
- public:
-  explicit RoomStop(double target) : target_(target) {}
-  /// `shares`: per cell, ambientShares' figure now.
-  bool accept(const std::vector<double>& shares);
-  /// Whether the last accept() took the stop because the rooms above the share stopped coming down.
-  bool stalled() const { return stalled_; }
-
- private:
-  double target_;
-  std::vector<double> last_;  // the shares at the ask before (empty: no refusal yet)
-  bool stalled_ = false;
-};
-
 /// One line naming the rooms whose ambient share (`shares`, per entry of `names` and one more for texels in
 /// no cell) is above `target`, largest first with their shares: what a solve stopped at its bound on the
-/// stop per room (SolveResult::stopBounded, radiosity/solve/progressive_loop.h), or by RoomStop, left above
-/// it. "" if none.
-/// `how`: how the solve stopped, as the line says it ("at its bound").
+/// stop per room (SolveResult::stopBounded, radiosity/solve/progressive_loop.h) left above it. "" if none.
 std::string roomsAboveShare(const std::vector<double>& shares, const std::vector<std::string>& names,
-                            double target, const std::string& how = "at its bound");
+                            double target);
 
 }  // namespace cpgi

@@ -131,31 +131,6 @@ TEST(AmbientShareOfLitCells, PerSquareMetreAgainstTheWholeScene) {
   EXPECT_THROW(ambientShareOfLitCells({0.0}, {0.0, 1.0}, {1.0}), std::invalid_argument);
 }
 
-// The global bake's stop per room: refused while a room is above the share and coming down, taken once
-// the rooms above it stop coming down between two asks, and said so.
-TEST(RoomStop, RefusedWhileTheRoomsAboveComeDownTakenWhenTheyStall) {
-  RoomStop stop(0.1);
-  EXPECT_TRUE(stop.accept({0.05, 0.08}));
-  EXPECT_FALSE(stop.stalled());
-  RoomStop falling(0.1);
-  EXPECT_FALSE(falling.accept({0.05, 0.40}));  // the first refusal
-  EXPECT_FALSE(falling.accept({0.05, 0.30}));  // 0.30 < 0.9 × 0.40: still coming down
-  EXPECT_FALSE(falling.stalled());
-  EXPECT_TRUE(falling.accept({0.05, 0.08}));  // under the share
-  EXPECT_FALSE(falling.stalled());
-  RoomStop stalling(0.1);
-  EXPECT_FALSE(stalling.accept({0.5, 0.2}));
-  EXPECT_FALSE(stalling.accept({0.55, 0.15}));  // one room came down
-  EXPECT_TRUE(stalling.accept({0.54, 0.14}));   // neither did by a tenth: the rest is the ambient term's
-  EXPECT_TRUE(stalling.stalled());
-  const std::string line =
-      roomsAboveShare({0.54, 0.14, 0.0}, {"hall", "attic"}, 0.1, "when their shares had stopped coming down");
-  EXPECT_EQ(
-      line,
-      "stop per room: the solve stopped when their shares had stopped coming down with 2 rooms above the "
-      "ambient share of 10 %: hall 54.0 %, attic 14.0 %");
-}
-
 // Mean radiosity (R + G + B) over the texels of cell `cell` that do not emit.
 double cellMean(const LightmapAtlas& a, const ExrChannel& cells, int cell, const std::vector<glm::vec3>& b) {
   double sum = 0.0, area = 0.0;

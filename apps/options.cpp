@@ -421,9 +421,10 @@ void addLampCoarseningOption(CLI::App& cmd, float& coarsening) {
   const OptionGroup group(cmd, "Solver");
   addChecked(
       cmd, {}, "lamp coarsening", coarsening,
-      "With --solve-density: the lamps shoot first on an atlas this many times coarser than the output's "
-      "(at least 10 texels per metre), then again at the output's texels only where that shot's light has "
-      "an edge, a penumbra or a bend; 1: at every output texel",
+      "With --solve-density and --lamp-rays 0 (else the lamps shoot by shadow rays at every output texel): "
+      "the lamps shoot first on an atlas this many times coarser than the output's (at least 10 texels per "
+      "metre), then again at the output's texels only where that shot's light has an edge, a penumbra or a "
+      "bend; 1: at every output texel",
       within(1.0, 1000.0));
 }
 

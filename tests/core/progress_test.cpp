@@ -15,6 +15,12 @@ struct Recorder {
   }
 };
 
+// The clock at `t` seconds, then the ticker's turn.
+void tickAt(Recorder& r, ProgressPrinter& p, double t) {
+  r.now = t;
+  p.tick();
+}
+
 TEST(Progress, DurationsReadLikeAPersonWouldSayThem) {
   EXPECT_EQ(formatDuration(0.4), "0 s");
   EXPECT_EQ(formatDuration(42.0), "42 s");
@@ -74,21 +80,16 @@ TEST(Progress, TheTickerShowsAQuietStage) {
   Recorder r;
   ProgressPrinter p = r.make(false, 5.0);
   p.report({"load", 0.0, "house.glb"});
-  r.now = 0.5;
-  p.tick();
+  tickAt(r, p, 0.5);
   EXPECT_EQ(r.text, "");
-  r.now = 1.2;
-  p.tick();
+  tickAt(r, p, 1.2);
   EXPECT_EQ(r.text, "progress: load   0% house.glb, 1 s so far\n");
-  r.now = 3.0;
-  p.tick();
-  r.now = 6.3;
-  p.tick();
+  tickAt(r, p, 3.0);
+  tickAt(r, p, 6.3);
   EXPECT_EQ(r.text, "progress: load   0% house.glb, 1 s so far\nprogress: load   0% house.glb, 6 s so far\n");
   r.text.clear();
   p.report({"views", 1.0, "A written"});
-  r.now = 30.0;
-  p.tick();
+  tickAt(r, p, 30.0);
   EXPECT_EQ(r.text, "");  // over as it began: neither shown late nor repeated
 }
 
@@ -97,13 +98,10 @@ TEST(Progress, TheTickerRedrawsALiveLineWhenItsTextChanges) {
   Recorder r;
   ProgressPrinter p = r.make(true, 5.0);
   p.report({"load", 0.0, "house.glb"});
-  r.now = 0.5;
-  p.tick();
+  tickAt(r, p, 0.5);
   EXPECT_EQ(r.text, "\rload   0% house.glb\033[K");
-  r.now = 1.2;
-  p.tick();
-  r.now = 1.3;
-  p.tick();
+  tickAt(r, p, 1.2);
+  tickAt(r, p, 1.3);
   EXPECT_EQ(r.text, "\rload   0% house.glb\033[K\rload   0% house.glb, 1 s so far\033[K");
 }
 

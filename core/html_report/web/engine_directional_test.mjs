@@ -9,16 +9,11 @@
 //    not black, brighter on top (towards the room's ceiling lamp) than underneath.
 // Saves directional-plain.png, directional-bumps.png, directional-flat.png in SCREENSHOT_DIR; prints a
 // JSON summary; exits 1 with one line per failed check.
-import fs from 'node:fs';
 import path from 'node:path';
-import { Checks, launchPage, writeBundlePage } from './page_harness.mjs';
+import { Checks, launchPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
 
-const [modules, chromium, bakeDir, shots] = process.argv.slice(2);
-if (!shots) {
-  console.error('usage: node engine_directional_test.mjs NODE_MODULES_DIR CHROMIUM BAKE_DIR SCREENSHOT_DIR');
-  process.exit(2);
-}
-fs.mkdirSync(shots, { recursive: true });
+const [modules, chromium, bakeDir, shots] = scriptArgs(
+  'engine_directional_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR']);
 
 const entry = `
 import * as THREE from 'three';

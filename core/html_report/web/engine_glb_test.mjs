@@ -9,16 +9,11 @@
 //  - lit instead by lightmap_irradiance.exr (EXRLoader, rows flipped back) the picture agrees with it.
 // Saves engine-png.png, engine-exr.png in SCREENSHOT_DIR; prints a JSON summary; exits 1 with one line per
 // failed check.
-import fs from 'node:fs';
 import path from 'node:path';
-import { Checks, launchPage, writeBundlePage } from './page_harness.mjs';
+import { Checks, launchPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
 
-const [modules, chromium, bakeDir, shots, mode] = process.argv.slice(2);
-if (!shots) {
-  console.error('usage: node engine_glb_test.mjs NODE_MODULES_DIR CHROMIUM BAKE_DIR SCREENSHOT_DIR [textured]');
-  process.exit(2);
-}
-fs.mkdirSync(shots, { recursive: true });
+const [modules, chromium, bakeDir, shots, mode] = scriptArgs(
+  'engine_glb_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR'], ['textured']);
 
 // The page's script: three.js, its GLTFLoader and EXRLoader, and the steps of docs/engines.md.
 const entry = `

@@ -5,6 +5,19 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
 
+// The script's arguments by `names` (the last required, any after it optional): a missing one prints the
+// usage line and exits 2; the folder named by `folder` (SCREENSHOT_DIR) is made.
+export function scriptArgs(script, names, optional = [], folder = 'SCREENSHOT_DIR') {
+  const args = process.argv.slice(2);
+  if (args.length < names.length) {
+    console.error(`usage: node ${script} ${[...names, ...optional.map((o) => `[${o}]`)].join(' ')}`);
+    process.exit(2);
+  }
+  const at = names.indexOf(folder);
+  if (at >= 0) fs.mkdirSync(args[at], { recursive: true });
+  return args;
+}
+
 // `require` of the packages installed in `modules` (build/web/node_modules).
 export const modulesRequire = (modules) => createRequire(path.join(path.resolve(modules), 'noop.js'));
 

@@ -44,6 +44,20 @@ Sky skyOf(Sky::Kind kind, float zenith, float ground = 0.0f) {
   return sky;
 }
 
+// The box open to the sky under a uniform sky of 3 W/m²/sr, gathered with `rays` directions a texel.
+Scene openBox(int rays) {
+  Scene s = testing::boxOpenToTheSky(0.5f);
+  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
+  s.sky.gatherRays = rays;
+  return s;
+}
+
+// A gather whose deadline has already passed (bake --time-limit reached before it began), into `late`.
+SkyGatherData gatherPastDeadline(const Scene& s, const LightmapAtlas& atlas, Context& ctx,
+                                 DirectLight& late) {
+  return addSkyLight(s.sky, RayScene(s), atlas, late, ctx, std::chrono::steady_clock::now());
+}
+
 // F(point → square above it, facing it): Lambert's contour formula for a receiver of normal +y.
 double formFactorUp(const glm::dvec3& x, const std::array<glm::dvec3, 4>& polygon) {
   double sum = 0.0;
@@ -77,14 +91,11 @@ TEST(SkyLight, OpenFloorGetsTheWholeSky) {
 // noise and never more than an open sky's, with the gather's data and a warning saying so. Without a
 // deadline the gather in passes is the same as its 1 024 directions in one.
 TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
-  Scene s = testing::boxOpenToTheSky(0.5f);
-  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
-  s.sky.gatherRays = 1024;
+  const Scene s = openBox(1024);
   const LightmapAtlas atlas = atlasOf(s, 8.0f);
   Context ctx;
   DirectLight late;
-  const SkyGatherData data =
-      addSkyLight(s.sky, RayScene(s), atlas, late, ctx, std::chrono::steady_clock::now());
+  const SkyGatherData data = gatherPastDeadline(s, atlas, ctx, late);
   EXPECT_TRUE(data.timedOut);
   EXPECT_EQ(data.rays, 8);
   EXPECT_EQ(data.requestedRays, 1024);
@@ -117,15 +128,12 @@ TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
 // first pass once every chart row has a texel in 16 gathered: the others take the estimate of the one
 // before them in their row, so every texel of the open box has sky light to within the 8 directions' noise.
 TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
-  Scene s = testing::boxOpenToTheSky(0.5f);
-  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
-  s.sky.gatherRays = 32;  // the whole gather to compare with, kept short
+  const Scene s = openBox(32);  // the whole gather to compare with, kept short
   const LightmapAtlas atlas = atlasOf(s, 80.0f);
   ASSERT_GT(atlas.validTexels(), 3u * 32768u);
   Context ctx;
   DirectLight late;
-  const SkyGatherData data =
-      addSkyLight(s.sky, RayScene(s), atlas, late, ctx, std::chrono::steady_clock::now());
+  const SkyGatherData data = gatherPastDeadline(s, atlas, ctx, late);
   EXPECT_TRUE(data.timedOut);
   EXPECT_EQ(data.rays, 8);
   ASSERT_EQ(ctx.warnings().size(), 1u);
@@ -147,9 +155,7 @@ TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
 }
 
 TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {
-  Scene s = testing::boxOpenToTheSky(0.5f);
-  s.sky = skyOf(Sky::Kind::Uniform, 3.0f);
-  s.sky.gatherRays = 1024;
+  const Scene s = openBox(1024);
   const LightmapAtlas atlas = atlasOf(s, 8.0f);
   const DirectLight d = gather(s, atlas);
   double got = 0.0, want = 0.0;

@@ -10,7 +10,7 @@
 // Saves directional-plain.png, directional-bumps.png, directional-flat.png in SCREENSHOT_DIR; prints a
 // JSON summary; exits 1 with one line per failed check.
 import path from 'node:path';
-import { Checks, launchPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots] = scriptArgs(
   'engine_directional_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR']);
@@ -181,11 +181,10 @@ writeBundlePage(modules, entry,
   Object.fromEntries(Object.entries(files).map(([id, f]) => [id, path.join(bakeDir, f)])), pagePath);
 
 const checks = new Checks();
-const check = (ok, message) => checks.check(ok, message);
-const { browser, page, errors } = await launchPage(modules, chromium);
+const { check } = checks;
+const { browser, page, errors } = await openPage(modules, chromium, pagePath);
 let s = {};
 try {
-  await page.goto('file://' + path.resolve(pagePath), { waitUntil: 'load', timeout: 120000 });
   s = await page.evaluate(() => window.directionalTest());
   await page.screenshot({ path: path.join(shots, 'directional-bumps.png') });
   await page.evaluate(() => window.renderPlain());

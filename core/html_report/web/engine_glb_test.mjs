@@ -10,7 +10,7 @@
 // Saves engine-png.png, engine-exr.png in SCREENSHOT_DIR; prints a JSON summary; exits 1 with one line per
 // failed check.
 import path from 'node:path';
-import { Checks, launchPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots, mode] = scriptArgs(
   'engine_glb_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR'], ['textured']);
@@ -119,11 +119,10 @@ writeBundlePage(modules, entry,
   { glb: path.join(bakeDir, 'baked.glb'), exr: path.join(bakeDir, 'lightmap_irradiance.exr') }, pagePath);
 
 const checks = new Checks();
-const check = (ok, message) => checks.check(ok, message);
-const { browser, page, errors } = await launchPage(modules, chromium);
+const { check } = checks;
+const { browser, page, errors } = await openPage(modules, chromium, pagePath);
 let summary = {};
 try {
-  await page.goto('file://' + path.resolve(pagePath), { waitUntil: 'load', timeout: 120000 });
   summary = await page.evaluate(() => window.engineTest());
   await page.screenshot({ path: path.join(shots, 'engine-exr.png') });
   await page.evaluate(() => window.renderPng());

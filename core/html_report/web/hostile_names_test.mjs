@@ -17,7 +17,7 @@ if (!namesFile) {
 }
 const names = JSON.parse(fs.readFileSync(namesFile, 'utf8'));
 const checks = new Checks();
-const check = (ok, message) => checks.check(ok, message);
+const { check } = checks;
 
 const { browser, page, errors } = await launchPage(modules, chromium);
 try {

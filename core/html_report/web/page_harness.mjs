@@ -54,10 +54,17 @@ export async function launchPage(modules, chromium, viewport = { width: 640, hei
   return { browser, page, errors };
 }
 
+// launchPage, then the page at `pagePath` loaded (a file: its script has run when this returns).
+export async function openPage(modules, chromium, pagePath) {
+  const opened = await launchPage(modules, chromium);
+  await opened.page.goto('file://' + path.resolve(pagePath), { waitUntil: 'load', timeout: 120000 });
+  return opened;
+}
+
 // The failed checks, each a line; `exit` prints them with `prefix` and ends the process (1 if any failed).
 export class Checks {
   failures = [];
-  check(ok, message) { if (!ok) this.failures.push(message); }
+  check = (ok, message) => { if (!ok) this.failures.push(message); };
   exit(prefix) {
     for (const f of this.failures) console.error(prefix + f);
     process.exit(this.failures.length ? 1 : 0);

@@ -130,7 +130,7 @@ TEST_F(RandomPlanBake, TheGlobalBakesFloorStepsAtTheDoorsAsTheReferences) {
 // The cells bake's two sides of a door are solved in different cells, the floor running through: across
 // every door its step is the reference's within their texel noise too (issue 47's seam; at 4 texels a
 // metre the half-threshold's texels are too far from the plane for the near portal texels' sub-disks to
-// matter: bench/RESULTS.md, "The seam on a portal's plane", measures those at 10).
+// matter: door_rows_test.cpp pins those at 10).
 TEST_F(RandomPlanBake, TheCellsBakesFloorStepsAtTheDoorsAsTheReferences) {
   expectStepsAsTheReferences(runs().cells);
 }

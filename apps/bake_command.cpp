@@ -132,7 +132,7 @@ void addSolveOptions(CLI::App& sub, BakeCommand& c) {
   sub.add_option(
          "--backend", c.backend,
          "How every shot sees: item buffers on the GL device (gl), Embree rays on the CPU with no GL at "
-         "all (rays: lamps by shadow rays, --portals diffuse only), or gl where an OpenGL 4.5 context "
+         "all (rays: lamps by shadow rays; every --portals model), or gl where an OpenGL 4.5 context "
          "can be made and rays where not (auto)")
       ->check(CLI::IsMember({"auto", "gl", "rays"}))
       ->default_str(c.backend);

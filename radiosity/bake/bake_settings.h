@@ -46,7 +46,7 @@ enum class Backend {
   Auto,  ///< GL item buffers where an OpenGL 4.5 context can be made (EGL), else Embree rays
   Gl,    ///< GL item buffers (radiosity/gpu/gl_shot_engine.h); fails without a GL device
   Rays,  ///< Embree rays on the CPU (radiosity/cpu/ray_shot_engine.h), no GL at all: the lamps by shadow
-         ///< rays, portals diffuse only (directional and binned portals need GL)
+         ///< rays, every portal model as on GL
 };
 const char* backendName(Backend b);  ///< "auto", "gl", "rays"
 

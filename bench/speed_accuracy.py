@@ -41,6 +41,13 @@ METHODS = {
     "cells-diffuse": ["--method", "cells", "--cells", "{scene}", "--portals", "diffuse"],
     "cells-directional": ["--method", "cells", "--cells", "{scene}", "--portals", "directional"],
     "cells-binned": ["--method", "cells", "--cells", "{scene}", "--portals", "binned"],
+    # Each backend alone (issue 47 item 4): every shot by GL item buffers, the interreflection of a
+    # two-level solve too (--indirect-solver gpu; auto gives it to rays on a software rasterizer), or every
+    # shot by Embree rays with no GL at all.
+    "global-gl": ["--method", "global", "--backend", "gl", "--indirect-solver", "gpu"],
+    "global-rays": ["--method", "global", "--backend", "rays"],
+    "cells-gl": ["--method", "cells", "--cells", "{scene}", "--backend", "gl", "--indirect-solver", "gpu"],
+    "cells-rays": ["--method", "cells", "--cells", "{scene}", "--backend", "rays"],
 }
 
 

@@ -162,22 +162,33 @@ def pct(x):
     return "-" if x is None or x != x else "%.1f" % (100.0 * x)
 
 
-def method_rooms(records, method):
+def ambient_shares(work, seed, method):
+    """Per room, the share of its light the bake left to the ambient term at its stop (report.json's
+    ambient_share), or {} where the bake did not say."""
+    report = os.path.join(work, "plan-%d" % seed, method, "report.json")
+    try:
+        return json.load(open(report)).get("ambient_share") or {}
+    except (OSError, ValueError):
+        return {}
+
+
+def method_rooms(records, method, work):
     """Per room of every plan the method baked: (mean error, RMSE without the reference's noise, R/G, B/G,
-    "plan/room", openings from a lamp); the measured seams: (excess, over noise, "plan/portal", |excess| over
-    the larger texel noise); CPU s."""
+    "plan/room", openings from a lamp, the ambient term's share of its light or None); the measured seams:
+    (excess, over noise, "plan/portal", |excess| over the larger texel noise); CPU s."""
     rooms, seams, cpus = [], [], []
     for rec in records:
         run = rec["runs"].get(method)
         if not run or not run.get("ok") or "cells" not in run:
             continue
         cpus.append(run["cpu_s"])
+        shares = ambient_shares(work, rec["seed"], method)
         for c in run["cells"]:
             if c["ratio_of_means"] is None:
                 continue
             rooms.append((c["ratio_of_means"] - 1.0, c["rel_rmse_without_noise"], c.get("red_green_ratio"),
                           c.get("blue_green_ratio"), "%d/%s" % (rec["seed"], c["name"]),
-                          rec["openings_from_lamp"].get(c["name"], -1)))
+                          rec["openings_from_lamp"].get(c["name"], -1), shares.get(c["name"])))
         for s in run.get("portal_seams") or []:
             if s["measured"]:
                 tolerance = max(s["noise"], s["noise_reference"])
@@ -206,9 +217,9 @@ def table(records, methods, work):
              "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
              "worst B/G | seams over noise | worst seam: excess, over its noise (plan/portal) | CPU s, median plan / total |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    split = {}
+    split, by_share = {}, {}
     for method in methods:
-        rooms, seams, cpus = method_rooms(records, method)
+        rooms, seams, cpus = method_rooms(records, method, work)
         if not rooms:
             lines.append("| %s | 0 |" % method + " |" * 10)
             continue
@@ -236,6 +247,9 @@ def table(records, methods, work):
             quantile(cpus, 0.5), sum(cpus)))
         for r in rooms:
             split.setdefault(method, {}).setdefault(min(r[5], 3), []).append(abs(r[0]))
+            if r[6] is not None:
+                bucket = 0 if r[6] < 0.1 else 1 if r[6] < 0.3 else 2
+                by_share.setdefault(method, {}).setdefault(bucket, []).append(r)
     lines += ["", "Mean error per room by openings from the nearest lamp (median / worst |ratio of means - 1|, %, "
               "rooms):", "", "| method | lit (0) | 1 | 2 | 3 or more |", "|---|---|---|---|---|"]
     for method in methods:
@@ -243,6 +257,17 @@ def table(records, methods, work):
         for d in range(4):
             v = split.get(method, {}).get(d, [])
             cols.append("%s / %s (%d)" % (pct(quantile(v, 0.5)), pct(max(v)) if v else "-", len(v)))
+        lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    lines += ["", "Rooms by the share of their light the bake left to the ambient term at its stop (report.json's "
+              "ambient_share; over 0.1 the stop per room was refused and then bounded): rooms off > 3 % of all, "
+              "and the worst:", "", "| method | share < 0.1 | 0.1–0.3 | ≥ 0.3 |", "|---|---|---|---|"]
+    for method in methods:
+        cols = []
+        for b in range(3):
+            v = by_share.get(method, {}).get(b, [])
+            w = max(v, key=lambda r: abs(r[0])) if v else None
+            cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
+                                        ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
         lines.append("| %s | %s |" % (method, " | ".join(cols)))
     auto = []
     for rec in records:

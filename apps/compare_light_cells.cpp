@@ -39,6 +39,7 @@ nlohmann::json cellsJson(const std::vector<CellError>& cells) {
                    {"texels", c.texels},
                    {"ratio_of_means", number(c.ratioOfMeans)},
                    {"ratio_error", number(c.ratioError)},
+                   {"reference_mean", number(c.referenceMean)},
                    {"rel_rmse", number(c.relRmse)},
                    {"rel_rmse_without_noise", number(c.relRmseWithoutNoise)},
                    {"reference_noise", number(c.referenceNoise)},

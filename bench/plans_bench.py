@@ -12,7 +12,8 @@ room), and the same split by how many openings separate a room from the nearest 
   bench/plans_bench.py --cpgi build/apps/cpgi --seeds 1-30 --work /tmp/plans [--spp 512] [--density 10]
 
 Runs are kept in --work and skipped when their results are there, so an interrupted bench resumes where it
-stopped and a table can be printed again (--table-only) from what has run.
+stopped and a table can be printed again (--table-only) from what has run, or after every bake is compared
+again by a newer compare-light (--recompare; not while a bench runs in the same --work).
 """
 import argparse
 import json
@@ -104,6 +105,34 @@ def openings_from_lamp(plan_glb):
     return {r: dist.get(r, -1) for r in rooms}
 
 
+def compare_run(cpgi, out, ref, glb, run):
+    """compare-light of the bake in `out` against the reference, per room, into `run`."""
+    cmp = subprocess.run([cpgi, "compare-light", out, ref, "--json", "--scene", glb], capture_output=True, text=True)
+    if cmp.returncode == 0:
+        j = json.loads(cmp.stdout)
+        run["rel_rmse"] = j["rel_rmse_nonemissive"]
+        run["cells"] = j["cells"]
+        run["portal_seams"] = j.get("portal_seams")
+        run.pop("compare_error", None)
+    else:
+        run["compare_error"] = cmp.stderr.strip()[-300:]
+
+
+def recompare(args, seed):
+    """Every bake of a plan compared again (a newer compare-light's figures); nothing baked."""
+    folder = os.path.join(args.work, "plan-%d" % seed)
+    record_path = os.path.join(folder, "record.json")
+    if not os.path.exists(record_path):
+        return None
+    record = json.load(open(record_path))
+    for method, run in record["runs"].items():
+        if method != "reference" and run.get("ok"):
+            compare_run(args.cpgi, os.path.join(folder, method), os.path.join(folder, "reference"),
+                        os.path.join(folder, "plan.glb"), run)
+    json.dump(record, open(record_path, "w"), indent=1)
+    return record
+
+
 def run_plan(args, seed):
     """Generates, references, bakes and compares one plan; returns its record (cached in its folder)."""
     folder = os.path.join(args.work, "plan-%d" % seed)
@@ -133,15 +162,7 @@ def run_plan(args, seed):
                               out + ".log")
         run = {"ok": ok, "cpu_s": cpu, "wall_s": wall}
         if ok:
-            cmp = subprocess.run([args.cpgi, "compare-light", out, ref, "--json", "--scene", glb],
-                                 capture_output=True, text=True)
-            if cmp.returncode == 0:
-                j = json.loads(cmp.stdout)
-                run["rel_rmse"] = j["rel_rmse_nonemissive"]
-                run["cells"] = j["cells"]
-                run["portal_seams"] = j.get("portal_seams")
-            else:
-                run["compare_error"] = cmp.stderr.strip()[-300:]
+            compare_run(args.cpgi, out, ref, glb, run)
         record["runs"][method] = run
         json.dump(record, open(record_path, "w"), indent=1)
         print("plan %d %-18s %s %6.1f CPU s" % (seed, method, "ok" if ok else "FAILED", cpu), file=sys.stderr)
@@ -174,7 +195,8 @@ def ambient_shares(work, seed, method):
 
 def method_rooms(records, method, work):
     """Per room of every plan the method baked: (mean error, RMSE without the reference's noise, R/G, B/G,
-    "plan/room", openings from a lamp, the ambient term's share of its light or None); the measured seams:
+    "plan/room", openings from a lamp, the ambient term's share of its light or None, its light per m² in the
+    reference against its plan's brightest room or None); the measured seams:
     (excess, over noise, "plan/portal", |excess| over the larger texel noise); CPU s."""
     rooms, seams, cpus = [], [], []
     for rec in records:
@@ -183,12 +205,14 @@ def method_rooms(records, method, work):
             continue
         cpus.append(run["cpu_s"])
         shares = ambient_shares(work, rec["seed"], method)
+        brightest = max((c.get("reference_mean") or 0.0 for c in run["cells"]), default=0.0)
         for c in run["cells"]:
             if c["ratio_of_means"] is None:
                 continue
             rooms.append((c["ratio_of_means"] - 1.0, c["rel_rmse_without_noise"], c.get("red_green_ratio"),
                           c.get("blue_green_ratio"), "%d/%s" % (rec["seed"], c["name"]),
-                          rec["openings_from_lamp"].get(c["name"], -1), shares.get(c["name"])))
+                          rec["openings_from_lamp"].get(c["name"], -1), shares.get(c["name"]),
+                          c["reference_mean"] / brightest if c.get("reference_mean") and brightest > 0 else None))
         for s in run.get("portal_seams") or []:
             if s["measured"]:
                 tolerance = max(s["noise"], s["noise_reference"])
@@ -217,7 +241,7 @@ def table(records, methods, work):
              "RMSE without ref. noise, median / p90 / worst | colour off > 3 % (R/G or B/G) | worst R/G | "
              "worst B/G | seams over noise | worst seam: excess, over its noise (plan/portal) | CPU s, median plan / total |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    split, by_share = {}, {}
+    split, by_share, by_level = {}, {}, {}
     for method in methods:
         rooms, seams, cpus = method_rooms(records, method, work)
         if not rooms:
@@ -250,6 +274,9 @@ def table(records, methods, work):
             if r[6] is not None:
                 bucket = 0 if r[6] < 0.1 else 1 if r[6] < 0.3 else 2
                 by_share.setdefault(method, {}).setdefault(bucket, []).append(r)
+            if r[7] is not None:
+                bucket = 0 if r[7] >= 1e-2 else 1 if r[7] >= 1e-3 else 2
+                by_level.setdefault(method, {}).setdefault(bucket, []).append(r)
     lines += ["", "Mean error per room by openings from the nearest lamp (median / worst |ratio of means - 1|, %, "
               "rooms):", "", "| method | lit (0) | 1 | 2 | 3 or more |", "|---|---|---|---|---|"]
     for method in methods:
@@ -265,6 +292,17 @@ def table(records, methods, work):
         cols = []
         for b in range(3):
             v = by_share.get(method, {}).get(b, [])
+            w = max(v, key=lambda r: abs(r[0])) if v else None
+            cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
+                                        ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
+        lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    lines += ["", "Rooms by their light per m² in the reference against their plan's brightest room (below 10⁻³, ten "
+              "stops down, a room is black at any exposure that shows the lit ones): rooms off > 3 % of all, and "
+              "the worst:", "", "| method | ≥ 10⁻² | 10⁻³–10⁻² | < 10⁻³ |", "|---|---|---|---|"]
+    for method in methods:
+        cols = []
+        for b in range(3):
+            v = by_level.get(method, {}).get(b, [])
             w = max(v, key=lambda r: abs(r[0])) if v else None
             cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
                                         ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
@@ -298,6 +336,8 @@ def main():
     p.add_argument("--view-size", default="160x120", help="bake and reference pictures (small: seconds)")
     p.add_argument("--methods", default=",".join(METHODS), help="comma-separated, of: " + ", ".join(METHODS))
     p.add_argument("--table-only", action="store_true", help="print the table of the runs in --work, run nothing")
+    p.add_argument("--recompare", action="store_true",
+                   help="compare every bake in --work again with this --cpgi (no bake), then print the table")
     args = p.parse_args()
     args.methods = args.methods.split(",")
     for m in args.methods:
@@ -306,6 +346,11 @@ def main():
     records = []
     for seed in parse_seeds(args.seeds):
         path = os.path.join(args.work, "plan-%d" % seed, "record.json")
+        if args.recompare:
+            record = recompare(args, seed)
+            if record:
+                records.append(record)
+            continue
         if args.table_only:
             if os.path.exists(path):
                 records.append(json.load(open(path)))

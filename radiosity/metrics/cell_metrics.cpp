@@ -17,7 +17,7 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     throw std::invalid_argument("compareCells: lightmaps and channels differ in size");
   const size_t count = names.size();
   struct Sums {
-    double b = 0, r = 0, squaredError = 0, squaredReference = 0, noise = 0, meanNoise = 0;
+    double b = 0, r = 0, weight = 0, squaredError = 0, squaredReference = 0, noise = 0, meanNoise = 0;
     glm::dvec3 bColour{0.0}, rColour{0.0};
     size_t texels = 0;
   };
@@ -34,6 +34,7 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     Sums& x = s[size_t(c)];
     x.b += w * (b.x + b.y + b.z);
     x.r += w * (r.x + r.y + r.z);
+    x.weight += w;
     x.bColour += w * b;
     x.rColour += w * r;
     x.squaredError += w * glm::dot(d, d);
@@ -57,10 +58,12 @@ std::vector<CellError> compareCells(std::span<const glm::vec3> test, std::span<c
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (s[c].texels == 0 || !(s[c].r > 0.0)) {
       out[c].ratioOfMeans = out[c].relRmse = out[c].referenceNoise = out[c].ratioError = nan;
+      out[c].referenceMean = s[c].weight > 0.0 ? s[c].r / (3.0 * s[c].weight) : nan;
       out[c].relRmseWithoutNoise = out[c].redGreenRatio = out[c].blueGreenRatio = nan;
       continue;
     }
     out[c].ratioOfMeans = s[c].b / s[c].r;
+    out[c].referenceMean = s[c].r / (3.0 * s[c].weight);
     out[c].relRmse = std::sqrt(s[c].squaredError / s[c].squaredReference);
     out[c].referenceNoise = std::sqrt(s[c].noise / s[c].squaredReference);
     out[c].relRmseWithoutNoise =

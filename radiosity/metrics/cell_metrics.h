@@ -20,6 +20,9 @@ struct CellError {
   size_t texels = 0;  ///< texels compared (weight > 0)
   /// Σ_c w a B / Σ_c w a R over R + G + B: > 1 when the cell is too bright.
   double ratioOfMeans = 0.0;
+  /// The reference's weighted mean over the cell, (R + G + B) / 3, W/m²: how bright the room is, beside the
+  /// other rooms (a room lit at a leak's level is black at any exposure that shows the lit ones).
+  double referenceMean = 0.0;
   /// sqrt(Σ_c w a |B − R|² / Σ_c w a |R|²): normalised by this cell's own reference.
   double relRmse = 0.0;
   /// The reference's own noise, as relRmse would see it: sqrt(Σ_c w a σ² / Σ_c w a |R|²).

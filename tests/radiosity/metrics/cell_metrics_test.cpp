@@ -22,6 +22,9 @@ TEST(CellMetrics, EachCellIsNormalisedByItsOwnReference) {
   EXPECT_NEAR(e[1].ratioOfMeans, 1.5, 1e-6);
   EXPECT_NEAR(e[1].relRmse, 0.5, 1e-6);
   EXPECT_EQ(e[1].texels, 2u);
+  // How bright each room is in the reference, W/m²: the dark one at 1.5 % of the lit one.
+  EXPECT_NEAR(e[0].referenceMean, 10.0, 1e-6);
+  EXPECT_NEAR(e[1].referenceMean, 0.15, 1e-6);
   EXPECT_EQ(worstCell(e), std::optional<size_t>(1));
 }
 
@@ -34,6 +37,8 @@ TEST(CellMetrics, WeightsNoiseAndSkippedTexels) {
   const std::vector<CellError> e = compareCells(test, reference, weight, sigma, cell, {}, 3, {"A"});
   // Σ w B = 3·2·1 + 3·2·3 = 24;  Σ w R = 3·1 + 3·2·3 = 21.
   EXPECT_NEAR(e[0].ratioOfMeans, 24.0 / 21.0, 1e-9);
+  // The reference's mean weighs by w too and skips texel 2: (1 + 3·2) / 4.
+  EXPECT_NEAR(e[0].referenceMean, 7.0 / 4.0, 1e-9);
   // Σ w|d|² = 3;  Σ w|R|² = 3 + 3·12 = 39.
   EXPECT_NEAR(e[0].relRmse, std::sqrt(3.0 / 39.0), 1e-9);
   // Σ w σ² = 0.01 + 3·0.04 = 0.13.

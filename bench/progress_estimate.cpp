@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cpgi_progress_estimate: %s: cannot write\n", argv[3]);
     return 1;
   }
-  std::fprintf(csv, "wall_s,cpu_s,stage,fraction,shots,unshot,seconds_left,cpu_seconds_left,status\n");
+  std::fprintf(csv,
+               "wall_s,cpu_s,stage,fraction,shots,unshot,seconds_left,cpu_seconds_left,shots_left,status\n");
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = cpgi::processCpuSeconds();
   std::mutex mutex;
@@ -46,9 +47,9 @@ int main(int argc, char** argv) {
   ctx.setProgress([&](const cpgi::Progress& p) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::lock_guard lock(mutex);
-    std::fprintf(csv, "%.4f,%.4f,%s,%.5f,%d,%.6g,%.4f,%.4f,%s\n", wall, cpgi::processCpuSeconds() - cpuStart,
-                 field(p.stage).c_str(), p.fraction, p.shots, p.unshot, p.secondsLeft, p.cpuSecondsLeft,
-                 field(p.status).c_str());
+    std::fprintf(csv, "%.4f,%.4f,%s,%.5f,%d,%.6g,%.4f,%.4f,%.1f,%s\n", wall,
+                 cpgi::processCpuSeconds() - cpuStart, field(p.stage).c_str(), p.fraction, p.shots, p.unshot,
+                 p.secondsLeft, p.cpuSecondsLeft, p.shotsLeft, field(p.status).c_str());
     std::fflush(csv);
   });
   try {

@@ -46,6 +46,8 @@ def estimate_at(seg, share):
                 "cpu_true": c1 - cpu,
                 "wall_est": float(r["seconds_left"]),
                 "wall_true": w1 - wall,
+                "shots_est": float(r.get("shots_left") or -1),
+                "shots_true": int(seg[-1]["shots"]) - int(r["shots"]),
             }
     return None
 
@@ -72,26 +74,27 @@ def main():
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     shares = [float(s) for s in args.at.split(",")]
-    print("| scene | solve CPU s | shots | at | estimate CPU s | true CPU s | CPU ratio | estimate wall s "
-          "| true wall s | wall ratio |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| scene | solve CPU s | shots | at | shots left: estimate / true | estimate CPU s | true CPU s "
+          "| CPU ratio | estimate wall s | true wall s | wall ratio |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     worst = 1.0
     for name in args.scenes.split(","):
         seg = main_solve(run(args, name))
         if len(seg) < 2:
-            print(f"| {name} | no solve reported | | | | | | | | |")
+            print(f"| {name} | no solve reported | | | | | | | | | |")
             continue
         total = float(seg[-1]["cpu_s"]) - float(seg[0]["cpu_s"])
         for share in shares:
             e = estimate_at(seg, share)
             if not e:
-                print(f"| {name} | {total:.1f} | {seg[-1]['shots']} | {share:.0%} | none | | | | | |")
+                print(f"| {name} | {total:.1f} | {seg[-1]['shots']} | {share:.0%} | none | | | | | | |")
                 continue
             ratio = e["cpu_est"] / e["cpu_true"] if e["cpu_true"] > 0 else float("inf")
             if share == shares[0]:
                 worst = max(worst, ratio, 1.0 / ratio if ratio > 0 else float("inf"))
             wall = e["wall_est"] / e["wall_true"] if e["wall_true"] > 0 else float("inf")
-            print(f"| {name} | {total:.1f} | {seg[-1]['shots']} | {e['at']:.0%} (shot {e['shots']}) "
+            shots = f"{e['shots_est']:.0f} / {e['shots_true']}" if e["shots_est"] >= 0 else f"– / {e['shots_true']}"
+            print(f"| {name} | {total:.1f} | {seg[-1]['shots']} | {e['at']:.0%} (shot {e['shots']}) | {shots} "
                   f"| {e['cpu_est']:.1f} | {e['cpu_true']:.1f} | {ratio:.2f} | {e['wall_est']:.1f} "
                   f"| {e['wall_true']:.1f} | {wall:.2f} |")
     print(f"\nworst CPU ratio at {shares[0]:.0%} of the solve: {worst:.2f}x "

@@ -2,7 +2,9 @@
 // what bench/progress_estimate.py compares the solve's time-left estimate (Progress::secondsLeft,
 // Progress::cpuSecondsLeft: what the progress line prints) against the time that actually remained.
 //
-//   cpgi_progress_estimate SCENE DIR CSV
+//   cpgi_progress_estimate SCENE DIR CSV [gl]
+//
+// With `gl`, every shot on the GL engine (bake --backend gl --indirect gpu), the interreflection too.
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -24,13 +26,18 @@ std::string field(std::string text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: cpgi_progress_estimate SCENE DIR CSV\n");
+  const bool gl = argc == 5 && std::string(argv[4]) == "gl";
+  if (argc != 4 && !gl) {
+    std::fprintf(stderr, "usage: cpgi_progress_estimate SCENE DIR CSV [gl]\n");
     return 1;
   }
   cpgi::BakeSettings settings;  // the defaults of `cpgi bake`
   settings.input.scene = argv[1];
   settings.output.folder = argv[2];
+  if (gl) {
+    settings.solver.backend = cpgi::Backend::Gl;
+    settings.solver.indirect = cpgi::IndirectSolver::Gpu;
+  }
   // Written row by row as the reports come, so a bake stopped early (one that outlasts the machine's
   // time) still leaves its solve's history.
   FILE* csv = std::fopen(argv[3], "w");

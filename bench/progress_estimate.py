@@ -7,7 +7,10 @@ solve's CPU time had passed, against the CPU and wall seconds the solve then sti
 the figure to read on a loaded machine: the estimate is made in them and said in wall seconds at the
 last 20 s's CPU rate, so a load that changes later moves the wall truth but not the CPU one.
 
-  bench/progress_estimate.py --build build --out /tmp/progress [--scenes seed1,seed2,...] [--at 0.1,0.5]
+  bench/progress_estimate.py --build build --out /tmp/progress [--scenes seed1,seed2,...] [--at 0.1,0.5] [--gl]
+
+--gl bakes every shot on the GL engine (the default on a machine without a GPU is the rays engine for the
+interreflection).
 """
 import argparse
 import csv
@@ -59,7 +62,7 @@ def run(args, name):
         subprocess.run([os.path.join(args.build, "apps", "cpgi"), "generate", name, "-o", glb], check=True,
                        stdout=subprocess.DEVNULL)
         subprocess.run([os.path.join(args.build, "bench", "cpgi_progress_estimate"), glb,
-                        os.path.join(args.out, name), table], check=True)
+                        os.path.join(args.out, name), table] + (["gl"] if args.gl else []), check=True)
     with open(table) as f:
         return list(csv.DictReader(f))
 
@@ -71,6 +74,7 @@ def main():
     ap.add_argument("--scenes", default=",".join(SCENES))
     ap.add_argument("--at", default="0.1,0.25,0.5", help="shares of the solve's CPU time")
     ap.add_argument("--again", action="store_true", help="bake again even where a CSV is there")
+    ap.add_argument("--gl", action="store_true", help="every shot on the GL engine")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     shares = [float(s) for s in args.at.split(",")]

@@ -21,6 +21,7 @@ struct Progress {
   double unshot = -1;          ///< a solve: the unshot share the stop weighs (0.032 = 3.2 %)
   double secondsLeft = -1;     ///< the stage's own estimate of its time left (s), from a model of its work
   double cpuSecondsLeft = -1;  ///< the same estimate in the process's CPU seconds (what load does not skew)
+  double shotsLeft = -1;       ///< a solve: the shots its estimate foresees before the stop
   /// The stage estimates its own time left (a solve: its fraction is not linear in time), so a printer
   /// must not extrapolate one from the fraction while secondsLeft is still unknown.
   bool ownsTimeLeft = false;

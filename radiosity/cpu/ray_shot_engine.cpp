@@ -144,6 +144,12 @@ class RayShotBackend final : public ShotBackend {
   TexelSums sums() const override { return sums_; }
   std::vector<glm::vec3> radiosity() override { return radiosity_; }
   std::vector<glm::vec3> residual() override { return residual_; }
+  std::vector<double> patchUnshot() override { return patchPower_; }
+  int shotEyes(int patch, bool strong) const override {
+    const ShooterLayout& layout =
+        (strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_)[size_t(patch)];
+    return int(layout.rects.size()) * (strong ? strongShotParams_ : shotParams_).eyesPerRegion;
+  }
   void readBack(const ReadBack& what, SolveResult& result, Context&) override {
     result.radiosity = std::move(radiosity_);
     if (what.transfer) result.incident = std::move(incident_), result.residual = std::move(residual_);

@@ -364,6 +364,20 @@ class GlShotBackend final : public ShotBackend {
   }
   std::vector<glm::vec3> radiosity() override { return readRadiosity(); }
   std::vector<glm::vec3> residual() override { return readResidual(); }
+  // The patch statistics' unshot sums (patch_stats.comp), 48 bytes a patch: far less than the texels.
+  // An item buffer a region (a lamp's strong shot draws its regions again: shootGl's replicas).
+  int shotEyes(int patch, bool strong) const override {
+    const ShooterLayout& l =
+        strong && !strongLayouts_.empty() ? strongLayouts_[size_t(patch)] : layouts_[size_t(patch)];
+    return l.regions.x * l.regions.y;
+  }
+  std::vector<double> patchUnshot() override {
+    std::vector<GpuStats> stats(atlas_.patches.size());
+    glGetNamedBufferSubData(stats_.get(), 0, GLsizeiptr(stats.size() * sizeof(GpuStats)), stats.data());
+    std::vector<double> unshot(stats.size());
+    for (size_t p = 0; p < stats.size(); ++p) unshot[p] = double(stats[p].unshot.w);
+    return unshot;
+  }
   void readBack(const ReadBack& what, SolveResult& result, Context& ctx) override {
     reportPasses(ctx);
     auto t = ctx.time("solve: read back");
@@ -922,7 +936,8 @@ class GlShotBackend final : public ShotBackend {
     const size_t n = atlas_.texelCount();
     if (lobes && lobes->size() != n) throw InputError("solver", "emission lobes must be one per atlas texel");
     const std::span<const float> bins = params_.emissionBins;
-    if (bins.size() % kBinSlotFloats != 0) throw InputError("solver", "emission bins must come in whole slots");
+    if (bins.size() % kBinSlotFloats != 0)
+      throw InputError("solver", "emission bins must come in whole slots");
     const size_t slots = bins.size() / kBinSlotFloats, perSlot = kBinSlotFloats / 4;
     if (n + slots * perSlot >= (size_t(1) << 24))
       throw InputError("solver", "too many texels and emission bins for the lobes' float indices");

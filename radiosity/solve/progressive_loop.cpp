@@ -69,40 +69,58 @@ float shotScale(const ShotGathered& seen, double shotPower, bool lobedEmission) 
   return 1.0f;
 }
 
-// The progress line and the time estimate (solve_estimate.h) from the reflectors' shots. The estimate is
-// made in the process's CPU seconds, which a machine loaded by others does not stretch, and said in wall
-// seconds at the CPU rate of the last kRateWindow seconds: a load that changes after that skews the wall
-// figure by as much (bench/RESULTS.md, "Progress from the first second").
+// The progress line and the time estimate (solve_estimate.h) from the reflectors' shots and the patches'
+// light. The estimate is made in the process's CPU seconds, which a machine loaded by others does not
+// stretch, and said in wall seconds at the CPU rate of the last kRateWindow seconds: a load that changes
+// after that skews the wall figure by as much (bench/RESULTS.md, "Progress from the first second").
 class LoopProgress {
  public:
-  LoopProgress(double strongAt, Context& ctx) : estimate_(strongAt), ctx_(ctx) {}
-  // `unshot`: the stop's share; `emittedShare`: the unshot against the emitted power, shown instead while
-  // the emitters still shoot (the stop's share weighs the unshot against the light reflected so far, and
-  // with lamps yet to shoot that is over 100 %). `bound`: past a refused stop, the shot the loop stops at
-  // whatever acceptStop says (0: none yet).
-  void shot(int shots, bool strong, double power, double unshot, double emittedShare, double stopAt,
-            int bound, bool nextIsEmitter) {
+  LoopProgress(double strongAt, ShotBackend& backend, Context& ctx)
+      : estimate_(strongAt), backend_(backend), ctx_(ctx) {}
+  /// One shot as the progress sees it.
+  struct Shot {
+    int shots;            ///< shots so far, this one included
+    int patch;            ///< its shooter
+    bool strong;          ///< it carried the strong power
+    double power;         ///< W it shot
+    double unshot;        ///< the stop's share after it
+    double emittedShare;  ///< the unshot against the emitted power, shown while the emitters still shoot
+                          ///< (the stop's share weighs it against the light reflected so far, and with
+                          ///< lamps yet to shoot that is over 100 %)
+    double reflected;     ///< W reflected so far (received − absorbed)
+    double emitted;       ///< W emitted
+    double stopAt;        ///< the stop's share now
+    int bound;  ///< past a refused stop, the shot the loop stops at whatever acceptStop says (0: none)
+    bool nextIsEmitter;  ///< the next shot is an emitter's own
+  };
+  void shot(const Shot& s) {
     const double elapsed = secondsSince(start_), cpu = processCpuSeconds() - cpuStart_;
-    if (reflecting_) estimate_.addShot(strong, cpu - lastShotCpu_, power, unshot);
-    lastShotCpu_ = cpu;
-    if (!reflecting_ && !nextIsEmitter) reflecting_ = true;
-    if (bound > 0 && refusedAt_ == 0) refusedAt_ = shots, refusedCpu_ = cpu;
+    if (reflecting_)
+      estimate_.addShot(s.patch, s.strong, backend_.shotEyes(s.patch, s.strong), s.power, cpu - lastShotCpu_);
+    if (!reflecting_ && !s.nextIsEmitter) reflecting_ = true;
+    if (reflecting_ && estimate_.wantsPatches(s.shots, s.stopAt, cpu))
+      estimate_.observe(s.shots, backend_.patchUnshot(), s.reflected, s.emitted, s.stopAt, cpu,
+                        [this](int patch, bool strong) { return backend_.shotEyes(patch, strong); });
+    lastShotCpu_ = processCpuSeconds() - cpuStart_;  // the model's own run is not a shot's cost
+    if (s.bound > 0 && refusedAt_ == 0) refusedAt_ = s.shots, refusedCpu_ = cpu;
     if (elapsed - lastReport_ <= kReportSeconds) return;
     rates_.push_back({elapsed, cpu});
     while (rates_.size() > 2 && rates_[1].wall < elapsed - kRateWindow) rates_.pop_front();
-    if (reflecting_) estimate_.add({shots, unshot, cpu});
     // Towards the current stop: past a refused one (acceptStop), the next ask or the bound, whichever
     // comes first: the shots since the refusal, at their own pace, towards the bound.
-    double fraction = std::clamp(std::log(std::max(unshot, 1e-12)) / std::log(stopAt), 0.0, 1.0);
-    double left = estimate_.secondsLeft(stopAt);
-    if (bound > 0 && shots > refusedAt_) {
-      const double perShot = (cpu - refusedCpu_) / double(shots - refusedAt_);
-      const double toBound = perShot * double(std::max(bound - shots, 0));
-      fraction = std::max(fraction, double(shots) / double(bound));
-      left = left >= 0.0 ? std::min(left, toBound) : toBound;
+    double fraction = std::clamp(std::log(std::max(s.unshot, 1e-12)) / std::log(s.stopAt), 0.0, 1.0);
+    double left = estimate_.secondsLeft(s.shots), shotsLeft = estimate_.shotsLeft(s.shots);
+    if (s.bound > 0 && s.shots > refusedAt_) {
+      const double perShot = (cpu - refusedCpu_) / double(s.shots - refusedAt_);
+      const double toBound = double(std::max(s.bound - s.shots, 0));
+      fraction = std::max(fraction, double(s.shots) / double(s.bound));
+      left = left >= 0.0 ? std::min(left, perShot * toBound) : perShot * toBound;
+      shotsLeft = shotsLeft >= 0.0 ? std::min(shotsLeft, toBound) : toBound;
     }
-    const double shown = reflecting_ ? std::min(unshot, 1.0) : emittedShare;
-    ctx_.progress(solveProgress(fraction, shots, shown, left >= 0.0 ? left / cpuRate() : -1.0, left));
+    const double shown = reflecting_ ? std::min(s.unshot, 1.0) : s.emittedShare;
+    Progress p = solveProgress(fraction, s.shots, shown, left >= 0.0 ? left / cpuRate() : -1.0, left);
+    p.shotsLeft = shotsLeft;
+    ctx_.progress(p);
     lastReport_ = elapsed;
   }
 
@@ -119,6 +137,7 @@ class LoopProgress {
   }
 
   SolveEstimate estimate_;
+  ShotBackend& backend_;
   Context& ctx_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   double cpuStart_ = processCpuSeconds();
@@ -149,7 +168,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   ctx.progress(solveProgress(0.0, 0, std::min(books.unshotShare(), 1.0), -1.0, -1.0));
   const double strongAt =
       controls.strongShotPower > 0.0 ? controls.strongShotPower : settings.strongShotFraction * e.emitted;
-  LoopProgress progress(strongAt, ctx);
+  LoopProgress progress(strongAt, backend, ctx);
   double stopAt = settings.unshotFraction;
   int bound = 0;  // past the first refused stop, the shot the loop stops at (kStopRefusedShots)
   ShooterChoice next = backend.next();
@@ -192,8 +211,8 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     result.history.push_back(e);
     next = backend.next();
     if (!given)
-      progress.shot(result.shots, strong, shooter.power, books.unshotShare(), e.unshot / e.emitted, stopAt,
-                    bound, next.emitting);
+      progress.shot({result.shots, shooter.patch, strong, shooter.power, books.unshotShare(),
+                     e.unshot / e.emitted, e.received - e.absorbed, e.emitted, stopAt, bound, next.emitting});
   }
   result.energy = e;
   if (result.stopBounded) {

@@ -65,6 +65,12 @@ class ShotBackend {
   /// Per atlas texel: radiosity and unshot residual now (the caller's stop per room reads them).
   virtual std::vector<glm::vec3> radiosity() = 0;
   virtual std::vector<glm::vec3> residual() = 0;
+  /// Per patch, its unshot power now (W, R + G + B): what the time estimate reads to see over how many
+  /// patches the light is spread (solve_estimate.h). Called now and then, not after every shot.
+  virtual std::vector<double> patchUnshot() = 0;
+  /// The eyes a shot of `patch` looks from (its visibility regions, times the eyes of each): what a shot's
+  /// cost grows with, so the time estimate can price shots of patches that have not shot yet.
+  virtual int shotEyes(int patch, bool strong) const = 0;
   /// The final per-texel results into `result` (radiosity, and what `what` asks), texels outside every
   /// patch zero. After the last shot.
   virtual void readBack(const ReadBack& what, SolveResult& result, Context& ctx) = 0;

@@ -1,65 +1,98 @@
-// How long a progressive solve has left, from how its unshot power has fallen so far and what its shots
-// cost. Once the lamps have shot, the unshot share falls neither geometrically (the same share per shot)
-// nor steadily slower in one known way: each shot takes the largest unshot patch, and as the light
-// spreads over more patches each shot carries less of it. The estimate fits log(unshot) = L0 - c g(n)
-// with g'(n) = n^-k (k = 0 geometric, k = 1 a power law in the shot count n) to the drops over the last
-// half of the shots and the quarter before, and extrapolates to the stop.
+// How long a progressive solve has left, from where its light is: the loop is run forward on a model of
+// the patches, and the shots it takes are priced at what the solve's shots have cost per eye.
 //
-// While the shots are strong (SolverParams::strongShotFraction: the lit surfaces next to the lamps, seen
-// from up to 16 eyes) the decay is at its least regular and the shots cost 3-4x the later ones; taking
-// the last shots' rate and cost for all that was left said 54 min of a 7-min bake of house-furnished
-// (and 30x the time left on house-spiral). So k is held to [0.45, 0.6] while the last half holds strong
-// shots (free in [0, 0.75] after), and the time is the strong shots left at their cost plus the rest at
-// the weak shots' cost, the strong ones lasting until the largest patch's share of the unshot, as of the
-// last shots, would carry less than a strong shot. bench/RESULTS.md, "The solve's time estimate": the
-// time left within 0.26-3.7x the truth from the 20th shot on over seven bakes, against 0.13-32x before.
+// The unshot share falls fast over the first shots and then at a steady rate per shot that the first tenth
+// of a solve does not show (seed3 after 20 shots: 6x the later rate; the furnished house keeps slowing for
+// 3 000 shots), and that rate is set by how many patches the light is spread over: each shot takes the
+// patch holding the most, so in the steady state every lit patch is shot when it fills up to a common
+// level. So the estimate keeps each patch's unshot power (ShotBackend::patchUnshot) and where the light
+// shot so far came back unshot: patch i got a share w_i of it, and each W shot gave back f W. The model
+// shoots the patch with the most, gives f of its power back spread as w, and counts the shots until the
+// unshot share reaches the stop (as the loop weighs it). The strong shots among them (those carrying at
+// least the strong power) and the weak ones are priced at the seconds per eye the solve's own strong and
+// weak shots took, times the eyes of each shooter (ShotBackend::shotEyes): a wall's shot looks from
+// 16 times the eyes of a book's. bench/RESULTS.md, "The time estimate from the patches' light".
 #pragma once
 
 #include <deque>
+#include <functional>
 #include <vector>
 
 namespace cpgi {
 
-/// One point of a solve's history: shots so far, unshot share (of what the stop weighs it against), and
-/// seconds since the first shot.
-struct SolveSample {
-  int shots = 0;
-  double unshot = 1.0;
-  double seconds = 0.0;
+/// The patches as the model shoots them.
+struct PatchLight {
+  std::vector<double> unshot;   ///< per patch, its unshot power (W, R + G + B)
+  std::vector<double> landing;  ///< per patch, its share of the light a shot gives back unshot (sum 1)
+  double returned = 0.0;        ///< W given back unshot per W shot (in [0, 1))
+  double reflected = 0.0;       ///< W reflected so far (received − absorbed)
+  double emitted = 0.0;         ///< W emitted: the stop weighs the unshot against min(emitted, reflected)
 };
 
-/// Keeps the samples since the first reflector shot and extrapolates to a stop.
+/// The shots the model takes until the stop.
+struct ModelShots {
+  std::vector<int> patches;  ///< the shooters, in order
+  std::vector<char> strong;  ///< per shot, 1 if it carried at least the strong power
+  double beyond = 0.0;       ///< shots after these, extrapolated where the model ran out of work
+  bool reached = false;      ///< the stop was reached (else the light ran out: a share that cannot fall)
+  double count() const { return double(patches.size()) + beyond; }
+};
+
+/// Runs the shooting loop forward on `light` until the unshot share reaches `stop`: each shot takes the
+/// patch with the most unshot power P (strong if P >= `strongPower`), zeroes it and adds
+/// returned × P × landing to every patch. After `work` patch updates (shots × patches) it stops shooting
+/// and extrapolates the rest at the rate per shot of the last half of its shots.
+ModelShots simulateShots(const PatchLight& light, double stop, double strongPower, double work);
+
+/// The solve's estimate, fed by the loop after each shot (addShot) and, when it asks (wantsPatches),
+/// with the patches' state (observe).
 class SolveEstimate {
  public:
-  /// `strongPower`: the least power (W) of a strong shot, 0 if no shot is strong.
-  explicit SolveEstimate(double strongPower = 0.0) : strongPower_(strongPower) {}
-  /// Samples must come in order of shots (one with no more shots than the last is ignored).
-  void add(const SolveSample& s);
-  /// Every reflector shot, in order: whether it was strong, the seconds it took, the power it shot (W)
-  /// and the unshot share after it.
-  void addShot(bool strong, double seconds, double power, double unshot);
-  /// Shots until the unshot share reaches `stop`; 0 when it has; < 0 while fewer than 20 shots were
-  /// sampled or the share has not fallen over the last half of them.
-  double shotsLeft(double stop) const;
-  /// Those shots at what strong and weak shots cost (without addShot: at the seconds a shot took over
-  /// the last half of the samples).
-  double secondsLeft(double stop) const;
+  /// `strongPower`: the least power (W) of a strong shot.
+  explicit SolveEstimate(double strongPower) : strongPower_(strongPower) {}
+
+  /// Every reflector shot, in order: the shooter, whether strong, the eyes it looked from, its power (W)
+  /// and the seconds it took.
+  void addShot(int patch, bool strong, int eyes, double power, double seconds);
+  /// Whether observe() would run the model now: `seconds` since the solve started, after `shots` shots,
+  /// towards `stop`. The model runs after kMinShots reflector shots and then again once the solve has
+  /// spent kModelShare's inverse times the model's last run, or has passed the shots it foresaw.
+  bool wantsPatches(int shots, double stop, double seconds) const;
+  /// The patches' unshot power after `shots` shots (the first call sets where the light is counted from),
+  /// the books' reflected and emitted W, the stop, the time now and the eyes a shot of a patch looks from.
+  /// Runs the model when wantsPatches says so.
+  void observe(int shots, std::vector<double> unshot, double reflected, double emitted, double stop,
+               double seconds, const std::function<int(int patch, bool strong)>& eyes);
+  /// Shots left after `shots` shots, from the model's last run; < 0 before it ran or when it found the
+  /// stop out of reach.
+  double shotsLeft(int shots) const;
+  /// Those shots priced per eye (seconds; < 0 as shotsLeft).
+  double secondsLeft(int shots) const;
 
  private:
-  struct Sample {
-    SolveSample at;
-    int strongShots;  // strong shots (addShot) by then
-  };
-  double logUnshotAt(double shots) const;
-  double shotsLeft(double stop, double leastK, double mostK) const;
-  double strongShotsLeft(double stop, double total) const;
+  double secondsPerEye(bool strong) const;
 
   double strongPower_;
-  std::vector<Sample> samples_;
-  int strongShots_ = 0;
-  // The recent shots' seconds (strong, weak) and shot power per unshot share, with their running sums.
-  std::deque<double> strongSeconds_, weakSeconds_, powerPerShare_;
-  double strongSum_ = 0.0, weakSum_ = 0.0;
+  // Where the light is counted from: the patches' unshot power at the first observe, and the power
+  // each patch has shot since.
+  std::vector<double> firstUnshot_, shotSince_;
+  double shotPowerSince_ = 0.0;
+  int reflectorShots_ = 0;
+  // The recent shots' seconds and eyes, strong and weak, with their running sums.
+  struct Window {
+    std::deque<double> seconds, eyes;
+    double secondsSum = 0.0, eyesSum = 0.0;
+    void push(double s, double e, size_t most);
+  };
+  Window strongCost_, weakCost_;
+  // The model's last run: the shot it ran after, its stop, and per shot after it the eyes still to come,
+  // strong and weak (the last entry 0), plus the extrapolated shots' eyes each.
+  bool ran_ = false;
+  int modelShot_ = 0;
+  double modelStop_ = 0.0, modelSeconds_ = 0.0, modelCost_ = 0.0;
+  bool modelReached_ = false;
+  std::vector<double> strongEyesAfter_, weakEyesAfter_;
+  double beyond_ = 0.0, beyondEyes_ = 0.0;
 };
 
 }  // namespace cpgi

@@ -19,6 +19,7 @@
 #include "radiosity/bake/report_page.h"
 #include "radiosity/cells/cell_jobs.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/directional_lightmap.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/ray_scene.h"
@@ -250,7 +251,13 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs =
       estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);
-  const Clock::time_point solveDeadline = keepBack(deadline, outputs.seconds());
+  // The directional gather's rays are kept back too, so that its files and the views both fit.
+  const double directionalRays =
+      s.output.engine.directional
+          ? directionalGatherRays(in.atlas.validTexels(), s.output.engine.directionalRays)
+          : 0;
+  const Clock::time_point solveDeadline =
+      keepBack(deadline, outputs.seconds() + raySeconds * directionalRays);
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a

@@ -149,7 +149,7 @@ nlohmann::json lightProbesJson(const LightProbes& probes, const CellGraph& cells
            "orthonormal basis xy(x2-y2), yz(3x2-y2), xy(7z2-1), yz(7z2-3), 35z4-30z2+3, xz(7z2-3), "
            "(x2-y2)(7z2-1), xz(x2-3y2), x2(x2-3y2)-y2(3x2-y2) times 2.503343, 1.770131, 0.946175, 0.669046, "
            "0.105786, 0.669046, 0.473087, 1.770131, 0.625836; A_4 = -pi/24 (band 3's A is 0): adding it "
-           "brings a lamp's concentrated light within about 1 %, where L2 alone misses it by 5-10 %"},
+           "brings a lamp's concentrated light within a few %, where L2 alone misses it by 5-10 %"},
           {"spacing_m", probes.params.spacing},
           {"clearance_m", probes.params.clearance},
           {"rays_per_probe", probes.params.gather.rays},

@@ -4,7 +4,8 @@
 // Unity's basis and order (radiosity/lightmap/spherical_harmonics.h); an object shades a normal n with
 // Ramamoorthi & Hanrahan's E(n) = Σ Â_l L_lm Y_lm(n), as Godot's LightmapGI probes do. Beside them each
 // probe holds band 4 (band 3 adds nothing to irradiance): a ceiling lamp's light is concentrated enough
-// that L2 misses its irradiance by 5–10 % (bench/RESULTS.md, "Probes within 5 %"), bands 0–4 by ~1 %.
+// that L2 misses its irradiance by 5–10 % at some probes, bands 0–4 by at most 4 % on seed1 and seed2
+// (bench/RESULTS.md, "Probes within 5 %").
 //
 // Where: a lattice of `spacing` through the empty space the decomposition's voxels find enclosed
 // (decomposition/classify.h: inside, not behind a wall) or roofed (outside, with a surface above and below

@@ -56,6 +56,7 @@ TEST(LightProbes, EveryRoomGetsProbesInItsEmptySpaceNamedByIt) {
     EXPECT_GE(z, 0.25f);
     EXPECT_LE(z, 4.0f - 0.25f);
     EXPECT_EQ(p["sh"].size(), 9u);
+    EXPECT_EQ(p["sh_l4"].size(), 9u);
   }
   EXPECT_EQ(rooms, (std::set<std::string>{"A", "B", "C"}));
   EXPECT_EQ(probes["count"], probes["probes"].size());

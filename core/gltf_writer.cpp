@@ -336,7 +336,7 @@ class SceneWriter {
     if (auto it = objectMaterials_.find(key); it != objectMaterials_.end()) return it->second;
     const int texture = object >= 0 ? objectTextures_.at(size_t(object)) : -1;
     json mat = engineMaterial(material, texture);
-    if (object >= 0) mat["extras"]["cpgi_lightmap_object"] = options_.objectLightmapNames[size_t(object)];
+    if (object >= 0) mat["extras"]["cpgi_lightmap"] = options_.objectLightmapNames[size_t(object)];
     return objectMaterials_[key] = b_.push("materials", mat);
   }
 

@@ -149,8 +149,9 @@ nlohmann::json writeObjectFiles(OutputDir& out, const Scene& scene, const Lightm
     const RgbmImage rgbm = encodeRgbm(image.width, image.height, image.pixels, rgbmRange);
     writeFileAtomically(out.file(o.fileStem + ".png"), encodePng8(rgbm.width, rgbm.height, 4, rgbm.rgba));
     glbPngs.push_back(encodePng(image, 1.0f / range.ldrScale));
-    names.push_back(o.name);
+    names.push_back(o.fileStem);  // unique, where two nodes share a path
     list.push_back({{"object", o.name},
+                    {"lightmap", o.fileStem},
                     {"exr", o.fileStem + ".exr"},
                     {"rgbm_png", o.fileStem + ".png"},
                     {"width", o.width},

@@ -2,8 +2,9 @@
 // `bake --per-object` baked.glb in three.js (headless Chromium, software WebGL) as docs/engines.md tells an
 // engine user to (each material's MOZ_lightmap texture as its lightMap on uv1), beside the baked.glb of the
 // same bake on one atlas, and checks that each object shows its own lightmap:
-//  - every mesh's material names its object (extras.cpgi_lightmap_object) and its lightMap is the texture
-//    of that object (the texture's name); as many lightmaps as extras.cpgi_lightmap.object_textures;
+//  - every mesh's material names its object's lightmap (extras.cpgi_lightmap, "lightmap-OBJECT") and its
+//    lightMap is that texture (the texture's name); as many lightmaps as objects in report.json and as
+//    extras.cpgi_lightmap.object_textures;
 //  - the picture lit by the per-object lightmaps is the one-atlas picture (same solve, texels copied);
 //  - lit by each object's lightmap-OBJECT.exr instead (EXRLoader, rows flipped back), it agrees too;
 //  - lit with every object's lightmap moved to the next object's meshes, it does not (the comparison
@@ -27,7 +28,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 const bytes = (id) => Uint8Array.from(atob(document.getElementById(id).textContent.trim()), (c) => c.charCodeAt(0)).buffer;
-const objects = ${JSON.stringify(objects.map((o) => o.object))};
+const objects = ${JSON.stringify(objects.map((o) => o.lightmap))};
 const meshesOf = (root) => { const list = []; root.traverse((o) => { if (o.isMesh) list.push(o); }); return list; };
 window.perObjectTest = async () => {
   const canvas = document.getElementById('view');
@@ -74,8 +75,8 @@ window.perObjectTest = async () => {
     m.material.lightMap = map;
     m.material.lightMapIntensity = moz.intensity;
     used.add(map.name);
-    named += m.material.userData.cpgi_lightmap_object !== undefined;
-    own += m.material.userData.cpgi_lightmap_object === map.name;
+    named += m.material.userData.cpgi_lightmap !== undefined;
+    own += m.material.userData.cpgi_lightmap === map.name;
   }
   renderer.toneMappingExposure = 1.5 * Math.PI / info.intensity;
   let camera = gltf.cameras[0];
@@ -102,16 +103,16 @@ window.perObjectTest = async () => {
   }
   const byName = new Map(objects.map((o, i) => [o, i]));
   for (const m of meshes) {
-    const k = byName.get(m.material.userData.cpgi_lightmap_object);
+    const k = byName.get(m.material.userData.cpgi_lightmap);
     if (k === undefined) continue;
     m.material.lightMap = hdr[k], m.material.lightMapIntensity = 1, m.material.needsUpdate = true;
   }
   const exr = picture(perScene, camera);
   // Every object's lightmap on the next object's meshes.
   const maps = new Map();
-  meshes.forEach((m, i) => maps.set(m.material.userData.cpgi_lightmap_object, saved[i]));
+  meshes.forEach((m, i) => maps.set(m.material.userData.cpgi_lightmap, saved[i]));
   for (const m of meshes) {
-    const k = byName.get(m.material.userData.cpgi_lightmap_object);
+    const k = byName.get(m.material.userData.cpgi_lightmap);
     if (k === undefined) continue;
     m.material.lightMap = maps.get(objects[(k + 1) % objects.length]) || null;
     m.material.lightMapIntensity = info.intensity, m.material.needsUpdate = true;

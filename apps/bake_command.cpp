@@ -166,6 +166,12 @@ void addEngineOptions(CLI::App& sub, BakeCommand& c) {
       ->check(CLI::IsMember({"auto", "own", "scene"}))
       ->default_str(c.uv)
       ->group("Output");
+  sub.add_flag(
+         "--per-object", c.settings.output.engine.perObject,
+         "Also a lightmap per object (glTF node's mesh, OBJ object): lightmap-OBJECT.exr and .png (RGBM), "
+         "each object's charts (or, with the scene's UVs, its own TEXCOORD_1 square) in an image of its "
+         "own, and baked.glb's materials and TEXCOORD_1 on them; one solve as without it")
+      ->group("Output");
   // Directional light for normal maps (issue 48; docs/engines.md, "Directional lightmaps").
   sub.add_flag("--directional", c.settings.output.engine.directional,
                "Also write the directional lightmap: the L1 spherical harmonics of the light arriving per "

@@ -1,9 +1,17 @@
 // Light probes against the reference path tracer (issue 48 item 5): at every probe of a default bake,
-// the irradiance its L2 SH gives a surface facing each of the six axes, against `cpgi reference`'s tracer
-// at the same point and normal (a white point, ρ = 1: its B is the irradiance). Per probe, the error is
-// the RMS over the six normals of (E_probe − E_ref), over the mean of the six E_ref; listed per room with
-// the share of probes within 5 %. Beside it, the same for the probes' own gather summed straight over
-// each normal's hemisphere (no SH): what the L2 truncation costs, apart from the gather and the bake.
+// the irradiance its SH gives a surface facing each of the six axes and eight diagonals (±1, ±1, ±1)/√3,
+// against `cpgi reference`'s tracer at the same point and normal (a white point, ρ = 1: its B is the
+// irradiance). Per probe, the error is the RMS over the fourteen normals of (E_probe − E_ref), over the
+// mean of the fourteen E_ref; listed per room with the share of probes within 5 %, for each way of
+// reading the probe, to tell the causes apart:
+//  - "L2": the nine coefficients engines read;
+//  - "L2+L4": with band 4 (LightProbe::sh4);
+//  - "no SH": the probe's own gather summed straight over each normal's hemisphere (the gather, apart from
+//    any truncation);
+//  - "L2+L4 x4" and "no SH x4": the same from a gather of four times the rays and emitter samples (the
+//    gather's noise);
+// and the reference's noise (standard error) per probe beside them, and the probes' distance to the
+// nearest surface (near a wall the light changes fastest).
 //
 // Usage: cpgi_probe_accuracy [seed1|seed2|seed3] [SPP of the reference]
 #include <algorithm>
@@ -32,11 +40,14 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu probes, gathered in %.2f s (%.2f M rays)\n", name.c_str(), probes.probes.size(),
               probes.seconds, double(probes.rays) * 1e-6);
 
-  const std::array<glm::vec3, 6> axes = {glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
-                                         glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+  std::vector<glm::vec3> normals = {glm::vec3(1, 0, 0),  glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
+                                    glm::vec3(0, -1, 0), glm::vec3(0, 0, 1),  glm::vec3(0, 0, -1)};
+  for (int k = 0; k < 8; ++k)
+    normals.push_back(glm::normalize(glm::vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1)));
+  const size_t nn = normals.size();
   std::vector<SamplePoint> points;
   for (const LightProbe& p : probes.probes)
-    for (const glm::vec3& n : axes) points.push_back({p.position, n, glm::vec3(1.0f), glm::vec3(0.0f)});
+    for (const glm::vec3& n : normals) points.push_back({p.position, n, glm::vec3(1.0f), glm::vec3(0.0f)});
   ReferenceParams params;
   params.spp = spp;
   params.texelMean = false;
@@ -44,40 +55,62 @@ int main(int argc, char** argv) {
 
   const RayScene rays(seed.scene);
   const BakedRadiance baked(seed.scene, rays, r.atlas, r.radiosity);
-  std::map<std::string, std::vector<double>> errors, unprojected;  // per room
-  double noise = 0.0, worst = 0.0;
-  std::vector<ArrivalSample> samples;
+  const char* names[] = {"L2", "L2+L4", "no SH", "L2+L4 x4", "no SH x4", "ref noise"};
+  constexpr size_t kWays = 6;
+  std::map<std::string, std::array<std::vector<double>, kWays>> errors;  // per room, per way
+  std::map<std::string, std::vector<std::pair<double, double>>>
+      byDistance;  // per room: (distance, L2+L4 error)
+  GatherParams dense = ProbeParams{}.gather;
+  dense.rays *= 4, dense.emitterSamples *= 4;
+  std::vector<ArrivalSample> samples, denseSamples;
   for (size_t i = 0; i < probes.probes.size(); ++i) {
     const LightProbe& p = probes.probes[i];
     baked.gather(p.position, glm::vec3(0.0f), uint64_t(i), ProbeParams{}.gather, samples);
-    double err2 = 0.0, mean = 0.0, se2 = 0.0, direct2 = 0.0;
-    for (size_t d = 0; d < 6; ++d) {
-      const glm::vec3 want = ref.radiosity[6 * i + d], got = shIrradiance(p.sh, axes[d]);
-      glm::vec3 direct(0.0f);
-      for (const ArrivalSample& a : samples) direct += a.light * std::max(0.0f, glm::dot(axes[d], a.towards));
-      direct2 += glm::dot(direct - want, direct - want) / 3.0;
-      err2 += glm::dot(got - want, got - want) / 3.0;
-      mean += (want.r + want.g + want.b) / 3.0;
-      se2 += glm::dot(ref.standardError[6 * i + d], ref.standardError[6 * i + d]) / 3.0;
+    baked.gather(p.position, glm::vec3(0.0f), uint64_t(i) + 1000003u, dense, denseSamples);
+    std::array<glm::vec3, 9> sh{}, sh4{};
+    for (const ArrivalSample& a : denseSamples) {
+      const std::array<float, 9> y = shBasis(a.towards), y4 = shBasisBand4(a.towards);
+      for (size_t k = 0; k < 9; ++k) sh[k] += a.light * y[k], sh4[k] += a.light * y4[k];
     }
-    mean /= 6.0;
-    const double e = std::sqrt(err2 / 6.0) / mean;
-    noise = std::max(noise, std::sqrt(se2 / 6.0) / mean);
-    worst = std::max(worst, e);
+    std::array<double, kWays> err2{};
+    double mean = 0.0;
+    for (size_t d = 0; d < nn; ++d) {
+      const glm::vec3 n = normals[d], want = ref.radiosity[nn * i + d];
+      glm::vec3 direct(0.0f), denseDirect(0.0f);
+      for (const ArrivalSample& a : samples) direct += a.light * std::max(0.0f, glm::dot(n, a.towards));
+      for (const ArrivalSample& a : denseSamples)
+        denseDirect += a.light * std::max(0.0f, glm::dot(n, a.towards));
+      const glm::vec3 got[kWays - 1] = {shIrradiance(p.sh, n),
+                                        shIrradiance(p.sh, n) + shIrradianceBand4(p.sh4, n), direct,
+                                        shIrradiance(sh, n) + shIrradianceBand4(sh4, n), denseDirect};
+      for (size_t w = 0; w + 1 < kWays; ++w) err2[w] += glm::dot(got[w] - want, got[w] - want) / 3.0;
+      err2[kWays - 1] += glm::dot(ref.standardError[nn * i + d], ref.standardError[nn * i + d]) / 3.0;
+      mean += (want.r + want.g + want.b) / 3.0;
+    }
+    mean /= double(nn);
     const std::string room = p.cell >= 0 ? seed.cells.cells[size_t(p.cell)].name : std::string("-");
-    errors[room].push_back(e);
-    unprojected[room].push_back(std::sqrt(direct2 / 6.0) / mean);
+    for (size_t w = 0; w < kWays; ++w) errors[room][w].push_back(std::sqrt(err2[w] / double(nn)) / mean);
+    float nearest = 1e30f;
+    for (const glm::vec3& n : normals)
+      if (const RayScene::Hit hit = rays.intersect(p.position, n); hit) nearest = std::min(nearest, hit.t);
+    byDistance[room].push_back({nearest, std::sqrt(err2[1] / double(nn)) / mean});
   }
-  for (auto* table : {&errors, &unprojected})
-    for (auto& [room, list] : *table) {
+  for (size_t w = 0; w < kWays; ++w)
+    for (auto& [room, lists] : errors) {
+      std::vector<double>& list = lists[w];
       std::sort(list.begin(), list.end());
       const size_t within =
           size_t(std::count_if(list.begin(), list.end(), [](double e) { return e <= 0.05; }));
-      std::printf("%s room %s: %zu probes, error median %.4f, 90th %.4f, worst %.4f; within 5 %%: %zu\n",
-                  table == &errors ? "L2 SH" : "no SH", room.c_str(), list.size(), list[list.size() / 2],
+      std::printf("%-9s room %s: %zu probes, error median %.4f, 90th %.4f, worst %.4f; within 5 %%: %zu\n",
+                  names[w], room.c_str(), list.size(), list[list.size() / 2],
                   list[std::min(list.size() - 1, list.size() * 9 / 10)], list.back(), within);
     }
-  std::printf("worst probe %.4f; the reference's noise (standard error, worst probe) %.4f at %d spp\n", worst,
-              noise, ref.spp);
+  for (auto& [room, list] : byDistance) {
+    std::sort(list.begin(), list.end());
+    std::printf("room %s, L2+L4 error by distance to the nearest surface (of 14 directions):", room.c_str());
+    for (const auto& [d, e] : list) std::printf(" %.2f:%.3f", d, e);
+    std::printf("\n");
+  }
+  std::printf("reference %d spp\n", ref.spp);
   return 0;
 }

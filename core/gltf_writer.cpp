@@ -190,6 +190,10 @@ class SceneWriter {
   std::string write(bool binary) {
     if (options_.lightmapUVs && options_.lightmapUVs->size() != scene_.triangles.size())
       throw std::invalid_argument("writeGltf: lightmapUVs must have one entry per triangle");
+    if (options_.lightmapOfTriangle &&
+        (options_.lightmapOfTriangle->size() != scene_.triangles.size() ||
+         options_.objectLightmapNames.size() != options_.objectLightmapPngs.size()))
+      throw std::invalid_argument("writeGltf: one lightmap per triangle, one name per object lightmap");
     for (const Triangle& t : scene_.triangles)
       if (t.material >= scene_.materials.size())
         throw std::invalid_argument("writeGltf: material index out of range");
@@ -274,54 +278,95 @@ class SceneWriter {
     return textureIndex_[index] = b_.push("textures", {{"source", image->second}, {"sampler", samplerIndex}});
   }
 
-  // The scene's own materials, as the file gave them, with the irradiance lightmap referenced by each.
-  void writeEngineMaterials() {
-    int lightmap = -1;
-    if (options_.lightmapUVs && !options_.lightmapPng.empty()) {
-      const int view = b_.addView(options_.lightmapPng.data(), options_.lightmapPng.size(), 0);
-      const int image =
-          b_.push("images", {{"bufferView", view}, {"mimeType", "image/png"}, {"name", "lightmap"}});
-      const int sampler =
+  // A lightmap PNG as a texture of the file written (linear filtering, clamped).
+  int lightmapTexture(const std::string& png, const std::string& name) {
+    if (lightmapSampler_ < 0)
+      lightmapSampler_ =
           b_.push("samplers", {{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}});
-      lightmap = b_.push("textures", {{"source", image}, {"sampler", sampler}, {"name", "lightmap"}});
-      json extras =
-          options_.lightmapExtrasJson.empty() ? json::object() : json::parse(options_.lightmapExtrasJson);
-      extras.update({{"texture", lightmap},
-                     {"texCoord", 1},
-                     {"intensity", options_.lightmapIntensity},
-                     {"colorSpace", "srgb"},
-                     {"quantity", "irradiance W/m2 (light arriving, without albedo)"}});
-      b_.doc["extras"]["cpgi_lightmap"] = extras;
-      b_.useExtension("MOZ_lightmap");
+    const int view = b_.addView(png.data(), png.size(), 0);
+    const int image = b_.push("images", {{"bufferView", view}, {"mimeType", "image/png"}, {"name", name}});
+    return b_.push("textures", {{"source", image}, {"sampler", lightmapSampler_}, {"name", name}});
+  }
+
+  // The scene's own materials, as the file gave them, with the irradiance lightmap referenced by each: the
+  // one lightmap's, or with per-object lightmaps one copy of a material per object lightmap that uses it
+  // (MOZ_lightmap, like three.js's lightMap, belongs to the material), made when a mesh first needs it.
+  void writeEngineMaterials() {
+    if (!options_.lightmapUVs) {
+      for (size_t k = 0; k < scene_.materials.size(); ++k) b_.push("materials", engineMaterial(k, -1));
+      return;
     }
+    json extras =
+        options_.lightmapExtrasJson.empty() ? json::object() : json::parse(options_.lightmapExtrasJson);
+    extras.update({{"texCoord", 1},
+                   {"intensity", options_.lightmapIntensity},
+                   {"colorSpace", "srgb"},
+                   {"quantity", "irradiance W/m2 (light arriving, without albedo)"}});
+    if (perObject()) {
+      json textures = json::array();
+      for (size_t k = 0; k < options_.objectLightmapPngs.size(); ++k) {
+        objectTextures_.push_back(
+            lightmapTexture(options_.objectLightmapPngs[k], options_.objectLightmapNames.at(k)));
+        textures.push_back(
+            {{"object", options_.objectLightmapNames[k]}, {"texture", objectTextures_.back()}});
+      }
+      extras["object_textures"] = textures;
+    } else if (!options_.lightmapPng.empty()) {
+      lightmap_ = lightmapTexture(options_.lightmapPng, "lightmap");
+      extras["texture"] = lightmap_;
+    } else {
+      for (size_t k = 0; k < scene_.materials.size(); ++k) b_.push("materials", engineMaterial(k, -1));
+      return;
+    }
+    b_.doc["extras"]["cpgi_lightmap"] = extras;
+    b_.useExtension("MOZ_lightmap");
+    if (!perObject())
+      for (size_t k = 0; k < scene_.materials.size(); ++k) b_.push("materials", engineMaterial(k, lightmap_));
+  }
+
+  bool perObject() const {
+    return options_.forEngines && options_.lightmapOfTriangle && options_.lightmapUVs;
+  }
+
+  // The material written for scene material `material` on triangle `triangle`'s lightmap.
+  int materialFor(uint32_t material, uint32_t triangle) {
+    if (!perObject()) return int(material);
+    const int object = (*options_.lightmapOfTriangle)[triangle];
+    const auto key = std::make_pair(material, object);
+    if (auto it = objectMaterials_.find(key); it != objectMaterials_.end()) return it->second;
+    const int texture = object >= 0 ? objectTextures_.at(size_t(object)) : -1;
+    json mat = engineMaterial(material, texture);
+    if (object >= 0) mat["extras"]["cpgi_lightmap"] = options_.objectLightmapNames[size_t(object)];
+    return objectMaterials_[key] = b_.push("materials", mat);
+  }
+
+  json engineMaterial(size_t k, int lightmap) {
+    const Material& m = scene_.materials[k];
     const SceneLooks& looks = scene_.looks;
-    for (size_t k = 0; k < scene_.materials.size(); ++k) {
-      const Material& m = scene_.materials[k];
-      MaterialLook look;
-      if (k < looks.materials.size())
-        look = looks.materials[k];
-      else
-        look.baseColorFactor = glm::vec4(m.albedo, 1.0f);
-      const glm::vec4& f = look.baseColorFactor;
-      json pbr = {{"baseColorFactor", {f.r, f.g, f.b, f.a}},
-                  {"metallicFactor", look.metallicFactor},
-                  {"roughnessFactor", look.roughnessFactor}};
-      if (const int t = engineTexture(look.baseColorTexture); t >= 0)
-        pbr["baseColorTexture"] = {{"index", t}};
-      json mat = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
-      if (const int t = engineTexture(look.normalTexture); t >= 0)
-        mat["normalTexture"] = {{"index", t}, {"scale", look.normalScale}};
-      setEmission(mat, m);
-      if (const int t = engineTexture(look.emissiveTexture); t >= 0 && m.isEmitter())
-        mat["emissiveTexture"] = {{"index", t}};
-      if (look.doubleSided) mat["doubleSided"] = true;
-      if (lightmap >= 0)
-        mat["extensions"]["MOZ_lightmap"] = {
-            {"index", lightmap}, {"texCoord", 1}, {"intensity", options_.lightmapIntensity}};
+    MaterialLook look;
+    if (k < looks.materials.size())
+      look = looks.materials[k];
+    else
+      look.baseColorFactor = glm::vec4(m.albedo, 1.0f);
+    const glm::vec4& f = look.baseColorFactor;
+    json pbr = {{"baseColorFactor", {f.r, f.g, f.b, f.a}},
+                {"metallicFactor", look.metallicFactor},
+                {"roughnessFactor", look.roughnessFactor}};
+    if (const int t = engineTexture(look.baseColorTexture); t >= 0) pbr["baseColorTexture"] = {{"index", t}};
+    json mat = {{"name", m.name}, {"pbrMetallicRoughness", pbr}};
+    if (const int t = engineTexture(look.normalTexture); t >= 0)
+      mat["normalTexture"] = {{"index", t}, {"scale", look.normalScale}};
+    setEmission(mat, m);
+    if (const int t = engineTexture(look.emissiveTexture); t >= 0 && m.isEmitter())
+      mat["emissiveTexture"] = {{"index", t}};
+    if (look.doubleSided) mat["doubleSided"] = true;
+    if (lightmap >= 0) {
+      mat["extensions"]["MOZ_lightmap"] = {
+          {"index", lightmap}, {"texCoord", 1}, {"intensity", options_.lightmapIntensity}};
       // The albedo and emission baked with, which a texture's mean gave: read back as they were.
-      if (lightmap >= 0) mat["extras"] = {{"cpgi_albedo", vec(m.albedo)}, {"cpgi_emission", vec(m.emission)}};
-      b_.push("materials", mat);
+      mat["extras"] = {{"cpgi_albedo", vec(m.albedo)}, {"cpgi_emission", vec(m.emission)}};
     }
+    return mat;
   }
 
   void buildTree() {
@@ -378,7 +423,8 @@ class SceneWriter {
         attributes["TEXCOORD_0"] = lightmapUVs;
         attributes["TEXCOORD_1"] = lightmapUVs;
       }
-      primitives.push_back({{"attributes", attributes}, {"material", material}, {"mode", 4}});
+      primitives.push_back(
+          {{"attributes", attributes}, {"material", materialFor(material, tris.front())}, {"mode", 4}});
     }
     return b_.push("meshes", {{"name", name}, {"primitives", primitives}});
   }
@@ -515,6 +561,10 @@ class SceneWriter {
   json sceneRoots_ = json::array();
   std::map<int, int> textureIndex_;     // scene texture → texture written
   std::map<uint32_t, int> imageIndex_;  // scene image → image written
+  int lightmapSampler_ = -1;
+  int lightmap_ = -1;                                        // the one lightmap's texture
+  std::vector<int> objectTextures_;                          // per object lightmap, its texture
+  std::map<std::pair<uint32_t, int>, int> objectMaterials_;  // (material, object lightmap) → material
 };
 
 }  // namespace

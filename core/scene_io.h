@@ -81,6 +81,14 @@ struct GltfWriteOptions {
   /// The helpers (portal: quads, cellvolume: meshes) and the KHR_lights_punctual lamps, which an engine
   /// would draw, or light the baked scene with a second time; `cell:` nodes stay as names either way.
   bool keepHelpers = true;
+  /// With forEngines, a lightmap per object instead of lightmapPng (bake --per-object): the PNG of each
+  /// (sRGB, 1 = lightmapIntensity) and its unique name (its texture's, "lightmap-OBJECT"), and per
+  /// triangle the one it lies on (−1: none); lightmapUVs are then coordinates in that lightmap. Each
+  /// material is written once per lightmap using it, referencing that lightmap by MOZ_lightmap and naming
+  /// it in extras.cpgi_lightmap; the root's extras.cpgi_lightmap.object_textures lists them.
+  std::vector<std::string> objectLightmapPngs;
+  std::vector<std::string> objectLightmapNames;
+  const std::vector<int>* lightmapOfTriangle = nullptr;
 };
 
 /// Writes `.glb` (binary) or `.gltf` (embedded buffers) by the extension, atomically.

@@ -19,6 +19,7 @@
 #include "radiosity/bake/report_page.h"
 #include "radiosity/cells/cell_jobs.h"
 #include "radiosity/lightmap/cell_channel.h"
+#include "radiosity/lightmap/directional_lightmap.h"
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/ray_scene.h"
@@ -173,6 +174,33 @@ void usePlannedDensities(const BakeSettings& s, BakeInput& in, const std::filesy
                      "holds no texel density per triangle of " + s.input.scene + "; make the plan again");
 }
 
+// probes.json (bake --probes), its JSON for baked.glb in `probes`; returns report.json's entry. A gather
+// the deadline stopped writes none (a room without its probes would take its neighbours' light).
+nlohmann::json writeLightProbes(const BakeInput& in, const SolveResult& r, const EngineOutputParams& engine,
+                                Clock::time_point deadline, OutputDir& out, nlohmann::json& probes,
+                                BakeFigures& f, Context& ctx) {
+  ProbeParams params;
+  params.spacing = engine.probeSpacing;
+  const LightProbes gathered =
+      gatherLightProbes(*in.scene, *in.cells, in.atlas, r.radiosity, params, ctx, deadline);
+  nlohmann::json report = {{"count", gathered.probes.size()},
+                           {"spacing_m", params.spacing},
+                           {"rays", gathered.rays},
+                           {"seconds", gathered.seconds}};
+  if (!gathered.complete) {
+    const std::string why = "the time limit came after " + std::to_string(gathered.gathered) + " of " +
+                            std::to_string(gathered.probes.size()) + " probes";
+    ctx.warn("probes: " + why + "; probes.json is not written");
+    f.skippedOutputs.push_back("probes");
+    report["skipped"] = why;
+    return report;
+  }
+  probes = lightProbesJson(gathered, *in.cells);
+  writeFileAtomically(out.file("probes.json"), probes.dump());
+  report["file"] = "probes.json";
+  return report;
+}
+
 // The light written: the files of the result set (with a folder) and the figures of the report.
 // The views are rendered while `viewsDeadline` leaves time (the report page's share kept back).
 void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, const ViewParams& views,
@@ -185,18 +213,7 @@ void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, c
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
   nlohmann::json probes, probesReport;
-  if (engine.probes) {
-    ProbeParams params;
-    params.spacing = engine.probeSpacing;
-    const LightProbes gathered = gatherLightProbes(*in.scene, *in.cells, in.atlas, r.radiosity, params, ctx);
-    probes = lightProbesJson(gathered, *in.cells);
-    writeFileAtomically(out->file("probes.json"), probes.dump());
-    probesReport = {{"file", "probes.json"},
-                    {"count", gathered.probes.size()},
-                    {"spacing_m", params.spacing},
-                    {"rays", gathered.rays},
-                    {"seconds", gathered.seconds}};
-  }
+  if (engine.probes) probesReport = writeLightProbes(in, r, engine, viewsDeadline, *out, probes, f, ctx);
   LightmapOutputs written =
       writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
                            views, viewsDeadline, engine, probes);
@@ -204,6 +221,8 @@ void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, c
   if (engine.probes) f.engine["probes"] = probesReport;
   f.views = std::move(written.views);
   f.skippedViews = std::move(written.skippedViews);
+  f.skippedOutputs.insert(f.skippedOutputs.end(), written.skippedOutputs.begin(),
+                          written.skippedOutputs.end());
 }
 
 }  // namespace
@@ -228,11 +247,17 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
                  pilotDeadline(beforeOutputs), deadline);
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
-  requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv);  // --uv scene refused before the solve
+  requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv, s.output.engine.perObject);  // before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs =
       estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);
-  const Clock::time_point solveDeadline = keepBack(deadline, outputs.seconds());
+  // The directional gather's rays are kept back too, so that its files and the views both fit.
+  const double directionalRays =
+      s.output.engine.directional
+          ? directionalGatherRays(in.atlas.validTexels(), s.output.engine.directionalRays)
+          : 0;
+  const Clock::time_point solveDeadline =
+      keepBack(deadline, outputs.seconds() + raySeconds * directionalRays);
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
@@ -274,7 +299,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   result.report = bakeReport(s, in, r, levels, engines.gl(), engines.engines().lamps.name(), f, ctx);
   result.shots = r.shots;
   result.unshotFraction = r.unshotFraction;
-  result.partial = r.timedOut || !f.skippedViews.empty();
+  result.partial = r.timedOut || !f.skippedViews.empty() || !f.skippedOutputs.empty();
   result.seconds = f.seconds;
   if (out) {
     ctx.progress("write", 0.9, "report.json, report.html");

@@ -193,7 +193,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["output_estimate_s"] = {
       {"views", f.outputs.viewSeconds}, {"files", f.outputs.filesSeconds}, {"page", f.outputs.pageSeconds}};
   report["views_skipped"] = f.skippedViews;
-  report["partial"] = r.timedOut || !f.skippedViews.empty();
+  report["outputs_skipped"] = f.skippedOutputs;
+  report["partial"] = r.timedOut || !f.skippedViews.empty() || !f.skippedOutputs.empty();
   std::ostringstream why;
   if (r.timedOut)
     why << "time limit of " << s.limits.timeLimit << " s reached after " << r.shots << " shots with "
@@ -203,6 +204,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
     why << (r.timedOut ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached before "
         << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()
         << " views were rendered (views_skipped)";
+  for (const std::string& o : f.skippedOutputs)
+    why << (why.tellp() > 0 ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached during the "
+        << o << " gather, whose files were not written (outputs_skipped)";
   if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;

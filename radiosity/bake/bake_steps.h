@@ -89,6 +89,8 @@ struct BakeFigures {
   double seconds = 0.0;
   OutputEstimate outputs;  ///< the outputs' share kept back from the time limit
   nlohmann::json engine;   ///< report.json's "engine_lightmap" (LightmapOutputs::engine); null: none written
+  /// Outputs the time limit stopped during their gather, so not written: "probes", "directional"
+  std::vector<std::string> skippedOutputs;
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,

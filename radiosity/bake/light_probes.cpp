@@ -1,6 +1,7 @@
 #include "radiosity/bake/light_probes.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -72,13 +73,18 @@ int cellOfPoint(const RayScene& rays, const std::vector<int>& cellOfTriangle, si
 
 LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
                               const std::vector<glm::vec3>& radiosity, const ProbeParams& params,
-                              Context& ctx) {
+                              Context& ctx, std::chrono::steady_clock::time_point deadline) {
   if (!(params.spacing > 0.0f) || !(params.voxel > 0.0f) || params.clearance < 0.0f)
     throw InputError("probe spacing", "the probes' spacing and voxel must be > 0");
   auto timer = ctx.time("light probes");
   const auto start = std::chrono::steady_clock::now();
   LightProbes out;
   out.params = params;
+  const auto passed = [&] { return std::chrono::steady_clock::now() >= deadline; };
+  if (passed()) {
+    out.complete = false;
+    return out;
+  }
   std::vector<glm::vec3> points;
   try {
     points = probePoints(scene, params, ctx);
@@ -90,21 +96,34 @@ LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const 
   if (points.empty())
     ctx.warn("probes: no enclosed or roofed empty space " + std::to_string(params.clearance) +
              " m clear of the surfaces; probes.json holds none");
+  out.probes.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) out.probes[i].position = points[i];
+  if (passed()) {
+    out.complete = false;
+    return out;
+  }
   const RayScene rays(scene);
   const BakedRadiance baked(scene, rays, atlas, radiosity);
   const std::vector<int> cellOfTriangle = cells.cellOfTriangle(scene.triangles.size());
-  out.probes.resize(points.size());
+  std::atomic<bool> stopped{false};
+  std::atomic<size_t> gathered{0};
   tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
+    if (stopped || passed()) {
+      stopped = true;
+      return;
+    }
     LightProbe& probe = out.probes[i];
-    probe.position = points[i];
     probe.cell = cellOfPoint(rays, cellOfTriangle, cells.cells.size(), points[i]);
     std::vector<ArrivalSample> samples;
     baked.gather(points[i], glm::vec3(0.0f), uint64_t(i), params.gather, samples);
     for (const ArrivalSample& a : samples) {
-      const std::array<float, 9> y = shBasis(a.towards);
-      for (size_t k = 0; k < 9; ++k) probe.sh[k] += a.light * y[k];
+      const std::array<float, 9> y = shBasis(a.towards), y4 = shBasisBand4(a.towards);
+      for (size_t k = 0; k < 9; ++k) probe.sh[k] += a.light * y[k], probe.sh4[k] += a.light * y4[k];
     }
+    ++gathered;
   });
+  out.complete = !stopped;
+  out.gathered = gathered;
   out.rays = baked.raysTraced() + 26 * points.size();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -113,18 +132,24 @@ LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const 
 nlohmann::json lightProbesJson(const LightProbes& probes, const CellGraph& cells) {
   nlohmann::json list = nlohmann::json::array();
   for (const LightProbe& p : probes.probes) {
-    nlohmann::json sh = nlohmann::json::array();
+    nlohmann::json sh = nlohmann::json::array(), sh4 = nlohmann::json::array();
     for (const glm::vec3& c : p.sh) sh.push_back({c.r, c.g, c.b});
+    for (const glm::vec3& c : p.sh4) sh4.push_back({c.r, c.g, c.b});
     list.push_back(
         {{"position", {p.position.x, p.position.y, p.position.z}},
          {"cell", p.cell >= 0 ? nlohmann::json(cells.cells[size_t(p.cell)].name) : nlohmann::json()},
-         {"sh", std::move(sh)}});
+         {"sh", std::move(sh)},
+         {"sh_l4", std::move(sh4)}});
   }
   return {{"convention",
            "L2 SH of the radiance arriving, W/m2 per coefficient, basis and order of Godot's LightmapGI and "
            "Unity's SphericalHarmonicsL2: L00, L1-1 (y), L10 (z), L11 (x), L2-2 (xy), L2-1 (yz), L20 "
            "(3z2-1), L21 (xz), L22 (x2-y2); scene axes; irradiance E(n) = sum_l A_l sum_m L_lm Y_lm(n), "
-           "A = pi, 2pi/3, pi/4 (Ramamoorthi and Hanrahan 2001)"},
+           "A = pi, 2pi/3, pi/4 (Ramamoorthi and Hanrahan 2001). sh_l4: band 4, L4-4 … L44 of the real "
+           "orthonormal basis xy(x2-y2), yz(3x2-y2), xy(7z2-1), yz(7z2-3), 35z4-30z2+3, xz(7z2-3), "
+           "(x2-y2)(7z2-1), xz(x2-3y2), x2(x2-3y2)-y2(3x2-y2) times 2.503343, 1.770131, 0.946175, 0.669046, "
+           "0.105786, 0.669046, 0.473087, 1.770131, 0.625836; A_4 = -pi/24 (band 3's A is 0): adding it "
+           "brings a lamp's concentrated light within a few %, where L2 alone misses it by 5-10 %"},
           {"spacing_m", probes.params.spacing},
           {"clearance_m", probes.params.clearance},
           {"rays_per_probe", probes.params.gather.rays},

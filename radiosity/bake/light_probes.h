@@ -2,7 +2,10 @@
 // objects a lightmap cannot hold (a character walking through the rooms). Each probe holds the L2
 // spherical harmonics of the radiance arriving there, nine coefficients per colour channel in Godot's and
 // Unity's basis and order (radiosity/lightmap/spherical_harmonics.h); an object shades a normal n with
-// Ramamoorthi & Hanrahan's E(n) = Σ Â_l L_lm Y_lm(n), as Godot's LightmapGI probes do.
+// Ramamoorthi & Hanrahan's E(n) = Σ Â_l L_lm Y_lm(n), as Godot's LightmapGI probes do. Beside them each
+// probe holds band 4 (band 3 adds nothing to irradiance): a ceiling lamp's light is concentrated enough
+// that L2 misses its irradiance by 5–10 % at some probes, bands 0–4 by at most 4 % on seed1 and seed2
+// (bench/RESULTS.md, "Probes within 5 %").
 //
 // Where: a lattice of `spacing` through the empty space the decomposition's voxels find enclosed
 // (decomposition/classify.h: inside, not behind a wall) or roofed (outside, with a surface above and below
@@ -13,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -31,13 +35,20 @@ struct ProbeParams {
   float spacing = 1.0f;     ///< metres between probes along x, y and z; > 0
   float clearance = 0.25f;  ///< metres a probe keeps from every surface
   float voxel = 0.1f;       ///< the voxels that find the empty space (m); at most clearance
-  GatherParams gather = {1024, 256};
+  /// Directions and lamp points per probe: at 1 024 and 256 the gather's own noise left seed1's room B,
+  /// lit through doors, at up to 5.4 % (bench/RESULTS.md, "Probes within 5 %"); four times as many cost
+  /// about a second a hundred probes.
+  GatherParams gather = {4096, 1024};
 };
 
 struct LightProbe {
   glm::vec3 position{0.0f};
   int cell = -1;                  ///< index into the cell graph; −1: no cell (a graph without cells)
   std::array<glm::vec3, 9> sh{};  ///< L2 radiance SH, RGB per coefficient
+  /// Band 4's radiance SH (L4,−4 … L4,4), RGB: what a lamp's concentrated light needs beyond L2 for the
+  /// irradiance within a few per cent (spherical_harmonics.h, shIrradianceBand4); engines reading L2
+  /// probes leave it, the nine above being the same projection either way.
+  std::array<glm::vec3, 9> sh4{};
 };
 
 struct LightProbes {
@@ -45,13 +56,20 @@ struct LightProbes {
   ProbeParams params;
   uint64_t rays = 0;
   double seconds = 0.0;
+  /// false: the deadline came first; `probes` then holds the points placed (their `sh` partly gathered) and
+  /// is not to be written (a room without its probes would be lit by its neighbours').
+  bool complete = true;
+  size_t gathered = 0;  ///< probes gathered
 };
 
 /// Places probes in the enclosed empty space of `scene` and gathers each from the bake (`radiosity` per
 /// texel of `atlas`, undilated). Deterministic. Throws InputError when the voxels would not fit in memory.
-LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
-                              const std::vector<glm::vec3>& radiosity, const ProbeParams& params,
-                              Context& ctx);
+/// Past `deadline` (looked at before the voxels, after them and before each probe) it stops with
+/// `complete` false.
+LightProbes gatherLightProbes(
+    const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+    const std::vector<glm::vec3>& radiosity, const ProbeParams& params, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// probes.json: the convention, the spacing, and per probe its position, cell name and coefficients.
 nlohmann::json lightProbesJson(const LightProbes& probes, const CellGraph& cells);

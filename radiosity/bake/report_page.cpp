@@ -49,7 +49,9 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
   // A bake with light probes staged probes.json: the page lights a sphere with them; one with --directional
   // on cpgi's atlas, its SH files: the page's normal-mapped test surface.
   const nlohmann::json engine = report.value("engine_lightmap", nlohmann::json::object());
-  if (engine.is_object() && engine.contains("directional") && engine.value("uv", "") == "own") {
+  // (A gather the time limit stopped wrote no files: its entry has none.)
+  if (engine.is_object() && engine.contains("directional") && engine["directional"].contains("files") &&
+      engine.value("uv", "") == "own") {
     const char* files[3] = {"lightmap_sh_l1x.exr", "lightmap_sh_l1y.exr", "lightmap_sh_l1z.exr"};
     for (size_t k = 0; k < 3; ++k) {
       ImageRGB sh = readExr(out.staged(files[k]).string());
@@ -57,7 +59,7 @@ void writeBakeReportPage(OutputDir& out, const std::string& title, const nlohman
       lightmap.irradianceVector[k] = std::move(sh.pixels);
     }
   }
-  if (engine.is_object() && engine.contains("probes"))
+  if (engine.is_object() && engine.contains("probes") && engine["probes"].contains("file"))
     input.probes = nlohmann::json::parse(readFileBytes(out.staged("probes.json").string()));
   writeHtmlReport(out, input);
 }

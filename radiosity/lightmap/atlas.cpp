@@ -384,6 +384,7 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   atlas.width = std::max(size.x, 1);
   atlas.height = std::max(size.y, 1);
   atlas.sizeParameter = sizeOption(params);
+  atlas.padding = params.padding;
   const size_t n = atlas.texelCount();
   atlas.patch.assign(n, -1);
   atlas.position.assign(n, glm::vec3(0.0f));

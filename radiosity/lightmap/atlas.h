@@ -89,6 +89,7 @@ struct LightmapAtlas {
   /// The parameter that set the resolution ("texels per quad" or "texel density"), for the messages of
   /// the limits checked later (the GPU's buffer sizes).
   std::string sizeParameter = "texel density";
+  int padding = 1;  ///< texels of gutter around every chart (AtlasParams::padding), charts never sharing one
   std::vector<Patch> patches;
 
   // Per texel, row-major, width × height.

@@ -48,20 +48,30 @@ int texelCoefficients(const std::vector<ArrivalSample>& samples, const glm::vec3
 DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const LightmapAtlas& atlas,
                                               const std::vector<glm::vec3>& radiosity,
                                               const std::vector<glm::vec3>& irradiance,
-                                              const GatherParams& params, Context& ctx) {
+                                              const GatherParams& params, Context& ctx,
+                                              std::chrono::steady_clock::time_point deadline) {
   auto timer = ctx.time("directional lightmap");
   const auto start = std::chrono::steady_clock::now();
   DirectionalLightmap map;
   for (auto& c : map.sh) c.assign(atlas.texelCount(), glm::vec3(0.0f));
   map.gathered.assign(atlas.texelCount(), glm::vec3(0.0f));
+  if (std::chrono::steady_clock::now() >= deadline) {  // not even the ray scene's set-up
+    map.complete = false;
+    return map;
+  }
   const RayScene rays(scene);
   const BakedRadiance baked(scene, rays, atlas, radiosity);
   std::atomic<size_t> texels{0}, undirected{0};
+  std::atomic<bool> stopped{false};
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, atlas.texelCount(), 64), [&](const tbb::blocked_range<size_t>& r) {
         std::vector<ArrivalSample> samples;
         size_t count = 0, lost = 0;
         for (size_t i = r.begin(); i < r.end(); ++i) {
+          if ((i - r.begin()) % 64 == 0 && (stopped || std::chrono::steady_clock::now() >= deadline)) {
+            stopped = true;
+            break;
+          }
           if (atlas.patch[i] < 0) continue;
           baked.gather(atlas.position[i], atlas.normal[i], uint64_t(i), params, samples);
           std::array<glm::vec3, 4> sh;
@@ -72,9 +82,15 @@ DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const Lightmap
         texels += count, undirected += lost;
       });
   map.texels = texels, map.undirected = undirected;
+  map.complete = !stopped;
   map.rays = baked.raysTraced();
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return map;
+}
+
+double directionalGatherRays(size_t validTexels, int rays) {
+  constexpr double kTimingRaysPerGatherRay = 4.0;
+  return kTimingRaysPerGatherRay * double(validTexels) * double(rays + GatherParams{}.emitterSamples);
 }
 
 std::array<glm::vec3, 4> texelSh(const DirectionalLightmap& map, size_t i) {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -36,17 +37,25 @@ struct DirectionalLightmap {
   /// solve's (V · n_s), for the checks; 0 on padding.
   std::vector<glm::vec3> gathered;
   size_t texels = 0;      ///< valid texels gathered
+  bool complete = true;   ///< false: the deadline stopped the gather, and texels not gathered hold 0
   size_t undirected = 0;  ///< channels of valid texels with light the gather did not find (V = E n_s)
   uint64_t rays = 0;
   double seconds = 0.0;
 };
 
 /// Gathers the L1 SH of every valid texel of `atlas` from the bake's `radiosity` (per texel, W/m²,
-/// undilated), scaled to `irradiance` (E per texel, engine_lightmap.h). Deterministic.
-DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const LightmapAtlas& atlas,
-                                              const std::vector<glm::vec3>& radiosity,
-                                              const std::vector<glm::vec3>& irradiance,
-                                              const GatherParams& params, Context& ctx);
+/// undilated), scaled to `irradiance` (E per texel, engine_lightmap.h). Deterministic. Past `deadline`
+/// (looked at every 64 texels) it stops with `complete` false.
+DirectionalLightmap gatherDirectionalLightmap(
+    const Scene& scene, const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
+    const std::vector<glm::vec3>& irradiance, const GatherParams& params, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+
+/// What gatherDirectionalLightmap over `validTexels` texels at `rays` directions a texel costs, counted in
+/// the nearest-hit rays of the bake's timing probe (bake_limits.h, probeRaySeconds), for the time a bake
+/// keeps back for it under --time-limit: a gather ray (and each emitter sample's) costs about three of
+/// those (seed3: 4.2e-7 s against 1.4e-7 s), counted as four for room to spare.
+double directionalGatherRays(size_t validTexels, int rays);
 
 /// Texel `i`'s four coefficients, in order.
 std::array<glm::vec3, 4> texelSh(const DirectionalLightmap& map, size_t i);

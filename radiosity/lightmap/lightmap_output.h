@@ -39,13 +39,20 @@ struct EngineOutputParams {
   /// extras.cpgi_lightmap.probes. Off by default.
   bool probes = false;
   float probeSpacing = 1.0f;  ///< metres between probes (ProbeParams::spacing)
+  /// A lightmap per object (radiosity/lightmap/object_lightmaps.h) as well: lightmap-OBJECT.exr and .png
+  /// (RGBM), and baked.glb's TEXCOORD_1 and materials on them. The scene's lightmap_irradiance files then
+  /// stay on cpgi's own atlas (preview.glb's TEXCOORD_1).
+  bool perObject = false;
 };
 
 struct LightmapOutputs {
   float exposure = 1.0f;                  ///< used for the glb's texture (viewExposure)
   std::vector<std::string> views;         ///< camera names, files view-NAME.exr / .png
   std::vector<std::string> skippedViews;  ///< cameras not rendered: the deadline came first
-  nlohmann::json engine;                  ///< report.json's "engine_lightmap": the engine files and ranges
+  /// Outputs left out because the deadline came during their gather ("directional"): a part of one would
+  /// light some surfaces with directions and others without.
+  std::vector<std::string> skippedOutputs;
+  nlohmann::json engine;  ///< report.json's "engine_lightmap": the engine files and ranges
 };
 
 /// Dilates `radiosity` (per atlas texel, W/m², padding ignored) and stages through `out`:
@@ -61,7 +68,12 @@ struct LightmapOutputs {
 ///  - with `probes` (lightProbesJson, not null), baked.glb's extras.cpgi_lightmap.probes holds them;
 ///  - preview.glb, for viewers: the scene (with `cells` and their portals, when there are any) with the
 ///    atlas as TEXCOORD_1 and the lightmap (B/π at `exposure`) as an unlit texture;
-///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for.
+///  - with engine.perObject, lightmap-OBJECT.exr (half float) and lightmap-OBJECT.png (RGBM at the scene's
+///    range) per object, and lightmap-OBJECT-sh_l0.exr … _l1x.exr with engine.directional; baked.glb
+///    then references each object's own;
+///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for. The
+///    directional gather stops at `viewsDeadline` too, and its files are then not written (said in one
+///    warning and in skippedOutputs).
 /// Nothing appears in the folder before out.commit(). Throws InputError for `--uv scene` on a scene whose
 /// TEXCOORD_1 fails its checks.
 LightmapOutputs writeLightmapOutputs(
@@ -73,7 +85,8 @@ LightmapOutputs writeLightmapOutputs(
 
 /// With UvSource::Scene, throws InputError("--uv scene", ...) naming the meshes when the scene's TEXCOORD_1
 /// fails the checks of scene_uv.h (or there is none): called before the solve, so a refusal costs no bake.
-void requireSceneUVs(const Scene& scene, const LightmapAtlas& atlas, UvSource uv);
+/// `perObject`: each object's TEXCOORD_1 is checked as a square of its own (object_lightmaps.h).
+void requireSceneUVs(const Scene& scene, const LightmapAtlas& atlas, UvSource uv, bool perObject = false);
 
 /// The glb a bake or reference folder shows its light with on cpgi's atlas (TEXCOORD_1) and cells:
 /// DIR/preview.glb, or DIR/baked.glb in a folder written before baked.glb became the engine's (one

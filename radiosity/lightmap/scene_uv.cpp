@@ -86,18 +86,30 @@ Charts chartsOf(const Scene& scene) {
   return charts;
 }
 
+// Calls visit(i) for every triangle index of `subset`, or of the scene when it is empty.
+template <typename Visit>
+void forEachTriangle(const Scene& scene, std::span<const uint32_t> subset, Visit&& visit) {
+  if (subset.empty()) {
+    for (uint32_t i = 0; i < scene.triangles.size(); ++i) visit(i);
+  } else {
+    for (uint32_t i : subset) visit(i);
+  }
+}
+
 }  // namespace
 
-int sceneUvSize(const Scene& scene, size_t texels, int maxSize) {
+int sceneUvSize(const Scene& scene, size_t texels, int maxSize, std::span<const uint32_t> triangles) {
   double area = 0.0;
-  for (const Triangle& t : scene.triangles)
+  forEachTriangle(scene, triangles, [&](uint32_t i) {
+    const Triangle& t = scene.triangles[i];
     if (hasSceneUV(scene, t)) area += std::abs(uvArea(cornersOf(scene, t)));
+  });
   const double side = area > 0.0 ? std::sqrt(double(texels) / std::min(area, 1.0)) : 16.0;
   const int size = int(std::ceil(std::clamp(side, 16.0, double(maxSize)) / 4.0)) * 4;
   return std::min(size, maxSize / 4 * 4);
 }
 
-SceneUvCheck checkSceneUVs(const Scene& scene, int size) {
+SceneUvCheck checkSceneUVs(const Scene& scene, int size, std::span<const uint32_t> triangles) {
   SceneUvCheck check;
   check.size = size;
   struct MeshFigures {
@@ -109,12 +121,12 @@ SceneUvCheck checkSceneUVs(const Scene& scene, int size) {
   std::vector<uint8_t> twice(owner.size(), 0);
   Charts charts = chartsOf(scene);
   std::vector<size_t> chartTexels(scene.triangles.size(), 0);
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+  forEachTriangle(scene, triangles, [&](uint32_t i) {
     const Triangle& t = scene.triangles[i];
     MeshFigures& m = meshes[meshName(scene, t)];
     if (!hasSceneUV(scene, t)) {
       ++m.missing;
-      continue;
+      return;
     }
     const std::array<glm::vec2, 3> c = cornersOf(scene, t);
     for (const glm::vec2& q : c)
@@ -134,14 +146,14 @@ SceneUvCheck checkSceneUVs(const Scene& scene, int size) {
         ++meshes[meshName(scene, scene.triangles[size_t(owner[at])])].shared;
       }
     });
-  }
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+  });
+  forEachTriangle(scene, triangles, [&](uint32_t i) {
     const Triangle& t = scene.triangles[i];
-    if (!hasSceneUV(scene, t)) continue;
+    if (!hasSceneUV(scene, t)) return;
     MeshFigures& m = meshes[meshName(scene, t)];
     m.area += t.area();
     if (chartTexels[charts.find(i)] < 4) m.smallChartArea += t.area();
-  }
+  });
   for (size_t at = 0; at < owner.size(); ++at)
     if (owner[at] >= 0)
       ++meshes[meshName(scene, scene.triangles[size_t(owner[at])])].texels, ++check.coveredTexels;
@@ -166,14 +178,15 @@ SceneUvCheck checkSceneUVs(const Scene& scene, int size) {
 
 std::vector<glm::vec3> resampleToSceneUVs(const Scene& scene, const LightmapAtlas& own,
                                           const std::vector<glm::vec3>& values, int size,
-                                          std::vector<std::array<glm::vec2, 3>>& uvs, int gutter) {
+                                          std::vector<std::array<glm::vec2, 3>>& uvs, int gutter,
+                                          std::span<const uint32_t> triangles) {
   std::vector<glm::vec3> out(size_t(size) * size, glm::vec3(0.0f));
   std::vector<uint8_t> filled(out.size(), 0);
   uvs.assign(scene.triangles.size(), std::array<glm::vec2, 3>{});
   const std::span<const glm::vec3> lightmap(values);
-  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+  forEachTriangle(scene, triangles, [&](uint32_t i) {
     const Triangle& t = scene.triangles[i];
-    if (!hasSceneUV(scene, t) || i >= own.triangleUV.size()) continue;
+    if (!hasSceneUV(scene, t) || i >= own.triangleUV.size()) return;
     uvs[i] = cornersOf(scene, t);
     const std::array<glm::vec2, 3>& at = own.triangleUV[i];
     rasterize(uvs[i], size, 1e-4f, [&](int x, int y, const glm::vec3& b) {
@@ -182,7 +195,7 @@ std::vector<glm::vec3> resampleToSceneUVs(const Scene& scene, const LightmapAtla
       out[k] = sampleBilinear(own.width, own.height, lightmap, uv);
       filled[k] = 1;
     });
-  }
+  });
   // The gutter: each empty texel next to filled ones takes their mean, ring by ring, so that bilinear
   // filtering and mipmaps at a chart's edge do not pull in black.
   for (int ring = 0; ring < gutter; ++ring) {

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,18 +31,23 @@ struct SceneUvCheck {
 };
 
 /// The edge of a square layout giving the scene's TEXCOORD_1 about as many texels as `texels` (cpgi's own
-/// atlas's valid texels) over the area its triangles cover, a multiple of 4 in [16, maxSize].
-int sceneUvSize(const Scene& scene, size_t texels, int maxSize = 8192);
+/// atlas's valid texels) over the area its triangles cover, a multiple of 4 in [16, maxSize]. With
+/// `triangles`, those only (one object's own square, radiosity/lightmap/object_lightmaps.h); else all.
+int sceneUvSize(const Scene& scene, size_t texels, int maxSize = 8192,
+                std::span<const uint32_t> triangles = {});
 
-/// Checks every triangle's TEXCOORD_1 (Scene::looks) on a `size` × `size` layout.
-SceneUvCheck checkSceneUVs(const Scene& scene, int size);
+/// Checks every triangle's TEXCOORD_1 (Scene::looks) on a `size` × `size` layout; with `triangles`, those
+/// only.
+SceneUvCheck checkSceneUVs(const Scene& scene, int size, std::span<const uint32_t> triangles = {});
 
 /// The light of cpgi's atlas `own` (`values` per texel, padding dilated) read into the scene's TEXCOORD_1 at
 /// `size` × `size`: at every texel centre on a triangle, `own` at that point of the triangle (bilinear),
 /// then a gutter of `gutter` texels around each chart filled from its edge. `uvs` gets each triangle's
-/// corners in the layout (v down the rows, as cpgi's atlas).
+/// corners in the layout (v down the rows, as cpgi's atlas). With `triangles`, those only are read in (and
+/// only their `uvs` set).
 std::vector<glm::vec3> resampleToSceneUVs(const Scene& scene, const LightmapAtlas& own,
                                           const std::vector<glm::vec3>& values, int size,
-                                          std::vector<std::array<glm::vec2, 3>>& uvs, int gutter = 4);
+                                          std::vector<std::array<glm::vec2, 3>>& uvs, int gutter = 4,
+                                          std::span<const uint32_t> triangles = {});
 
 }  // namespace cpgi

@@ -24,6 +24,16 @@ std::array<float, 9> shBasis(const glm::vec3& w);
 /// 9: L2, in the order above), by Ramamoorthi & Hanrahan's convolution.
 glm::vec3 shIrradiance(std::span<const glm::vec3> coefficients, const glm::vec3& n);
 
+/// Band 4's nine real basis functions at unit `w`, m = −4 … 4 (the orthonormal real forms of the usual
+/// tables, as band 2's above). Band 3 adds nothing to irradiance (its Â_3 is 0) and band 4 is the first
+/// that does: Â_4 = −π/24, the part of a concentrated light's irradiance that L2 leaves out (a point
+/// light's L2 irradiance is 6 % of its peak too bright facing it and 9 % of it beside it).
+std::array<float, 9> shBasisBand4(const glm::vec3& w);
+
+/// The irradiance band 4's coefficients (L4,−4 … L4,4; radiance projections) add to shIrradiance's, on a
+/// surface of unit normal `n`: Â_4 Σ_m L4m Y4m(n).
+glm::vec3 shIrradianceBand4(std::span<const glm::vec3> band4, const glm::vec3& n);
+
 /// The vector irradiance V = ∫ L(ω) ω dω of one channel from its L1 coefficients: V = (L11, L1−1, L10) /
 /// Y1. For light arriving from one side of a surface of normal n_s, V · n_s is the surface's irradiance
 /// exactly, and max(0, V · n) the first-order irradiance for a shading normal n near n_s.

@@ -186,6 +186,40 @@ TEST_F(EngineGlbInThreeJs, Seed1DirectionalLightmapShowsANormalMapAndProbesLight
   EXPECT_EQ(r.status, 0) << r.err;
 }
 
+// Issue 48 item 3's --per-object: a lightmap per object, on cpgi's charts and on the artist's UV2 (the
+// per-object glb's own TEXCOORD_1, a square per object, which one layout for the scene refuses); each
+// object shows its own lightmap in three.js, the picture that of the same bake on one atlas
+// (core/html_report/web/engine_per_object_test.mjs), and the validator finds no error.
+TEST_F(EngineGlbInThreeJs, PerObjectLightmapsEachObjectShowsItsOwn) {
+  const std::string seed1 = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(seed1)).status, 0);
+  bake(seed1, dir / "one");
+  bake(seed1, dir / "objects", " --per-object --directional --directional-rays 16");
+  const std::string artist = dir / "objects/baked.glb";
+  bake(artist, dir / "artist", " --per-object --uv scene");
+  const test::CommandRun refused =
+      cpgi(dir, "bake " + quote(artist) + " -o " + quote(dir / "refused") + " --density 3 --uv scene -q");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("overlapping charts"), std::string::npos) << refused.err;
+  expectValid({dir / "objects/baked.glb", dir / "artist/baked.glb"});
+  std::ifstream in(dir / "objects/report.json");
+  const nlohmann::json engine = nlohmann::json::parse(in)["engine_lightmap"];
+  ASSERT_GT(engine["objects"].size(), 1u);
+  for (const auto& o : engine["objects"]) {
+    EXPECT_TRUE(std::filesystem::exists(dir / ("objects/" + o["exr"].get<std::string>()))) << o.dump();
+    EXPECT_TRUE(std::filesystem::exists(dir / ("objects/" + o["rgbm_png"].get<std::string>()))) << o.dump();
+  }
+  EXPECT_EQ(engine["directional"]["object_files"].size(), engine["objects"].size());
+  for (const char* out : {"objects", "artist"}) {
+    const std::string shots = std::string(CPGI_SCREENSHOTS) + "/engine-per-object-" + out;
+    const test::CommandRun r = test::runNodeScript(
+        dir.path(), "engine_per_object_test.mjs",
+        quote(CPGI_CHROMIUM) + " " + quote(dir / out) + " " + quote(dir / "one") + " " + quote(shots));
+    std::cout << out << " figures: " << r.out << "\nscreenshots: " << shots << "\n";
+    EXPECT_EQ(r.status, 0) << r.err;
+  }
+}
+
 TEST_F(EngineGlbInThreeJs, TexturedSceneKeepsItsTexturesAndIsLit) {
   bake(writeTexturedSeed1(dir), dir / "textured");
   expectLit(dir / "textured", "engine-textured", "textured");

@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "core/memory_limit.h"
+#include "decomposition/voxelize.h"
+#include "radiosity/bake/light_probes.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi::bake_steps {
@@ -27,12 +29,32 @@ constexpr double kRaysPerFileTexel = 4.0;
 constexpr double kRaysPerPageTexel = 2.0;
 constexpr double kRaysPerTriangle = 10.0;
 constexpr int kProbeRays = 1 << 14;
+// A gather's ray (directional lightmap, probes): a nearest hit and the baked radiance looked up there; its
+// emitter samples a shadow ray each.
+constexpr double kRaysPerGatherRay = 2.0;
 
 // Embree's high-quality BVH with its triangles, and RayScene's own copy of them.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // The sky gather: per valid texel its index, two sums (the pass's and the last whole pass's) and the
 // irradiance it adds to.
 constexpr double kSkyGatherBytesPerTexel = 8.0 + 16.0 + 12.0;
+
+// The directional gather: four SH coefficients and the gathered irradiance (RGB floats), the baked
+// radiance it reads (reflected light and the emitters' chances), and the dilated copy written.
+constexpr double kDirectionalBytesPerTexel = 4 * 12.0 + 12.0 + 16.0 + 12.0;
+
+// The probes' voxels: the decomposition's grids (decompositionBytes) over the scene's bounds at
+// ProbeParams::voxel (an upper bound: voxelize trims open ground), and the baked radiance they read.
+double probeBytes(const Scene& scene, const LightmapAtlas& atlas) {
+  if (scene.triangles.empty()) return 0.0;
+  const double voxel = ProbeParams{}.voxel;
+  const Bounds b = scene.bounds();
+  const glm::dvec3 size = glm::max(glm::dvec3(b.hi - b.lo), glm::dvec3(0.0));
+  const double voxels = (size.x / voxel + 5.0) * (size.y / voxel + 5.0) * (size.z / voxel + 5.0);
+  double area = 0.0;
+  for (const Triangle& t : scene.triangles) area += double(t.area());
+  return decomp::decompositionBytes(voxels, voxel, area) + double(atlas.texelCount()) * 16.0;
+}
 
 double largestViewBytes(const std::vector<Camera>& cameras, const ViewParams& views) {
   double most = 0.0;
@@ -71,8 +93,8 @@ double probeRaySeconds(const Scene& scene) {
 }
 
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
-                               const ViewParams& views, size_t texels, size_t atlasTexels,
-                               double raySeconds) {
+                               const ViewParams& views, size_t texels, size_t atlasTexels, double raySeconds,
+                               const EngineOutputParams& engine) {
   OutputEstimate e;
   e.views = cameras.size();
   e.raySeconds = raySeconds;
@@ -87,6 +109,23 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
   e.filesSeconds = (double(atlasTexels) * kRaysPerFileTexel + triangles * kRaysPerTriangle) * raySeconds;
   e.pageSeconds =
       (double(std::max(texels, atlasTexels)) * kRaysPerPageTexel + triangles * kRaysPerTriangle) * raySeconds;
+  const GatherParams gather;  // the probes' and the directional lightmap's emitter samples
+  if (engine.directional)
+    e.directionalSeconds = double(texels) * double(engine.directionalRays + gather.emitterSamples) *
+                           kRaysPerGatherRay * raySeconds;
+  if (engine.probes && engine.probeSpacing > 0.0f) {
+    // At most one probe per lattice point of the scene's bounds (the empty space is less).
+    glm::vec3 lo(3.0e38f), hi(-3.0e38f);
+    for (const Triangle& t : scene.triangles)
+      for (const glm::vec3& p : t.p) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const glm::dvec3 size = glm::max(glm::dvec3(hi - lo), glm::dvec3(0.0));
+    const double points = (size.x / engine.probeSpacing + 1.0) * (size.y / engine.probeSpacing + 1.0) *
+                          (size.z / engine.probeSpacing + 1.0);
+    const ProbeParams probe;
+    e.probesSeconds = (scene.triangles.empty() ? 0.0 : points) *
+                      double(probe.gather.rays + probe.gather.emitterSamples + 26) * kRaysPerGatherRay *
+                      raySeconds;
+  }
   return e;
 }
 
@@ -108,6 +147,10 @@ BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapA
   m.rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
   if (scene.sky.lights()) m.skyGather = double(atlas.validTexels()) * kSkyGatherBytesPerTexel;
   m.views = largestViewBytes;
+  const EngineOutputParams& engine = s.output.engine;
+  const double rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
+  if (engine.directional) m.gathers = double(atlas.texelCount()) * kDirectionalBytesPerTexel + rayScene;
+  if (engine.probes) m.gathers = std::max(m.gathers, probeBytes(scene, atlas) + rayScene);
   return m;
 }
 
@@ -138,16 +181,20 @@ ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const st
     std::string parameter, remedy;
   };
   const std::string texels = s.atlas.densityAuto ? "maximum texels" : atlas.sizeParameter;
+  const std::string gather = s.output.engine.probes ? "--probes" : "--directional";
   const Share shares[] = {{m.atlas + m.skyGather, texels, "lower `" + texels + "`"},
                           {m.itemBuffers, "item buffer", "lower `item buffer`"},
                           {m.rayScene, "maximum memory", "bake a scene of fewer triangles"},
-                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"}};
+                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"},
+                          {m.gathers, gather, "leave out " + gather}};
   const Share& largest =
-      *std::max_element(shares, shares + 4, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
+      *std::max_element(shares, shares + 5, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
   std::ostringstream what;
   what << "the bake (atlas " << formatBytes(m.atlas) << ", item buffers " << formatBytes(m.itemBuffers)
        << ", ray scene " << formatBytes(m.rayScene) << ", sky gather " << formatBytes(m.skyGather)
-       << ", largest view " << formatBytes(m.views) << ")";
+       << ", largest view " << formatBytes(m.views);
+  if (m.gathers > 0.0) what << ", " << gather << "' gather " << formatBytes(m.gathers);
+  what << ")";
   requireMemory(m.total(), limit, largest.parameter, what.str(),
                 largest.remedy + " or raise `maximum memory`");
   return views;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "radiosity/bake/bake_steps.h"
 #include "radiosity/bake/lightmap_report.h"
@@ -109,6 +111,28 @@ nlohmann::json autoDensityReport(const BakeSettings& s, const BakeInput& in) {
           {"chart_texels_by_density", byDensity}};
 }
 
+// What the time limit left out of the gathers after the solve, from report.json's "engine_lightmap".
+struct GathersCut {
+  size_t directionalTexels = 0;
+  bool probes = false;
+  bool any() const { return directionalTexels > 0 || probes; }
+};
+GathersCut gathersCut(const nlohmann::json& engine) {
+  GathersCut cut;
+  if (!engine.is_object()) return cut;
+  if (engine.contains("directional"))
+    cut.directionalTexels = engine["directional"].value("texels_cut_by_time_limit", size_t(0));
+  if (engine.contains("probes")) cut.probes = engine["probes"].value("stopped_by_time_limit", false);
+  return cut;
+}
+
+// --time-limit's seconds as the user gave them (120, not 120.000000).
+std::string formatSeconds(double seconds) {
+  std::ostringstream text;
+  text << seconds;
+  return text.str();
+}
+
 }  // namespace
 
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,
@@ -173,6 +197,10 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["egl_platform"] = gl ? nlohmann::json(gl->platform()) : nlohmann::json(nullptr);
   report["sky"] = skyReport(*in.scene);
   report["energy"] = energyReport(r.energy);
+  // A solve the time limit stopped: the light it had not yet carried is still unshot (spread by the ambient
+  // term unless --no-ambient), beside what the surfaces absorbed and what left the scene.
+  report["energy"]["stopped_early"] = r.timedOut;
+  report["energy"]["unshot_share"] = r.energy.emitted > 0.0 ? r.energy.unshot / r.energy.emitted : 0.0;
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
   report["ambient_share_target"] = levels ? nlohmann::json(nullptr) : nlohmann::json(s.solver.ambientShare);
@@ -191,19 +219,35 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
       s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
   // The outputs' share kept back from the solve (bake_limits.h), and the views the limit left out.
   report["output_estimate_s"] = {
-      {"views", f.outputs.viewSeconds}, {"files", f.outputs.filesSeconds}, {"page", f.outputs.pageSeconds}};
+      {"views", f.outputs.viewSeconds},    {"files", f.outputs.filesSeconds},
+      {"page", f.outputs.pageSeconds},     {"directional", f.outputs.directionalSeconds},
+      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds}};
   report["views_skipped"] = f.skippedViews;
-  report["partial"] = r.timedOut || !f.skippedViews.empty();
-  std::ostringstream why;
-  if (r.timedOut)
-    why << "time limit of " << s.limits.timeLimit << " s reached after " << r.shots << " shots with "
-        << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
-        << s.solver.params.unshotFraction * 100.0 << " %)";
+  const GathersCut cut = gathersCut(f.engine);
+  report["partial"] = r.timedOut || !f.skippedViews.empty() || cut.any();
+  std::vector<std::string> why;
+  if (r.timedOut) {
+    std::ostringstream solve;
+    solve << "time limit of " << s.limits.timeLimit << " s reached after " << r.shots << " shots with "
+          << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
+          << s.solver.params.unshotFraction * 100.0 << " %)";
+    why.push_back(solve.str());
+  }
+  const std::string limit = "time limit of " + formatSeconds(s.limits.timeLimit) + " s reached before ";
   if (!f.skippedViews.empty())
-    why << (r.timedOut ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached before "
-        << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()
-        << " views were rendered (views_skipped)";
-  if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
+    why.push_back(limit + std::to_string(f.skippedViews.size()) + " of " +
+                  std::to_string(f.skippedViews.size() + f.views.size()) +
+                  " views were rendered (views_skipped)");
+  if (cut.directionalTexels > 0)
+    why.push_back(limit + "the directional lightmap's gather of " + std::to_string(cut.directionalTexels) +
+                  " texels (engine_lightmap.directional.texels_cut_by_time_limit)");
+  if (cut.probes)
+    why.push_back(limit + "every light probe was gathered (engine_lightmap.probes.cut_by_time_limit)");
+  if (report["partial"].get<bool>()) {
+    std::string joined;
+    for (const std::string& w : why) joined += (joined.empty() ? "" : "; ") + w;
+    report["partial_reason"] = joined;
+  }
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;
 }

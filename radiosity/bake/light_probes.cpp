@@ -22,6 +22,7 @@ namespace {
 std::vector<glm::vec3> probePoints(const Scene& scene, const ProbeParams& p, Context& ctx) {
   decomp::VoxelizeParams v;
   v.voxelSize = p.voxel;
+  v.memoryLimit = p.memoryLimit;
   const decomp::SolidGrid solid = decomp::voxelize(scene, v, ctx);
   const decomp::SpaceGrid space = decomp::classifySpace(scene, solid, {}, ctx);
   const decomp::DistanceGrid distance = decomp::distanceToGeometry(solid, space, ctx);
@@ -72,13 +73,18 @@ int cellOfPoint(const RayScene& rays, const std::vector<int>& cellOfTriangle, si
 
 LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
                               const std::vector<glm::vec3>& radiosity, const ProbeParams& params,
-                              Context& ctx) {
+                              Context& ctx, std::chrono::steady_clock::time_point deadline) {
   if (!(params.spacing > 0.0f) || !(params.voxel > 0.0f) || params.clearance < 0.0f)
     throw InputError("probe spacing", "the probes' spacing and voxel must be > 0");
   auto timer = ctx.time("light probes");
   const auto start = std::chrono::steady_clock::now();
   LightProbes out;
   out.params = params;
+  if (start >= deadline) {  // the voxels alone take seconds on a large level
+    out.stopped = true;
+    ctx.warn("probes: the time limit came before the probes were placed; probes.json holds none");
+    return out;
+  }
   std::vector<glm::vec3> points;
   try {
     points = probePoints(scene, params, ctx);
@@ -94,18 +100,35 @@ LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const 
   const BakedRadiance baked(scene, rays, atlas, radiosity);
   const std::vector<int> cellOfTriangle = cells.cellOfTriangle(scene.triangles.size());
   out.probes.resize(points.size());
-  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
-    LightProbe& probe = out.probes[i];
-    probe.position = points[i];
-    probe.cell = cellOfPoint(rays, cellOfTriangle, cells.cells.size(), points[i]);
-    std::vector<ArrivalSample> samples;
-    baked.gather(points[i], glm::vec3(0.0f), uint64_t(i), params.gather, samples);
-    for (const ArrivalSample& a : samples) {
-      const std::array<float, 9> y = shBasis(a.towards);
-      for (size_t k = 0; k < 9; ++k) probe.sh[k] += a.light * y[k];
-    }
-  });
-  out.rays = baked.raysTraced() + 26 * points.size();
+  // In batches of about a million rays so that the deadline is seen; the first batch always runs, and the
+  // probes past the deadline are left out (a probe with no light would read black).
+  const int raysPerProbe = params.gather.rays + params.gather.emitterSamples + 26;
+  const size_t batch = std::max<size_t>(1, (size_t(1) << 20) / size_t(std::max(1, raysPerProbe)));
+  size_t end = 0;
+  for (size_t from = 0; from < points.size(); from = end) {
+    if (from > 0 && std::chrono::steady_clock::now() >= deadline) break;
+    end = std::min(points.size(), from + batch);
+    tbb::parallel_for(from, end, [&](size_t i) {
+      LightProbe& probe = out.probes[i];
+      probe.position = points[i];
+      probe.cell = cellOfPoint(rays, cellOfTriangle, cells.cells.size(), points[i]);
+      std::vector<ArrivalSample> samples;
+      baked.gather(points[i], glm::vec3(0.0f), uint64_t(i), params.gather, samples);
+      for (const ArrivalSample& a : samples) {
+        const std::array<float, 9> y = shBasis(a.towards);
+        for (size_t k = 0; k < 9; ++k) probe.sh[k] += a.light * y[k];
+      }
+    });
+  }
+  if (end < points.size()) {
+    out.stopped = true;
+    out.cut = points.size() - end;
+    out.probes.resize(end);
+    ctx.warn("probes: the time limit came after " + std::to_string(end) + " of " +
+             std::to_string(points.size()) + " probes were gathered; probes.json holds those " +
+             std::to_string(end));
+  }
+  out.rays = baked.raysTraced() + 26 * out.probes.size();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -13,6 +13,8 @@
 #pragma once
 
 #include <array>
+#include <chrono>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,7 @@ struct ProbeParams {
   float clearance = 0.25f;  ///< metres a probe keeps from every surface
   float voxel = 0.1f;       ///< the voxels that find the empty space (m); at most clearance
   GatherParams gather = {1024, 256};
+  uint64_t memoryLimit = 0;  ///< bytes the voxels may take (decompositionBytes; 0: none), --max-memory
 };
 
 struct LightProbe {
@@ -45,13 +48,18 @@ struct LightProbes {
   ProbeParams params;
   uint64_t rays = 0;
   double seconds = 0.0;
+  bool stopped = false;  ///< the deadline came before every probe was gathered
+  size_t cut = 0;        ///< probes placed but left out at the deadline
 };
 
 /// Places probes in the enclosed empty space of `scene` and gathers each from the bake (`radiosity` per
 /// texel of `atlas`, undilated). Deterministic. Throws InputError when the voxels would not fit in memory.
-LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
-                              const std::vector<glm::vec3>& radiosity, const ProbeParams& params,
-                              Context& ctx);
+/// Past `deadline` none are placed, or the gather stops after the batch it is in (the first always runs)
+/// and the probes it did not reach are left out (LightProbes::stopped, cut).
+LightProbes gatherLightProbes(
+    const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
+    const std::vector<glm::vec3>& radiosity, const ProbeParams& params, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// probes.json: the convention, the spacing, and per probe its position, cell name and coefficients.
 nlohmann::json lightProbesJson(const LightProbes& probes, const CellGraph& cells);

@@ -1,5 +1,6 @@
 #include "radiosity/lightmap/directional_lightmap.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 
@@ -48,7 +49,8 @@ int texelCoefficients(const std::vector<ArrivalSample>& samples, const glm::vec3
 DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const LightmapAtlas& atlas,
                                               const std::vector<glm::vec3>& radiosity,
                                               const std::vector<glm::vec3>& irradiance,
-                                              const GatherParams& params, Context& ctx) {
+                                              const GatherParams& params, Context& ctx,
+                                              std::chrono::steady_clock::time_point deadline) {
   auto timer = ctx.time("directional lightmap");
   const auto start = std::chrono::steady_clock::now();
   DirectionalLightmap map;
@@ -57,20 +59,35 @@ DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const Lightmap
   const RayScene rays(scene);
   const BakedRadiance baked(scene, rays, atlas, radiosity);
   std::atomic<size_t> texels{0}, undirected{0};
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, atlas.texelCount(), 64), [&](const tbb::blocked_range<size_t>& r) {
-        std::vector<ArrivalSample> samples;
-        size_t count = 0, lost = 0;
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-          if (atlas.patch[i] < 0) continue;
-          baked.gather(atlas.position[i], atlas.normal[i], uint64_t(i), params, samples);
-          std::array<glm::vec3, 4> sh;
-          lost += size_t(texelCoefficients(samples, atlas.normal[i], irradiance[i], sh, map.gathered[i]));
-          for (size_t k = 0; k < 4; ++k) map.sh[k][i] = sh[k];
-          ++count;
-        }
-        texels += count, undirected += lost;
-      });
+  // In batches of about a million rays (a second or two on a loaded core) so that the deadline is seen;
+  // the first batch always runs. The texels past the deadline keep their irradiance along the normal.
+  const size_t batch = std::max<size_t>(64, (size_t(1) << 20) / size_t(std::max(1, params.rays)));
+  size_t end = 0;
+  for (size_t from = 0; from < atlas.texelCount(); from = end) {
+    if (from > 0 && std::chrono::steady_clock::now() >= deadline) break;
+    end = std::min(atlas.texelCount(), from + batch);
+    tbb::parallel_for(tbb::blocked_range<size_t>(from, end, 64), [&](const tbb::blocked_range<size_t>& r) {
+      std::vector<ArrivalSample> samples;
+      size_t count = 0, lost = 0;
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        if (atlas.patch[i] < 0) continue;
+        baked.gather(atlas.position[i], atlas.normal[i], uint64_t(i), params, samples);
+        std::array<glm::vec3, 4> sh;
+        lost += size_t(texelCoefficients(samples, atlas.normal[i], irradiance[i], sh, map.gathered[i]));
+        for (size_t k = 0; k < 4; ++k) map.sh[k][i] = sh[k];
+        ++count;
+      }
+      texels += count, undirected += lost;
+    });
+  }
+  const std::vector<ArrivalSample> none;
+  for (size_t i = end; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) continue;
+    std::array<glm::vec3, 4> sh;
+    texelCoefficients(none, atlas.normal[i], irradiance[i], sh, map.gathered[i]);
+    for (size_t k = 0; k < 4; ++k) map.sh[k][i] = sh[k];
+    ++map.cut;
+  }
   map.texels = texels, map.undirected = undirected;
   map.rays = baked.raysTraced();
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -37,16 +38,21 @@ struct DirectionalLightmap {
   std::vector<glm::vec3> gathered;
   size_t texels = 0;      ///< valid texels gathered
   size_t undirected = 0;  ///< channels of valid texels with light the gather did not find (V = E n_s)
+  /// Valid texels the deadline left ungathered: their light along the normal alone (V = E n_s), not in
+  /// `texels`.
+  size_t cut = 0;
   uint64_t rays = 0;
   double seconds = 0.0;
 };
 
 /// Gathers the L1 SH of every valid texel of `atlas` from the bake's `radiosity` (per texel, W/m²,
-/// undilated), scaled to `irradiance` (E per texel, engine_lightmap.h). Deterministic.
-DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const LightmapAtlas& atlas,
-                                              const std::vector<glm::vec3>& radiosity,
-                                              const std::vector<glm::vec3>& irradiance,
-                                              const GatherParams& params, Context& ctx);
+/// undilated), scaled to `irradiance` (E per texel, engine_lightmap.h). Deterministic. Past `deadline` the
+/// gather stops after the batch it is in (the first batch always runs), the rest of the texels counted in
+/// DirectionalLightmap::cut.
+DirectionalLightmap gatherDirectionalLightmap(
+    const Scene& scene, const LightmapAtlas& atlas, const std::vector<glm::vec3>& radiosity,
+    const std::vector<glm::vec3>& irradiance, const GatherParams& params, Context& ctx,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 /// Texel `i`'s four coefficients, in order.
 std::array<glm::vec3, 4> texelSh(const DirectionalLightmap& map, size_t i);

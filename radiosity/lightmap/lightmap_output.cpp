@@ -65,7 +65,12 @@ nlohmann::json writeDirectionalFiles(OutputDir& out, const Scene& scene, const L
                                      const EngineOutputParams& params, Context& ctx) {
   GatherParams gather;
   gather.rays = params.directionalRays;
-  DirectionalLightmap map = gatherDirectionalLightmap(scene, atlas, radiosity, irradiance, gather, ctx);
+  DirectionalLightmap map =
+      gatherDirectionalLightmap(scene, atlas, radiosity, irradiance, gather, ctx, params.gatherDeadline);
+  if (map.cut > 0)
+    ctx.warn("directional: the time limit came after " + std::to_string(map.texels) + " of " +
+             std::to_string(map.texels + map.cut) +
+             " texels were gathered; the others hold their irradiance along the normal, with no direction");
   for (size_t k = 0; k < 4; ++k) {
     std::vector<glm::vec3>& values = map.sh[k];
     dilate(atlas, values);
@@ -85,6 +90,7 @@ nlohmann::json writeDirectionalFiles(OutputDir& out, const Scene& scene, const L
           {"emitter_samples_per_texel", gather.emitterSamples},
           {"texels", map.texels},
           {"undirected_channels", map.undirected},
+          {"texels_cut_by_time_limit", map.cut},
           {"rays", map.rays},
           {"seconds", map.seconds}};
 }

@@ -39,6 +39,8 @@ struct EngineOutputParams {
   /// extras.cpgi_lightmap.probes. Off by default.
   bool probes = false;
   float probeSpacing = 1.0f;  ///< metres between probes (ProbeParams::spacing)
+  /// The directional gather stops here (--time-limit, the files after it kept back); not a setting.
+  std::chrono::steady_clock::time_point gatherDeadline = std::chrono::steady_clock::time_point::max();
 };
 
 struct LightmapOutputs {

@@ -50,12 +50,21 @@ SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Co
   r.incident = d.irradiance;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
+  // The books as shootFirstOnCpu keeps them: what landed received, what the texels reflect unshot, the rest
+  // absorbed (without them a bake stopped here said absorbed 0 and escaped all that was emitted).
+  EnergyTotals& e = r.energy;
   for (size_t t = 0; t < atlas.texelCount(); ++t)
     if (atlas.patch[t] >= 0) {
       r.residual[t] = atlas.albedo[t] * d.irradiance[t];
       r.radiosity[t] = atlas.emission[t] + r.residual[t];
+      const glm::dvec3 got(d.irradiance[t]), back(r.residual[t]);
+      e.received += (got.r + got.g + got.b) * atlas.area[t];
+      e.unshot += (back.r + back.g + back.b) * atlas.area[t];
     }
-  r.energy.emitted = r.energy.shot = punctualEmitted(scene.lights, d.directionalLanded);
+  e.absorbed = e.received - e.unshot;
+  e.emitted = e.shot = punctualEmitted(scene.lights, d.directionalLanded);
+  r.history.push_back(e);
+  r.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
   return r;
 }
 

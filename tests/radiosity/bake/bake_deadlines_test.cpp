@@ -1,0 +1,217 @@
+// --time-limit in the stages after the solve and before it (issue 46 item 3): the directional gather and
+// the light probes stop at their deadline with what they have, the density pilot is left out when its
+// deadline has passed, and a solve stopped early keeps its books: what the surfaces absorbed, what left the
+// scene and what it had not yet carried (unshot), said in report.json and in one warning. Every deadline
+// here has passed before the stage starts, so nothing depends on the machine's speed.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/quads.h"
+#include "radiosity/bake/bake.h"
+#include "radiosity/bake/bake_limits.h"
+#include "radiosity/bake/light_probes.h"
+#include "radiosity/lightmap/directional_lightmap.h"
+#include "radiosity/lightmap/spherical_harmonics.h"
+#include "scenes/seed_scenes.h"
+#include "tests/radiosity/test_scenes.h"
+#include "tests/radiosity/test_sky_scenes.h"
+#include "tests/support/in_process_bake.h"
+#include "tests/support/temp_dir.h"
+
+namespace cpgi {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A run whose time limit of one second passed ten seconds before the bake starts.
+BakeRun pastTheLimit(BakeSettings& s) {
+  s.limits.timeLimit = 1.0;
+  BakeRun run;
+  run.gl = &test::sharedGl();
+  run.start = Clock::now() - std::chrono::seconds(10);
+  return run;
+}
+
+int warningsStarting(const Context& ctx, const std::string& start) {
+  int n = 0;
+  for (const std::string& w : ctx.warnings()) n += w.rfind(start, 0) == 0;
+  return n;
+}
+
+// A 4 m × 4 m grey floor under a small lamp, at 16 texels a metre: 4 096 floor texels, 16 first batches of
+// a gather of 4 096 directions a texel (about a million rays a batch).
+struct LampOverFloor {
+  Scene scene;
+  LightmapAtlas atlas;
+  LampOverFloor() {
+    const uint32_t floor = testing::addMaterial(scene, glm::vec3(0.5f));
+    const uint32_t lamp = testing::addMaterial(scene, glm::vec3(0.0f), glm::vec3(100.0f));
+    testing::addRect(scene, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, floor);
+    testing::addRect(scene, {0.9f, 2.2f, -0.6f}, {0.2f, 0, 0}, {0, 0, 0.2f}, lamp);
+    Context ctx;
+    AtlasParams p;
+    p.density = 16.0f;
+    atlas = buildAtlas(scene, findQuads(scene), p, ctx);
+  }
+};
+
+TEST(BakeDeadlines, TheDirectionalGatherPastItsDeadlineStopsAfterItsFirstBatch) {
+  const LampOverFloor s;
+  std::vector<glm::vec3> irradiance(s.atlas.texelCount(), glm::vec3(0.0f));
+  size_t valid = 0;
+  for (size_t i = 0; i < s.atlas.texelCount(); ++i)
+    if (s.atlas.patch[i] >= 0) irradiance[i] = glm::vec3(1.0f, 2.0f, 3.0f), ++valid;
+  const GatherParams gather{.rays = 4096, .emitterSamples = 32};
+  Context ctx;
+  const DirectionalLightmap map =
+      gatherDirectionalLightmap(s.scene, s.atlas, s.atlas.emission, irradiance, gather, ctx, Clock::now());
+  const size_t batch = (size_t(1) << 20) / 4096;
+  EXPECT_GT(map.texels, 0u);  // the first batch ran
+  EXPECT_LE(map.texels, batch);
+  EXPECT_EQ(map.texels + map.cut, valid);
+  EXPECT_GT(map.cut, valid / 2);
+  // A texel the deadline left out holds its irradiance along its normal, with no other direction.
+  size_t checked = 0;
+  for (size_t i = batch; i < s.atlas.texelCount(); ++i) {
+    if (s.atlas.patch[i] < 0) continue;
+    const std::array<glm::vec3, 4> sh = texelSh(map, i);
+    const glm::vec3 n = s.atlas.normal[i];
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_FLOAT_EQ(sh[0][c], kShY00 * irradiance[i][c]);
+      EXPECT_FLOAT_EQ(sh[1][c], kShY1 * irradiance[i][c] * n.y);
+      EXPECT_FLOAT_EQ(sh[2][c], kShY1 * irradiance[i][c] * n.z);
+      EXPECT_FLOAT_EQ(sh[3][c], kShY1 * irradiance[i][c] * n.x);
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+TEST(BakeDeadlines, ProbesPastTheirDeadlineArePlacedNoneAndSaySo) {
+  const SeedScene seed = makeSeedScene(1);
+  Context layout;
+  AtlasParams p;
+  p.texelsPerQuad = 4;
+  const LightmapAtlas atlas = buildAtlas(seed.scene, findQuads(seed.scene), p, layout);
+  Context ctx;
+  const LightProbes probes =
+      gatherLightProbes(seed.scene, seed.cells, atlas, atlas.emission, ProbeParams{}, ctx, Clock::now());
+  EXPECT_TRUE(probes.probes.empty());
+  EXPECT_TRUE(probes.stopped);
+  EXPECT_EQ(warningsStarting(ctx, "probes: the time limit came before the probes were placed"), 1);
+}
+
+// A bake past its limit with --directional and --probes: the solve, the gathers and the views each stop,
+// say so, and report.json marks the result partial with each reason; the files are all written.
+TEST(BakeDeadlines, PastTheLimitTheGathersStopAndTheReportSaysWhy) {
+  const SeedScene seed = makeSeedScene(1);
+  test::TempDir dir;
+  BakeSettings s = test::quickSeed1();
+  s.output.folder = dir / "out";
+  s.output.engine.directional = true;
+  s.output.engine.directionalRays = 4096;  // a batch of 256 texels: seed1's atlas is many
+  s.output.engine.probes = true;
+  const BakeRun run = pastTheLimit(s);
+  Context ctx;
+  const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
+  EXPECT_TRUE(r.partial);
+  const nlohmann::json& engine = r.report["engine_lightmap"];
+  EXPECT_GT(engine["directional"]["texels_cut_by_time_limit"].get<size_t>(), 0u);
+  EXPECT_EQ(engine["probes"]["count"], 0);
+  EXPECT_TRUE(engine["probes"]["stopped_by_time_limit"].get<bool>());
+  const std::string why = r.report["partial_reason"];
+  for (const char* part :
+       {"shots with", "views were rendered", "directional lightmap's gather", "light probe"})
+    EXPECT_NE(why.find(part), std::string::npos) << part << " in " << why;
+  EXPECT_EQ(warningsStarting(ctx, "directional: the time limit came after"), 1);
+  EXPECT_EQ(warningsStarting(ctx, "probes: the time limit came"), 1);
+  for (const char* f :
+       {"lightmap_sh_l0.exr", "lightmap_sh_l1x.exr", "probes.json", "baked.glb", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("out/") + f))) << f;
+  // The outputs' estimate counts the gathers asked for.
+  EXPECT_GT(r.report["output_estimate_s"]["directional"].get<double>(), 0.0);
+  EXPECT_GT(r.report["output_estimate_s"]["probes"].get<double>(), 0.0);
+}
+
+TEST(BakeDeadlines, TheGathersEstimateGrowsWithTheirRaysAndIsNoneWhenNotAsked) {
+  const SeedScene seed = makeSeedScene(1);
+  const std::vector<Camera> cameras = bake_steps::expectedCameras(seed.scene, seed.cells);
+  EngineOutputParams engine;
+  const bake_steps::OutputEstimate none =
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+  EXPECT_EQ(none.gatherSeconds(), 0.0);
+  engine.directional = true;
+  engine.probes = true;
+  const bake_steps::OutputEstimate both =
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+  engine.directionalRays *= 4;
+  engine.probeSpacing /= 2.0f;
+  const bake_steps::OutputEstimate more =
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+  EXPECT_GT(both.directionalSeconds, 0.0);
+  EXPECT_GT(both.probesSeconds, 0.0);
+  EXPECT_GT(more.directionalSeconds, 3.0 * both.directionalSeconds);
+  EXPECT_GT(more.probesSeconds, 4.0 * both.probesSeconds);
+  EXPECT_DOUBLE_EQ(both.seconds() - none.seconds(), both.gatherSeconds());
+}
+
+// --density auto with its deadline passed: no pilot (its atlas, set-up and shot would all come after the
+// limit); the output laid out at one even density, said once.
+TEST(BakeDeadlines, PastTheLimitTheDensityPilotIsLeftOut) {
+  const SeedScene seed = makeSeedScene(1);
+  BakeSettings s = test::quickSeed1();
+  s.atlas.densityAuto = true;
+  const BakeRun run = pastTheLimit(s);
+  Context ctx;
+  const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
+  EXPECT_EQ(warningsStarting(ctx, "auto density: the time limit came before the density pilot"), 1);
+  EXPECT_TRUE(r.report["auto_density"].is_null());
+  EXPECT_GT(r.atlas.validTexels(), 0u);
+  EXPECT_TRUE(r.partial);
+}
+
+// The books of a bake stopped before its first shot, on every path its first step can take: the sky's
+// light landed is emitted; what the floor absorbed, what it reflects (not yet carried: unshot) and what
+// left the scene add up to it, none of them zero but the escape; report.json and one warning say so.
+void expectStoppedBooks(BakeSettings s, const std::string& what) {
+  SCOPED_TRACE(what);
+  Scene box = testing::boxOpenToTheSky(0.5f, 0.5f);
+  box.sky.kind = Sky::Kind::Uniform;
+  box.sky.zenithRadiance = 3.0f;
+  box.sky.gatherRays = 64;
+  const BakeRun run = pastTheLimit(s);
+  Context ctx;
+  const BakeResult r = bake(box, CellGraph{}, s, ctx, run);
+  const nlohmann::json& e = r.report["energy"];
+  const double emitted = e["emitted_w"], absorbed = e["absorbed_w"], escaped = e["escaped_w"],
+               unshot = e["unshot_w"];
+  EXPECT_GT(emitted, 0.0);
+  EXPECT_GT(absorbed, 0.1 * emitted);
+  EXPECT_GT(unshot, 0.1 * emitted);
+  EXPECT_NEAR(absorbed + escaped + unshot, emitted, 1e-3 * emitted);
+  EXPECT_TRUE(e["stopped_early"].get<bool>());
+  EXPECT_NEAR(e["unshot_share"].get<double>(), unshot / emitted, 1e-9);
+  EXPECT_EQ(r.shots, 0);
+  EXPECT_TRUE(r.partial);
+  EXPECT_EQ(warningsStarting(ctx, "solve: the time limit stopped it after 0 shots"), 1);
+}
+
+TEST(BakeDeadlines, StoppedBeforeAnyShotTheEnergyIsAbsorbedEscapedAndUnshot) {
+  BakeSettings s = test::quickSeed1();
+  s.atlas.params.texelsPerQuad = 0;
+  s.atlas.params.density = 8.0f;
+  s.solver.solveDensity = 0.0f;
+  expectStoppedBooks(s, "one level");
+  s.solver.solveDensity = 2.0f;
+  expectStoppedBooks(s, "two levels, the sky by the lamps' rays");
+  s.solver.params.lampRays = 0;
+  expectStoppedBooks(s, "two levels, the sky alone (no emitter: shootPunctualOnly)");
+}
+
+}  // namespace
+}  // namespace cpgi

@@ -243,11 +243,13 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
   EngineOutputParams engine = s.output.engine;
   engine.gatherDeadline = keepBack(deadline, outputs.filesSeconds + outputs.pageSeconds);
   nlohmann::json probes, probesReport;
-  if (engine.probes)
-    probesReport = writeBakeProbes(
-        in, r, engine, s.atlas.params.memoryLimit,
-        shareOfTimeLeft(engine.gatherDeadline, outputs.probesSeconds, outputs.gatherSeconds()), *out, probes,
-        ctx);
+  if (engine.probes) {
+    // The placement's voxels cannot stop part-way: without the time for them, none are placed.
+    Clock::time_point until =
+        shareOfTimeLeft(engine.gatherDeadline, outputs.probesSeconds, outputs.gatherSeconds());
+    if (keepBack(until, outputs.probeVoxelSeconds) <= Clock::now()) until = Clock::now();
+    probesReport = writeBakeProbes(in, r, engine, s.atlas.params.memoryLimit, until, *out, probes, ctx);
+  }
   LightmapOutputs written =
       writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
                            views, keepBack(deadline, outputs.pageSeconds), engine, probes);
@@ -270,11 +272,17 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // estimated at the texel budget (and the pilot given a share of the rest), for the solve at the atlas
   // laid out.
   const std::vector<Camera> cameras = expectedCameras(*in.scene, *in.cells);
-  const double raySeconds = deadline == Clock::time_point::max() ? 0.0 : probeRaySeconds(*in.scene);
+  const bool limited = deadline != Clock::time_point::max();
+  // Measured as the machine runs now, and again before the solve: the load moves in minutes.
+  const auto measureCosts = [&] {
+    return MachineCosts{.ray = limited ? probeRaySeconds(*in.scene) : 0.0,
+                        .texel = limited ? probeTexelSeconds() : 0.0};
+  };
+  const MachineCosts costs = measureCosts();
   const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
   const Clock::time_point beforeOutputs =
       keepBack(deadline, outputsKeptBack(s, estimateOutputs(*in.scene, cameras, s.output.views, budget,
-                                                            budget, raySeconds, s.output.engine)));
+                                                            budget, costs, s.output.engine)));
   // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
@@ -283,7 +291,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv);  // --uv scene refused before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs = estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(),
-                                                 in.atlas.texelCount(), raySeconds, s.output.engine);
+                                                 in.atlas.texelCount(), measureCosts(), s.output.engine);
   const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));

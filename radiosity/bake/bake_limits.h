@@ -23,8 +23,19 @@ namespace cpgi::bake_steps {
 /// The outputs' estimates are counted in these rays.
 double probeRaySeconds(const Scene& scene);
 
-/// The seconds a bake's outputs take after its solve, from their pixels and texels, each costed in rays
-/// of probeRaySeconds (bench/RESULTS.md, "A bake inside its limits"), with room to spare.
+/// The seconds of a pixel of a PNG encoding on this machine as it runs now: the files and the page, mostly
+/// one thread compressing and copying texels, are counted in these, whatever the scene's rays cost.
+double probeTexelSeconds();
+
+/// This machine's costs as it runs now, the outputs' estimates' units.
+struct MachineCosts {
+  double ray = 0.0;    ///< probeRaySeconds
+  double texel = 0.0;  ///< probeTexelSeconds
+};
+
+/// The seconds a bake's outputs take after its solve, from their pixels and texels: the views and the
+/// gathers costed in rays of probeRaySeconds, the files and the page in texels of probeTexelSeconds
+/// (bench/RESULTS.md, "A bake inside its limits"), with room to spare.
 struct OutputEstimate {
   size_t views = 0;                 ///< cameras whose pictures the bake renders
   double viewPixels = 0.0;          ///< their pixels, all views
@@ -33,7 +44,9 @@ struct OutputEstimate {
   double pageSeconds = 0.0;         ///< report.json and report.html after them
   double directionalSeconds = 0.0;  ///< --directional's gather, before the files
   double probesSeconds = 0.0;       ///< --probes' voxels and gather, before the files
+  double probeVoxelSeconds = 0.0;   ///< of which their placement's voxels, which cannot stop part-way
   double raySeconds = 0.0;          ///< the cost of a ray they are counted in (probeRaySeconds)
+  double texelSeconds = 0.0;        ///< the cost of a texel the files are counted in (probeTexelSeconds)
   double gatherSeconds() const { return directionalSeconds + probesSeconds; }
   double seconds() const { return viewSeconds + filesSeconds + pageSeconds + gatherSeconds(); }
 };
@@ -46,8 +59,8 @@ std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells);
 /// `atlasTexels`) with the views of `cameras` at `views`' size, and `engine`'s directional gather and
 /// probes when asked for.
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
-                               const ViewParams& views, size_t texels, size_t atlasTexels, double raySeconds,
-                               const EngineOutputParams& engine = {});
+                               const ViewParams& views, size_t texels, size_t atlasTexels,
+                               const MachineCosts& costs, const EngineOutputParams& engine = {});
 
 /// The most of --time-limit the directional gather and the probes' estimate keeps back from the solve:
 /// the rest is the solve's, and what they do not finish by their deadline is left out (said).

@@ -221,7 +221,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["output_estimate_s"] = {
       {"views", f.outputs.viewSeconds},    {"files", f.outputs.filesSeconds},
       {"page", f.outputs.pageSeconds},     {"directional", f.outputs.directionalSeconds},
-      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds}};
+      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds},
+      {"texel", f.outputs.texelSeconds}};
   report["views_skipped"] = f.skippedViews;
   const GathersCut cut = gathersCut(f.engine);
   report["partial"] = r.timedOut || !f.skippedViews.empty() || cut.any();

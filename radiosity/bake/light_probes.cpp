@@ -19,13 +19,19 @@ namespace {
 // The lattice: every `spacing`-th voxel centre of the enclosed or roofed empty space that lies `clearance`
 // clear of the surfaces (a voxel's distance is to the nearest solid voxel's centre, the surface half a voxel
 // nearer).
-std::vector<glm::vec3> probePoints(const Scene& scene, const ProbeParams& p, Context& ctx) {
+// Past `deadline` after one of the voxels' stages (each seconds on a large level), none: `stopped` set.
+std::vector<glm::vec3> probePoints(const Scene& scene, const ProbeParams& p, Context& ctx,
+                                   std::chrono::steady_clock::time_point deadline, bool& stopped) {
+  const auto late = [&] { return stopped = std::chrono::steady_clock::now() >= deadline; };
   decomp::VoxelizeParams v;
   v.voxelSize = p.voxel;
   v.memoryLimit = p.memoryLimit;
   const decomp::SolidGrid solid = decomp::voxelize(scene, v, ctx);
+  if (late()) return {};
   const decomp::SpaceGrid space = decomp::classifySpace(scene, solid, {}, ctx);
+  if (late()) return {};
   const decomp::DistanceGrid distance = decomp::distanceToGeometry(solid, space, ctx);
+  if (late()) return {};
   const decomp::GridFrame& f = solid.frame;
   // A room with an open door or window is reachable from outside, so its voxels are "outside" too: those
   // under a roof (solid above and below them in their column) count as well.
@@ -87,11 +93,15 @@ LightProbes gatherLightProbes(const Scene& scene, const CellGraph& cells, const 
   }
   std::vector<glm::vec3> points;
   try {
-    points = probePoints(scene, params, ctx);
+    points = probePoints(scene, params, ctx, deadline, out.stopped);
   } catch (const InputError& e) {
     // The voxels' own limits name the decomposition's options; here they are the probes'.
     throw InputError("--probes",
                      std::string("the empty space is too large to find at 0.1 m voxels (") + e.what() + ")");
+  }
+  if (out.stopped) {
+    ctx.warn("probes: the time limit came while the probes were placed; probes.json holds none");
+    return out;
   }
   if (points.empty())
     ctx.warn("probes: no enclosed or roofed empty space " + std::to_string(params.clearance) +

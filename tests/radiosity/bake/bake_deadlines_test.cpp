@@ -143,16 +143,16 @@ TEST(BakeDeadlines, TheGathersEstimateGrowsWithTheirRaysAndIsNoneWhenNotAsked) {
   const std::vector<Camera> cameras = bake_steps::expectedCameras(seed.scene, seed.cells);
   EngineOutputParams engine;
   const bake_steps::OutputEstimate none =
-      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, {1e-6, 1e-7}, engine);
   EXPECT_EQ(none.gatherSeconds(), 0.0);
   engine.directional = true;
   engine.probes = true;
   const bake_steps::OutputEstimate both =
-      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, {1e-6, 1e-7}, engine);
   engine.directionalRays *= 4;
   engine.probeSpacing /= 2.0f;
   const bake_steps::OutputEstimate more =
-      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, 1e-6, engine);
+      bake_steps::estimateOutputs(seed.scene, cameras, ViewParams{}, 10000, 12000, {1e-6, 1e-7}, engine);
   EXPECT_GT(both.directionalSeconds, 0.0);
   EXPECT_GT(both.probesSeconds, 0.0);
   EXPECT_GT(more.directionalSeconds, 3.0 * both.directionalSeconds);

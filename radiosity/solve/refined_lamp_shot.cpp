@@ -90,7 +90,10 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   // (SolverParams::lampRays), and on an engine without lamp shots. Through the GL item buffers, the few
   // eyes on a lamp see a door's jambs from a few points only: a room lit through a door came out 10 %
   // dark, the floor along the door 36 % (bench/RESULTS.md, "Lamps through doors at two levels").
-  if (settings.lampRays > 0 || !engine.features().lampShots) {
+  // Past the deadline, no engine's set-up either (a minute of GL on a loaded machine for the pilot of a
+  // house): the rays' shot stops at once, its lamps unshot, the sky's first pass kept.
+  const bool late = std::chrono::steady_clock::now() >= controls.deadline;
+  if (settings.lampRays > 0 || !engine.features().lampShots || late) {
     const auto start = std::chrono::steady_clock::now();
     SolveResult byRays = shootFirstOnCpu(
         scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls.deadline);
@@ -125,8 +128,11 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
     if (coarse.patch[c] >= 0 && v > 0.0f) litSum += double(v) * coarse.area[c], litArea += coarse.area[c];
   }
   const float floor = litArea > 0.0 ? params.floorShare * float(litSum / litArea) : 0.0f;
+  // Past the deadline (the coarse shot then has no lamp flags either), none.
+  const bool stopped = lit.timedOut || std::chrono::steady_clock::now() >= controls.deadline;
   const std::vector<uint8_t> refine =
-      texelsToRefine(mapping, atlas, coarse, lit.incident, lit.lampFlags, params.tolerance, floor);
+      stopped ? std::vector<uint8_t>(atlas.texelCount(), 0)
+              : texelsToRefine(mapping, atlas, coarse, lit.incident, lit.lampFlags, params.tolerance, floor);
   size_t refined = 0;
   for (uint8_t r : refine) refined += r;
 

@@ -15,8 +15,10 @@
 #include "radiosity/bake/bake.h"
 #include "radiosity/bake/bake_limits.h"
 #include "radiosity/bake/light_probes.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/directional_lightmap.h"
 #include "radiosity/lightmap/spherical_harmonics.h"
+#include "radiosity/solve/solve.h"
 #include "scenes/seed_scenes.h"
 #include "tests/radiosity/test_scenes.h"
 #include "tests/radiosity/test_sky_scenes.h"
@@ -199,6 +201,24 @@ void expectStoppedBooks(BakeSettings s, const std::string& what) {
   EXPECT_EQ(r.shots, 0);
   EXPECT_TRUE(r.partial);
   EXPECT_EQ(warningsStarting(ctx, "solve: the time limit stopped it after 0 shots"), 1);
+}
+
+// A solve whose deadline has passed before its engine's set-up (a minute of GL for a house's pilot on a
+// loaded machine) sets nothing up: the first shot's light alone, its lamps unshot, the books whole.
+TEST(BakeDeadlines, ASolvePastItsDeadlineSetsUpNoEngine) {
+  const LampOverFloor s;
+  GlShotEngine gl(test::sharedGl());
+  SolverParams settings;
+  settings.lampRays = 0;  // the lamps through the engine's item buffers, as the density pilot shoots them
+  Context ctx;
+  const SolveResult r =
+      solveProgressive(s.scene, s.atlas, settings, gl, ctx, SolveControls{.deadline = Clock::now()});
+  for (const Context::Timing& t : ctx.timings()) EXPECT_NE(t.stage, "solve: setup");
+  EXPECT_TRUE(r.timedOut);
+  EXPECT_EQ(r.shots, 0);
+  EXPECT_GT(r.energy.emitted, 0.0);
+  EXPECT_NEAR(r.energy.unshot, r.energy.emitted, 1e-6 * r.energy.emitted);  // the lamp's power, unshot
+  EXPECT_EQ(r.radiosity.size(), s.atlas.texelCount());
 }
 
 TEST(BakeDeadlines, StoppedBeforeAnyShotTheEnergyIsAbsorbedEscapedAndUnshot) {

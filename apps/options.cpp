@@ -323,8 +323,9 @@ void addAmbientOption(CLI::App& cmd, bool& noAmbient, double& ambientShare) {
 void addTimeLimitOption(CLI::App& cmd, double& seconds) {
   const OptionGroup group(cmd, "Limits");
   addChecked(cmd, OptionScope{}, "time limit", seconds,
-             "Stop shooting once the bake has run this many seconds (wall clock, from its start; 0: no "
-             "limit) and write what it has, marked partial in report.json; the writing comes on top",
+             "End the bake within about this many seconds (wall clock, from its start; 0: no limit): "
+             "every stage stops at its share with what it has, the files' time kept back, and the result "
+             "is written marked partial in report.json",
              within(0.0, 1e9));
 }
 

@@ -3,6 +3,8 @@
 #include "radiosity/bake/bake.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -156,6 +158,20 @@ glm::dvec3 addBakeAmbient(const BakeSettings& s, const BakeInput& in, const Solv
   return ambient;
 }
 
+// The one line a solve stopped by the time limit adds: how the emitted power stands, the light not yet
+// carried included.
+std::string stoppedEarlyNote(const BakeSettings& s, const SolveResult& r) {
+  const EnergyTotals& e = r.energy;
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "solve: the time limit stopped it after %d shots: of %.4g W emitted, %.4g W absorbed, %.4g W "
+                "escaped and %.4g W (%.1f %%) still unshot, %s",
+                r.shots, e.emitted, e.absorbed, std::abs(e.escaped()) < 1e-9 * e.emitted ? 0.0 : e.escaped(),
+                e.unshot, e.emitted > 0.0 ? 100.0 * e.unshot / e.emitted : 0.0,
+                s.solver.ambient ? "spread over the rooms as the ambient term" : "left out (--no-ambient)");
+  return line;
+}
+
 // The density pilot's share (kPilotTimeShare) of the time from now to `beforeOutputs`.
 Clock::time_point pilotDeadline(Clock::time_point beforeOutputs) {
   if (beforeOutputs == Clock::time_point::max()) return beforeOutputs;
@@ -172,6 +188,24 @@ void usePlannedDensities(const BakeSettings& s, BakeInput& in, const std::filesy
   if (in.triangleDensity.size() != in.scene->triangles.size())
     throw InputError((plan / "plan.json").string(),
                      "holds no texel density per triangle of " + s.input.scene + "; make the plan again");
+}
+
+// The seconds kept back from the solve for the outputs: all of their estimate but the directional gather's
+// and the probes', of which at most kGatherTimeShare of the limit (a gather its deadline stops writes
+// nothing, said in a warning).
+double outputsKeptBack(const BakeSettings& s, const OutputEstimate& outputs) {
+  const double gathers = s.limits.timeLimit > 0.0
+                             ? std::min(outputs.gatherSeconds(), kGatherTimeShare * s.limits.timeLimit)
+                             : outputs.gatherSeconds();
+  return outputs.seconds() - outputs.gatherSeconds() + gathers;
+}
+
+// The time point `part` of `whole` of the way from now to `until` (none stays none; past stays past).
+Clock::time_point shareOfTimeLeft(Clock::time_point until, double part, double whole) {
+  const Clock::time_point now = Clock::now();
+  if (until == Clock::time_point::max() || until <= now || !(whole > 0.0)) return until;
+  return now +
+         std::chrono::duration_cast<Clock::duration>((until - now) * std::clamp(part / whole, 0.0, 1.0));
 }
 
 // probes.json (bake --probes), its JSON for baked.glb in `probes`; returns report.json's entry. A gather
@@ -202,21 +236,29 @@ nlohmann::json writeLightProbes(const BakeInput& in, const SolveResult& r, const
 }
 
 // The light written: the files of the result set (with a folder) and the figures of the report.
-// The views are rendered while `viewsDeadline` leaves time (the report page's share kept back).
-void writeBake(const BakeInput& in, const SolveInput& x, const SolveResult& r, const ViewParams& views,
-               const EngineOutputParams& engine, Clock::time_point viewsDeadline, OutputDir* out,
-               BakeFigures& f, Context& ctx) {
+// Before `deadline`, the outputs' estimate kept back from each: the probes and the directional gather
+// share the time the files and the page leave, by their estimates; the views stop with the page's left.
+void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, const SolveResult& r,
+               const ViewParams& views, const OutputEstimate& outputs, Clock::time_point deadline,
+               OutputDir* out, BakeFigures& f, Context& ctx) {
   auto t = ctx.time("write");
   if (!out) return;
   ctx.progress("write", 0.0, "lightmaps and glb files");
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
+  EngineOutputParams engine = s.output.engine;
   nlohmann::json probes, probesReport;
-  if (engine.probes) probesReport = writeLightProbes(in, r, engine, viewsDeadline, *out, probes, f, ctx);
+  if (engine.probes) {
+    // The placement's voxels cannot stop part-way: without the time for them, none are placed.
+    const Clock::time_point gathers = keepBack(deadline, outputs.filesSeconds + outputs.pageSeconds);
+    Clock::time_point until = shareOfTimeLeft(gathers, outputs.probesSeconds, outputs.gatherSeconds());
+    if (keepBack(until, outputs.probeVoxelSeconds) <= Clock::now()) until = Clock::now();
+    probesReport = writeLightProbes(in, r, engine, until, *out, probes, f, ctx);
+  }
   LightmapOutputs written =
       writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
-                           views, viewsDeadline, engine, probes);
+                           views, keepBack(deadline, outputs.pageSeconds), engine, probes);
   f.engine = std::move(written.engine);
   if (engine.probes) f.engine["probes"] = probesReport;
   f.views = std::move(written.views);
@@ -238,10 +280,17 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // estimated at the texel budget (and the pilot given a share of the rest), for the solve at the atlas
   // laid out.
   const std::vector<Camera> cameras = expectedCameras(*in.scene, *in.cells);
-  const double raySeconds = deadline == Clock::time_point::max() ? 0.0 : probeRaySeconds(*in.scene);
+  const bool limited = deadline != Clock::time_point::max();
+  // Measured as the machine runs now, and again before the solve: the load moves in minutes.
+  const auto measureCosts = [&] {
+    return MachineCosts{.ray = limited ? probeRaySeconds(*in.scene) : 0.0,
+                        .texel = limited ? probeTexelSeconds() : 0.0};
+  };
+  const MachineCosts costs = measureCosts();
   const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
-  const Clock::time_point beforeOutputs = keepBack(
-      deadline, estimateOutputs(*in.scene, cameras, s.output.views, budget, budget, raySeconds).seconds());
+  const Clock::time_point beforeOutputs =
+      keepBack(deadline, outputsKeptBack(s, estimateOutputs(*in.scene, cameras, s.output.views, budget,
+                                                            budget, costs, s.output.engine)));
   // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
@@ -249,15 +298,9 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
   requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv, s.output.engine.perObject);  // before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
-  const OutputEstimate outputs =
-      estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(), in.atlas.texelCount(), raySeconds);
-  // The directional gather's rays are kept back too, so that its files and the views both fit.
-  const double directionalRays =
-      s.output.engine.directional
-          ? directionalGatherRays(in.atlas.validTexels(), s.output.engine.directionalRays)
-          : 0;
-  const Clock::time_point solveDeadline =
-      keepBack(deadline, outputs.seconds() + raySeconds * directionalRays);
+  const OutputEstimate outputs = estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(),
+                                                 in.atlas.texelCount(), measureCosts(), s.output.engine);
+  const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
@@ -285,14 +328,14 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // The loop's bound on the stop per room (radiosity/solve/progressive_loop.h) stopped it: say which rooms
   // stayed above their share.
   if (r.stopBounded) ctx.warn(roomsAboveShare(f.ambientShares, f.cellNames, s.solver.ambientShare));
+  if (r.timedOut) ctx.warn(stoppedEarlyNote(s, r));
   const std::pair<const char*, double> totals[] = {{"emitted", r.energy.emitted},
                                                    {"shot", r.energy.shot},
                                                    {"received", r.energy.received},
                                                    {"absorbed", r.energy.absorbed},
                                                    {"unshot", r.energy.unshot}};
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
-  writeBake(in, x, r, views, s.output.engine, keepBack(deadline, outputs.pageSeconds), out ? &*out : nullptr,
-            f, ctx);
+  writeBake(s, in, x, r, views, outputs, deadline, out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
   f.outputs = outputs;
   BakeResult result;

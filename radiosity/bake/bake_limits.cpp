@@ -2,6 +2,7 @@
 #include "radiosity/bake/bake_limits.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -9,30 +10,65 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/memory_limit.h"
+#include "decomposition/voxelize.h"
+#include "radiosity/bake/light_probes.h"
 #include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi::bake_steps {
 namespace {
 
-// The outputs' costs in rays of probeRaySeconds, from the furnished house at 3 texels a metre on the
-// 2-core llvmpipe machine the bakes are benched on (bench/RESULTS.md, "A bake inside its limits in every
-// stage"), with 1.4-2x to spare: a view's ray (one per supersample, with its bilinear lookup; it took 2.8
-// probe rays) and a pixel through its EXR and PNG; an atlas texel through the files before the views
-// (dilation, lightmap.exr with its channels, lightmap.png, baked.glb) and after them (report.html, which
-// embeds the glb and the lightmap once more); a triangle through the glb and the page.
-constexpr double kRaysPerViewRay = 4.0;
+// The outputs' costs in rays of probeRaySeconds on the 2-core llvmpipe machine the bakes are benched on
+// (bench/RESULTS.md, "A bake inside its limits in every stage" and "Inside --time-limit on a loaded
+// machine"), with 1.4-2x to spare: a view's ray (one per supersample, with its bilinear lookup, and its share
+// of the pixel's writing: 0.9 probe rays on the IFC-like house, 1.2-1.75 on oa_dm7 and oa_dm4 at load 23,
+// measured with 128 k probe rays; 2.8 at light load with 16 k, which one preemption could double) and a pixel
+// through its EXR and PNG; a triangle through the glb and the page.
+constexpr double kRaysPerViewRay = 2.0;
 constexpr double kRaysPerViewPixel = 1.0;
-constexpr double kRaysPerFileTexel = 4.0;
-constexpr double kRaysPerPageTexel = 2.0;
+// An atlas texel through the files and the page, in pixels of probeTexelSeconds' PNG encoding: 10.5 of
+// them on oa_dm4 at load 23 (bench/RESULTS.md, "Inside --time-limit on a loaded machine"), with 1.4x to
+// spare. Counted in rays, a map's cheap rays (a seventh of a house's) gave a quarter of its files' time.
+constexpr double kProbesPerFileTexel = 10.0;
+constexpr double kProbesPerPageTexel = 5.0;
+constexpr int kProbeEdge = 512;
+// A voxel of the probes' placement (voxelize, classify, distance) in the same pixels: about 0.9 on oa_dm4
+// (53 M voxels over its bounds), with room to spare.
+constexpr double kProbesPerVoxel = 1.5;
+// The share of the lattice over the scene's bounds that lies in its empty space, clear of the surfaces:
+// a tenth on oa_dm4 (5 419 of 60 000), half in a house.
+constexpr double kProbeLatticeShare = 0.5;
 constexpr double kRaysPerTriangle = 10.0;
-constexpr int kProbeRays = 1 << 14;
+// The probes last a few hundredths of a second on an idle machine, a few tenths on a loaded one: long
+// enough to span many of the scheduler's slices, so that one preemption does not make the estimate.
+constexpr int kProbeRays = 1 << 17;
+// A gather's ray (directional lightmap, probes): a nearest hit and the baked radiance looked up there; its
+// emitter samples a shadow ray each.
+constexpr double kRaysPerGatherRay = 2.0;
 
 // Embree's high-quality BVH with its triangles, and RayScene's own copy of them.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
 // The sky gather: per valid texel its index, two sums (the pass's and the last whole pass's) and the
 // irradiance it adds to.
 constexpr double kSkyGatherBytesPerTexel = 8.0 + 16.0 + 12.0;
+
+// The directional gather: four SH coefficients and the gathered irradiance (RGB floats), the baked
+// radiance it reads (reflected light and the emitters' chances), and the dilated copy written.
+constexpr double kDirectionalBytesPerTexel = 4 * 12.0 + 12.0 + 16.0 + 12.0;
+
+// The probes' voxels: the decomposition's grids (decompositionBytes) over the scene's bounds at
+// ProbeParams::voxel (an upper bound: voxelize trims open ground), and the baked radiance they read.
+double probeBytes(const Scene& scene, const LightmapAtlas& atlas) {
+  if (scene.triangles.empty()) return 0.0;
+  const double voxel = ProbeParams{}.voxel;
+  const Bounds b = scene.bounds();
+  const glm::dvec3 size = glm::max(glm::dvec3(b.hi - b.lo), glm::dvec3(0.0));
+  const double voxels = (size.x / voxel + 5.0) * (size.y / voxel + 5.0) * (size.z / voxel + 5.0);
+  double area = 0.0;
+  for (const Triangle& t : scene.triangles) area += double(t.area());
+  return decomp::decompositionBytes(voxels, voxel, area) + double(atlas.texelCount()) * 16.0;
+}
 
 double largestViewBytes(const std::vector<Camera>& cameras, const ViewParams& views) {
   double most = 0.0;
@@ -70,12 +106,27 @@ double probeRaySeconds(const Scene& scene) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count() / kProbeRays;
 }
 
+double probeTexelSeconds() {
+  // A smooth gradient with noise in its low bits, as a lightmap compresses.
+  ImageRGB image{kProbeEdge, kProbeEdge, std::vector<glm::vec3>(size_t(kProbeEdge) * kProbeEdge)};
+  for (int y = 0; y < kProbeEdge; ++y)
+    for (int x = 0; x < kProbeEdge; ++x)
+      image.pixels[size_t(y) * kProbeEdge + x] = glm::vec3(float(x) / kProbeEdge, float(y) / kProbeEdge,
+                                                           float((x * 7919 + y * 104729) % 97) / 970.0f);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string png = encodePng(image);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return png.empty() ? 0.0 : seconds / (double(kProbeEdge) * kProbeEdge);
+}
+
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
                                const ViewParams& views, size_t texels, size_t atlasTexels,
-                               double raySeconds) {
+                               const MachineCosts& costs, const EngineOutputParams& engine) {
   OutputEstimate e;
   e.views = cameras.size();
+  const double raySeconds = costs.ray, texelSeconds = costs.texel;
   e.raySeconds = raySeconds;
+  e.texelSeconds = texelSeconds;
   const int n = std::clamp(views.supersample, 1, 8);
   for (const Camera& c : cameras) {
     const ViewSize v = viewSize(c, views);
@@ -84,9 +135,32 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
     e.viewSeconds += pixels * (double(n * n) * kRaysPerViewRay + kRaysPerViewPixel) * raySeconds;
   }
   const double triangles = double(scene.triangles.size());
-  e.filesSeconds = (double(atlasTexels) * kRaysPerFileTexel + triangles * kRaysPerTriangle) * raySeconds;
-  e.pageSeconds =
-      (double(std::max(texels, atlasTexels)) * kRaysPerPageTexel + triangles * kRaysPerTriangle) * raySeconds;
+  e.filesSeconds =
+      double(atlasTexels) * kProbesPerFileTexel * texelSeconds + triangles * kRaysPerTriangle * raySeconds;
+  e.pageSeconds = double(std::max(texels, atlasTexels)) * kProbesPerPageTexel * texelSeconds +
+                  triangles * kRaysPerTriangle * raySeconds;
+  const GatherParams gather;  // the probes' and the directional lightmap's emitter samples
+  if (engine.directional)
+    e.directionalSeconds = double(texels) * double(engine.directionalRays + gather.emitterSamples) *
+                           kRaysPerGatherRay * raySeconds;
+  if (engine.probes && engine.probeSpacing > 0.0f) {
+    // At most one probe per lattice point of the scene's bounds (the empty space is less).
+    glm::vec3 lo(3.0e38f), hi(-3.0e38f);
+    for (const Triangle& t : scene.triangles)
+      for (const glm::vec3& p : t.p) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const glm::dvec3 size = glm::max(glm::dvec3(hi - lo), glm::dvec3(0.0));
+    const double points = (size.x / engine.probeSpacing + 1.0) * (size.y / engine.probeSpacing + 1.0) *
+                          (size.z / engine.probeSpacing + 1.0);
+    const ProbeParams probe;
+    const glm::dvec3 voxels = size / double(probe.voxel) + 5.0;
+    if (!scene.triangles.empty()) {
+      e.probeVoxelSeconds = voxels.x * voxels.y * voxels.z * kProbesPerVoxel * texelSeconds;
+      e.probesSeconds =
+          e.probeVoxelSeconds + points * kProbeLatticeShare *
+                                    double(probe.gather.rays + probe.gather.emitterSamples + 26) *
+                                    kRaysPerGatherRay * raySeconds;
+    }
+  }
   return e;
 }
 
@@ -108,6 +182,10 @@ BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapA
   m.rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
   if (scene.sky.lights()) m.skyGather = double(atlas.validTexels()) * kSkyGatherBytesPerTexel;
   m.views = largestViewBytes;
+  const EngineOutputParams& engine = s.output.engine;
+  const double rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
+  if (engine.directional) m.gathers = double(atlas.texelCount()) * kDirectionalBytesPerTexel + rayScene;
+  if (engine.probes) m.gathers = std::max(m.gathers, probeBytes(scene, atlas) + rayScene);
   return m;
 }
 
@@ -138,16 +216,20 @@ ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const st
     std::string parameter, remedy;
   };
   const std::string texels = s.atlas.densityAuto ? "maximum texels" : atlas.sizeParameter;
+  const std::string gather = s.output.engine.probes ? "--probes" : "--directional";
   const Share shares[] = {{m.atlas + m.skyGather, texels, "lower `" + texels + "`"},
                           {m.itemBuffers, "item buffer", "lower `item buffer`"},
                           {m.rayScene, "maximum memory", "bake a scene of fewer triangles"},
-                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"}};
+                          {rest > double(limit) ? 0.0 : m.views, "view size", "lower `view size`"},
+                          {m.gathers, gather, "leave out " + gather}};
   const Share& largest =
-      *std::max_element(shares, shares + 4, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
+      *std::max_element(shares, shares + 5, [](const Share& a, const Share& b) { return a.bytes < b.bytes; });
   std::ostringstream what;
   what << "the bake (atlas " << formatBytes(m.atlas) << ", item buffers " << formatBytes(m.itemBuffers)
        << ", ray scene " << formatBytes(m.rayScene) << ", sky gather " << formatBytes(m.skyGather)
-       << ", largest view " << formatBytes(m.views) << ")";
+       << ", largest view " << formatBytes(m.views);
+  if (m.gathers > 0.0) what << ", " << gather << "' gather " << formatBytes(m.gathers);
+  what << ")";
   requireMemory(m.total(), limit, largest.parameter, what.str(),
                 largest.remedy + " or raise `maximum memory`");
   return views;

@@ -13,6 +13,7 @@
 #include "core/scene.h"
 #include "radiosity/bake/bake_settings.h"
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/views.h"
 
 namespace cpgi::bake_steps {
@@ -22,16 +23,32 @@ namespace cpgi::bake_steps {
 /// The outputs' estimates are counted in these rays.
 double probeRaySeconds(const Scene& scene);
 
-/// The seconds a bake's outputs take after its solve, from their pixels and texels, each costed in rays
-/// of probeRaySeconds (bench/RESULTS.md, "A bake inside its limits"), with room to spare.
+/// The seconds of a pixel of a PNG encoding on this machine as it runs now: the files and the page, mostly
+/// one thread compressing and copying texels, are counted in these, whatever the scene's rays cost.
+double probeTexelSeconds();
+
+/// This machine's costs as it runs now, the outputs' estimates' units.
+struct MachineCosts {
+  double ray = 0.0;    ///< probeRaySeconds
+  double texel = 0.0;  ///< probeTexelSeconds
+};
+
+/// The seconds a bake's outputs take after its solve, from their pixels and texels: the views and the
+/// gathers costed in rays of probeRaySeconds, the files and the page in texels of probeTexelSeconds
+/// (bench/RESULTS.md, "A bake inside its limits"), with room to spare.
 struct OutputEstimate {
-  size_t views = 0;           ///< cameras whose pictures the bake renders
-  double viewPixels = 0.0;    ///< their pixels, all views
-  double viewSeconds = 0.0;   ///< rendering and writing them
-  double filesSeconds = 0.0;  ///< lightmap.exr, lightmap.png, baked.glb before the views
-  double pageSeconds = 0.0;   ///< report.json and report.html after them
-  double raySeconds = 0.0;    ///< the cost of a ray they are counted in (probeRaySeconds)
-  double seconds() const { return viewSeconds + filesSeconds + pageSeconds; }
+  size_t views = 0;                 ///< cameras whose pictures the bake renders
+  double viewPixels = 0.0;          ///< their pixels, all views
+  double viewSeconds = 0.0;         ///< rendering and writing them
+  double filesSeconds = 0.0;        ///< lightmap.exr, lightmap.png, baked.glb before the views
+  double pageSeconds = 0.0;         ///< report.json and report.html after them
+  double directionalSeconds = 0.0;  ///< --directional's gather, before the files
+  double probesSeconds = 0.0;       ///< --probes' voxels and gather, before the files
+  double probeVoxelSeconds = 0.0;   ///< of which their placement's voxels, which cannot stop part-way
+  double raySeconds = 0.0;          ///< the cost of a ray they are counted in (probeRaySeconds)
+  double texelSeconds = 0.0;        ///< the cost of a texel the files are counted in (probeTexelSeconds)
+  double gatherSeconds() const { return directionalSeconds + probesSeconds; }
+  double seconds() const { return viewSeconds + filesSeconds + pageSeconds + gatherSeconds(); }
 };
 
 /// The cameras the views will have: the scene's own, else one per cell of `cells` but the outside (one
@@ -39,9 +56,15 @@ struct OutputEstimate {
 std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells);
 
 /// The outputs of a bake of `texels` atlas texels (lightmap.exr counts the atlas's width × height,
-/// `atlasTexels`) with the views of `cameras` at `views`' size.
+/// `atlasTexels`) with the views of `cameras` at `views`' size, and `engine`'s directional gather and
+/// probes when asked for.
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
-                               const ViewParams& views, size_t texels, size_t atlasTexels, double raySeconds);
+                               const ViewParams& views, size_t texels, size_t atlasTexels,
+                               const MachineCosts& costs, const EngineOutputParams& engine = {});
+
+/// The most of --time-limit the directional gather and the probes' estimate keeps back from the solve:
+/// the rest is the solve's, and what they do not finish by their deadline is left out (said).
+inline constexpr double kGatherTimeShare = 0.5;
 
 /// The share of the time before the outputs' that the density pilot may take: it lays out a quarter of
 /// the texel budget, and the output's sky gather, lamps and solve come after it.
@@ -58,7 +81,11 @@ struct BakeMemory {
   double rayScene = 0.0;     ///< the Embree scene the lamps' rays, the sky, the ambient term and views use
   double skyGather = 0.0;    ///< the sky gather's sums and texel list, with a sky
   double views = 0.0;        ///< the largest view picture (they are made one at a time)
-  double total() const { return atlas + itemBuffers + rayScene + skyGather + views; }
+  /// --directional's gather (its four coefficients and the baked radiance a texel, a ray scene of its own)
+  /// or --probes' (their voxels over the scene's bounds at ProbeParams::voxel), the larger: one runs after
+  /// the other.
+  double gathers = 0.0;
+  double total() const { return atlas + itemBuffers + rayScene + skyGather + views + gathers; }
 };
 BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas,
                       double largestViewBytes);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "radiosity/bake/bake_steps.h"
 #include "radiosity/bake/lightmap_report.h"
@@ -109,6 +111,13 @@ nlohmann::json autoDensityReport(const BakeSettings& s, const BakeInput& in) {
           {"chart_texels_by_density", byDensity}};
 }
 
+// --time-limit's seconds as the user gave them (120, not 120.000000).
+std::string formatSeconds(double seconds) {
+  std::ostringstream text;
+  text << seconds;
+  return text.str();
+}
+
 }  // namespace
 
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,
@@ -173,6 +182,10 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["egl_platform"] = gl ? nlohmann::json(gl->platform()) : nlohmann::json(nullptr);
   report["sky"] = skyReport(*in.scene);
   report["energy"] = energyReport(r.energy);
+  // A solve the time limit stopped: the light it had not yet carried is still unshot (spread by the ambient
+  // term unless --no-ambient), beside what the surfaces absorbed and what left the scene.
+  report["energy"]["stopped_early"] = r.timedOut;
+  report["energy"]["unshot_share"] = r.energy.emitted > 0.0 ? r.energy.unshot / r.energy.emitted : 0.0;
   report["ambient_w_m2"] = {f.ambient.r, f.ambient.g, f.ambient.b};
   // The stop per cell: the target, how often the solve was asked to stop, and each cell's share at the end.
   report["ambient_share_target"] = levels ? nlohmann::json(nullptr) : nlohmann::json(s.solver.ambientShare);
@@ -191,22 +204,25 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
       s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
   // The outputs' share kept back from the solve (bake_limits.h), and the views the limit left out.
   report["output_estimate_s"] = {
-      {"views", f.outputs.viewSeconds}, {"files", f.outputs.filesSeconds}, {"page", f.outputs.pageSeconds}};
+      {"views", f.outputs.viewSeconds},    {"files", f.outputs.filesSeconds},
+      {"page", f.outputs.pageSeconds},     {"directional", f.outputs.directionalSeconds},
+      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds},
+      {"texel", f.outputs.texelSeconds}};
   report["views_skipped"] = f.skippedViews;
   report["outputs_skipped"] = f.skippedOutputs;
   report["partial"] = r.timedOut || !f.skippedViews.empty() || !f.skippedOutputs.empty();
   std::ostringstream why;
   if (r.timedOut)
-    why << "time limit of " << s.limits.timeLimit << " s reached after " << r.shots << " shots with "
-        << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
+    why << "time limit of " << formatSeconds(s.limits.timeLimit) << " s reached after " << r.shots
+        << " shots with " << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
         << s.solver.params.unshotFraction * 100.0 << " %)";
   if (!f.skippedViews.empty())
-    why << (r.timedOut ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached before "
-        << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()
+    why << (r.timedOut ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
+        << " s reached before " << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()
         << " views were rendered (views_skipped)";
   for (const std::string& o : f.skippedOutputs)
-    why << (why.tellp() > 0 ? "; " : "") << "time limit of " << s.limits.timeLimit << " s reached during the "
-        << o << " gather, whose files were not written (outputs_skipped)";
+    why << (why.tellp() > 0 ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
+        << " s reached during the " << o << " gather, whose files were not written (outputs_skipped)";
   if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;

@@ -137,7 +137,19 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
     ctx.progress("atlas", 0.0, "patches");
     in.quads = findQuads(*in.scene);
   }
-  if (s.atlas.densityAuto && in.triangleDensity.empty()) {
+  if (s.atlas.densityAuto && in.triangleDensity.empty() && Clock::now() >= deadline) {
+    // No time for the pilot: its atlas, the engine's set-up and the lamps' shot would all come after the
+    // limit. The output is laid out at the pilot's own even density, within the texel budget.
+    const float even = pilotDensity(*in.scene, s.atlas.autoDensity);
+    in.triangleDensity.assign(in.scene->triangles.size(), even);
+    char line[200];
+    std::snprintf(
+        line, sizeof line,
+        "auto density: the time limit came before the density pilot; every surface at %.2f texels a "
+        "metre",
+        double(even));
+    ctx.warn(line);
+  } else if (s.atlas.densityAuto && in.triangleDensity.empty()) {
     if (!pilot) throw std::logic_error("buildBakeAtlas: --density auto's pilot needs a shot engine");
     auto t = ctx.time("auto density");
     // The pilot's own atlas and solve report as this stage, not as the bake's solve.

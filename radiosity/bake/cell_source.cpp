@@ -134,6 +134,14 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
                              Context& ctx, const CellGraph& volumes, Clock::time_point deadline) {
   auto t = ctx.time("rooms");
   RoomLabels out;
+  const char* late =
+      "rooms: the time limit came during the decomposition into rooms; the stop per room and the ambient "
+      "term take the scene as one room";
+  // Past the deadline already, not even its first stage (the voxels: seconds on a loaded machine).
+  if (Clock::now() >= deadline) {
+    ctx.warn(late);
+    return out;
+  }
   decomp::Decomposition d;
   try {
     // The decomposition's warnings are about cells the user did not ask for.
@@ -145,9 +153,7 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
   } catch (const InputError&) {
     return out;
   } catch (const DeadlineReached&) {
-    ctx.warn(
-        "rooms: the time limit came during the decomposition into rooms; the stop per room and the "
-        "ambient term take the scene as one room");
+    ctx.warn(late);
     return out;
   }
   if (d.graph.cells.size() < 2) return out;

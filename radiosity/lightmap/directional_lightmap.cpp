@@ -88,11 +88,6 @@ DirectionalLightmap gatherDirectionalLightmap(const Scene& scene, const Lightmap
   return map;
 }
 
-double directionalGatherRays(size_t validTexels, int rays) {
-  constexpr double kTimingRaysPerGatherRay = 4.0;
-  return kTimingRaysPerGatherRay * double(validTexels) * double(rays + GatherParams{}.emitterSamples);
-}
-
 std::array<glm::vec3, 4> texelSh(const DirectionalLightmap& map, size_t i) {
   return {map.sh[0][i], map.sh[1][i], map.sh[2][i], map.sh[3][i]};
 }

@@ -51,12 +51,6 @@ DirectionalLightmap gatherDirectionalLightmap(
     const std::vector<glm::vec3>& irradiance, const GatherParams& params, Context& ctx,
     std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
-/// What gatherDirectionalLightmap over `validTexels` texels at `rays` directions a texel costs, counted in
-/// the nearest-hit rays of the bake's timing probe (bake_limits.h, probeRaySeconds), for the time a bake
-/// keeps back for it under --time-limit: a gather ray (and each emitter sample's) costs about three of
-/// those (seed3: 4.2e-7 s against 1.4e-7 s), counted as four for room to spare.
-double directionalGatherRays(size_t validTexels, int rays);
-
 /// Texel `i`'s four coefficients, in order.
 std::array<glm::vec3, 4> texelSh(const DirectionalLightmap& map, size_t i);
 

@@ -107,8 +107,10 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
     if (atlas.patch[i] >= 0) texels.push_back(i);
   std::vector<double> sums(texels.size(), 0.0);
   // In passes over every texel, so that a deadline leaves each texel with the same number of directions,
-  // and in chunks, so that progress is reported and the deadline checked every few seconds.
-  constexpr size_t kChunk = size_t(1) << 15;
+  // and in chunks of at most kChunk texels and about kChunkRays rays (a later pass has up to 128 rays a
+  // texel to add), so that progress is reported and the deadline checked every second or two even on a
+  // loaded machine.
+  constexpr size_t kChunk = size_t(1) << 15, kChunkRays = size_t(1) << 20;
   const std::vector<int> ends = passEnds(sky.gatherRays);
   const double totalRays = double(texels.size()) * sky.gatherRays;
   const PassOrder order = passOrder(atlas, texels);
@@ -116,15 +118,16 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
   size_t firstPass = 0;  // texels the first pass gathered itself, when a deadline cut it
   for (size_t p = 0; p < ends.size(); ++p) {
     const int from = done, to = ends[p];
+    const size_t chunk = std::clamp(kChunkRays / size_t(to - from), size_t(1024), kChunk);
     std::vector<double> next = sums;
     bool stopped = false;
-    for (size_t c = 0; c < texels.size() && !stopped; c += kChunk) {
+    for (size_t c = 0; c < texels.size() && !stopped; c += chunk) {
       // The first pass goes on until its seeds have their directions; every later one stops at once.
       if ((p > 0 || c >= order.seeds) && std::chrono::steady_clock::now() >= deadline) {
         stopped = true;
         break;
       }
-      const size_t end = std::min(c + kChunk, texels.size());
+      const size_t end = std::min(c + chunk, texels.size());
       tbb::parallel_for(tbb::blocked_range<size_t>(c, end, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const size_t j = order.order[k], i = texels[j];

@@ -50,12 +50,21 @@ SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Co
   r.incident = d.irradiance;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
+  // The books as shootFirstOnCpu keeps them: what landed received, what the texels reflect unshot, the rest
+  // absorbed (without them a bake stopped here said absorbed 0 and escaped all that was emitted).
+  EnergyTotals& e = r.energy;
   for (size_t t = 0; t < atlas.texelCount(); ++t)
     if (atlas.patch[t] >= 0) {
       r.residual[t] = atlas.albedo[t] * d.irradiance[t];
       r.radiosity[t] = atlas.emission[t] + r.residual[t];
+      const glm::dvec3 got(d.irradiance[t]), back(r.residual[t]);
+      e.received += (got.r + got.g + got.b) * atlas.area[t];
+      e.unshot += (back.r + back.g + back.b) * atlas.area[t];
     }
-  r.energy.emitted = r.energy.shot = punctualEmitted(scene.lights, d.directionalLanded);
+  e.absorbed = e.received - e.unshot;
+  e.emitted = e.shot = punctualEmitted(scene.lights, d.directionalLanded);
+  r.history.push_back(e);
+  r.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
   return r;
 }
 
@@ -81,7 +90,10 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   // (SolverParams::lampRays), and on an engine without lamp shots. Through the GL item buffers, the few
   // eyes on a lamp see a door's jambs from a few points only: a room lit through a door came out 10 %
   // dark, the floor along the door 36 % (bench/RESULTS.md, "Lamps through doors at two levels").
-  if (settings.lampRays > 0 || !engine.features().lampShots) {
+  // Past the deadline, no engine's set-up either (a minute of GL on a loaded machine for the pilot of a
+  // house): the rays' shot stops at once, its lamps unshot, the sky's first pass kept.
+  const bool late = std::chrono::steady_clock::now() >= controls.deadline;
+  if (settings.lampRays > 0 || !engine.features().lampShots || late) {
     const auto start = std::chrono::steady_clock::now();
     SolveResult byRays = shootFirstOnCpu(
         scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls.deadline);
@@ -116,8 +128,11 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
     if (coarse.patch[c] >= 0 && v > 0.0f) litSum += double(v) * coarse.area[c], litArea += coarse.area[c];
   }
   const float floor = litArea > 0.0 ? params.floorShare * float(litSum / litArea) : 0.0f;
+  // Past the deadline (the coarse shot then has no lamp flags either), none.
+  const bool stopped = lit.timedOut || std::chrono::steady_clock::now() >= controls.deadline;
   const std::vector<uint8_t> refine =
-      texelsToRefine(mapping, atlas, coarse, lit.incident, lit.lampFlags, params.tolerance, floor);
+      stopped ? std::vector<uint8_t>(atlas.texelCount(), 0)
+              : texelsToRefine(mapping, atlas, coarse, lit.incident, lit.lampFlags, params.tolerance, floor);
   size_t refined = 0;
   for (uint8_t r : refine) refined += r;
 

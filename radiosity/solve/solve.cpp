@@ -73,19 +73,12 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
   return s;
 }
 
-}  // namespace
-
-SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
-                            std::chrono::steady_clock::time_point deadline) {
-  if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
-  SolverParams settings;
-  settings.lampRays = lampRays;
-  const DirectStart first =
-      shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ShotShape{}, ctx);
+// The first shot's light as a solve's result (no engine): the lights' power emitted and shot; the
+// reflected light and any emitter the rays did not spend unshot.
+SolveResult firstShotResult(const LightmapAtlas& atlas, const DirectStart& first) {
   SolveResult r;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual = r.incident = r.radiosity;
-  // The lights' power emitted and shot; the reflected light and any emitter the rays did not spend unshot.
   EnergyTotals& e = r.energy;
   double reflected = 0.0, unspent = 0.0;
   for (size_t t = 0; t < atlas.texelCount(); ++t) {
@@ -110,6 +103,17 @@ SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int 
   return r;
 }
 
+}  // namespace
+
+SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
+                            std::chrono::steady_clock::time_point deadline) {
+  if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
+  SolverParams settings;
+  settings.lampRays = lampRays;
+  return firstShotResult(
+      atlas, shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ShotShape{}, ctx));
+}
+
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,
                              ShotEngine& engine, Context& ctx, const SolveControls& controls,
                              const ShotShape& shape) {
@@ -118,6 +122,14 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   FirstShot first;
   if (direct.any) first.irradiance = direct.direct.irradiance, first.emitted = direct.emitted;
   if (!direct.lamps.shot.empty()) first.spentEmitters = direct.lamps.shot;
+  // Past the deadline before the engine's set-up (a minute of GL for a house's pilot on a loaded machine):
+  // the first shot's light alone, as 0 shots leave it, the emitters it did not spend unshot.
+  if (!controls.priorShot && shape.receivers.empty() && !shape.directionalEmission &&
+      std::chrono::steady_clock::now() >= controls.deadline) {
+    SolveResult late = firstShotResult(atlas, direct);
+    late.timedOut = true;
+    return late;
+  }
 
   const auto start = std::chrono::steady_clock::now();
   ctx.progress("set-up", 0.0, "the " + std::string(engine.name()) + " engine");  // tens of seconds on a house

@@ -177,6 +177,42 @@ TEST(BakeLimits, MemoryCountsTheSkyGatherAndTheViews) {
   EXPECT_GE(daylit.skyGather, 24.0 * double(in.atlas.validTexels()));
 }
 
+// --directional and --probes count too: the gather's floats a texel with its own ray scene, the probes'
+// voxels over the scene's bounds; the larger of the two (one runs after the other), and a limit they pass
+// is refused naming the one asked for.
+TEST(BakeLimits, MemoryCountsTheDirectionalGatherAndTheProbes) {
+  SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  Context ctx;
+  bake_steps::BakeInput in;
+  in.scene = &seed.scene;
+  in.cells = &seed.cells;
+  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  const bake_steps::BakeMemory none = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
+  EXPECT_EQ(none.gathers, 0.0);
+  s.output.engine.directional = true;
+  const bake_steps::BakeMemory directional = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
+  EXPECT_GE(directional.gathers, 60.0 * double(in.atlas.texelCount()));
+  s.output.engine.directional = false;
+  s.output.engine.probes = true;
+  const bake_steps::BakeMemory probes = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
+  // seed1's bounds, 12.4 × 3 × 4 m, at 0.1 m voxels: 150 000 voxels or more.
+  EXPECT_GE(probes.gathers, 150000.0);
+  s.output.engine.directional = true;
+  const bake_steps::BakeMemory both = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
+  EXPECT_DOUBLE_EQ(both.gathers, std::max(directional.gathers, probes.gathers));
+  EXPECT_DOUBLE_EQ(both.total() - none.total(), both.gathers);
+  s.atlas.params.memoryLimit = uint64_t(none.total() + 0.5 * both.gathers);
+  try {
+    bake_steps::requireBakeMemory(s, seed.scene, bake_steps::expectedCameras(seed.scene, seed.cells),
+                                  in.atlas, ctx);
+    ADD_FAILURE() << "a limit the gathers pass";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "--probes");
+    EXPECT_NE(e.problem().find("leave out --probes"), std::string::npos) << e.problem();
+  }
+}
+
 // Views larger than what --max-memory leaves after the solve shrink to fit, said in one warning; a limit
 // the solve alone passes is refused naming what to lower.
 TEST(BakeLimits, ViewsShrinkToTheMemoryLeftAndTheRestIsRefused) {

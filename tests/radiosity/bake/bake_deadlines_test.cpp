@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/quads.h"
 #include "radiosity/bake/bake.h"
 #include "radiosity/bake/bake_limits.h"
 #include "radiosity/gpu/gl_shot_engine.h"
@@ -40,6 +41,22 @@ int warningsStarting(const Context& ctx, const std::string& start) {
   for (const std::string& w : ctx.warnings()) n += w.rfind(start, 0) == 0;
   return n;
 }
+
+// A 4 m × 4 m grey floor under a small lamp, at 16 texels a metre.
+struct LampOverFloor {
+  Scene scene;
+  LightmapAtlas atlas;
+  LampOverFloor() {
+    const uint32_t floor = testing::addMaterial(scene, glm::vec3(0.5f));
+    const uint32_t lamp = testing::addMaterial(scene, glm::vec3(0.0f), glm::vec3(100.0f));
+    testing::addRect(scene, {-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, floor);
+    testing::addRect(scene, {0.9f, 2.2f, -0.6f}, {0.2f, 0, 0}, {0, 0, 0.2f}, lamp);
+    Context ctx;
+    AtlasParams p;
+    p.density = 16.0f;
+    atlas = buildAtlas(scene, findQuads(scene), p, ctx);
+  }
+};
 
 // A bake past its limit with --directional and --probes: the solve, the gathers and the views each stop
 // and say so, report.json marks the result partial with each reason, the gathers' files are left out

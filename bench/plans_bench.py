@@ -232,6 +232,20 @@ def complete(rec, methods):
     return all(rec["runs"].get(m, {}).get("ok") and "cells" in rec["runs"][m] for m in methods)
 
 
+def rooms_off_by_bucket(buckets, methods, count):
+    """A table's rows: per method and bucket, the rooms off > 3 % of all, and the worst."""
+    lines = []
+    for method in methods:
+        cols = []
+        for b in range(count):
+            v = buckets.get(method, {}).get(b, [])
+            w = max(v, key=lambda r: abs(r[0])) if v else None
+            cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
+                                        ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
+        lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    return lines
+
+
 def table(records, methods, work):
     """The distributions over the plans every method has baked and been compared on (so that the rows
     compare the methods on the same rooms), and a line naming the plans left out."""
@@ -288,25 +302,11 @@ def table(records, methods, work):
     lines += ["", "Rooms by the share of their light the bake left to the ambient term at its stop (report.json's "
               "ambient_share; over 0.1 the stop per room was refused and then bounded): rooms off > 3 % of all, "
               "and the worst:", "", "| method | share < 0.1 | 0.1–0.3 | ≥ 0.3 |", "|---|---|---|---|"]
-    for method in methods:
-        cols = []
-        for b in range(3):
-            v = by_share.get(method, {}).get(b, [])
-            w = max(v, key=lambda r: abs(r[0])) if v else None
-            cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
-                                        ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
-        lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    lines += rooms_off_by_bucket(by_share, methods, 3)
     lines += ["", "Rooms by their light per m² in the reference against their plan's brightest room (below 10⁻³, ten "
               "stops down, a room is black at any exposure that shows the lit ones): rooms off > 3 % of all, and "
               "the worst:", "", "| method | ≥ 10⁻² | 10⁻³–10⁻² | < 10⁻³ |", "|---|---|---|---|"]
-    for method in methods:
-        cols = []
-        for b in range(3):
-            v = by_level.get(method, {}).get(b, [])
-            w = max(v, key=lambda r: abs(r[0])) if v else None
-            cols.append("%d of %d%s" % (sum(1 for r in v if abs(r[0]) > 0.03), len(v),
-                                        ", worst %+.1f (%s)" % (100 * w[0], w[4]) if w else ""))
-        lines.append("| %s | %s |" % (method, " | ".join(cols)))
+    lines += rooms_off_by_bucket(by_level, methods, 3)
     auto = []
     for rec in records:
         report = os.path.join(work, "plan-%d" % rec["seed"], "cells-auto", "report.json")

@@ -35,6 +35,15 @@ BakeRun pastTheLimit(BakeSettings& s) {
   return run;
 }
 
+// `seed`'s bake input with its atlas laid out by `s`.
+bake_steps::BakeInput laidOut(SeedScene& seed, const BakeSettings& s, Context& ctx) {
+  bake_steps::BakeInput in;
+  in.scene = &seed.scene;
+  in.cells = &seed.cells;
+  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  return in;
+}
+
 bool anyWarning(const Context& ctx, const std::string& start) {
   for (const std::string& w : ctx.warnings())
     if (w.rfind(start, 0) == 0) return true;
@@ -161,10 +170,7 @@ TEST(BakeLimits, MemoryCountsTheSkyGatherAndTheViews) {
   SeedScene seed = makeSeedScene(1);
   BakeSettings s = quick();
   Context ctx;
-  bake_steps::BakeInput in;
-  in.scene = &seed.scene;
-  in.cells = &seed.cells;
-  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  bake_steps::BakeInput in = laidOut(seed, s, ctx);
   const double view = viewBytes(ViewSize{640, 480});
   const bake_steps::BakeMemory dark = bake_steps::bakeMemory(s, seed.scene, in.atlas, view);
   EXPECT_EQ(dark.skyGather, 0.0);
@@ -184,10 +190,7 @@ TEST(BakeLimits, MemoryCountsTheDirectionalGatherAndTheProbes) {
   SeedScene seed = makeSeedScene(1);
   BakeSettings s = quick();
   Context ctx;
-  bake_steps::BakeInput in;
-  in.scene = &seed.scene;
-  in.cells = &seed.cells;
-  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  bake_steps::BakeInput in = laidOut(seed, s, ctx);
   const bake_steps::BakeMemory none = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
   EXPECT_EQ(none.gathers, 0.0);
   s.output.engine.directional = true;
@@ -221,10 +224,7 @@ TEST(BakeLimits, ViewsShrinkToTheMemoryLeftAndTheRestIsRefused) {
   s.output.views.width = 8192;
   s.output.views.height = 8192;  // 2 GiB a view
   Context ctx;
-  bake_steps::BakeInput in;
-  in.scene = &seed.scene;
-  in.cells = &seed.cells;
-  bake_steps::buildBakeAtlas(s, in, nullptr, ctx);
+  bake_steps::BakeInput in = laidOut(seed, s, ctx);
   const bake_steps::BakeMemory m = bake_steps::bakeMemory(s, seed.scene, in.atlas, 0.0);
   const double rest = m.total();
   s.atlas.params.memoryLimit = uint64_t(rest + 8.0 * (1 << 20));  // 8 MiB for the views

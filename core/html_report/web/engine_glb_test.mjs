@@ -10,7 +10,7 @@
 // Saves engine-png.png, engine-exr.png in SCREENSHOT_DIR; prints a JSON summary; exits 1 with one line per
 // failed check.
 import path from 'node:path';
-import { Checks, openPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots, mode] = scriptArgs(
   'engine_glb_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR'], ['textured']);
@@ -21,6 +21,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 const bytes = (id) => Uint8Array.from(atob(document.getElementById(id).textContent.trim()), (c) => c.charCodeAt(0)).buffer;
+${viewCameraSource}
 window.engineTest = async () => {
   const gltf = await new GLTFLoader().parseAsync(bytes('glb'), '');
   const info = gltf.parser.json.extras.cpgi_lightmap;
@@ -54,15 +55,7 @@ window.engineTest = async () => {
   renderer.toneMappingExposure = 1.5 * Math.PI / info.intensity;
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
-  let camera = gltf.cameras[0];
-  if (!camera) {
-    const box = new THREE.Box3().setFromObject(gltf.scene), size = box.getSize(new THREE.Vector3());
-    camera = new THREE.PerspectiveCamera(60, 4 / 3, 0.01, 1000);
-    camera.position.copy(box.getCenter(new THREE.Vector3())).add(new THREE.Vector3(0, size.y * 0.3, size.length() * 0.6));
-    camera.lookAt(box.getCenter(new THREE.Vector3()));
-  }
-  camera.aspect = 640 / 480;
-  camera.updateProjectionMatrix();
+  const camera = viewCamera(THREE, gltf);
   const picture = () => {
     renderer.render(scene, camera);
     const gl = renderer.getContext(), d = new Uint8Array(640 * 480 * 4);

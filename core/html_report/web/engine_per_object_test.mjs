@@ -13,7 +13,7 @@
 // failed check.
 import fs from 'node:fs';
 import path from 'node:path';
-import { Checks, openPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, perObjectDir, oneAtlasDir, shots] = scriptArgs(
   'engine_per_object_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'PER_OBJECT_DIR', 'ONE_ATLAS_DIR', 'SCREENSHOT_DIR']);
@@ -28,6 +28,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 const bytes = (id) => Uint8Array.from(atob(document.getElementById(id).textContent.trim()), (c) => c.charCodeAt(0)).buffer;
+${viewCameraSource}
 const objects = ${JSON.stringify(objects.map((o) => o.lightmap))};
 const meshesOf = (root) => { const list = []; root.traverse((o) => { if (o.isMesh) list.push(o); }); return list; };
 window.perObjectTest = async () => {
@@ -79,15 +80,7 @@ window.perObjectTest = async () => {
     own += m.material.userData.cpgi_lightmap === map.name;
   }
   renderer.toneMappingExposure = 1.5 * Math.PI / info.intensity;
-  let camera = gltf.cameras[0];
-  if (!camera) {
-    const box = new THREE.Box3().setFromObject(gltf.scene), size = box.getSize(new THREE.Vector3());
-    camera = new THREE.PerspectiveCamera(60, 4 / 3, 0.01, 1000);
-    camera.position.copy(box.getCenter(new THREE.Vector3())).add(new THREE.Vector3(0, size.y * 0.3, size.length() * 0.6));
-    camera.lookAt(box.getCenter(new THREE.Vector3()));
-  }
-  camera.aspect = 640 / 480;
-  camera.updateProjectionMatrix();
+  const camera = viewCamera(THREE, gltf);
   const sceneOf = (root) => { const s = new THREE.Scene(); s.add(root); return s; };
   const oneScene = sceneOf(atlas.scene), perScene = sceneOf(gltf.scene);
   const reference = picture(oneScene, camera);

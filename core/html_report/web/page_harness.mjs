@@ -36,6 +36,22 @@ export function writeBundlePage(modules, entry, files, pagePath) {
     `<script>${bundle.replace(/<\/script/gi, '<\\/script')}</script></body></html>`);
 }
 
+// In-page source for an entry of writeBundlePage: viewCamera(THREE, gltf), the glb's first camera, else
+// one framing its whole scene from above and in front; either at the page's 640 × 480.
+export const viewCameraSource = `
+const viewCamera = (THREE, gltf) => {
+  let camera = gltf.cameras[0];
+  if (!camera) {
+    const box = new THREE.Box3().setFromObject(gltf.scene), size = box.getSize(new THREE.Vector3());
+    camera = new THREE.PerspectiveCamera(60, 4 / 3, 0.01, 1000);
+    camera.position.copy(box.getCenter(new THREE.Vector3())).add(new THREE.Vector3(0, size.y * 0.3, size.length() * 0.6));
+    camera.lookAt(box.getCenter(new THREE.Vector3()));
+  }
+  camera.aspect = 640 / 480;
+  camera.updateProjectionMatrix();
+  return camera;
+};`;
+
 // Headless Chromium (software WebGL through SwiftShader) with one page whose script errors, console errors
 // and dialogs are collected in `errors`; the caller navigates and closes `browser`.
 export async function launchPage(modules, chromium, viewport = { width: 640, height: 480 }) {

@@ -247,7 +247,7 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-  EngineOutputParams engine = s.output.engine;
+  const EngineOutputParams& engine = s.output.engine;
   nlohmann::json probes, probesReport;
   if (engine.probes) {
     // The placement's voxels cannot stop part-way: without the time for them, none are placed.

@@ -112,7 +112,8 @@ class Reader {
     const uint64_t n = get<uint64_t>();
     if (n > (bytes_.size() - at_) / sizeof(V)) fail("an array longer than the file");
     std::vector<V> v(n);
-    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(V));
+    if (n > 0)
+      std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(V));  // an empty vector's data() may be null
     at_ += n * sizeof(V);
     return v;
   }

@@ -10,7 +10,7 @@
 // Saves directional-plain.png, directional-bumps.png, directional-flat.png in SCREENSHOT_DIR; prints a
 // JSON summary; exits 1 with one line per failed check.
 import path from 'node:path';
-import { Checks, openPage, scriptArgs, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, runSteps, scriptArgs, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots] = scriptArgs(
   'engine_directional_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR']);
@@ -185,10 +185,8 @@ const { check } = checks;
 const { browser, page, errors } = await openPage(modules, chromium, pagePath);
 let s = {};
 try {
-  s = await page.evaluate(() => window.directionalTest());
-  await page.screenshot({ path: path.join(shots, 'directional-bumps.png') });
-  await page.evaluate(() => window.renderPlain());
-  await page.screenshot({ path: path.join(shots, 'directional-plain.png') });
+  s = await runSteps(page, shots,
+    [['directionalTest', 'directional-bumps.png'], ['renderPlain', 'directional-plain.png']]);
   check(!errors.length, errors.join('; '));
   check(s.plainNormalMap.changed < 0.01, `the plain lightmap shows the normal map on ${s.plainNormalMap.changed} of the pixels (three.js's lightMap should ignore it)`);
   check(s.plainNormalMap.meanA > 20, `the plain lightmap's picture is dark (mean ${s.plainNormalMap.meanA})`);

@@ -10,7 +10,7 @@
 // Saves engine-png.png, engine-exr.png in SCREENSHOT_DIR; prints a JSON summary; exits 1 with one line per
 // failed check.
 import path from 'node:path';
-import { Checks, openPage, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, runSteps, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, bakeDir, shots, mode] = scriptArgs(
   'engine_glb_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'BAKE_DIR', 'SCREENSHOT_DIR'], ['textured']);
@@ -116,10 +116,7 @@ const { check } = checks;
 const { browser, page, errors } = await openPage(modules, chromium, pagePath);
 let summary = {};
 try {
-  summary = await page.evaluate(() => window.engineTest());
-  await page.screenshot({ path: path.join(shots, 'engine-exr.png') });
-  await page.evaluate(() => window.renderPng());
-  await page.screenshot({ path: path.join(shots, 'engine-png.png') });
+  summary = await runSteps(page, shots, [['engineTest', 'engine-exr.png'], ['renderPng', 'engine-png.png']]);
   check(!errors.length, errors.join('; '));
   check(summary.meshes > 0, 'no mesh in baked.glb');
   check(summary.standard === summary.meshes, `${summary.meshes - summary.standard} meshes without a lit MeshStandardMaterial (the unlit preview?)`);

@@ -13,7 +13,7 @@
 // failed check.
 import fs from 'node:fs';
 import path from 'node:path';
-import { Checks, openPage, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
+import { Checks, openPage, runSteps, scriptArgs, viewCameraSource, writeBundlePage } from './page_harness.mjs';
 
 const [modules, chromium, perObjectDir, oneAtlasDir, shots] = scriptArgs(
   'engine_per_object_test.mjs', ['NODE_MODULES_DIR', 'CHROMIUM', 'PER_OBJECT_DIR', 'ONE_ATLAS_DIR', 'SCREENSHOT_DIR']);
@@ -130,11 +130,8 @@ const { check } = checks;
 const { browser, page, errors } = await openPage(modules, chromium, pagePath);
 let s = {};
 try {
-  s = await page.evaluate(() => window.perObjectTest());
-  await page.evaluate(() => window.renderPerObject());
-  await page.screenshot({ path: path.join(shots, 'per-object.png') });
-  await page.evaluate(() => window.renderOneAtlas());
-  await page.screenshot({ path: path.join(shots, 'one-atlas.png') });
+  s = await runSteps(page, shots,
+    [['perObjectTest', null], ['renderPerObject', 'per-object.png'], ['renderOneAtlas', 'one-atlas.png']]);
   check(!errors.length, errors.join('; '));
   check(s.meshes > 0 && s.objects > 1, `${s.meshes} meshes, ${s.objects} objects: not a scene of several objects`);
   check(s.textures === s.objects && s.lightmapsUsed === s.objects,

@@ -36,6 +36,18 @@ export function writeBundlePage(modules, entry, files, pagePath) {
     `<script>${bundle.replace(/<\/script/gi, '<\\/script')}</script></body></html>`);
 }
 
+// Calls the page's functions `steps` ([name, screenshot file or null], in order) and saves each screenshot
+// in `shots`; returns the first call's result (the page's figures).
+export async function runSteps(page, shots, steps) {
+  let first;
+  for (const [name, png] of steps) {
+    const result = await page.evaluate((f) => window[f](), name);
+    if (first === undefined) first = result;
+    if (png) await page.screenshot({ path: path.join(shots, png) });
+  }
+  return first;
+}
+
 // In-page source for an entry of writeBundlePage: viewCamera(THREE, gltf), the glb's first camera, else
 // one framing its whole scene from above and in front; either at the page's 640 × 480.
 export const viewCameraSource = `

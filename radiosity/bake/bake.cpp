@@ -106,13 +106,21 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   auto t = ctx.time("solve");
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
-  if (!cells && s.solver.ambientShare > 0.0)
-    controls.acceptStop = [&](const std::vector<glm::vec3>& radiosity,
-                              const std::vector<glm::vec3>& residual) {
-      const std::vector<double> shares =
-          ambientShares(in.atlas, residual, x.texelCells.values, x.texelGraph, radiosity, &x.transfer);
-      return *std::max_element(shares.begin(), shares.end()) <= s.solver.ambientShare;
+  std::optional<RoomStop> roomStop;  // the time estimate asks the same rule cell by cell
+  if (!cells && s.solver.ambientShare > 0.0) {
+    const RoomStop& stop =
+        roomStop.emplace(in.atlas, x.texelCells.values, x.texelGraph, &x.transfer, s.solver.ambientShare);
+    controls.acceptStop = [&stop](const std::vector<glm::vec3>& radiosity,
+                                  const std::vector<glm::vec3>& residual) {
+      return stop.accepts(radiosity, residual);
     };
+    controls.roomStop = {
+        stop.texelCells(),
+        [&stop](const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+          return stop.cellLight(radiosity, residual);
+        },
+        [&stop](const CellLight& light) { return stop.accepts(light); }};
+  }
   CellSolveParams params = cellSolveParams(s, in);
   params.deadline = x.deadline;
   // Cell jobs and on-demand cells are one level: a job's plan has one atlas, and an on-demand bake's

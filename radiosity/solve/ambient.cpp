@@ -63,62 +63,62 @@ std::vector<glm::dvec3> ambientLandedByShares(const std::vector<AmbientRoom>& ro
 
 namespace {
 
-// The ambient irradiance per cell (the last entry: texels in no cell, or every texel without cells), each
-// texel's entry, and the mean over the scene.
-struct CellAmbient {
-  std::vector<glm::dvec3> irradiance;
+// The atlas's texels by cell: each valid texel's entry (cells 0..K-1, K for texels in no cell, or every
+// texel without cells), per entry its surfaces (area, Σ ρ × area; unshot 0) and the openings between cells.
+struct CellSurfaces {
   std::vector<size_t> texelEntry;
-  glm::dvec3 mean{0.0};
+  std::vector<AmbientRoom> rooms;
+  std::vector<AmbientOpening> openings;
+  double area = 0.0;
 };
 
-CellAmbient cellAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
-                        const glm::dvec3& unshotPower, std::span<const float> texelCell,
-                        const CellGraph& graph, const AmbientTransfer* measured) {
+CellSurfaces cellSurfaces(const LightmapAtlas& atlas, std::span<const float> texelCell,
+                          const CellGraph& graph) {
   const size_t n = atlas.texelCount();
-  if (!residual.empty() && residual.size() != n)
-    throw std::invalid_argument("ambient: not one residual per atlas texel");
   const bool byCell = !graph.cells.empty() && texelCell.size() == n;
-  // Cells 0..K-1, and K for texels in no cell (or every texel without cells).
-  const size_t k = byCell ? graph.cells.size() : 0, count = k + 1;
-  auto cellOf = [&](size_t i) {
-    if (!byCell) return k;
-    const float c = texelCell[i];
-    return c >= 0.0f && size_t(c) < k ? size_t(c) : k;
-  };
-  std::vector<double> area(count, 0.0);
-  std::vector<glm::dvec3> albedo(count, glm::dvec3(0.0)), unshot(count, glm::dvec3(0.0));
-  double total = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    if (atlas.patch[i] < 0) continue;
-    const size_t c = cellOf(i);
-    const double a = atlas.area[i];
-    area[c] += a;
-    albedo[c] += a * glm::dvec3(atlas.albedo[i]);
-    if (!residual.empty()) unshot[c] += a * glm::dvec3(residual[i]);
-    total += a;
-  }
-  CellAmbient out;
-  out.irradiance.assign(count, glm::dvec3(0.0));
+  const size_t k = byCell ? graph.cells.size() : 0;
+  CellSurfaces out;
+  out.rooms.resize(k + 1);
   out.texelEntry.resize(n);
-  for (size_t i = 0; i < n; ++i) out.texelEntry[i] = cellOf(i);
-  if (!(total > 0.0)) return out;
-  std::vector<AmbientRoom> rooms(count);
-  for (size_t c = 0; c < count; ++c)
-    rooms[c] =
-        AmbientRoom{area[c], albedo[c], residual.empty() ? unshotPower * (area[c] / total) : unshot[c]};
-  std::vector<AmbientOpening> openings;
+  for (size_t i = 0; i < n; ++i) {
+    const float c = byCell ? texelCell[i] : -1.0f;
+    const size_t entry = c >= 0.0f && size_t(c) < k ? size_t(c) : k;
+    out.texelEntry[i] = entry;
+    if (atlas.patch[i] < 0) continue;
+    const double a = atlas.area[i];
+    out.rooms[entry].area += a;
+    out.rooms[entry].albedoArea += a * glm::dvec3(atlas.albedo[i]);
+    out.area += a;
+  }
   if (byCell)
     for (const PortalQuad& p : graph.portals)
       if (p.cellA >= 0 && p.cellB >= 0 && size_t(p.cellA) < k && size_t(p.cellB) < k)
-        openings.push_back(AmbientOpening{size_t(p.cellA), size_t(p.cellB), p.area});
-  const bool useMeasured = measured && measured->share.size() == count;
+        out.openings.push_back(AmbientOpening{size_t(p.cellA), size_t(p.cellB), p.area});
+  return out;
+}
+
+// Per entry, the ambient irradiance (W/m², RGB) of the unshot power in `rooms` (each entry's own), and
+// the power landed in all (W, RGB).
+struct Irradiance {
+  std::vector<glm::dvec3> perEntry;
+  glm::dvec3 landed{0.0};
+};
+Irradiance ambientIrradiance(const std::vector<AmbientRoom>& rooms,
+                             const std::vector<AmbientOpening>& openings,
+                             const std::vector<std::vector<double>>* measured) {
   const std::vector<glm::dvec3> landed =
-      useMeasured ? ambientLandedByShares(rooms, measured->share) : ambientLanded(rooms, openings);
-  for (size_t c = 0; c < count; ++c) {
-    if (area[c] > 0.0) out.irradiance[c] = landed[c] / area[c];
-    out.mean += landed[c] / total;
+      measured ? ambientLandedByShares(rooms, *measured) : ambientLanded(rooms, openings);
+  Irradiance out;
+  out.perEntry.assign(rooms.size(), glm::dvec3(0.0));
+  for (size_t c = 0; c < rooms.size(); ++c) {
+    if (rooms[c].area > 0.0) out.perEntry[c] = landed[c] / rooms[c].area;
+    out.landed += landed[c];
   }
   return out;
+}
+
+const std::vector<std::vector<double>>* measuredShares(const AmbientTransfer* measured, size_t entries) {
+  return measured && measured->share.size() == entries ? &measured->share : nullptr;
 }
 
 }  // namespace
@@ -128,11 +128,83 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
                       std::vector<glm::vec3>& radiosity, const AmbientTransfer* measured) {
   if (radiosity.size() != atlas.texelCount())
     throw std::invalid_argument("addAmbient: not one value per atlas texel");
-  const CellAmbient a = cellAmbient(atlas, residual, unshotPower, texelCell, graph, measured);
+  if (!residual.empty() && residual.size() != atlas.texelCount())
+    throw std::invalid_argument("ambient: not one residual per atlas texel");
+  CellSurfaces s = cellSurfaces(atlas, texelCell, graph);
+  if (!(s.area > 0.0)) return glm::dvec3(0.0);
+  for (AmbientRoom& room : s.rooms) room.unshot = unshotPower * (room.area / s.area);
+  if (!residual.empty()) {
+    for (AmbientRoom& room : s.rooms) room.unshot = glm::dvec3(0.0);
+    for (size_t i = 0; i < residual.size(); ++i)
+      if (atlas.patch[i] >= 0)
+        s.rooms[s.texelEntry[i]].unshot += double(atlas.area[i]) * glm::dvec3(residual[i]);
+  }
+  const Irradiance e = ambientIrradiance(s.rooms, s.openings, measuredShares(measured, s.rooms.size()));
   for (size_t i = 0; i < radiosity.size(); ++i)
     if (atlas.patch[i] >= 0)
-      radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]]);
-  return a.mean;
+      radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * e.perEntry[s.texelEntry[i]]);
+  return e.landed / s.area;
+}
+
+RoomStop::RoomStop(const LightmapAtlas& atlas, std::span<const float> texelCell, const CellGraph& graph,
+                   const AmbientTransfer* measured, double share)
+    : atlas_(atlas), share_(share) {
+  CellSurfaces s = cellSurfaces(atlas, texelCell, graph);
+  texelEntry_ = std::move(s.texelEntry);
+  rooms_ = std::move(s.rooms);
+  openings_ = std::move(s.openings);
+  if (const auto* m = measuredShares(measured, rooms_.size())) transfer_ = *m;
+  reflectorAlbedoArea_.assign(rooms_.size(), glm::dvec3(0.0));
+  reflectorArea_.assign(rooms_.size(), 0.0);
+  for (size_t i = 0; i < texelEntry_.size(); ++i) {
+    if (atlas.patch[i] < 0 || atlas.emission[i] != glm::vec3(0.0f)) continue;  // lamps: their own light
+    const double a = atlas.area[i];
+    reflectorAlbedoArea_[texelEntry_[i]] += a * glm::dvec3(atlas.albedo[i]);
+    reflectorArea_[texelEntry_[i]] += a;
+  }
+}
+
+std::vector<int> RoomStop::texelCells() const {
+  std::vector<int> cells(texelEntry_.size());
+  for (size_t i = 0; i < cells.size(); ++i) cells[i] = int(texelEntry_[i]);
+  return cells;
+}
+
+CellLight RoomStop::cellLight(const std::vector<glm::vec3>& radiosity,
+                              const std::vector<glm::vec3>& residual) const {
+  if (radiosity.size() != texelEntry_.size() || residual.size() != texelEntry_.size())
+    throw std::invalid_argument("ambientShares: not one value per atlas texel");
+  CellLight out;
+  out.unshot.assign(rooms_.size(), glm::dvec3(0.0));
+  out.light.assign(rooms_.size(), 0.0);
+  for (size_t i = 0; i < texelEntry_.size(); ++i) {
+    if (atlas_.patch[i] < 0) continue;
+    const double a = atlas_.area[i];
+    out.unshot[texelEntry_[i]] += a * glm::dvec3(residual[i]);
+    if (atlas_.emission[i] == glm::vec3(0.0f))
+      out.light[texelEntry_[i]] += a * (double(radiosity[i].r) + radiosity[i].g + radiosity[i].b);
+  }
+  return out;
+}
+
+std::vector<double> RoomStop::shares(const CellLight& cells) const {
+  if (cells.unshot.size() != rooms_.size() || cells.light.size() != rooms_.size())
+    throw std::invalid_argument("RoomStop: not one light per cell");
+  std::vector<AmbientRoom> rooms = rooms_;
+  for (size_t c = 0; c < rooms.size(); ++c) rooms[c].unshot = cells.unshot[c];
+  const std::vector<glm::dvec3> irradiance =
+      ambientIrradiance(rooms, openings_, transfer_.empty() ? nullptr : &transfer_).perEntry;
+  std::vector<double> ambient(rooms.size(), 0.0), light(rooms.size(), 0.0);
+  for (size_t c = 0; c < rooms.size(); ++c) {
+    ambient[c] = glm::dot(reflectorAlbedoArea_[c], irradiance[c]);
+    light[c] = ambient[c] + cells.light[c];
+  }
+  return ambientShareOfLitCells(ambient, light, reflectorArea_);
+}
+
+bool RoomStop::accepts(const CellLight& cells) const {
+  const std::vector<double> s = shares(cells);
+  return s.empty() || *std::max_element(s.begin(), s.end()) <= share_;
 }
 
 std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<glm::vec3>& residual,
@@ -140,18 +212,8 @@ std::vector<double> ambientShares(const LightmapAtlas& atlas, const std::vector<
                                   const std::vector<glm::vec3>& radiosity, const AmbientTransfer* measured) {
   if (radiosity.size() != atlas.texelCount() || residual.size() != atlas.texelCount())
     throw std::invalid_argument("ambientShares: not one value per atlas texel");
-  const CellAmbient a = cellAmbient(atlas, residual, glm::dvec3(0.0), texelCell, graph, measured);
-  const size_t cells = a.irradiance.size();
-  std::vector<double> ambient(cells, 0.0), light(cells, 0.0), area(cells, 0.0);
-  for (size_t i = 0; i < radiosity.size(); ++i) {
-    if (atlas.patch[i] < 0 || atlas.emission[i] != glm::vec3(0.0f)) continue;  // lamps: their own light
-    const glm::dvec3 add = glm::dvec3(atlas.albedo[i]) * a.irradiance[a.texelEntry[i]];
-    const double w = atlas.area[i];
-    ambient[a.texelEntry[i]] += w * (add.r + add.g + add.b);
-    light[a.texelEntry[i]] += w * (add.r + add.g + add.b + radiosity[i].r + radiosity[i].g + radiosity[i].b);
-    area[a.texelEntry[i]] += w;
-  }
-  return ambientShareOfLitCells(ambient, light, area);
+  const RoomStop stop(atlas, texelCell, graph, measured, 0.0);
+  return stop.shares(stop.cellLight(radiosity, residual));
 }
 
 std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,

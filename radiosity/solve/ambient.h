@@ -67,6 +67,45 @@ inline constexpr double kNegligibleCellLight = 1e-4;
 std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
                                            const std::vector<double>& light, const std::vector<double>& area);
 
+/// Per cell (and the last entry: texels in no cell), what the stop per room weighs: the power still unshot
+/// on its surfaces (W, RGB) and the light leaving its reflectors (W, R + G + B; lamps left out).
+struct CellLight {
+  std::vector<glm::dvec3> unshot;
+  std::vector<double> light;
+};
+
+/// The stop per room (bake --ambient-share): a progressive solve that reaches its unshot stop stops only
+/// once in no cell the ambient term would be more than `share` of the cell's light (ambientShares). Asked
+/// of a solve's texels (the loop's acceptStop) or of each cell's light (CellLight) as the time estimate's
+/// model foresees it (radiosity/solve/solve_estimate.h): one rule for both. Holds a reference to `atlas`.
+class RoomStop {
+ public:
+  /// `texelCell`, `graph`, `measured` as ambientShares's; `share`: the most the ambient term may be.
+  RoomStop(const LightmapAtlas& atlas, std::span<const float> texelCell, const CellGraph& graph,
+           const AmbientTransfer* measured, double share);
+  /// Per atlas texel, its entry in CellLight.
+  std::vector<int> texelCells() const;
+  /// The cells' light from per-texel radiosity and unshot residual (W/m², RGB).
+  CellLight cellLight(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) const;
+  /// Per entry, ρ E / (B + ρ E) over its reflectors (0 for a cell lit at a leak's level).
+  std::vector<double> shares(const CellLight& cells) const;
+  /// No entry's share above `share`.
+  bool accepts(const CellLight& cells) const;
+  bool accepts(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) const {
+    return accepts(cellLight(radiosity, residual));
+  }
+
+ private:
+  const LightmapAtlas& atlas_;
+  double share_;
+  std::vector<size_t> texelEntry_;
+  std::vector<AmbientRoom> rooms_;  // every surface: where the unshot power bounces
+  std::vector<AmbientOpening> openings_;
+  std::vector<std::vector<double>> transfer_;    // measured, or empty: the openings' areas
+  std::vector<glm::dvec3> reflectorAlbedoArea_;  // the lamps left out: what shows the ambient term
+  std::vector<double> reflectorArea_;
+};
+
 /// Per cell of `graph` (and a last entry for texels in no cell; one entry in all without cells), the share
 /// of its reflectors' light (area-weighted, R + G + B, lamps left out) that the ambient term of `residual`
 /// would be: ρ E / (B + ρ E). A progressive solve's stop per cell (bake): 1 % unshot in the whole scene

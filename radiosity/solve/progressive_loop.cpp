@@ -75,8 +75,11 @@ float shotScale(const ShotGathered& seen, double shotPower, bool lobedEmission) 
 // after that skews the wall figure by as much (bench/RESULTS.md, "Progress from the first second").
 class LoopProgress {
  public:
-  LoopProgress(double strongAt, ShotBackend& backend, Context& ctx)
-      : estimate_(strongAt), backend_(backend), ctx_(ctx) {}
+  LoopProgress(double strongAt, const LoopControls& controls, ShotBackend& backend, Context& ctx)
+      : estimate_(strongAt, roomStop(controls)),
+        cellLight_(controls.roomStop.cellLight),
+        backend_(backend),
+        ctx_(ctx) {}
   /// One shot as the progress sees it.
   struct Shot {
     int shots;            ///< shots so far, this one included
@@ -98,9 +101,13 @@ class LoopProgress {
     if (reflecting_)
       estimate_.addShot(s.patch, s.strong, backend_.shotEyes(s.patch, s.strong), s.power, cpu - lastShotCpu_);
     if (!reflecting_ && !s.nextIsEmitter) reflecting_ = true;
-    if (reflecting_ && estimate_.wantsPatches(s.shots, s.stopAt, cpu))
-      estimate_.observe(s.shots, backend_.patchUnshot(), s.reflected, s.emitted, s.stopAt, cpu,
-                        [this](int patch, bool strong) { return backend_.shotEyes(patch, strong); });
+    if (reflecting_ && estimate_.wantsPatches(s.shots, s.stopAt, cpu)) {
+      std::function<CellLight()> cells;
+      if (cellLight_) cells = [this] { return cellLight_(backend_.radiosity(), backend_.residual()); };
+      estimate_.observe(
+          {s.shots, backend_.patchUnshot(), s.reflected, s.emitted, s.stopAt, s.bound, cpu},
+          [this](int patch, bool strong) { return backend_.shotEyes(patch, strong); }, cells);
+    }
     lastShotCpu_ = processCpuSeconds() - cpuStart_;  // the model's own run is not a shot's cost
     if (s.bound > 0 && refusedAt_ == 0) refusedAt_ = s.shots, refusedCpu_ = cpu;
     if (elapsed - lastReport_ <= kReportSeconds) return;
@@ -136,7 +143,15 @@ class LoopProgress {
     return wall >= kReportSeconds && cpu > 0.0 ? cpu / wall : 1.0;
   }
 
+  // The stop per room as the estimate asks it, with the texels the loop's stop asks it of (the caller's
+  // acceptStop): empty without one.
+  static EstimateRoomStop roomStop(const LoopControls& c) {
+    if (!c.acceptStop || !c.roomStop.accepts || !c.roomStop.cellLight) return {};
+    return {c.patchCell, c.roomStop.accepts, c.roomStop.texelCell.size(), c.refusedStopTexelShots};
+  }
+
   SolveEstimate estimate_;
+  std::function<CellLight(const std::vector<glm::vec3>&, const std::vector<glm::vec3>&)> cellLight_;
   ShotBackend& backend_;
   Context& ctx_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
@@ -168,7 +183,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   ctx.progress(solveProgress(0.0, 0, std::min(books.unshotShare(), 1.0), -1.0, -1.0));
   const double strongAt =
       controls.strongShotPower > 0.0 ? controls.strongShotPower : settings.strongShotFraction * e.emitted;
-  LoopProgress progress(strongAt, backend, ctx);
+  LoopProgress progress(strongAt, controls, backend, ctx);
   double stopAt = settings.unshotFraction;
   int bound = 0;  // past the first refused stop, the shot the loop stops at (kStopRefusedShots)
   ShooterChoice next = backend.next();

@@ -32,6 +32,10 @@ struct LoopControls {
   /// (radiosity/solve/ambient.h, ambientShares). Empty: stop.
   std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
       acceptStop = {};
+  /// acceptStop cell by cell (its cellLight and accepts; its texelCell is the caller's), and per patch its
+  /// cell: the time estimate foresees the stop per room's refusals with them. Empty: only the unshot stop.
+  RoomStopView roomStop = {};
+  std::vector<int> patchCell = {};
   /// Also stop when the next shooter's unshot power (W, R + G + B) is below this: a bound per patch, so a
   /// cell solve lit through a door stops where a solve of the whole scene would (radiosity/cells/). 0: off.
   double minShotPower = 0.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 #include "core/error.h"
 #include "radiosity/lightmap/direct_light.h"
@@ -103,6 +104,23 @@ SolveResult firstShotResult(const LightmapAtlas& atlas, const DirectStart& first
   return r;
 }
 
+// Per patch of `atlas`, the cell most of its texels' area lies in (`texelCell`, per texel; -1 for a patch
+// without texels): the stop per room's cells as the time estimate's patches hold them.
+std::vector<int> patchCells(const LightmapAtlas& atlas, const std::vector<int>& texelCell) {
+  int32_t patches = 0;
+  for (int32_t p : atlas.patch) patches = std::max(patches, p + 1);
+  std::vector<std::map<int, double>> area(static_cast<size_t>(patches));
+  for (size_t i = 0; i < atlas.patch.size(); ++i)
+    if (atlas.patch[i] >= 0) area[size_t(atlas.patch[i])][texelCell[i]] += atlas.area[i];
+  std::vector<int> cells(size_t(patches), -1);
+  for (size_t p = 0; p < area.size(); ++p) {
+    double most = -1.0;
+    for (const auto& [cell, a] : area[p])
+      if (a > most) most = a, cells[p] = cell;
+  }
+  return cells;
+}
+
 }  // namespace
 
 SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
@@ -144,6 +162,10 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
 
   LoopControls loop;
   loop.acceptStop = controls.acceptStop;
+  if (controls.roomStop.texelCell.size() == atlas.texelCount()) {
+    loop.roomStop = controls.roomStop;
+    loop.patchCell = patchCells(atlas, controls.roomStop.texelCell);
+  }
   loop.minShotPower = controls.minShotPower;
   loop.strongShotPower = shape.strongShotPower;
   loop.emittersAreLamps = shape.emittersAreLamps;

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "radiosity/solve/ambient.h"
+
 namespace cpgi {
 
 /// A refused stop (SolveControls::acceptStop) is asked again once the unshot share has fallen to this
@@ -36,6 +38,18 @@ struct PriorShot {
   double emitted = 0.0;                   ///< W (R + G + B) its sources emitted, all counted as shot
 };
 
+/// The stop per room (SolveControls::acceptStop) cell by cell, so that the time estimate foresees its
+/// refusals (radiosity/solve/solve_estimate.h): the same rule (RoomStop) asked of the cells' light.
+struct RoomStopView {
+  /// Per texel of the solve's atlas, its cell: an entry of CellLight.
+  std::vector<int> texelCell;
+  /// The cells' light from the solve's radiosity and unshot residual (per texel of its atlas).
+  std::function<CellLight(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
+      cellLight;
+  /// Whether acceptStop accepts the cells' light so.
+  std::function<bool(const CellLight&)> accepts;
+};
+
 /// When a solve stops and what it reads back, set by its caller apart from the user's settings
 /// (solver_params.h); how its shots are made is apart (shot_shape.h). The stop's fields go to the loop
 /// (progressive_loop.h, LoopControls).
@@ -53,6 +67,8 @@ struct SolveControls {
   /// stop per room (radiosity/solve/ambient.h, ambientShares). Empty: stop.
   std::function<bool(const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual)>
       acceptStop = {};
+  /// acceptStop cell by cell, for the time estimate (empty: it foresees the unshot stop alone).
+  RoomStopView roomStop = {};
   /// Also stop when the next shooter's unshot power (W, summed over R, G, B) is below this: a bound per
   /// patch rather than a fraction of the input, so a solve lit from outside its atlas (a cell through its
   /// door) stops where a solve of the whole scene would leave such small patches unshot

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/progress.h"
+#include "radiosity/solve/progressive_loop.h"
 
 namespace cpgi {
 
@@ -23,9 +25,53 @@ constexpr double kWeakEyeCostPrior = 1.5;
 // How many recent shots the costs per eye are taken over.
 constexpr size_t kStrongWindow = 64, kWeakWindow = 256;
 constexpr size_t kMinWeakShots = 8;
+// Shots of a strength and eye count before their own mean cost prices the model's shots of that kind
+// (before: the strength's cost per eye times the eyes).
+constexpr size_t kMinKindShots = 4;
+// The cells' books as the model shoots: each cell's unshot power (its patches' sum, against the sum and the
+// RGB power it had at the start) and its light, grown by what lands on its patches (a reflector's light
+// grows by what it reflects, as its unshot power does).
+class ModelCells {
+ public:
+  ModelCells(const ModelRoomStop& rooms, const std::vector<int>& index, const std::vector<double>& unshot,
+             const std::vector<double>& landing)
+      : rooms_(rooms), light_(rooms.now.light) {
+    const size_t k = light_.size();
+    start_.assign(k, 0.0), landing_.assign(k, 0.0);
+    cellOf_.resize(index.size());
+    for (size_t i = 0; i < index.size(); ++i) {
+      const size_t p = size_t(index[i]);
+      const int c = p < rooms.patchCell.size() ? rooms.patchCell[p] : -1;
+      cellOf_[i] = c >= 0 && size_t(c) < k ? size_t(c) : k - 1;  // no cell: the last entry
+      start_[cellOf_[i]] += unshot[i];
+      landing_[cellOf_[i]] += landing[i];
+    }
+    sum_ = start_;
+  }
+  void shot(size_t shooter, double power, double back) {
+    sum_[cellOf_[shooter]] -= power;
+    for (size_t c = 0; c < sum_.size(); ++c) sum_[c] += back * landing_[c], light_[c] += back * landing_[c];
+  }
+  bool accepted() const {
+    CellLight now{rooms_.now.unshot, light_};
+    for (size_t c = 0; c < sum_.size(); ++c) {
+      const double u = std::max(sum_[c], 0.0);
+      now.unshot[c] = start_[c] > 0.0 ? rooms_.now.unshot[c] * (u / start_[c]) : glm::dvec3(u / 3.0);
+    }
+    return rooms_.accepts(now);
+  }
+
+ private:
+  const ModelRoomStop& rooms_;
+  std::vector<size_t> cellOf_;                 // per patch taking part
+  std::vector<double> start_, sum_, landing_;  // per cell
+  std::vector<double> light_;
+};
+
 }  // namespace
 
-ModelShots simulateShots(const PatchLight& light, double stop, double strongPower, double work) {
+ModelShots simulateShots(const PatchLight& light, double stop, double strongPower, double work,
+                         const ModelRoomStop* rooms) {
   ModelShots out;
   // Only the patches that hold light or get some take part.
   std::vector<int> index;
@@ -43,10 +89,29 @@ ModelShots simulateShots(const PatchLight& light, double stop, double strongPowe
     return scale > 0.0 ? unshot / scale : 1.0;
   };
   if (u.empty() || !(stop > 0.0)) return out;
+  std::optional<ModelCells> cells;
+  if (rooms && rooms->accepts && !rooms->now.light.empty() &&
+      rooms->now.unshot.size() == rooms->now.light.size())
+    cells.emplace(*rooms, index, u, w);
+  const int shotsBefore = rooms ? rooms->shots : 0;
+  int bound = rooms ? rooms->bound : 0;
+  double stopAt = stop;
   size_t best = size_t(std::max_element(u.begin(), u.end()) - u.begin());
   std::vector<double> shares;  // after each shot, for the extrapolation
   const size_t most = size_t(std::max(work / double(u.size()), 2.0));
-  while (share() > stop) {
+  for (;;) {
+    // The loop's stop, as the loop asks it (progressive_loop.cpp).
+    const int shots = shotsBefore + int(out.patches.size());
+    if (bound > 0 && shots >= bound) {
+      out.bounded = true;
+      break;
+    }
+    if (share() <= stopAt) {
+      if (!cells || cells->accepted()) break;
+      ++out.refusals;
+      stopAt = share() * kStopRecheck;
+      if (bound == 0) bound = refusedStopBound(shots, rooms->receivers, rooms->texelShots);
+    }
     if (out.patches.size() >= most) break;
     const double power = u[best];
     if (!(power > 0.0)) return out;
@@ -56,6 +121,7 @@ ModelShots simulateShots(const PatchLight& light, double stop, double strongPowe
     u[best] = 0.0;
     unshot += back - power;
     reflected += back;
+    if (cells) cells->shot(best, power, back);
     double top = -1.0;
     size_t next = 0;
     for (size_t i = 0; i < u.size(); ++i) {
@@ -66,15 +132,17 @@ ModelShots simulateShots(const PatchLight& light, double stop, double strongPowe
     shares.push_back(share());
   }
   out.reached = true;
-  if (share() <= stop) return out;
-  // Out of work: the rest at the rate of the last half of the model's shots.
+  if (out.bounded || share() <= stopAt) return out;
+  // Out of work: the rest at the rate of the last half of the model's shots, towards the stop it stands
+  // at (a refusal past it is not foreseen), up to the bound.
   const size_t half = shares.size() / 2;
   const double rate = std::log(shares[half] / shares.back()) / double(shares.size() - 1 - half);
   if (!(rate > 0.0)) {
     out.reached = false;
     return out;
   }
-  out.beyond = std::log(shares.back() / stop) / rate;
+  out.beyond = std::log(shares.back() / stopAt) / rate;
+  if (bound > 0) out.beyond = std::min(out.beyond, double(bound - shotsBefore) - double(out.patches.size()));
   return out;
 }
 
@@ -89,8 +157,10 @@ void SolveEstimate::Window::push(double s, double e, size_t most) {
 
 void SolveEstimate::addShot(int patch, bool strong, int eyes, double power, double seconds) {
   ++reflectorShots_;
-  (strong ? strongCost_ : weakCost_)
-      .push(std::max(seconds, 0.0), double(std::max(eyes, 1)), strong ? kStrongWindow : kWeakWindow);
+  const size_t most = strong ? kStrongWindow : kWeakWindow;
+  const double s = std::max(seconds, 0.0), e = double(std::max(eyes, 1));
+  (strong ? strongCost_ : weakCost_).push(s, e, most);
+  costByEyes_[{strong, std::max(eyes, 1)}].push(s, e, most);
   if (firstUnshot_.empty() || patch < 0 || size_t(patch) >= shotSince_.size()) return;
   shotSince_[size_t(patch)] += power;
   shotPowerSince_ += power;
@@ -100,21 +170,12 @@ bool SolveEstimate::wantsPatches(int shots, double stop, double seconds) const {
   if (firstUnshot_.empty()) return true;  // where the light is counted from
   if (reflectorShots_ < kMinShots) return false;
   if (!ran_ || stop != modelStop_) return true;
-  const bool overrun =
-      modelReached_ && double(shots - modelShot_) >= double(strongEyesAfter_.size() - 1) + beyond_;
+  const bool overrun = modelReached_ && double(shots - modelShot_) >= double(modelShots_.size()) + beyond_;
   return overrun || seconds - modelSeconds_ >= kModelEvery * modelCost_;
 }
 
-void SolveEstimate::observe(int shots, std::vector<double> unshot, double reflected, double emitted,
-                            double stop, double seconds, const std::function<int(int, bool)>& eyes) {
-  if (firstUnshot_.empty()) {
-    shotSince_.assign(unshot.size(), 0.0);
-    firstUnshot_ = std::move(unshot);
-    return;
-  }
-  if (!wantsPatches(shots, stop, seconds) || unshot.size() != firstUnshot_.size() || !(shotPowerSince_ > 0.0))
-    return;
-  const double cpu = processCpuSeconds();
+ModelShots SolveEstimate::runModel(const LoopState& state, std::vector<double> unshot,
+                                   const std::function<CellLight()>& cells) const {
   // Where the light shot since the first observe came back: each patch's unshot now, less what it had,
   // plus what it shot.
   PatchLight light;
@@ -124,40 +185,53 @@ void SolveEstimate::observe(int shots, std::vector<double> unshot, double reflec
     light.landing[p] = std::max(unshot[p] - firstUnshot_[p] + shotSince_[p], 0.0);
     back += light.landing[p];
   }
-  if (!(back > 0.0)) return;
+  if (!(back > 0.0)) return {};
   for (double& w : light.landing) w /= back;
   light.returned = std::min(back / shotPowerSince_, 0.999);
   light.unshot = std::move(unshot);
-  light.reflected = reflected;
-  light.emitted = emitted;
-  const ModelShots model = simulateShots(light, stop, strongPower_, kModelWork);
+  light.reflected = state.reflected;
+  light.emitted = state.emitted;
+  if (!rooms_.accepts || !cells) return simulateShots(light, state.stop, strongPower_, kModelWork);
+  const ModelRoomStop rooms{rooms_.patchCell, cells(),          rooms_.accepts,   state.shots,
+                            state.bound,      rooms_.receivers, rooms_.texelShots};
+  return simulateShots(light, state.stop, strongPower_, kModelWork, &rooms);
+}
 
-  const size_t n = model.patches.size();
-  strongEyesAfter_.assign(n + 1, 0.0);
-  weakEyesAfter_.assign(n + 1, 0.0);
-  for (size_t k = n; k-- > 0;) {
-    const bool strong = model.strong[k] != 0;
-    const double e = double(std::max(eyes(model.patches[k], strong), 1));
-    strongEyesAfter_[k] = strongEyesAfter_[k + 1] + (strong ? e : 0.0);
-    weakEyesAfter_[k] = weakEyesAfter_[k + 1] + (strong ? 0.0 : e);
+void SolveEstimate::observe(LoopState state, const std::function<int(int, bool)>& eyes,
+                            const std::function<CellLight()>& cells) {
+  if (firstUnshot_.empty()) {
+    shotSince_.assign(state.unshot.size(), 0.0);
+    firstUnshot_ = std::move(state.unshot);
+    return;
   }
-  // The extrapolated shots are weak, with the eyes of the model's last weak shots.
+  if (!wantsPatches(state.shots, state.stop, state.seconds) || state.unshot.size() != firstUnshot_.size() ||
+      !(shotPowerSince_ > 0.0))
+    return;
+  const double cpu = processCpuSeconds();
+  std::vector<double> unshot = std::move(state.unshot);
+  const ModelShots model = runModel(state, std::move(unshot), cells);
+  if (model.patches.empty() && !model.reached) return;
+  modelShots_.resize(model.patches.size());
+  for (size_t k = 0; k < model.patches.size(); ++k) {
+    const bool strong = model.strong[k] != 0;
+    modelShots_[k] = {strong, std::max(eyes(model.patches[k], strong), 1)};
+  }
+  // The extrapolated shots are weak, as the model's last weak shots.
   beyond_ = model.beyond;
-  double lastEyes = 0.0, lastCount = 0.0;
-  for (size_t k = n; k-- > 0 && lastCount < 64.0;)
-    if (!model.strong[k]) lastEyes += double(std::max(eyes(model.patches[k], false), 1)), lastCount += 1.0;
-  beyondEyes_ = lastCount > 0.0 ? lastEyes / lastCount : 1.0;
+  beyondShots_.clear();
+  for (size_t k = modelShots_.size(); k-- > 0 && beyondShots_.size() < 64;)
+    if (!modelShots_[k].first) beyondShots_.push_back(modelShots_[k]);
   ran_ = true;
   modelReached_ = model.reached;
-  modelShot_ = shots;
-  modelStop_ = stop;
-  modelSeconds_ = seconds;
+  modelShot_ = state.shots;
+  modelStop_ = state.stop;
+  modelSeconds_ = state.seconds;
   modelCost_ = processCpuSeconds() - cpu;
 }
 
 double SolveEstimate::shotsLeft(int shots) const {
   if (!ran_ || !modelReached_) return -1.0;
-  const double foreseen = double(strongEyesAfter_.size() - 1) + beyond_;
+  const double foreseen = double(modelShots_.size()) + beyond_;
   return std::max(foreseen - double(shots - modelShot_), 0.0);
 }
 
@@ -173,19 +247,34 @@ double SolveEstimate::secondsPerEye(bool strong) const {
   return own.eyesSum > 0.0 ? own.secondsSum / own.eyesSum : 0.0;
 }
 
+double SolveEstimate::shotSeconds(bool strong, int eyes) const {
+  const auto kind = costByEyes_.find({strong, eyes});
+  if (kind != costByEyes_.end() && kind->second.seconds.size() >= kMinKindShots)
+    return kind->second.secondsSum / double(kind->second.seconds.size());
+  return secondsPerEye(strong) * double(eyes);
+}
+
 double SolveEstimate::secondsLeft(int shots) const {
   const double left = shotsLeft(shots);
   if (left <= 0.0) return left;
-  const size_t n = strongEyesAfter_.size() - 1;
   const size_t done = size_t(std::max(shots - modelShot_, 0));
-  double strongEyes = 0.0, weakEyes = 0.0, beyond = beyond_;
-  if (done <= n) {
-    strongEyes = strongEyesAfter_[done], weakEyes = weakEyesAfter_[done];
-  } else {
-    beyond = std::max(beyond_ - double(done - n), 0.0);
+  double seconds = 0.0;
+  // Each kind's price once: the shots to come are many, their kinds few.
+  std::map<ShotKind, double> price;
+  auto priced = [&](const ShotKind& k) {
+    const auto [at, added] = price.try_emplace(k, 0.0);
+    if (added) at->second = shotSeconds(k.first, k.second);
+    return at->second;
+  };
+  for (size_t k = done; k < modelShots_.size(); ++k) seconds += priced(modelShots_[k]);
+  const double beyond =
+      std::max(beyond_ - double(done > modelShots_.size() ? done - modelShots_.size() : 0), 0.0);
+  if (beyond > 0.0) {
+    double each = 0.0;
+    for (const ShotKind& k : beyondShots_) each += priced(k);
+    seconds += beyond * (beyondShots_.empty() ? secondsPerEye(false) : each / double(beyondShots_.size()));
   }
-  weakEyes += beyond * beyondEyes_;
-  return strongEyes * secondsPerEye(true) + weakEyes * secondsPerEye(false);
+  return seconds;
 }
 
 }  // namespace cpgi

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "core/progress.h"
 #include "radiosity/lightmap/atlas_resample.h"
@@ -78,6 +79,42 @@ LightmapAtlas coarseAtlas(const Scene& scene, const QuadSet& quads, AtlasParams&
     coarse = buildAtlas(scene, quads, params, ctx);
   }
   return coarse;
+}
+
+// Per coarse texel, the cell (`texelCell`, per output texel) of most of the output area that falls in it
+// (the no-cell entry, the largest, where none does): the stop per room's cells on the coarse solve.
+std::vector<int> coarseCells(const AtlasMapping& mapping, const LightmapAtlas& atlas,
+                             const LightmapAtlas& coarse, const std::vector<int>& texelCell) {
+  std::vector<std::map<int, double>> area(coarse.texelCount());
+  int none = 0;
+  for (size_t i = 0; i < texelCell.size(); ++i) {
+    none = std::max(none, texelCell[i]);
+    const int64_t t = mapping.coarseTexel[i];
+    if (t >= 0 && size_t(t) < area.size()) area[size_t(t)][texelCell[i]] += atlas.area[i];
+  }
+  std::vector<int> cells(coarse.texelCount(), none);
+  for (size_t t = 0; t < area.size(); ++t) {
+    double most = -1.0;
+    for (const auto& [cell, a] : area[t])
+      if (a > most) most = a, cells[t] = cell;
+  }
+  return cells;
+}
+
+// The stop per room on the coarse solve: the cells of its texels, and the cells' light from its radiosity
+// and residual brought onto the output atlas, as its acceptStop is asked. Holds references to the rest.
+RoomStopView coarseRoomStop(const RoomStopView& output, const AtlasMapping& mapping,
+                            const LightmapAtlas& atlas, const LightmapAtlas& coarse,
+                            const std::vector<glm::vec3>& litRadiosity,
+                            const std::vector<glm::vec3>& direct) {
+  RoomStopView view = output;
+  view.texelCell = coarseCells(mapping, atlas, coarse, output.texelCell);
+  view.cellLight = [&output, &mapping, &atlas, &coarse, &litRadiosity, &direct](
+                       const std::vector<glm::vec3>& radiosity, const std::vector<glm::vec3>& residual) {
+    return output.cellLight(outputRadiosity(mapping, atlas, coarse, litRadiosity, direct, radiosity),
+                            upsample(mapping, atlas, coarse, residual));
+  };
+  return view;
 }
 
 }  // namespace
@@ -164,6 +201,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
       return controls.acceptStop(outputRadiosity(mapping, atlas, coarse, lit.radiosity, direct, radiosity),
                                  upsample(mapping, atlas, coarse, residual));
     };
+  if (controls.roomStop.accepts && controls.roomStop.texelCell.size() == atlas.texelCount())
+    c.roomStop = coarseRoomStop(controls.roomStop, mapping, atlas, coarse, lit.radiosity, direct);
   const auto coarseStart = std::chrono::steady_clock::now();
   SolverParams indirectSettings = settings;
   indirectSettings.itemBuffer = indirectItemBuffer(settings.itemBuffer, levels.solveDensity);

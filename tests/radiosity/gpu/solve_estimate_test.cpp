@@ -1,4 +1,5 @@
 #include "radiosity/solve/solve_estimate.h"
+#include "radiosity/solve/progressive_loop.h"
 
 #include <gtest/gtest.h>
 
@@ -73,7 +74,7 @@ HandSolve handSolve(int patches, double spread) {
 void feed(SolveEstimate& e, HandSolve& s, const HandSolve::Shot& shot, double stop) {
   e.addShot(shot.patch, shot.strong, HandSolve::eyes(shot.patch, shot.strong), shot.power, shot.seconds);
   if (e.wantsPatches(s.shots, stop, s.seconds))
-    e.observe(s.shots, s.unshot, s.reflected, s.emitted, stop, s.seconds, HandSolve::eyes);
+    e.observe({s.shots, s.unshot, s.reflected, s.emitted, stop, 0, s.seconds}, HandSolve::eyes);
 }
 
 // The model learns where the light lands and how much comes back from the patches' state, so on a solve
@@ -128,6 +129,132 @@ TEST(SolveEstimate, SaysNothingBeforeItsEighthShot) {
   }
   feed(e, s, s.shoot(), stop);
   EXPECT_GE(e.shotsLeft(s.shots), 0.0);
+}
+
+// Two rooms of `perRoom` patches of 1 m² (albedo 0.5) joined by a 2 m² door, as an atlas of one texel a
+// patch: the bake's stop per room (RoomStop) on them.
+struct TwoRooms {
+  LightmapAtlas atlas;
+  CellGraph graph;
+  std::vector<float> texelCell;
+  explicit TwoRooms(int perRoom) {
+    atlas.width = 2 * perRoom, atlas.height = 1;
+    for (int i = 0; i < atlas.width; ++i) {
+      atlas.patch.push_back(i);
+      atlas.area.push_back(1.0f);
+      atlas.albedo.push_back(glm::vec3(0.5f));
+      atlas.emission.push_back(glm::vec3(0.0f));
+      texelCell.push_back(i < perRoom ? 0.0f : 1.0f);
+    }
+    graph.cells = {Cell{"A", {}, {}}, Cell{"B", {}, {}}};
+    PortalQuad door;
+    door.area = 2.0f, door.cellA = 0, door.cellB = 1;
+    graph.portals = {door};
+  }
+};
+
+// A hand solve whose patches also keep the light they reflect (W; the texel's radiosity × its 1 m²), and
+// the loop's stop per room on it: asked at the unshot stop, refused the stop moves to kStopRecheck of the
+// share, and past the first refusal the loop stops at refusedStopBound (progressive_loop.cpp).
+struct RoomHandSolve {
+  HandSolve s;
+  std::vector<double> light;
+  const RoomStop& rule;
+
+  CellLight cells() const {
+    std::vector<glm::vec3> radiosity, residual;
+    for (size_t p = 0; p < light.size(); ++p)
+      radiosity.push_back(glm::vec3(float(light[p] / 3.0))),
+          residual.push_back(glm::vec3(float(s.unshot[p] / 3.0)));
+    return rule.cellLight(radiosity, residual);
+  }
+  HandSolve::Shot shoot() {
+    const std::vector<double> before = s.unshot;
+    const HandSolve::Shot shot = s.shoot();
+    for (size_t p = 0; p < light.size(); ++p)
+      if (int(p) != shot.patch) light[p] += s.unshot[p] - before[p];
+    light[size_t(shot.patch)] += s.unshot[size_t(shot.patch)];
+    return shot;
+  }
+  struct Stops {
+    int shots = 0, refusals = 0, bound = 0;
+    double stopAt = 0.0;
+  };
+  // Shoots to `stop` and on past the refusals, to where the loop would stop.
+  Stops toStop(double stop, double texelShots) {
+    Stops out{0, 0, 0, stop};
+    for (;;) {
+      if (out.bound > 0 && s.shots >= out.bound) break;
+      if (s.share() <= out.stopAt) {
+        if (rule.accepts(cells())) break;
+        ++out.refusals;
+        out.stopAt = s.share() * kStopRecheck;
+        if (out.bound == 0) out.bound = refusedStopBound(s.shots, light.size(), texelShots);
+      }
+      shoot();
+    }
+    out.shots = s.shots;
+    return out;
+  }
+};
+
+// Room A holds the lamps' first bounce and gets nearly all the light back; room B, through the door, gets
+// `bShare` of it. Its light stays so small that the ambient term of the unshot power (its own and what
+// comes through the door) is most of it at 1 % unshot: the stop per room refuses, as in the office. The
+// model, asking the same rule of each cell's light as its shots move it, foresees the shots to the loop's
+// last ask (or its bound) as the hand solve takes them.
+TEST(SolveEstimate, TheModelForeseesTheStopPerRoomsRefusals) {
+  const int perRoom = 30;
+  const TwoRooms rooms(perRoom);
+  const RoomStop rule(rooms.atlas, rooms.texelCell, rooms.graph, nullptr, kDefaultAmbientShare);
+  struct Case {
+    double bShare, texelShots;
+  };
+  // Room B with 1 % of the light: its stop accepted after 4 refusals (210 shots against 114 to the first
+  // ask); with 0.1 %, still refused at the loop's bound (as many shots again as to the first refusal,
+  // with no least work).
+  for (const Case c : {Case{0.01, kStopRefusedTexelShots}, Case{0.001, 0.0}}) {
+    HandSolve s = handSolve(2 * perRoom, 3.0);
+    for (int i = 0; i < 2 * perRoom; ++i) s.landing[size_t(i)] *= i < perRoom ? 1.0 - c.bShare : 0.0;
+    for (int i = perRoom; i < 2 * perRoom; ++i) {
+      s.landing[size_t(i)] = c.bShare / perRoom;
+      s.unshot[size_t(i - perRoom)] += s.unshot[size_t(i)];  // the lamps light room A
+      s.unshot[size_t(i)] = 0.0;
+    }
+    double sum = 0.0;
+    for (double w : s.landing) sum += w;
+    for (double& w : s.landing) w /= sum;
+    RoomHandSolve hand{s, s.unshot, rule};
+    const double stop = 0.01;
+    RoomHandSolve truth = hand;
+    const RoomHandSolve::Stops all = truth.toStop(stop, c.texelShots);
+    ASSERT_GE(all.refusals, 2) << "B at " << c.bShare << ": the stop per room should refuse";
+    HandSolve unshotOnly = hand.s;
+    const int firstAsk = unshotOnly.toStop(stop).first;
+    ASSERT_GT(all.shots, firstAsk * 5 / 4) << "the refusals should add shots";
+    EXPECT_EQ(all.shots == all.bound, c.texelShots == 0.0) << "B at " << c.bShare;
+
+    // The model from the hand solve's state after a tenth of the shots, given the patches' cells.
+    std::vector<int> patchCell;
+    for (float cell : rooms.texelCell) patchCell.push_back(int(cell));
+    SolveEstimate e(s.strongPower, {patchCell, [&](const CellLight& l) { return rule.accepts(l); },
+                                    rooms.atlas.texelCount(), c.texelShots});
+    SolveEstimate unshotStop(s.strongPower);
+    while (hand.s.shots < all.shots / 10) {
+      const HandSolve::Shot shot = hand.shoot();
+      for (SolveEstimate* est : {&e, &unshotStop}) {
+        est->addShot(shot.patch, shot.strong, HandSolve::eyes(shot.patch, shot.strong), shot.power,
+                     shot.seconds);
+        if (est->wantsPatches(hand.s.shots, stop, hand.s.seconds))
+          est->observe(
+              {hand.s.shots, hand.s.unshot, hand.s.reflected, hand.s.emitted, stop, 0, hand.s.seconds},
+              HandSolve::eyes, [&] { return hand.cells(); });
+      }
+    }
+    const double left = double(all.shots - hand.s.shots);
+    EXPECT_NEAR(e.shotsLeft(hand.s.shots), left, 0.02 * left) << "B at " << c.bShare;
+    EXPECT_LT(unshotStop.shotsLeft(hand.s.shots), 0.8 * left) << "B at " << c.bShare;
+  }
 }
 
 }  // namespace

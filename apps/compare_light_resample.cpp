@@ -4,7 +4,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -45,74 +44,6 @@ AtlasParams recordedAtlasParams(const std::string& dir) {
   return params;
 }
 
-constexpr double kPieceReach = 0.02;  // metres
-
-// Barycentric weights of `x` in triangle t's plane, and its distance from that plane.
-glm::dvec3 planeBarycentric(const Triangle& t, glm::vec3 x, double& distance) {
-  const glm::dvec3 a(t.p[0]), e1 = glm::dvec3(t.p[1]) - a, e2 = glm::dvec3(t.p[2]) - a, d = glm::dvec3(x) - a;
-  const glm::dvec3 n = glm::cross(e1, e2);
-  const double n2 = glm::dot(n, n);
-  if (!(n2 > 0.0)) {
-    distance = std::numeric_limits<double>::max();
-    return glm::dvec3(-1.0);
-  }
-  distance = std::abs(glm::dot(d, n)) / std::sqrt(n2);
-  const double v = glm::dot(glm::cross(d, e2), n) / n2, w = glm::dot(glm::cross(e1, d), n) / n2;
-  return {1.0 - v - w, v, w};
-}
-
-// The texels whose scene triangle A's baked.glb does not hold as it is (a bake on the automatic cells
-// splits the triangles that cross its portal planes): read on the piece, among the baked triangles no
-// scene triangle matched, whose plane and area hold the texel's point. Returns the texels still unread,
-// marked in `unread`.
-size_t sampleOnSplitTriangles(const LightmapAtlas& atlas, const std::vector<int32_t>& source,
-                              const LoadedScene& baked, const ImageRGB& aImage, std::vector<glm::vec3>& out,
-                              std::vector<char>& unread) {
-  std::vector<char> matched(baked.scene.triangles.size(), 0);
-  for (int32_t s : source)
-    if (s >= 0) matched[size_t(s)] = 1;
-  std::vector<size_t> pieces;
-  for (size_t t = 0; t < matched.size(); ++t)
-    if (!matched[t]) pieces.push_back(t);
-  size_t unreadCount = 0;
-  unread.assign(atlas.texelCount(), 0);
-  for (int y = 0; y < atlas.height; ++y)
-    for (int x = 0; x < atlas.width; ++x) {
-      const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
-      if (atlas.patch[t] < 0) continue;
-      const Patch& p = atlas.patches[size_t(atlas.patch[t])];
-      const int32_t triangle = texelTriangle(p, x - p.x, y - p.y);
-      if (triangle >= 0 && source[size_t(triangle)] >= 0) continue;
-      // The piece that holds the point, else the nearest in its plane within kPieceReach (a sliver
-      // the split left too thin to keep, dropped as the baked.glb was read, leaves a gap that thin).
-      size_t best = pieces.size();
-      double bestGap = kPieceReach;
-      glm::dvec3 bestWeights(0.0);
-      for (size_t k = 0; k < pieces.size() && bestGap > 0.0; ++k) {
-        const Triangle& tri = baked.scene.triangles[pieces[k]];
-        double distance = 0.0;
-        glm::dvec3 w = planeBarycentric(tri, atlas.position[t], distance);
-        if (distance > 1e-3 || glm::dot(tri.geometricNormal(), atlas.normal[t]) < 0.99f) continue;
-        w = glm::max(w, glm::dvec3(0.0));
-        w /= w.x + w.y + w.z;
-        const glm::dvec3 on =
-            w.x * glm::dvec3(tri.p[0]) + w.y * glm::dvec3(tri.p[1]) + w.z * glm::dvec3(tri.p[2]);
-        const double gap = glm::length(on - glm::dvec3(atlas.position[t])) - distance;
-        if (gap < bestGap) best = k, bestGap = std::max(gap, 0.0), bestWeights = w;
-      }
-      const bool found = best < pieces.size();
-      if (found) {
-        const std::array<glm::vec2, 3>& uv = baked.lightmapUVs[pieces[best]];
-        const glm::dvec3& w = bestWeights;
-        const glm::vec2 at(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
-        out[t] = sampleBilinear(aImage.width, aImage.height, aImage.pixels, at);
-      }
-      unread[t] = !found;
-      unreadCount += !found;
-    }
-  return unreadCount;
-}
-
 }  // namespace
 
 LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scenePath, const std::string& bDir,
@@ -147,7 +78,10 @@ ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string&
   out.pixels = sampleAtTexels(atlas, scene.scene, source, baked.lightmapUVs, aImage.width, aImage.height,
                               aImage.pixels, &missing);
   std::vector<char> unread;
-  if (missing > 0) missing = sampleOnSplitTriangles(atlas, source, baked, aImage, out.pixels, unread);
+  if (missing > 0)
+    missing = sampleOnSplitPieces(
+        atlas, scene.scene, source, matchSplitPieces(scene.scene, baked.scene, source), baked.scene,
+        baked.lightmapUVs, aImage.width, aImage.height, aImage.pixels, out.pixels, unread);
   // A few texels on surfaces the automatic cells' bake does not hold at all (one face of a zero-thickness
   // wall the decomposition left out) are left out of the comparison; more is another scene.
   if (missing > 0 && unreadTexels && missing * 100 <= atlas.validTexels()) {

@@ -35,4 +35,23 @@ std::vector<glm::vec3> sampleAtTexels(const LightmapAtlas& atlas, const Scene& s
                                       std::span<const std::array<glm::vec2, 3>> uvs, int width, int height,
                                       std::span<const glm::vec3> lightmap, size_t* missing = nullptr);
 
+/// Per triangle of `scene` that `source` (matchTriangles(scene, other)) leaves unmatched, the triangles
+/// of `other` that no scene triangle matched and that lie on it: in its plane, facing its way, every
+/// corner on it (the pieces a bake on the automatic cells cut it into on its portal planes); empty for
+/// the others, and for a triangle `other` dropped.
+std::vector<std::vector<int32_t>> matchSplitPieces(const Scene& scene, const Scene& other,
+                                                   std::span<const int32_t> source);
+
+/// sampleAtTexels for the texels whose triangle `source` leaves unmatched: the texel's centre held onto
+/// the nearer of its quad's two triangles (texelTriangle names a quad's first for all its texels, and a
+/// border texel's centre lies off both), then read through that triangle's match, or on its piece
+/// (`pieces`, from matchSplitPieces; indices into `other` and `uvs`) nearest to the point, which holds
+/// it unless a sliver of the cut was dropped. Writes those texels of `out`; returns how many valid texels
+/// lie on a triangle with neither match nor piece, marked 1 in `unread` (atlas-sized), left as they were.
+size_t sampleOnSplitPieces(const LightmapAtlas& atlas, const Scene& scene, std::span<const int32_t> source,
+                           const std::vector<std::vector<int32_t>>& pieces, const Scene& other,
+                           std::span<const std::array<glm::vec2, 3>> uvs, int width, int height,
+                           std::span<const glm::vec3> lightmap, std::vector<glm::vec3>& out,
+                           std::vector<char>& unread);
+
 }  // namespace cpgi

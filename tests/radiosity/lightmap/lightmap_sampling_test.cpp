@@ -13,7 +13,36 @@ namespace {
 
 using testing::addClosedBox;
 using testing::addMaterial;
+using testing::addRect;
 using testing::addTriangle;
+
+// `t` cut by the plane x = `cut` into triangles, as the automatic cells cut a surface on a portal's
+// plane: the corners on each side and the two crossings, each side's polygon fanned.
+void addCutPieces(Scene& pieces, const Triangle& t, float cut) {
+  for (int side = 0; side < 2; ++side) {
+    std::vector<glm::vec3> polygon;
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec3 a = t.p[size_t(c)], b = t.p[size_t((c + 1) % 3)];
+      const bool aIn = side == 0 ? a.x <= cut : a.x >= cut, bIn = side == 0 ? b.x <= cut : b.x >= cut;
+      if (aIn) polygon.push_back(a);
+      if (aIn != bIn) polygon.push_back(a + (b - a) * ((cut - a.x) / (b.x - a.x)));
+    }
+    for (size_t k = 2; k < polygon.size(); ++k)
+      addTriangle(pieces, polygon[0], polygon[k - 1], polygon[k], t.material);
+  }
+}
+
+// A lightmap over the xz-rectangle [0, 2]² (200 × 200 texels) holding a light linear in x and z, and the
+// coordinates of a triangle's corners in it: what any chart of a flat floor reads back between centres.
+constexpr int kFloorMap = 200;
+float floorLight(glm::dvec3 x) {
+  return float(1.0 + 0.5 * x.x + 0.25 * x.z);
+}
+std::array<glm::vec2, 3> floorUVs(const Triangle& t) {
+  std::array<glm::vec2, 3> uv;
+  for (size_t c = 0; c < 3; ++c) uv[c] = glm::vec2(t.p[c].x, t.p[c].z) / 2.0f;
+  return uv;
+}
 
 TEST(LightmapSampling, BilinearIsTheTexelAtItsCentreAndTheMeanBetween) {
   const std::vector<glm::vec3> map = {glm::vec3(1.0f), glm::vec3(3.0f), glm::vec3(5.0f), glm::vec3(7.0f)};
@@ -43,7 +72,8 @@ TEST(LightmapSampling, ACoarseLightmapReadAtFineTexelsAsAnEngineReadsIt) {
   Scene scene;
   const uint32_t wall = addMaterial(scene, glm::vec3(0.7f));
   addClosedBox(scene, glm::vec3(0.0f), glm::vec3(4.0f, 3.0f, 2.5f), wall);
-  addTriangle(scene, glm::vec3(2.0f, 0.5f, 0.3f), glm::vec3(2.0f, 0.9f, 0.3f), glm::vec3(2.0f, 0.5f, 1.1f), wall, 3);
+  addTriangle(scene, glm::vec3(2.0f, 0.5f, 0.3f), glm::vec3(2.0f, 0.9f, 0.3f), glm::vec3(2.0f, 0.5f, 1.1f),
+              wall, 3);
   Context ctx;
   AtlasParams p;
   p.density = 20.0f;
@@ -58,8 +88,8 @@ TEST(LightmapSampling, ACoarseLightmapReadAtFineTexelsAsAnEngineReadsIt) {
   std::vector<int32_t> identity(scene.triangles.size());
   std::iota(identity.begin(), identity.end(), 0);
   size_t missing = 7;
-  const std::vector<glm::vec3> read =
-      sampleAtTexels(fine, scene, identity, coarse.triangleUV, coarse.width, coarse.height, coarseMap, &missing);
+  const std::vector<glm::vec3> read = sampleAtTexels(fine, scene, identity, coarse.triangleUV, coarse.width,
+                                                     coarse.height, coarseMap, &missing);
   EXPECT_EQ(missing, 0u);
   size_t exact = 0;
   for (size_t t = 0; t < fine.texelCount(); ++t) {
@@ -79,6 +109,75 @@ TEST(LightmapSampling, ACoarseLightmapReadAtFineTexelsAsAnEngineReadsIt) {
   lacking[0] = -1;
   sampleAtTexels(fine, scene, lacking, coarse.triangleUV, coarse.width, coarse.height, coarseMap, &missing);
   EXPECT_GT(missing, 0u);
+}
+
+// A bake on the automatic cells cuts a surface on a portal's plane and writes the pieces, not the
+// surface's triangles: a reference's texels on it are read on the pieces. A quad's texels all name its
+// first triangle, so when the cut (a door's width) splits that one only, half of them lie on the second,
+// unsplit, and are read through its match; a border texel's centre, off the floor, is read at its nearest
+// point on the floor.
+TEST(LightmapSampling, TexelsOfATriangleSplitOnAPortalPlaneAreReadOnItsPieces) {
+  Scene scene;
+  const uint32_t m = addMaterial(scene, glm::vec3(0.5f));
+  // A floor (normal +y) 1.93 × 1.37 m, its diagonal from (0.02, 0.03) to (1.95, 1.40).
+  addRect(scene, glm::vec3(0.02f, 0.0f, 0.03f), glm::vec3(0.0f, 0.0f, 1.37f), glm::vec3(1.93f, 0.0f, 0.0f),
+          m);
+  std::vector<glm::vec3> map(size_t(kFloorMap) * kFloorMap);
+  for (int j = 0; j < kFloorMap; ++j)
+    for (int i = 0; i < kFloorMap; ++i)
+      map[size_t(j) * kFloorMap + size_t(i)] =
+          glm::vec3(floorLight({(i + 0.5) * 2.0 / kFloorMap, 0.0, (j + 0.5) * 2.0 / kFloorMap}));
+  Context ctx;
+  AtlasParams params;
+  params.density = 10.0f;
+  const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), params, ctx);
+  ASSERT_EQ(atlas.patches.size(), 1u);
+
+  for (const bool bothCut : {false, true}) {
+    SCOPED_TRACE(bothCut ? "both triangles cut" : "the first triangle cut, the second whole");
+    Scene baked;
+    baked.materials = scene.materials;
+    addCutPieces(baked, scene.triangles[0], 0.71f);
+    if (bothCut)
+      addCutPieces(baked, scene.triangles[1], 0.71f);
+    else
+      baked.triangles.push_back(scene.triangles[1]);
+    std::reverse(baked.triangles.begin(), baked.triangles.end());  // a file lists them in its own order
+    std::vector<std::array<glm::vec2, 3>> uvs;
+    for (const Triangle& t : baked.triangles) uvs.push_back(floorUVs(t));
+
+    const std::vector<int32_t> source = matchTriangles(scene, baked);
+    EXPECT_EQ(source[0], -1);
+    EXPECT_EQ(source[1] >= 0, !bothCut);
+    const std::vector<std::vector<int32_t>> pieces = matchSplitPieces(scene, baked, source);
+    ASSERT_EQ(pieces.size(), scene.triangles.size());
+    EXPECT_EQ(pieces[0].size() + pieces[1].size(), baked.triangles.size() - (bothCut ? 0 : 1));
+    EXPECT_EQ(pieces[1].empty(), !bothCut);
+
+    std::vector<glm::vec3> read(atlas.texelCount(), glm::vec3(-1.0f));
+    std::vector<char> unread;
+    EXPECT_EQ(sampleOnSplitPieces(atlas, scene, source, pieces, baked, uvs, kFloorMap, kFloorMap, map, read,
+                                  unread),
+              0u);
+    size_t onSecond = 0;
+    for (size_t t = 0; t < atlas.texelCount(); ++t) {
+      if (atlas.patch[t] < 0) continue;
+      const glm::dvec3 x(atlas.position[t]);
+      const glm::dvec3 on(std::clamp(x.x, 0.02, 1.95), 0.0, std::clamp(x.z, 0.03, 1.40));
+      onSecond += (on.z - 0.03) * 1.93 > (on.x - 0.02) * 1.37;
+      EXPECT_NEAR(read[t].x, floorLight(on), 1e-3f) << "texel " << t << " at " << x.x << ", " << x.z;
+    }
+    EXPECT_GT(onSecond * 3, atlas.validTexels());  // the case: many texels of the first lie on the second
+
+    // The pieces of the cut triangle dropped: its texels on it are unread, those on the second read.
+    std::vector<std::vector<int32_t>> lost = pieces;
+    lost[0].clear();
+    const size_t dropped =
+        sampleOnSplitPieces(atlas, scene, source, lost, baked, uvs, kFloorMap, kFloorMap, map, read, unread);
+    EXPECT_GT(dropped, 0u);
+    EXPECT_LT(dropped, atlas.validTexels());
+    EXPECT_EQ(size_t(std::count(unread.begin(), unread.end(), char(1))), dropped);
+  }
 }
 
 }  // namespace

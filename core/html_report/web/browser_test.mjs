@@ -9,8 +9,8 @@
 //  - the tables of report.json are there, and the bench chart when the page has bench rows;
 //  - with light probes, the probe-lit sphere shows, lit from above more than from below; set on a probe
 //    of a lit room, its shading is that probe's irradiance from probes.json (computed here) at band 4
-//    (the bake's L2 + band 4), not at L2 alone; with the directional lightmap, the normal-mapped surfaces
-//    change the picture.
+//    (the bake's L2 + band 4), not at L2 alone; beside a probe of another room it takes its own room's
+//    probes alone; with the directional lightmap, the normal-mapped surfaces change the picture.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
@@ -56,6 +56,20 @@ function eyeOnProbe(probe, probes) {
   const inside = [0, 1, 2].every((a) => eye[a] >= lo[a] - 1e-3 && eye[a] <= hi[a] + 1e-3);
   return inside ? { eye, look: probe.position, ahead } : null;
 }
+
+// The probes' L2 and band-4 SH at `point` blended as report.html is to blend them: the eight nearest of
+// the nearest probe's room by inverse squared distance (`sameRoom` false: of any room, as before).
+function blendedProbe(probes, point, sameRoom = true) {
+  const byDistance = probes.map((p) => ({ p, d2: p.position.reduce((s, x, a) => s + (x - point[a]) ** 2, 0) }))
+    .sort((a, b) => a.d2 - b.d2);
+  const near = byDistance.filter(({ p }) => !sameRoom || p.cell === byDistance[0].p.cell).slice(0, 8);
+  const total = near.reduce((s, { d2 }) => s + 1 / (d2 + 1e-4), 0);
+  const blend = (key) => Array.from({ length: 9 }, (_, k) => [0, 1, 2].map((c) =>
+    near.reduce((s, { p, d2 }) => s + p[key][k][c] / (d2 + 1e-4), 0) / total));
+  return { sh: blend('sh'), sh_l4: blend('sh_l4') };
+}
+
+const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
 // The relative RMS of (measured − expected) over the mean expected, every pixel and channel pooled.
 function relativeRms(samples, expected) {
@@ -209,6 +223,43 @@ try {
     check(figures.band4VsL2 > 0.02, `probe sphere on a probe: band 4 and L2 differ by ${figures.band4VsL2} there, too little to tell`);
     check(figures.band4 < 0.02, `probe sphere on a probe: the shading is ${(100 * figures.band4).toFixed(2)} % off the probe's band-4 irradiance`);
     check(figures.l2 > 2 * figures.band4, `probe sphere on a probe: the shading is as near L2 (${figures.l2}) as band 4 (${figures.band4})`);
+    figures.besideAWall = await checkSphereBesideAWall(probes);
+    return figures;
+  };
+  // The sphere 0.15 m from the brightest probe, with the darkest probe of another room moved 0.5 m from it
+  // (as a probe behind a thin wall can stand): the SH the page gives the sphere must be the blend of its own
+  // room's probes, which that probe would otherwise darken.
+  const checkSphereBesideAWall = async (probes) => {
+    const green = (p) => p.sh[0][1];
+    const lit = probes.reduce((a, b) => (green(b) > green(a) ? b : a));
+    const others = probes.filter((q) => q.cell !== lit.cell);
+    if (!others.length) return null;  // one room
+    const dark = others.reduce((a, b) => (green(b) < green(a) ? b : a));
+    const dir = [1, 0, 0];
+    const moved = probes.map((q) => (q === dark ? { ...q, position: lit.position.map((x, a) => x + 0.5 * dir[a]) } : q));
+    const point = lit.position.map((x, a) => x + 0.15 * dir[a]);
+    const own = blendedProbe(moved, point), any = blendedProbe(moved, point, false);
+    const change = Math.abs(own.sh[0][1] - any.sh[0][1]) / Math.max(own.sh[0][1], 1e-9);
+    const eye = point.map((x, a) => x - 1.5 * dir[a]);
+    const given = await page.evaluate((eye, look, moved) => {
+      const v = window.cpgiViewer, xyz = ([x, y, z]) => ({ x, y, z }), probes = v.probes;
+      v.probes = moved;
+      v.showView({ name: 'beside a wall', eye: xyz(eye), look: xyz(look) });
+      v.render();
+      v.probes = probes;
+      const u = v.probeSphere.material.uniforms;
+      return { at: v.probeSphere.position.toArray(), sh: u.sh.value.map((c) => c.toArray()), sh4: u.sh4.value.map((c) => c.toArray()) };
+    }, eye, point, moved);
+    let worst = 0;
+    for (let k = 0; k < 9; ++k)
+      for (let c = 0; c < 3; ++c) {
+        const scale = Math.abs(own.sh[0][c]) + 1e-6;
+        worst = Math.max(worst, Math.abs(given.sh[k][c] - own.sh[k][c]) / scale, Math.abs(given.sh4[k][c] - own.sh_l4[k][c]) / scale);
+      }
+    const figures = { point, sphereAt: given.at, movedProbesShare: change, worst };
+    check(dist(given.at, point) < 1e-3, `probe sphere beside a wall: it stands at ${given.at}, not ${point}`);
+    check(change > 0.01, `probe sphere beside a wall: the moved probe changes its light by ${change} only, too little to tell`);
+    check(worst < 1e-4, `probe sphere beside a wall: its SH are off its own room's probes' blend by ${worst} (another room's probe lights it)`);
     return figures;
   };
 

@@ -237,14 +237,17 @@ export function probeBand(probes) {
   return probes && probes.length && probes.every(holds) ? 4 : 2;
 }
 
-// The probes' SH at `point`: the eight nearest blended by inverse squared distance, as { sh, sh4 } (each
-// nine [r, g, b]; sh4 zeros when `band` is 2); null without probes.
+// The probes' SH at `point`: the eight nearest of the nearest probe's room blended by inverse squared
+// distance, as { sh, sh4 } (each nine [r, g, b]; sh4 zeros when `band` is 2); null without probes. Probes
+// of the room behind a wall are left out: beside a 0.2 m wall they are as near as the room's own, and a
+// dark room's would dim a lit one's sphere.
 export function probeShAt(probes, point, band = probeBand(probes)) {
   if (!probes || !probes.length) return null;
-  const near = probes
+  const byDistance = probes
     .map((p) => ({ p, d2: (p.position[0] - point.x) ** 2 + (p.position[1] - point.y) ** 2 + (p.position[2] - point.z) ** 2 }))
-    .sort((a, b) => a.d2 - b.d2)
-    .slice(0, 8);
+    .sort((a, b) => a.d2 - b.d2);
+  const room = byDistance[0].p.cell;
+  const near = byDistance.filter(({ p }) => p.cell === room).slice(0, 8);
   const zeros = () => Array.from({ length: 9 }, () => [0, 0, 0]);
   const sh = zeros(), sh4 = zeros();
   let total = 0;
@@ -293,7 +296,7 @@ class Viewer {
   }
 
   // The probe-lit sphere, 0.3 m across, hidden until asked for; it then stands 1.5 m ahead of the camera
-  // and follows it (orbit, or walk through the rooms).
+  // and follows it (orbit, or walk through the rooms), lit by the probes of the room it is in.
   buildProbeSphere() {
     this.probes = this.data.probes?.probes || [];
     if (!this.probes.length) return;

@@ -11,7 +11,14 @@
 // max(0, V·n) and Ramamoorthi–Hanrahan's SH evaluation of the directional lightmap (bilinear
 // coefficients).
 //
+// With SPP given, the same sample's points are also traced by `cpgi reference`'s path tracer (a white
+// point with the bumped normal, ρ = 1, so its B is E(x, n); one-sided walls are black from behind, so it
+// too takes only the light arriving above the wall): the error of each estimate against the reference's
+// render of the bumps, which holds the solve's own error too, and at the flat normal beside it (where
+// plain and directional agree) to show how much of it is the solve's.
+//
 // Usage: cpgi_directional_bumps [seed1|seed2|seed3] [OUT.png] [RAYS per texel of the directional gather]
+//                               [SPP of the reference] [signed: the SH gutters without dilate()'s clamp]
 // Prints the relative RMSE of each against the truth over every wall texel of a random sample and over
 // one wall's picture, and writes the picture: plain | directional | truth, radiance at one exposure.
 #include <cmath>
@@ -28,6 +35,7 @@
 #include "radiosity/lightmap/engine_lightmap.h"
 #include "radiosity/lightmap/lightmap_sampling.h"
 #include "radiosity/lightmap/spherical_harmonics.h"
+#include "radiosity/reference/reference_tracer.h"
 #include "scenes/seed_scenes.h"
 
 using namespace cpgi;
@@ -85,8 +93,16 @@ struct Errors {
   }
 };
 
-// Every wall texel's chart point (a sample of `count`), four bumped normals over its footprint each.
-Errors sampledWalls(const Maps& m, const BakedRadiance& baked, size_t count) {
+// A wall point of the sample: where, its wall's normal, its bumped normal, and the three estimates there
+// and at the flat normal.
+struct WallPoint {
+  glm::vec3 x, flat, bumped;
+  std::array<glm::vec3, 3> est, estFlat;
+};
+
+// Every wall texel's chart point (a sample of `count`), four bumped normals over its footprint each; the
+// points are left in `points`.
+Errors sampledWalls(const Maps& m, const BakedRadiance& baked, size_t count, std::vector<WallPoint>& points) {
   std::vector<size_t> walls;
   for (size_t i = 0; i < m.atlas.texelCount(); ++i)
     if (m.atlas.patch[i] >= 0 && std::abs(m.atlas.normal[i].y) < 0.1f &&
@@ -97,6 +113,7 @@ Errors sampledWalls(const Maps& m, const BakedRadiance& baked, size_t count) {
   walls.resize(std::min(count, walls.size()));
   std::vector<std::array<std::array<glm::vec3, 3>, 4>> est(walls.size());
   std::vector<std::array<glm::vec3, 4>> ref(walls.size()), again(walls.size());
+  points.assign(4 * walls.size(), {});
   tbb::parallel_for(size_t(0), walls.size(), [&](size_t w) {
     const size_t i = walls[w];
     const Patch& p = m.atlas.patches[size_t(m.atlas.patch[i])];
@@ -107,6 +124,8 @@ Errors sampledWalls(const Maps& m, const BakedRadiance& baked, size_t count) {
       const glm::vec3 x = p.origin + a * p.texelU + b * p.texelV, n = bumpedNormal(x, m.atlas.normal[i]);
       const glm::vec2 uv((float(p.x) + a) / float(m.atlas.width), (float(p.y) + b) / float(m.atlas.height));
       est[w][size_t(q)] = estimates(m, uv, n);
+      points[4 * w + size_t(q)] = {x, m.atlas.normal[i], n, est[w][size_t(q)],
+                                   estimates(m, uv, m.atlas.normal[i])};
       ref[w][size_t(q)] = truth(baked, x, m.atlas.normal[i], n, 1000003ull * i + uint64_t(q));
       again[w][size_t(q)] = truth(baked, x, m.atlas.normal[i], n, 1000003ull * i + uint64_t(q) + 17);
     }
@@ -167,6 +186,47 @@ Errors wallPicture(const Maps& m, const BakedRadiance& baked, const std::string&
   return e;
 }
 
+// The sample's points against the reference path tracer at `spp`: each estimate at the bumped normal, and
+// at the flat normal (where the three agree but for the SH evaluation), with the reference's own noise.
+void againstReference(const Scene& scene, const std::vector<WallPoint>& points, int spp, Context& ctx) {
+  std::vector<SamplePoint> bumped, flat;
+  for (const WallPoint& p : points) {
+    bumped.push_back({p.x, p.bumped, glm::vec3(1.0f), glm::vec3(0.0f)});
+    flat.push_back({p.x, p.flat, glm::vec3(1.0f), glm::vec3(0.0f)});
+  }
+  ReferenceParams params;
+  params.spp = spp;
+  params.texelMean = false;
+  const ReferenceResult refBumped = traceReference(scene, bumped, params, ctx),
+                        refFlat = traceReference(scene, flat, params, ctx);
+  Errors atBumps, atFlat, flatAgainstPlain;
+  double noise2 = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    atBumps.add(points[i].est, refBumped.radiosity[i]);
+    atFlat.add(points[i].estFlat, refFlat.radiosity[i]);
+    flatAgainstPlain.add(points[i].estFlat, points[i].estFlat[0]);
+    noise2 += glm::dot(refBumped.standardError[i], refBumped.standardError[i]);
+  }
+  std::printf("reference path tracer, %d paths a point, its own noise %.4f\n", refBumped.spp,
+              std::sqrt(noise2 / atBumps.ref2));
+  atBumps.print("against the reference, bumped normals");
+  atFlat.print("against the reference, the walls' flat normals");
+  flatAgainstPlain.print("at the flat normals, against the plain lightmap");
+}
+
+// The coefficients' gutters filled as dilate() fills them but without its clamp at 0: an SH coefficient
+// is signed (L1 of a wall facing −x is negative), and a gutter clamped at 0 turns its irradiance vector.
+void dilateSigned(const LightmapAtlas& atlas, std::vector<glm::vec3>& values) {
+  const std::vector<glm::vec3> source = values;
+  dilate(atlas, values);
+  for (const GutterTap& g : atlas.gutter) {
+    glm::vec3 sum(0.0f);
+    for (int k = 0; k < g.from.count; ++k)
+      sum += float(g.from.weight[size_t(k)]) * source[size_t(g.from.texel[size_t(k)])];
+    values[g.texel] = sum;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,10 +245,15 @@ int main(int argc, char** argv) {
               map.seconds, double(map.rays) * 1e-6);
   Maps m{r.atlas, e, std::move(map.sh)};
   dilate(r.atlas, m.e);
-  for (auto& c : m.sh) dilate(r.atlas, c);
+  // "signed" after the reference's SPP: the coefficients' gutters without the clamp at 0 that the written
+  // lightmap_sh_*.exr have.
+  const bool signedGutters = argc > 5 && std::string(argv[5]) == "signed";
+  for (auto& c : m.sh) signedGutters ? dilateSigned(r.atlas, c) : dilate(r.atlas, c);
   const RayScene rays(seed.scene);
   const BakedRadiance baked(seed.scene, rays, r.atlas, r.radiosity);
-  sampledWalls(m, baked, 400).print("wall texels");
+  std::vector<WallPoint> points;
+  sampledWalls(m, baked, 400, points).print("wall texels");
+  if (argc > 4) againstReference(seed.scene, points, std::stoi(argv[4]), ctx);
   wallPicture(m, baked, png).print("wall picture");
   return 0;
 }

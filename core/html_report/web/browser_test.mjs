@@ -7,14 +7,76 @@
 //    the error heat map change the picture;
 //  - the views from inside each cell are readable (exposed for what they see); walking moves the camera;
 //  - the tables of report.json are there, and the bench chart when the page has bench rows;
-//  - with light probes, the probe-lit sphere shows, lit from above more than from below; with the
-//    directional lightmap, the normal-mapped surfaces change the picture.
+//  - with light probes, the probe-lit sphere shows, lit from above more than from below; set on a probe
+//    of a lit room, its shading is that probe's irradiance from probes.json (computed here) at band 4
+//    (the bake's L2 + band 4), not at L2 alone; beside a probe of another room it takes its own room's
+//    probes alone; with the directional lightmap, the normal-mapped surfaces change the picture.
 // Saves light.png, overview.png, cells.png, density.png, portals.png, exposure+2.png, view-NAME.png (one per
 // cell) and page.png in SCREENSHOT_DIR; prints a JSON
 // summary of the figures; exits 1 with one line per failed check.
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
+
+// A probe's irradiance E(n) (W/m², [r, g, b]) from probes.json as the bake convolves it
+// (radiosity/lightmap/spherical_harmonics.cpp, probes.json's convention): L2 with A = π, 2π/3, π/4, and at
+// band 4 also A_4 = −π/24 times the band-4 basis. Written here apart from the page's shader, which is
+// what it checks.
+function probeIrradiance(probe, n, band) {
+  const [x, y, z] = n, x2 = x * x, y2 = y * y, z2 = z * z, pi = Math.PI;
+  const l2 = [pi * 0.282095, (2 * pi / 3) * 0.488603 * y, (2 * pi / 3) * 0.488603 * z, (2 * pi / 3) * 0.488603 * x,
+    (pi / 4) * 1.092548 * x * y, (pi / 4) * 1.092548 * y * z, (pi / 4) * 0.315392 * (3 * z2 - 1),
+    (pi / 4) * 1.092548 * x * z, (pi / 4) * 0.546274 * (x2 - y2)];
+  const l4 = [2.503343 * x * y * (x2 - y2), 1.770131 * y * z * (3 * x2 - y2), 0.946175 * x * y * (7 * z2 - 1),
+    0.669046 * y * z * (7 * z2 - 3), 0.105786 * (35 * z2 * z2 - 30 * z2 + 3), 0.669046 * x * z * (7 * z2 - 3),
+    0.473087 * (x2 - y2) * (7 * z2 - 1), 1.770131 * x * z * (x2 - 3 * y2),
+    0.625836 * (x2 * (x2 - 3 * y2) - y2 * (3 * x2 - y2))].map((v) => (-pi / 24) * v);
+  return [0, 1, 2].map((c) => {
+    let e = 0;
+    for (let k = 0; k < 9; ++k) e += l2[k] * probe.sh[k][c] + (band === 4 ? l4[k] * probe.sh_l4[k][c] : 0);
+    return Math.max(e, 0);
+  });
+}
+
+// Where to look from at `probe` so that the page's sphere (1.5 m ahead of the camera) sits on it: from
+// the side of its room's middle (the mean of its cell's probes), 30° above it, so the camera stays in the
+// room and sees the sphere's top, which faces the lamp. Null when that eye would leave the box of the
+// cell's probes.
+function eyeOnProbe(probe, probes) {
+  const mates = probes.filter((p) => p.cell === probe.cell);
+  const mean = [0, 1, 2].map((a) => mates.reduce((s, p) => s + p.position[a], 0) / mates.length);
+  const lo = [0, 1, 2].map((a) => Math.min(...mates.map((p) => p.position[a])));
+  const hi = [0, 1, 2].map((a) => Math.max(...mates.map((p) => p.position[a])));
+  const [px, py, pz] = probe.position;
+  let hx = px - mean[0], hz = pz - mean[2];
+  const h = Math.hypot(hx, hz);
+  [hx, hz] = h > 1e-3 ? [hx / h, hz / h] : [1, 0];
+  const down = Math.PI / 6, ahead = [Math.cos(down) * hx, -Math.sin(down), Math.cos(down) * hz];
+  const eye = [px - 1.5 * ahead[0], py - 1.5 * ahead[1], pz - 1.5 * ahead[2]];
+  const inside = [0, 1, 2].every((a) => eye[a] >= lo[a] - 1e-3 && eye[a] <= hi[a] + 1e-3);
+  return inside ? { eye, look: probe.position, ahead } : null;
+}
+
+// The probes' L2 and band-4 SH at `point` blended as report.html is to blend them: the eight nearest of
+// the nearest probe's room by inverse squared distance (`sameRoom` false: of any room, as before).
+function blendedProbe(probes, point, sameRoom = true) {
+  const byDistance = probes.map((p) => ({ p, d2: p.position.reduce((s, x, a) => s + (x - point[a]) ** 2, 0) }))
+    .sort((a, b) => a.d2 - b.d2);
+  const near = byDistance.filter(({ p }) => !sameRoom || p.cell === byDistance[0].p.cell).slice(0, 8);
+  const total = near.reduce((s, { d2 }) => s + 1 / (d2 + 1e-4), 0);
+  const blend = (key) => Array.from({ length: 9 }, (_, k) => [0, 1, 2].map((c) =>
+    near.reduce((s, { p, d2 }) => s + p[key][k][c] / (d2 + 1e-4), 0) / total));
+  return { sh: blend('sh'), sh_l4: blend('sh_l4') };
+}
+
+const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+// The relative RMS of (measured − expected) over the mean expected, every pixel and channel pooled.
+function relativeRms(samples, expected) {
+  let se = 0, sum = 0, count = 0;
+  samples.forEach((s, i) => s.e.forEach((e, c) => { se += (e - expected[i][c]) ** 2; sum += expected[i][c]; ++count; }));
+  return Math.sqrt(se / count) / (sum / count);
+}
 
 const [modules, chromium, report, shots] = process.argv.slice(2);
 if (!shots) {
@@ -97,6 +159,110 @@ try {
     return { x: box.x, y: box.y, width: box.width, height: box.height };
   };
 
+  // The sphere set on the probe of probes.json where band 4 changes the irradiance most (seen from the
+  // eye eyeOnProbe gives, on normals facing it): its pixels, the tone map and sRGB undone, give E(n) on
+  // the sphere's normals; that must be the probe's band-4 irradiance, and clearly not its L2 alone.
+  const checkSphereOnAProbe = async (file) => {
+    const probes = file.probes || [];
+    if (!probes.length || !probes.every((p) => Array.isArray(p.sh_l4))) {
+      check(!probes.length, 'probe sphere: probes.json holds no band 4 (sh_l4)');
+      return null;
+    }
+    const golden = Math.PI * (3 - Math.sqrt(5));
+    const sphere = Array.from({ length: 400 }, (_, i) => {
+      const y = 1 - (2 * (i + 0.5)) / 400, r = Math.sqrt(1 - y * y);
+      return [r * Math.cos(golden * i), y, r * Math.sin(golden * i)];
+    });
+    const brightest = Math.max(...probes.map((p) => probeIrradiance(p, [0, 1, 0], 4)[1]));
+    let best = null;
+    for (const p of probes) {
+      const view = eyeOnProbe(p, probes);
+      if (!view) continue;
+      const facing = sphere.filter((n) => -(n[0] * view.ahead[0] + n[1] * view.ahead[1] + n[2] * view.ahead[2]) > 0.35);
+      const e4 = facing.map((n) => probeIrradiance(p, n, 4)), e2 = facing.map((n) => probeIrradiance(p, n, 2));
+      const mean = e4.reduce((s, e) => s + e[1], 0) / e4.length;
+      if (mean < 0.1 * brightest) continue;  // a dark probe: the 8-bit pixels would say little
+      const gap = relativeRms(e2.map((e) => ({ e })), e4);
+      if (!best || gap > best.gap) best = { probe: p, view, gap, top: Math.max(...e4.flat()) };
+    }
+    if (!best) return check(false, 'probe sphere: no lit probe to set the sphere on'), null;
+    const exposure = (1.9 * Math.PI) / (0.8 * best.top);  // the brightest pixel at 1 − e^−1.9 = 0.85
+    const saved = await page.evaluate((view, exposure) => {
+      const v = window.cpgiViewer, saved = v.exposure;
+      const xyz = ([x, y, z]) => ({ x, y, z });
+      v.showView({ name: 'on a probe', eye: xyz(view.eye), look: xyz(view.look) });
+      v.setExposure(exposure);
+      return saved;
+    }, best.view, exposure);
+    await capture('probe-sphere-on-a-probe');
+    const pixels = await page.evaluate(() => {
+      const v = window.cpgiViewer, cam = v.camera, c = v.probeSphere.position, w = v.canvas.width, h = v.canvas.height;
+      const radius = 0.15, data = window.shots['probe-sphere-on-a-probe'], out = [];
+      const centre = c.clone().project(cam), cx = ((centre.x + 1) / 2) * w, cy = ((1 - centre.y) / 2) * h;
+      const span = Math.ceil((Math.asin(radius / cam.position.distanceTo(c)) * h) / 2 / Math.tan((cam.fov * Math.PI) / 360) * 1.3);
+      for (let y = Math.max(0, Math.floor(cy - span)); y < Math.min(h, cy + span); y += 2)
+        for (let x = Math.max(0, Math.floor(cx - span)); x < Math.min(w, cx + span); x += 2) {
+          const d = c.clone().set(((x + 0.5) / w) * 2 - 1, 1 - ((y + 0.5) / h) * 2, 0.5).unproject(cam).sub(cam.position).normalize();
+          const o = cam.position.clone().sub(c), b = o.dot(d), disc = b * b - (o.lengthSq() - radius * radius);
+          if (disc <= 0) continue;
+          const n = o.addScaledVector(d, -b - Math.sqrt(disc)).divideScalar(radius);
+          if (-n.dot(d) < 0.35) continue;  // the rim: antialiased and tessellated
+          const i = 4 * (y * w + x);
+          out.push({ n: n.toArray(), rgb: [data[i], data[i + 1], data[i + 2]] });
+        }
+      return out;
+    });
+    await page.evaluate((saved) => { window.cpgiViewer.setExposure(saved); }, saved);
+    const linear = (v) => (v <= 0.04045 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4);
+    const samples = pixels.filter((s) => s.rgb.every((v) => v > 10 && v < 243))
+      .map((s) => ({ n: s.n, e: s.rgb.map((v) => (-Math.log(1 - linear(v / 255)) * Math.PI) / (0.8 * exposure)) }));
+    const e4 = samples.map((s) => probeIrradiance(best.probe, s.n, 4)), e2 = samples.map((s) => probeIrradiance(best.probe, s.n, 2));
+    const figures = { probe: best.probe.position, cell: best.probe.cell, pixels: samples.length,
+      band4VsL2: relativeRms(e2.map((e) => ({ e })), e4), band4: relativeRms(samples, e4), l2: relativeRms(samples, e2) };
+    check(samples.length >= 300, `probe sphere on a probe: only ${samples.length} pixels read`);
+    check(figures.band4VsL2 > 0.02, `probe sphere on a probe: band 4 and L2 differ by ${figures.band4VsL2} there, too little to tell`);
+    check(figures.band4 < 0.02, `probe sphere on a probe: the shading is ${(100 * figures.band4).toFixed(2)} % off the probe's band-4 irradiance`);
+    check(figures.l2 > 2 * figures.band4, `probe sphere on a probe: the shading is as near L2 (${figures.l2}) as band 4 (${figures.band4})`);
+    figures.besideAWall = await checkSphereBesideAWall(probes);
+    return figures;
+  };
+  // The sphere 0.15 m from the brightest probe, with the darkest probe of another room moved 0.5 m from it
+  // (as a probe behind a thin wall can stand): the SH the page gives the sphere must be the blend of its own
+  // room's probes, which that probe would otherwise darken.
+  const checkSphereBesideAWall = async (probes) => {
+    const green = (p) => p.sh[0][1];
+    const lit = probes.reduce((a, b) => (green(b) > green(a) ? b : a));
+    const others = probes.filter((q) => q.cell !== lit.cell);
+    if (!others.length) return null;  // one room
+    const dark = others.reduce((a, b) => (green(b) < green(a) ? b : a));
+    const dir = [1, 0, 0];
+    const moved = probes.map((q) => (q === dark ? { ...q, position: lit.position.map((x, a) => x + 0.5 * dir[a]) } : q));
+    const point = lit.position.map((x, a) => x + 0.15 * dir[a]);
+    const own = blendedProbe(moved, point), any = blendedProbe(moved, point, false);
+    const change = Math.abs(own.sh[0][1] - any.sh[0][1]) / Math.max(own.sh[0][1], 1e-9);
+    const eye = point.map((x, a) => x - 1.5 * dir[a]);
+    const given = await page.evaluate((eye, look, moved) => {
+      const v = window.cpgiViewer, xyz = ([x, y, z]) => ({ x, y, z }), probes = v.probes;
+      v.probes = moved;
+      v.showView({ name: 'beside a wall', eye: xyz(eye), look: xyz(look) });
+      v.render();
+      v.probes = probes;
+      const u = v.probeSphere.material.uniforms;
+      return { at: v.probeSphere.position.toArray(), sh: u.sh.value.map((c) => c.toArray()), sh4: u.sh4.value.map((c) => c.toArray()) };
+    }, eye, point, moved);
+    let worst = 0;
+    for (let k = 0; k < 9; ++k)
+      for (let c = 0; c < 3; ++c) {
+        const scale = Math.abs(own.sh[0][c]) + 1e-6;
+        worst = Math.max(worst, Math.abs(given.sh[k][c] - own.sh[k][c]) / scale, Math.abs(given.sh4[k][c] - own.sh_l4[k][c]) / scale);
+      }
+    const figures = { point, sphereAt: given.at, movedProbesShare: change, worst };
+    check(dist(given.at, point) < 1e-3, `probe sphere beside a wall: it stands at ${given.at}, not ${point}`);
+    check(change > 0.01, `probe sphere beside a wall: the moved probe changes its light by ${change} only, too little to tell`);
+    check(worst < 1e-4, `probe sphere beside a wall: its SH are off its own room's probes' blend by ${worst} (another room's probe lights it)`);
+    return figures;
+  };
+
   // 1. Light: from inside a cell (a view a person would take), where lit walls and shadows both show.
   const views = await page.evaluate(() => window.cpgiViewer.views.map((v) => v.name));
   const inside = views.find((v) => v.startsWith('camera ')) || views.find((v) => v.startsWith('in ')) || views[0];
@@ -161,6 +327,8 @@ try {
     check(summary.probeSphere.changed > 0.002, `probe sphere: the picture did not change (${summary.probeSphere.changed})`);
     check(probe.top > probe.bottom + 10, `probe sphere: its top (${probe.top.toFixed(1)}) is not brighter than its underside (${probe.bottom.toFixed(1)})`);
     check(probe.bottom > 5, `probe sphere: its underside is black (${probe.bottom.toFixed(1)})`);
+    const probesFile = path.join(path.dirname(report), 'probes.json');
+    if (fs.existsSync(probesFile)) summary.probeShading = await checkSphereOnAProbe(JSON.parse(fs.readFileSync(probesFile, 'utf8')));
     await page.click('#probe-sphere');
   }
   // 1c. A bake with --directional: the normal-mapped surface shows bumps lit by the directional lightmap.

@@ -5,7 +5,8 @@
 //  - lit by the directional lightmap (lightmap_sh_l1x/y/z.exr: E = max(0, V · n), the world normal after
 //    the normal map, in place of three.js's lightmap term) they do, and with the normal map flattened the
 //    picture is the plain lightmap's (V · n_surface = E);
-//  - a sphere lit by the probes of baked.glb's extras (L2 SH, Ramamoorthi & Hanrahan) stands in the view,
+//  - a sphere lit by the probes of baked.glb's extras (L2 SH, Ramamoorthi & Hanrahan, and band 4 where the
+//    probes hold it, as docs/engines.md gives it) stands in the view,
 //    not black, brighter on top (towards the room's ceiling lamp) than underneath.
 // Saves directional-plain.png, directional-bumps.png, directional-flat.png in SCREENSHOT_DIR; prints a
 // JSON summary; exits 1 with one line per failed check.
@@ -45,6 +46,7 @@ const bumps = () => {
 };
 const shSphere = /* glsl */ \`
   uniform vec3 sh[9];
+  uniform vec3 sh4[9];
   varying vec3 vNormal;
   void main() {
     vec3 n = normalize(vNormal);
@@ -52,6 +54,14 @@ const shSphere = /* glsl */ \`
     vec3 e = pi * 0.282095 * sh[0] + 2.0 * pi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x)
            + pi / 4.0 * (1.092548 * (sh[4] * n.x * n.y + sh[5] * n.y * n.z + sh[7] * n.x * n.z)
                          + 0.315392 * sh[6] * (3.0 * n.z * n.z - 1.0) + 0.546274 * sh[8] * (n.x * n.x - n.y * n.y));
+    // docs/engines.md's band 4 (sh_l4): E += -pi/24 * sum Y4m(n) L4m
+    float x = n.x, y = n.y, z = n.z, x2 = x * x, y2 = y * y, z2 = z * z;
+    float Y4[9] = float[9](2.503343 * x * y * (x2 - y2), 1.770131 * y * z * (3.0 * x2 - y2),
+                           0.946175 * x * y * (7.0 * z2 - 1.0), 0.669046 * y * z * (7.0 * z2 - 3.0),
+                           0.105786 * (35.0 * z2 * z2 - 30.0 * z2 + 3.0), 0.669046 * x * z * (7.0 * z2 - 3.0),
+                           0.473087 * (x2 - y2) * (7.0 * z2 - 1.0), 1.770131 * x * z * (x2 - 3.0 * y2),
+                           0.625836 * (x2 * (x2 - 3.0 * y2) - y2 * (3.0 * x2 - y2)));
+    for (int m = 0; m < 9; ++m) e += -pi / 24.0 * Y4[m] * sh4[m];
     gl_FragColor = vec4(0.8 * max(e, 0.0) / pi, 1.0);
     #include <tonemapping_fragment>
     #include <colorspace_fragment>
@@ -123,7 +133,10 @@ window.directionalTest = async () => {
     return d < a.d ? { p, d } : a;
   }, { p: null, d: Infinity }).p;
   const sphere = new THREE.Mesh(new THREE.SphereGeometry(0.15, 48, 24), new THREE.ShaderMaterial({
-    uniforms: { sh: { value: nearest.sh.map((c) => new THREE.Vector3(...c)) } },
+    uniforms: {
+      sh: { value: nearest.sh.map((c) => new THREE.Vector3(...c)) },
+      sh4: { value: (nearest.sh_l4 || nearest.sh.map(() => [0, 0, 0])).map((c) => new THREE.Vector3(...c)) },
+    },
     vertexShader: 'varying vec3 vNormal; void main() { vNormal = normalize(mat3(modelMatrix) * normal); gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0); }',
     fragmentShader: shSphere, toneMapped: true,
   }));

@@ -7,7 +7,8 @@
 //   #cpgi-data (JSON): kind, title, report (report.json), cells [{name, eye, look}], portals
 //     [{name, cell_a, cell_b, corners}], lightmap {width, height, rgb (base64 half floats, RGBA,
 //     radiosity W/m²), cell (base64 int16 per texel, -1 for none), area (base64 float32 m² per texel)}
-//     probes (probes.json of bake --probes, when written): L2 SH light probes through the rooms
+//     probes (probes.json of bake --probes, when written): SH light probes through the rooms (L2, and
+//     band 4 in sh_l4 since it was added)
 //   #cpgi-glb: baked.glb (or cells.glb) as base64.
 // window.cpgiViewer is the handle the browser test (core/html_report/web/browser_test.mjs) drives.
 import * as THREE from 'three';
@@ -189,9 +190,12 @@ const fragmentShader = /* glsl */ `
     outColour = vec4(toSrgb(clamp(colour, 0.0, 1.0)), 1.0);
   }`;
 
-// A sphere lit by the light probes (bake --probes): the L2 SH of the probes around it, blended, give the
-// irradiance E(n) of Ramamoorthi & Hanrahan on each normal; shown as a grey of albedo 0.8, radiance
-// 0.8 E/π, with the lightmap's exposure and tone map. SH basis and order of probes.json's convention.
+// A sphere lit by the light probes (bake --probes): the SH of the probes around it, blended, give the
+// irradiance E(n) on each normal, convolved as the bake does (radiosity/lightmap/spherical_harmonics.cpp):
+// Ramamoorthi & Hanrahan's L2, A = π, 2π/3, π/4, plus band 4 (A_4 = −π/24; band 3's A is 0) when the
+// probes hold it (sh_l4), since L2 alone misses a lamp's concentrated light by 5–10 % at some probes.
+// Shown as a grey of albedo 0.8, radiance 0.8 E/π, with the lightmap's exposure and tone map. SH basis and
+// order of probes.json's convention.
 const probeVertexShader = /* glsl */ `
   out vec3 vNormal;
   void main() {
@@ -200,6 +204,8 @@ const probeVertexShader = /* glsl */ `
   }`;
 const probeFragmentShader = /* glsl */ `
   uniform vec3 sh[9];
+  uniform vec3 sh4[9];
+  uniform float band4;  // 1 when the probes hold band 4, 0 for L2 alone
   uniform float exposure;
   in vec3 vNormal;
   out vec4 outColour;
@@ -209,30 +215,53 @@ const probeFragmentShader = /* glsl */ `
   void main() {
     vec3 n = normalize(vNormal);
     const float pi = 3.14159265;
+    float x = n.x, y = n.y, z = n.z, x2 = x * x, y2 = y * y, z2 = z * z;
     vec3 e = pi * 0.282095 * sh[0]
-           + 2.0 * pi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x)
-           + pi / 4.0 * (1.092548 * (sh[4] * n.x * n.y + sh[5] * n.y * n.z + sh[7] * n.x * n.z)
-                         + 0.315392 * sh[6] * (3.0 * n.z * n.z - 1.0) + 0.546274 * sh[8] * (n.x * n.x - n.y * n.y));
+           + 2.0 * pi / 3.0 * 0.488603 * (sh[1] * y + sh[2] * z + sh[3] * x)
+           + pi / 4.0 * (1.092548 * (sh[4] * x * y + sh[5] * y * z + sh[7] * x * z)
+                         + 0.315392 * sh[6] * (3.0 * z2 - 1.0) + 0.546274 * sh[8] * (x2 - y2));
+    vec3 e4 = 2.503343 * sh4[0] * x * y * (x2 - y2) + 1.770131 * sh4[1] * y * z * (3.0 * x2 - y2)
+            + 0.946175 * sh4[2] * x * y * (7.0 * z2 - 1.0) + 0.669046 * sh4[3] * y * z * (7.0 * z2 - 3.0)
+            + 0.105786 * sh4[4] * (35.0 * z2 * z2 - 30.0 * z2 + 3.0) + 0.669046 * sh4[5] * x * z * (7.0 * z2 - 3.0)
+            + 0.473087 * sh4[6] * (x2 - y2) * (7.0 * z2 - 1.0) + 1.770131 * sh4[7] * x * z * (x2 - 3.0 * y2)
+            + 0.625836 * sh4[8] * (x2 * (x2 - 3.0 * y2) - y2 * (3.0 * x2 - y2));
+    e += band4 * (-pi / 24.0) * e4;
     vec3 light = 1.0 - exp(-max(e, 0.0) * 0.8 / pi * exposure);
     outColour = vec4(toSrgb(clamp(light, 0.0, 1.0)), 1.0);
   }`;
 
-// The probes' SH at `point`: the eight nearest blended by inverse squared distance (an array of nine
-// [r, g, b]); null without probes.
-export function probeShAt(probes, point) {
+// The SH band the probes are read at: 4 when every probe holds band 4 (sh_l4, bakes since it was added),
+// else 2.
+export function probeBand(probes) {
+  const holds = (p) => Array.isArray(p.sh_l4) && p.sh_l4.length === 9;
+  return probes && probes.length && probes.every(holds) ? 4 : 2;
+}
+
+// The probes' SH at `point`: the eight nearest of the nearest probe's room blended by inverse squared
+// distance, as { sh, sh4 } (each nine [r, g, b]; sh4 zeros when `band` is 2); null without probes. Probes
+// of the room behind a wall are left out: beside a 0.2 m wall they are as near as the room's own, and a
+// dark room's would dim a lit one's sphere.
+export function probeShAt(probes, point, band = probeBand(probes)) {
   if (!probes || !probes.length) return null;
-  const near = probes
+  const byDistance = probes
     .map((p) => ({ p, d2: (p.position[0] - point.x) ** 2 + (p.position[1] - point.y) ** 2 + (p.position[2] - point.z) ** 2 }))
-    .sort((a, b) => a.d2 - b.d2)
-    .slice(0, 8);
-  const sh = Array.from({ length: 9 }, () => [0, 0, 0]);
+    .sort((a, b) => a.d2 - b.d2);
+  const room = byDistance[0].p.cell;
+  const near = byDistance.filter(({ p }) => p.cell === room).slice(0, 8);
+  const zeros = () => Array.from({ length: 9 }, () => [0, 0, 0]);
+  const sh = zeros(), sh4 = zeros();
   let total = 0;
   for (const { p, d2 } of near) {
     const w = 1 / (d2 + 1e-4);
     total += w;
-    for (let k = 0; k < 9; ++k) for (let c = 0; c < 3; ++c) sh[k][c] += w * p.sh[k][c];
+    for (let k = 0; k < 9; ++k)
+      for (let c = 0; c < 3; ++c) {
+        sh[k][c] += w * p.sh[k][c];
+        if (band === 4) sh4[k][c] += w * p.sh_l4[k][c];
+      }
   }
-  return sh.map((v) => v.map((x) => x / total));
+  const normalise = (coefficients) => coefficients.map((v) => v.map((x) => x / total));
+  return { sh: normalise(sh), sh4: normalise(sh4) };
 }
 
 class Viewer {
@@ -267,11 +296,16 @@ class Viewer {
   }
 
   // The probe-lit sphere, 0.3 m across, hidden until asked for; it then stands 1.5 m ahead of the camera
-  // and follows it (orbit, or walk through the rooms).
+  // and follows it (orbit, or walk through the rooms), lit by the probes of the room it is in.
   buildProbeSphere() {
     this.probes = this.data.probes?.probes || [];
     if (!this.probes.length) return;
-    const uniforms = { sh: { value: Array.from({ length: 9 }, () => new THREE.Vector3()) }, exposure: { value: this.exposure } };
+    this.probeBand = probeBand(this.probes);
+    const vectors = () => Array.from({ length: 9 }, () => new THREE.Vector3());
+    const uniforms = {
+      sh: { value: vectors() }, sh4: { value: vectors() }, band4: { value: this.probeBand === 4 ? 1 : 0 },
+      exposure: { value: this.exposure },
+    };
     this.probeSphere = new THREE.Mesh(new THREE.SphereGeometry(0.15, 48, 24), new THREE.ShaderMaterial({
       uniforms, vertexShader: probeVertexShader, fragmentShader: probeFragmentShader, glslVersion: THREE.GLSL3,
     }));
@@ -297,9 +331,10 @@ class Viewer {
     const ahead = new THREE.Vector3();
     this.camera.getWorldDirection(ahead);
     this.probeSphere.position.copy(this.camera.position).addScaledVector(ahead, 1.5);
-    const sh = probeShAt(this.probes, this.probeSphere.position);
+    const { sh, sh4 } = probeShAt(this.probes, this.probeSphere.position, this.probeBand);
     const uniforms = this.probeSphere.material.uniforms;
     sh.forEach((c, k) => uniforms.sh.value[k].set(c[0], c[1], c[2]));
+    sh4.forEach((c, k) => uniforms.sh4.value[k].set(c[0], c[1], c[2]));
     uniforms.exposure.value = this.exposure;
   }
 
@@ -624,7 +659,8 @@ class Viewer {
     const bumps = add('<label><input id="bumps" type="checkbox"> normal map (directional lightmap)</label>');
     if (!this.lightmap?.vector.length) bumps.style.display = 'none';
     bumps.querySelector('input').addEventListener('change', (e) => this.setBumps(e.target.checked));
-    const sphere = add('<label><input id="probe-sphere" type="checkbox"> probe-lit sphere (1.5 m ahead)</label>');
+    const sphere = add(`<label><input id="probe-sphere" type="checkbox"> probe-lit sphere (1.5 m ahead, ` +
+      `${this.probeBand === 4 ? 'L2 + band 4' : 'L2'} SH)</label>`);
     if (!this.probeSphere) sphere.style.display = 'none';
     sphere.querySelector('input').addEventListener('change', (e) => this.setProbeSphere(e.target.checked));
     const walk = add('<label><input id="walk" type="checkbox"> walk (drag to look, W A S D Q E to move)</label>');

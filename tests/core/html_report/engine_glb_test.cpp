@@ -1,7 +1,8 @@
 // baked.glb for engines (issue 48, items 2 and 6): the Khronos glTF validator finds no error in the engine
 // glb nor in preview.glb of seed1, of the furnished house and of a textured scene; three.js loads the engine
 // glb with its own materials and textures and the lightmap on TEXCOORD_1, and the picture is lit by it
-// (core/html_report/web/engine_glb_test.mjs). Screenshots stay in BUILD_DIR/report-screenshots/engine-*.
+// (core/html_report/web/engine_glb_test.mjs); Blender's glTF add-on imports it, on one atlas and per object,
+// with each lightmap on the second UV map. Screenshots stay in BUILD_DIR/report-screenshots/engine-*.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -218,6 +219,33 @@ TEST_F(EngineGlbInThreeJs, PerObjectLightmapsEachObjectShowsItsOwn) {
     std::cout << out << " figures: " << r.out << "\nscreenshots: " << shots << "\n";
     EXPECT_EQ(r.status, 0) << r.err;
   }
+}
+
+// The engine glb in Blender (Debian's blender, its glTF add-on), on one atlas and with --per-object: the
+// recipe of docs/engines.md wires each material's lightmap EXR on the second UV map, and every polygon
+// reads the same light from its object's lightmap as from the scene's (tests/core/html_report/
+// blender_engine_glb.py says what is checked).
+TEST(EngineGlbInBlender, AtlasAndPerObjectLightmapsLandOnTheSecondUvMap) {
+  if (!std::filesystem::exists(CPGI_BLENDER))
+    GTEST_SKIP() << "SKIPPED, NOT TESTED: blender is not installed (apt-get install blender), so the engine "
+                    "glb's Blender recipe is not checked";
+  test::TempDir dir;
+  const std::string seed1 = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(seed1)).status, 0);
+  for (const auto& [out, more] :
+       std::vector<std::pair<std::string, std::string>>{{"atlas", ""}, {"objects", " --per-object"}}) {
+    const test::CommandRun r =
+        cpgi(dir, "bake " + quote(seed1) + " -o " + quote(dir / out) + " --density 3 --unshot 0.1 -q" + more);
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const test::CommandRun r = test::runCaptured(
+      dir.path(),
+      quote(CPGI_BLENDER) + " -b --factory-startup --python-exit-code 1 --python " +
+          quote(std::string(CPGI_SOURCE_DIR) + "/tests/core/html_report/blender_engine_glb.py") + " -- " +
+          quote(dir / "atlas") + " " + quote(dir / "objects"),
+      "blender-");
+  std::cout << "blender: " << r.out;  // its log, the figures on the last line
+  EXPECT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(EngineGlbInThreeJs, TexturedSceneKeepsItsTexturesAndIsLit) {

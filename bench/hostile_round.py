@@ -17,7 +17,7 @@ Prints one row per failing run and a summary; exit status 1 when any run failed.
 
 CPGI is the binary to attack: a Release build for the time and memory bounds, an ASan + UBSan build for
 the crash check (its memory bound is loose: the sanitizer's shadow counts in the RSS)."""
-import argparse, base64, json, os, shutil, signal, stat, struct, subprocess, sys, time, zlib
+import argparse, base64, copy, json, os, shutil, signal, stat, struct, subprocess, sys, time, zlib
 
 # ---------------------------------------------------------------------------------------------- scenes
 
@@ -47,7 +47,7 @@ class Gltf:
     def __init__(self):
         self.bin = bytearray()
         self.doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": []}], "nodes": [],
-                    "meshes": [], "materials": [dict(WALL), dict(LAMP)], "accessors": [], "bufferViews": [],
+                    "meshes": [], "materials": [copy.deepcopy(WALL), copy.deepcopy(LAMP)], "accessors": [], "bufferViews": [],
                     "buffers": []}
 
     def view(self, data, target=None):
@@ -398,7 +398,7 @@ def structural_inputs():
         ("no-position", lambda d, g: d["meshes"][0]["primitives"][0]["attributes"].pop("POSITION")),
         ("extension-required-unknown", lambda d, g: d.update(extensionsRequired=["KHR_draco_mesh_compression"])),
         ("asset-version-1", lambda d, g: d.update(asset={"version": "1.0"})),
-        ("no-lamp", lambda d, g: d["materials"].__setitem__(1, dict(WALL))),
+        ("no-lamp", lambda d, g: d["materials"].__setitem__(1, copy.deepcopy(WALL))),
         ("texture-index-past-end", lambda d, g: d["materials"][0]["pbrMetallicRoughness"].update(
             baseColorTexture={"index": 5})),
         ("image-uri-etc-passwd", lambda d, g: image_uri(d, "/etc/passwd")),

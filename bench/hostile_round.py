@@ -10,7 +10,8 @@ and runs each through `cpgi info`, `cpgi decompose` and `cpgi bake` with short l
     the option that sets it);
   - stay inside the CPU-second bound and the peak-RSS bound (a wall bound kills a hang);
   - on exit 1, leave the output folder as it found it (absent, or holding only the user's own file).
-Prints one row per failing run and a summary; exit status 1 when any run failed.
+Prints one row per failing run and a summary, and writes every run (input, command, exit, CPU s, wall s,
+peak RSS MB, problems) to WORK/runs.tsv; exit status 1 when any run failed.
 
   bench/hostile_round.py CPGI [--work DIR] [--cpu-seconds 20] [--wall-seconds 120] [--rss-mb 2048]
                          [--only SUBSTRING] [--commands info,decompose,bake] [--list]
@@ -733,6 +734,9 @@ def main():
                 f.write(b"the user's own")
             status, killed, cpu, wall, rss_mb, err = run_one(cpgi, command, scene, out_dir, limits)
             problems = check(status, killed, cpu, rss_mb, err, name, out_dir, limits)
+            with open(os.path.join(limits.work, "runs.tsv"), "a") as table:
+                table.write("%s\t%s\t%s\t%.2f\t%.2f\t%.0f\t%s\n" % (name, command, "killed" if killed else status, cpu,
+                                                               wall, rss_mb, "; ".join(problems)))
             key = (command, "killed" if killed else str(status))
             totals[key] = totals.get(key, 0) + 1
             peaks[command] = max(peaks.get(command, 0), rss_mb)
@@ -767,13 +771,15 @@ def check(status, killed, cpu, rss_mb, err, name, out_dir, limits):
     if rss_mb > limits.rss_mb:
         problems.append("peak RSS %.0f MB > %g" % (rss_mb, limits.rss_mb))
     if status == 1:
-        errors = [l for l in err.splitlines() if l.startswith("cpgi: ")]
+        # The error is the last line; decompose prints the loader's warnings as `cpgi: FILE: ...` lines too.
+        lines = [l for l in err.splitlines() if l.strip() and not l.startswith("progress:")]
+        error = lines[-1] if lines else ""
         base = os.path.basename(name)
-        if len(errors) != 1:
-            problems.append("%d 'cpgi: ' error lines" % len(errors))
-        elif errors[0].startswith("cpgi: --"):
+        if not error.startswith("cpgi: "):
+            problems.append("no 'cpgi: ' error line at the end")
+        elif error.startswith("cpgi: --"):
             pass  # a limit refused up front names the option that sets it (--max-memory, --voxel)
-        elif base not in errors[0] and base.encode("unicode_escape").decode() not in errors[0]:
+        elif base not in error and base.encode("unicode_escape").decode() not in error:
             problems.append("the error line does not name the input")
         left = sorted(os.listdir(out_dir))
         if left != ["view-holiday.png"]:

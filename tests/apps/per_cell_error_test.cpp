@@ -210,7 +210,9 @@ TEST_F(PerCellTwoLevels, TheStopPerCellHoldsInTwoLevels) {
     EXPECT_LE(share.get<double>(), 0.1) << cell;
   EXPECT_GT(global["ambient_share"]["C"].get<double>(), 0.15);
   EXPECT_EQ(global["stop_checks"], 0);
-  for (const nlohmann::json& c : compare("two-levels")["cells"]) {
+  // In a local first: ranging over compare(...)["cells"] would read the temporary after it is destroyed.
+  const nlohmann::json comparison = compare("two-levels");
+  for (const nlohmann::json& c : comparison["cells"]) {
     const double ratio = c["ratio_of_means"], err = c["ratio_error"];
     EXPECT_NEAR(ratio, 1.0, 0.05 + 2.0 * err) << c.dump();
   }

@@ -108,7 +108,10 @@ void expectTheLightsPowerCountedAsEmitted() {
       EXPECT_LE(double(e["created_w"]), 2e-3 * emitted);
     }
   }
-  for (const json& c : report("point-light-cells")["cell_energy"]) {
+  // Held in a local: a range-for over report(...)["cell_energy"] would walk a temporary's member after the
+  // temporary is gone (heap-use-after-free under ASan; C++20 extends only the outer temporary's life).
+  const json cells = report("point-light-cells");
+  for (const json& c : cells["cell_energy"]) {
     const double in = double(c["emitted_w"]) + double(c["received_w"]);
     const double out =
         double(c["absorbed_w"]) + double(c["sent_w"]) + double(c["unshot_w"]) + double(c["escaped_w"]);

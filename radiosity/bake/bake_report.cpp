@@ -209,8 +209,10 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
       {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds},
       {"texel", f.outputs.texelSeconds}};
   report["views_skipped"] = f.skippedViews;
-  report["outputs_skipped"] = f.skippedOutputs;
-  report["partial"] = r.timedOut || !f.skippedViews.empty() || !f.skippedOutputs.empty();
+  std::vector<std::string> skipped = f.outputsLeftOut;
+  skipped.insert(skipped.end(), f.skippedOutputs.begin(), f.skippedOutputs.end());
+  report["outputs_skipped"] = skipped;
+  report["partial"] = r.timedOut || !f.skippedViews.empty() || !skipped.empty();
   std::ostringstream why;
   if (r.timedOut)
     why << "time limit of " << formatSeconds(s.limits.timeLimit) << " s reached after " << r.shots
@@ -223,6 +225,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   for (const std::string& o : f.skippedOutputs)
     why << (why.tellp() > 0 ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
         << " s reached during the " << o << " gather, whose files were not written (outputs_skipped)";
+  for (const std::string& o : f.outputsLeftOut)
+    why << (why.tellp() > 0 ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
+        << " s left no time for the " << o << ", left out before they started (outputs_skipped)";
   if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;

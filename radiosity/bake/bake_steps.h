@@ -91,6 +91,9 @@ struct BakeFigures {
   nlohmann::json engine;   ///< report.json's "engine_lightmap" (LightmapOutputs::engine); null: none written
   /// Outputs the time limit stopped during their gather, so not written: "probes", "directional"
   std::vector<std::string> skippedOutputs;
+  /// Optional outputs left out before they started, their estimate not fitting in the time left
+  /// (planOutputs): "views", "probes", "directional"
+  std::vector<std::string> outputsLeftOut;
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,

@@ -278,12 +278,14 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
 }
 
 // The texels of the coarsest atlas a bake of `scene` can end with: a layout stopped by the time limit is laid
-// out again at a quarter of the texels per metre (bake_steps.cpp, layOutWithin).
+// out again at a quarter of the texels per metre (bake_steps.cpp, layOutWithin), from the density asked or
+// with --density auto the least it chooses.
 size_t leastTexels(const BakeSettings& s, const Scene& scene) {
   double texels = 0.0;
-  if (s.atlas.densityAuto)
-    texels = double(s.atlas.autoDensity.maxTexels);
-  else if (s.atlas.params.texelsPerQuad > 0)  // about one quad per two triangles
+  if (s.atlas.densityAuto) {  // at least the pilot's even density, which a bake with no time for it takes
+    texels = texelsByArea(scene, {}, pilotDensity(scene, s.atlas.autoDensity));
+    if (s.atlas.autoDensity.maxTexels > 0) texels = std::min(texels, double(s.atlas.autoDensity.maxTexels));
+  } else if (s.atlas.params.texelsPerQuad > 0)  // about one quad per two triangles
     texels = 0.5 * double(scene.triangles.size()) * std::pow(double(s.atlas.params.texelsPerQuad), 2.0);
   else
     texels = texelsByArea(scene, {}, s.atlas.params.density);
@@ -342,10 +344,12 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const Clock::time_point beforeOutputs =
       keepBack(deadline, outputsKeptBack(s, estimateOutputs(*in.scene, cameras, s.output.views, budget,
                                                             budget, costs, s.output.engine)));
-  // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
+  // The pilot shoots before the layout; else the engines wait until the atlas fits the memory. A layout
+  // still going when only the outputs' time is left is laid out again coarse (a sixteenth of its texels,
+  // of its fill and gutters) in that time's margin.
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
-                 pilotDeadline(beforeOutputs), deadline);
+                 pilotDeadline(beforeOutputs), beforeOutputs);
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
   requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv, s.output.engine.perObject);  // before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);

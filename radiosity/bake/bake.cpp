@@ -292,23 +292,44 @@ size_t leastTexels(const BakeSettings& s, const Scene& scene) {
   return size_t(texels / 16.0);
 }
 
-// The optional outputs that fit in the time left after the solve, re-estimated at the load observed over
-// the whole bake so far (the solve's included): the rays' cost scaled by how the load moved since
-// `before`'s estimate, the files' by the load itself (estimateOutputs).
+// Seconds from now to `until` (none: a day).
+double secondsUntil(Clock::time_point until) {
+  if (until == Clock::time_point::max()) return 86400.0;
+  return std::chrono::duration<double>(until - Clock::now()).count();
+}
+
+// `e` without the optional outputs `plan` left out: what the solve keeps back.
+OutputEstimate keptOnly(OutputEstimate e, const OutputPlan& plan) {
+  if (!plan.views) e.viewSeconds = 0.0;
+  if (!plan.probes) e.probesSeconds = e.probeVoxelSeconds = 0.0;
+  if (!plan.directional) e.directionalSeconds = 0.0;
+  return e;
+}
+
+// The optional outputs that fit in the time left after the solve, among those `early` kept before it,
+// re-estimated at the load observed over the whole bake so far (the solve's included): the rays' cost
+// scaled by how the load moved since `before`'s estimate, the files' by the load itself
+// (estimateOutputs). Its `skipped` names those either plan left out.
 OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
                           const ViewParams& views, const LightmapAtlas& atlas, const OutputEstimate& before,
-                          const LoadMeter& load, Clock::time_point deadline) {
-  OutputPlan all;
-  all.views = true, all.probes = s.output.engine.probes, all.directional = s.output.engine.directional;
-  if (deadline == Clock::time_point::max()) return all;
-  MachineCosts now{
-      .ray = before.raySeconds, .texel = before.texelSeconds, .texelCpu = 0.0, .load = load.ratio()};
-  now.texelCpu = before.texelCpuSeconds;
+                          const OutputPlan& early, const LoadMeter& load, Clock::time_point deadline) {
+  EngineOutputParams asked = s.output.engine;
+  asked.directional = early.directional, asked.probes = early.probes;
+  MachineCosts now{.ray = before.raySeconds,
+                   .texel = before.texelSeconds,
+                   .texelCpu = before.texelCpuSeconds,
+                   .load = load.ratio()};
   if (before.load > 0.0) now.ray *= std::max(1.0, now.load / before.load);
   const OutputEstimate e =
-      estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, s.output.engine);
-  return planOutputs(std::chrono::duration<double>(deadline - Clock::now()).count(), e, true,
-                     s.output.engine);
+      estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, asked);
+  OutputPlan plan = planOutputs(secondsUntil(deadline), e, early.views, asked);
+  std::vector<std::string> skipped;
+  for (const char* o : {"views", "probes", "directional"})
+    if (std::count(early.skipped.begin(), early.skipped.end(), o) ||
+        std::count(plan.skipped.begin(), plan.skipped.end(), o))
+      skipped.push_back(o);
+  plan.skipped = std::move(skipped);
+  return plan;
 }
 
 }  // namespace
@@ -355,7 +376,11 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs = estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(),
                                                  in.atlas.texelCount(), measureCosts(), s.output.engine);
-  const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
+  // The optional outputs that would take more than half the time left are left out now (said with the
+  // files), their time the solve's: at load 25 the house's six views alone were estimated at 30 s.
+  const OutputPlan early =
+      planOutputs(kOptionalOutputsShare * secondsUntil(deadline), outputs, true, s.output.engine);
+  const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, keptOnly(outputs, early)));
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
@@ -391,7 +416,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                                                    {"unshot", r.energy.unshot}};
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
   writeBake(s, in, x, r, views, outputs,
-            plannedOutputs(s, *in.scene, cameras, views, in.atlas, outputs, load, deadline), deadline,
+            plannedOutputs(s, *in.scene, cameras, views, in.atlas, outputs, early, load, deadline), deadline,
             out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
   f.outputs = outputs;

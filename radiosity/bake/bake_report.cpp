@@ -203,11 +203,15 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["time_limit_s"] =
       s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
   // The outputs' share kept back from the solve (bake_limits.h), and the views the limit left out.
-  report["output_estimate_s"] = {
-      {"views", f.outputs.viewSeconds},    {"files", f.outputs.filesSeconds},
-      {"page", f.outputs.pageSeconds},     {"directional", f.outputs.directionalSeconds},
-      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds},
-      {"texel", f.outputs.texelSeconds}};
+  report["output_estimate_s"] = {{"views", f.outputs.viewSeconds},
+                                 {"files", f.outputs.filesSeconds},
+                                 {"page", f.outputs.pageSeconds},
+                                 {"directional", f.outputs.directionalSeconds},
+                                 {"probes", f.outputs.probesSeconds},
+                                 {"ray", f.outputs.raySeconds},
+                                 {"texel", f.outputs.texelSeconds},
+                                 {"texel_cpu", f.outputs.texelCpuSeconds},
+                                 {"load", f.outputs.load}};
   report["views_skipped"] = f.skippedViews;
   std::vector<std::string> skipped = f.outputsLeftOut;
   skipped.insert(skipped.end(), f.skippedOutputs.begin(), f.skippedOutputs.end());

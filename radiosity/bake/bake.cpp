@@ -368,9 +368,19 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // The pilot shoots before the layout; else the engines wait until the atlas fits the memory. A layout
   // still going when only the outputs' time is left is laid out again coarse (a sixteenth of its texels,
   // of its fill and gutters) in that time's margin.
+  AtlasLimits atlasLimits{
+      .pilot = pilotDeadline(beforeOutputs), .layout = beforeOutputs, .end = deadline, .outputsSeconds = {}};
+  if (limited)
+    atlasLimits.outputsSeconds = [&](size_t texels) {
+      const OutputEstimate e = estimateOutputs(
+          *in.scene, {}, s.output.views, texels, texels,
+          MachineCosts{
+              .ray = costs.ray, .texel = costs.texel, .texelCpu = costs.texelCpu, .load = load.ratio()});
+      return e.filesSeconds + e.pageSeconds;
+    };
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
-                 pilotDeadline(beforeOutputs), beforeOutputs);
+                 atlasLimits);
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
   requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv, s.output.engine.perObject);  // before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);

@@ -102,26 +102,46 @@ OnDemand resolveOnDemand(const BakeSettings& s, const Scene& scene, const CellGr
 
 namespace {
 
-// The output's atlas within `deadline` (--time-limit): past it in the middle of a large layout
-// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels,
-// said in one warning; the solve after it stops at once and the result is written as partial.
+// `params` at 1/`factor` of its texels per metre (texels per quad at least 2).
+AtlasParams coarser(const AtlasParams& params, int factor) {
+  AtlasParams coarse = params;
+  coarse.texelsPerQuad = params.texelsPerQuad > 0 ? std::max(2, params.texelsPerQuad / factor) : 0;
+  coarse.density = params.density / float(factor);
+  for (float& d : coarse.triangleDensity) d /= float(factor);
+  return coarse;
+}
+
+// The most a stopped layout is coarsened: 1/32 of the texels per metre, a thousandth of the texels.
+constexpr int kMostCoarsening = 32;
+
+// The output's atlas within `limits.layout` (--time-limit): past it in the middle of a large layout
+// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels, and
+// coarser by halves while the outputs of that atlas (limits.outputsSeconds) would not be written by
+// limits.end; said in one warning; the solve after it stops at once and the result is written as partial.
 LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
-                           Context& ctx, Clock::time_point deadline) {
+                           Context& ctx, const AtlasLimits& limits) {
   const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
   try {
-    return fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, deadline);
+    return fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, limits.layout);
   } catch (const AtlasLayoutStopped& stopped) {
-    AtlasParams coarse = params;
-    coarse.texelsPerQuad = params.texelsPerQuad > 0 ? std::max(2, params.texelsPerQuad / 4) : 0;
-    coarse.density = params.density / 4.0f;
-    for (float& d : coarse.triangleDensity) d /= 4.0f;
     Context quiet;  // the coarse layout's own warnings (charts capped) are not the user's resolution's
+    int factor = 4;
+    AtlasParams coarse = coarser(params, factor);
     LightmapAtlas atlas = fitTexelBudget(*in.scene, in.quads, coarse, maxTexels, quiet, &budget);
-    char line[240];
+    const auto late = [&] {
+      return limits.outputsSeconds && limits.outputsSeconds(atlas.texelCount()) >
+                                          std::chrono::duration<double>(limits.end - Clock::now()).count();
+    };
+    while (factor < kMostCoarsening && late()) {
+      factor *= 2;
+      coarse = coarser(params, factor);
+      atlas = fitTexelBudget(*in.scene, in.quads, coarse, maxTexels, quiet, &budget);
+    }
+    char line[260];
     std::snprintf(line, sizeof line,
                   "atlas: the time limit came while laying out the lightmap (%zu of %zu texels filled): laid "
-                  "out again at a quarter of the texels per metre, %zu texels",
-                  stopped.filledTexels, stopped.texels, atlas.validTexels());
+                  "out again at 1/%d of the texels per metre, %zu texels",
+                  stopped.filledTexels, stopped.texels, factor, atlas.validTexels());
     ctx.warn(line);
     params = coarse;
     return atlas;
@@ -131,7 +151,8 @@ LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& pa
 }  // namespace
 
 void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
-                    Clock::time_point deadline, Clock::time_point layoutDeadline) {
+                    const AtlasLimits& limits) {
+  const Clock::time_point deadline = limits.pilot;
   {
     auto t = ctx.time("atlas");
     ctx.progress("atlas", 0.0, "patches");
@@ -168,7 +189,7 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
     // --density auto within its texel budget (AutoDensityParams::maxTexels): the densities scaled down to
     // fit, said in one line.
     TexelBudget budget;
-    in.atlas = layOutWithin(s, in, params, budget, ctx, layoutDeadline);
+    in.atlas = layOutWithin(s, in, params, budget, ctx, limits);
     if (!budget.note.empty()) ctx.warn(budget.note);
     if (!in.triangleDensity.empty()) in.triangleDensity = params.triangleDensity;
   }

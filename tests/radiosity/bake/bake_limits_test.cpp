@@ -91,10 +91,12 @@ TEST(BakeLimits, WithinTheTimeLimitEveryViewIsRendered) {
   EXPECT_FALSE(r.partial);
 }
 
-// A large atlas still being laid out at the limit stops part-way and is laid out again at a sixteenth of
-// the texels, and the sky gather stops in its first pass: each said in one warning, the result set
-// written whole (its lightmap the coarse atlas's) and marked partial. Seed1 at 64 × 64 texels a quad is
-// 172 032 texels, past the atlas's first deadline check (kAtlasDeadlineTexels).
+// A large atlas still being laid out at the limit stops part-way and is laid out again coarse: at a
+// quarter of the texels per metre, then by halves while its files and report would not be written by the
+// limit (here never: the limit is past), down to 1/32; and the sky gather stops after its first pass: each
+// said in one warning, the result set written whole (its lightmap the coarse atlas's) and marked partial.
+// Seed1 at 64 × 64 texels a quad is 172 032 texels, past the atlas's first deadline check
+// (kAtlasDeadlineTexels).
 TEST(BakeLimits, TheAtlasLayoutAndTheFirstSkyPassStopAtTheTimeLimit) {
   SeedScene seed = makeSeedScene(1);
   seed.scene.sky.kind = Sky::Kind::Uniform;
@@ -107,16 +109,20 @@ TEST(BakeLimits, TheAtlasLayoutAndTheFirstSkyPassStopAtTheTimeLimit) {
   Context ctx;
   const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
   EXPECT_TRUE(anyWarning(ctx, "atlas: the time limit came while laying out the lightmap"));
-  // The coarse atlas's 11 264 texels are more than the sky's first pass's first chunk (8 192 texels),
-  // the one that runs whatever the deadline: the pass stops after it (SkyLight tests).
-  EXPECT_TRUE(anyWarning(ctx, "sky light: the deadline came in the first pass, after 8192 of "));
-  // The coarse layout: 16 × 16 texels a quad.
+  EXPECT_TRUE(anyWarning(ctx, "atlas: the time limit came while laying out the lightmap (131072 of"));
+  int coarsened = 0;
+  for (const std::string& w : ctx.warnings())
+    coarsened += w.find("laid out again at 1/32 of the texels") != w.npos;
+  EXPECT_EQ(coarsened, 1);
+  // The coarsest atlas's texels are one chunk of the sky's first pass, which runs whole.
+  EXPECT_TRUE(anyWarning(ctx, "sky light: the deadline came after 8 of"));
+  // The coarse layout: 2 × 2 texels a quad (64 / 32).
   Context whole;
   bake_steps::BakeInput in;
   in.scene = &seed.scene;
   in.cells = &seed.cells;
   BakeSettings coarse = quick();
-  coarse.atlas.params.texelsPerQuad = 16;
+  coarse.atlas.params.texelsPerQuad = 2;
   bake_steps::buildBakeAtlas(coarse, in, nullptr, whole);
   EXPECT_EQ(r.report["texels"].get<size_t>(), in.atlas.validTexels());
   EXPECT_LT(r.report["texels"].get<size_t>(), kAtlasDeadlineTexels);

@@ -99,10 +99,6 @@ struct OutputPlan {
 OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
                        const EngineOutputParams& engine);
 
-/// The share of the time left before the solve that the outputs' estimates may take (planOutputs): the
-/// optional outputs past it are left out then, and the solve has their time.
-inline constexpr double kOptionalOutputsShare = 0.5;
-
 /// The least a bake can write: its required files and page (planOutputs) at `texels`, as estimated.
 /// A --time-limit under it, with the machine's load, is refused in one line (InputError on --time-limit)
 /// before anything else runs: a bake that cannot write its lightmap in time would end past the limit.

@@ -310,7 +310,7 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
   MachineCosts now{.ray = before.raySeconds,
                    .texel = before.texelSeconds,
                    .texelCpu = before.texelCpuSeconds,
-                   .load = load.ratio()};
+                   .load = load.observed()};
   if (before.load > 0.0) now.ray *= std::max(1.0, now.load / before.load);
   const OutputEstimate e =
       estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, asked);
@@ -344,7 +344,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
     return MachineCosts{.ray = limited ? probeRaySeconds(*in.scene) : 0.0,
                         .texel = limited ? probeTexelSeconds() : 0.0,
                         .texelCpu = limited ? probeTexelCpuSeconds() : 0.0,
-                        .load = load.ratio()};
+                        .load = load.observed()};
   };
   const MachineCosts costs = measureCosts();
   const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
@@ -367,7 +367,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
       const OutputEstimate e = estimateOutputs(
           *in.scene, {}, s.output.views, texels, texels,
           MachineCosts{
-              .ray = costs.ray, .texel = costs.texel, .texelCpu = costs.texelCpu, .load = load.ratio()});
+              .ray = costs.ray, .texel = costs.texel, .texelCpu = costs.texelCpu, .load = load.observed()});
       return e.filesSeconds + e.pageSeconds;
     };
   buildBakeAtlas(s, in,

@@ -36,6 +36,8 @@ constexpr double kRaysPerViewPixel = 1.0;
 // them on oa_dm4 at load 23 (bench/RESULTS.md, "Inside --time-limit on a loaded machine"), with 1.4x to
 // spare. Counted in rays, a map's cheap rays (a seventh of a house's) gave a quarter of its files' time.
 constexpr double kProbesPerFileTexel = 10.0;
+// Room to spare on the CPU seconds times the observed load: the load moves within the files' seconds.
+constexpr double kLoadSpare = 1.5;
 constexpr double kProbesPerPageTexel = 5.0;
 constexpr int kProbeEdge = 512;
 // A voxel of the probes' placement (voxelize, classify, distance) in the same pixels: about 0.9 on oa_dm4
@@ -147,6 +149,10 @@ double processCpuSeconds() {
 
 LoadMeter::LoadMeter() : wall_(std::chrono::steady_clock::now()), cpu_(processCpuSeconds()) {}
 
+double LoadMeter::observed() const {
+  return processCpuSeconds() - cpu_ > 0.1 ? ratio() : 0.0;
+}
+
 double LoadMeter::ratio() const {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_).count();
   const double cpu = processCpuSeconds() - cpu_;
@@ -203,9 +209,12 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
     e.viewSeconds += pixels * (double(n * n) * kRaysPerViewRay + kRaysPerViewPixel) * raySeconds;
   }
   const double triangles = double(scene.triangles.size());
-  // The files in texels at the larger of the PNG probe's wall seconds and its CPU seconds times the load
-  // observed over the bake so far: the probe alone is a snapshot a preemption more or less can halve.
-  const double texelCost = std::max(texelSeconds, costs.texelCpu * costs.load);
+  // The files in texels at the PNG probe's CPU seconds times the load observed over the bake so far, with
+  // room to spare; before any load is observed, at the probe's wall seconds. The wall probe alone is a
+  // snapshot: at load 23 it read 44 times its CPU seconds, where the load over the bake was 11 and
+  // oa_dm7's files (977 k texels) took 11.4 s, estimated at 80 by the snapshot.
+  const double texelCost =
+      costs.texelCpu > 0.0 && costs.load > 0.0 ? kLoadSpare * costs.texelCpu * costs.load : texelSeconds;
   e.filesSeconds =
       double(atlasTexels) * kProbesPerFileTexel * texelCost + triangles * kRaysPerTriangle * raySeconds;
   e.pageSeconds = double(std::max(texels, atlasTexels)) * kProbesPerPageTexel * texelCost +

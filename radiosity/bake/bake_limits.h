@@ -40,6 +40,8 @@ class LoadMeter {
  public:
   LoadMeter();
   double ratio() const;
+  /// ratio(), or 0 before the process has spent enough CPU to say (a tenth of a second).
+  double observed() const;
 
  private:
   std::chrono::steady_clock::time_point wall_;
@@ -54,7 +56,9 @@ struct MachineCosts {
   double ray = 0.0;       ///< probeRaySeconds
   double texel = 0.0;     ///< probeTexelSeconds
   double texelCpu = 0.0;  ///< probeTexelCpuSeconds
-  double load = 1.0;      ///< LoadMeter::ratio, the files' CPU estimate's factor
+  /// LoadMeter::observed: with one, the files are estimated at texelCpu × load (with room to spare);
+  /// without, at the wall probe `texel`.
+  double load = 0.0;
 };
 
 /// The seconds a bake's outputs take after its solve, from their pixels and texels: the views and the
@@ -72,7 +76,7 @@ struct OutputEstimate {
   double raySeconds = 0.0;          ///< the cost of a ray they are counted in (probeRaySeconds)
   double texelSeconds = 0.0;        ///< the cost of a texel the files are counted in (probeTexelSeconds)
   double texelCpuSeconds = 0.0;     ///< probeTexelCpuSeconds, at the load below
-  double load = 1.0;                ///< LoadMeter::ratio when estimated
+  double load = 0.0;                ///< LoadMeter::observed when estimated (0: none yet)
   double gatherSeconds() const { return directionalSeconds + probesSeconds; }
   double seconds() const { return viewSeconds + filesSeconds + pageSeconds + gatherSeconds(); }
 };

@@ -271,6 +271,10 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
       plan.views ? keepBack(deadline, outputs.pageSeconds) : Clock::time_point::min(), engine, probes);
   f.engine = std::move(written.engine);
   if (engine.probes) f.engine["probes"] = probesReport;
+  // The gathers the plan left out are said where a stopped one is (engine_lightmap.*.skipped).
+  const std::string notStarted = "left out before its gather: its estimate did not fit in the time left";
+  if (s.output.engine.directional && !plan.directional) f.engine["directional"] = {{"skipped", notStarted}};
+  if (s.output.engine.probes && !plan.probes) f.engine["probes"] = {{"skipped", notStarted}};
   f.views = std::move(written.views);
   f.skippedViews = std::move(written.skippedViews);
   f.skippedOutputs.insert(f.skippedOutputs.end(), written.skippedOutputs.begin(),

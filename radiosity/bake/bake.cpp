@@ -246,16 +246,26 @@ nlohmann::json writeLightProbes(const BakeInput& in, const SolveResult& r, const
 // The light written: the files of the result set (with a folder) and the figures of the report.
 // Before `deadline`, the outputs' estimate kept back from each: the probes and the directional gather
 // share the time the files and the page leave, by their estimates; the views stop with the page's left.
+// Only the optional outputs of `plan` are started; those it left out are said in one warning.
 void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, const SolveResult& r,
-               const ViewParams& views, const OutputEstimate& outputs, Clock::time_point deadline,
-               OutputDir* out, BakeFigures& f, Context& ctx) {
+               const ViewParams& views, const OutputEstimate& outputs, const OutputPlan& plan,
+               Clock::time_point deadline, OutputDir* out, BakeFigures& f, Context& ctx) {
   auto t = ctx.time("write");
   if (!out) return;
   ctx.progress("write", 0.0, "lightmaps and glb files");
   // "emissive" marks lamp texels, as `cpgi reference` does, so compare-light can leave them out; "cell"
   // gives each texel its cell, for compare-light's per-cell figures.
   const ExrChannel emissive{"emissive", emissiveMask(in.atlas)};
-  const EngineOutputParams& engine = s.output.engine;
+  EngineOutputParams engine = s.output.engine;
+  engine.directional = plan.directional;
+  engine.probes = plan.probes;
+  if (!plan.skipped.empty()) {
+    f.outputsLeftOut = plan.skipped;
+    std::string names;
+    for (const std::string& o : plan.skipped) names += (names.empty() ? "" : ", ") + o;
+    ctx.warn("write: the time limit is too near for " + names +
+             " (their estimate does not fit beside the lightmap's files and report); left out");
+  }
   nlohmann::json probes, probesReport;
   if (engine.probes) {
     // The placement's voxels cannot stop part-way: without the time for them, none are placed.
@@ -264,15 +274,66 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
     if (keepBack(until, outputs.probeVoxelSeconds) <= Clock::now()) until = Clock::now();
     probesReport = writeLightProbes(in, r, engine, until, *out, probes, f, ctx);
   }
-  LightmapOutputs written =
-      writeLightmapOutputs(*out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx,
-                           views, keepBack(deadline, outputs.pageSeconds), engine, probes);
+  LightmapOutputs written = writeLightmapOutputs(
+      *out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx, views,
+      plan.views ? keepBack(deadline, outputs.pageSeconds) : Clock::time_point::min(), engine, probes);
   f.engine = std::move(written.engine);
   if (engine.probes) f.engine["probes"] = probesReport;
+  // The gathers the plan left out are said where a stopped one is (engine_lightmap.*.skipped).
+  const std::string notStarted = "left out before its gather: its estimate did not fit in the time left";
+  if (s.output.engine.directional && !plan.directional) f.engine["directional"] = {{"skipped", notStarted}};
+  if (s.output.engine.probes && !plan.probes) f.engine["probes"] = {{"skipped", notStarted}};
   f.views = std::move(written.views);
   f.skippedViews = std::move(written.skippedViews);
   f.skippedOutputs.insert(f.skippedOutputs.end(), written.skippedOutputs.begin(),
                           written.skippedOutputs.end());
+}
+
+// The texels of the coarsest atlas a bake of `scene` can end with: a layout stopped by the time limit is laid
+// out again at a quarter of the texels per metre (bake_steps.cpp, layOutWithin), from the density asked or
+// with --density auto the least it chooses.
+size_t leastTexels(const BakeSettings& s, const Scene& scene) {
+  double texels = 0.0;
+  if (s.atlas.densityAuto) {  // at least the pilot's even density, which a bake with no time for it takes
+    texels = texelsByArea(scene, {}, pilotDensity(scene, s.atlas.autoDensity));
+    if (s.atlas.autoDensity.maxTexels > 0) texels = std::min(texels, double(s.atlas.autoDensity.maxTexels));
+  } else if (s.atlas.params.texelsPerQuad > 0)  // about one quad per two triangles
+    texels = 0.5 * double(scene.triangles.size()) * std::pow(double(s.atlas.params.texelsPerQuad), 2.0);
+  else
+    texels = texelsByArea(scene, {}, s.atlas.params.density);
+  return size_t(texels / 16.0);
+}
+
+// Seconds from now to `until` (none: a day).
+double secondsUntil(Clock::time_point until) {
+  if (until == Clock::time_point::max()) return 86400.0;
+  return std::chrono::duration<double>(until - Clock::now()).count();
+}
+
+// The optional outputs that fit in the time left after the solve, among those `early` planned before it,
+// re-estimated at the load observed over the whole bake so far (the solve's included): the rays' cost
+// scaled by how the load moved since `before`'s estimate, the files' by the load itself
+// (estimateOutputs). Its `skipped` names those either plan left out.
+OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
+                          const ViewParams& views, const LightmapAtlas& atlas, const OutputEstimate& before,
+                          const OutputPlan& early, const LoadMeter& load, Clock::time_point deadline) {
+  EngineOutputParams asked = s.output.engine;
+  asked.directional = early.directional, asked.probes = early.probes;
+  MachineCosts now{.ray = before.raySeconds,
+                   .texel = before.texelSeconds,
+                   .texelCpu = before.texelCpuSeconds,
+                   .load = load.observed()};
+  if (before.load > 0.0) now.ray *= std::max(1.0, now.load / before.load);
+  const OutputEstimate e =
+      estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, asked);
+  OutputPlan plan = planOutputs(secondsUntil(deadline), e, early.views, asked);
+  std::vector<std::string> skipped;
+  for (const char* o : {"views", "probes", "directional"})
+    if (std::count(early.skipped.begin(), early.skipped.end(), o) ||
+        std::count(plan.skipped.begin(), plan.skipped.end(), o))
+      skipped.push_back(o);
+  plan.skipped = std::move(skipped);
+  return plan;
 }
 
 }  // namespace
@@ -280,6 +341,7 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
 BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
                       const std::filesystem::path* gatherPlan) {
   const Clock::time_point deadline = deadlineOf(s, run.start);
+  const LoadMeter load;  // the wall over the CPU this bake gets, observed as it goes
   std::optional<OutputDir> out;
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
   BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);
@@ -292,22 +354,47 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // Measured as the machine runs now, and again before the solve: the load moves in minutes.
   const auto measureCosts = [&] {
     return MachineCosts{.ray = limited ? probeRaySeconds(*in.scene) : 0.0,
-                        .texel = limited ? probeTexelSeconds() : 0.0};
+                        .texel = limited ? probeTexelSeconds() : 0.0,
+                        .texelCpu = limited ? probeTexelCpuSeconds() : 0.0,
+                        .load = load.observed()};
   };
   const MachineCosts costs = measureCosts();
   const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
+  // The least: the files and page of the coarsest atlas a stopped layout falls back to (a sixteenth of
+  // the texel budget, or of the texels the density asks for).
+  const size_t coarsest = leastTexels(s, *in.scene);
+  const OutputEstimate least =
+      estimateOutputs(*in.scene, {}, s.output.views, coarsest, coarsest, costs, EngineOutputParams{});
+  requireTimeForMinimum(s.limits.timeLimit, least.filesSeconds + least.pageSeconds, coarsest);
   const Clock::time_point beforeOutputs =
       keepBack(deadline, outputsKeptBack(s, estimateOutputs(*in.scene, cameras, s.output.views, budget,
                                                             budget, costs, s.output.engine)));
-  // The pilot shoots before the layout; else the engines wait until the atlas fits the memory.
+  // The pilot shoots before the layout; else the engines wait until the atlas fits the memory. A layout
+  // still going when only the outputs' time is left is laid out again coarse (a sixteenth of its texels,
+  // of its fill and gutters) in that time's margin.
+  AtlasLimits atlasLimits{
+      .pilot = pilotDeadline(beforeOutputs), .layout = beforeOutputs, .end = deadline, .outputsSeconds = {}};
+  if (limited)
+    atlasLimits.outputsSeconds = [&](size_t texels) {
+      const OutputEstimate e = estimateOutputs(
+          *in.scene, {}, s.output.views, texels, texels,
+          MachineCosts{
+              .ray = costs.ray, .texel = costs.texel, .texelCpu = costs.texelCpu, .load = load.observed()});
+      return e.filesSeconds + e.pageSeconds;
+    };
   buildBakeAtlas(s, in,
                  s.atlas.densityAuto && in.triangleDensity.empty() ? &engines.engines().lamps : nullptr, ctx,
-                 pilotDeadline(beforeOutputs), deadline);
+                 atlasLimits);
   requireSolveMemory(s, in.atlas);  // the solve alone, named by its own parameters first
   requireSceneUVs(*in.scene, in.atlas, s.output.engine.uv, s.output.engine.perObject);  // before the solve
   const ViewParams views = requireBakeMemory(s, *in.scene, cameras, in.atlas, ctx);
   const OutputEstimate outputs = estimateOutputs(*in.scene, cameras, views, in.atlas.validTexels(),
                                                  in.atlas.texelCount(), measureCosts(), s.output.engine);
+  // Every optional output's time is kept back from the solve, even when the end will leave it out: the
+  // house's views (30 s of a 60 s limit at load 30), given to the solve, let its engine's set-up start,
+  // which cannot stop and ran 99 s (bench/RESULTS.md, "Never past --time-limit on a loaded machine").
+  OutputPlan asked;  // every optional output asked for, planned again after the solve
+  asked.views = true, asked.probes = s.output.engine.probes, asked.directional = s.output.engine.directional;
   const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
@@ -343,7 +430,9 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
                                                    {"absorbed", r.energy.absorbed},
                                                    {"unshot", r.energy.unshot}};
   requireFiniteResult(s.input.scene, in.atlas, r.radiosity, totals);
-  writeBake(s, in, x, r, views, outputs, deadline, out ? &*out : nullptr, f, ctx);
+  writeBake(s, in, x, r, views, outputs,
+            plannedOutputs(s, *in.scene, cameras, views, in.atlas, outputs, asked, load, deadline), deadline,
+            out ? &*out : nullptr, f, ctx);
   f.seconds = std::chrono::duration<double>(Clock::now() - run.start).count();
   f.outputs = outputs;
   BakeResult result;

@@ -4,10 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+
+#include <sys/resource.h>
+#include <time.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "core/image_io.h"
@@ -31,6 +36,8 @@ constexpr double kRaysPerViewPixel = 1.0;
 // them on oa_dm4 at load 23 (bench/RESULTS.md, "Inside --time-limit on a loaded machine"), with 1.4x to
 // spare. Counted in rays, a map's cheap rays (a seventh of a house's) gave a quarter of its files' time.
 constexpr double kProbesPerFileTexel = 10.0;
+// Room to spare on the CPU seconds times the observed load: the load moves within the files' seconds.
+constexpr double kLoadSpare = 1.5;
 constexpr double kProbesPerPageTexel = 5.0;
 constexpr int kProbeEdge = 512;
 // A voxel of the probes' placement (voxelize, classify, distance) in the same pixels: about 0.9 on oa_dm4
@@ -119,6 +126,71 @@ double probeTexelSeconds() {
   return png.empty() ? 0.0 : seconds / (double(kProbeEdge) * kProbeEdge);
 }
 
+double probeTexelCpuSeconds() {
+  ImageRGB image{kProbeEdge, kProbeEdge, std::vector<glm::vec3>(size_t(kProbeEdge) * kProbeEdge)};
+  for (int y = 0; y < kProbeEdge; ++y)
+    for (int x = 0; x < kProbeEdge; ++x)
+      image.pixels[size_t(y) * kProbeEdge + x] = glm::vec3(float(x) / kProbeEdge, float(y) / kProbeEdge,
+                                                           float((x * 7919 + y * 104729) % 97) / 970.0f);
+  timespec a{}, b{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &a);
+  const std::string png = encodePng(image);
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
+  const double seconds = double(b.tv_sec - a.tv_sec) + 1e-9 * double(b.tv_nsec - a.tv_nsec);
+  return png.empty() ? 0.0 : seconds / (double(kProbeEdge) * kProbeEdge);
+}
+
+double processCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+LoadMeter::LoadMeter() : wall_(std::chrono::steady_clock::now()), cpu_(processCpuSeconds()) {}
+
+double LoadMeter::observed() const {
+  return processCpuSeconds() - cpu_ > 0.1 ? ratio() : 0.0;
+}
+
+double LoadMeter::ratio() const {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_).count();
+  const double cpu = processCpuSeconds() - cpu_;
+  // Under a tenth of a second of CPU says nothing yet.
+  if (!(cpu > 0.1)) return 1.0;
+  const double cores = std::max(1, tbb::this_task_arena::max_concurrency());
+  return std::clamp(wall * cores / cpu, 1.0, kMostLoadRatio);
+}
+
+OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
+                       const EngineOutputParams& engine) {
+  OutputPlan plan;
+  double left = secondsLeft - e.filesSeconds - e.pageSeconds;
+  // Kept in the reverse of the order they are dropped in.
+  const auto keep = [&](bool asked, double seconds, bool& kept) {
+    if (!asked) return;
+    kept = seconds <= left;
+    if (kept) left -= seconds;
+  };
+  keep(engine.directional, e.directionalSeconds, plan.directional);
+  keep(engine.probes, e.probesSeconds, plan.probes);
+  keep(viewsAsked && e.views > 0, e.viewSeconds, plan.views);
+  if (viewsAsked && e.views > 0 && !plan.views) plan.skipped.push_back("views");
+  if (engine.probes && !plan.probes) plan.skipped.push_back("probes");
+  if (engine.directional && !plan.directional) plan.skipped.push_back("directional");
+  return plan;
+}
+
+void requireTimeForMinimum(double timeLimit, double minimumSeconds, size_t texels) {
+  if (!(timeLimit > 0.0) || timeLimit >= minimumSeconds) return;
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%.3g s is less than the least a bake of this scene writes here as the machine runs now: "
+                "about %.3g s for its lightmap's files and report at %zu texels; raise it",
+                timeLimit, minimumSeconds, texels);
+  throw InputError("--time-limit", line);
+}
+
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
                                const ViewParams& views, size_t texels, size_t atlasTexels,
                                const MachineCosts& costs, const EngineOutputParams& engine) {
@@ -127,6 +199,8 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
   const double raySeconds = costs.ray, texelSeconds = costs.texel;
   e.raySeconds = raySeconds;
   e.texelSeconds = texelSeconds;
+  e.texelCpuSeconds = costs.texelCpu;
+  e.load = costs.load;
   const int n = std::clamp(views.supersample, 1, 8);
   for (const Camera& c : cameras) {
     const ViewSize v = viewSize(c, views);
@@ -135,9 +209,15 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
     e.viewSeconds += pixels * (double(n * n) * kRaysPerViewRay + kRaysPerViewPixel) * raySeconds;
   }
   const double triangles = double(scene.triangles.size());
+  // The files in texels at the PNG probe's CPU seconds times the load observed over the bake so far, with
+  // room to spare; before any load is observed, at the probe's wall seconds. The wall probe alone is a
+  // snapshot: at load 23 it read 44 times its CPU seconds, where the load over the bake was 11 and
+  // oa_dm7's files (977 k texels) took 11.4 s, estimated at 80 by the snapshot.
+  const double texelCost =
+      costs.texelCpu > 0.0 && costs.load > 0.0 ? kLoadSpare * costs.texelCpu * costs.load : texelSeconds;
   e.filesSeconds =
-      double(atlasTexels) * kProbesPerFileTexel * texelSeconds + triangles * kRaysPerTriangle * raySeconds;
-  e.pageSeconds = double(std::max(texels, atlasTexels)) * kProbesPerPageTexel * texelSeconds +
+      double(atlasTexels) * kProbesPerFileTexel * texelCost + triangles * kRaysPerTriangle * raySeconds;
+  e.pageSeconds = double(std::max(texels, atlasTexels)) * kProbesPerPageTexel * texelCost +
                   triangles * kRaysPerTriangle * raySeconds;
   const GatherParams gather;  // the probes' and the directional lightmap's emitter samples
   if (engine.directional)
@@ -154,7 +234,7 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
     const ProbeParams probe;
     const glm::dvec3 voxels = size / double(probe.voxel) + 5.0;
     if (!scene.triangles.empty()) {
-      e.probeVoxelSeconds = voxels.x * voxels.y * voxels.z * kProbesPerVoxel * texelSeconds;
+      e.probeVoxelSeconds = voxels.x * voxels.y * voxels.z * kProbesPerVoxel * texelCost;
       e.probesSeconds =
           e.probeVoxelSeconds + points * kProbeLatticeShare *
                                     double(probe.gather.rays + probe.gather.emitterSamples + 26) *

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "core/cell_graph.h"
 #include "core/context.h"
@@ -27,10 +28,37 @@ double probeRaySeconds(const Scene& scene);
 /// one thread compressing and copying texels, are counted in these, whatever the scene's rays cost.
 double probeTexelSeconds();
 
+/// The CPU seconds (this thread's) of a pixel of probeTexelSeconds' PNG encoding: what a texel costs the
+/// machine unloaded, which LoadMeter's ratio turns into wall seconds as the load moves.
+double probeTexelCpuSeconds();
+
+/// The ratio of wall time to the CPU time this process got since the meter started (its load): the
+/// wall seconds × the cores the bake may use over the CPU seconds of every thread of the process. 1 on an
+/// idle machine with every core busy for the bake; 5–20 at load 10–40 on 2 cores; more where the bake
+/// waited (conservative: it only ever reserves more). At least 1, at most kMostLoadRatio.
+class LoadMeter {
+ public:
+  LoadMeter();
+  double ratio() const;
+  /// ratio(), or 0 before the process has spent enough CPU to say (a tenth of a second).
+  double observed() const;
+
+ private:
+  std::chrono::steady_clock::time_point wall_;
+  double cpu_ = 0.0;
+};
+inline constexpr double kMostLoadRatio = 40.0;
+/// CPU seconds of every thread of this process so far (user + system).
+double processCpuSeconds();
+
 /// This machine's costs as it runs now, the outputs' estimates' units.
 struct MachineCosts {
-  double ray = 0.0;    ///< probeRaySeconds
-  double texel = 0.0;  ///< probeTexelSeconds
+  double ray = 0.0;       ///< probeRaySeconds
+  double texel = 0.0;     ///< probeTexelSeconds
+  double texelCpu = 0.0;  ///< probeTexelCpuSeconds
+  /// LoadMeter::observed: with one, the files are estimated at texelCpu × load (with room to spare);
+  /// without, at the wall probe `texel`.
+  double load = 0.0;
 };
 
 /// The seconds a bake's outputs take after its solve, from their pixels and texels: the views and the
@@ -47,6 +75,8 @@ struct OutputEstimate {
   double probeVoxelSeconds = 0.0;   ///< of which their placement's voxels, which cannot stop part-way
   double raySeconds = 0.0;          ///< the cost of a ray they are counted in (probeRaySeconds)
   double texelSeconds = 0.0;        ///< the cost of a texel the files are counted in (probeTexelSeconds)
+  double texelCpuSeconds = 0.0;     ///< probeTexelCpuSeconds, at the load below
+  double load = 0.0;                ///< LoadMeter::observed when estimated (0: none yet)
   double gatherSeconds() const { return directionalSeconds + probesSeconds; }
   double seconds() const { return viewSeconds + filesSeconds + pageSeconds + gatherSeconds(); }
 };
@@ -61,6 +91,22 @@ std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells);
 OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& cameras,
                                const ViewParams& views, size_t texels, size_t atlasTexels,
                                const MachineCosts& costs, const EngineOutputParams& engine = {});
+
+/// The outputs to make in the time left, the required ones (the lightmap's files, baked.glb, report.json and
+/// report.html: filesSeconds + pageSeconds) first; the optional ones asked for (`views`, `probes`,
+/// `directional`) kept while their estimates fit beside them, dropped in that order (the views first: they
+/// are pictures of the lightmap, which the engines' outputs are not). `skipped` names those dropped.
+struct OutputPlan {
+  bool views = false, probes = false, directional = false;
+  std::vector<std::string> skipped;
+};
+OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
+                       const EngineOutputParams& engine);
+
+/// The least a bake can write: its required files and page (planOutputs) at `texels`, as estimated.
+/// A --time-limit under it, with the machine's load, is refused in one line (InputError on --time-limit)
+/// before anything else runs: a bake that cannot write its lightmap in time would end past the limit.
+void requireTimeForMinimum(double timeLimit, double minimumSeconds, size_t texels);
 
 /// The most of --time-limit the directional gather and the probes' estimate keeps back from the solve:
 /// the rest is the solve's, and what they do not finish by their deadline is left out (said).

@@ -203,14 +203,20 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   report["time_limit_s"] =
       s.limits.timeLimit > 0.0 ? nlohmann::json(s.limits.timeLimit) : nlohmann::json(nullptr);
   // The outputs' share kept back from the solve (bake_limits.h), and the views the limit left out.
-  report["output_estimate_s"] = {
-      {"views", f.outputs.viewSeconds},    {"files", f.outputs.filesSeconds},
-      {"page", f.outputs.pageSeconds},     {"directional", f.outputs.directionalSeconds},
-      {"probes", f.outputs.probesSeconds}, {"ray", f.outputs.raySeconds},
-      {"texel", f.outputs.texelSeconds}};
+  report["output_estimate_s"] = {{"views", f.outputs.viewSeconds},
+                                 {"files", f.outputs.filesSeconds},
+                                 {"page", f.outputs.pageSeconds},
+                                 {"directional", f.outputs.directionalSeconds},
+                                 {"probes", f.outputs.probesSeconds},
+                                 {"ray", f.outputs.raySeconds},
+                                 {"texel", f.outputs.texelSeconds},
+                                 {"texel_cpu", f.outputs.texelCpuSeconds},
+                                 {"load", f.outputs.load}};
   report["views_skipped"] = f.skippedViews;
-  report["outputs_skipped"] = f.skippedOutputs;
-  report["partial"] = r.timedOut || !f.skippedViews.empty() || !f.skippedOutputs.empty();
+  std::vector<std::string> skipped = f.outputsLeftOut;
+  skipped.insert(skipped.end(), f.skippedOutputs.begin(), f.skippedOutputs.end());
+  report["outputs_skipped"] = skipped;
+  report["partial"] = r.timedOut || !f.skippedViews.empty() || !skipped.empty();
   std::ostringstream why;
   if (r.timedOut)
     why << "time limit of " << formatSeconds(s.limits.timeLimit) << " s reached after " << r.shots
@@ -223,6 +229,9 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
   for (const std::string& o : f.skippedOutputs)
     why << (why.tellp() > 0 ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
         << " s reached during the " << o << " gather, whose files were not written (outputs_skipped)";
+  for (const std::string& o : f.outputsLeftOut)
+    why << (why.tellp() > 0 ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
+        << " s left no time for the " << o << ", left out before they started (outputs_skipped)";
   if (report["partial"].get<bool>()) report["partial_reason"] = why.str();
   if (r.perCell) addCellsReport(s, in, *r.perCell, report);
   return report;

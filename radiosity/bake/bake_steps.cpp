@@ -102,36 +102,81 @@ OnDemand resolveOnDemand(const BakeSettings& s, const Scene& scene, const CellGr
 
 namespace {
 
-// The output's atlas within `deadline` (--time-limit): past it in the middle of a large layout
-// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels,
-// said in one warning; the solve after it stops at once and the result is written as partial.
-LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
-                           Context& ctx, Clock::time_point deadline) {
+// `params` at 1/`factor` of its texels per metre (texels per quad at least 2).
+AtlasParams coarser(const AtlasParams& params, int factor) {
+  AtlasParams coarse = params;
+  coarse.texelsPerQuad = params.texelsPerQuad > 0 ? std::max(2, params.texelsPerQuad / factor) : 0;
+  coarse.density = params.density / float(factor);
+  for (float& d : coarse.triangleDensity) d /= float(factor);
+  return coarse;
+}
+
+// The most a stopped layout is coarsened: 1/32 of the texels per metre, a thousandth of the texels.
+constexpr int kMostCoarsening = 32;
+
+// Whether the required outputs of `atlas` would not be written by limits.end.
+bool tooLateFor(const LightmapAtlas& atlas, const AtlasLimits& limits) {
+  return limits.outputsSeconds && limits.outputsSeconds(atlas.texelCount()) >
+                                      std::chrono::duration<double>(limits.end - Clock::now()).count();
+}
+
+// `atlas` laid out again coarser by halves from 1/`factor` of `params`' texels per metre while its required
+// outputs would not be written by limits.end (at most kMostCoarsening); `params` becomes the last used.
+// Returns the factor.
+int coarsenToFit(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
+                 const AtlasLimits& limits, LightmapAtlas& atlas, int factor) {
   const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
+  const AtlasParams asked = params;
+  Context quiet;  // the coarse layout's own warnings (charts capped) are not the user's resolution's
+  if (factor > 1) {
+    params = coarser(asked, factor);
+    atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, quiet, &budget);
+  }
+  while (factor < kMostCoarsening && tooLateFor(atlas, limits)) {
+    factor = std::max(2, factor * 2);
+    params = coarser(asked, factor);
+    atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, quiet, &budget);
+  }
+  return factor;
+}
+
+// The output's atlas within `limits.layout` (--time-limit): past it in the middle of a large layout
+// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels;
+// and either way coarser by halves while the outputs of that atlas (limits.outputsSeconds) would not be
+// written by limits.end. Said in one warning; the solve after it stops at once and the result is written
+// as partial.
+LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
+                           Context& ctx, const AtlasLimits& limits) {
+  const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
+  char line[300];
+  LightmapAtlas atlas;
   try {
-    return fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, deadline);
+    atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, limits.layout);
   } catch (const AtlasLayoutStopped& stopped) {
-    AtlasParams coarse = params;
-    coarse.texelsPerQuad = params.texelsPerQuad > 0 ? std::max(2, params.texelsPerQuad / 4) : 0;
-    coarse.density = params.density / 4.0f;
-    for (float& d : coarse.triangleDensity) d /= 4.0f;
-    Context quiet;  // the coarse layout's own warnings (charts capped) are not the user's resolution's
-    LightmapAtlas atlas = fitTexelBudget(*in.scene, in.quads, coarse, maxTexels, quiet, &budget);
-    char line[240];
+    const int factor = coarsenToFit(s, in, params, budget, limits, atlas, 4);
     std::snprintf(line, sizeof line,
                   "atlas: the time limit came while laying out the lightmap (%zu of %zu texels filled): laid "
-                  "out again at a quarter of the texels per metre, %zu texels",
-                  stopped.filledTexels, stopped.texels, atlas.validTexels());
+                  "out again at 1/%d of the texels per metre, %zu texels",
+                  stopped.filledTexels, stopped.texels, factor, atlas.validTexels());
     ctx.warn(line);
-    params = coarse;
     return atlas;
   }
+  if (!tooLateFor(atlas, limits)) return atlas;
+  const size_t laidOut = atlas.validTexels();
+  const int factor = coarsenToFit(s, in, params, budget, limits, atlas, 1);
+  std::snprintf(line, sizeof line,
+                "atlas: the lightmap's files at %zu texels would not be written by the time limit: laid out "
+                "again at 1/%d of the texels per metre, %zu texels",
+                laidOut, factor, atlas.validTexels());
+  ctx.warn(line);
+  return atlas;
 }
 
 }  // namespace
 
 void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
-                    Clock::time_point deadline, Clock::time_point layoutDeadline) {
+                    const AtlasLimits& limits) {
+  const Clock::time_point deadline = limits.pilot;
   {
     auto t = ctx.time("atlas");
     ctx.progress("atlas", 0.0, "patches");
@@ -168,7 +213,7 @@ void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Con
     // --density auto within its texel budget (AutoDensityParams::maxTexels): the densities scaled down to
     // fit, said in one line.
     TexelBudget budget;
-    in.atlas = layOutWithin(s, in, params, budget, ctx, layoutDeadline);
+    in.atlas = layOutWithin(s, in, params, budget, ctx, limits);
     if (!budget.note.empty()) ctx.warn(budget.note);
     if (!in.triangleDensity.empty()) in.triangleDensity = params.triangleDensity;
   }

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -55,12 +56,22 @@ struct BakeInput {
   std::vector<float> triangleDensity;
 };
 
+/// When the atlas's steps stop (none: no limit).
+struct AtlasLimits {
+  Clock::time_point pilot = Clock::time_point::max();  ///< the density pilot shoots no more after it
+  Clock::time_point layout =
+      Clock::time_point::max();                      ///< a large layout still going is laid out again coarse
+  Clock::time_point end = Clock::time_point::max();  ///< the bake's end (--time-limit)
+  /// The seconds the required outputs of an atlas of so many texels (width × height) take; a coarse
+  /// re-layout is made coarser until they fit before `end`. Empty: a sixteenth of the texels, whatever.
+  std::function<double(size_t)> outputsSeconds;
+};
+
 /// The atlas; with --density auto and no densities yet, after a pilot shot of the lamps on `pilot` that
-/// shoots no more after `deadline`. A large layout still going at `layoutDeadline` is laid out again at a
-/// sixteenth of the texels, with a warning.
+/// shoots no more after limits.pilot. A large layout still going at limits.layout is laid out again at a
+/// sixteenth of the texels or fewer (limits.outputsSeconds), with a warning.
 void buildBakeAtlas(const BakeSettings& s, BakeInput& in, ShotEngine* pilot, Context& ctx,
-                    Clock::time_point deadline = Clock::time_point::max(),
-                    Clock::time_point layoutDeadline = Clock::time_point::max());
+                    const AtlasLimits& limits = {});
 /// The bytes the solve takes: the atlas's texels and the item buffers of every visibility region.
 double solveBytes(const BakeSettings& s, const LightmapAtlas& atlas);
 void requireSolveMemory(const BakeSettings& s, const LightmapAtlas& atlas);
@@ -91,6 +102,9 @@ struct BakeFigures {
   nlohmann::json engine;   ///< report.json's "engine_lightmap" (LightmapOutputs::engine); null: none written
   /// Outputs the time limit stopped during their gather, so not written: "probes", "directional"
   std::vector<std::string> skippedOutputs;
+  /// Optional outputs left out before they started, their estimate not fitting in the time left
+  /// (planOutputs): "views", "probes", "directional"
+  std::vector<std::string> outputsLeftOut;
 };
 /// report.json of a bake (bake_report.cpp).
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,

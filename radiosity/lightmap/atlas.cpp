@@ -410,7 +410,10 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   }
   if (filled >= kAtlasDeadlineTexels && std::chrono::steady_clock::now() >= deadline)
     throw AtlasLayoutStopped(filled, n);
-  atlas.gutter = seamGutters(atlas, scene, params.padding);
+  // A large atlas's gutters stop at the deadline too; a small one's are always made.
+  atlas.gutter =
+      seamGutters(atlas, scene, params.padding,
+                  filled >= kAtlasDeadlineTexels ? deadline : std::chrono::steady_clock::time_point::max());
   return atlas;
 }
 

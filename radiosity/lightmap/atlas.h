@@ -129,8 +129,8 @@ struct AtlasLayoutStopped : std::runtime_error {
 inline constexpr size_t kAtlasDeadlineTexels = size_t(1) << 17;
 
 /// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
-/// Deterministic: the same scene and params give the same atlas. Past `deadline`, once kAtlasDeadlineTexels
-/// have been filled, throws AtlasLayoutStopped.
+/// Deterministic: the same scene and params give the same atlas. Past `deadline` (in its fill and its
+/// gutters), once kAtlasDeadlineTexels have been filled, throws AtlasLayoutStopped.
 LightmapAtlas buildAtlas(
     const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
     const std::vector<uint32_t>& subset = {},

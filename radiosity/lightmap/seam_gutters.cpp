@@ -88,7 +88,8 @@ glm::vec3 texelPoint(const Patch& p, int i, int j) {
 
 }  // namespace
 
-std::vector<GutterTap> seamGutters(const LightmapAtlas& atlas, const Scene& scene, int padding) {
+std::vector<GutterTap> seamGutters(const LightmapAtlas& atlas, const Scene& scene, int padding,
+                                   std::chrono::steady_clock::time_point deadline) {
   const size_t charts = atlas.patches.size();
   std::vector<Box> surface(charts), reach(charts);
   for (size_t c = 0; c < charts; ++c) {
@@ -110,6 +111,8 @@ std::vector<GutterTap> seamGutters(const LightmapAtlas& atlas, const Scene& scen
   float lift = 0.0f;
   std::vector<int32_t> seen(charts, -1), near;
   for (size_t c = 0; c < charts; ++c) {
+    if (std::chrono::steady_clock::now() >= deadline)
+      throw AtlasLayoutStopped(atlas.texelCount(), atlas.texelCount());
     const Patch& p = atlas.patches[c];
     near.clear();
     grid.forCells(reach[c], [&](int64_t key) {

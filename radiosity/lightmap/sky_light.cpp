@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <unordered_map>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -50,7 +52,7 @@ void gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origin
 }
 
 // The passes' ray counts per texel: kFirstPassRays (or all of them when fewer), then doubling up to
-// sky.gatherRays. The first pass always completes, so every texel has an estimate before any deadline.
+// sky.gatherRays. Every texel has an estimate after the first pass's first chunk, whatever the deadline.
 constexpr int kFirstPassRays = 8;
 std::vector<int> passEnds(int rays) {
   std::vector<int> ends;
@@ -60,7 +62,8 @@ std::vector<int> passEnds(int rays) {
 }
 
 // The order of the texels in every pass (`texels`, atlas order, as indices into it): first the seeds, each
-// chart row's first texel and every kSeedStride-th after it, then the others by a halving stride, so that
+// chart row's first texel and every kSeedStride-th after it, spread over the atlas (by their rank's bits
+// reversed, so that the first seeds gathered lie all over it), then the others by a halving stride, so that
 // a first pass cut short has gathered a texel every few along every row. seedOf: per texel, the seed at
 // or before it in its row, whose estimate it takes when the first pass stops before reaching it.
 constexpr size_t kSeedStride = 16;
@@ -69,6 +72,23 @@ struct PassOrder {
   size_t seeds = 0;
   std::vector<uint32_t> seedOf;
 };
+
+// `items` in the order of their index's bits reversed (0, n/2, n/4, 3n/4, ... for n a power of two).
+std::vector<uint32_t> spread(const std::vector<uint32_t>& items) {
+  size_t domain = 1;
+  int bits = 0;
+  while (domain < items.size()) domain <<= 1, ++bits;
+  std::vector<uint32_t> out;
+  out.reserve(items.size());
+  for (size_t r = 0; r < domain; ++r) {
+    size_t rev = 0;
+    for (int b = 0; b < bits; ++b)
+      if (r & (size_t(1) << b)) rev |= size_t(1) << (bits - 1 - b);
+    if (rev < items.size()) out.push_back(items[rev]);
+  }
+  return out;
+}
+
 PassOrder passOrder(const LightmapAtlas& atlas, const std::vector<size_t>& texels) {
   PassOrder o;
   o.seedOf.resize(texels.size());
@@ -87,10 +107,41 @@ PassOrder passOrder(const LightmapAtlas& atlas, const std::vector<size_t>& texel
       if (k & bit) want |= rev;
     for (size_t j = 0; j < texels.size(); ++j)
       if (phase[j] == want) o.order.push_back(uint32_t(j));
-    if (k == 0) o.seeds = o.order.size();
+    if (k == 0) {
+      o.seeds = o.order.size();
+      o.order = spread(o.order);
+    }
   }
   return o;
 }
+
+// The seeds a first pass cut short did not reach (`reached` unset) take the mean of those it reached on
+// their chart, or of all it reached where their chart has none: an estimate for every texel, at the same
+// rays, so that the sky's light is in every room however early the deadline came.
+void fillUnreachedSeeds(const LightmapAtlas& atlas, const std::vector<size_t>& texels, const PassOrder& order,
+                        const std::vector<uint8_t>& reached, std::vector<double>& sums) {
+  std::unordered_map<int32_t, std::pair<double, size_t>> byChart;
+  double all = 0.0;
+  size_t count = 0;
+  for (size_t k = 0; k < order.seeds; ++k) {
+    const uint32_t j = order.order[k];
+    if (!reached[j]) continue;
+    auto& [sum, n] = byChart[atlas.patch[texels[j]]];
+    sum += sums[j], ++n, all += sums[j], ++count;
+  }
+  for (size_t k = 0; k < order.seeds; ++k) {
+    const uint32_t j = order.order[k];
+    if (reached[j]) continue;
+    const auto it = byChart.find(atlas.patch[texels[j]]);
+    sums[j] = it != byChart.end() ? it->second.first / double(it->second.second)
+                                  : (count > 0 ? all / double(count) : 0.0);
+  }
+}
+
+// Texels of the first pass's first chunk, which runs whatever the deadline (every texel then has an
+// estimate): 8 192 texels' 8 rays, a tenth of a second of one core, where a chunk of a later pass is up
+// to a million rays.
+constexpr size_t kFirstChunk = size_t(1) << 13;
 
 }  // namespace
 
@@ -121,13 +172,14 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
     const size_t chunk = std::clamp(kChunkRays / size_t(to - from), size_t(1024), kChunk);
     std::vector<double> next = sums;
     bool stopped = false;
-    for (size_t c = 0; c < texels.size() && !stopped; c += chunk) {
-      // The first pass goes on until its seeds have their directions; every later one stops at once.
-      if ((p > 0 || c >= order.seeds) && std::chrono::steady_clock::now() >= deadline) {
+    for (size_t c = 0; c < texels.size();) {
+      // Every chunk but the first pass's first stops at the deadline.
+      if ((p > 0 || c > 0) && std::chrono::steady_clock::now() >= deadline) {
         stopped = true;
         break;
       }
-      const size_t end = std::min(c + chunk, texels.size());
+      const size_t end =
+          std::min(c + (p == 0 && c == 0 ? std::min(chunk, kFirstChunk) : chunk), texels.size());
       tbb::parallel_for(tbb::blocked_range<size_t>(c, end, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const size_t j = order.order[k], i = texels[j];
@@ -141,10 +193,12 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
       std::snprintf(status, sizeof status, "%d of %d rays a texel, %zu texels", to, sky.gatherRays,
                     texels.size());
       ctx.progress("sky light", totalRays > 0.0 ? raysDone / totalRays : 1.0, status);
+      c = end;
     }
     if (stopped && p == 0) {  // the texels not reached take their row's seed's estimate
       std::vector<uint8_t> reached(texels.size(), 0);
       for (size_t k = 0; k < firstPass; ++k) reached[order.order[k]] = 1;
+      if (firstPass < order.seeds) fillUnreachedSeeds(atlas, texels, order, reached, next);
       for (size_t j = 0; j < texels.size(); ++j)
         if (!reached[j]) next[j] = next[order.seedOf[j]];
       sums.swap(next);
@@ -169,12 +223,13 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
   direct.landed += landed;
   direct.directionalLanded += landed;
   if (data.timedOut && firstPass < texels.size()) {
-    char note[320];
+    char note[400];
     std::snprintf(
         note, sizeof note,
         "sky light: the deadline came in the first pass, after %zu of %zu texels had their %d rays; "
-        "each other texel took the estimate of one up to %zu texels before it in its chart's row",
-        firstPass, texels.size(), done, kSeedStride - 1);
+        "each other texel took the estimate of one up to %zu texels before it in its chart's row%s",
+        firstPass, texels.size(), done, kSeedStride - 1,
+        firstPass < order.seeds ? ", or where none was gathered its chart's mean" : "");
     ctx.warn(note);
   } else if (data.timedOut) {
     ctx.warn("sky light: the deadline came after " + std::to_string(done) + " of " +

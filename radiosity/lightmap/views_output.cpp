@@ -111,6 +111,20 @@ RenderedViews renderViews(const Scene& scene, const CellGraph& cells, const Ligh
                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
                           const ViewParams& params, std::chrono::steady_clock::time_point deadline) {
   auto timer = ctx.time("views");
+  if (std::chrono::steady_clock::now() >= deadline && !(scene.cameras.empty() && cells.empty())) {
+    // Past the deadline before the first: not even the ray scene (seconds for a large scene on a loaded
+    // machine); the cameras named as defaultCameras names them, one per room but the outside.
+    RenderedViews views;
+    for (const Camera& c : scene.cameras) views.skipped.push_back(c.name);
+    if (scene.cameras.empty())
+      for (const Cell& c : cells.cells)
+        if (c.name != "outside") views.skipped.push_back(c.name);
+    if (!views.skipped.empty()) {
+      ctx.warn("views: the time limit came before " + std::to_string(views.skipped.size()) + " of " +
+               std::to_string(views.skipped.size()) + " views; not rendered: " + joinNames(views.skipped));
+      return views;
+    }
+  }
   const RayScene rays(scene);
   const std::vector<Camera> cameras = viewCameras(rays, scene, cells);
   return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params, deadline);

@@ -1,6 +1,7 @@
 // End to end (issue 12 item 6): `bake --time-limit SECONDS` stops the solve at the limit and writes a
 // valid result marked partial, with the energy still balanced, for a global and a cells bake; the size
 // line comes before the first shot.
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -38,7 +39,7 @@ TEST(TimeLimit, TinyLimitWritesAPartialResultForBothMethods) {
     SCOPED_TRACE(std::string(method) + atlas);
     const std::string out = dir / (std::string(method) + (atlas == kAtlas ? "" : "-auto"));
     const test::CommandRun r = cpgi(dir, "bake '" + scene + "' -o '" + out + "' --method " + method +
-                                             " --cells '" + scene + "'" + atlas + " --time-limit 0.001");
+                                             " --cells '" + scene + "'" + atlas + " --time-limit 0.5");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("texels in"), std::string::npos) << r.err;  // the size, before the first shot
     EXPECT_NE(r.out.find("partial"), std::string::npos) << r.out;
@@ -47,7 +48,7 @@ TEST(TimeLimit, TinyLimitWritesAPartialResultForBothMethods) {
     const json report = json::parse(slurp(out + "/report.json"));
     EXPECT_EQ(report["partial"], true);
     EXPECT_NE(report["partial_reason"].get<std::string>().find("time limit"), std::string::npos);
-    EXPECT_DOUBLE_EQ(report["time_limit_s"].get<double>(), 0.001);
+    EXPECT_DOUBLE_EQ(report["time_limit_s"].get<double>(), 0.5);
     EXPECT_GT(report["energy"]["unshot_w"].get<double>(), 0.0);  // what the limit left unshot, reported
     expectBalanced(report["energy"]);
     if (std::string(method) == "cells") {
@@ -59,6 +60,23 @@ TEST(TimeLimit, TinyLimitWritesAPartialResultForBothMethods) {
       }
     }
   }
+}
+
+// A limit under the least the bake writes (its lightmap's files and report at the coarsest atlas) is
+// refused at once in one line, nothing written: it would end past the limit.
+TEST(TimeLimit, ALimitUnderTheLeastIsRefusedInOneLine) {
+  test::TempDir dir;
+  const std::string scene = dir / "seed1.glb";
+  ASSERT_EQ(cpgi(dir, "generate seed1 -o '" + scene + "'").status, 0);
+  const std::string out = dir / "out";
+  const test::CommandRun r =
+      cpgi(dir, "bake '" + scene + "' -o '" + out + "'" + kAtlas + " --time-limit 0.000001");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind("cpgi: --time-limit: 1e-06 s is less than the least a bake of this scene writes", 0),
+            0u)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(out) / "report.json"));
 }
 
 TEST(TimeLimit, LimitNotReachedIsNoPartialResult) {

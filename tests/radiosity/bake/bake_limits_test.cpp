@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -90,10 +91,12 @@ TEST(BakeLimits, WithinTheTimeLimitEveryViewIsRendered) {
   EXPECT_FALSE(r.partial);
 }
 
-// A large atlas still being laid out at the limit stops part-way and is laid out again at a sixteenth of
-// the texels, and the sky gather stops after its first pass: each said in one warning, the result set
-// written whole (its lightmap the coarse atlas's) and marked partial. Seed1 at 64 × 64 texels a quad is
-// 172 032 texels, past the atlas's first deadline check (kAtlasDeadlineTexels).
+// A large atlas still being laid out at the limit stops part-way and is laid out again coarse: at a
+// quarter of the texels per metre, then by halves while its files and report would not be written by the
+// limit (here never: the limit is past), down to 1/32; and the sky gather stops after its first pass: each
+// said in one warning, the result set written whole (its lightmap the coarse atlas's) and marked partial.
+// Seed1 at 64 × 64 texels a quad is 172 032 texels, past the atlas's first deadline check
+// (kAtlasDeadlineTexels).
 TEST(BakeLimits, TheAtlasLayoutAndTheFirstSkyPassStopAtTheTimeLimit) {
   SeedScene seed = makeSeedScene(1);
   seed.scene.sky.kind = Sky::Kind::Uniform;
@@ -106,16 +109,20 @@ TEST(BakeLimits, TheAtlasLayoutAndTheFirstSkyPassStopAtTheTimeLimit) {
   Context ctx;
   const BakeResult r = bake(seed.scene, seed.cells, s, ctx, run);
   EXPECT_TRUE(anyWarning(ctx, "atlas: the time limit came while laying out the lightmap"));
-  // The coarse atlas's 10 752 texels are one chunk of the sky's first pass, which runs whole; a larger
-  // one stops in it after its seeds (SkyLight tests).
+  EXPECT_TRUE(anyWarning(ctx, "atlas: the time limit came while laying out the lightmap (131072 of"));
+  int coarsened = 0;
+  for (const std::string& w : ctx.warnings())
+    coarsened += w.find("laid out again at 1/32 of the texels") != w.npos;
+  EXPECT_EQ(coarsened, 1);
+  // The coarsest atlas's texels are one chunk of the sky's first pass, which runs whole.
   EXPECT_TRUE(anyWarning(ctx, "sky light: the deadline came after 8 of"));
-  // The coarse layout: 16 × 16 texels a quad.
+  // The coarse layout: 2 × 2 texels a quad (64 / 32).
   Context whole;
   bake_steps::BakeInput in;
   in.scene = &seed.scene;
   in.cells = &seed.cells;
   BakeSettings coarse = quick();
-  coarse.atlas.params.texelsPerQuad = 16;
+  coarse.atlas.params.texelsPerQuad = 2;
   bake_steps::buildBakeAtlas(coarse, in, nullptr, whole);
   EXPECT_EQ(r.report["texels"].get<size_t>(), in.atlas.validTexels());
   EXPECT_LT(r.report["texels"].get<size_t>(), kAtlasDeadlineTexels);
@@ -243,6 +250,72 @@ TEST(BakeLimits, ViewsShrinkToTheMemoryLeftAndTheRestIsRefused) {
     EXPECT_NE(e.problem().find("lower `item buffer` or raise `maximum memory`"), std::string::npos)
         << e.problem();
   }
+}
+
+// The optional outputs are dropped before the required ones, in the order views, probes, directional:
+// with time for the files and the page alone nothing optional is started; each more second keeps one
+// more, the directional gather first. No time asked for the views (no cameras) drops nothing for them.
+TEST(BakeLimits, TheOptionalOutputsAreDroppedFirstViewsThenProbesThenDirectional) {
+  bake_steps::OutputEstimate e;
+  e.views = 3;
+  e.filesSeconds = 2.0, e.pageSeconds = 1.0;
+  e.directionalSeconds = 4.0, e.probesSeconds = 2.0, e.viewSeconds = 5.0;
+  EngineOutputParams both;
+  both.directional = true, both.probes = true;
+  using Skipped = std::vector<std::string>;
+  const auto plan = [&](double left) { return bake_steps::planOutputs(left, e, true, both); };
+  EXPECT_EQ(plan(3.0).skipped, (Skipped{"views", "probes", "directional"}));  // the files and page alone
+  EXPECT_EQ(plan(2.0).skipped, (Skipped{"views", "probes", "directional"}));  // not even those: still planned
+  EXPECT_EQ(plan(7.0).skipped, (Skipped{"views", "probes"}));
+  EXPECT_TRUE(plan(7.0).directional);
+  EXPECT_EQ(plan(9.0).skipped, (Skipped{"views"}));
+  EXPECT_TRUE(plan(9.0).probes && plan(9.0).directional && !plan(9.0).views);
+  EXPECT_TRUE(plan(14.0).skipped.empty());
+  EXPECT_TRUE(plan(14.0).views && plan(14.0).probes && plan(14.0).directional);
+  // Not asked, not planned and not said.
+  const bake_steps::OutputPlan none = bake_steps::planOutputs(0.0, e, false, EngineOutputParams{});
+  EXPECT_TRUE(none.skipped.empty());
+  EXPECT_FALSE(none.views || none.probes || none.directional);
+}
+
+// A limit under the least a bake writes (its files and page at the coarsest atlas, at this machine's
+// costs) is refused in one line before anything runs; one over it is not.
+TEST(BakeLimits, ALimitUnderTheLeastABakeWritesIsRefusedAtOnce) {
+  EXPECT_NO_THROW(bake_steps::requireTimeForMinimum(0.0, 5.0, 1000));  // no limit
+  EXPECT_NO_THROW(bake_steps::requireTimeForMinimum(6.0, 5.0, 1000));
+  try {
+    bake_steps::requireTimeForMinimum(4.0, 5.0, 1000);
+    ADD_FAILURE() << "4 s for 5 s of files";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "--time-limit");
+    EXPECT_NE(e.problem().find("about 5 s for its lightmap's files and report at 1000 texels; raise it"),
+              std::string::npos)
+        << e.problem();
+  }
+  const SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  s.limits.timeLimit = 1e-6;
+  test::TempDir dir;
+  s.output.folder = dir / "out";
+  Context ctx;
+  BakeRun run;
+  run.gl = &test::sharedGl();
+  EXPECT_THROW(bake(seed.scene, seed.cells, s, ctx, run), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/report.json"));
+}
+
+// The load ratio: 1 with no CPU spent yet or on a machine that gave the bake its cores; more when the
+// wall ran on while this process got no CPU (a sleep stands for the other processes' share).
+TEST(BakeLimits, TheLoadMeterSeesWallTimeWithoutCpu) {
+  const bake_steps::LoadMeter idle;
+  EXPECT_EQ(idle.ratio(), 1.0);  // under a tenth of a CPU second: nothing to say
+  const bake_steps::LoadMeter meter;
+  const double cpu0 = bake_steps::processCpuSeconds();
+  volatile double sink = 0.0;
+  while (bake_steps::processCpuSeconds() - cpu0 < 0.15) sink = sink + 1.0;
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  EXPECT_GT(meter.ratio(), 2.0);  // 0.15 s of CPU over at least 0.75 s of wall, on at least one core
+  EXPECT_LE(meter.ratio(), bake_steps::kMostLoadRatio);
 }
 
 }  // namespace

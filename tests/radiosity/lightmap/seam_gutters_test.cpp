@@ -89,6 +89,21 @@ TEST(SeamGutters, ChartsOfOneFloorAtTwoDensitiesMeetWithoutAStep) {
   EXPECT_GT(worstMiss(s, atlas, dilatedRamp(atlas), 0.5f, 0.13f, 1.96f), 0.2f);
 }
 
+// Past its deadline the gutters stop before their first chart (a large atlas's take seconds): the layout
+// is told (AtlasLayoutStopped) and laid out again coarse by its caller; without one they are all made.
+TEST(SeamGutters, PastTheDeadlineTheGuttersStopAndSaySo) {
+  Scene s;
+  const uint32_t floor = addMaterial(s, glm::vec3(0.5f));
+  addRect(s, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 0);
+  addRect(s, glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 1);
+  AtlasParams params;
+  params.triangleDensity = {4.0f, 4.0f, 16.0f, 16.0f};
+  const LightmapAtlas atlas = build(s, params);
+  EXPECT_THROW(seamGutters(atlas, s, params.padding, std::chrono::steady_clock::now()), AtlasLayoutStopped);
+  EXPECT_EQ(seamGutters(atlas, s, params.padding).size(), atlas.gutter.size());
+  EXPECT_FALSE(atlas.gutter.empty());
+}
+
 // Two rooms' floors meeting under a partition of no thickness (openings' B|C): the wall on the seam hides
 // each floor from the other, and a gutter reading the other room's light put a bright rim along the dark
 // room's wall (openings' C: rel RMSE 4.4 → 26 %). Where the partition has a door, the floor goes on.

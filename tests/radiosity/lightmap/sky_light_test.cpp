@@ -154,6 +154,34 @@ TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
   EXPECT_NEAR(late.landed, 3.0 * lateSum, 1e-4 * late.landed);
 }
 
+// A deadline already past on an atlas with more seeds than the first pass's first chunk (8 192 texels)
+// stops after that chunk: the seeds it gathered lie all over the atlas, those it did not take their
+// chart's mean, the rest of each row its seed's, so the box's sky light is still there within the noise,
+// and no more than one chunk of rays was traced past the deadline.
+TEST(SkyLight, ADeadlineStopsTheFirstPassAfterItsFirstChunkOfSeeds) {
+  const Scene s = openBox(32);
+  const LightmapAtlas atlas = atlasOf(s, 160.0f);
+  ASSERT_GT(atlas.validTexels() / 16, 2u * 8192u);  // seeds enough for more than two chunks
+  Context ctx;
+  DirectLight late;
+  const SkyGatherData data = gatherPastDeadline(s, atlas, ctx, late);
+  EXPECT_TRUE(data.timedOut);
+  EXPECT_EQ(data.rays, 8);
+  ASSERT_EQ(ctx.warnings().size(), 1u);
+  EXPECT_EQ(ctx.warnings()[0].rfind("sky light: the deadline came in the first pass, after 8192 of ", 0), 0u)
+      << ctx.warnings()[0];
+  EXPECT_NE(ctx.warnings()[0].find("its chart's mean"), std::string::npos) << ctx.warnings()[0];
+  const DirectLight full = gather(s, atlas);
+  double lateSum = 0.0, fullSum = 0.0;
+  for (size_t i = 0; i < atlas.texelCount(); ++i) {
+    if (atlas.patch[i] < 0) continue;
+    EXPECT_LE(late.irradiance[i].g, 3.0 * kPi * 1.0001);
+    lateSum += late.irradiance[i].g * atlas.area[i], fullSum += full.irradiance[i].g * atlas.area[i];
+  }
+  EXPECT_NEAR(lateSum, fullSum, 0.1 * fullSum);
+  EXPECT_NEAR(late.landed, 3.0 * lateSum, 1e-4 * late.landed);
+}
+
 TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {
   const Scene s = openBox(1024);
   const LightmapAtlas atlas = atlasOf(s, 8.0f);

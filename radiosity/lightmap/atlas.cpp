@@ -424,7 +424,7 @@ std::vector<float> emissiveMask(const LightmapAtlas& atlas) {
   return mask;
 }
 
-void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius) {
+void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius, DilatedValues kind) {
   if (values.size() != atlas.texelCount())
     throw std::invalid_argument("dilate: values must have one entry per atlas texel");
   const int w = atlas.width, h = atlas.height;
@@ -435,7 +435,9 @@ void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radi
     glm::dvec3 sum(0.0);
     for (int k = 0; k < g.from.count; ++k)
       sum += g.from.weight[size_t(k)] * glm::dvec3(source[size_t(g.from.texel[size_t(k)])]);
-    values[g.texel] = glm::max(glm::vec3(sum), glm::vec3(0.0f));  // extrapolated at an edge: never below 0
+    // Extrapolated at an edge: light never below 0.
+    values[g.texel] =
+        kind == DilatedValues::Light ? glm::max(glm::vec3(sum), glm::vec3(0.0f)) : glm::vec3(sum);
     filled[g.texel] = 1;
   }
   for (int y = 0; y < h; ++y)

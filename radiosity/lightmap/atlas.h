@@ -136,10 +136,16 @@ LightmapAtlas buildAtlas(
     const std::vector<uint32_t>& subset = {},
     std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
+/// What dilate() fills gutters with: light, which a gutter extrapolated past a chart's edge keeps at 0 or
+/// more, or a signed quantity (a spherical-harmonic coefficient of the light's direction), extrapolated
+/// as it is: clamped at 0, the SH maps' gutters turned the light's direction at chart edges.
+enum class DilatedValues { Light, Signed };
+
 /// Fills padding texels so that bilinear lookups at chart edges don't pull in black: those of
 /// `atlas.gutter` with the neighbouring chart's light at their point, the others with the value of their
 /// nearest valid texel (within `radius` texels).
-void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius = 2);
+void dilate(const LightmapAtlas& atlas, std::vector<glm::vec3>& values, int radius = 2,
+            DilatedValues kind = DilatedValues::Light);
 
 /// Per texel, 1 where its patch emits (in any channel) and 0 elsewhere, padding included: the lamps, which
 /// lightmap.exr marks as "emissive" and the error figures without lamps leave out (their B ≈ E outweighs

@@ -109,7 +109,7 @@ nlohmann::json writeDirectionalFiles(OutputDir& out, const Scene& scene, const L
   std::vector<nlohmann::json> objectFiles(objects ? objects->objects.size() : 0, nlohmann::json::array());
   for (size_t k = 0; k < 4; ++k) {
     std::vector<glm::vec3>& values = map.sh[k];
-    dilate(atlas, values);
+    dilate(atlas, values, 2, DilatedValues::Signed);
     for (size_t o = 0; o < objectFiles.size(); ++o) {
       const ObjectLightmap& object = objects->objects[o];
       const std::string file = object.fileStem + kShSuffixes[k];

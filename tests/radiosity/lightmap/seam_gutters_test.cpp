@@ -70,16 +70,22 @@ LightmapAtlas build(const Scene& s, const AtlasParams& params) {
   return buildAtlas(s, findQuads(s), params, ctx);
 }
 
-// Two quads of one floor side by side at 4 and 16 texels a metre: with each gutter holding the other
-// chart's light, lookups across the seam follow the ramp; holding their own edge texel, the coarse side
-// stopped rising 12.5 cm short of the seam (a step of a quarter of the light's rise a metre).
-TEST(SeamGutters, ChartsOfOneFloorAtTwoDensitiesMeetWithoutAStep) {
+// Two quads of one floor side by side, [0, 1] and [1, 2] along x, at 4 and 16 texels a metre.
+Scene twoDensityFloor(AtlasParams& params) {
   Scene s;
   const uint32_t floor = addMaterial(s, glm::vec3(0.5f));
   addRect(s, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 0);
   addRect(s, glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 1);
-  AtlasParams params;
   params.triangleDensity = {4.0f, 4.0f, 16.0f, 16.0f};
+  return s;
+}
+
+// Two quads of one floor side by side at 4 and 16 texels a metre: with each gutter holding the other
+// chart's light, lookups across the seam follow the ramp; holding their own edge texel, the coarse side
+// stopped rising 12.5 cm short of the seam (a step of a quarter of the light's rise a metre).
+TEST(SeamGutters, ChartsOfOneFloorAtTwoDensitiesMeetWithoutAStep) {
+  AtlasParams params;
+  const Scene s = twoDensityFloor(params);
   LightmapAtlas atlas = build(s, params);
   ASSERT_EQ(atlas.patches.size(), 2u);
   EXPECT_FALSE(atlas.gutter.empty());
@@ -92,16 +98,32 @@ TEST(SeamGutters, ChartsOfOneFloorAtTwoDensitiesMeetWithoutAStep) {
 // Past its deadline the gutters stop before their first chart (a large atlas's take seconds): the layout
 // is told (AtlasLayoutStopped) and laid out again coarse by its caller; without one they are all made.
 TEST(SeamGutters, PastTheDeadlineTheGuttersStopAndSaySo) {
-  Scene s;
-  const uint32_t floor = addMaterial(s, glm::vec3(0.5f));
-  addRect(s, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 0);
-  addRect(s, glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f), floor, 1);
   AtlasParams params;
-  params.triangleDensity = {4.0f, 4.0f, 16.0f, 16.0f};
+  const Scene s = twoDensityFloor(params);
   const LightmapAtlas atlas = build(s, params);
   EXPECT_THROW(seamGutters(atlas, s, params.padding, std::chrono::steady_clock::now()), AtlasLayoutStopped);
   EXPECT_EQ(seamGutters(atlas, s, params.padding).size(), atlas.gutter.size());
   EXPECT_FALSE(atlas.gutter.empty());
+}
+
+// A spherical-harmonic coefficient of the light's direction is negative as often as not: its gutters are
+// extrapolated as they are, where light's are kept at 0 or more (the SH maps' gutters clamped at 0 turned
+// the light's direction at chart edges).
+TEST(SeamGutters, SignedValuesAreExtrapolatedAsTheyAre) {
+  AtlasParams params;
+  const Scene s = twoDensityFloor(params);
+  const LightmapAtlas atlas = build(s, params);
+  ASSERT_FALSE(atlas.gutter.empty());
+  auto negativeRamp = [&](DilatedValues kind) {
+    std::vector<glm::vec3> v(atlas.texelCount(), glm::vec3(0.0f));
+    for (size_t t = 0; t < v.size(); ++t)
+      if (atlas.patch[t] >= 0) v[t] = -rampAt(atlas.position[t]);
+    dilate(atlas, v, 2, kind);
+    for (glm::vec3& x : v) x = -x;  // worstMiss compares with the ramp
+    return v;
+  };
+  EXPECT_LT(worstMiss(s, atlas, negativeRamp(DilatedValues::Signed), 0.5f, 0.13f, 1.96f), 1e-3f);
+  EXPECT_GT(worstMiss(s, atlas, negativeRamp(DilatedValues::Light), 0.5f, 0.13f, 1.96f), 0.2f);
 }
 
 // Two rooms' floors meeting under a partition of no thickness (openings' B|C): the wall on the seam hides

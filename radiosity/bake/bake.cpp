@@ -336,6 +336,20 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
   return plan;
 }
 
+// The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a scene
+// without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and the
+// ambient term. Their decomposition runs beside the bake's own buffers: it may take what they leave of the
+// memory limit.
+RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_point deadline, Context& ctx) {
+  const CellGraph& cells = *in.cells;
+  if (!cells.empty() && !cells.definedByVolumes()) return {};
+  ctx.progress("set-up", 0.0, "the rooms of the texels");
+  const double bakeBytes = bakeMemory(s, *in.scene, in.atlas, 0.0).total();
+  const double limit = double(s.cells.decompose.memoryLimit);
+  const uint64_t roomsMemory = limit <= 0.0 ? 0 : (limit > bakeBytes ? uint64_t(limit - bakeBytes) : 1);
+  return labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, deadline, roomsMemory);
+}
+
 }  // namespace
 
 BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
@@ -398,15 +412,8 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
-  // The glb and the "cell" channel keep the cells baked with (the scene's own for a global bake); a
-  // scene without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and
-  // the ambient term.
   const CellGraph& cells = *in.cells;
-  ctx.progress("set-up", 0.0, "the rooms of the texels");
-  const RoomLabels rooms =
-      cells.empty() || cells.definedByVolumes()
-          ? labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, solveDeadline)
-          : RoomLabels{};
+  const RoomLabels rooms = bakeRooms(s, in, solveDeadline, ctx);
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);

@@ -131,7 +131,8 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
 }
 
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
-                             Context& ctx, const CellGraph& volumes, Clock::time_point deadline) {
+                             Context& ctx, const CellGraph& volumes, Clock::time_point deadline,
+                             uint64_t memoryLimit) {
   auto t = ctx.time("rooms");
   RoomLabels out;
   const char* late =
@@ -148,9 +149,15 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
     Context quiet = deadlineContext(ctx, false, deadline);
     decomp::DecomposeParams params;
     params.sourceName = scenePath;
+    params.memoryLimit = memoryLimit;
     d = volumes.definedByVolumes() ? decomp::decomposeFromVolumes(scene, volumes, params, {}, quiet)
                                    : decomp::decompose(scene, params, quiet);
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    // requireMemory's refusal (core/memory_limit.h) is the user's limit, said; any other is the scene's
+    // shape (no room found), which the scene taken as one room answers.
+    if (e.problem().find("`maximum memory`") != std::string::npos)
+      ctx.warn("rooms: " + e.problem() +
+               "; the stop per room and the ambient term take the scene as one room");
     return out;
   } catch (const DeadlineReached&) {
     ctx.warn(late);

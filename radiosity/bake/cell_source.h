@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 
 #include "core/cell_graph.h"
@@ -51,9 +52,12 @@ struct RoomLabels {
 };
 /// With `volumes` (rooms given only as cellvolume: meshes, CellGraph::definedByVolumes), the rooms are
 /// those volumes' cells (decomp::decomposeFromVolumes) instead.
+/// `memoryLimit`: bytes the decomposition may take (DecomposeParams::memoryLimit, 0: none); a
+/// decomposition that would take more is not made (said in a warning): the scene is one room.
 RoomLabels labelTexelsByRoom(
     const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas, Context& ctx,
     const CellGraph& volumes = {},
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    uint64_t memoryLimit = 0);
 
 }  // namespace cpgi

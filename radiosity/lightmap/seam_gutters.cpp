@@ -57,6 +57,11 @@ class ChartGrid {
       for (int y = a.y; y <= z.y; ++y)
         for (int k = a.z; k <= z.z; ++k) f((int64_t(x) << 42) | (int64_t(y) << 21) | int64_t(k));
   }
+  /// The grid cells box `b` spans (forCells' calls).
+  double cellCount(const Box& b) const {
+    const glm::dvec3 span = glm::dvec3(cellOf(b.hi) - cellOf(b.lo)) + 1.0;
+    return span.x * span.y * span.z;
+  }
   const std::vector<int32_t>* at(int64_t key) const {
     const auto it = cells_.find(key);
     return it == cells_.end() ? nullptr : &it->second;
@@ -115,15 +120,23 @@ std::vector<GutterTap> seamGutters(const LightmapAtlas& atlas, const Scene& scen
       throw AtlasLayoutStopped(atlas.texelCount(), atlas.texelCount());
     const Patch& p = atlas.patches[c];
     near.clear();
-    grid.forCells(reach[c], [&](int64_t key) {
-      if (const std::vector<int32_t>* in = grid.at(key))
-        for (int32_t q : *in)
-          if (seen[size_t(q)] != int32_t(c) && q != int32_t(c)) {
-            seen[size_t(q)] = int32_t(c);
-            if (surface[size_t(q)].overlaps(reach[c], 1e-3f) && sameSurface(p, atlas.patches[size_t(q)]))
-              near.push_back(q);
-          }
-    });
+    auto consider = [&](int32_t q) {
+      if (seen[size_t(q)] != int32_t(c) && q != int32_t(c)) {
+        seen[size_t(q)] = int32_t(c);
+        if (surface[size_t(q)].overlaps(reach[c], 1e-3f) && sameSurface(p, atlas.patches[size_t(q)]))
+          near.push_back(q);
+      }
+    };
+    // A sliver's chart reaches far along its plane at a few texels a quad: its box can span the whole
+    // grid, whose cells then cost more to visit than every chart (2 000 slivers of a fan: 100 s).
+    if (grid.cellCount(reach[c]) > double(charts)) {
+      for (size_t q = 0; q < charts; ++q) consider(int32_t(q));
+    } else {
+      grid.forCells(reach[c], [&](int64_t key) {
+        if (const std::vector<int32_t>* in = grid.at(key))
+          for (int32_t q : *in) consider(q);
+      });
+    }
     if (near.empty()) continue;
     if (!rays) {
       rays = std::make_unique<RayScene>(scene);

@@ -151,6 +151,26 @@ TEST(BakeLimits, TheRoomsDecompositionStopsAtTheTimeLimit) {
   EXPECT_EQ(r.cellNames.size(), 3u);  // the three rooms, when there is time
 }
 
+// The rooms' decomposition takes what the bake's own buffers leave of --max-memory (a room 1e5 m wide
+// peaked at 3.8 GB under --max-memory 2G): left too little, it is not made, said in one warning, and the
+// bake goes on with the scene as one room.
+TEST(BakeLimits, TheRoomsDecompositionTakesWhatTheBakeLeavesOfTheMemoryLimit) {
+  SeedScene seed = makeSeedScene(1);
+  BakeSettings s = quick();
+  Context layout;
+  const BakeSettings resolved = bake_steps::resolved(s);
+  const bake_steps::BakeInput in = laidOut(seed, resolved, layout);
+  const double own = bake_steps::bakeMemory(resolved, seed.scene, in.atlas, 0.0).total();
+  s.limits.maxMemory = uint64_t(own) + (uint64_t(1) << 20);  // a megabyte left: no decomposition's grid
+  BakeRun run;
+  run.gl = &test::sharedGl();
+  Context ctx;
+  const BakeResult r = bake(seed.scene, CellGraph{}, s, ctx, run);
+  EXPECT_TRUE(anyWarning(ctx, "rooms: the decomposition's grid")) << "no warning of the rooms' memory";
+  EXPECT_TRUE(r.cellNames.empty());
+  EXPECT_FALSE(r.partial);
+}
+
 // A cells bake of `--cells auto` cannot go on without its cells: one line naming the time limit.
 TEST(BakeLimits, TheCellsDecompositionPastTheTimeLimitIsRefusedInOneLine) {
   const SeedScene seed = makeSeedScene(1);

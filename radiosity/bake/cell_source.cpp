@@ -153,10 +153,12 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
     d = volumes.definedByVolumes() ? decomp::decomposeFromVolumes(scene, volumes, params, {}, quiet)
                                    : decomp::decompose(scene, params, quiet);
   } catch (const InputError& e) {
-    // requireMemory's refusal (core/memory_limit.h) is the user's limit, said; any other is the scene's
-    // shape (no room found), which the scene taken as one room answers.
-    if (e.problem().find("`maximum memory`") != std::string::npos)
-      ctx.warn("rooms: " + e.problem() +
+    // requireMemory's refusal (core/memory_limit.h) is the user's limit, said without its remedy (the
+    // rooms' voxel is not the bake's to set); any other is the scene's shape (no room found), which the
+    // scene taken as one room answers.
+    const std::string& problem = e.problem();
+    if (problem.find("`maximum memory`") != std::string::npos)
+      ctx.warn("rooms: " + problem.substr(0, problem.find(';')) +
                "; the stop per room and the ambient term take the scene as one room");
     return out;
   } catch (const DeadlineReached&) {

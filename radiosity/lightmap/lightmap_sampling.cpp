@@ -128,6 +128,18 @@ struct SplitSurface {
   }
 };
 
+// Calls f(texel, its patch, the triangle texelTriangle names for it) for every valid texel of `atlas`.
+template <class F>
+void forEachTexelTriangle(const LightmapAtlas& atlas, F&& f) {
+  for (int y = 0; y < atlas.height; ++y)
+    for (int x = 0; x < atlas.width; ++x) {
+      const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
+      if (atlas.patch[t] < 0) continue;
+      const Patch& p = atlas.patches[size_t(atlas.patch[t])];
+      f(t, p, texelTriangle(p, x - p.x, y - p.y));
+    }
+}
+
 }  // namespace
 
 glm::vec3 sampleBilinear(int width, int height, std::span<const glm::vec3> lightmap, glm::vec2 uv) {
@@ -194,19 +206,14 @@ size_t sampleOnSplitPieces(const LightmapAtlas& atlas, const Scene& scene, std::
   const SplitSurface surface{scene, source, pieces, other, uvs};
   unread.assign(atlas.texelCount(), 0);
   size_t unreadCount = 0;
-  for (int y = 0; y < atlas.height; ++y)
-    for (int x = 0; x < atlas.width; ++x) {
-      const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
-      if (atlas.patch[t] < 0) continue;
-      const Patch& p = atlas.patches[size_t(atlas.patch[t])];
-      const int32_t triangle = texelTriangle(p, x - p.x, y - p.y);
-      if (triangle >= 0 && source[size_t(triangle)] >= 0) continue;
-      const std::optional<glm::vec2> at =
-          triangle >= 0 ? surface.coordinates(p, triangle, atlas.position[t]) : std::nullopt;
-      if (at) out[t] = sampleBilinear(width, height, lightmap, *at);
-      unread[t] = !at;
-      unreadCount += !at;
-    }
+  forEachTexelTriangle(atlas, [&](size_t t, const Patch& p, int32_t triangle) {
+    if (triangle >= 0 && source[size_t(triangle)] >= 0) return;
+    const std::optional<glm::vec2> at =
+        triangle >= 0 ? surface.coordinates(p, triangle, atlas.position[t]) : std::nullopt;
+    if (at) out[t] = sampleBilinear(width, height, lightmap, *at);
+    unread[t] = !at;
+    unreadCount += !at;
+  });
   return unreadCount;
 }
 
@@ -220,24 +227,19 @@ std::vector<glm::vec3> sampleAtTexels(const LightmapAtlas& atlas, const Scene& s
     throw std::invalid_argument("sampleAtTexels: the lightmap is not width × height texels");
   std::vector<glm::vec3> out(atlas.texelCount(), glm::vec3(0.0f));
   size_t unmatched = 0;
-  for (int y = 0; y < atlas.height; ++y)
-    for (int x = 0; x < atlas.width; ++x) {
-      const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
-      if (atlas.patch[t] < 0) continue;
-      const Patch& p = atlas.patches[size_t(atlas.patch[t])];
-      // A quad's chart is affine over both of its triangles, so the first one's coordinates extend to
-      // texel centres in the second.
-      const int32_t triangle = texelTriangle(p, x - p.x, y - p.y);
-      const int32_t from = triangle >= 0 ? source[size_t(triangle)] : -1;
-      if (from < 0 || size_t(from) >= uvs.size()) {
-        ++unmatched;
-        continue;
-      }
-      const glm::dvec3 w = barycentric(scene.triangles[size_t(triangle)], atlas.position[t]);
-      const std::array<glm::vec2, 3>& uv = uvs[size_t(from)];
-      const glm::vec2 at(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
-      out[t] = sampleBilinear(width, height, lightmap, at);
+  // A quad's chart is affine over both of its triangles, so the first one's coordinates extend to texel
+  // centres in the second.
+  forEachTexelTriangle(atlas, [&](size_t t, const Patch&, int32_t triangle) {
+    const int32_t from = triangle >= 0 ? source[size_t(triangle)] : -1;
+    if (from < 0 || size_t(from) >= uvs.size()) {
+      ++unmatched;
+      return;
     }
+    const glm::dvec3 w = barycentric(scene.triangles[size_t(triangle)], atlas.position[t]);
+    const std::array<glm::vec2, 3>& uv = uvs[size_t(from)];
+    const glm::vec2 at(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
+    out[t] = sampleBilinear(width, height, lightmap, at);
+  });
   if (missing) *missing = unmatched;
   return out;
 }

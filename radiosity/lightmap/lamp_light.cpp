@@ -5,11 +5,14 @@
 #include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include "radiosity/lightmap/occluder_pieces.h"
 
 namespace cpgi {
 
@@ -93,16 +96,172 @@ struct TexelLamp {
   Seen seen = Seen::None;
 };
 
+/// How far off its surface a shadow ray starts: the reference's, so both see thin walls.
+float rayOffset(const RayScene& occluders) {
+  return std::max(1e-5f * occluders.diagonal(), 1e-6f);
+}
+
+/// A shadow ray stops this share of its length (and the ray offset) short of the lamp, which must not hide
+/// itself.
+constexpr float kShortOfLamp = 1e-4f;
+
+/// The texels a lamp cannot reach past one occluder piece (occluder_pieces.h), whose rays to it need no
+/// tracing. The pieces tried on a texel: those the rays from its chart's centre and four inner points to
+/// the lamp's centre meet first, from either end (one of them hides the whole chart from a lamp two rooms
+/// away), then those its own centre's two rays meet (a texel beside a door). Deterministic: a texel's
+/// answer is its own, whatever the threads.
+class LampShadows {
+ public:
+  LampShadows(const Lamp& lamp, const OccluderPieces& pieces, const RayScene& occluders,
+              const LightmapAtlas& atlas, float offset)
+      : lamp_(lamp), pieces_(pieces), occluders_(occluders), atlas_(atlas), offset_(offset) {
+    for (int c = 0; c < lamp.corners; ++c) lampCorners_.push_back(glm::dvec3(lamp.corner[size_t(c)]));
+    // No ray is longer than the scene's diagonal (and its two offsets).
+    shortfall_ =
+        double(kShortOfLamp) * (double(occluders.diagonal()) + 2.0 * double(offset)) + double(offset);
+    candidates_.resize(atlas.patches.size());
+    whole_.assign(atlas.patches.size(), 0);
+    clear_.assign(atlas.patches.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, atlas.patches.size(), 16),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                        for (size_t p = range.begin(); p < range.end(); ++p) findCandidates(p);
+                      });
+  }
+
+  /// True when texel t (of a chart) is known hidden from the whole lamp.
+  bool hidden(size_t t) const {
+    const size_t p = size_t(atlas_.patch[t]);
+    if (whole_[p]) return true;
+    const Patch& P = atlas_.patches[p];
+    const std::array<glm::dvec3, 4> footprint =
+        parallelogram(atlas_.position[t] - 0.5f * (P.texelU + P.texelV), P.texelU, P.texelV, P.normal);
+    for (int32_t piece : candidates_[p])
+      if (pieces_.blocks(piece, footprint, lampCorners_, shortfall_)) return true;
+    if (clear_[p]) return false;  // the chart sees the lamp: its texels' own rays would find no piece
+    for (int32_t piece : firstPieces(atlas_.position[t], P.normal).piece)
+      if (pieces_.blocks(piece, footprint, lampCorners_, shortfall_)) return true;
+    return false;
+  }
+
+ private:
+  // The corners of origin + [0, 1]·u + [0, 1]·v, moved off the surface as the rays' origins are.
+  std::array<glm::dvec3, 4> parallelogram(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v,
+                                          const glm::vec3& n) const {
+    const glm::dvec3 o = glm::dvec3(origin) + double(offset_) * glm::dvec3(n);
+    return {o, o + glm::dvec3(u), o + glm::dvec3(u + v), o + glm::dvec3(v)};
+  }
+
+  // The pieces met first on the segment between x (off a surface of normal n) and the lamp's centre, from
+  // each end (-1 where none), and whether nothing lies on it.
+  struct FirstPieces {
+    std::array<int32_t, 2> piece{-1, -1};
+    bool clear = false;
+  };
+  FirstPieces firstPieces(const glm::vec3& x, const glm::vec3& n) const {
+    const glm::vec3 from = x + offset_ * n, to = lamp_.centre + offset_ * lamp_.normal, d = to - from;
+    const float length = glm::length(d);
+    if (!(length > 2.0f * offset_)) return {};
+    const glm::vec3 w = d / length;
+    const float far = length * (1.0f - kShortOfLamp);
+    const RayScene::Hit a = occluders_.intersect(from, w, 0.0f, far);
+    if (!a) return {{-1, -1}, true};
+    const RayScene::Hit b = occluders_.intersect(to, -w, 0.0f, far);
+    return {{pieces_.pieceOf(a.triangle), b ? pieces_.pieceOf(b.triangle) : -1}, false};
+  }
+
+  void findCandidates(size_t p) {
+    if (int(p) == lamp_.patch) return;
+    const Patch& P = atlas_.patches[p];
+    const glm::vec3 u = float(P.w) * P.texelU, v = float(P.h) * P.texelV;
+    const std::array<glm::dvec3, 4> chart = parallelogram(P.origin, u, v, P.normal);
+    // A chart wholly behind the lamp's plane, or with the lamp wholly behind its own, gets no ray.
+    bool front = false, faces = false;
+    for (const glm::dvec3& c : chart)
+      front = front || glm::dot(glm::dvec3(lamp_.normal), c - lampCorners_[0]) > 0.0;
+    for (const glm::dvec3& c : lampCorners_)
+      faces = faces || glm::dot(glm::dvec3(P.normal), c - chart[0]) > 0.0;
+    if (!front || !faces) return;
+    std::vector<int32_t>& found = candidates_[p];
+    bool clear = true;
+    for (const glm::vec2 at : {glm::vec2(0.5f), glm::vec2(0.25f), glm::vec2(0.75f, 0.25f),
+                               glm::vec2(0.25f, 0.75f), glm::vec2(0.75f)}) {
+      const FirstPieces first = firstPieces(P.origin + at.x * u + at.y * v, P.normal);
+      clear = clear && first.clear;
+      for (int32_t piece : first.piece)
+        if (piece >= 0 && std::find(found.begin(), found.end(), piece) == found.end()) found.push_back(piece);
+    }
+    clear_[p] = clear;
+    for (int32_t piece : found)
+      if (pieces_.blocks(piece, chart, lampCorners_, shortfall_)) {
+        whole_[p] = 1;
+        return;
+      }
+  }
+
+  const Lamp& lamp_;
+  const OccluderPieces& pieces_;
+  const RayScene& occluders_;
+  const LightmapAtlas& atlas_;
+  float offset_ = 0.0f;
+  double shortfall_ = 0.0;
+  std::vector<glm::dvec3> lampCorners_;
+  std::vector<std::vector<int32_t>> candidates_;  ///< per patch
+  std::vector<char> whole_;                       ///< per patch: the whole chart hidden
+  std::vector<char> clear_;                       ///< per patch: the lamp's centre seen from its five points
+};
+
+/// How a texel's footprint and a lamp face each other: every point of each in front of the other (each of
+/// the texel's points then has a contour form factor and each of its rays a kernel), one wholly behind the
+/// other (none has), or it depends on the point. Each by `margin` off the other's plane, far above the
+/// rounding of the rays' directions.
+enum class Facing : uint8_t { Away, Wholly, Partly };
+
+Facing facingOf(const Lamp& lamp, const glm::vec3& centre, const glm::vec3& n, const glm::vec3& u,
+                const glm::vec3& v, float offset, double margin) {
+  double lampLow = 1e300, lampHigh = -1e300, texelLow = 1e300, texelHigh = -1e300;
+  for (int c = 0; c < lamp.corners; ++c) {
+    const double d = glm::dot(glm::dvec3(n), glm::dvec3(lamp.corner[size_t(c)]) - glm::dvec3(centre));
+    lampLow = std::min(lampLow, d), lampHigh = std::max(lampHigh, d);
+  }
+  const glm::dvec3 origin = glm::dvec3(centre) + double(offset) * glm::dvec3(n), du(u), dv(v);
+  for (const glm::dvec3 x : {origin - 0.5 * (du + dv), origin + 0.5 * (du - dv), origin + 0.5 * (du + dv),
+                             origin - 0.5 * (du - dv)}) {
+    const double d = glm::dot(glm::dvec3(lamp.normal), x - glm::dvec3(lamp.corner[0]));
+    texelLow = std::min(texelLow, d), texelHigh = std::max(texelHigh, d);
+  }
+  if (lampHigh < -margin || texelHigh < -margin) return Facing::Away;
+  if (lampLow > margin && texelLow > margin && lamp.area > 0.0f) return Facing::Wholly;
+  return Facing::Partly;
+}
+
+/// Whether one texel's rays to one lamp need tracing: decided at its first ray (most texels facing away
+/// never get one) and kept for its penumbra pass. A texel LampShadows finds wholly hidden gets every ray
+/// hidden without tracing it: what tracing would give, exactly.
+class TexelSight {
+ public:
+  TexelSight(const LampShadows* shadows, size_t texel, int8_t& state)
+      : shadows_(shadows), texel_(texel), state_(state) {}
+  bool hidden() {
+    if (state_ < 0) state_ = shadows_ && shadows_->hidden(texel_) ? 1 : 0;
+    return state_ == 1;
+  }
+
+ private:
+  const LampShadows* shadows_;
+  size_t texel_;
+  int8_t& state_;  ///< -1 undecided, 0 traced, 1 hidden
+};
+
 /// From `origin` (off a receiver of normal n) to the lamp's point y: the point-to-point kernel cosθ cosθ' /
-/// r², 0 where either side faces away, and whether a shadow ray (traced only when the kernel is not 0) finds
-/// y.
+/// r², 0 where either side faces away, and whether a shadow ray (traced only when the kernel is not 0 and
+/// `sight` does not know the texel hidden) finds y.
 struct RayToLamp {
   double kernel = 0.0;
   bool seen = false;
 };
 
 RayToLamp rayToLamp(const Lamp& lamp, const RayScene& occluders, float offset, const glm::vec3& origin,
-                    const glm::vec3& n, const glm::vec3& y, uint64_t& rays) {
+                    const glm::vec3& n, const glm::vec3& y, TexelSight& sight, uint64_t& rays) {
   const glm::vec3 d = y - origin;
   const float r2 = glm::dot(d, d);
   if (!(r2 > 0.0f)) return {};
@@ -110,9 +269,11 @@ RayToLamp rayToLamp(const Lamp& lamp, const RayScene& occluders, float offset, c
   const glm::vec3 w = d / r;
   const float cosX = glm::dot(n, w), cosY = -glm::dot(lamp.normal, w);
   if (cosX <= 0.0f || cosY <= 0.0f) return {};
+  const double kernel = double(cosX) * cosY / r2;
+  if (sight.hidden()) return {kernel, false};
   ++rays;
-  const float far = r * (1.0f - 1e-4f) - offset;  // short of the lamp, which must not hide itself
-  return {double(cosX) * cosY / r2, !(far > 0.0f && occluders.occluded(origin, w, 0.0f, far))};
+  const float far = r * (1.0f - kShortOfLamp) - offset;
+  return {kernel, !(far > 0.0f && occluders.occluded(origin, w, 0.0f, far))};
 }
 
 /// `side` × `side` points over the texel, `perPoint` rays to the lamp from each. The points sit at their
@@ -121,7 +282,7 @@ RayToLamp rayToLamp(const Lamp& lamp, const RayScene& occluders, float offset, c
 /// where what the points see changes across the texel.
 TexelLamp seeLamp(const Lamp& lamp, const RayScene& occluders, float offset, const glm::vec3& centre,
                   const glm::vec3& n, const glm::vec3& u, const glm::vec3& v, int side, int perPoint,
-                  bool jitter, TexelRandom& random, uint64_t& rays) {
+                  bool jitter, TexelRandom& random, TexelSight& sight, uint64_t& rays) {
   TexelLamp out;
   int seen = 0, tried = 0;
   const float share = 1.0f / float(side * side), step = 1.0f / float(side);
@@ -138,7 +299,7 @@ TexelLamp seeLamp(const Lamp& lamp, const RayScene& occluders, float offset, con
     for (int k = 0; k < perPoint; ++k) {
       const glm::vec3 y =
           lamp.at(fraction(shiftA + float(k) * 0.7548776662f), fraction(shiftB + float(k) * 0.5698402910f));
-      const RayToLamp ray = rayToLamp(lamp, occluders, offset, origin, n, y, rays);
+      const RayToLamp ray = rayToLamp(lamp, occluders, offset, origin, n, y, sight, rays);
       if (!(ray.kernel > 0.0)) continue;
       weighted += ray.kernel;
       ++tried;
@@ -158,7 +319,7 @@ TexelLamp seeLamp(const Lamp& lamp, const RayScene& occluders, float offset, con
 /// at 256 rays, spot-door's beam edge), the joint set spreads over both at once.
 float penumbraFormFactor(const Lamp& lamp, const RayScene& occluders, float offset, const glm::vec3& centre,
                          const glm::vec3& n, const glm::vec3& u, const glm::vec3& v, int count,
-                         float lampArea, TexelRandom& random, uint64_t& rays) {
+                         float lampArea, TexelRandom& random, TexelSight& sight, uint64_t& rays) {
   constexpr float a1 = 0.8566748839f, a2 = 0.7338918566f, a3 = 0.6287067210f,
                   a4 = 0.5385972498f;  // 1/g^i, g⁵ = g + 1
   const float s1 = random.next(), s2 = random.next(), s3 = random.next(), s4 = random.next();
@@ -167,7 +328,7 @@ float penumbraFormFactor(const Lamp& lamp, const RayScene& occluders, float offs
     const glm::vec3 x =
         centre + (fraction(s1 + float(k) * a1) - 0.5f) * u + (fraction(s2 + float(k) * a2) - 0.5f) * v;
     const glm::vec3 y = lamp.at(fraction(s3 + float(k) * a3), fraction(s4 + float(k) * a4));
-    const RayToLamp ray = rayToLamp(lamp, occluders, offset, x + offset * n, n, y, rays);
+    const RayToLamp ray = rayToLamp(lamp, occluders, offset, x + offset * n, n, y, sight, rays);
     if (ray.seen) sum += ray.kernel;
   }
   return float(sum * lampArea / (std::numbers::pi * double(count)));
@@ -214,18 +375,22 @@ struct OneLamp {
   std::vector<float> formFactor;
   std::vector<char> near;
   uint64_t rays = 0;
+  uint64_t hidden = 0;        ///< texels facing the lamp whose rays were not traced, known hidden
+  uint64_t tracedHidden = 0;  ///< texels whose traced rays were all hidden
 };
 
-OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const LightmapAtlas& atlas,
-                 int rays) {
-  const float offset =
-      std::max(1e-5f * occluders.diagonal(), 1e-6f);  // the reference's, so both see thin walls
+OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const OccluderPieces* pieces,
+                 const LightmapAtlas& atlas, int rays) {
+  const float offset = rayOffset(occluders);
   const int perPoint = rays / 4;
   const size_t n = atlas.texelCount();
   OneLamp out;
   out.formFactor.assign(n, 0.0f);
   out.near.assign(n, 0);
   std::vector<Seen> seen(n, Seen::None);
+  std::vector<int8_t> sight(n, -1);
+  std::optional<LampShadows> shadows;
+  if (pieces) shadows.emplace(lamp, *pieces, occluders, atlas, offset);
   std::atomic<uint64_t> traced{0};
   // Within a few texels of the lamp F is steep over the texel (a housing's walls where they meet the
   // lamp): 2×2 points made spot-door's tube gather 3.4 % more than its lamp emits, and the scale back
@@ -240,8 +405,9 @@ OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const Li
   };
   auto trace = [&](size_t i, int side, int perSide, bool jitter, TexelRandom& random, uint64_t& count) {
     const Patch& P = atlas.patches[size_t(atlas.patch[i])];
+    TexelSight ownSight(shadows ? &*shadows : nullptr, i, sight[i]);
     return seeLamp(lamp, occluders, offset, atlas.position[i], atlas.normal[i], P.texelU, P.texelV, side,
-                   perSide, jitter, random, count);
+                   perSide, jitter, random, ownSight, count);
   };
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& range) {
     uint64_t count = 0;
@@ -249,6 +415,16 @@ OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const Li
       if (atlas.patch[i] < 0 || atlas.patch[i] == lamp.patch) continue;
       int side = 2, perSide = 1;
       layout(i, side, perSide);
+      if (shadows) {  // what the points and rays below would find, known without them
+        const Patch& P = atlas.patches[size_t(atlas.patch[i])];
+        const Facing facing =
+            facingOf(lamp, atlas.position[i], atlas.normal[i], P.texelU, P.texelV, offset, pieces->margin());
+        if (facing == Facing::Away) continue;  // no point with a contour, no ray with a kernel: None
+        if (facing == Facing::Wholly && TexelSight(&*shadows, i, sight[i]).hidden()) {
+          seen[i] = Seen::Hidden;
+          continue;
+        }
+      }
       TexelRandom random(i, 2 * k);
       const TexelLamp t = trace(i, side, perSide, false, random, count);
       out.formFactor[i] = t.formFactor;
@@ -281,6 +457,10 @@ OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const Li
     uint64_t count = 0;
     for (size_t i = range.begin(); i < range.end(); ++i) {
       if (atlas.patch[i] < 0 || atlas.patch[i] == lamp.patch || !penumbra(i)) continue;
+      if (sight[i] == 1) {  // every ray hidden: nothing seen, as the rays would find
+        again[i] = 0.0f;
+        continue;
+      }
       int side = 2, perSide = 1;
       layout(i, side, perSide);
       TexelRandom random(i, 2 * k + 1);
@@ -288,14 +468,18 @@ OneLamp shootOne(const Lamp& lamp, size_t k, const RayScene& occluders, const Li
         again[i] = trace(i, 8, std::max(1, 4 * perSide * side * side / 64), true, random, count).formFactor;
       } else {
         const Patch& P = atlas.patches[size_t(atlas.patch[i])];
+        TexelSight ownSight(shadows ? &*shadows : nullptr, i, sight[i]);
         again[i] = penumbraFormFactor(lamp, occluders, offset, atlas.position[i], atlas.normal[i], P.texelU,
-                                      P.texelV, 16 * rays, lamp.area, random, count);
+                                      P.texelV, 16 * rays, lamp.area, random, ownSight, count);
       }
     }
     traced += count;
   });
-  for (size_t i = 0; i < n; ++i)
+  for (size_t i = 0; i < n; ++i) {
     if (again[i] >= 0.0f) out.formFactor[i] = again[i];
+    out.hidden += sight[i] == 1 && seen[i] == Seen::Hidden;
+    out.tracedHidden += sight[i] != 1 && seen[i] == Seen::Hidden;
+  }
   out.rays = traced.load();
   return out;
 }
@@ -316,7 +500,7 @@ std::vector<char> lampPatches(const Scene& scene, const LightmapAtlas& atlas) {
 
 LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas,
                            const std::vector<char>& shoot, int rays, Context& ctx,
-                           std::chrono::steady_clock::time_point deadline) {
+                           std::chrono::steady_clock::time_point deadline, LampCull cull) {
   if (rays < 4 || rays % 4 != 0)
     throw std::invalid_argument("shootLampsByRays: rays must be a multiple of 4");
   if (shoot.size() != atlas.patches.size())
@@ -327,6 +511,9 @@ LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const 
   out.shot.assign(atlas.patches.size(), 0);
   const std::vector<Lamp> lamps = lampsOf(scene, atlas, shoot);
   if (lamps.empty()) return out;
+  // The scene's occluder pieces, 10× the rays' offset inside: far from any rounding of Embree's.
+  std::optional<OccluderPieces> pieces;
+  if (cull == LampCull::Occluders) pieces.emplace(scene, 10.0 * double(rayOffset(occluders)));
   // Points on a texel sample F where it is steep next to a lamp (a housing's walls): those texels can
   // gather more than the lamp emits (spot-door's tube +1 % at 8×8 points). The far texels' estimate is
   // exact in expectation, so the excess comes off the near texels' share, and off all only when the far
@@ -339,8 +526,10 @@ LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const 
     out.emitted += lamp.power;
     ctx.progress("lamps", double(k) / double(lamps.size()),
                  "lamp " + std::to_string(k + 1) + " of " + std::to_string(lamps.size()) + " by rays");
-    const OneLamp one = shootOne(lamp, k, occluders, atlas, rays);
+    const OneLamp one = shootOne(lamp, k, occluders, pieces ? &*pieces : nullptr, atlas, rays);
     out.rays += one.rays;
+    out.hiddenTexels += one.hidden;
+    out.tracedHiddenTexels += one.tracedHidden;
     const double perFormFactor = double(lamp.exitance.r) + lamp.exitance.g + lamp.exitance.b;
     double all = 0.0, near = 0.0;
     for (size_t i = 0; i < one.formFactor.size(); ++i) {

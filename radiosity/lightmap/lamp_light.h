@@ -36,7 +36,15 @@ struct LampLight {
   double emitted = 0.0;               ///< W (R + G + B) the shot lamps emit
   double landed = 0.0;                ///< W (R + G + B) that reached a texel
   uint64_t rays = 0;                  ///< shadow rays traced
+  uint64_t hiddenTexels = 0;          ///< texels × lamps whose rays were not traced, known hidden (LampCull)
+  uint64_t tracedHiddenTexels = 0;    ///< texels × lamps traced and found hidden by every ray
 };
+
+/// Which texels the lamps' shot leaves untraced. Occluders: a texel that one convex piece of the scene (a
+/// triangle, or a rectangle of two: occluder_pieces.h) hides from the whole lamp gets every ray hidden
+/// without tracing it, as tracing would give: the result is the same to the bit, for a fraction of the
+/// rays in a building whose texels face lamps behind walls. None traces them all (the check of that).
+enum class LampCull : uint8_t { None, Occluders };
 
 /// The patches that shoot by rays: those whose material emits and whose texels carry that emission (a
 /// cell's first-shot group zeroes the emission of other groups' lamps; they shoot elsewhere).
@@ -47,10 +55,12 @@ std::vector<char> lampPatches(const Scene& scene, const LightmapAtlas& atlas);
 /// whose texels would gather more than it emits (texels next to it) is scaled back to its power: no light
 /// is made up. Deterministic: each texel draws from its own index, whatever the thread count. At `deadline`
 /// (checked before each lamp) the lamps not yet shot are left out of `shot`, for the caller to leave unshot
-/// (a bake's --time-limit: a partial result).
+/// (a bake's --time-limit: a partial result). `occluders` must be built from `scene`: the cull takes its
+/// pieces from the scene's triangles.
 LampLight shootLampsByRays(
     const Scene& scene, const RayScene& occluders, const LightmapAtlas& atlas, const std::vector<char>& lamps,
     int rays, Context& ctx,
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    LampCull cull = LampCull::Occluders);
 
 }  // namespace cpgi

@@ -511,9 +511,15 @@ LampLight shootLampsByRays(const Scene& scene, const RayScene& occluders, const 
   out.shot.assign(atlas.patches.size(), 0);
   const std::vector<Lamp> lamps = lampsOf(scene, atlas, shoot);
   if (lamps.empty()) return out;
-  // The scene's occluder pieces, 10× the rays' offset inside: far from any rounding of Embree's.
+  // The scene's occluder pieces, and the margin every test of the cull keeps: 10× the rays' offset, and
+  // far above the rounding of float coordinates where a scene lies far from its origin.
   std::optional<OccluderPieces> pieces;
-  if (cull == LampCull::Occluders) pieces.emplace(scene, 10.0 * double(rayOffset(occluders)));
+  if (cull == LampCull::Occluders) {
+    const Bounds box = scene.bounds();
+    const glm::vec3 farthest = box.empty() ? glm::vec3(0.0f) : glm::max(glm::abs(box.lo), glm::abs(box.hi));
+    const double extent = std::max({farthest.x, farthest.y, farthest.z});
+    pieces.emplace(scene, std::max(10.0 * double(rayOffset(occluders)), 1e-5 * extent));
+  }
   // Points on a texel sample F where it is steep next to a lamp (a housing's walls): those texels can
   // gather more than the lamp emits (spot-door's tube +1 % at 8×8 points). The far texels' estimate is
   // exact in expectation, so the excess comes off the near texels' share, and off all only when the far

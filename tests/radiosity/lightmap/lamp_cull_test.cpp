@@ -104,10 +104,21 @@ TEST(LampCull, ABuildingsLampsLightTheSameTexelsAndMostHiddenOnesGetNoRay) {
   EXPECT_LT(s.culled.rays, s.all.rays);
 }
 
+Scene moved(Scene scene, const glm::vec3& by) {
+  for (Triangle& t : scene.triangles)
+    for (glm::vec3& p : t.p) p += by;
+  return scene;
+}
+
 TEST(LampCull, AWallOfZeroThicknessALampInAHousingAndARandomPlanLightTheSameTexels) {
   const Shots thin = shootBoth(makeThinWall(0.0f).scene, 5.0f, 16);
   expectSameLight(thin);
   EXPECT_GT(thin.culled.hiddenTexels, 0u) << "room B lies behind the wall";
+  // 20 km from the origin, where a float coordinate rounds to 2 mm: the cull's margin grows with it.
+  const Shots far =
+      shootBoth(moved(makeThinWall(0.0f).scene, glm::vec3(20000.0f, 0.0f, -20000.0f)), 5.0f, 16);
+  expectSameLight(far);
+  EXPECT_GT(far.culled.hiddenTexels, 0u);
   expectSameLight(shootBoth(makeSpotThroughDoor().scene, 5.0f, 16));
   // Plan 4: zero-thickness walls, interior windows, lamps in some rooms.
   expectSameLight(shootBoth(makeRandomPlan(RandomPlanOptions{.seed = 4}).scene, 4.0f, 16));

@@ -235,6 +235,10 @@ bool seenPatchCovers(int seen) {
   float uu = dot(u, u), vv = dot(v, v), uv = dot(u, v), du = dot(d, u), dv = dot(d, v);
   float det = uu * vv - uv * uv;
   if (det <= 0.0) return false;
+  // In the patch's plane, not merely over its rectangle: a receiver a few centimetres off the far side of a
+  // partition, seen past the partition's edge, is not on it.
+  vec3 n = cross(u, v);
+  if (abs(dot(d, n)) > uPlaneSlack * length(n)) return false;
   vec2 ij = vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
   return all(greaterThanEqual(ij, vec2(-0.25))) && all(lessThanEqual(ij, vec2(q.rect.zw) + 0.25));
 }

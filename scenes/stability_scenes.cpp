@@ -145,17 +145,21 @@ SeedScene makeSpotLightThroughDoor() {
   return s;
 }
 
-SeedScene makeThinWall(float thickness) {
+SeedScene makeThinWall(float thickness, float shiftB) {
   if (!(thickness >= 0.0f)) throw std::invalid_argument("wall thickness must be >= 0");
   SeedScene s;
   SceneBuilder b(s.scene);
   const Palette p = addPalette(b, glm::vec3(100.0f));
   b.room(plainRoom("A", 0.0f, p));
-  b.room(plainRoom("B", kRoom + thickness, p));
+  SceneBuilder::Room rb = plainRoom("B", kRoom + thickness, p);
+  rb.lo.z += shiftB;
+  rb.hi.z += shiftB;
+  b.room(rb);
   const float c = kRoom / 2;
   b.rect(1, kHeight - 0.01f, -1, {c - 0.5f, c - 0.5f}, {c + 0.5f, c + 0.5f}, p.light, b.node("A/light"));
   cellsFromNodePaths(s.scene, {"A", "B"}, s.cells);
-  s.scene.cameras.push_back(lookAt("B", {kRoom + thickness + 3.7f, 1.6f, 3.7f}, {kRoom, 1.0f, 0.5f}));
+  s.scene.cameras.push_back(
+      lookAt("B", {kRoom + thickness + 3.7f, 1.6f, 3.7f + shiftB}, {kRoom, 1.0f, 0.5f + shiftB}));
   return s;
 }
 

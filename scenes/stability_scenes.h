@@ -24,8 +24,9 @@ SeedScene makePointLightRooms();
 SeedScene makeSpotLightThroughDoor();
 
 /// Two rooms sharing one wall of `thickness` metres (0: two coincident back-to-back faces) with no
-/// opening: A is lit, B must stay exactly black. Light in B is a leak.
-SeedScene makeThinWall(float thickness);
+/// opening: A is lit, B must stay exactly black. Light in B is a leak. `shiftB` slides B along the wall
+/// (z), so that a side wall of each room meets the other's wall mid-span (T-junctions).
+SeedScene makeThinWall(float thickness, float shiftB = 0.0f);
 
 /// Names of the built-in scenes `cpgi generate` knows, and the scene for a name (std::invalid_argument
 /// for an unknown one).

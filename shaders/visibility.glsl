@@ -33,6 +33,8 @@ bool findIn(ivec2 p, ivec2 lo, ivec2 hi, int id, int layer) {
 // leaked light under the wall into the next room wherever a pixel's footprint reached past the wall
 // (openings: C +5 % at 20 texels/m, +1.5 % with a buffer twice as fine; issue 11).
 bool seenPatchCovers(int seen);
+// Defined by the including shader: whether patch `seen`'s plane lies between the eye and the receiver.
+bool seenPlaneSeparates(int seen, vec3 local);
 #endif
 
 // `local`: the receiver relative to the eye; `normal`: its normal; `dir`: pixel p's centre direction (any
@@ -51,9 +53,12 @@ bool visibleAt(ivec2 p, ivec2 lo, ivec2 hi, vec3 dir, vec3 local, vec3 normal, i
   gOccluderGap = distance(seen, local);
   float off = dot(normal, seen - local);
 #ifdef SEEN_PATCH_COVERS
-  // Behind the plane: the ray crossed it unhindered next to the receiver. In the plane: only a face
+  // Behind the plane: the ray crossed it unhindered next to the receiver, unless what the pixel shows is
+  // a wall between the eye and the receiver: the ray then crossed the receiver's plane beyond a wall the
+  // receiver's surface ends against (a side wall's T-junction with a partition). In the plane: only a face
   // covering the receiver itself.
-  if (off < -uPlaneSlack || (off <= uPlaneSlack && (seenId < 0 || seenPatchCovers(seenId)))) return true;
+  if (off < -uPlaneSlack && (seenId < 0 || !seenPlaneSeparates(seenId, local))) return true;
+  if (off >= -uPlaneSlack && off <= uPlaneSlack && (seenId < 0 || seenPatchCovers(seenId))) return true;
 #else
   if (off <= uPlaneSlack) return true;
 #endif

@@ -11,7 +11,6 @@ shift = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
 V, F = [], []
 def quad(p0, p1, p2, p3, n, mat):
     # wind so that (p1-p0)x(p2-p0) points along n
-    import itertools
     a = [p1[i]-p0[i] for i in range(3)]; b = [p2[i]-p0[i] for i in range(3)]
     c = [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
     pts = [p0, p1, p2, p3] if sum(c[i]*n[i] for i in range(3)) > 0 else [p3, p2, p1, p0]

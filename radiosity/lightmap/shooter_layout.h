@@ -5,6 +5,7 @@
 // treated as a point").
 #pragma once
 
+#include <chrono>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -30,7 +31,10 @@ struct LayoutParams {
 /// Lays out every patch of the atlas. For each region the eye is the candidate texel (the centre and a
 /// 3×3 grid over the region) whose surroundings are most open: the largest distance to the nearest
 /// triangle along five rays (the normal and four 60° tilts), capped at the region's size; ties go to
-/// the candidate nearest the centre. Deterministic.
-std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtlas& atlas, const LayoutParams& params);
+/// the candidate nearest the centre. Deterministic. Past `deadline` it stops between batches of patches and
+/// returns the layouts of the first patches only (fewer than atlas.patches): an engine's set-up then stops.
+std::vector<ShooterLayout> layoutShooters(
+    const Scene& scene, const LightmapAtlas& atlas, const LayoutParams& params,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

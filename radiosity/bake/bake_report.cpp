@@ -168,6 +168,11 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
     report["indirect_solve_s"] = levels->solveSeconds;
     report["indirect_item_buffer"] = levels->indirectItemBuffer;
     report["indirect_solver"] = levels->indirectBackend == "rays" ? "rays" : "gpu";
+    report["indirect_setup"] = {
+        {"estimate_s", levels->setupEstimate},
+        {"s", levels->setupSeconds},
+        {"cpu_s", levels->setupCpuSeconds},
+        {"stopped", levels->setupStop.empty() ? nlohmann::json(nullptr) : nlohmann::json(levels->setupStop)}};
   }
   report["density_option"] = s.atlas.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
   report["stop_bounded"] = r.stopBounded;  // the loop's bound on the stop per room (progressive_loop.h)
@@ -222,6 +227,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
     why << "time limit of " << formatSeconds(s.limits.timeLimit) << " s reached after " << r.shots
         << " shots with " << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
         << s.solver.params.unshotFraction * 100.0 << " %)";
+  if (r.timedOut && levels && !levels->setupStop.empty())
+    why << "; the interreflection's set-up " << levels->setupStop << " (indirect_setup)";
   if (!f.skippedViews.empty())
     why << (r.timedOut ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
         << " s reached before " << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()

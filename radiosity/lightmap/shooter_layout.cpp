@@ -30,7 +30,9 @@ float hitDistance(const glm::vec3& o, const glm::vec3& d, const Triangle& t) {
 struct Box {
   glm::vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
   void add(const glm::vec3& q) { lo = glm::min(lo, q), hi = glm::max(hi, q); }
-  bool overlaps(const Box& o) const { return glm::all(glm::lessThanEqual(lo, o.hi)) && glm::all(glm::lessThanEqual(o.lo, hi)); }
+  bool overlaps(const Box& o) const {
+    return glm::all(glm::lessThanEqual(lo, o.hi)) && glm::all(glm::lessThanEqual(o.lo, hi));
+  }
 };
 
 // The scene's triangle boxes binned in a uniform grid, so that a region asks only the triangles near it:
@@ -45,7 +47,8 @@ class TriangleGrid {
     for (const Box& b : boxes) all.add(b.lo), all.add(b.hi);
     if (boxes.empty()) return;
     lo_ = all.lo;
-    const glm::vec3 size = glm::max(all.hi - all.lo, glm::vec3(1e-3f * std::max(glm::length(all.hi - all.lo), 1e-3f)));
+    const glm::vec3 size =
+        glm::max(all.hi - all.lo, glm::vec3(1e-3f * std::max(glm::length(all.hi - all.lo), 1e-3f)));
     // About two cells a triangle, at most kMostCells along an axis.
     const float cell = std::cbrt(size.x * size.y * size.z / (2.0f * float(boxes.size())));
     for (int k = 0; k < 3; ++k) {
@@ -59,7 +62,8 @@ class TriangleGrid {
     for (size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
     first_ = counts;
     members_.resize(counts.back());
-    for (uint32_t t = 0; t < boxes.size(); ++t) forEachCell(boxes[t], [&](size_t c) { members_[counts[c]++] = t; });
+    for (uint32_t t = 0; t < boxes.size(); ++t)
+      forEachCell(boxes[t], [&](size_t c) { members_[counts[c]++] = t; });
   }
 
   // Calls `visit` once for every triangle whose box overlaps `query` (in no set order).
@@ -90,7 +94,9 @@ class TriangleGrid {
   static constexpr int kMostCells = 256;
   static constexpr size_t kMostCellsATriangle = 64;  // past it, the triangle joins large_
   size_t cellCount() const { return size_t(dims_.x) * size_t(dims_.y) * size_t(dims_.z); }
-  size_t index(int x, int y, int z) const { return (size_t(z) * size_t(dims_.y) + size_t(y)) * size_t(dims_.x) + size_t(x); }
+  size_t index(int x, int y, int z) const {
+    return (size_t(z) * size_t(dims_.y) + size_t(y)) * size_t(dims_.x) + size_t(x);
+  }
   glm::ivec3 cellOf(const glm::vec3& q) const {
     const glm::vec3 f = (q - lo_) * inverse_;
     glm::ivec3 c(0);
@@ -119,7 +125,8 @@ class TriangleGrid {
 
 // One patch's layout: its regions, and in each the most open of its candidate eyes.
 ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const LayoutParams& params,
-                          const TriangleGrid& grid, size_t pi, std::vector<uint32_t>& stamp, uint32_t& mark) {
+                          const std::vector<Box>& boxes, const TriangleGrid& grid, size_t pi,
+                          std::vector<uint32_t>& stamp, uint32_t& mark) {
   const Patch& p = atlas.patches[pi];
   std::vector<int32_t> own = p.triangles;  // the patch's own triangles never block its probes
   std::sort(own.begin(), own.end());
@@ -133,7 +140,8 @@ ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const 
     const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
     return std::clamp(n, 1, std::min(params.maxRegions, texels));
   };
-  l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w), regionsAlong(glm::length(p.texelV) * p.h, p.h)};
+  l.regions = {regionsAlong(glm::length(p.texelU) * p.w, p.w),
+               regionsAlong(glm::length(p.texelV) * p.h, p.h)};
   // Probe directions: the normal and four 60° tilts.
   const float c = 0.5f, s = 0.8660254f;
   const glm::vec3 rays[5] = {l.normal, c * l.normal + s * l.tangent, c * l.normal - s * l.tangent,
@@ -153,13 +161,15 @@ ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const 
       };
       consider((x0 + x1) / 2, (y0 + y1) / 2);
       for (int j = 0; j < 3; ++j)
-        for (int i = 0; i < 3; ++i) consider(x0 + (x1 - x0) * (2 * i + 1) / 6, y0 + (y1 - y0) * (2 * j + 1) / 6);
+        for (int i = 0; i < 3; ++i)
+          consider(x0 + (x1 - x0) * (2 * i + 1) / 6, y0 + (y1 - y0) * (2 * j + 1) / 6);
       if (candidates.empty()) {  // a loose triangle's region without valid texels: never shoots
         l.eyes.push_back(p.origin);
         continue;
       }
       // The triangles that could block a probe: near the region, in front of it.
-      const float reach = std::max(glm::length(p.texelU) * float(x1 - x0), glm::length(p.texelV) * float(y1 - y0));
+      const float reach =
+          std::max(glm::length(p.texelU) * float(x1 - x0), glm::length(p.texelV) * float(y1 - y0));
       Box region;
       for (const glm::vec3& q : candidates) region.add(q), region.add(q + reach * l.normal);
       region.lo -= glm::vec3(reach), region.hi += glm::vec3(reach);
@@ -172,9 +182,15 @@ ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const 
       for (const glm::vec3& q : candidates) {
         const glm::vec3 origin = q + 1e-4f * reach * l.normal;
         float score = reach;  // the nearest hit over every near triangle: the same in any order
-        for (const glm::vec3& d : rays)
-          for (uint32_t t : near) score = std::min(score, hitDistance(origin, d, scene.triangles[t]));
-        if (score > bestScore * 1.0001f) bestScore = score, best = q;  // strictly better: keeps the centre on ties
+        for (uint32_t t : near) {
+          // A triangle whose box lies beyond the nearest hit so far cannot be nearer along any ray.
+          const glm::vec3 gap =
+              glm::max(glm::max(boxes[t].lo - origin, origin - boxes[t].hi), glm::vec3(0.0f));
+          if (glm::dot(gap, gap) >= score * score) continue;
+          for (const glm::vec3& d : rays) score = std::min(score, hitDistance(origin, d, scene.triangles[t]));
+        }
+        if (score > bestScore * 1.0001f)
+          bestScore = score, best = q;  // strictly better: keeps the centre on ties
       }
       l.eyes.push_back(best);
     }
@@ -183,7 +199,8 @@ ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const 
 
 }  // namespace
 
-std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtlas& atlas, const LayoutParams& params,
+std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtlas& atlas,
+                                          const LayoutParams& params,
                                           std::chrono::steady_clock::time_point deadline) {
   std::vector<Box> triangleBoxes(scene.triangles.size());
   for (size_t i = 0; i < scene.triangles.size(); ++i)
@@ -191,7 +208,7 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
   const TriangleGrid grid(triangleBoxes);
 
   // Batches of patches between deadline checks; each patch's layout on its own, so any order gives the same.
-  constexpr size_t kBatch = 1024, kGrain = 64;
+  constexpr size_t kBatch = 256, kGrain = 16;
   std::vector<ShooterLayout> layouts(atlas.patches.size());
   for (size_t begin = 0; begin < layouts.size(); begin += kBatch) {
     if (std::chrono::steady_clock::now() >= deadline) {
@@ -199,12 +216,13 @@ std::vector<ShooterLayout> layoutShooters(const Scene& scene, const LightmapAtla
       break;
     }
     const size_t end = std::min(layouts.size(), begin + kBatch);
-    tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-      std::vector<uint32_t> stamp(scene.triangles.size(), 0);
-      uint32_t mark = 0;
-      for (size_t pi = r.begin(); pi < r.end(); ++pi)
-        layouts[pi] = layoutPatch(scene, atlas, params, grid, pi, stamp, mark);
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(begin, end, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+          std::vector<uint32_t> stamp(scene.triangles.size(), 0);
+          uint32_t mark = 0;
+          for (size_t pi = r.begin(); pi < r.end(); ++pi)
+            layouts[pi] = layoutPatch(scene, atlas, params, triangleBoxes, grid, pi, stamp, mark);
+        });
   }
   return layouts;
 }

@@ -222,11 +222,13 @@ int indirectItemBuffer(int itemBuffer, float solveDensity) {
 }
 
 double setupCpuSeconds(const SetupWork& work) {
-  // Fitted on the furnished house and oa_dm7 (bench/RESULTS.md), doubled: the contacts' rays and the ray
-  // scene by triangle, the coarse atlas, the shooters' eyes and the buffers by texel and patch.
-  constexpr double kPerTriangle = 2e-5, kPerTexel = 4e-6, kPerPatch = 1e-4, kLeast = 0.05;
-  return 2.0 * (kLeast + kPerTriangle * double(work.triangles) + kPerTexel * double(work.texels) +
-                kPerPatch * double(work.patches));
+  // Fitted on the furnished house (36 398 triangles, 88 892 coarse texels, 18 480 patches: 1.32 CPU s, of
+  // which 1.1 the engine's) and oa_dm7 (2 889 triangles, 200 460 texels: 0.40 CPU s), a little over both:
+  // the wall it takes is this times the load ratio (wall × cores over CPU), which counts a set-up on both
+  // cores as on one (estimated 13.8 s and 4.8 s at load 20–24, taken 10.6 and 3.9: bench/RESULTS.md).
+  constexpr double kLeast = 0.05, kPerTriangle = 1e-5, kPerTexel = 2e-6, kPerPatch = 4e-5;
+  return kLeast + kPerTriangle * double(work.triangles) + kPerTexel * double(work.texels) +
+         kPerPatch * double(work.patches);
 }
 
 SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const LightmapAtlas& atlas,

@@ -1,8 +1,9 @@
-// How the progressive solvers cut a shooter patch up (radiosity/gpu/gl_shot_engine.cpp, radiosity/cpu/ray_shot.cpp):
-// visibility regions, each seen from an eye point on the region (an item buffer on the GPU, rays on the
-// CPU) and with its own residual pyramid (sub-shooters for the form factor, shaders/shooter_pyramid.comp). The eye is placed where the region is open: a lamp hanging 1 cm under a ceiling's centre or a
-// cube standing on a floor must not hide the whole region's light (design.md §6, "a large shooter
-// treated as a point").
+// How the progressive solvers cut a shooter patch up (radiosity/gpu/gl_shot_engine.cpp,
+// radiosity/cpu/ray_shot.cpp): visibility regions, each seen from an eye point on the region (an item buffer
+// on the GPU, rays on the CPU) and with its own residual pyramid (sub-shooters for the form factor,
+// shaders/shooter_pyramid.comp). The eye is placed where the region is open: a lamp hanging 1 cm under a
+// ceiling's centre or a cube standing on a floor must not hide the whole region's light (design.md §6, "a
+// large shooter treated as a point").
 #pragma once
 
 #include <chrono>
@@ -17,10 +18,10 @@ namespace cpgi {
 
 struct ShooterLayout {
   glm::vec3 tangent{0.0f}, bitangent{0.0f}, normal{0.0f};  ///< the item buffers' frame
-  glm::ivec2 regions{1};             ///< along the chart's x and y
-  std::vector<glm::ivec4> rects;     ///< per region (row-major): chart texels x0, y0, x1, y1 (exclusive)
-  std::vector<glm::vec3> eyes;       ///< per region: a texel sample point of the region
-  float texelRadius = 0.0f;          ///< half a texel's longer diagonal, m
+  glm::ivec2 regions{1};                                   ///< along the chart's x and y
+  std::vector<glm::ivec4> rects;  ///< per region (row-major): chart texels x0, y0, x1, y1 (exclusive)
+  std::vector<glm::vec3> eyes;    ///< per region: a texel sample point of the region
+  float texelRadius = 0.0f;       ///< half a texel's longer diagonal, m
 };
 
 struct LayoutParams {

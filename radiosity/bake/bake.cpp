@@ -96,6 +96,7 @@ struct SolveInput {
   const ShotEngines& engines;
   Clock::time_point deadline;
   const std::filesystem::path* gatherPlan;
+  const LoadMeter& load;  ///< the wall a CPU second takes now: the two-level set-up's estimate
 };
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -106,6 +107,7 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   auto t = ctx.time("solve");
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
+  controls.load = [&load = x.load] { return load.ratio(); };
   std::optional<RoomStop> roomStop;  // the time estimate asks the same rule cell by cell
   if (!cells && s.solver.ambientShare > 0.0) {
     const RoomStop& stop =
@@ -417,7 +419,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
-  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), solveDeadline, gatherPlan};
+  const SolveInput x{texelGraph, texelCells, transfer, engines.engines(), solveDeadline, gatherPlan, load};
   std::optional<TwoLevelData> levels;
   SolveResult r = solveBake(s, in, x, ctx, levels);
   BakeFigures f;

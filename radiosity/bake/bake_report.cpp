@@ -118,6 +118,25 @@ std::string formatSeconds(double seconds) {
   return text.str();
 }
 
+// A two-level solve's own figures (radiosity/solve/two_level_solve.h, TwoLevelData).
+void addTwoLevelReport(const BakeSettings& s, const TwoLevelData& levels, nlohmann::json& report) {
+  report["lamp_shots"] = levels.lampShots;
+  report["refined_triangles"] = levels.refinedTriangles;
+  report["lamp_coarsening"] = s.solver.lampCoarsening;
+  report["lamp_coarse_texels"] = levels.lampCoarseTexels;
+  report["lamp_refined_texels"] = levels.lampRefinedTexels;
+  report["lamp_solve_s"] = levels.lampSeconds;
+  report["indirect_solve_s"] = levels.solveSeconds;
+  report["indirect_item_buffer"] = levels.indirectItemBuffer;
+  report["indirect_solver"] = levels.indirectBackend == "rays" ? "rays" : "gpu";
+  // Its set-up against --time-limit: the estimate it was weighed by, what it took, and how it ended.
+  report["indirect_setup"] = {
+      {"estimate_s", levels.setupEstimate},
+      {"s", levels.setupSeconds},
+      {"cpu_s", levels.setupCpuSeconds},
+      {"stopped", levels.setupStop.empty() ? nlohmann::json(nullptr) : nlohmann::json(levels.setupStop)}};
+}
+
 }  // namespace
 
 nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const SolveResult& r,
@@ -158,17 +177,7 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
                                        ? nlohmann::json("auto")
                                        : nlohmann::json(s.solver.solveDensity);
   report["solve_texels"] = levels ? levels->solveTexels : in.atlas.validTexels();
-  if (levels) {
-    report["lamp_shots"] = levels->lampShots;
-    report["refined_triangles"] = levels->refinedTriangles;
-    report["lamp_coarsening"] = s.solver.lampCoarsening;
-    report["lamp_coarse_texels"] = levels->lampCoarseTexels;
-    report["lamp_refined_texels"] = levels->lampRefinedTexels;
-    report["lamp_solve_s"] = levels->lampSeconds;
-    report["indirect_solve_s"] = levels->solveSeconds;
-    report["indirect_item_buffer"] = levels->indirectItemBuffer;
-    report["indirect_solver"] = levels->indirectBackend == "rays" ? "rays" : "gpu";
-  }
+  if (levels) addTwoLevelReport(s, *levels, report);
   report["density_option"] = s.atlas.densityAuto ? nlohmann::json("auto") : nlohmann::json(nullptr);
   report["stop_bounded"] = r.stopBounded;  // the loop's bound on the stop per room (progressive_loop.h)
   report["max_texels"] =
@@ -222,6 +231,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
     why << "time limit of " << formatSeconds(s.limits.timeLimit) << " s reached after " << r.shots
         << " shots with " << r.unshotFraction * 100.0 << " % of the emitted power unshot (target "
         << s.solver.params.unshotFraction * 100.0 << " %)";
+  if (r.timedOut && levels && !levels->setupStop.empty())
+    why << "; the interreflection's set-up " << levels->setupStop << " (indirect_setup)";
   if (!f.skippedViews.empty())
     why << (r.timedOut ? "; " : "") << "time limit of " << formatSeconds(s.limits.timeLimit)
         << " s reached before " << f.skippedViews.size() << " of " << f.skippedViews.size() + f.views.size()

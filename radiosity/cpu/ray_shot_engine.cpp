@@ -54,17 +54,28 @@ class RayShotBackend final : public ShotBackend {
                  const FirstShot& first, const ShotShape& shape)
       : atlas_(atlas),
         first_(first),
+        scene_(scene),
         rays_(scene),
         shots_(scene, atlas, rays_),
-        layouts_(layoutShooters(scene, atlas, {params.regionSize, params.maxRegions})),
         shotParams_{params.farField, params.coverageRays, params.eyesPerRegion},
         strongShotParams_{params.farField, params.coverageRays, params.strongEyesPerRegion},
         emission_{shape.directionalEmission ? shape.emissionLobes : std::span<const glm::vec4>{},
                   shape.emissionBins, shape.directionalEmission && shape.arrivalMoments},
-        firstShotNumber_(shape.firstShotNumber) {
+        firstShotNumber_(shape.firstShotNumber) {}
+
+  // The shooters' layouts (most of the set-up: a second of CPU on a furnished house, minutes of wall at load
+  // 30 before the triangles were binned), stopped between batches of patches at `deadline`: false then.
+  bool layOut(const SolverParams& params, Context& ctx, std::chrono::steady_clock::time_point deadline) {
+    ctx.progress("set-up", 0.25, "the rays engine: the shooters' eyes");
+    layouts_ = layoutShooters(scene_, atlas_, {params.regionSize, params.maxRegions}, deadline);
+    if (layouts_.size() < atlas_.patches.size()) return false;
     const int strongRegions = params.strongShotRegions > 0 ? params.strongShotRegions : params.maxRegions;
-    if (strongRegions != params.maxRegions)
-      strongLayouts_ = layoutShooters(scene, atlas, {params.regionSize, strongRegions});
+    if (strongRegions != params.maxRegions) {
+      ctx.progress("set-up", 0.6, "the rays engine: the strong shots' eyes");
+      strongLayouts_ = layoutShooters(scene_, atlas_, {params.regionSize, strongRegions}, deadline);
+      if (strongLayouts_.size() < atlas_.patches.size()) return false;
+    }
+    return std::chrono::steady_clock::now() < deadline;
   }
 
   // The atlas's emission unshot (less the emitters the first shot spent), plus the first shot's light (its
@@ -169,9 +180,10 @@ class RayShotBackend final : public ShotBackend {
 
   const LightmapAtlas& atlas_;
   const FirstShot first_;
+  const Scene& scene_;
   const RayScene rays_;
   const RayShotScene shots_;
-  const std::vector<ShooterLayout> layouts_;
+  std::vector<ShooterLayout> layouts_;
   std::vector<ShooterLayout> strongLayouts_;  // empty when it would be layouts_
   const RayShotParams shotParams_, strongShotParams_;
   std::vector<glm::vec3> radiosity_, residual_, incident_;  // per atlas texel
@@ -190,13 +202,18 @@ class RayShotBackend final : public ShotBackend {
 
 std::unique_ptr<ShotBackend> RayShotEngine::backend(const Scene& scene, const LightmapAtlas& atlas,
                                                     const SolverParams& settings, const ShotShape& shape,
-                                                    const FirstShot& first, Context&) {
+                                                    const FirstShot& first, Context& ctx,
+                                                    std::chrono::steady_clock::time_point deadline) {
   if (!(settings.unshotFraction > 0.0 && settings.unshotFraction < 1.0) || settings.maxShots < 1 ||
       settings.farField < 1.0f || settings.coverageRays < 1 || settings.eyesPerRegion < 1 ||
       settings.strongEyesPerRegion < 1 || settings.maxRegions < 1 || settings.strongShotRegions < 0)
     throw InputError("solver", "the ray solver's settings are out of range");
   if (atlas.patches.empty()) return nullptr;
-  return std::make_unique<RayShotBackend>(scene, atlas, settings, first, shape);
+  ctx.progress("set-up", 0.0, "the rays engine: the ray scene");
+  auto backend = std::make_unique<RayShotBackend>(scene, atlas, settings, first, shape);
+  if (!backend->layOut(settings, ctx, deadline)) return nullptr;  // the deadline came: no backend
+  ctx.progress("set-up", 1.0, "the rays engine");
+  return backend;
 }
 
 }  // namespace cpgi

@@ -26,7 +26,8 @@ class RayShotEngine final : public ShotEngine {
   EngineFeatures features() const override { return {.directionalEmission = true}; }
   std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
                                        const SolverParams& settings, const ShotShape& shape,
-                                       const FirstShot& first, Context& ctx) override;
+                                       const FirstShot& first, Context& ctx,
+                                       std::chrono::steady_clock::time_point deadline) override;
   std::unique_ptr<ShotEngine> forThisThread() const override { return std::make_unique<RayShotEngine>(); }
 };
 

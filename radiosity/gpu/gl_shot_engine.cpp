@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -235,42 +236,59 @@ ProgramDefines programDefines(const SolveConfig& params) {
 }  // namespace
 
 struct SolverPrograms::Set {
-  explicit Set(const ProgramDefines& d) {
+  // Compiled one program after another, the clock checked between them (llvmpipe compiles each in tens
+  // to hundreds of milliseconds of CPU, seconds of wall on a loaded machine): `complete` stays false when
+  // `deadline` came first.
+  Set(const ProgramDefines& d, std::chrono::steady_clock::time_point deadline) {
     const bool hemisphere = std::find(d.item.begin(), d.item.end(), "HEMISPHERE") != d.item.end();
-    item =
-        hemisphere
-            ? buildProgram({"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese", "item.frag"}, d.item)
-            : buildProgram({"item.vert", "item.frag"}, d.item);
-    compact = buildProgram({"compact.comp"});
-    finish = buildProgram({"finish_lists.comp"});
-    pyramid = buildProgram({"shooter_pyramid.comp"}, d.pyramid);
-    receive = buildProgram({"receive.comp"}, d.receive);
-    stats = buildProgram({"patch_stats.comp"});
-    tileStats = buildProgram({"tile_stats.comp"});
-    select = buildProgram({"select_shooter.comp"});
-    pickEyes = buildProgram({"pick_eyes.comp"});
-    rescale = buildProgram({"rescale_shot.comp"});
-    coverage = buildProgram({"shot_coverage.comp"}, d.item);
-    for (int pass = 0; pass < 3; ++pass)
-      cull[pass] = buildProgram({"item_cull.comp"}, {"PASS " + std::to_string(pass)});
+    const std::vector<std::string> itemShaders =
+        hemisphere ? std::vector<std::string>{"item.vert", "item_hemisphere.tesc", "item_hemisphere.tese",
+                                              "item.frag"}
+                   : std::vector<std::string>{"item.vert", "item.frag"};
+    const std::pair<gl::Program*, std::function<gl::Program()>> steps[] = {
+        {&item, [&] { return buildProgram(itemShaders, d.item); }},
+        {&compact, [] { return buildProgram({"compact.comp"}); }},
+        {&finish, [] { return buildProgram({"finish_lists.comp"}); }},
+        {&pyramid, [&] { return buildProgram({"shooter_pyramid.comp"}, d.pyramid); }},
+        {&receive, [&] { return buildProgram({"receive.comp"}, d.receive); }},
+        {&stats, [] { return buildProgram({"patch_stats.comp"}); }},
+        {&tileStats, [] { return buildProgram({"tile_stats.comp"}); }},
+        {&select, [] { return buildProgram({"select_shooter.comp"}); }},
+        {&pickEyes, [] { return buildProgram({"pick_eyes.comp"}); }},
+        {&rescale, [] { return buildProgram({"rescale_shot.comp"}); }},
+        {&coverage, [&] { return buildProgram({"shot_coverage.comp"}, d.item); }},
+        {&cull[0], [] { return buildProgram({"item_cull.comp"}, {"PASS 0"}); }},
+        {&cull[1], [] { return buildProgram({"item_cull.comp"}, {"PASS 1"}); }},
+        {&cull[2], [] { return buildProgram({"item_cull.comp"}, {"PASS 2"}); }}};
+    for (const auto& [program, build] : steps) {
+      if (std::chrono::steady_clock::now() >= deadline) return;
+      *program = build();
+    }
+    complete = true;
   }
   gl::Program cull[3];  ///< item_cull.comp's passes
   gl::Program item, compact, finish, pyramid, receive, stats, tileStats, select, pickEyes, rescale, coverage;
+  bool complete = false;  ///< every program compiled
 };
 
 SolverPrograms::SolverPrograms() = default;
 SolverPrograms::~SolverPrograms() = default;
 
-const SolverPrograms::Set& SolverPrograms::get(const SolverParams& settings, bool directionalEmission,
-                                               bool binnedEmission) {
+const SolverPrograms::Set* SolverPrograms::get(const SolverParams& settings, bool directionalEmission,
+                                               bool binnedEmission,
+                                               std::chrono::steady_clock::time_point deadline) {
   SolveConfig config{settings};
   config.directionalEmission = directionalEmission;
   const float oneBin = 1.0f;
   if (binnedEmission) config.emissionBins = std::span<const float>(&oneBin, 1);
   const ProgramDefines defines = programDefines(config);
   std::unique_ptr<Set>& set = sets_[defines.key()];
-  if (!set) set = std::make_unique<Set>(defines);
-  return *set;
+  if (!set) {
+    auto made = std::make_unique<Set>(defines, deadline);
+    if (!made->complete) return nullptr;  // compiled again, whole, by the next solve that gets the time
+    set = std::move(made);
+  }
+  return set.get();
 }
 
 namespace {
@@ -283,13 +301,14 @@ double channelSum(const glm::vec4& v) {
 // in GPU buffers, the next shooter is chosen there (select_shooter.comp), and the loop reads the sums back.
 class GlShotBackend final : public ShotBackend {
  public:
-  // Every uniform a program reads is set here or before each pass, so programs may come from earlier solves.
+  // Every uniform a program reads is set in setUp() or before each pass, so programs may come from earlier
+  // solves.
   // `binned`: the programs for binned shooters (SolveConfig::emissionBins), null without bins. `plain`:
   // the programs without directional emission for shooters with no lobe, null where every shot must note
   // the arrival moments.
   GlShotBackend(const Scene& scene, const LightmapAtlas& atlas, const SolveConfig& params,
                 const SolverPrograms::Set& programs, const SolverPrograms::Set* binned,
-                const SolverPrograms::Set* plain, const std::vector<glm::vec4>* emissionLobes)
+                const SolverPrograms::Set* plain)
       : scene_(scene),
         atlas_(atlas),
         params_(params),
@@ -309,19 +328,36 @@ class GlShotBackend final : public ShotBackend {
         binnedReceive_(binned ? &binned->receive : nullptr),
         plainPyramid_(plain ? &plain->pyramid : nullptr),
         plainReceive_(plain ? &plain->receive : nullptr),
-        clock_(params.profilePasses) {
-    layouts_ = layoutShooters(scene, atlas, LayoutParams{params.regionSize, params.maxRegions});
-    if (strongRegions() != params.maxRegions)
+        clock_(params.profilePasses) {}
+
+  // The set-up, step by step, the clock checked between the steps and within the layouts (per batch of
+  // patches): false when `deadline` came first, the buffers made so far freed with the backend.
+  // `emissionLobes`: per texel, null for none.
+  bool setUp(Context& ctx, std::chrono::steady_clock::time_point deadline,
+             const std::vector<glm::vec4>* emissionLobes) {
+    const auto late = [&] { return std::chrono::steady_clock::now() >= deadline; };
+    ctx.progress("set-up", 0.2, "the gl engine: the shooters' eyes");
+    layouts_ = layoutShooters(scene_, atlas_, LayoutParams{params_.regionSize, params_.maxRegions}, deadline);
+    if (layouts_.size() < atlas_.patches.size()) return false;
+    if (strongRegions() != params_.maxRegions) {
       // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
       // small lamp still gets several eyes, so with drawn eyes (jitteredEyes) its light through a narrow
       // door, or out of a housing, is a stratified estimate rather than one texel's view.
-      strongLayouts_ = layoutShooters(scene, atlas, LayoutParams{1e-3f, strongRegions()});
+      strongLayouts_ = layoutShooters(scene_, atlas_, LayoutParams{1e-3f, strongRegions()}, deadline);
+      if (strongLayouts_.size() < atlas_.patches.size()) return false;
+    }
+    if (late()) return false;
+    ctx.progress("set-up", 0.5, "the gl engine: the atlas's buffers");
     uploadAtlas();
-    if (params.directionalEmission) uploadDirectional(emissionLobes);
+    if (params_.directionalEmission) uploadDirectional(emissionLobes);
+    if (late()) return false;
+    ctx.progress("set-up", 0.7, "the gl engine: the scene's geometry");
     uploadGeometry();
+    if (late()) return false;
     makeItemBuffer();
     setConstantUniforms();
     gl::check("solver setup");
+    return true;
   }
 
   // ShotBackend. The books start from the atlas's unshot light, plus the first shot made before the solve
@@ -1154,7 +1190,8 @@ namespace {
 std::unique_ptr<ShotBackend> makeGlBackend(const Scene& scene, const LightmapAtlas& atlas,
                                            const SolverParams& settings, const ShotShape& shape,
                                            const FirstShot& first, const EglContext& context,
-                                           SolverPrograms& programs) {
+                                           SolverPrograms& programs, Context& ctx,
+                                           std::chrono::steady_clock::time_point deadline) {
   SolveConfig params{settings};
   params.directionalEmission = shape.directionalEmission;
   params.arrivalMoments = shape.arrivalMoments;
@@ -1166,15 +1203,18 @@ std::unique_ptr<ShotBackend> makeGlBackend(const Scene& scene, const LightmapAtl
   params.shotLamps = first.spentEmitters;
   checkParams(params, atlas, context);
   if (atlas.patches.empty()) return nullptr;
-  const SolverPrograms::Set& base = programs.get(params, params.directionalEmission);
-  const SolverPrograms::Set* binned = params.directionalEmission && !params.emissionBins.empty()
-                                          ? &programs.get(params, true, true)
-                                          : nullptr;
-  const SolverPrograms::Set* plain =
-      params.directionalEmission && !params.arrivalMoments ? &programs.get(params, false) : nullptr;
+  // Each step null or false past the deadline: no backend then (ShotEngine::backend).
+  ctx.progress("set-up", 0.0, "the gl engine: its programs");
+  const SolverPrograms::Set* base = programs.get(params, params.directionalEmission, false, deadline);
+  const bool binnedToo = params.directionalEmission && !params.emissionBins.empty();
+  const SolverPrograms::Set* binned = binnedToo ? programs.get(params, true, true, deadline) : nullptr;
+  const bool plainToo = params.directionalEmission && !params.arrivalMoments;
+  const SolverPrograms::Set* plain = plainToo ? programs.get(params, false, false, deadline) : nullptr;
+  if (!base || (binnedToo && !binned) || (plainToo && !plain)) return nullptr;
   const std::vector<glm::vec4> lobes(shape.emissionLobes.begin(), shape.emissionLobes.end());
-  auto backend = std::make_unique<GlShotBackend>(scene, atlas, params, base, binned, plain,
-                                                 lobes.empty() ? nullptr : &lobes);
+  auto backend = std::make_unique<GlShotBackend>(scene, atlas, params, *base, binned, plain);
+  if (!backend->setUp(ctx, deadline, lobes.empty() ? nullptr : &lobes)) return nullptr;
+  ctx.progress("set-up", 1.0, "the gl engine");
   // Lamps shot by rays count as shots here, so that the reflectors' shots draw the eyes and turns they
   // would after the lamps' item-buffer shots: measured, a different draw alone moved seed1's room B by 1 %.
   const auto rayShots = std::count(first.spentEmitters.begin(), first.spentEmitters.end(), 1);
@@ -1192,8 +1232,9 @@ GlShotEngine::~GlShotEngine() = default;
 
 std::unique_ptr<ShotBackend> GlShotEngine::backend(const Scene& scene, const LightmapAtlas& atlas,
                                                    const SolverParams& settings, const ShotShape& shape,
-                                                   const FirstShot& first, Context&) {
-  return makeGlBackend(scene, atlas, settings, shape, first, gl_, programs_);
+                                                   const FirstShot& first, Context& ctx,
+                                                   std::chrono::steady_clock::time_point deadline) {
+  return makeGlBackend(scene, atlas, settings, shape, first, gl_, programs_, ctx, deadline);
 }
 
 std::unique_ptr<ShotEngine> GlShotEngine::forThisThread() const {

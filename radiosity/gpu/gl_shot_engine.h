@@ -37,8 +37,9 @@ class SolverPrograms {
   SolverPrograms& operator=(const SolverPrograms&) = delete;
   struct Set;  // gl_shot_engine.cpp
   /// The programs for `settings` with or without directional emission (their #defines: visibility mode,
-  /// ...), compiled at first use.
-  const Set& get(const SolverParams& settings, bool directionalEmission, bool binnedEmission = false);
+  /// ...), compiled at first use; null when `deadline` came between two of their compilations (none kept).
+  const Set* get(const SolverParams& settings, bool directionalEmission, bool binnedEmission,
+                 std::chrono::steady_clock::time_point deadline);
 
  private:
   std::map<std::string, std::unique_ptr<Set>> sets_;  // by the programs' #defines
@@ -55,7 +56,8 @@ class GlShotEngine final : public ShotEngine {
   EngineFeatures features() const override { return {.lampShots = true, .directionalEmission = true}; }
   std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
                                        const SolverParams& settings, const ShotShape& shape,
-                                       const FirstShot& first, Context& ctx) override;
+                                       const FirstShot& first, Context& ctx,
+                                       std::chrono::steady_clock::time_point deadline) override;
   /// A sibling context on the same display, current on the calling thread, with programs of its own.
   std::unique_ptr<ShotEngine> forThisThread() const override;
   const EglContext& context() const { return gl_; }

@@ -26,14 +26,16 @@ std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCoun
 }
 
 std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, float coarse,
-                                  std::span<const float> fine) {
+                                  std::span<const float> fine,
+                                  std::chrono::steady_clock::time_point deadline) {
   std::vector<float> density(scene.triangles.size(), coarse);
+  for (size_t i = 0; i < density.size(); ++i)
+    if (fine[i] > 0.0f && fine[i] < coarse) density[i] = fine[i];  // never finer than the output
   const float reach = 2.0f / coarse;             // gaps beyond this need no more than the coarse texels
   const float offset = 1e-5f * rays.diagonal();  // off the surface, as the reference's rays
-  tbb::parallel_for(size_t(0), scene.triangles.size(), [&](size_t i) {
+  auto probe = [&](size_t i) {
     const Triangle& t = scene.triangles[i];
     const glm::vec3 n = t.geometricNormal();
-    if (fine[i] > 0.0f && fine[i] < coarse) density[i] = fine[i];  // never finer than the output
     if (!(t.area() > 0.0f) || fine[i] <= coarse) return;
     float longest = 0.0f;
     for (int k = 0; k < 3; ++k) longest = std::max(longest, glm::length(t.p[(k + 1) % 3] - t.p[k]));
@@ -66,7 +68,12 @@ std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, floa
     if (open == 0 && points >= kContactPoints) return;
     const float gap = nearest.back();
     if (gap < reach) density[i] = std::clamp(2.0f / std::max(gap, 1e-4f), coarse, fine[i]);
-  });
+  };
+  // Batches of triangles between deadline checks (a large triangle probes up to 131 000 points).
+  constexpr size_t kBatch = 2048;
+  for (size_t begin = 0; begin < density.size() && std::chrono::steady_clock::now() < deadline;
+       begin += kBatch)
+    tbb::parallel_for(begin, std::min(density.size(), begin + kBatch), probe);
   return density;
 }
 

@@ -6,6 +6,7 @@
 // the gap, up to the output's resolution.
 #pragma once
 
+#include <chrono>
 #include <span>
 #include <vector>
 
@@ -24,7 +25,9 @@ std::vector<float> outputDensity(const LightmapAtlas& atlas, size_t triangleCoun
 /// coarse texel's area), 2 / that gap (the 4th nearest hit), at most `fine` of the triangle (and never
 /// below `coarse`, unless `fine` is: never finer than the output). A triangle whose every point finds
 /// something within 2 / coarse metres is covered all over and keeps `coarse`: its shade has no edge inside.
-std::vector<float> contactDensity(const Scene& scene, const RayScene& rays, float coarse,
-                                  std::span<const float> fine);
+/// Past `deadline` it stops between batches of triangles: those not reached keep `coarse` (or `fine`).
+std::vector<float> contactDensity(
+    const Scene& scene, const RayScene& rays, float coarse, std::span<const float> fine,
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
 
 }  // namespace cpgi

@@ -145,8 +145,10 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
       scale[size_t(lit.shooters[s])] = lit.shotScales[s];
     const SolveResult fine = shootEmitters(scene, atlas, emitters, settings, engine, ctx, controls,
                                            {.receivers = refine, .patchShotScale = scale});
-    for (size_t t = 0; t < incident.size(); ++t)
-      if (refine[t]) incident[t] = fine.incident[t];
+    // A fine shot the deadline stopped in its engine's set-up shot nothing: the coarse light stays.
+    if (!(fine.timedOut && fine.shots == 0))
+      for (size_t t = 0; t < incident.size(); ++t)
+        if (refine[t]) incident[t] = fine.incident[t];
   }
   const double fineSeconds = seconds(fineStart);
 

@@ -4,6 +4,7 @@
 // runs is chosen once, from what the machine offers (radiosity/bake/, chooseShotEngines).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <span>
 #include <string>
@@ -46,11 +47,14 @@ class ShotEngine {
   virtual std::string name() const = 0;
   virtual EngineFeatures features() const = 0;
   /// The backend of one solve of `atlas` with its shots shaped as `shape` asks, built and ready for start();
-  /// null for an atlas without patches (once the settings are checked). Throws InputError for settings out of
-  /// range or an atlas the engine cannot hold, SystemError for a device failure.
+  /// null for an atlas without patches (once the settings are checked), and null too for a set-up that
+  /// `deadline` stopped: it checks the clock between its steps and within its long ones (the shooters'
+  /// layout, the programs, the uploads), reporting each step to ctx as "set-up". Throws InputError for
+  /// settings out of range or an atlas the engine cannot hold, SystemError for a device failure.
   virtual std::unique_ptr<ShotBackend> backend(const Scene& scene, const LightmapAtlas& atlas,
                                                const SolverParams& settings, const ShotShape& shape,
-                                               const FirstShot& first, Context& ctx) = 0;
+                                               const FirstShot& first, Context& ctx,
+                                               std::chrono::steady_clock::time_point deadline) = 0;
   /// An engine of the same kind for the calling thread (a worker of radiosity/cells/cell_workers.h): the
   /// GL engine's needs a context of its own, current on that thread.
   virtual std::unique_ptr<ShotEngine> forThisThread() const = 0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <ctime>
 #include <map>
 
 #include "core/error.h"
@@ -104,6 +106,28 @@ SolveResult firstShotResult(const LightmapAtlas& atlas, const DirectStart& first
   return r;
 }
 
+// A solve whose engine's set-up the deadline stopped: the first shot's light (the lamps' and the sky's, or
+// a prior shot's) as 0 shots leave it, the rest unshot, with the per-texel fields its shape asks for
+// (zero arrivals and lamp flags) so that every caller reads a whole, partial result; said in one warning.
+SolveResult stoppedInSetup(const LightmapAtlas& atlas, const DirectStart& direct, const ShotShape& shape,
+                           double setupSeconds, const std::string& engine, Context& ctx) {
+  SolveResult late = firstShotResult(atlas, direct);
+  late.timedOut = true;
+  late.setupSeconds = setupSeconds;
+  late.seconds = setupSeconds;
+  if (shape.directionalEmission && shape.arrivalMoments)
+    late.arrivals.assign(atlas.texelCount(), glm::vec4(0.0f));
+  if (shape.readLampFlags) late.lampFlags.assign(atlas.texelCount(), 0);
+  ctx.addTiming("solve: setup", setupSeconds);
+  char line[200];
+  std::snprintf(
+      line, sizeof line,
+      "solve: the time limit came during the %s engine's set-up (stopped after %.3g s): 0 shots of it",
+      engine.c_str(), setupSeconds);
+  ctx.warn(line);
+  return late;
+}
+
 // Per patch of `atlas`, the cell most of its texels' area lies in (`texelCell`, per texel; -1 for a patch
 // without texels): the stop per room's cells as the time estimate's patches hold them.
 std::vector<int> patchCells(const LightmapAtlas& atlas, const std::vector<int>& texelCell) {
@@ -150,14 +174,20 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
   }
 
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpuStart = std::clock();
   ctx.progress("set-up", 0.0, "the " + std::string(engine.name()) + " engine");  // tens of seconds on a house
-  std::unique_ptr<ShotBackend> backend = engine.backend(scene, atlas, settings, shape, first, ctx);
+  std::unique_ptr<ShotBackend> backend =
+      engine.backend(scene, atlas, settings, shape, first, ctx, controls.deadline);
+  const double setupSeconds = secondsSince(start);
+  // Its CPU seconds too (every thread's), what the set-up's estimate is fitted on (two_level_solve.h).
+  ctx.addTiming("solve: setup (cpu)", double(std::clock() - cpuStart) / CLOCKS_PER_SEC);
+  if (!backend && !atlas.patches.empty())  // the deadline stopped the set-up: the first shot's light alone
+    return stoppedInSetup(atlas, direct, shape, setupSeconds, engine.name(), ctx);
   if (!backend) {
     SolveResult empty;
     empty.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
     return empty;
   }
-  const double setupSeconds = secondsSince(start);
   ctx.addTiming("solve: setup", setupSeconds);
 
   LoopControls loop;

@@ -61,7 +61,25 @@ struct TwoLevelData {
   int indirectItemBuffer = 0;    ///< the interreflection's item buffer (indirectItemBuffer())
   std::string indirectBackend;   ///< the engine of the interreflection (ShotEngine::name)
   float solveDensity = 0.0f;     ///< the coarse atlas's texels per metre (maxSolveTexels may lower it)
+  /// The interreflection's set-up (its contacts' rays, coarse atlas and engine): its estimate (wall s, at the
+  /// load observed when last asked), its wall and CPU seconds (the contacts, the atlas and the engine's
+  /// set-up; not the lamps' shot between them), and how it
+  /// ended: "" whole, "stopped" (the deadline came during the engine's set-up or before its first shot) or
+  /// "not started" (the engine's set-up never began: the deadline came first, or its estimate would have
+  /// ended past it, said in a warning).
+  double setupEstimate = 0.0;
+  double setupSeconds = 0.0, setupCpuSeconds = 0.0;
+  std::string setupStop;
 };
+
+/// What a two-level solve's set-up has to do: the scene's triangles (the contacts' rays, the ray scene),
+/// the coarse atlas's valid texels and patches (its layout, the shooters' eyes, the engine's buffers).
+struct SetupWork {
+  size_t triangles = 0, texels = 0, patches = 0;
+};
+/// The CPU seconds of that set-up on an unloaded core, with room to spare (bench/RESULTS.md, "The solve's
+/// engine set-up inside the limit"): times the load (SolveControls::load), its wall seconds.
+double setupCpuSeconds(const SetupWork& work);
 
 /// The item buffer of the interreflection on the coarse atlas: `itemBuffer` (the user's, sized for 10
 /// texels per metre) scaled by solveDensity / 10, at most itemBuffer, at least 64, even. What a pixel

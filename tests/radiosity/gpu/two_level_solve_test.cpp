@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "core/quads.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -164,6 +167,117 @@ TEST(TwoLevelSolve, TheRaysEngineAloneGivesTheRoomsTheirLight) {
     EXPECT_NEAR(e.emitted, byGl.energy.emitted, 1e-3 * e.emitted);
     EXPECT_LE(e.created, 1e-4 * e.emitted);
     EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  }
+}
+
+// The engine's set-up stops at its deadline (bench/RESULTS.md, "The solve's engine set-up inside the
+// limit"): a hook in the progress reports holds the set-up at its first step inside the engine (the
+// shooters' eyes) until the deadline has passed; the set-up must then go no further, and the solve end with
+// 0 shots, its books whole: every watt the lamp emits still unshot. Before the change the set-up had no
+// step to report and ran to its end.
+struct HeldSetUp {
+  std::chrono::steady_clock::time_point deadline;
+  bool held = false;
+  std::vector<std::string> after;  // the set-up's reports after the hold
+  void install(Context& ctx, const std::string& engine) {
+    ctx.setProgress([this, engine](const Progress& p) {
+      if (p.stage != "set-up") return;
+      if (held) after.push_back(p.status);
+      if (held || p.status != "the " + engine + " engine: the shooters' eyes") return;
+      held = true;
+      std::this_thread::sleep_until(deadline + std::chrono::milliseconds(1));
+    });
+  }
+};
+
+TEST(TwoLevelSolve, ADeadlineDuringTheEnginesSetUpStopsItThere) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
+  RayShotEngine rays;
+  for (ShotEngine* engine : {static_cast<ShotEngine*>(&gl), static_cast<ShotEngine*>(&rays)}) {
+    SCOPED_TRACE(engine->name());
+    Context held;
+    // Nothing to do before the set-up (no punctual light, no lamp rays): 2 s are far more than it needs.
+    HeldSetUp hook{.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2), .after = {}};
+    hook.install(held, engine->name());
+    const SolveResult s = solveProgressive(scene, atlas, SolverParams{}, *engine, held,
+                                           SolveControls{.deadline = hook.deadline});
+    ASSERT_TRUE(hook.held) << "the set-up reported no step inside the engine";
+    EXPECT_TRUE(hook.after.empty()) << "the set-up went on past its deadline: " << hook.after.front();
+    EXPECT_TRUE(s.timedOut);
+    EXPECT_EQ(s.shots, 0);
+    const EnergyTotals& e = s.energy;
+    EXPECT_GT(e.emitted, 0.0);
+    EXPECT_NEAR(e.unshot, e.emitted, 1e-6 * e.emitted);
+    EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-6 * e.emitted);
+    ASSERT_EQ(s.radiosity.size(), atlas.texelCount());
+    ASSERT_FALSE(held.warnings().empty());
+    EXPECT_NE(held.warnings().back().find("set-up"), std::string::npos) << held.warnings().back();
+  }
+}
+
+// The same in a two-level solve, its interreflection on the rays engine: the lamps' light (by shadow rays)
+// stays, the rest unshot, and the figures say the set-up stopped.
+TEST(TwoLevelSolve, ADeadlineDuringTheInterreflectionsSetUpLeavesTheLampsLight) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
+  SolverParams params;
+  params.lampRays = 64;
+  RayShotEngine rays;
+  Context held;
+  // Before the rays engine's set-up: the contacts, the coarse atlas and the lamps' rays of two small rooms.
+  HeldSetUp hook{.deadline = std::chrono::steady_clock::now() + std::chrono::seconds(8), .after = {}};
+  hook.install(held, "rays");
+  TwoLevelData levels;
+  const SolveResult two =
+      solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f}, params, {rays, rays},
+                    held, SolveControls{.readTransfer = true, .deadline = hook.deadline}, &levels);
+  ASSERT_TRUE(hook.held) << "the rays engine's set-up reported no step";
+  EXPECT_TRUE(hook.after.empty()) << "the set-up went on past its deadline: " << hook.after.front();
+  EXPECT_TRUE(two.timedOut);
+  EXPECT_EQ(levels.setupStop, "stopped");
+  const auto lit = roomMeans(atlas, two.radiosity);
+  EXPECT_GT(lit[0], 0.0) << "the lamp's room lost the lamp's light";
+  const EnergyTotals& e = two.energy;
+  EXPECT_LE(e.created, 1e-4 * e.emitted);
+  EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+  EXPECT_GT(e.unshot, 0.3 * e.emitted) << "the lamps' reflected light is unshot";
+}
+
+// A set-up whose estimate at the load observed would end past the deadline does not start: on a machine
+// a million times slower than idle an hour is not enough; at load 1 it is, and the solve runs whole.
+TEST(TwoLevelSolve, ASetUpEstimatedToEndPastTheDeadlineDoesNotStart) {
+  TwoRoomsAtlas r;
+  auto& [scene, ctx, context, gl, quads, output, atlas] = r;
+  SolverParams params;
+  params.lampRays = 64;
+  RayShotEngine rays;
+  for (const double load : {1e6, 1.0}) {
+    SCOPED_TRACE(load);
+    Context c;
+    TwoLevelData levels;
+    SolveControls controls{.readTransfer = true,
+                           .deadline = std::chrono::steady_clock::now() + std::chrono::hours(1)};
+    controls.load = [load] { return load; };
+    const SolveResult two = solveTwoLevel(scene, quads, atlas, output, TwoLevelParams{.solveDensity = 4.0f},
+                                          params, {rays, rays}, c, controls, &levels);
+    EXPECT_GT(levels.setupEstimate, 0.0);
+    const EnergyTotals& e = two.energy;
+    EXPECT_NEAR(e.absorbed + e.unshot + e.escaped(), e.emitted, 1e-3 * e.emitted);
+    EXPECT_GT(roomMeans(atlas, two.radiosity)[0], 0.0);
+    if (load > 1.0) {
+      EXPECT_GT(levels.setupEstimate, 3600.0);
+      EXPECT_EQ(levels.setupStop, "not started");
+      EXPECT_TRUE(two.timedOut);
+      EXPECT_EQ(c.totalSeconds("solve: setup"), 0.0) << "the engine was set up";
+      ASSERT_FALSE(c.warnings().empty());
+      EXPECT_NE(c.warnings().back().find("not started"), std::string::npos) << c.warnings().back();
+    } else {
+      EXPECT_LT(levels.setupEstimate, 60.0);
+      EXPECT_EQ(levels.setupStop, "");
+      EXPECT_FALSE(two.timedOut);
+      EXPECT_LE(e.unshot, params.unshotFraction * e.emitted * 1.01);
+    }
   }
 }
 

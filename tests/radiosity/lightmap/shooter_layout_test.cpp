@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include "core/quads.h"
 #include "tests/radiosity/test_scenes.h"
 
@@ -36,10 +38,28 @@ TEST(ShooterLayout, EyesLeaveCoveredSpots) {
     const bool firstRegion = e.x < 1.0f && e.y < 1.0f;
     const bool underBox = e.x > 0.3f && e.x < 0.7f && e.y > 0.3f && e.y < 0.7f;
     EXPECT_FALSE(underBox) << e.x << " " << e.y;
-    if (firstRegion) ++covered;
-    else EXPECT_NEAR(glm::length(glm::vec2(e) - glm::round(glm::vec2(e) - 0.5f) - 0.5f), 0.0f, 0.125f) << e.x << " " << e.y;
+    if (firstRegion)
+      ++covered;
+    else
+      EXPECT_NEAR(glm::length(glm::vec2(e) - glm::round(glm::vec2(e) - 0.5f) - 0.5f), 0.0f, 0.125f)
+          << e.x << " " << e.y;
   }
   EXPECT_EQ(covered, 1);
+}
+
+// Past its deadline the layout stops before its next batch of patches and says so by returning fewer
+// layouts than patches: an engine's set-up then stops (radiosity/solve/shot_engine.h).
+TEST(ShooterLayout, PastTheDeadlineItLaysOutNoMorePatches) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 2.0f, 2.0f), m);
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(s, findQuads(s), AtlasParams{.texelsPerQuad = 8}, ctx);
+  ASSERT_GT(atlas.patches.size(), 1u);
+  EXPECT_EQ(layoutShooters(s, atlas, LayoutParams{}).size(), atlas.patches.size());
+  EXPECT_TRUE(
+      layoutShooters(s, atlas, LayoutParams{}, std::chrono::steady_clock::now() - std::chrono::seconds(1))
+          .empty());
 }
 
 }  // namespace

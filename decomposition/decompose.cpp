@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "decomposition/distance.h"
+#include "decomposition/thin_wall_portals.h"
 #include "decomposition/voxelize.h"
 
 namespace cpgi::decomp {
@@ -213,6 +214,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
   const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
+  snapPortalsToThinWalls(scene, solid.frame, portals, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)

@@ -39,13 +39,20 @@ std::vector<int32_t> nearestCells(const GridFrame& f, const std::vector<int32_t>
   return near;
 }
 
-// The scene's triangles in the buckets of a hash grid, for segments short against the scene: does a step
-// from a surface pass through another surface?
+// The scene's triangles and the portals' quads in the buckets of a hash grid, for segments short against
+// the scene: does a step from a surface pass through another surface, or into another cell?
 class SurfaceIndex {
  public:
-  SurfaceIndex(const Scene& scene, float bucket) : scene_(scene), bucket_(bucket) {
-    for (size_t t = 0; t < scene.triangles.size(); ++t) {
-      const Triangle& tri = scene.triangles[t];
+  SurfaceIndex(const Scene& scene, const std::vector<PortalQuad>& portals, float bucket)
+      : scene_(scene), bucket_(bucket) {
+    for (const PortalQuad& q : portals) {
+      Triangle a, b;
+      a.p = {q.corners[0], q.corners[1], q.corners[2]};
+      b.p = {q.corners[0], q.corners[2], q.corners[3]};
+      portalTriangles_.push_back(a), portalTriangles_.push_back(b);
+    }
+    for (size_t t = 0; t < scene.triangles.size() + portalTriangles_.size(); ++t) {
+      const Triangle& tri = triangle(uint32_t(t));
       const glm::ivec3 lo = cellOf(glm::min(glm::min(tri.p[0], tri.p[1]), tri.p[2]));
       const glm::ivec3 hi = cellOf(glm::max(glm::max(tri.p[0], tri.p[1]), tri.p[2]));
       for (int z = lo.z; z <= hi.z; ++z)
@@ -54,8 +61,8 @@ class SurfaceIndex {
     }
   }
 
-  /// True when the segment a→b passes through a triangle of the scene (Möller–Trumbore), a itself left
-  /// out: a lies on the surface the step starts from, and on any face coincident with it.
+  /// True when the segment a→b passes through a triangle of the scene or a portal (Möller–Trumbore), a
+  /// itself left out: a lies on the surface the step starts from, and on any face coincident with it.
   bool blocks(const glm::vec3& a, const glm::vec3& b) const {
     const glm::ivec3 lo = cellOf(glm::min(a, b)), hi = cellOf(glm::max(a, b));
     const glm::vec3 d = b - a;
@@ -65,12 +72,15 @@ class SurfaceIndex {
           const auto it = buckets_.find(key({x, y, z}));
           if (it == buckets_.end()) continue;
           for (uint32_t t : it->second)
-            if (crosses(scene_.triangles[t], a, d)) return true;
+            if (crosses(triangle(t), a, d)) return true;
         }
     return false;
   }
 
  private:
+  const Triangle& triangle(uint32_t t) const {
+    return t < scene_.triangles.size() ? scene_.triangles[t] : portalTriangles_[t - scene_.triangles.size()];
+  }
   glm::ivec3 cellOf(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / bucket_)); }
   static uint64_t key(const glm::ivec3& c) {
     return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
@@ -93,6 +103,7 @@ class SurfaceIndex {
   }
 
   const Scene& scene_;
+  std::vector<Triangle> portalTriangles_;
   float bucket_;
   std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
 };
@@ -101,7 +112,8 @@ class SurfaceIndex {
 // along dir whose centre p sees, else the nearest labelled voxel centre in front of p within 3 voxels that
 // p sees; -1 when none. A voxel holds its centre's label: one that straddles a wall meeting this face (the
 // corner of two zero-thickness walls) holds the room beyond that wall, and a step into it passes through
-// the wall. A step past the grid is in `outsideCell`.
+// the wall; one beyond a portal's plane holds the cell on its far side (a door's threshold cut at the
+// portal, its voxels straddling the cut). A step past the grid is in `outsideCell`.
 int cellInFront(const GridFrame& f, const std::vector<int32_t>& cell, int outsideCell,
                 const SurfaceIndex& surfaces, const glm::vec3& p, const glm::vec3& dir) {
   const float h = float(f.voxel);
@@ -235,7 +247,7 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
     }
     return near[f.index(inner)];
   };
-  const SurfaceIndex surfaces(scene, 8.0f * h);
+  const SurfaceIndex surfaces(scene, portals, 8.0f * h);
   auto faced = [&](const glm::vec3& p, const glm::vec3& dir) {
     return cellInFront(f, cell, outsideCell, surfaces, p, dir);
   };

@@ -10,8 +10,8 @@
 
 #include "core/error.h"
 #include "decomposition/distance.h"
-#include "decomposition/thin_wall_portals.h"
 #include "decomposition/voxelize.h"
+#include "decomposition/wall_portals.h"
 
 namespace cpgi::decomp {
 namespace {
@@ -214,7 +214,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
   const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
-  snapPortalsToThinWalls(scene, solid.frame, portals, ctx);
+  snapPortalsToWalls(scene, solid.frame, params.portals.searchRange, portals, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)

@@ -17,15 +17,14 @@ std::optional<double> wallMidPlane(const Scene& scene, const PortalQuad& q, int 
                                    double slack, double grow) {
   glm::dvec3 lo(q.corners[0]), hi(q.corners[0]);
   for (const glm::vec3& c : q.corners) lo = glm::min(lo, glm::dvec3(c)), hi = glm::max(hi, glm::dvec3(c));
-  const double plane = 0.5 * (lo[axis] + hi[axis]);
-  if (hi[axis] - lo[axis] > slack) return std::nullopt;  // tilted further than any wall could say
+  const double plane = 0.5 * (lo[axis] + hi[axis]), tilt = 0.5 * (hi[axis] - lo[axis]);
   // The offsets from the portal's plane of the parallel faces around it, by the way they look along axis.
   std::set<double> back, front;
   for (const Triangle& t : scene.triangles) {
     const glm::vec3 n = t.geometricNormal();
     if (std::abs(n[axis]) < 0.999f) continue;
     const double offset = double(t.p[0][axis]) - plane;
-    if (std::abs(offset) > maxThickness + slack) continue;
+    if (std::abs(offset) > maxThickness + tilt + slack) continue;
     bool overlaps = true;
     for (int k = 0; k < 3 && overlaps; ++k) {
       if (k == axis) continue;
@@ -40,7 +39,7 @@ std::optional<double> wallMidPlane(const Scene& scene, const PortalQuad& q, int 
   std::optional<double> best;
   for (double b : back) {
     const auto f = front.lower_bound(b - kPlaneTolerance);
-    if (f == front.end() || *f - b > maxThickness || b > slack || *f < -slack) continue;
+    if (f == front.end() || *f - b > maxThickness || b > tilt + slack || *f < -tilt - slack) continue;
     const double mid = 0.5 * (b + *f);
     if (!best || std::abs(mid) < std::abs(*best)) best = mid;
   }
@@ -59,7 +58,7 @@ WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxTh
     PortalQuad& q = fp.quad;
     const glm::vec3 a = glm::abs(q.normal);
     const int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-    if (a[axis] < 0.999f) continue;
+    if (a[axis] < 0.99f) continue;  // an opening in a wall along the grid, fitted up to 8° off it
     const std::optional<double> wall = wallMidPlane(scene, q, axis, maxThickness, 1.5 * h, h);
     if (!wall) continue;
     double shift = 0.0;

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <climits>
+#include <cmath>
 #include <map>
+#include <unordered_map>
 
 namespace cpgi::decomp {
 namespace {
@@ -18,7 +19,8 @@ std::vector<int32_t> nearestCells(const GridFrame& f, const std::vector<int32_t>
   for (int z = 0; z < f.dims.z; ++z)
     for (int y = 0; y < f.dims.y; ++y) {
       const bool wholeRow = z == 0 || y == 0 || z == f.dims.z - 1 || y == f.dims.y - 1;
-      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1))) border[f.index(x, y, z)] = 1;
+      for (int x = 0; x < f.dims.x; x += (wholeRow ? 1 : std::max(1, f.dims.x - 1)))
+        border[f.index(x, y, z)] = 1;
     }
   const ptrdiff_t sy = f.dims.x, sz = ptrdiff_t(f.dims.x) * f.dims.y;
   const ptrdiff_t offsets[6] = {-1, 1, -sy, sy, -sz, sz};
@@ -35,6 +37,106 @@ std::vector<int32_t> nearestCells(const GridFrame& f, const std::vector<int32_t>
     }
   }
   return near;
+}
+
+// The scene's triangles and the portals' quads in the buckets of a hash grid, for segments short against
+// the scene: does a step from a surface pass through another surface, or into another cell?
+class SurfaceIndex {
+ public:
+  SurfaceIndex(const Scene& scene, const std::vector<PortalQuad>& portals, float bucket)
+      : scene_(scene), bucket_(bucket) {
+    for (const PortalQuad& q : portals) {
+      Triangle a, b;
+      a.p = {q.corners[0], q.corners[1], q.corners[2]};
+      b.p = {q.corners[0], q.corners[2], q.corners[3]};
+      portalTriangles_.push_back(a), portalTriangles_.push_back(b);
+    }
+    for (size_t t = 0; t < scene.triangles.size() + portalTriangles_.size(); ++t) {
+      const Triangle& tri = triangle(uint32_t(t));
+      const glm::ivec3 lo = cellOf(glm::min(glm::min(tri.p[0], tri.p[1]), tri.p[2]));
+      const glm::ivec3 hi = cellOf(glm::max(glm::max(tri.p[0], tri.p[1]), tri.p[2]));
+      for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+          for (int x = lo.x; x <= hi.x; ++x) buckets_[key({x, y, z})].push_back(uint32_t(t));
+    }
+  }
+
+  /// True when the segment a→b passes through a triangle of the scene or a portal (Möller–Trumbore), a
+  /// itself left out: a lies on the surface the step starts from, and on any face coincident with it.
+  bool blocks(const glm::vec3& a, const glm::vec3& b) const {
+    const glm::ivec3 lo = cellOf(glm::min(a, b)), hi = cellOf(glm::max(a, b));
+    const glm::vec3 d = b - a;
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const auto it = buckets_.find(key({x, y, z}));
+          if (it == buckets_.end()) continue;
+          for (uint32_t t : it->second)
+            if (crosses(triangle(t), a, d)) return true;
+        }
+    return false;
+  }
+
+ private:
+  const Triangle& triangle(uint32_t t) const {
+    return t < scene_.triangles.size() ? scene_.triangles[t] : portalTriangles_[t - scene_.triangles.size()];
+  }
+  glm::ivec3 cellOf(const glm::vec3& p) const { return glm::ivec3(glm::floor(p / bucket_)); }
+  static uint64_t key(const glm::ivec3& c) {
+    return (uint64_t(uint32_t(c.x) & 0x1FFFFF) << 42) | (uint64_t(uint32_t(c.y) & 0x1FFFFF) << 21) |
+           uint64_t(uint32_t(c.z) & 0x1FFFFF);
+  }
+  // The segment a + s·d, s in (1e-4, 1], through triangle t.
+  static bool crosses(const Triangle& t, const glm::vec3& a, const glm::vec3& d) {
+    const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
+    const glm::vec3 q = glm::cross(d, e2);
+    const float det = glm::dot(e1, q);
+    if (std::abs(det) < 1e-12f) return false;  // parallel to the triangle, or the triangle degenerate
+    const glm::vec3 o = a - t.p[0];
+    const float u = glm::dot(o, q) / det;
+    if (u < 0.0f || u > 1.0f) return false;
+    const glm::vec3 r = glm::cross(o, e1);
+    const float v = glm::dot(d, r) / det;
+    if (v < 0.0f || u + v > 1.0f) return false;
+    const float s = glm::dot(e2, r) / det;
+    return s > 1e-4f && s <= 1.0f;
+  }
+
+  const Scene& scene_;
+  std::vector<Triangle> portalTriangles_;
+  float bucket_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> buckets_;
+};
+
+// The cell in front of p, a point strictly inside a piece facing dir: the first labelled voxel stepping
+// along dir whose centre p sees, else the nearest labelled voxel centre in front of p within 3 voxels that
+// p sees; -1 when none. A voxel holds its centre's label: one that straddles a wall meeting this face (the
+// corner of two zero-thickness walls) holds the room beyond that wall, and a step into it passes through
+// the wall; one beyond a portal's plane holds the cell on its far side (a door's threshold cut at the
+// portal, its voxels straddling the cut). A step past the grid is in `outsideCell`.
+int cellInFront(const GridFrame& f, const std::vector<int32_t>& cell, int outsideCell,
+                const SurfaceIndex& surfaces, const glm::vec3& p, const glm::vec3& dir) {
+  const float h = float(f.voxel);
+  auto seenLabel = [&](const glm::ivec3& v) {
+    if (!f.contains(v)) return outsideCell;
+    return cell[f.index(v)] >= 0 && !surfaces.blocks(p, f.centre(v)) ? cell[f.index(v)] : -1;
+  };
+  for (float step : {1.0f, 1.5f, 2.0f, 3.0f})
+    if (const int l = seenLabel(f.voxelOf(p + step * h * dir)); l >= 0) return l;
+  std::vector<std::pair<float, glm::ivec3>> ahead;
+  const glm::ivec3 c = f.voxelOf(p);
+  for (int dz = -3; dz <= 3; ++dz)
+    for (int dy = -3; dy <= 3; ++dy)
+      for (int dx = -3; dx <= 3; ++dx) {
+        const glm::ivec3 v = c + glm::ivec3(dx, dy, dz);
+        const glm::vec3 offset = f.centre(v) - p;
+        if (f.contains(v) && cell[f.index(v)] >= 0 && glm::dot(offset, dir) > 0.25f * h)
+          ahead.push_back({glm::dot(offset, offset), v});
+      }
+  std::sort(ahead.begin(), ahead.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& [d2, v] : ahead)
+    if (const int l = seenLabel(v); l >= 0) return l;
+  return -1;
 }
 
 struct Piece {
@@ -91,7 +193,8 @@ const PortalQuad* crossedPortal(const Triangle& tri, const std::map<int, double>
     if (!votes.count(p.cellA) || !votes.count(p.cellB)) continue;
     const glm::vec3 c = p.centre();
     float lo = 0.0f, hi = 0.0f;
-    for (const glm::vec3& q : tri.p) lo = std::min(lo, glm::dot(q - c, p.normal)), hi = std::max(hi, glm::dot(q - c, p.normal));
+    for (const glm::vec3& q : tri.p)
+      lo = std::min(lo, glm::dot(q - c, p.normal)), hi = std::max(hi, glm::dot(q - c, p.normal));
     if (lo < -1e-4f && hi > 1e-4f) return &p;
   }
   return nullptr;
@@ -100,8 +203,8 @@ const PortalQuad* crossedPortal(const Triangle& tri, const std::map<int, double>
 }  // namespace
 
 Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::vector<int32_t>& cell,
-                           const std::vector<PortalQuad>& portals, int outsideCell, const AssignParams& params,
-                           Context& ctx) {
+                           const std::vector<PortalQuad>& portals, int outsideCell,
+                           const AssignParams& params, Context& ctx) {
   auto timer = ctx.time("assign");
   Assignment out;
   out.scene.materials = scene.materials;
@@ -144,13 +247,9 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
     }
     return near[f.index(inner)];
   };
-  // The first labelled voxel stepping from p along dir.
-  auto faced = [&](const glm::vec3& p, const glm::vec3& dir) -> int {
-    for (float step : {1.0f, 1.5f, 2.0f, 3.0f}) {
-      const int l = labelAt(p + step * h * dir);
-      if (l >= 0) return l;
-    }
-    return -1;
+  const SurfaceIndex surfaces(scene, portals, 8.0f * h);
+  auto faced = [&](const glm::vec3& p, const glm::vec3& dir) {
+    return cellInFront(f, cell, outsideCell, surfaces, p, dir);
   };
 
   // Behind a face that sees no cell (an outside wall, the underside of the ground floor): through the
@@ -178,8 +277,10 @@ Assignment assignTriangles(const Scene& scene, const GridFrame& f, const std::ve
       votes[nearestAt(tri.centroid())] = 1.0;
     } else {
       float longest = 0.0f;
-      for (int i = 0; i < 3; ++i) longest = std::max(longest, glm::length(tri.p[size_t(i)] - tri.p[size_t((i + 1) % 3)]));
-      const int k = std::clamp(int(std::ceil(longest / (float(params.sampleSpacing) * h))), 1, params.maxSamplesPerEdge);
+      for (int i = 0; i < 3; ++i)
+        longest = std::max(longest, glm::length(tri.p[size_t(i)] - tri.p[size_t((i + 1) % 3)]));
+      const int k = std::clamp(int(std::ceil(longest / (float(params.sampleSpacing) * h))), 1,
+                               params.maxSamplesPerEdge);
       const float pieceArea = tri.area() / float(k * k);
       // Centroids of the k² sub-triangles of the regular subdivision, in barycentric steps of 1/k.
       for (int a = 0; a < k; ++a)

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "decomposition/distance.h"
 #include "decomposition/voxelize.h"
+#include "decomposition/wall_portals.h"
 
 namespace cpgi::decomp {
 namespace {
@@ -213,6 +214,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
   const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
+  snapPortalsToWalls(scene, solid.frame, params.portals.searchRange, portals, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)

@@ -13,6 +13,7 @@
 //                or across the narrowest closed section (a stair's hole)                sections.h
 //   6b leaks     every voxel face between cells on a portal of theirs, or the two merged leaks.h
 //   6c merge     pieces of one opening (same cells, one plane, touching) one quad  portal_merge.h
+//   6d walls     each portal onto its wall's mid-plane, as the scene's faces give it wall_portals.h
 //   7 assign     triangles → the cell each faces, split on portal planes                assign.h
 #pragma once
 

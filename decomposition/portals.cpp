@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -197,6 +198,32 @@ void centreInConstriction(FittedPortal& fp, const GridFrame& f, const std::vecto
 
 }  // namespace
 
+void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t>& cell) {
+  const PortalQuad& q = fp.quad;
+  Bounds box;
+  for (const glm::vec3& c : q.corners)
+    box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
+  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
+  const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
+  const glm::vec3 c = q.centre();
+  const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
+  const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
+  if (hu <= 0.0f || hv <= 0.0f) return;
+  const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x) {
+        const size_t i = f.index(x, y, z);
+        const int l = cell[i];
+        if (l != q.cellA && l != q.cellB) continue;
+        const glm::vec3 p = f.centre(i) - c;
+        const float s = glm::dot(p, q.normal);
+        if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv)
+          continue;
+        cell[i] = s < 0.0f ? q.cellA : q.cellB;
+      }
+}
+
 bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance) {
   const glm::vec3 c = portal.centre();
   const float sa = glm::dot(a - c, portal.normal), sb = glm::dot(b - c, portal.normal);
@@ -357,33 +384,6 @@ std::vector<FittedPortal> sectionPortals(const GridFrame& f, const std::vector<i
   return out;
 }
 
-// Relabels the slab around a portal (its quad, ± depth along the normal) by the side of its plane.
-void relabelSlab(const GridFrame& f, const FittedPortal& fp, std::vector<int32_t>& cell) {
-  const PortalQuad& q = fp.quad;
-  Bounds box;
-  for (const glm::vec3& c : q.corners)
-    box.extend(c - fp.depth * q.normal), box.extend(c + fp.depth * q.normal);
-  const glm::ivec3 lo = glm::max(f.voxelOf(box.lo), glm::ivec3(0));
-  const glm::ivec3 hi = glm::min(f.voxelOf(box.hi), f.dims - 1);
-  const glm::vec3 c = q.centre();
-  const glm::vec3 eu = q.corners[1] - q.corners[0], ev = q.corners[3] - q.corners[0];
-  const float hu = 0.5f * glm::length(eu), hv = 0.5f * glm::length(ev);
-  if (hu <= 0.0f || hv <= 0.0f) return;
-  const glm::vec3 du = eu / (2.0f * hu), dv = ev / (2.0f * hv);
-  for (int z = lo.z; z <= hi.z; ++z)
-    for (int y = lo.y; y <= hi.y; ++y)
-      for (int x = lo.x; x <= hi.x; ++x) {
-        const size_t i = f.index(x, y, z);
-        const int l = cell[i];
-        if (l != q.cellA && l != q.cellB) continue;
-        const glm::vec3 p = f.centre(i) - c;
-        const float s = glm::dot(p, q.normal);
-        if (std::abs(s) > fp.depth || std::abs(glm::dot(p, du)) > hu || std::abs(glm::dot(p, dv)) > hv)
-          continue;
-        cell[i] = s < 0.0f ? q.cellA : q.cellB;
-      }
-}
-
 // Turns a portal so that its normal points from cellA into cellB, by the labels half a voxel either side
 // of it at 5 × 5 points over the quad (its cells are on either side after relabelAcrossPortals).
 void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQuad& q) {
@@ -407,11 +407,13 @@ void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQu
 }
 
 // Makes the cells of each pair joined by a section portal meet at its quad (relabelAcrossPortals), with
-// as few of the pair's portals as cut the two apart: between two rooms first the largest section alone
-// (the hole of a stair; smaller sections are pockets between the steps and the floor's edge), then every
-// section, then every portal of the pair; between a room and the outside every portal of the pair (the
-// room's windows and doors all open onto it). The portals left out are dropped. When none of these cuts
-// the pair apart, its sections go back to the planes fitted to their interfaces.
+// as few of the pair's portals as cut the two apart. Between two rooms: first each opening's narrowest
+// section alone, largest opening first (the hole of a stair); then every opening's narrowest section
+// together (a door and a window in one zero-thickness wall, neither of which cuts the rooms apart alone);
+// then each opening's wider sections alone (the hole, where a pocket between the steps and the floor's
+// edge is narrower); then every portal of the pair. Between a room and the outside every portal of the
+// pair (the room's windows and doors all open onto it). The portals left out are dropped. When none of
+// these cuts the pair apart, its sections go back to the planes fitted to their interfaces.
 void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const std::vector<size_t>& deepest,
                          int outsideCell, const PortalParams& params, std::vector<FittedPortal>& fresh,
                          const std::vector<FittedPortal>& planeFits,
@@ -427,42 +429,34 @@ void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const s
         (fresh[q].section ? sections : others).push_back(q);
     std::sort(sections.begin(), sections.end(),
               [&](size_t x, size_t y) { return fresh[x].quad.area > fresh[y].quad.area; });
-    std::vector<std::vector<size_t>> attempts;
     std::vector<size_t> all = sections;
     all.insert(all.end(), others.begin(), others.end());
-    if (a != outsideCell && b != outsideCell) {
-      // Between two rooms, the narrowest closed section that cuts them apart alone: the hole of a stair,
-      // not a pocket under its flight that happens to be narrower. Each section opening's candidates in
-      // turn, narrowest first (the first candidate is fresh[q] itself).
-      bool cutAlone = false;
-      for (size_t q : sections) {
-        for (const FittedPortal& alt : alternatives[q]) {
-          const std::vector<const PortalQuad*> barrier{&alt.quad};
-          if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) continue;
-          fresh[q] = alt;
-          faceFromAToB(f, cell, fresh[q].quad);
-          for (size_t r : all) redundant[r] = r != q;
-          cutAlone = true;
-          break;
-        }
-        if (cutAlone) break;
-      }
-      if (cutAlone) continue;
-      if (sections.size() > 1) attempts.push_back(sections);
-    }
-    if (!others.empty() || attempts.empty()) attempts.push_back(all);
-    bool separated = false;
-    for (const std::vector<size_t>& used : attempts) {
+    // True (and the pair relabelled, the portals not used marked redundant) when `used` cuts a from b.
+    auto separate = [&](const std::vector<size_t>& used) {
       std::vector<const PortalQuad*> barrier;
       for (size_t q : used) barrier.push_back(&fresh[q].quad);
-      if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) continue;
+      if (!relabelAcrossPortals(f, cell, a, b, deepest[size_t(a)], deepest[size_t(b)], barrier)) return false;
       for (size_t q : all) redundant[q] = std::find(used.begin(), used.end(), q) == used.end();
       for (size_t q : used)
         if (fresh[q].section) faceFromAToB(f, cell, fresh[q].quad);
-      separated = true;
-      break;
-    }
-    if (separated) continue;
+      return true;
+    };
+    // One section opening's candidates [first, last) alone, in turn (candidate 0 is fresh[q] itself).
+    auto cutAlone = [&](size_t first, size_t last) {
+      for (size_t q : sections)
+        for (size_t c = first; c < std::min(last, alternatives[q].size()); ++c) {
+          const FittedPortal kept = fresh[q];
+          fresh[q] = alternatives[q][c];
+          if (separate({q})) return true;
+          fresh[q] = kept;
+        }
+      return false;
+    };
+    const bool rooms = a != outsideCell && b != outsideCell;
+    if (rooms && (cutAlone(0, 1) || (sections.size() > 1 && separate(sections)) ||
+                  cutAlone(1, std::numeric_limits<size_t>::max())))
+      continue;
+    if ((!others.empty() || !rooms || sections.size() == 1) && separate(all)) continue;
     for (size_t q : sections) {
       fresh[q] = planeFits[q];
       centreInConstriction(fresh[q], f, cell, params.searchRange);

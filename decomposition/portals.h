@@ -63,6 +63,10 @@ size_t countLeakingFaces(const GridFrame& frame, const std::vector<int32_t>& cel
 std::map<std::pair<int, int>, size_t> leakingFacesByPair(const GridFrame& frame, const std::vector<int32_t>& cell,
                                                          const std::vector<PortalQuad>& portals);
 
+/// Relabels the voxels of the portal's two cells in the slab around it (its quad, ± fp.depth along the
+/// normal) by the side of its plane their centres lie on: cellA behind, cellB in front.
+void relabelSlab(const GridFrame& frame, const FittedPortal& fp, std::vector<int32_t>& cell);
+
 /// True when the segment a→b crosses the portal's plane inside its quad grown by `tolerance` metres.
 bool segmentCrossesPortal(const PortalQuad& portal, const glm::vec3& a, const glm::vec3& b, float tolerance);
 

@@ -97,22 +97,12 @@ struct SplitSurface {
     return glm::vec2(w.x * glm::dvec2(uv[0]) + w.y * glm::dvec2(uv[1]) + w.z * glm::dvec2(uv[2]));
   }
 
-  // The lightmap coordinates of point `x` of the texel on `first` (patch p's triangle for it, a quad's
-  // first): x held onto the nearer of its quad's two triangles (a texel of a quad's chart lies on either,
-  // and a border texel's centre off both), then read through that triangle's match in `other`, else on
-  // the nearest of its pieces (which holds x unless a sliver of the cut was dropped). None when that
-  // triangle has neither.
-  std::optional<glm::vec2> coordinates(const Patch& p, int32_t first, glm::vec3 x) const {
-    const auto at = std::find(p.triangles.begin(), p.triangles.end(), first);
-    const size_t index = size_t(at - p.triangles.begin());
-    int32_t whole = first;
-    glm::dvec3 onWhole = closestPointOnTriangle(scene.triangles[size_t(first)], glm::dvec3(x));
-    if (p.quad >= 0 && index % 2 == 0 && index + 1 < p.triangles.size()) {
-      const int32_t second = p.triangles[index + 1];
-      const glm::dvec3 onSecond = closestPointOnTriangle(scene.triangles[size_t(second)], glm::dvec3(x));
-      if (glm::distance(onSecond, glm::dvec3(x)) < glm::distance(onWhole, glm::dvec3(x)))
-        whole = second, onWhole = onSecond;
-    }
+  // The lightmap coordinates of point `x` of a texel on scene triangle `whole` (the one of its quad that
+  // holds it, holdingTriangle): x held onto that triangle (a border texel's centre lies off it), then read
+  // through its match in `other`, else on the nearest of its pieces (which holds x unless a sliver of the
+  // cut was dropped). None when that triangle has neither.
+  std::optional<glm::vec2> coordinates(int32_t whole, glm::vec3 x) const {
+    const glm::dvec3 onWhole = closestPointOnTriangle(scene.triangles[size_t(whole)], glm::dvec3(x));
     if (source[size_t(whole)] >= 0) return this->at(source[size_t(whole)], onWhole);
     int32_t best = -1;
     glm::dvec3 bestPoint(0.0);
@@ -128,15 +118,32 @@ struct SplitSurface {
   }
 };
 
-// Calls f(texel, its patch, the triangle texelTriangle names for it) for every valid texel of `atlas`.
+// The triangle of texel centre x's quad that holds it. texelTriangle names a quad's first triangle for
+// every texel of its chart (the chart is affine over both), but a bake that cut one of the two on a portal's
+// plane and not the other charts them apart: the first's coordinates carried past its edge then land
+// outside its chart, on another surface's texels. So x is read through the nearer of the two.
+int32_t holdingTriangle(const Scene& scene, const Patch& p, int32_t first, const glm::vec3& x) {
+  const auto at = std::find(p.triangles.begin(), p.triangles.end(), first);
+  const size_t index = size_t(at - p.triangles.begin());
+  if (p.quad < 0 || index % 2 != 0 || index + 1 >= p.triangles.size()) return first;
+  const int32_t second = p.triangles[index + 1];
+  const auto gap = [&](int32_t k) {
+    return glm::distance(closestPointOnTriangle(scene.triangles[size_t(k)], glm::dvec3(x)), glm::dvec3(x));
+  };
+  return gap(second) < gap(first) ? second : first;
+}
+
+// Calls f(texel, the triangle of `scene` that holds its centre) for every valid texel of `atlas`, or -1
+// for a texel whose chart names none.
 template <class F>
-void forEachTexelTriangle(const LightmapAtlas& atlas, F&& f) {
+void forEachTexelTriangle(const LightmapAtlas& atlas, const Scene& scene, F&& f) {
   for (int y = 0; y < atlas.height; ++y)
     for (int x = 0; x < atlas.width; ++x) {
       const size_t t = size_t(y) * size_t(atlas.width) + size_t(x);
       if (atlas.patch[t] < 0) continue;
       const Patch& p = atlas.patches[size_t(atlas.patch[t])];
-      f(t, p, texelTriangle(p, x - p.x, y - p.y));
+      const int32_t first = texelTriangle(p, x - p.x, y - p.y);
+      f(t, first >= 0 ? holdingTriangle(scene, p, first, atlas.position[t]) : first);
     }
 }
 
@@ -206,10 +213,10 @@ size_t sampleOnSplitPieces(const LightmapAtlas& atlas, const Scene& scene, std::
   const SplitSurface surface{scene, source, pieces, other, uvs};
   unread.assign(atlas.texelCount(), 0);
   size_t unreadCount = 0;
-  forEachTexelTriangle(atlas, [&](size_t t, const Patch& p, int32_t triangle) {
+  forEachTexelTriangle(atlas, scene, [&](size_t t, int32_t triangle) {
     if (triangle >= 0 && source[size_t(triangle)] >= 0) return;
     const std::optional<glm::vec2> at =
-        triangle >= 0 ? surface.coordinates(p, triangle, atlas.position[t]) : std::nullopt;
+        triangle >= 0 ? surface.coordinates(triangle, atlas.position[t]) : std::nullopt;
     if (at) out[t] = sampleBilinear(width, height, lightmap, *at);
     unread[t] = !at;
     unreadCount += !at;
@@ -227,9 +234,7 @@ std::vector<glm::vec3> sampleAtTexels(const LightmapAtlas& atlas, const Scene& s
     throw std::invalid_argument("sampleAtTexels: the lightmap is not width × height texels");
   std::vector<glm::vec3> out(atlas.texelCount(), glm::vec3(0.0f));
   size_t unmatched = 0;
-  // A quad's chart is affine over both of its triangles, so the first one's coordinates extend to texel
-  // centres in the second.
-  forEachTexelTriangle(atlas, [&](size_t t, const Patch&, int32_t triangle) {
+  forEachTexelTriangle(atlas, scene, [&](size_t t, int32_t triangle) {
     const int32_t from = triangle >= 0 ? source[size_t(triangle)] : -1;
     if (from < 0 || size_t(from) >= uvs.size()) {
       ++unmatched;

@@ -44,6 +44,20 @@ std::array<glm::vec2, 3> floorUVs(const Triangle& t) {
   return uv;
 }
 
+// True when x's projection on the xz-plane lies inside triangle t's grown by `margin` metres along each
+// edge's normal.
+bool withinOf(const Triangle& t, glm::dvec3 x, double margin) {
+  const auto cross = [](glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; };
+  glm::dvec2 c[3];
+  for (size_t k = 0; k < 3; ++k) c[k] = glm::dvec2(t.p[k].x, t.p[k].z);
+  const double turn = cross(c[1] - c[0], c[2] - c[0]) > 0.0 ? 1.0 : -1.0;
+  for (size_t k = 0; k < 3; ++k) {
+    const glm::dvec2 e = c[(k + 1) % 3] - c[k];
+    if (turn * cross(e, glm::dvec2(x.x, x.z) - c[k]) / glm::length(e) < -margin) return false;
+  }
+  return true;
+}
+
 TEST(LightmapSampling, BilinearIsTheTexelAtItsCentreAndTheMeanBetween) {
   const std::vector<glm::vec3> map = {glm::vec3(1.0f), glm::vec3(3.0f), glm::vec3(5.0f), glm::vec3(7.0f)};
   EXPECT_FLOAT_EQ(sampleBilinear(2, 2, map, {0.25f, 0.25f}).x, 1.0f);
@@ -154,7 +168,8 @@ TEST(LightmapSampling, TexelsOfATriangleSplitOnAPortalPlaneAreReadOnItsPieces) {
     EXPECT_EQ(pieces[0].size() + pieces[1].size(), baked.triangles.size() - (bothCut ? 0 : 1));
     EXPECT_EQ(pieces[1].empty(), !bothCut);
 
-    std::vector<glm::vec3> read(atlas.texelCount(), glm::vec3(-1.0f));
+    // As compare-light reads: the matched triangles first, then the texels on cut ones.
+    std::vector<glm::vec3> read = sampleAtTexels(atlas, scene, source, uvs, kFloorMap, kFloorMap, map);
     std::vector<char> unread;
     EXPECT_EQ(sampleOnSplitPieces(atlas, scene, source, pieces, baked, uvs, kFloorMap, kFloorMap, map, read,
                                   unread),
@@ -178,6 +193,66 @@ TEST(LightmapSampling, TexelsOfATriangleSplitOnAPortalPlaneAreReadOnItsPieces) {
     EXPECT_LT(dropped, atlas.validTexels());
     EXPECT_EQ(size_t(std::count(unread.begin(), unread.end(), char(1))), dropped);
   }
+}
+
+// The other way round: the cut splits a quad's second triangle and leaves its first whole, so the bake
+// charts the first alone. texelTriangle names the first for the texels on the second too; read through
+// the first's coordinates carried past its edge they landed outside its chart, on another surface's
+// texels (plan 10's R2 in the automatic cells' bake: a column of its wall at 20× the room's light). They
+// are read on the second's pieces.
+TEST(LightmapSampling, TexelsOnTheCutSecondTriangleOfAQuadAreReadOnItsPiecesNotPastTheFirstsChart) {
+  Scene scene;
+  const uint32_t m = addMaterial(scene, glm::vec3(0.5f));
+  addRect(scene, glm::vec3(0.02f, 0.0f, 0.03f), glm::vec3(0.0f, 0.0f, 1.37f), glm::vec3(1.93f, 0.0f, 0.0f),
+          m);
+  Context ctx;
+  AtlasParams params;
+  params.density = 10.0f;
+  const LightmapAtlas atlas = buildAtlas(scene, findQuads(scene), params, ctx);
+  ASSERT_EQ(atlas.patches.size(), 1u);
+  ASSERT_EQ(atlas.patches[0].triangles.front(), 0);  // the quad's first triangle, the one left whole
+
+  Scene baked;
+  baked.materials = scene.materials;
+  baked.triangles.push_back(scene.triangles[0]);
+  addCutPieces(baked, scene.triangles[1], 0.71f);
+  // Two charts in a 200 × 400 map, each the floor's xz at 1 cm a texel: the whole triangle's in the top
+  // half, the light right within 3 cm of it and another surface's (100) beyond; the pieces' in the bottom.
+  std::vector<glm::vec3> map(size_t(kFloorMap) * 2 * kFloorMap);
+  for (int j = 0; j < 2 * kFloorMap; ++j)
+    for (int i = 0; i < kFloorMap; ++i) {
+      const glm::dvec3 x((i + 0.5) * 2.0 / kFloorMap, 0.0, ((j % kFloorMap) + 0.5) * 2.0 / kFloorMap);
+      const bool nearWhole = withinOf(scene.triangles[0], x, 0.03);
+      map[size_t(j) * kFloorMap + size_t(i)] =
+          glm::vec3(j >= kFloorMap || nearWhole ? floorLight(x) : 100.0f);
+    }
+  std::vector<std::array<glm::vec2, 3>> uvs;
+  for (size_t k = 0; k < baked.triangles.size(); ++k) {
+    std::array<glm::vec2, 3> uv = floorUVs(baked.triangles[k]);
+    for (glm::vec2& c : uv) c = glm::vec2(c.x, 0.5f * c.y + (k == 0 ? 0.0f : 0.5f));
+    uvs.push_back(uv);
+  }
+
+  const std::vector<int32_t> source = matchTriangles(scene, baked);
+  ASSERT_EQ(source[0], 0);
+  ASSERT_EQ(source[1], -1);
+  size_t missing = 0;
+  std::vector<glm::vec3> read =
+      sampleAtTexels(atlas, scene, source, uvs, kFloorMap, 2 * kFloorMap, map, &missing);
+  EXPECT_GT(missing, 0u);
+  std::vector<char> unread;
+  EXPECT_EQ(sampleOnSplitPieces(atlas, scene, source, matchSplitPieces(scene, baked, source), baked, uvs,
+                                kFloorMap, 2 * kFloorMap, map, read, unread),
+            0u);
+  size_t onSecond = 0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0) continue;
+    const glm::dvec3 x(atlas.position[t]);
+    const glm::dvec3 on(std::clamp(x.x, 0.02, 1.95), 0.0, std::clamp(x.z, 0.03, 1.40));
+    onSecond += !withinOf(scene.triangles[0], on, 0.0);
+    EXPECT_NEAR(read[t].x, floorLight(on), 1e-3f) << "texel " << t << " at " << x.x << ", " << x.z;
+  }
+  EXPECT_GT(onSecond * 3, atlas.validTexels());
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ struct BakeCommand {
 };
 
 void printWarnings(const Context& ctx) {
-  for (const std::string& w : ctx.warnings()) std::cerr << "warning: " << w << "\n";
+  for (const std::string& w : ctx.warnings()) printWarning(w);
 }
 
 int runPlan(const BakeCommand& c) {

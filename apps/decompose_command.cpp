@@ -33,14 +33,14 @@ struct DecomposeOptions {
 
 int runDecompose(DecomposeOptions o) {
   LoadedScene loaded = loadScene(o.scene, o.load);
-  for (const std::string& w : loaded.warnings) std::cerr << "cpgi: " << o.scene << ": " << w << "\n";
+  printLoaderWarnings(o.scene, loaded.warnings);
   if (o.fromVolumes && !loaded.cells.definedByVolumes())
     throw InputError(o.scene,
                      "--from-volumes needs rooms given as cellvolume: meshes alone (no cell: or "
                      "portal: nodes)");
   if (!loaded.cells.empty() && !o.fromVolumes)
-    std::cerr << "cpgi: " << o.scene << ": ignoring its " << loaded.cells.cells.size()
-              << " hand-made cells (compare them with `cpgi compare-cells`)\n";
+    printWarning(o.scene + ": ignoring its " + std::to_string(loaded.cells.cells.size()) +
+                 " hand-made cells (compare them with `cpgi compare-cells`)");
   o.params.sourceName = o.scene;
 
   OutputDir dir(o.out, {"cells.glb", "cells.json", "decomposition.png", "report.html"});
@@ -67,7 +67,7 @@ int runDecompose(DecomposeOptions o) {
   writeDecompositionReportPage(dir, "decomposition of " + o.scene, report, d.scene, d.graph);
   dir.commit();
 
-  for (const std::string& w : ctx.warnings()) std::cerr << "cpgi: warning: " << w << "\n";
+  for (const std::string& w : ctx.warnings()) printWarning(w);
   if (o.json) {
     std::cout << report.dump(2) << "\n";
     return 0;

@@ -152,8 +152,7 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
       if (options->json) {
         std::cout << info.dump(2) << "\n";
       } else {
-        for (const std::string& w : loaded.warnings)
-          std::cerr << "cpgi: warning: " << options->scene << ": " << w << "\n";
+        printLoaderWarnings(options->scene, loaded.warnings);
         printText(options->scene, info);
       }
       return 0;

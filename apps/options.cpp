@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -190,6 +191,14 @@ std::string userMessage(const InputError& e) {
     problem.replace(open, close - open + 1, flag);
   }
   return flagOf(e.where()) + ": " + problem;
+}
+
+void printWarning(const std::string& text) {
+  std::cerr << "warning: " << text << "\n";
+}
+
+void printLoaderWarnings(const std::string& scene, const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) printWarning(scene + ": " + w);
 }
 
 void addAtlasOptions(CLI::App& cmd, AtlasParams& atlas, OptionScope scope, bool* densityAuto,

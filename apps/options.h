@@ -35,6 +35,13 @@ std::string flagOf(const std::string& parameter);
 /// parameter quoted `like this` in its problem as a flag ("run with `repair`" → "run with --repair").
 std::string userMessage(const InputError& e);
 
+/// Prints a warning as bake, decompose, info and reference do: "warning: TEXT" on stderr. The run goes on;
+/// an error's line ("cpgi: FILE: PROBLEM") is the last the run prints.
+void printWarning(const std::string& text);
+
+/// The scene loader's warnings (LoadedScene::warnings), each naming its file: "warning: FILE: TEXT".
+void printLoaderWarnings(const std::string& scene, const std::vector<std::string>& warnings);
+
 /// The topics --help groups the options under, in the order it lists them (CLI11's own "Options", with
 /// --help and a command's few options of its own, comes first).
 inline constexpr std::string_view kHelpGroups[] = {"Input", "Atlas",  "Solver", "Cells",

@@ -86,7 +86,7 @@ TexelChoice chooseTexels(const ReferenceOptions& o, const LightmapAtlas& atlas, 
   if (o.texelsGiven && !c.sparse) {
     ctx.warn("--texels " + std::to_string(o.texels) + " is not below the atlas's " + std::to_string(valid) +
              " valid texels: all are traced");
-    if (!o.quiet) std::cerr << "cpgi: warning: " << ctx.warnings().back() << "\n";
+    if (!o.quiet) printWarning(ctx.warnings().back());
   }
   if (c.sparse) c.sample = sampleTexels(valid, size_t(o.texels), o.trace.seed);
   c.weightedArea = atlas.area;
@@ -207,7 +207,7 @@ int runReference(const ReferenceOptions& o) {
   LoadedScene loaded = loadScene(o.scene, o.load);
   applySky(o.sky, loaded.scene);
   requireLight(loaded, o.scene, o.allowDark);
-  for (const std::string& w : loaded.warnings) std::cerr << "cpgi: warning: " << o.scene << ": " << w << "\n";
+  printLoaderWarnings(o.scene, loaded.warnings);
   const Scene& scene = loaded.scene;
 
   OutputDir out(o.outDir, kLightmapResultNames);

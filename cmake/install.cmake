@@ -12,6 +12,11 @@ set_target_properties(cpgi_library PROPERTIES EXPORT_NAME cpgi)
 
 set(CPGI_EXPORTED_LIBRARIES cpgi_library cpgi_bake cpgi_cells cpgi_gpu cpgi_cpu cpgi_solve cpgi_lightmap
                             cpgi_decomposition cpgi_html_report cpgi_core)
+# A sanitized build's libraries (CPGI_SANITIZE, bench/sanitizer_suite.sh) call the sanitizers' runtime: a
+# program linking the installed package links that runtime too, or its link fails on __asan_* symbols.
+if(CPGI_SANITIZE)
+  target_link_options(cpgi_core INTERFACE $<INSTALL_INTERFACE:-fsanitize=address,undefined>)
+endif()
 install(TARGETS ${CPGI_EXPORTED_LIBRARIES} EXPORT cpgiTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/cpgi)

@@ -127,12 +127,35 @@ void checkImageViews(const std::string& path, const nlohmann::json& doc) {
   }
 }
 
+// A URI of a file beside the scene, as the scene spells it (not yet decoded).
+struct FileUri {
+  std::string uri;
+  bool isBuffer = false;  ///< a buffer's (required), else an image's (needed only if a material uses it)
+};
+
+// The URIs of the files the buffers and images name (data: URIs hold their bytes and name none).
+std::vector<FileUri> fileUris(const nlohmann::json& doc) {
+  std::vector<FileUri> uris;
+  if (!doc.is_object()) return uris;
+  for (const char* array : {"buffers", "images"}) {
+    if (!doc.contains(array) || !doc[array].is_array()) continue;
+    for (const nlohmann::json& element : doc[array])
+      if (element.is_object() && element.contains("uri") && element["uri"].is_string()) {
+        const std::string& uri = element["uri"].get_ref<const std::string&>();
+        if (uri.rfind("data:", 0) != 0) uris.push_back({uri, std::string(array) == "buffers"});
+      }
+  }
+  return uris;
+}
+
 // nlohmann's messages start with "[json.exception.parse_error.101] "; the user needs the rest.
-void checkJson(const std::string& path, const std::string& text, const char* what) {
+// Returns the URIs of the files the scene refers to.
+std::vector<FileUri> checkJson(const std::string& path, const std::string& text, const char* what) {
   checkJsonDepth(path, text, what);
   try {
     const nlohmann::json parsed = nlohmann::json::parse(text);
     checkImageViews(path, parsed);
+    return fileUris(parsed);
   } catch (const nlohmann::json::exception& e) {
     std::string msg = e.what();
     const size_t close = msg.find("] ");
@@ -164,22 +187,63 @@ std::string modeName(int mode) {
   }
 }
 
+// tinygltf (2.7, Debian 12's) decodes a URI as HTML form data before it asks for the file: '+' becomes a
+// space and a '%' not followed by two hex digits takes 0 for each, so `a+b.png` names `a b.png` and
+// `a%zzb.png` names `a\0b.png`. Its decoding, reproduced here, is how a name it asks for is traced back
+// to the URI it came from.
+std::string formDecoded(const std::string& uri) {
+  auto hex = [](unsigned char c) -> unsigned char {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return 0;
+  };
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '+') {
+      out += ' ';
+    } else if (uri[i] == '%' && uri.size() > i + 2) {
+      out += static_cast<char>((hex(uri[i + 1]) << 4) | hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
 // tinygltf's file callbacks, so that every buffer and image it loads goes through the scene's reference
-// policy (scene_files.h). tinygltf joins the scene's folder and the decoded URI, asks whether that
-// exists, then reads it; it also retries relative to the working directory, which is never allowed.
+// policy (scene_files.h). tinygltf joins the scene's folder and its decoding of the URI, asks whether
+// that exists, then reads it; it also retries relative to the working directory, which is never allowed.
+// The file read is the one the URI names as a glTF URI is decoded (RFC 3986: '+' is itself).
 class ReferencedFiles {
  public:
-  explicit ReferencedFiles(ReferencePolicy policy)
+  ReferencedFiles(ReferencePolicy policy, const std::vector<FileUri>& uris)
       : policy_(std::move(policy)), folder_(policy_.folder.string()) {
     prefix_ = folder_.back() == '/' ? folder_ : folder_ + "/";
+    for (const FileUri& u : uris) {
+      auto [named, added] =
+          names_.try_emplace(formDecoded(u.uri), Name{u.uri, percentDecode(u.uri), "", false});
+      if (!added && named->second.file != percentDecode(u.uri)) named->second.otherUri = u.uri;
+      named->second.isBuffer = named->second.isBuffer || u.isBuffer;
+    }
   }
   const std::string& folder() const { return folder_; }
+  /// Whether an image's file `uri` was looked for and is not there.
+  bool missing(const std::string& uri) const { return missing_.count(percentDecode(uri)) > 0; }
 
   static bool exists(const std::string& path, void* self) {
     auto& files = *static_cast<ReferencedFiles*>(self);
     if (path.compare(0, files.prefix_.size(), files.prefix_) != 0) return false;
-    std::optional<std::string> bytes = readReferencedFile(files.policy_, path.substr(files.prefix_.size()));
-    if (!bytes) return false;
+    const std::string file = files.fileNamed(path.substr(files.prefix_.size()));
+    std::optional<std::string> bytes = readReferencedFile(files.policy_, file);
+    if (!bytes) {
+      const auto named = files.names_.find(path.substr(files.prefix_.size()));
+      if (named != files.names_.end() && named->second.isBuffer)
+        throw InputError(files.policy_.sceneFile, "buffer file '" + printable(file) + "': no such file");
+      files.missing_.insert(file);
+      return false;
+    }
     files.read_[path] = std::move(*bytes);
     return true;
   }
@@ -201,8 +265,28 @@ class ReferencedFiles {
   }
 
  private:
+  struct Name {
+    std::string uri, file;  ///< as the scene spells it; percent-decoded (RFC 3986)
+    std::string otherUri;   ///< another URI tinygltf decodes alike that names another file
+    bool isBuffer = false;
+  };
+
+  // The file behind tinygltf's decoding `decoded` of a URI. Two URIs it decodes alike (`a+b.png` and
+  // `a%20b.png`) cannot be told apart from here: refused rather than one read for the other.
+  std::string fileNamed(const std::string& decoded) const {
+    const auto named = names_.find(decoded);
+    if (named == names_.end()) return decoded;
+    if (!named->second.otherUri.empty())
+      throw InputError(policy_.sceneFile, "the URIs '" + printable(named->second.uri) + "' and '" +
+                                              printable(named->second.otherUri) +
+                                              "' name two files, which cpgi's glTF parser cannot tell apart");
+    return named->second.file;
+  }
+
   ReferencePolicy policy_;
   std::string folder_, prefix_;
+  std::map<std::string, Name> names_;        // by tinygltf's decoding of the URI
+  std::set<std::string> missing_;            // files looked for and not found, percent-decoded
   std::map<std::string, std::string> read_;  // checked and read by exists(), handed over by read()
 };
 
@@ -221,8 +305,9 @@ bool keepImageEncoded(tinygltf::Image* image, const int, std::string* err, std::
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const tinygltf::Model& model, size_t maxTriangles)
-      : path_(path), m_(model), maxTriangles_(maxTriangles) {}
+  GltfReader(const std::string& path, const tinygltf::Model& model, const ReferencedFiles& files,
+             size_t maxTriangles)
+      : path_(path), m_(model), files_(files), maxTriangles_(maxTriangles) {}
 
   RawScene read() {
     for (const std::string& ext : m_.extensionsRequired)
@@ -559,9 +644,14 @@ class GltfReader {
     if (source < 0 || source >= static_cast<int>(m_.images.size()))
       fail(what + ": texture has no valid image");
     if (auto known = imageMeans_.find(source); known != imageMeans_.end()) return known->second;
-    const std::vector<unsigned char>& encoded = m_.images[source].image;
-    const glm::vec3 mean = meanTextureColour(encoded.data(), encoded.size(), path_,
-                                             what + ": texture image " + std::to_string(source));
+    const tinygltf::Image& image = m_.images[source];
+    const std::string which = what + ": texture image " + std::to_string(source);
+    // tinygltf keeps an image whose file is missing or empty, without bytes, as a glTF may name images
+    // no material uses; this one is used.
+    if (image.image.empty() && image.bufferView < 0 && files_.missing(image.uri))
+      fail(which + " '" + percentDecode(image.uri) + "': no such file");
+    if (image.image.empty()) fail(which + " is empty");
+    const glm::vec3 mean = meanTextureColour(image.image.data(), image.image.size(), path_, which);
     imageMeans_.emplace(source, mean);
     return mean;
   }
@@ -776,6 +866,7 @@ class GltfReader {
 
   const std::string& path_;
   const tinygltf::Model& m_;
+  const ReferencedFiles& files_;
   size_t maxTriangles_;
   size_t placed_ = 0;  // triangles placed so far, tagged meshes included
   RawScene raw_;
@@ -793,13 +884,12 @@ RawScene readGltf(const std::string& path, const LoadOptions& options) {
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   const bool glbName =
       std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
-  if (glbName || binary)
-    checkJson(path, checkGlbContainer(path, bytes), "chunk");
-  else
-    checkJson(path, bytes, "document");
+  const std::vector<FileUri> uris = glbName || binary
+                                        ? checkJson(path, checkGlbContainer(path, bytes), "chunk")
+                                        : checkJson(path, bytes, "document");
   if (bytes.size() > 0xFFFFFFFFu) throw InputError(path, "larger than 4 GiB");
 
-  ReferencedFiles files(referencePolicy(path, options));
+  ReferencedFiles files(referencePolicy(path, options), uris);
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&ReferencedFiles::exists, &ReferencedFiles::expand, &ReferencedFiles::read,
                          &ReferencedFiles::refuseWrite, &files});
@@ -821,7 +911,7 @@ RawScene readGltf(const std::string& path, const LoadOptions& options) {
   if (!ok)
     throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser")
                                                            : printable(firstLine(err), 200)));
-  return GltfReader(path, model, options.maxTriangles).read();
+  return GltfReader(path, model, files, options.maxTriangles).read();
 }
 
 }  // namespace cpgi::detail

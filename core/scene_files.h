@@ -32,7 +32,10 @@ std::optional<std::string> readReferencedFile(ReferencePolicy& policy, const std
 /// The scene file itself: a regular file of at most `maxFileBytes`; InputError otherwise.
 std::string readSceneFile(const std::string& path, uint64_t maxFileBytes);
 
-/// %XX sequences decoded, as in a URI path.
+/// A relative URI (a glTF buffer's or image's) as the file name it stands for, by RFC 3986: each %XX
+/// of two hex digits is the byte XX; every other character, '+' included, is itself (HTML form
+/// encoding's '+' for a space does not apply to a URI), and so is a '%' not followed by two hex digits,
+/// as Blender's importer reads it.
 std::string percentDecode(const std::string& uri);
 
 }  // namespace cpgi::detail

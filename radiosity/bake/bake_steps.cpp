@@ -41,7 +41,7 @@ BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRu
              " was read; the bake does only what a valid result needs, without views");
   applySky(s.sky, in.loaded.scene);
   requireLight(in.loaded, s.input.scene, s.input.allowDark);
-  for (const std::string& w : in.loaded.warnings) ctx.warn(w);
+  for (const std::string& w : in.loaded.warnings) ctx.warn(s.input.scene + ": " + w);
   if (s.cells.method == BakeMethod::Cells)
     in.graph = resolveCells(s.cells.source, s.input.scene, in.loaded, s.cells.decompose, s.input.load, ctx,
                             deadline);

@@ -2,6 +2,7 @@
 // and the problem; degenerate input is dropped with one warning (exit 0) unless --strict.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -108,7 +109,7 @@ TEST(BadInput, ZeroAreaTrianglesAreDroppedWithOneWarningAndRefusedWithStrict) {
       {{"name", "sliver"}, {"mesh", g.addMesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 1, 2, 2, 2})}});
   g.writeGlb(dir / "zero.glb");
   const std::string dropped =
-      "cpgi: warning: " + (dir / "zero.glb") +
+      "warning: " + (dir / "zero.glb") +
       ": dropped 1 zero-area triangle (first in node 'sliver'); --strict refuses them\n";
   for (const char* flags : {"", " --repair"}) {  // --repair: the default, kept for old scripts
     const CommandRun r = cpgi(dir, "info " + quote(dir / "zero.glb") + flags);
@@ -164,6 +165,30 @@ TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
   }
   const CommandRun info = cpgi(dir, commands[0]);
   EXPECT_EQ(info.status, 0) << info.err;
+}
+
+// A loader's warning reads as a warning in every command that loads a scene, in one form,
+// "warning: FILE: TEXT", never in the form of an error's line ("cpgi: FILE: PROBLEM"): the run goes on.
+TEST(BadInput, EveryLoadingCommandPrintsTheLoadersWarningAsAWarning) {
+  test::TempDir dir;
+  test::GlbBuilder sliver;
+  sliver.addNode(
+      {{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1, 1, 0, 0})}});
+  sliver.writeGlb(dir / "slivers.glb");
+  const std::string scene = quote(dir / "slivers.glb");
+  const std::string warning =
+      "warning: " + (dir / "slivers.glb") +
+      ": dropped 1 zero-area triangle (first in node 'sliver'); --strict refuses them";
+  for (const std::string& command :
+       {"info " + scene, "decompose " + scene + " -o " + quote(dir / "d"),
+        "bake " + scene + " -o " + quote(dir / "b") + " --allow-dark --texels-per-quad 2",
+        "reference " + scene + " -o " + quote(dir / "r") + " -q --allow-dark --texels-per-quad 2 --spp 2"}) {
+    const CommandRun r = cpgi(dir, command);
+    EXPECT_EQ(r.status, 0) << command << "\n" << r.err;
+    const std::vector<std::string> lines = r.errLines();
+    EXPECT_EQ(std::count(lines.begin(), lines.end(), warning), 1) << command << "\n" << r.err;
+    for (const std::string& line : lines) EXPECT_NE(line.rfind("cpgi: ", 0), 0u) << command << ": " << line;
+  }
 }
 
 TEST(BadInput, BadPunctualLightsNameTheFileAndTheLight) {

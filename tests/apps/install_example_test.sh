@@ -9,7 +9,12 @@ source=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-cmake --install "$build" --prefix "$work/prefix" >/dev/null
+# A step's output is kept out of the test's log unless the step fails: then its last lines say why.
+quietly() {
+  "$@" >"$work/step.log" 2>&1 || { echo "install: '$*' failed:" >&2; tail -25 "$work/step.log" >&2; exit 1; }
+}
+
+quietly cmake --install "$build" --prefix "$work/prefix"
 for f in bin/cpgi include/cpgi/radiosity/bake/bake.h include/cpgi/radiosity/bake/bake_settings.h \
          lib/cmake/cpgi/cpgiConfig.cmake lib/cmake/cpgi/cpgiTargets.cmake; do
   [ -e "$work/prefix/$f" ] || { echo "install: $f missing from the prefix" >&2; exit 1; }
@@ -20,14 +25,14 @@ if grep -l -- "$source\|$build" "$work/prefix/lib/cmake/cpgi/"*.cmake; then
   echo "install: the package above names the source or build tree" >&2
   exit 1
 fi
-cmake -S "$source/examples" -B "$work/example" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
-cmake --build "$work/example" >/dev/null
+quietly cmake -S "$source/examples" -B "$work/example" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix"
+quietly cmake --build "$work/example"
 if grep -q -- "-I$source\b\|-I$build\b" "$work/example/build.ninja"; then
   echo "example: compiled against the source or build tree, not the installed headers" >&2
   exit 1
 fi
 
-"$work/prefix/bin/cpgi" generate seed1 -o "$work/seed1.glb" >/dev/null
+quietly "$work/prefix/bin/cpgi" generate seed1 -o "$work/seed1.glb"
 "$work/example/bake_scene" "$work/seed1.glb" "$work/out" 4
 for f in lightmap.exr lightmap.png baked.glb report.json report.html; do
   [ -s "$work/out/$f" ] || { echo "example: $f not written" >&2; exit 1; }

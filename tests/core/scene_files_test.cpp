@@ -78,6 +78,83 @@ TEST(SceneFiles, PercentEncodedDotDotIsDecodedBeforeTheCheck) {
   expectOneLineNaming(loadFailure(f.scene("a.gltf")), f.scene("a.gltf"), "outside the scene's folder");
 }
 
+// A glTF URI is an RFC 3986 reference: '+' is itself, %2B a '+', %20 a space, and a '%' without two hex
+// digits after it is itself. (tinygltf alone decodes URIs as form data: `a+b.bin` would open `a b.bin`.)
+TEST(SceneFiles, BufferUrisNameTheFilesTheySpell) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"a+b.bin", "a+b.bin"}, {"a%2Bc.bin", "a+c.bin"}, {"a%20d.bin", "a d.bin"}, {"a%zze.bin", "a%zze.bin"}};
+  for (const auto& [uri, file] : cases) {
+    SceneFolder f;
+    test::GlbBuilder g;
+    write(f.scene("a.gltf"), gltfWithBuffer(uri, g));
+    write(f.scene(file), g.bin);
+    try {
+      EXPECT_EQ(loadScene(f.scene("a.gltf")).scene.triangles.size(), 1u) << uri;
+    } catch (const InputError& e) {
+      ADD_FAILURE() << uri << ": " << e.what();
+    }
+  }
+}
+
+// A scene whose material's base colour is the texture in the file `uri`.
+void writeTexturedScene(const std::string& path, const std::string& uri) {
+  test::GlbBuilder g;
+  g.doc["images"] = json::array({{{"uri", uri}}});
+  g.doc["textures"] = json::array({{{"source", 0}}});
+  const int m = g.addMaterial({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  g.addNode({{"mesh", g.addMesh(kTriangle, {}, m)}});
+  g.writeGlb(path);
+}
+
+void writeOneColourPng(const std::string& path, glm::vec3 colour) {
+  ImageRGB tex;
+  tex.width = tex.height = 1;
+  tex.pixels = {colour};
+  writePng(path, tex);
+}
+
+TEST(SceneFiles, ImageUriWithAPlusReadsItsOwnFileNotTheOneWithASpace) {
+  SceneFolder f;
+  writeOneColourPng(f.scene("wood+oak.png"), glm::vec3(0.0f, 1.0f, 0.0f));
+  writeOneColourPng(f.scene("wood oak.png"), glm::vec3(1.0f, 0.0f, 0.0f));
+  writeTexturedScene(f.scene("a.glb"), "wood+oak.png");
+  const LoadedScene s = loadScene(f.scene("a.glb"));
+  ASSERT_EQ(s.scene.materials.size(), 1u);
+  EXPECT_EQ(s.scene.materials[0].albedo, glm::vec3(0.0f, 1.0f, 0.0f));
+  std::filesystem::remove(f.scene("wood oak.png"));
+  EXPECT_EQ(loadScene(f.scene("a.glb")).scene.materials[0].albedo, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+TEST(SceneFiles, MissingImageOrBufferIsNamedAsNoSuchFile) {
+  SceneFolder f;
+  writeTexturedScene(f.scene("a.glb"), "textures/gone+1.png");
+  expectOneLineNaming(loadFailure(f.scene("a.glb")), f.scene("a.glb"),
+                      "material 'material0': texture image 0 'textures/gone+1.png': no such file");
+  fs::create_directory(f.scene("textures"));
+  write(f.scene("textures/gone+1.png"), "");
+  expectOneLineNaming(loadFailure(f.scene("a.glb")), f.scene("a.glb"), "texture image 0 is empty");
+  test::GlbBuilder g;
+  write(f.scene("b.gltf"), gltfWithBuffer("gone+1.bin", g));
+  expectOneLineNaming(loadFailure(f.scene("b.gltf")), f.scene("b.gltf"),
+                      "buffer file 'gone+1.bin': no such file");
+}
+
+// `x+y.bin` and `x%20y.bin` are two files; the parser asks for both by one name, so neither is read
+// for the other.
+TEST(SceneFiles, TwoUrisTheParserDecodesAlikeAreRefused) {
+  SceneFolder f;
+  test::GlbBuilder g;
+  g.addNode({{"mesh", g.addMesh(kTriangle)}});
+  json doc = g.doc;
+  doc["buffers"] = json::array({{{"byteLength", g.bin.size()}, {"uri", "x+y.bin"}},
+                                {{"byteLength", g.bin.size()}, {"uri", "x%20y.bin"}}});
+  write(f.scene("a.gltf"), doc.dump());
+  write(f.scene("x+y.bin"), g.bin);
+  write(f.scene("x y.bin"), g.bin);
+  expectOneLineNaming(loadFailure(f.scene("a.gltf")), f.scene("a.gltf"),
+                      "the URIs 'x+y.bin' and 'x%20y.bin' name two files");
+}
+
 TEST(SceneFiles, AbsoluteBufferPathIsRefused) {
   SceneFolder f;
   test::GlbBuilder g;

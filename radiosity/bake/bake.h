@@ -50,9 +50,8 @@ struct BakeRun {
   /// When the bake started (the load included): Limits::timeLimit counts from here.
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
   /// The GL context to draw with (a cell-job server keeps one between jobs); null: bake() opens one and
-  /// closes it at the end. A process that bakes more than once should keep one and pass it here: closing
-  /// a context ends the EGL display every context of the process shares (EglContext), so another one kept
-  /// from before no longer draws.
+  /// closes it at the end, after which a context the caller kept is current again (EglContext). A process
+  /// that bakes more than once should still keep one and pass it here: opening a context costs time.
   const EglContext* gl = nullptr;
   /// Called once the atlas is laid out and the memory checked, before the solve, with the bake's size in
   /// one line ("bake: N texels in P patches (...), about M MB; ...") for a caller to show (bakeNotes).

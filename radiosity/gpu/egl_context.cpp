@@ -3,8 +3,11 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include "core/error.h"
@@ -42,6 +45,44 @@ bool hasExtension(const char* list, const char* name) {
   for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n)
     if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
   return false;
+}
+
+// Every live EglContext's context, for what EGL leaves to its callers. A device's EGLDisplay is one object
+// for the whole process (eglGetPlatformDisplay gives the same handle each time) and eglTerminate ends it
+// for every context on it, so it is terminated only when the last context on it goes. A thread has one
+// current context, the latest made there, so one that goes while current hands the thread back to the
+// latest other one made there, and a context kept from bake to bake draws again once another is closed.
+struct LiveContext {
+  EGLDisplay display;
+  EGLContext context;
+  std::thread::id thread;
+};
+
+struct LiveContexts {
+  std::mutex mutex;
+  std::vector<LiveContext> list;  // in the order they were made
+  bool displayInUse(EGLDisplay d) const {
+    return std::any_of(list.begin(), list.end(), [&](const LiveContext& c) { return c.display == d; });
+  }
+};
+
+// Never destroyed: a context kept in a static object may go after the registry would have.
+LiveContexts& liveContexts() {
+  static LiveContexts* live = new LiveContexts;
+  return *live;
+}
+
+void addLive(EGLDisplay d, EGLContext c) {
+  LiveContexts& live = liveContexts();
+  std::lock_guard lock(live.mutex);
+  live.list.push_back({d, c, std::this_thread::get_id()});
+}
+
+// Terminates `d` unless a live context is on it (a failed candidate may be another context's display).
+void terminateUnused(EGLDisplay d) {
+  LiveContexts& live = liveContexts();
+  std::lock_guard lock(live.mutex);
+  if (!live.displayInUse(d)) eglTerminate(d);
 }
 
 // One candidate display to try, in order of preference.
@@ -150,9 +191,10 @@ EglContext::EglContext(Context& ctx) {
       config_ = config;
       platform_ = cand.platform;
       software_ = softwareDevice(ext, cand.display, cand.platform);
+      addLive(display_, context_);
       break;
     }
-    eglTerminate(cand.display);
+    terminateUnused(cand.display);
     failures += std::string(failures.empty() ? "" : "; ") + cand.platform + ": " + why;
   }
   if (!context_)
@@ -170,12 +212,12 @@ std::unique_ptr<EglContext> EglContext::sibling(const EglContext& first) {
   c->config_ = first.config_;
   c->platform_ = first.platform_;
   c->software_ = first.software_;
-  c->ownsDisplay_ = false;
   // The API binding is per thread.
   if (!eglBindAPI(EGL_OPENGL_API)) throw SystemError("EGL: no desktop OpenGL API on a worker thread");
   std::string why;
   c->context_ = makeContext(first.display_, first.config_, why);
   if (!c->context_) throw SystemError("EGL: a further context for a worker thread: " + why);
+  addLive(c->display_, c->context_);
   c->describe();
   return c;
 }
@@ -204,9 +246,20 @@ EglContext::~EglContext() { release(); }
 
 void EglContext::release() {
   if (!display_) return;
-  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  LiveContexts& live = liveContexts();
+  std::lock_guard lock(live.mutex);
+  std::erase_if(live.list, [&](const LiveContext& c) { return c.context == context_; });
+  if (context_ && eglGetCurrentContext() == context_) {
+    const auto here = std::find_if(live.list.rbegin(), live.list.rend(), [](const LiveContext& c) {
+      return c.thread == std::this_thread::get_id();
+    });
+    if (here != live.list.rend())
+      eglMakeCurrent(here->display, EGL_NO_SURFACE, EGL_NO_SURFACE, here->context);
+    else
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
   if (context_) eglDestroyContext(display_, context_);
-  if (ownsDisplay_) eglTerminate(display_);
+  if (!live.displayInUse(display_)) eglTerminate(display_);
   display_ = context_ = nullptr;
 }
 

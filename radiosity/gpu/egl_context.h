@@ -1,7 +1,9 @@
 // A headless OpenGL 4.5 core context through EGL, with no window and no X server (design.md §2):
 // a hardware EGL device first (EGL_EXT_platform_device; NVIDIA and Mesa GPUs), then Mesa's surfaceless
-// platform, then a software device (llvmpipe). The context is current on the creating thread for the
-// object's lifetime.
+// platform, then a software device (llvmpipe). The context is current on the creating thread from its
+// making until another EglContext is made there, and again once that one is closed: a process may keep
+// one from bake to bake and let a bake open and close its own in between. The display, which every
+// context on the device shares, is terminated when the last of them is closed.
 #pragma once
 
 #include <cstdint>
@@ -46,7 +48,6 @@ class EglContext {
   void* display_ = nullptr;  // EGLDisplay
   void* context_ = nullptr;  // EGLContext
   void* config_ = nullptr;   // EGLConfig, null with EGL_KHR_no_config_context
-  bool ownsDisplay_ = true;  // false for a sibling: the first context terminates the display
   bool software_ = false;
   std::string renderer_, version_, platform_;
   int maxTextureSize_ = 0;

@@ -14,7 +14,7 @@ namespace cpgi::test {
 
 /// One EGL context for the whole test binary, as a cell-job server keeps one from job to job (never
 /// destroyed: the driver may be gone by the time static objects are). Every in-process bake of the binary
-/// takes it: a context of its own, closed at its end, would end the display this one draws on.
+/// takes it; the bakes that open their own (run.gl null) leave it current again when they close theirs.
 inline const EglContext& sharedGl() {
   static Context ctx;
   static const EglContext* gl = new EglContext(ctx);

@@ -157,6 +157,19 @@ TEST_F(BakeSeed1, RefusesWhatTheSceneCannotTake) {
   EXPECT_THROW(planBakeJobs(dir.path() / "plan", plan, ctx), InputError);
 }
 
+// A process that bakes many times (a cell-job server, this test binary) keeps one context; a bake that
+// opens and closes one of its own in between leaves the kept one drawing, and its bake unchanged.
+TEST_F(BakeSeed1, ABakeOnItsOwnContextLeavesTheKeptOneDrawing) {
+  const BakeResult before = test::bakeHere(seed().scene, seed().cells, quick());
+  Context ctx;
+  const BakeResult own = bake(seed().scene, seed().cells, quick(), ctx);  // run.gl null: a context of its own
+  EXPECT_EQ(own.report["backend"], "gl");
+  const BakeResult after = test::bakeHere(seed().scene, seed().cells, quick());
+  EXPECT_EQ(after.shots, before.shots);
+  ASSERT_EQ(after.radiosity.size(), before.radiosity.size());
+  EXPECT_TRUE(after.radiosity == before.radiosity);
+}
+
 TEST(BakeBackend, IndirectByRaysFollowsTheSettingAndAutoTheRenderer) {
   Context ctx;
   const EglContext gl(ctx);

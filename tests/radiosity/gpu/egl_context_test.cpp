@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <vector>
 
 #include "radiosity/gpu/gl.h"
@@ -71,6 +72,56 @@ TEST(EglContext, EmbeddedShadersCompile) {
   EXPECT_NO_THROW(buildProgram({"rescale_shot.comp"}));
   EXPECT_NE(shaderSource("receive.comp").find("visibleFromShooter"), std::string::npos);
   EXPECT_THROW(shaderSource("missing.comp"), std::invalid_argument);
+}
+
+// Squares 64 floats on the current context by a compute shader and reads them back: whether it draws.
+bool computes() {
+  const char* source = R"(#version 450 core
+    layout(local_size_x = 64) in;
+    layout(std430, binding = 0) buffer Data { float v[]; };
+    void main() { v[gl_GlobalInvocationID.x] *= v[gl_GlobalInvocationID.x]; })";
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) return false;
+  gl::Program program(glCreateProgram());
+  glAttachShader(program.get(), shader);
+  glLinkProgram(program.get());
+  glDeleteShader(shader);
+  std::vector<float> data(64, 3.0f), out(64, 0.0f);
+  gl::Buffer buffer = gl::makeBuffer(data.size() * 4, data.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.get());
+  glUseProgram(program.get());
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffer.get(), 0, GLsizeiptr(out.size() * 4), out.data());
+  return glGetError() == GL_NO_ERROR && out == std::vector<float>(64, 9.0f);
+}
+
+// A context kept from bake to bake (a cell-job server's, the bake tests' shared one) still draws after
+// another one was made and closed on its thread. Every EglContext of a device shares one EGLDisplay: the
+// other one, made current over the kept one, used to leave the thread with no context when it closed and
+// terminate the display under the kept one (a shader compile then failed with an empty log).
+TEST(EglContext, AKeptContextDrawsAfterAnotherIsMadeAndClosed) {
+  Context ctx;
+  EglContext kept(ctx);
+  ASSERT_TRUE(computes());
+  {
+    EglContext other(ctx);
+    EXPECT_TRUE(computes());
+  }
+  EXPECT_TRUE(computes());
+  EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}));
+  // Closed out of order: the latest one made stays current, the kept one draws again once it goes.
+  auto second = std::make_unique<EglContext>(ctx);
+  auto third = std::make_unique<EglContext>(ctx);
+  second.reset();
+  EXPECT_TRUE(computes());
+  third.reset();
+  EXPECT_TRUE(computes());
+  EXPECT_NO_THROW(buildProgram({"item.vert", "item.frag"}));
 }
 
 }  // namespace

@@ -93,11 +93,6 @@ std::vector<FittedPortal> mergePair(std::vector<FittedPortal> list, float h, con
   return list;
 }
 
-std::vector<PortalQuad> quadsOf(const std::vector<FittedPortal>& portals) {
-  std::vector<PortalQuad> q;
-  for (const FittedPortal& p : portals) q.push_back(p.quad);
-  return q;
-}
 
 }  // namespace
 

@@ -275,6 +275,12 @@ void forEachUncoveredFace(const GridFrame& f, const std::vector<int32_t>& cell, 
 
 }  // namespace
 
+std::vector<PortalQuad> quadsOf(const std::vector<FittedPortal>& portals) {
+  std::vector<PortalQuad> q;
+  for (const FittedPortal& p : portals) q.push_back(p.quad);
+  return q;
+}
+
 size_t countLeakingFaces(const GridFrame& f, const std::vector<int32_t>& cell,
                          const std::vector<PortalQuad>& portals) {
   PortalsByPair byPair;
@@ -289,7 +295,9 @@ std::map<std::pair<int, int>, size_t> leakingFacesByPair(const GridFrame& f, con
   PortalsByPair byPair;
   for (const PortalQuad& p : portals) addPortal(byPair, p);
   std::map<std::pair<int, int>, size_t> out;
-  forEachUncoveredFace(f, cell, byPair, [&](size_t, size_t, int a, int b, int) { ++out[{std::min(a, b), std::max(a, b)}]; });
+  forEachUncoveredFace(f, cell, byPair, [&](size_t, size_t, int a, int b, int) {
+    ++out[{std::min(a, b), std::max(a, b)}];
+  });
   return out;
 }
 
@@ -365,9 +373,9 @@ std::vector<FittedPortal> sectionPortals(const GridFrame& f, const std::vector<i
   for (const Face* face : faces)
     voxels.push_back(face->lower), voxels.push_back(size_t(ptrdiff_t(face->lower) + strides[face->axis]));
   const int search = int(std::ceil(params.searchRange / f.voxel));
-  const std::vector<Section> sections = closedSections(f, cell, a, b, voxels, search,
-                                                       std::max<size_t>(400, 4 * faces.size()),
-                                                       size_t(std::max(1, params.sectionCandidates)));
+  const std::vector<Section> sections =
+      closedSections(f, cell, a, b, voxels, search, std::max<size_t>(400, 4 * faces.size()),
+                     size_t(std::max(1, params.sectionCandidates)));
   std::vector<FittedPortal> out;
   for (const Section& s : sections) {
     // a is never the outside (numbered last), whose deepest voxel may lie at any corner of the grid.
@@ -491,10 +499,12 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
     for (const std::vector<const Face*>& opening : groupOpenings(f, faces)) {
       FittedPortal fp = fitOpening(f, opening, params.marginVoxels);
       std::vector<FittedPortal> cuts;
-      if (round == 0 && !alongOneAxis(opening)) cuts = sectionPortals(f, out.cell, distance, opening, deepest, params);
+      if (round == 0 && !alongOneAxis(opening))
+        cuts = sectionPortals(f, out.cell, distance, opening, deepest, params);
       // Several pieces of one stair's interface find the same section: one portal for them.
       if (!cuts.empty() && std::any_of(fresh.begin(), fresh.end(), [&](const FittedPortal& q) {
-            return q.section && q.quad.cellA == cuts.front().quad.cellA && q.quad.cellB == cuts.front().quad.cellB &&
+            return q.section && q.quad.cellA == cuts.front().quad.cellA &&
+                   q.quad.cellB == cuts.front().quad.cellB &&
                    glm::length(q.quad.centre() - cuts.front().quad.centre()) < 2.0f * float(f.voxel);
           }))
         continue;
@@ -515,9 +525,7 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
     }
     out.portals.insert(out.portals.end(), fresh.begin(), fresh.end());
   }
-  std::vector<PortalQuad> quads;
-  for (const FittedPortal& fp : out.portals) quads.push_back(fp.quad);
-  out.leakingFaces = countLeakingFaces(f, out.cell, quads);
+  out.leakingFaces = countLeakingFaces(f, out.cell, quadsOf(out.portals));
   ctx.progress("portals", 1.0);
   return out;
 }

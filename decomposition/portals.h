@@ -55,6 +55,9 @@ struct PortalSet {
 /// by value: its labels become PortalSet::cell (move it in to spare a copy of the grid).
 PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const PortalParams& params, Context& ctx);
 
+/// The portals' quads, for the leak counts below.
+std::vector<PortalQuad> quadsOf(const std::vector<FittedPortal>& portals);
+
 /// Counts voxel faces between different cells that cross no portal joining those cells (see PortalSet).
 size_t countLeakingFaces(const GridFrame& frame, const std::vector<int32_t>& cell,
                          const std::vector<PortalQuad>& portals);

@@ -120,6 +120,10 @@ WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxTh
   auto timer = ctx.time("wall_portals");
   WallSnap out;
   const double h = f.voxel;
+  // The moves relabel voxels by side; where a wall's faces do not close the space round a portal (a game
+  // level's walls meeting at angles, OpenArena's oa_dm1), that can open voxel faces between cells that no
+  // portal covers. The portals as fitted are kept then.
+  const PortalSet fitted = set;
   for (FittedPortal& fp : set.portals) {
     PortalQuad& q = fp.quad;
     const glm::vec3 a = glm::abs(q.normal);
@@ -146,10 +150,10 @@ WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxTh
     ++out.moved;
     out.largestShift = std::max(out.largestShift, shift);
   }
-  if (out.moved > 0) {
-    std::vector<PortalQuad> quads;
-    for (const FittedPortal& fp : set.portals) quads.push_back(fp.quad);
-    set.leakingFaces = countLeakingFaces(f, set.cell, quads);
+  if (out.moved > 0) set.leakingFaces = countLeakingFaces(f, set.cell, quadsOf(set.portals));
+  if (set.leakingFaces > fitted.leakingFaces) {
+    set = fitted;
+    out = WallSnap{};
   }
   ctx.progress("wall_portals", 1.0);
   return out;

@@ -227,33 +227,37 @@ vec3 fromRegionWhole(vec3 x, vec3 n, int r) {
 
 vec3 gReceiver = vec3(0.0);  // the receiver texel's position (m), set by main()
 
-// Whether gReceiver lies on patch `seen`'s chart, in its plane and within a quarter texel of its edges:
-// its parallelogram origin + [0, w] texelU + [0, h] texelV.
+// Whether gReceiver lies on patch `seen`'s chart (within a quarter texel of its edge): its parallelogram
+// origin + [0, w] texelU + [0, h] texelV, in the patch's plane.
 bool seenPatchCovers(int seen) {
   PatchInfo q = patches[seen];
   vec3 u = q.texelU.xyz, v = q.texelV.xyz, d = gReceiver - q.origin.xyz;
   float uu = dot(u, u), vv = dot(v, v), uv = dot(u, v), du = dot(d, u), dv = dot(d, v);
   float det = uu * vv - uv * uv;
   if (det <= 0.0) return false;
-  // In the patch's plane, not merely over its rectangle: a receiver a few centimetres off the far side of a
-  // partition, seen past the partition's edge, is not on it.
-  vec3 n = cross(u, v);
-  if (abs(dot(d, n)) > uPlaneSlack * length(n)) return false;
   vec2 ij = vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
   return all(greaterThanEqual(ij, vec2(-0.25))) && all(lessThanEqual(ij, vec2(q.rect.zw) + 0.25));
 }
 
-// Whether patch `seen`'s plane separates the receiver from the eye (`local`: the receiver from the eye, in
-// shooter coordinates): then the pixel's ray, which crossed the receiver's plane beside the receiver and
-// went on to that patch, met a wall the receiver lies behind (a side wall's far end against a partition),
-// not a gap in the rasterized receiver.
-bool seenPlaneSeparates(int seen, vec3 local) {
+// Whether patch `seen` lies across the segment from the eye to the receiver (`local`: the receiver from the
+// eye, in shooter coordinates): then what the pixel shows is a wall the receiver lies behind, however near
+// the receiver's plane it is seen (a partition's edge where the far room's ceiling runs on), not the
+// coincident face of a zero-thickness partition or a door's jamb seen edge-on beside the wall it meets.
+// Its plane alone is not enough: the jamb's plane lies between an eye in the room and the wall beside the
+// door, and hides none of that wall.
+bool seenPatchBlocks(int seen, vec3 local) {
   PatchInfo q = patches[seen];
-  vec3 n = cross(q.texelU.xyz, q.texelV.xyz);
+  vec3 u = q.texelU.xyz, v = q.texelV.xyz, n = cross(u, v);
   float slack = uPlaneSlack * length(n);
   vec3 eye = gReceiver - transpose(uToShooter) * local;
   float receiverSide = dot(gReceiver - q.origin.xyz, n), eyeSide = dot(eye - q.origin.xyz, n);
-  return (receiverSide > slack && eyeSide < -slack) || (receiverSide < -slack && eyeSide > slack);
+  if (!((receiverSide > slack && eyeSide < -slack) || (receiverSide < -slack && eyeSide > slack))) return false;
+  vec3 d = mix(eye, gReceiver, eyeSide / (eyeSide - receiverSide)) - q.origin.xyz;
+  float uu = dot(u, u), vv = dot(v, v), uv = dot(u, v), du = dot(d, u), dv = dot(d, v);
+  float det = uu * vv - uv * uv;
+  if (det <= 0.0) return false;
+  vec2 ij = vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
+  return all(greaterThanEqual(ij, vec2(0.0))) && all(lessThanEqual(ij, vec2(q.rect.zw)));
 }
 
 // Whether region r's eye sees the receiver point x (normal n) of patch `id`.

@@ -33,8 +33,8 @@ bool findIn(ivec2 p, ivec2 lo, ivec2 hi, int id, int layer) {
 // leaked light under the wall into the next room wherever a pixel's footprint reached past the wall
 // (openings: C +5 % at 20 texels/m, +1.5 % with a buffer twice as fine; issue 11).
 bool seenPatchCovers(int seen);
-// Defined by the including shader: whether patch `seen`'s plane lies between the eye and the receiver.
-bool seenPlaneSeparates(int seen, vec3 local);
+// Defined by the including shader: whether patch `seen` lies across the segment from the eye to the receiver.
+bool seenPatchBlocks(int seen, vec3 local);
 #endif
 
 // `local`: the receiver relative to the eye; `normal`: its normal; `dir`: pixel p's centre direction (any
@@ -53,12 +53,15 @@ bool visibleAt(ivec2 p, ivec2 lo, ivec2 hi, vec3 dir, vec3 local, vec3 normal, i
   gOccluderGap = distance(seen, local);
   float off = dot(normal, seen - local);
 #ifdef SEEN_PATCH_COVERS
-  // Behind the plane: the ray crossed it unhindered next to the receiver, unless what the pixel shows is
-  // a wall between the eye and the receiver: the ray then crossed the receiver's plane beyond a wall the
-  // receiver's surface ends against (a side wall's T-junction with a partition). In the plane: only a face
-  // covering the receiver itself.
-  if (off < -uPlaneSlack && (seenId < 0 || !seenPlaneSeparates(seenId, local))) return true;
-  if (off >= -uPlaneSlack && off <= uPlaneSlack && (seenId < 0 || seenPatchCovers(seenId))) return true;
+  // Behind the plane: the ray crossed it unhindered next to the receiver, unless what the pixel shows lies
+  // across the segment from the eye to the receiver: the ray then crossed the receiver's plane beyond a wall
+  // the receiver's surface ends against (a side wall's T-junction with a partition). In the plane: only a
+  // face covering the receiver itself, and not lying across that segment (a partition seen a hair under
+  // the ceiling the room behind it shares).
+  if (off < -uPlaneSlack && (seenId < 0 || !seenPatchBlocks(seenId, local))) return true;
+  if (off >= -uPlaneSlack && off <= uPlaneSlack &&
+      (seenId < 0 || (seenPatchCovers(seenId) && !seenPatchBlocks(seenId, local))))
+    return true;
 #else
   if (off <= uPlaneSlack) return true;
 #endif

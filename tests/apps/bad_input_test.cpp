@@ -141,15 +141,20 @@ TEST(BadInput, DuplicateTrianglesAreDroppedWithOneWarningAndRefusedWithStrict) {
             json::array({"dropped 1 duplicate triangle (first in node 'twice'); --strict refuses them"}));
 }
 
-// Every command that loads a scene loads it the same way: the slivers of a real export do not stop
-// decompose or bake, and --strict stops each of them.
-TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
-  test::TempDir dir;
+// slivers.glb in `dir`: one zero-area triangle in node 'sliver' beside a real one; its path, quoted.
+std::string writeSliverScene(const test::TempDir& dir) {
   test::GlbBuilder sliver;
   sliver.addNode(
       {{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1, 1, 0, 0})}});
   sliver.writeGlb(dir / "slivers.glb");
-  const std::string scene = quote(dir / "slivers.glb");
+  return quote(dir / "slivers.glb");
+}
+
+// Every command that loads a scene loads it the same way: the slivers of a real export do not stop
+// decompose or bake, and --strict stops each of them.
+TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
+  test::TempDir dir;
+  const std::string scene = writeSliverScene(dir);
   const std::vector<std::string> commands = {
       "info " + scene, "decompose " + scene + " -o " + quote(dir / "d"),
       "bake " + scene + " -o " + quote(dir / "b") + " -q --allow-dark --texels-per-quad 2",
@@ -171,11 +176,7 @@ TEST(BadInput, EveryLoadingCommandDropsDegenerateTrianglesAndTakesStrict) {
 // "warning: FILE: TEXT", never in the form of an error's line ("cpgi: FILE: PROBLEM"): the run goes on.
 TEST(BadInput, EveryLoadingCommandPrintsTheLoadersWarningAsAWarning) {
   test::TempDir dir;
-  test::GlbBuilder sliver;
-  sliver.addNode(
-      {{"name", "sliver"}, {"mesh", sliver.addMesh({0, 0, 0, 1, 1, 1, 2, 2, 2, 0, 0, 0, 0, 0, 1, 1, 0, 0})}});
-  sliver.writeGlb(dir / "slivers.glb");
-  const std::string scene = quote(dir / "slivers.glb");
+  const std::string scene = writeSliverScene(dir);
   const std::string warning =
       "warning: " + (dir / "slivers.glb") +
       ": dropped 1 zero-area triangle (first in node 'sliver'); --strict refuses them";

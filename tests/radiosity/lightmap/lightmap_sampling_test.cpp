@@ -58,6 +58,21 @@ bool withinOf(const Triangle& t, glm::dvec3 x, double margin) {
   return true;
 }
 
+// Every texel of `atlas` read as the floor's light at its point (clamped onto the floor's quad), and many
+// of them on the quad's second triangle: the texels a read through the first triangle's chart got wrong.
+void expectFloorLightAtTexels(const LightmapAtlas& atlas, const Scene& scene,
+                              const std::vector<glm::vec3>& read) {
+  size_t onSecond = 0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t) {
+    if (atlas.patch[t] < 0) continue;
+    const glm::dvec3 x(atlas.position[t]);
+    const glm::dvec3 on(std::clamp(x.x, 0.02, 1.95), 0.0, std::clamp(x.z, 0.03, 1.40));
+    onSecond += !withinOf(scene.triangles[0], on, 0.0);
+    EXPECT_NEAR(read[t].x, floorLight(on), 1e-3f) << "texel " << t << " at " << x.x << ", " << x.z;
+  }
+  EXPECT_GT(onSecond * 3, atlas.validTexels());
+}
+
 TEST(LightmapSampling, BilinearIsTheTexelAtItsCentreAndTheMeanBetween) {
   const std::vector<glm::vec3> map = {glm::vec3(1.0f), glm::vec3(3.0f), glm::vec3(5.0f), glm::vec3(7.0f)};
   EXPECT_FLOAT_EQ(sampleBilinear(2, 2, map, {0.25f, 0.25f}).x, 1.0f);
@@ -174,15 +189,7 @@ TEST(LightmapSampling, TexelsOfATriangleSplitOnAPortalPlaneAreReadOnItsPieces) {
     EXPECT_EQ(sampleOnSplitPieces(atlas, scene, source, pieces, baked, uvs, kFloorMap, kFloorMap, map, read,
                                   unread),
               0u);
-    size_t onSecond = 0;
-    for (size_t t = 0; t < atlas.texelCount(); ++t) {
-      if (atlas.patch[t] < 0) continue;
-      const glm::dvec3 x(atlas.position[t]);
-      const glm::dvec3 on(std::clamp(x.x, 0.02, 1.95), 0.0, std::clamp(x.z, 0.03, 1.40));
-      onSecond += (on.z - 0.03) * 1.93 > (on.x - 0.02) * 1.37;
-      EXPECT_NEAR(read[t].x, floorLight(on), 1e-3f) << "texel " << t << " at " << x.x << ", " << x.z;
-    }
-    EXPECT_GT(onSecond * 3, atlas.validTexels());  // the case: many texels of the first lie on the second
+    expectFloorLightAtTexels(atlas, scene, read);  // the case: many texels of the first lie on the second
 
     // The pieces of the cut triangle dropped: its texels on it are unread, those on the second read.
     std::vector<std::vector<int32_t>> lost = pieces;
@@ -244,15 +251,7 @@ TEST(LightmapSampling, TexelsOnTheCutSecondTriangleOfAQuadAreReadOnItsPiecesNotP
   EXPECT_EQ(sampleOnSplitPieces(atlas, scene, source, matchSplitPieces(scene, baked, source), baked, uvs,
                                 kFloorMap, 2 * kFloorMap, map, read, unread),
             0u);
-  size_t onSecond = 0;
-  for (size_t t = 0; t < atlas.texelCount(); ++t) {
-    if (atlas.patch[t] < 0) continue;
-    const glm::dvec3 x(atlas.position[t]);
-    const glm::dvec3 on(std::clamp(x.x, 0.02, 1.95), 0.0, std::clamp(x.z, 0.03, 1.40));
-    onSecond += !withinOf(scene.triangles[0], on, 0.0);
-    EXPECT_NEAR(read[t].x, floorLight(on), 1e-3f) << "texel " << t << " at " << x.x << ", " << x.z;
-  }
-  EXPECT_GT(onSecond * 3, atlas.validTexels());
+  expectFloorLightAtTexels(atlas, scene, read);
 }
 
 }  // namespace

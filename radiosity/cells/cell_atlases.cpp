@@ -134,8 +134,14 @@ std::vector<CellState> buildCellAtlases(const Scene& scene, const CellGraph& gra
     s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene),
                          cellAtlasParams(s.boundary ? params.boundaryAtlas : params.atlas, s.cs), cellCtx[c]);
     s.patchOfTriangle = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
-    for (size_t k = 0; k < s.cs.portals.size(); ++k)
-      s.portalPatch.push_back(s.patchOfTriangle[s.cs.ownTriangles + 2 * k]);
+    for (size_t k = 0; k < s.cs.portals.size(); ++k) {
+      std::array<int, 2> patches{s.patchOfTriangle[s.cs.ownTriangles + 2 * k],
+                                 s.patchOfTriangle[s.cs.ownTriangles + 2 * k + 1]};
+      // A degenerate triangle (three corners in a row) has no patch: the other is the whole portal.
+      if (patches[0] < 0) patches[0] = patches[1];
+      if (patches[1] < 0) patches[1] = patches[0];
+      s.portalPatches.push_back(patches);
+    }
     s.pending.assign(s.atlas.texelCount(), glm::vec3(0.0f));
     for (size_t i = 0; i < s.atlas.texelCount(); ++i)
       if (s.atlas.patch[i] >= 0) s.pending[i] = s.atlas.emission[i];
@@ -180,8 +186,9 @@ void mapCellTexels(std::vector<CellState>& cells, const std::vector<int>& cellOf
 
 std::vector<char> portalPatchFlags(const CellState& s) {
   std::vector<char> portal(s.atlas.patches.size(), 0);
-  for (int p : s.portalPatch)
-    if (p >= 0) portal[size_t(p)] = 1;
+  for (const std::array<int, 2>& patches : s.portalPatches)
+    for (int p : patches)
+      if (p >= 0) portal[size_t(p)] = 1;
   return portal;
 }
 
@@ -201,23 +208,29 @@ std::vector<PortalLink> linkPortals(const CellGraph& graph, const std::vector<Ce
   std::vector<int32_t> source;
   for (size_t p = 0; p < graph.portals.size(); ++p) {
     const PortalQuad& q = graph.portals[p];
-    auto patchIn = [&](int c) {
+    auto patchesIn = [&](int c) {
       const CellState& s = cells[c];
       for (size_t k = 0; k < s.cs.portals.size(); ++k)
-        if (s.cs.portals[k] == int(p)) return s.portalPatch[k];
-      return -1;
+        if (s.cs.portals[k] == int(p)) return s.portalPatches[k];
+      return std::array<int, 2>{-1, -1};
     };
     for (auto [from, to] : {std::pair{q.cellA, q.cellB}, std::pair{q.cellB, q.cellA}}) {
-      PortalLink link{int(p), from, to, patchIn(from), patchIn(to), {}};
-      if (link.fromPatch < 0 || link.toPatch < 0)
+      PortalLink link{int(p), from, to, patchesIn(from), patchesIn(to), {}};
+      if (link.fromPatches[0] < 0 || link.toPatches[0] < 0)
         throw InputError(q.name, "portal has no patch (degenerate quad?)");
-      mapPatchTexels(cells[from].atlas, link.fromPatch, cells[to].atlas, link.toPatch, source);
-      const Patch& P = cells[to].atlas.patches[link.toPatch];
-      for (int j = 0; j < P.h; ++j)
-        for (int i = 0; i < P.w; ++i) {
-          const int32_t t = (P.y + j) * cells[to].atlas.width + P.x + i;
-          if (source[t] >= 0) link.texels.push_back({t, source[t]});
-        }
+      // Each receiving patch from the sending cell's patch of the same triangle (both cells build the
+      // portal's two triangles from the same corners, in the same order).
+      for (int m = 0; m < 2; ++m) {
+        if (m == 1 && link.toPatches[1] == link.toPatches[0]) break;
+        mapPatchTexels(cells[from].atlas, link.fromPatches[m], cells[to].atlas, link.toPatches[m], source);
+        const Patch& P = cells[to].atlas.patches[link.toPatches[m]];
+        for (int j = 0; j < P.h; ++j)
+          for (int i = 0; i < P.w; ++i) {
+            const int32_t t = (P.y + j) * cells[to].atlas.width + P.x + i;
+            if (cells[to].atlas.patch[t] == link.toPatches[m] && source[t] >= 0)
+              link.texels.push_back({t, source[t]});
+          }
+      }
       links.push_back(std::move(link));
     }
   }

@@ -3,6 +3,7 @@
 // Stages of solveCells (cell_solver.cpp), in this order.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <utility>
@@ -44,8 +45,10 @@ struct CellState {
   LightmapAtlas atlas;
   std::vector<int> patchOfTriangle;                   ///< per cell-scene triangle: its patch, or -1
   std::vector<std::pair<int32_t, int32_t>> toGlobal;  ///< (global texel, cell texel)
-  std::vector<int> portalPatch;                       ///< per CellScene::portals entry
-  std::vector<glm::vec3> pending;                     ///< exitance to shoot at the next solve (W/m²)
+  /// Per CellScene::portals entry, the patch of each of its two triangles (the same one twice when the
+  /// atlas charts the portal as one quad; two loose triangles when its corners are not a rectangle).
+  std::vector<std::array<int, 2>> portalPatches;
+  std::vector<glm::vec3> pending;  ///< exitance to shoot at the next solve (W/m²)
   std::vector<glm::vec3> carried;  ///< the part of `pending` already counted in the radiosity
   /// Directional portals: per texel, the arrival moments of `pending` (radiosity/solve/emission_lobes.h),
   /// fitted into its emission lobes at the next solve; empty with diffuse portals.
@@ -63,7 +66,9 @@ std::vector<char> portalPatchFlags(const CellState& s);
 struct PortalLink {
   int portal = -1;
   int from = -1, to = -1;  ///< cells
-  int fromPatch = -1, toPatch = -1;
+  /// The portal's patches in each cell, per triangle (CellState::portalPatches): a portal whose corners are
+  /// not a rectangle is two loose triangles, and each is half of what it collects and sends.
+  std::array<int, 2> fromPatches{-1, -1}, toPatches{-1, -1};
   std::vector<std::pair<int32_t, int32_t>> texels;
 };
 

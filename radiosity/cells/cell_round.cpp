@@ -20,12 +20,15 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
   const LightmapAtlas& to = cells[link.to].atlas;
   glm::dvec3 sent(0.0), arrived(0.0);
   for (const auto& [tt, ft] : link.texels) arrived += texelPower(solved.incident[ft], to.area[tt]);
-  const Patch& F = s.atlas.patches[link.fromPatch];
-  for (int j = 0; j < F.h; ++j)
-    for (int i = 0; i < F.w; ++i) {
-      const size_t t = size_t(F.y + j) * s.atlas.width + F.x + i;
-      if (s.atlas.patch[t] == link.fromPatch) sent += texelPower(solved.incident[t], s.atlas.area[t]);
-    }
+  for (int m = 0; m < 2; ++m) {
+    if (m == 1 && link.fromPatches[1] == link.fromPatches[0]) break;
+    const Patch& F = s.atlas.patches[link.fromPatches[m]];
+    for (int j = 0; j < F.h; ++j)
+      for (int i = 0; i < F.w; ++i) {
+        const size_t t = size_t(F.y + j) * s.atlas.width + F.x + i;
+        if (s.atlas.patch[t] == link.fromPatches[m]) sent += texelPower(solved.incident[t], s.atlas.area[t]);
+      }
+  }
   PortalSend send;
   send.portal = link.portal, send.from = link.from, send.to = link.to;
   for (int k = 0; k < 3; ++k) send.scale[k] = arrived[k] > 0.0 ? float(sent[k] / arrived[k]) : 0.0f;

@@ -24,7 +24,6 @@ std::optional<WallPlane> wallMidPlane(const Scene& scene, const PortalQuad& q, i
   glm::dvec3 lo(q.corners[0]), hi(q.corners[0]);
   for (const glm::vec3& c : q.corners) lo = glm::min(lo, glm::dvec3(c)), hi = glm::max(hi, glm::dvec3(c));
   const double plane = 0.5 * (lo[axis] + hi[axis]), tilt = 0.5 * (hi[axis] - lo[axis]);
-  if (tilt > slack) return std::nullopt;
   // The offsets from the portal's plane of the parallel faces around it, by the way they look along axis.
   std::set<double> back, front;
   for (const Triangle& t : scene.triangles) {
@@ -113,6 +112,35 @@ void clipToOpening(const Scene& scene, int axis, double wall, PortalQuad& q) {
   q.normal = normal;
 }
 
+// A quad fitted askew and pressed onto its wall's plane is no longer a rectangle (plan 20's R1:R4, fitted
+// 2.3° off its wall: corners 0.1° off square once flat), and a cell's atlas charts a quad that is not a
+// rectangle as two loose triangles. The rectangle in the plane round it instead: along its first edge as
+// pressed, across that in the plane, spanning every corner; the corners keep their winding.
+void squareInPlane(PortalQuad& q, int axis) {
+  glm::dvec3 u = glm::dvec3(q.corners[1]) - glm::dvec3(q.corners[0]),
+             v = glm::dvec3(q.corners[3]) - glm::dvec3(q.corners[0]);
+  u[axis] = 0.0, v[axis] = 0.0;
+  if (!(glm::length(u) > 0.0 && glm::length(v) > 0.0)) return;
+  u = glm::normalize(u);
+  if (std::abs(glm::dot(u, glm::normalize(v))) < 1e-6) return;  // square already
+  glm::dvec3 n(0.0);
+  n[axis] = 1.0;
+  const glm::dvec3 across = glm::cross(n, u);
+  v = glm::dot(across, v) > 0.0 ? across : -across;
+  glm::dvec3 centre(0.0);
+  for (const glm::vec3& c : q.corners) centre += 0.25 * glm::dvec3(c);
+  double hu = 0.0, hv = 0.0;
+  for (const glm::vec3& c : q.corners) {
+    hu = std::max(hu, std::abs(glm::dot(glm::dvec3(c) - centre, u)));
+    hv = std::max(hv, std::abs(glm::dot(glm::dvec3(c) - centre, v)));
+  }
+  const double su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  for (int k = 0; k < 4; ++k) {
+    q.corners[size_t(k)] = glm::vec3(centre + su[k] * hu * u + sv[k] * hv * v);
+    q.corners[size_t(k)][axis] = float(centre[axis]);
+  }
+}
+
 }  // namespace
 
 WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxThickness, PortalSet& set,
@@ -128,15 +156,14 @@ WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxTh
     PortalQuad& q = fp.quad;
     const glm::vec3 a = glm::abs(q.normal);
     const int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-    // A portal fitted askew to the voxels is left alone: flattened onto its wall (plan 20's R1:R4, 2.3° off,
-    // a door 2.5 cm from a corner) it passed half the light the reference has through the door.
-    if (a[axis] < 0.999f) continue;
+    if (a[axis] < 0.99f) continue;  // an opening in a wall along the grid, fitted up to 8° off it
     const std::optional<WallPlane> wall = wallMidPlane(scene, q, axis, maxThickness, 1.5 * h, h);
     if (!wall) continue;
     double shift = 0.0;
     for (const glm::vec3& c : q.corners) shift = std::max(shift, std::abs(double(c[axis]) - wall->at));
     if (shift < 1e-5 && !wall->zeroThickness) continue;
     for (glm::vec3& c : q.corners) c[axis] = float(wall->at);
+    squareInPlane(q, axis);
     const glm::vec3 normal = q.normal;
     computePortalFrame(q);
     q.normal = glm::vec3(0.0f);

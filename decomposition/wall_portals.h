@@ -18,11 +18,12 @@ struct WallSnap {
   double largestShift = 0;  ///< metres
 };
 
-/// Moves each portal of `set` along a grid axis (within 2.6°, and 1.5 voxels across its quad) onto the
-/// mid-plane of the wall around it: the nearest pair of faces of the scene parallel to that axis, overlapping
-/// the quad grown by a voxel, one facing back (the wall's face on the portal's back side) and one facing
-/// forward at or beyond it, at most `maxThickness` apart, with the quad reaching between them give or
-/// take 1.5 voxels; the two may be one plane (a zero-thickness wall). The quad is flattened onto that plane.
+/// Moves each portal of `set` along a grid axis (within 8°: a door by a corner is fitted a few degrees askew)
+/// onto the mid-plane of the wall around it: the nearest pair of faces of the scene parallel to that axis,
+/// overlapping the quad grown by a voxel, one facing back (the wall's face on the portal's back side) and one
+/// facing forward at or beyond it, at most `maxThickness` apart, with the quad reaching between them give or
+/// take 1.5 voxels and its tilt; the two may be one plane (a zero-thickness wall). The quad is flattened onto
+/// that plane as the rectangle round its pressed corners.
 /// The voxels of the portal's cells between the old plane and the new, within its quad, are relabelled by the
 /// side of the new plane; set.leakingFaces is recounted. Run after mergePortalPieces, before assignTriangles.
 WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& frame, double maxThickness, PortalSet& set,

@@ -1,7 +1,10 @@
 // Portals moved onto their wall's mid-plane (decomposition/wall_portals.h), on hand-made labels: the moves
 // are kept when they leave every face between the cells covered, and undone when they would open faces
 // that no portal covers (a game level's walls meeting at angles round a doorway did that).
+#include <cmath>
+
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "decomposition/portals.h"
 #include "decomposition/wall_portals.h"
@@ -72,6 +75,58 @@ TEST(WallPortals, MovesThatWouldOpenUncoveredFacesAreUndone) {
   EXPECT_FLOAT_EQ(portalX(set, 0), 5.5f);
   EXPECT_FLOAT_EQ(portalX(set, 1), 5.5f);
   EXPECT_EQ(set.cell, cellsAsFitted);
+  EXPECT_EQ(set.leakingFaces, 0u);
+}
+
+// A door (y 0.5–4.5, z 2.5–8.5) in a zero-thickness wall at x = 5.5, the wall's voxels either side solid
+// beside it, and the portal fitted to the voxels askew: the door's rectangle turned 3° about y and 3° about z
+// (as plan 20's R1:R4 was fitted 2.3° off its wall by a corner, up to 15 cm off the wall's plane). Left
+// askew, the portal cut R4's strip of wall by the door into R1's cell; pressed onto the wall as it was, its
+// corners were no longer a rectangle, which a cell's atlas charts as two loose triangles.
+TEST(WallPortals, AnAskewPortalIsFlattenedOntoItsZeroThicknessWallAsARectangle) {
+  GridFrame f;
+  f.dims = {12, 6, 12};
+  f.voxel = 1.0;
+  PortalSet set;
+  set.cell.assign(f.count(), -1);
+  for (size_t i = 0; i < f.count(); ++i) {
+    const glm::ivec3 c = f.coord(i);
+    if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1))) continue;
+    if ((c.x == 5 || c.x == 6) && (c.z <= 2 || c.z >= 9)) continue;  // the wall's voxels beside the door
+    set.cell[i] = c.x <= 5 ? 0 : 1;
+  }
+  const glm::mat4 turn = glm::rotate(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)),
+                                     glm::radians(3.0f), glm::vec3(0, 0, 1));
+  const glm::vec3 centre(5.5f, 2.5f, 5.5f);
+  FittedPortal p;
+  int k = 0;
+  for (const glm::vec2 yz : {glm::vec2(-2, -3), glm::vec2(2, -3), glm::vec2(2, 3), glm::vec2(-2, 3)})
+    p.quad.corners[size_t(k++)] = centre + glm::vec3(turn * glm::vec4(0.0f, yz.x, yz.y, 0.0f));
+  computePortalFrame(p.quad);
+  ASSERT_LT(std::abs(p.quad.normal.x), 0.999f);
+  p.quad.cellA = 0, p.quad.cellB = 1;
+  p.depth = 0.5f;
+  set.portals.push_back(p);
+  set.leakingFaces = countLeakingFaces(f, set.cell, quadsOf(set.portals));
+  testing::SceneBuilder b;  // the wall's two faces each side of the door, back to back
+  for (const glm::vec2 z : {glm::vec2(0.5f, 2.5f), glm::vec2(8.5f, 10.5f)}) {
+    b.quad({5.5f, 0.0f, z.x}, {5.5f, 5.0f, z.x}, {5.5f, 5.0f, z.y}, {5.5f, 0.0f, z.y});
+    b.quad({5.5f, 0.0f, z.x}, {5.5f, 0.0f, z.y}, {5.5f, 5.0f, z.y}, {5.5f, 5.0f, z.x});
+  }
+  Context ctx;
+  const WallSnap snap = snapPortalsToWalls(b.scene(), f, 0.5, set, ctx);
+  EXPECT_EQ(snap.moved, 1);
+  const PortalQuad& q = set.portals[0].quad;
+  for (const glm::vec3& c : q.corners) EXPECT_NEAR(c.x, 5.5f, 1e-5f);
+  EXPECT_NEAR(std::abs(q.normal.x), 1.0f, 1e-6f);
+  const glm::vec3 u = q.corners[1] - q.corners[0], v = q.corners[3] - q.corners[0];
+  EXPECT_LT(std::abs(glm::dot(glm::normalize(u), glm::normalize(v))), 1e-5f) << "not a rectangle";
+  EXPECT_NEAR(glm::length(q.corners[2] - q.corners[1] - v), 0.0f, 1e-5f);
+  // Over the door, off the wall's faces beside it.
+  float zLo = 1e9f, zHi = -1e9f;
+  for (const glm::vec3& c : q.corners) zLo = std::min(zLo, c.z), zHi = std::max(zHi, c.z);
+  EXPECT_NEAR(zLo, 2.5f, 0.05f);
+  EXPECT_NEAR(zHi, 8.5f, 0.05f);
   EXPECT_EQ(set.leakingFaces, 0u);
 }
 

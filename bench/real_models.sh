@@ -19,7 +19,9 @@
 # REFS=DIR (a reference per model, DIR/MODEL, from `cpgi reference MODEL -o DIR/MODEL --sky uniform --sun
 # 0.3,1,0.2,500 --texels 40000 --spp 1024`) the worst room's ratio of means and each room's. The maps are
 # converted with --open-sky there (OPEN_SKY=0 keeps the sky faces, which seal a level from the daylight).
-#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [REFS=DIR]]
+# KEEP=DIR keeps what the runs made, to look at afterwards: the converted maps (DIR/MAP.obj, the baked
+# ones DIR/MAP-open.obj), each decomposition (DIR/decompose-MODEL-VOXEL) and each bake (DIR/bake-MODEL-LIMIT).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [REFS=DIR]] [KEEP=DIR]
 #   bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
 # converter is compiled into the work folder with the system's c++ when no build of it is given
@@ -33,6 +35,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pk3=${OPENARENA_PK3:-/usr/share/games/openarena/baseoa/pak1-maps.pk3}
+keep=${KEEP:-}
+[ -n "$keep" ] && mkdir -p "$keep"
 maps=(${MAPS-oa_dm1 oa_dm4 oa_dm7 aggressor})
 map_sizes=(${MAP_VOXELS-})
 houses=(${HOUSES-ifc-house ifc-house-open-riser ifc-house-l-stair ifc-house-spiral})
@@ -77,6 +81,7 @@ cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["coun
         "%.2f" % (user + sys_), "%.2f" % wall, "%.0f" % (rss / 1024)]
 print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
+  if [ -n "$keep" ]; then rm -rf "$keep/decompose-$name-$voxel" && cp -r "$out" "$keep/decompose-$name-$voxel"; fi
 }
 
 # One bake row: MODEL's daylit bake at the defaults (with EXTRA options), its figures from report.json.
@@ -111,6 +116,7 @@ cols = [name, limit, "%.0f" % (user + sys_), "%.0f" % (rss / 1024), r["texels"],
         ", ".join("%s %.3f ± %.1f %%" % (x["name"], x["ratio_of_means"], 100 * x["reference_noise"]) for x in rooms) or "-"]
 print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
+  if [ -n "$keep" ]; then rm -rf "$keep/bake-$name-$limit" && cp -r "$out" "$keep/bake-$name-$limit"; fi
 }
 
 echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
@@ -132,6 +138,7 @@ if [ ${#maps[@]} -gt 0 ]; then
   for m in "${maps[@]}"; do
     unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"
     "$conv" "$work/$m.bsp" "$work/$m.obj" 2>/dev/null
+    [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m.obj"
     for v in 0 "${map_sizes[@]}"; do row "$m" "$work/$m.obj" "$v" 0; done
   done
 fi
@@ -146,5 +153,6 @@ for m in "${maps[@]}"; do
   sky=(--open-sky)
   [ "${OPEN_SKY:-1}" = 0 ] && sky=()
   "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" 2>/dev/null
+  [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m-open.obj"
   for l in - ${LIMIT:-}; do bake_row "$m" "$work/$m.obj" "$l"; done
 done

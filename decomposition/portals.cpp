@@ -483,11 +483,14 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
   const GridFrame& f = cells.frame;
   PortalSet out;
   out.cell = std::move(cells.cell);
-  // Each cell's deepest voxel, to tell the sides of a section portal apart.
-  std::vector<size_t> deepest(size_t(cells.cellCount()), 0);
+  // Each cell's deepest voxel, to tell the sides of a section portal apart (SIZE_MAX: none). Not the
+  // grid's first voxel to start with: that corner of open ground may lie farther from the walls than a
+  // room's middle, and a seed outside its cell parts nothing (or empties the cell).
+  std::vector<size_t> deepest(size_t(cells.cellCount()), SIZE_MAX);
   for (size_t i = 0; i < out.cell.size(); ++i) {
     const int c = out.cell[i];
-    if (c >= 0 && distance.d2[i] > distance.d2[deepest[size_t(c)]]) deepest[size_t(c)] = i;
+    if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
+      deepest[size_t(c)] = i;
   }
   // Round 0 fits every opening; later rounds fit what the earlier portals left uncovered (an interface
   // that bends out of its portal's slab, the fringe of a wide arch), up to params.extraRounds times.

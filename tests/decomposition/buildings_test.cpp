@@ -198,6 +198,25 @@ TEST(Buildings, StraightStairJoinsTheFloorsByOnePlanarPortal) {
   expectStairPortal(b, s);
 }
 
+TEST(Buildings, StairPortalWhenTheGridsCornerLiesFartherFromTheWallsThanAnyRoomsMiddle) {
+  // A floor tile 30 m off the house (as a game level's far pieces are) widens the bounds, and the grid,
+  // cut 2 m round the house, starts at a corner of open ground farther from any wall than the rooms'
+  // middles. The stair's section portal parts its two cells from each one's deepest voxel; with the
+  // grid's first voxel taken as every cell's deepest until a deeper one was found, both seeds were that
+  // corner, an outside voxel: the flood reached nothing and the hall's voxels all went to the landing,
+  // leaving an empty cell with no portal (oa_shouse at the automatic voxel).
+  Building b = makeTwoStoreyHouse(false);
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  const glm::vec3 p0(-30, 0, -30), p1(-29, 0, -30), p2(-29, 0, -29);
+  b.seed.scene.triangles.push_back({{p0, p2, p1}, {n, n, n}, 0, 0});
+  const Scored s = decomposeBuilding(b, 0.1);
+  const glm::vec3 corner = s.d.frame.centre(size_t(0));
+  ASSERT_LT(corner.x, -1.0f) << "the grid does not start out on the open ground";
+  for (const CellStats& c : s.d.cellStats) EXPECT_GT(c.voxels, 0u);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  expectStairPortal(b, s);
+}
+
 TEST(Buildings, SpiralStairJoinsTheFloorsByOnePlanarPortal) {
   const Building b = makeTwoStoreyHouse(true);
   const Scored s = decomposeBuilding(b, 0.1);

@@ -19,9 +19,12 @@
 # REFS=DIR (a reference per model, DIR/MODEL, from `cpgi reference MODEL -o DIR/MODEL --sky uniform --sun
 # 0.3,1,0.2,500 --texels 40000 --spp 1024`) the worst room's ratio of means and each room's. The maps are
 # converted with --open-sky there (OPEN_SKY=0 keeps the sky faces, which seal a level from the daylight).
-# KEEP=DIR keeps what the runs made, to look at afterwards: the converted maps (DIR/MAP.obj, the baked
-# ones DIR/MAP-open.obj), each decomposition (DIR/decompose-MODEL-VOXEL) and each bake (DIR/bake-MODEL-LIMIT).
-#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [REFS=DIR]] [KEEP=DIR]
+# UNLIMITED=0 (with LIMIT) runs only the bakes under --time-limit, for a loaded machine where a bake to
+# the end takes too long. KEEP=DIR keeps what the runs made, to look at afterwards: the converted maps
+# (DIR/MAP.obj, the baked ones DIR/MAP-open.obj), each decomposition (DIR/decompose-MODEL-VOXEL) and each
+# bake (DIR/bake-MODEL-LIMIT).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [UNLIMITED=0] [REFS=DIR]]
+#   [KEEP=DIR]
 #   bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
 # converter is compiled into the work folder with the system's c++ when no build of it is given
@@ -143,16 +146,21 @@ if [ ${#maps[@]} -gt 0 ]; then
   done
 fi
 [ "${BAKE:-0}" = 1 ] || exit 0
+limits=(- ${LIMIT:-})
+if [ "${UNLIMITED:-1}" = 0 ]; then
+  [ -n "${LIMIT:-}" ] || { echo "real_models.sh: UNLIMITED=0 needs LIMIT" >&2; exit 1; }
+  limits=("$LIMIT")
+fi
 echo
 echo "| model | --time-limit s | CPU s | peak MB | texels | solve texels | shots | unshot | partial | emitted / absorbed / escaped W | ended past the limit (wall) | worst room | rooms: ratio of means ± reference noise |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
-  for l in - ${LIMIT:-}; do bake_row "$h" "$work/$h.glb" "$l"; done
+  for l in "${limits[@]}"; do bake_row "$h" "$work/$h.glb" "$l"; done
 done
 for m in "${maps[@]}"; do
   sky=(--open-sky)
   [ "${OPEN_SKY:-1}" = 0 ] && sky=()
   "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" 2>/dev/null
   [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m-open.obj"
-  for l in - ${LIMIT:-}; do bake_row "$m" "$work/$m.obj" "$l"; done
+  for l in "${limits[@]}"; do bake_row "$m" "$work/$m.obj" "$l"; done
 done

@@ -628,8 +628,8 @@ Building makeIfcGalleryHouse() {
 
 const std::vector<std::string>& buildingNames() {
   static const std::vector<std::string> names = {
-      "house-open",           "house-stair",         "house-spiral",    "open-plan",       "porch",
-      "house-stair-closed",   "house-spiral-closed", "house-gallery",   "house-furnished", "ifc-house",
+      "house-open",           "house-stair",         "house-spiral",     "open-plan",        "porch",
+      "house-stair-closed",   "house-spiral-closed", "house-gallery",    "house-furnished",  "ifc-house",
       "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral", "ifc-house-gallery"};
   return names;
 }

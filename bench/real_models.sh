@@ -9,8 +9,8 @@
 # (space behind a sealed level's one-sided walls), whether every room is reachable from every other,
 # and for the houses the portals between the storeys and the adjusted Rand index against the house's
 # own rooms (`cpgi compare-cells SCENE auto SCENE`); whether the whole graph is connected (every cell,
-# the outside too, reachable from every other), the cells folded as space behind the geometry, the
-# portal pieces merged into one, and the pairs of cells with more than one portal (pair: count).
+# the outside too, reachable from every other), the cells folded as space behind the geometry, the closed
+# cells dropped because no triangle faces them (the inside of a brush), the portal pieces merged into one, and the pairs of cells with more than one portal (pair: count).
 # MAP_VOXELS runs the maps at those voxel sizes too (the automatic one always).
 # BAKE=1 also bakes every model with daylight at the defaults (`cpgi bake MODEL -o DIR --sky uniform --sun
 # 0.3,1,0.2,500`, and again with `--time-limit LIMIT` when LIMIT is given), one process each under
@@ -19,7 +19,12 @@
 # REFS=DIR (a reference per model, DIR/MODEL, from `cpgi reference MODEL -o DIR/MODEL --sky uniform --sun
 # 0.3,1,0.2,500 --texels 40000 --spp 1024`) the worst room's ratio of means and each room's. The maps are
 # converted with --open-sky there (OPEN_SKY=0 keeps the sky faces, which seal a level from the daylight).
-#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [REFS=DIR]]
+# UNLIMITED=0 (with LIMIT) runs only the bakes under --time-limit, for a loaded machine where a bake to
+# the end takes too long. KEEP=DIR keeps what the runs made, to look at afterwards: the converted maps
+# (DIR/MAP.obj, the baked ones DIR/MAP-open.obj), each decomposition (DIR/decompose-MODEL-VOXEL) and each
+# bake (DIR/bake-MODEL-LIMIT).
+#   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [UNLIMITED=0] [REFS=DIR]]
+#   [KEEP=DIR]
 #   bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
 # converter is compiled into the work folder with the system's c++ when no build of it is given
@@ -33,6 +38,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pk3=${OPENARENA_PK3:-/usr/share/games/openarena/baseoa/pak1-maps.pk3}
+keep=${KEEP:-}
+[ -n "$keep" ] && mkdir -p "$keep"
 maps=(${MAPS-oa_dm1 oa_dm4 oa_dm7 aggressor})
 map_sizes=(${MAP_VOXELS-})
 houses=(${HOUSES-ifc-house ifc-house-open-riser ifc-house-l-stair ifc-house-spiral})
@@ -69,7 +76,8 @@ rooms = [r["best_iou"] for r in c.get("matched_iou_per_cell", []) if r["cell"] !
 cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["counts"]["portals"],
         ch["leaking_faces"], ch.get("closed_rooms", "-"), ch.get("outside_pockets", "-"),
         "yes" if ch["connected"] else "NO", "yes" if ch.get("graph_connected") else "NO",
-        ch.get("behind_geometry_folded", "-"), ch.get("portal_pieces_merged", "-"), ch.get("leak_merges", "-"),
+        ch.get("behind_geometry_folded", "-"), ch.get("unfaced_closed_dropped", "-"), ch.get("portal_pieces_merged", "-"),
+        ch.get("leak_merges", "-"),
         (", ".join("%.2f m2 %s" % (p["area_m2"], kind(p["normal"])) for p in stair) or "none") if house == "1" else "-",
         ("%.3f" % ari if ari is not None else "none") if house == "1" else "-",
         "%.2f" % min(rooms) if house == "1" and rooms else "-",
@@ -77,6 +85,7 @@ cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["coun
         "%.2f" % (user + sys_), "%.2f" % wall, "%.0f" % (rss / 1024)]
 print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
+  if [ -n "$keep" ]; then rm -rf "$keep/decompose-$name-$voxel" && cp -r "$out" "$keep/decompose-$name-$voxel"; fi
 }
 
 # One bake row: MODEL's daylit bake at the defaults (with EXTRA options), its figures from report.json.
@@ -111,10 +120,11 @@ cols = [name, limit, "%.0f" % (user + sys_), "%.0f" % (rss / 1024), r["texels"],
         ", ".join("%s %.3f ± %.1f %%" % (x["name"], x["ratio_of_means"], 100 * x["reference_noise"]) for x in rooms) or "-"]
 print("| " + " | ".join(str(x) for x in cols) + " |")
 PY
+  if [ -n "$keep" ]; then rm -rf "$keep/bake-$name-$limit" && cp -r "$out" "$keep/bake-$name-$limit"; fi
 }
 
-echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | unfaced dropped | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
   "$cpgi" generate "$h" --volumes-only -o "$work/$h.glb" >/dev/null
   for v in 0 "${sizes[@]}"; do row "$h" "$work/$h.glb" "$v" 1; done
@@ -132,19 +142,26 @@ if [ ${#maps[@]} -gt 0 ]; then
   for m in "${maps[@]}"; do
     unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"
     "$conv" "$work/$m.bsp" "$work/$m.obj" 2>/dev/null
+    [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m.obj"
     for v in 0 "${map_sizes[@]}"; do row "$m" "$work/$m.obj" "$v" 0; done
   done
 fi
 [ "${BAKE:-0}" = 1 ] || exit 0
+limits=(- ${LIMIT:-})
+if [ "${UNLIMITED:-1}" = 0 ]; then
+  [ -n "${LIMIT:-}" ] || { echo "real_models.sh: UNLIMITED=0 needs LIMIT" >&2; exit 1; }
+  limits=("$LIMIT")
+fi
 echo
 echo "| model | --time-limit s | CPU s | peak MB | texels | solve texels | shots | unshot | partial | emitted / absorbed / escaped W | ended past the limit (wall) | worst room | rooms: ratio of means ± reference noise |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
-  for l in - ${LIMIT:-}; do bake_row "$h" "$work/$h.glb" "$l"; done
+  for l in "${limits[@]}"; do bake_row "$h" "$work/$h.glb" "$l"; done
 done
 for m in "${maps[@]}"; do
   sky=(--open-sky)
   [ "${OPEN_SKY:-1}" = 0 ] && sky=()
   "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" 2>/dev/null
-  for l in - ${LIMIT:-}; do bake_row "$m" "$work/$m.obj" "$l"; done
+  [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m-open.obj"
+  for l in "${limits[@]}"; do bake_row "$m" "$work/$m.obj" "$l"; done
 done

@@ -198,6 +198,34 @@ void markParts(Decomposition& out, int cellCount) {
   }
 }
 
+// Drops the closed cells (no portal, not the outside) that no triangle was given to, unless that would
+// leave no room: their voxels become unlabelled and the cells after each move down. Run once the
+// triangles are assigned and the portals made; returns how many were dropped.
+int dropUnfacedClosedCells(Decomposition& out) {
+  const int n = int(out.graph.cells.size());
+  std::vector<int> newIndex(size_t(n), -1);
+  int kept = 0, rooms = 0;
+  for (int c = 0; c < n; ++c) {
+    const bool unfaced = c != out.outsideCell && out.graph.cells[size_t(c)].triangles.empty() &&
+                         out.graph.portalsOf(c).empty();
+    if (!unfaced) newIndex[size_t(c)] = kept++, rooms += c != out.outsideCell;
+  }
+  if (kept == n || rooms == 0) return 0;
+  for (int c = n; c-- > 0;)
+    if (newIndex[size_t(c)] < 0) {
+      out.graph.cells.erase(out.graph.cells.begin() + c);
+      out.cellStats.erase(out.cellStats.begin() + c);
+    }
+  for (int32_t& c : out.voxelCell)
+    if (c >= 0) c = newIndex[size_t(c)];
+  for (PortalQuad& q : out.graph.portals)
+    q.cellA = newIndex[size_t(q.cellA)], q.cellB = newIndex[size_t(q.cellB)];
+  for (FittedPortal& fp : out.portals)
+    fp.quad.cellA = newIndex[size_t(fp.quad.cellA)], fp.quad.cellB = newIndex[size_t(fp.quad.cellB)];
+  if (out.outsideCell >= 0) out.outsideCell = newIndex[size_t(out.outsideCell)];
+  return n - kept;
+}
+
 }  // namespace
 
 Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
@@ -250,7 +278,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   out.thinWallArea = assigned.thinWallArea;
 
   // The graph, and per-cell statistics from the final labels.
-  const int cellCount = int(peaks.size());
+  int cellCount = int(peaks.size());
   out.graph.cells.resize(size_t(cellCount));
   out.cellStats.resize(size_t(cellCount));
   for (int c = 0; c < cellCount; ++c) {
@@ -263,6 +291,8 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   }
   measureCells(out, cellCount, h);
   out.graph.portals = std::move(quads);
+  if (params.dropUnfacedClosedCells) out.droppedUnfaced = dropUnfacedClosedCells(out);
+  cellCount = int(out.graph.cells.size());
 
   // Closed rooms: no portal (after the leak pass no voxel face touches another cell either).
   out.closedRoom.assign(size_t(cellCount), 0);

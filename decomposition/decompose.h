@@ -54,6 +54,11 @@ struct DecomposeParams {
   LeakParams leaks;
   PortalMergeParams portalMerge;
   AssignParams assign;
+  /// A closed cell (no portal) that no triangle faces is space inside solid matter and is dropped (its
+  /// voxels unlabelled): a game level's brush whose inside the compiler left faces round, looking both
+  /// ways (a detail brush against a wall, a column of patches), which the behind stage cannot tell from a
+  /// room. false keeps them: a user's own rooms (decomposeFromVolumes) are never dropped.
+  bool dropUnfacedClosedCells = true;
   std::string sourceName = "scene";  ///< the input's name, for messages
 };
 
@@ -84,6 +89,7 @@ struct Decomposition {
   int leakMerges = 0;              ///< pairs of cells merged because they met outside any portal
   int mergedPortalPieces = 0;      ///< portal pieces folded into another of the same pair (portal_merge.h)
   int foldedBehind = 0;            ///< cells behind the geometry folded into another (behind.h)
+  int droppedUnfaced = 0;          ///< closed cells no triangle faces, dropped (dropUnfacedClosedCells)
   /// Per cell: true for a room no portal joins to another cell and no voxel face touches another cell's
   /// (an enclosed space: a sealed room, a closed cupboard bigger than the minimum cell). Never the outside.
   std::vector<char> closedRoom;

@@ -425,7 +425,8 @@ void faceFromAToB(const GridFrame& f, const std::vector<int32_t>& cell, PortalQu
 void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const std::vector<size_t>& deepest,
                          int outsideCell, const PortalParams& params, std::vector<FittedPortal>& fresh,
                          const std::vector<FittedPortal>& planeFits,
-                         const std::vector<std::vector<FittedPortal>>& alternatives) {
+                         const std::vector<std::vector<FittedPortal>>& alternatives,
+                         const std::vector<char>& planar) {
   std::vector<char> redundant(fresh.size(), 0);
   std::set<std::pair<int, int>> done;
   for (size_t k = 0; k < fresh.size(); ++k) {
@@ -460,9 +461,27 @@ void relabelSectionPairs(const GridFrame& f, std::vector<int32_t>& cell, const s
         }
       return false;
     };
+    // Each section opening's candidates in turn with the pair's planar openings (a door beside the stair's
+    // hole): the narrowest section can close the hole only with the slivers fitted round a balustrade.
+    auto cutWithPlanar = [&]() {
+      std::vector<size_t> used;
+      for (size_t q : others)
+        if (planar[q]) used.push_back(q);
+      if (used.empty()) return false;
+      for (size_t q : sections)
+        for (size_t c = 0; c < alternatives[q].size(); ++c) {
+          const FittedPortal kept = fresh[q];
+          fresh[q] = alternatives[q][c];
+          used.push_back(q);
+          if (separate(used)) return true;
+          used.pop_back();
+          fresh[q] = kept;
+        }
+      return false;
+    };
     const bool rooms = a != outsideCell && b != outsideCell;
     if (rooms && (cutAlone(0, 1) || (sections.size() > 1 && separate(sections)) ||
-                  cutAlone(1, std::numeric_limits<size_t>::max())))
+                  cutAlone(1, std::numeric_limits<size_t>::max()) || cutWithPlanar()))
       continue;
     if ((!others.empty() || !rooms || sections.size() == 1) && separate(all)) continue;
     for (size_t q : sections) {
@@ -483,11 +502,14 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
   const GridFrame& f = cells.frame;
   PortalSet out;
   out.cell = std::move(cells.cell);
-  // Each cell's deepest voxel, to tell the sides of a section portal apart.
-  std::vector<size_t> deepest(size_t(cells.cellCount()), 0);
+  // Each cell's deepest voxel, to tell the sides of a section portal apart (SIZE_MAX: none). Not the
+  // grid's first voxel to start with: that corner of open ground may lie farther from the walls than a
+  // room's middle, and a seed outside its cell parts nothing (or empties the cell).
+  std::vector<size_t> deepest(size_t(cells.cellCount()), SIZE_MAX);
   for (size_t i = 0; i < out.cell.size(); ++i) {
     const int c = out.cell[i];
-    if (c >= 0 && distance.d2[i] > distance.d2[deepest[size_t(c)]]) deepest[size_t(c)] = i;
+    if (c >= 0 && (deepest[size_t(c)] == SIZE_MAX || distance.d2[i] > distance.d2[deepest[size_t(c)]]))
+      deepest[size_t(c)] = i;
   }
   // Round 0 fits every opening; later rounds fit what the earlier portals left uncovered (an interface
   // that bends out of its portal's slab, the fringe of a wide arch), up to params.extraRounds times.
@@ -496,11 +518,12 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
     if (faces.empty()) break;
     std::vector<FittedPortal> fresh, planeFits;
     std::vector<std::vector<FittedPortal>> alternatives;  // per fresh portal: its section candidates
+    std::vector<char> planar;  // per fresh portal: its opening crossed along one axis
     for (const std::vector<const Face*>& opening : groupOpenings(f, faces)) {
       FittedPortal fp = fitOpening(f, opening, params.marginVoxels);
       std::vector<FittedPortal> cuts;
-      if (round == 0 && !alongOneAxis(opening))
-        cuts = sectionPortals(f, out.cell, distance, opening, deepest, params);
+      const bool oneAxis = alongOneAxis(opening);
+      if (round == 0 && !oneAxis) cuts = sectionPortals(f, out.cell, distance, opening, deepest, params);
       // Several pieces of one stair's interface find the same section: one portal for them.
       if (!cuts.empty() && std::any_of(fresh.begin(), fresh.end(), [&](const FittedPortal& q) {
             return q.section && q.quad.cellA == cuts.front().quad.cellA &&
@@ -511,6 +534,7 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
       planeFits.push_back(fp);
       fresh.push_back(cuts.empty() ? fp : cuts.front());
       alternatives.push_back(std::move(cuts));
+      planar.push_back(oneAxis);
     }
     // Each to the middle of its constriction, then the cells made to meet exactly at its quad.
     // Later rounds leave the labels alone: relabelling around a fringe portal moves the interface
@@ -521,7 +545,8 @@ PortalSet fitPortals(CellLabels cells, const DistanceGrid& distance, const Porta
         if (!fp.section) centreInConstriction(fp, f, out.cell, params.searchRange);
       for (const FittedPortal& fp : fresh)
         if (!fp.section) relabelSlab(f, fp, out.cell);
-      relabelSectionPairs(f, out.cell, deepest, cells.outsideCell, params, fresh, planeFits, alternatives);
+      relabelSectionPairs(f, out.cell, deepest, cells.outsideCell, params, fresh, planeFits, alternatives,
+                          planar);
     }
     out.portals.insert(out.portals.end(), fresh.begin(), fresh.end());
   }

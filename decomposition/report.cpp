@@ -91,6 +91,7 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                  {"regions", d.regions},
                  {"leak_merges", d.leakMerges},
                  {"behind_geometry_folded", d.foldedBehind},
+                 {"unfaced_closed_dropped", d.droppedUnfaced},
                  {"portal_pieces_merged", d.mergedPortalPieces}};
   json timings = json::object();
   double total = 0.0;

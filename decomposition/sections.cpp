@@ -145,6 +145,9 @@ bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a,
     }
     return false;
   };
+  // Seeds that are not the pair's own voxels tell no side from the other: the flood would hand all of
+  // one cell to the other.
+  if (seedA >= cell.size() || seedB >= cell.size() || cell[seedA] != a || cell[seedB] != b) return false;
   std::vector<char> reached(f.count(), 0);
   std::vector<size_t> queue{seedA};
   reached[seedA] = 1;

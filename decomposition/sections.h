@@ -42,7 +42,7 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
 /// Relabels the voxels of cells a and b by which side of `portals` (those joining a and b) they are on:
 /// the voxels reachable from `seedA` without crossing a portal become a, the other voxels of a or b
 /// become b. Leaves the labels alone and returns false when `seedB` is reachable too (the portals do not
-/// separate the cells).
+/// separate the cells) or when `seedA` is not a voxel of a or `seedB` not one of b.
 bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,
                           size_t seedB, const std::vector<const PortalQuad*>& portals);
 

@@ -227,6 +227,7 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   // The rooms are the user's: a pair the leak pass cannot part keeps its leaking faces, never merges.
   DecomposeParams roomsKept = params;
   roomsKept.leaks.merge = false;
+  roomsKept.dropUnfacedClosedCells = false;
   Decomposition out = finishDecomposition(scene, roomsKept, solid, std::move(space.space), distance,
                                           std::move(cells), names, ctx);
   out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";

@@ -482,7 +482,7 @@ Box3 ifcStair(BuildingMaker& m, IfcStair stair) {
 
 // The IFC-like house's furniture, and a balustrade of spindles along the open sides of the stair's hole
 // `hl` on the landing.
-void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl) {
+void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl, bool gallery) {
   const float y2 = kLevel2, width = 1.0f;
   const bool spiral = stair == IfcStair::Spiral;
   SceneBuilder b(m.scene());
@@ -535,10 +535,12 @@ void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl) {
   f.block({{wx1 - wt, wt, wz0}, {wx1, wh - wt, wz1}}, f.wood(), in("bedroom"));
   f.block({{wx0 + wt, wt, wz1 - wt}, {wx1 - wt, wh - wt, wz1}}, f.wood(), in("bedroom"));
   f.block({{wx0 + wt, wt, wz0}, {wx1 - wt, wh - wt, wz0 + wt}}, f.wood(), in("bedroom"));
-  // Upstairs: beds, a desk, a bath tub.
-  f.bed({5.0f, y2, 3.0f}, {2.0f, 0.9f}, true, in("room1"));
-  f.table({9.5f, y2, 1.0f}, {1.2f, 0.6f}, false, in("room2"));
-  f.chair({9.5f, y2, 1.5f}, Facing::MinusZ, in("room2"));
+  // Upstairs: beds, a desk, a bath tub (with the gallery, no room1 or room2 over the living room).
+  if (!gallery) {
+    f.bed({5.0f, y2, 3.0f}, {2.0f, 0.9f}, true, in("room1"));
+    f.table({9.5f, y2, 1.0f}, {1.2f, 0.6f}, false, in("room2"));
+    f.chair({9.5f, y2, 1.5f}, Facing::MinusZ, in("room2"));
+  }
   f.bed({9.6f, y2, 7.2f}, {2.0f, 1.6f}, false, in("room3"));
   f.block({{0.3f, y2, 8.9f}, {2.0f, y2 + 0.55f, 9.75f}}, glass, in("bath2"), 0.3f);
 }
@@ -546,19 +548,23 @@ void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl) {
 // The house in the shape an IFC export has (issue 46): two storeys of rooms behind doorways whose leaves
 // are missing, windows glazed (closed), two exterior doors open, furniture, a shower enclosure of glass
 // and a wardrobe, and a stair of `stair`'s kind from the hall up to the landing through a hole in the
-// floor with a balustrade of spindles round it.
-void ifcHouse(BuildingMaker& m, IfcStair stair) {
+// floor with a balustrade of spindles round it. With `gallery` the living room rises through both storeys
+// (no room1 or room2 over it, its upper windows high ones of its own) and the landing overlooks it above
+// a 1 m parapet along their whole shared wall; room3 is then reached through bath2.
+void ifcHouse(BuildingMaker& m, IfcStair stair, bool gallery) {
   houseShell(m, 12.0f, 10.0f, 2, 1.0f, 1.0f);
   const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey, w = 0.15f;  // interior walls 15 cm
   const float hx = 3.6f;  // the hall's and the landing's east wall
   m.room("hall", {box(0.2f, 0, 0.2f, hx, H, 6.2f)});
-  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, H, 6.2f)});
+  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, gallery ? H2 : H, 6.2f)});
   m.room("kitchen", {box(0.2f, 0, 6.2f + w, 5.0f, H, 9.8f)});
   m.room("bathroom", {box(5.0f + w, 0, 6.2f + w, 7.6f, H, 9.8f)});
   m.room("bedroom", {box(7.6f + w, 0, 6.2f + w, 11.8f, H, 9.8f)});
   m.room("landing", {box(0.2f, y2, 0.2f, hx, H2, 6.2f)});
-  m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
-  m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
+  if (!gallery) {
+    m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
+    m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
+  }
   m.room("bath2", {box(0.2f, y2, 6.2f + w, 5.0f, H2, 9.8f)});
   m.room("room3", {box(5.0f + w, y2, 6.2f + w, 11.8f, H2, 9.8f)});
   auto interior = [&](const std::string& name, int axis, float at, float from, float to, float level,
@@ -573,10 +579,15 @@ void ifcHouse(BuildingMaker& m, IfcStair stair) {
   interior("door-hall-kitchen", 2, 6.2f, 1.6f, 2.5f, 0, "hall", "kitchen");
   interior("door-living-bathroom", 2, 6.2f, 5.6f, 6.4f, 0, "living", "bathroom");
   interior("door-living-bedroom", 2, 6.2f, 9.0f, 9.9f, 0, "living", "bedroom");
-  interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
-  interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
   interior("door-landing-bath2", 2, 6.2f, 2.4f, 3.3f, y2, "landing", "bath2");
-  interior("door-room1-room3", 2, 6.2f, 6.2f, 7.1f, y2, "room1", "room3");
+  if (gallery) {
+    interior("door-bath2-room3", 0, 5.0f, 7.0f, 7.9f, y2, "bath2", "room3");
+    m.opening("gallery", box(hx, y2 + 1.0f, 0.2f, hx + w, H2, 6.2f), 0, "landing", "living");
+  } else {
+    interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
+    interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
+    interior("door-room1-room3", 2, 6.2f, 6.2f, 7.1f, y2, "room1", "room3");
+  }
   for (float level : {0.0f, y2}) {
     glazedWindow(m, 2, 0.0f, 5.0f, 7.0f, level + kSill, level + kHead);
     glazedWindow(m, 2, 0.0f, 8.5f, 10.5f, level + kSill, level + kHead);
@@ -589,7 +600,7 @@ void ifcHouse(BuildingMaker& m, IfcStair stair) {
 
   const Box3 hl = ifcStair(m, stair);
   m.opening("stair", hl, 1, "hall", "landing");
-  ifcFurniture(m, stair, hl);
+  ifcFurniture(m, stair, hl, gallery);
 }
 
 }  // namespace
@@ -605,15 +616,21 @@ Building makeIfcLikeHouse(const std::string& stair) {
   else if (stair != "straight")
     throw std::invalid_argument("unknown stair '" + stair + "'");
   BuildingMaker m;
-  ifcHouse(m, kind);
+  ifcHouse(m, kind, false);
+  return m.finish();
+}
+
+Building makeIfcGalleryHouse() {
+  BuildingMaker m;
+  ifcHouse(m, IfcStair::Straight, true);
   return m.finish();
 }
 
 const std::vector<std::string>& buildingNames() {
   static const std::vector<std::string> names = {
-      "house-open",           "house-stair",         "house-spiral",    "open-plan",       "porch",
-      "house-stair-closed",   "house-spiral-closed", "house-gallery",   "house-furnished", "ifc-house",
-      "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral"};
+      "house-open",           "house-stair",         "house-spiral",     "open-plan",        "porch",
+      "house-stair-closed",   "house-spiral-closed", "house-gallery",    "house-furnished",  "ifc-house",
+      "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral", "ifc-house-gallery"};
   return names;
 }
 
@@ -631,6 +648,7 @@ Building makeBuilding(const std::string& name) {
   if (name == "ifc-house-open-riser") return makeIfcLikeHouse("open-riser");
   if (name == "ifc-house-l-stair") return makeIfcLikeHouse("l");
   if (name == "ifc-house-spiral") return makeIfcLikeHouse("spiral");
+  if (name == "ifc-house-gallery") return makeIfcGalleryHouse();
   throw std::invalid_argument("unknown building '" + name + "'");
 }
 

@@ -77,6 +77,41 @@ TEST(BehindGeometry, ASealedLevelsPocketBehindItsWallsIsTheOutside) {
   EXPECT_EQ(d.leakingFaces, 0u);
 }
 
+// Issue 46 (kaos, ctf_inyard, oasago2): a brush in a room's corner, floor to ceiling, whose two faces look
+// into the room; the compiler leaves the room's walls, floor and ceiling behind it. Its inside is closed
+// and looks at the fronts of four of its sides and the backs of two, so the behind stage keeps it, and
+// it was a closed room that no triangle faces (the room's big faces and the brush's own look into the
+// room). It is solid matter: dropped, its voxels unlabelled, the room the one cell left.
+TEST(BehindGeometry, ABrushsClosedInsideThatNoFaceLooksIntoIsNoRoom) {
+  SceneBuilder b;
+  levelRoom(b, {0, 0, 0}, {6, 3, 6});
+  const float w = 1.5f;  // the brush's side: its inside holds about 5 m3, over the minimum cell
+  b.quad({w, 0, 0}, {w, 3, 0}, {w, 3, w}, {w, 0, w});  // the brush's +x face, looking into the room
+  b.quad({0, 0, w}, {w, 0, w}, {w, 3, w}, {0, 3, w});  // its +z face
+  DecomposeParams p;
+  p.voxelSize = 0.1;
+  p.dropUnfacedClosedCells = false;
+  Context before;
+  const Decomposition kept = decompose(b.scene(), p, before);
+  ASSERT_EQ(kept.graph.cells.size(), 2u);
+  EXPECT_EQ(kept.foldedBehind, 0);
+  int pocket = -1;
+  for (size_t c = 0; c < kept.graph.cells.size(); ++c)
+    if (kept.cellStats[c].volume < 10.0) pocket = int(c);
+  ASSERT_GE(pocket, 0);
+  EXPECT_TRUE(kept.graph.cells[size_t(pocket)].triangles.empty());
+  EXPECT_TRUE(kept.closedRoom[size_t(pocket)]);
+
+  p.dropUnfacedClosedCells = true;
+  Context ctx;
+  const Decomposition d = decompose(b.scene(), p, ctx);
+  EXPECT_EQ(d.droppedUnfaced, 1);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0 - w * w * 3.0, 10.0);  // the room round the brush
+  EXPECT_EQ(d.voxelCell[d.frame.index(d.frame.voxelOf({0.7f, 1.5f, 0.7f}))], -1);
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
 // Issue 46 (aggressor): a slab of space behind a room's wall, opening into the room through a gap, was
 // a cell joined to the room by slivers. It folds into the room it opens onto; the room keeps its
 // portal to the room beside it.

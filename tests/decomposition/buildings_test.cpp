@@ -198,6 +198,25 @@ TEST(Buildings, StraightStairJoinsTheFloorsByOnePlanarPortal) {
   expectStairPortal(b, s);
 }
 
+TEST(Buildings, StairPortalWhenTheGridsCornerLiesFartherFromTheWallsThanAnyRoomsMiddle) {
+  // A floor tile 30 m off the house (as a game level's far pieces are) widens the bounds, and the grid,
+  // cut 2 m round the house, starts at a corner of open ground farther from any wall than the rooms'
+  // middles. The stair's section portal parts its two cells from each one's deepest voxel; with the
+  // grid's first voxel taken as every cell's deepest until a deeper one was found, both seeds were that
+  // corner, an outside voxel: the flood reached nothing and the hall's voxels all went to the landing,
+  // leaving an empty cell with no portal (oa_shouse at the automatic voxel).
+  Building b = makeTwoStoreyHouse(false);
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  const glm::vec3 p0(-30, 0, -30), p1(-29, 0, -30), p2(-29, 0, -29);
+  b.seed.scene.triangles.push_back({{p0, p2, p1}, {n, n, n}, 0, 0});
+  const Scored s = decomposeBuilding(b, 0.1);
+  const glm::vec3 corner = s.d.frame.centre(size_t(0));
+  ASSERT_LT(corner.x, -1.0f) << "the grid does not start out on the open ground";
+  for (const CellStats& c : s.d.cellStats) EXPECT_GT(c.voxels, 0u);
+  expectRoomsAndFrontDoor(b, s, 0.1);
+  expectStairPortal(b, s);
+}
+
 TEST(Buildings, SpiralStairJoinsTheFloorsByOnePlanarPortal) {
   const Building b = makeTwoStoreyHouse(true);
   const Scored s = decomposeBuilding(b, 0.1);
@@ -253,6 +272,40 @@ TEST(Buildings, IfcHouseStraightStairAtFiveCentimetres) { expectIfcHouse("straig
 TEST(Buildings, IfcHouseOpenRiserStair) { expectIfcHouse("open-riser", 0.0); }
 TEST(Buildings, IfcHouseLShapedStairKeepsTheStoreysApart) { expectIfcHouse("l", 0.05); }
 TEST(Buildings, IfcHouseSpiralStair) { expectIfcHouse("spiral", 0.0); }
+
+// The IFC-like house with a gallery (issue 46): the landing overlooks the double-height living room along
+// their whole wall and is one cell with it (the opening ratio merges them), so the hall meets that cell
+// through the door to the living room and through the stair's hole. At the automatic voxel the narrowest
+// closed section lay just above the landing's floor inside the balustrade, which parted the two only with
+// eight slivers fitted round the spindles; each section candidate is now tried with the pair's door:
+// one portal across the hole, one in the door.
+TEST(Buildings, IfcGalleryHouseStairBesideADoorIsTheHoleAndTheDoor) {
+  const Building b = makeIfcGalleryHouse();
+  const Scored s = decomposeBuilding(b, 0.0);
+  const BuildingOpening& stair = openingNamed(b, "stair");
+  int hall = -1, landing = -1;
+  for (size_t r = 0; r < b.rooms.size(); ++r) {
+    if (b.rooms[r].name == "hall") {
+      hall = s.cellOfRoom[r];
+      EXPECT_GE(s.roomIoU[r], 0.95);
+    }
+    if (b.rooms[r].name == "landing") landing = s.cellOfRoom[r];
+  }
+  ASSERT_NE(hall, landing) << "the storeys merged";
+  EXPECT_EQ(s.d.leakingFaces, 0u);
+  const std::vector<const PortalQuad*> between = portalsBetween(s.d, hall, landing);
+  ASSERT_EQ(between.size(), 2u);
+  int across = 0;
+  for (const PortalQuad* q : between) {
+    if (std::abs(q->normal.y) < 0.999f) continue;
+    ++across;
+    EXPECT_GE(q->centre().y, stair.box.lo.y - 0.5f * float(s.d.frame.voxel));
+    EXPECT_LE(q->centre().y, stair.box.hi.y + 0.5f * float(s.d.frame.voxel));
+    const glm::vec3 size = stair.box.hi - stair.box.lo;
+    EXPECT_NEAR(q->area, size.x * size.z, 0.25f * size.x * size.z);
+  }
+  EXPECT_EQ(across, 1);
+}
 
 // The open house on a terrain of 1 m quads reaching 15 m past it on every side (as an architect's export
 // brings), flush with the house's apron at y = 0 and leaving it out; its triangles are node "terrain".

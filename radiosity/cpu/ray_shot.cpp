@@ -467,23 +467,35 @@ glm::dvec2 shotCoverage(const RayShotScene& s, const ShooterLayout& layout,
 // Per eye of the shot (regions in order) and receiver tile, 1 when one surface hides the whole tile from
 // the eye (occluder_cull.h). A tile that no eye segment could reach anyway (facing away from the eye, or
 // behind the shooter), of a few texels, or the shooter's own is not tested: its ray would cost as much as
-// it saves.
+// it saves. A region's eyes are asked together, one surface for all of them at the rays of one eye: asked
+// one by one, the interleaved sets' four times the eyes cost four times the tests, each leaving out a
+// quarter of the segments (a tile's texels share the sets out).
 std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions,
                                  size_t& tests) {
-  std::vector<glm::vec3> eyes;
-  for (const RegionPieces& r : regions) eyes.insert(eyes.end(), r.eyes.begin(), r.eyes.end());
+  size_t eyeCount = 0;
+  for (const RegionPieces& r : regions) eyeCount += r.eyes.size();
   const size_t tiles = s.tiles.spheres.size();
   const glm::vec3 ns = s.atlas.patches[size_t(shooter)].normal;
-  std::vector<uint8_t> hidden(eyes.size() * tiles, 0);
+  std::vector<uint8_t> hidden(eyeCount * tiles, 0);
   std::vector<uint32_t> tested(tiles, 0);
   tbb::parallel_for(size_t(0), tiles, [&](size_t tile) {
     if (s.tiles.counts[tile] < 4 || s.tiles.patches[tile] == shooter) return;
     const glm::vec4 sphere = s.tiles.spheres[tile];
     const glm::vec3 centre(sphere);
-    for (size_t e = 0; e < eyes.size(); ++e) {
-      const glm::vec3 toEye = eyes[e] - centre;
-      if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
-      hidden[e * tiles + tile] = s.occluders.hides(s.rays, eyes[e], sphere, s.offset) ? 1 : 0;
+    std::vector<glm::vec3> group;
+    std::vector<size_t> index;
+    size_t base = 0;
+    for (const RegionPieces& r : regions) {
+      group.clear(), index.clear();
+      for (size_t e = 0; e < r.eyes.size(); ++e) {
+        const glm::vec3 toEye = r.eyes[e] - centre;
+        if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
+        group.push_back(r.eyes[e]), index.push_back(base + e);
+      }
+      base += r.eyes.size();
+      if (group.empty()) continue;
+      const uint8_t h = s.occluders.hidesFromEvery(s.rays, group, sphere, s.offset) ? 1 : 0;
+      for (size_t e : index) hidden[e * tiles + tile] = h;
       ++tested[tile];
     }
   });

@@ -87,6 +87,37 @@ bool ConvexOccluders::hides(const RayScene& rays, const glm::vec3& eye, const gl
   return false;
 }
 
+bool ConvexOccluders::hidesFromEvery(const RayScene& rays, std::span<const glm::vec3> eyes,
+                                     const glm::vec4& sphere, float margin) const {
+  if (eyes.empty()) return false;
+  const glm::vec3 centre(sphere);
+  const float radius = sphere.w;
+  // Every eye's axis to the sphere; an eye too close makes the group unsure.
+  auto axisOf = [&](const glm::vec3& eye, float& distance) {
+    const glm::vec3 axis = centre - eye;
+    distance = glm::length(axis);
+    return axis / distance;
+  };
+  float distance0 = 0.0f;
+  const glm::vec3 axis0 = axisOf(eyes[0], distance0);
+  for (const glm::vec3& eye : eyes)
+    if (!(glm::distance(centre, eye) > 1.01f * (radius + margin))) return false;
+  float from = 0.0f;
+  for (int tries = 0; tries < kBlockersTried; ++tries) {
+    const RayScene::Hit hit = rays.intersect(eyes[0], axis0, from, distance0 - radius - margin);
+    if (!hit) return false;
+    bool all = true;
+    for (size_t e = 0; e < eyes.size() && all; ++e) {
+      float distance = 0.0f;
+      const glm::vec3 axis = axisOf(eyes[e], distance);
+      all = blocks(hit.triangle, eyes[e], axis, distance, sphere, margin);
+    }
+    if (all) return true;
+    from = hit.t + 1e-4f * distance0;
+  }
+  return false;
+}
+
 bool ConvexOccluders::blocks(int32_t triangle, const glm::vec3& eye, const glm::vec3& axis, float distance,
                              const glm::vec4& sphere, float margin) const {
   const glm::vec3 centre(sphere);

@@ -48,6 +48,10 @@ class ConvexOccluders {
   /// Whether every segment from `eye` to a point of `sphere` (centre, radius) ending `margin` short of it
   /// is blocked by the first surface a ray from the eye towards its centre meets. False when unsure.
   bool hides(const RayScene& rays, const glm::vec3& eye, const glm::vec4& sphere, float margin) const;
+  /// The same for every one of `eyes` (a region's, a metre or two apart), by one surface: the candidates
+  /// are found from the first eye alone, so a group costs the rays of one eye. False when unsure or empty.
+  bool hidesFromEvery(const RayScene& rays, std::span<const glm::vec3> eyes, const glm::vec4& sphere,
+                      float margin) const;
 
  private:
   /// Whether triangle `triangle`'s outline blocks every segment of hides()'s question.

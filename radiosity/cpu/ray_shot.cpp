@@ -53,8 +53,12 @@ struct PieceNode {
 };
 
 struct RegionPieces {
-  double power = 0.0;            // R + G + B, W
-  std::vector<glm::vec3> eyes;   // drawn by power, stratified: each stands for an equal share of it
+  double power = 0.0;  // R + G + B, W
+  // Drawn by power, stratified: each stands for an equal share of it. `sets` interleaved sets of them
+  // (RayShotParams::eyeSetsPerEdge): set k is eyes k, k + sets, k + 2 sets, ..., itself stratified.
+  std::vector<glm::vec3> eyes;
+  int sets = 1;
+  size_t eyesPerSet() const { return eyes.size() / size_t(sets); }
   std::vector<PieceNode> nodes;  // nodes[0]: the whole region
   std::vector<ShooterTexel> texels;
   std::vector<float> nodeBins;  // kBinSlotFloats per binned node (FarPiece::lobe)
@@ -220,11 +224,50 @@ int32_t buildNode(const Patch& p, const ChartTexels& cells, glm::ivec2 lo, glm::
   return index;
 }
 
+// The bits of x and y (each under 2^16) interleaved: the texel's place along a Z-order curve.
+uint32_t zOrder(glm::ivec2 c) {
+  auto spread = [](uint32_t v) {
+    v &= 0xFFFFu;
+    v = (v | (v << 8)) & 0x00FF00FFu;
+    v = (v | (v << 4)) & 0x0F0F0F0Fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    return (v | (v << 1)) & 0x55555555u;
+  };
+  return spread(uint32_t(c.x)) | (spread(uint32_t(c.y)) << 1);
+}
+
+// `draws` texels of a region drawn with probability ∝ their unshot power at u, u + 1/draws, ... along a
+// Z-order curve from its corner `corner`, as pick_eyes.comp's descent of the residual pyramid draws them:
+// each eye stands for a compact block of the region. In rows, eight eyes of a region 8 texels square fell
+// one a row, anywhere along it, and a door's light into the next room varied nearly as much from draw to draw
+// with four times the eyes (tests/radiosity/cpu/eye_sets_test.cpp).
+std::vector<glm::vec3> drawEyes(const ChartTexels& all, glm::ivec2 corner, float u, int draws) {
+  std::vector<std::pair<uint32_t, size_t>> order(all.size());
+  for (size_t i = 0; i < all.size(); ++i) order[i] = {zOrder(all[i].first - corner), i};
+  std::sort(order.begin(), order.end());
+  std::vector<double> cumulative(all.size());
+  double sum = 0.0;
+  for (size_t i = 0; i < order.size(); ++i) {
+    const ShooterTexel& t = all[order[i].second].second;
+    sum += std::max(double(channelSum(t.radiosity)) * t.area, 0.0);
+    cumulative[i] = sum;
+  }
+  std::vector<glm::vec3> eyes;
+  for (int k = 0; k < draws; ++k) {
+    const double target = double(std::fmod(u + float(k) / float(draws), 1.0f)) * sum;
+    const size_t i =
+        size_t(std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    eyes.push_back(all[order[std::min(i, order.size() - 1)].second].second.position);
+  }
+  return eyes;
+}
+
 // The region's pieces and its eyes: texels drawn with probability ∝ their unshot power (pick_eyes.comp's
-// sequence: a hashed offset per region, the golden ratio per shot), stratified.
+// sequence: a hashed offset per region, the golden ratio per shot), stratified; `eyes` per set, `sets`
+// interleaved sets.
 RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& rect,
                           std::span<const glm::vec3> residual, uint32_t region, uint32_t shotNumber, int eyes,
-                          float oneEyeRadius, const ShooterEmission& emission) {
+                          int sets, float oneEyeRadius, const ShooterEmission& emission) {
   const Patch& p = s.atlas.patches[size_t(shooter)];
   RegionPieces out;
   ChartTexels all;
@@ -245,22 +288,11 @@ RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& 
   }
   // One eye where more would see the same: every draw lands on a region of one texel, and eyes on a
   // region a hand's width across (a book's spine) sit closer together than the coarse texels that receive.
-  if (all.size() == 1 || out.whole().radius < oneEyeRadius) eyes = 1;
+  if (all.size() == 1 || out.whole().radius < oneEyeRadius) eyes = 1, sets = 1;
+  out.sets = sets;
   const float u = float((regionHash(region) + shotNumber * 0x9E3779B9u) >> 8) / 16777216.0f;
-  for (int k = 0; k < eyes; ++k) {
-    const double target = double(std::fmod(u + float(k) / float(eyes), 1.0f)) * out.power;
-    double sum = 0.0;
-    glm::vec3 eye = all.back().second.position;
-    for (const auto& [c, t] : all) {
-      const double w = double(channelSum(t.radiosity)) * t.area;
-      if (w > 0.0 && target < sum + w) {
-        eye = t.position;
-        break;
-      }
-      sum += w;
-    }
+  for (const glm::vec3& eye : drawEyes(all, {rect.x, rect.y}, u, eyes * sets))
     out.eyes.push_back(eye + p.normal * s.offset);
-  }
   return out;
 }
 
@@ -435,23 +467,35 @@ glm::dvec2 shotCoverage(const RayShotScene& s, const ShooterLayout& layout,
 // Per eye of the shot (regions in order) and receiver tile, 1 when one surface hides the whole tile from
 // the eye (occluder_cull.h). A tile that no eye segment could reach anyway (facing away from the eye, or
 // behind the shooter), of a few texels, or the shooter's own is not tested: its ray would cost as much as
-// it saves.
+// it saves. A region's eyes are asked together, one surface for all of them at the rays of one eye: asked
+// one by one, the interleaved sets' four times the eyes cost four times the tests, each leaving out a
+// quarter of the segments (a tile's texels share the sets out).
 std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions,
                                  size_t& tests) {
-  std::vector<glm::vec3> eyes;
-  for (const RegionPieces& r : regions) eyes.insert(eyes.end(), r.eyes.begin(), r.eyes.end());
+  size_t eyeCount = 0;
+  for (const RegionPieces& r : regions) eyeCount += r.eyes.size();
   const size_t tiles = s.tiles.spheres.size();
   const glm::vec3 ns = s.atlas.patches[size_t(shooter)].normal;
-  std::vector<uint8_t> hidden(eyes.size() * tiles, 0);
+  std::vector<uint8_t> hidden(eyeCount * tiles, 0);
   std::vector<uint32_t> tested(tiles, 0);
   tbb::parallel_for(size_t(0), tiles, [&](size_t tile) {
     if (s.tiles.counts[tile] < 4 || s.tiles.patches[tile] == shooter) return;
     const glm::vec4 sphere = s.tiles.spheres[tile];
     const glm::vec3 centre(sphere);
-    for (size_t e = 0; e < eyes.size(); ++e) {
-      const glm::vec3 toEye = eyes[e] - centre;
-      if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
-      hidden[e * tiles + tile] = s.occluders.hides(s.rays, eyes[e], sphere, s.offset) ? 1 : 0;
+    std::vector<glm::vec3> group;
+    std::vector<size_t> index;
+    size_t base = 0;
+    for (const RegionPieces& r : regions) {
+      group.clear(), index.clear();
+      for (size_t e = 0; e < r.eyes.size(); ++e) {
+        const glm::vec3 toEye = r.eyes[e] - centre;
+        if (glm::dot(s.tiles.normals[tile], toEye) <= -sphere.w || glm::dot(ns, toEye) >= sphere.w) continue;
+        group.push_back(r.eyes[e]), index.push_back(base + e);
+      }
+      base += r.eyes.size();
+      if (group.empty()) continue;
+      const uint8_t h = s.occluders.hidesFromEvery(s.rays, group, sphere, s.offset) ? 1 : 0;
+      for (size_t e : index) hidden[e * tiles + tile] = h;
       ++tested[tile];
     }
   });
@@ -482,10 +526,11 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
                         std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
                         const ShooterEmission& emission) {
   const Patch& p = s.atlas.patches[size_t(shooter)];
+  const int setsEdge = std::max(params.eyeSetsPerEdge, 1);
   std::vector<RegionPieces> regions(layout.rects.size());
   tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
     regions[r] = regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber,
-                              params.eyesPerRegion, params.oneEyeRadius, emission);
+                              params.eyesPerRegion, setsEdge * setsEdge, params.oneEyeRadius, emission);
   });
   std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
   RayShotGain out;
@@ -540,6 +585,9 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
           // factors spared (the margin keeps receivers on the plane on the whole path).
           if (glm::dot(ns, x - plane) < -s.offset) continue;
           Gather g{x, n, ns, params.farField};
+          // The receiver's eye set: its place in a setsEdge × setsEdge tile of the atlas.
+          const size_t place = (t % s.atlas.width) % size_t(setsEdge) +
+                               size_t(setsEdge) * ((t / s.atlas.width) % size_t(setsEdge));
           if (lobed) g.emission = &emission, g.frame = frame, g.receiverArea = s.atlas.area[t];
           for (const RegionPieces& r : regions) {
             // Facing away from the whole region (its bounding disk): nothing of it reaches the receiver.
@@ -558,10 +606,11 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
             const glm::vec3 f =
                 g.farPieceFor(r.whole()) ? g.piece(r.whole()) : g.region(r, p, layout.texelRadius);
             if (f == glm::vec3(0.0f)) continue;
-            const glm::vec3 share = f / float(r.eyes.size());
+            const size_t set = place % size_t(r.sets), stride = size_t(r.sets);
+            const glm::vec3 share = f / float(r.eyesPerSet());
             const uint8_t* eyeHides =
                 hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
-            for (size_t e = 0; e < r.eyes.size(); ++e) {
+            for (size_t e = set; e < r.eyes.size(); e += stride) {
               const glm::vec3& eye = r.eyes[e];
               const glm::vec3 toEye = eye - x;
               if (!(glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)) continue;

@@ -42,6 +42,14 @@ struct RayShotParams {
   /// Eyes per region, drawn by power and stratified; a receiver gathers the region's light times the share
   /// of them that see it.
   int eyesPerRegion = 2;
+  /// Eye sets per region along each axis of the receivers' texel grid: the region's eyes are drawn
+  /// eyeSetsPerEdge² times as many, stratified by power, and a receiver texel looks from the set its place
+  /// in a eyeSetsPerEdge × eyeSetsPerEdge tile of the atlas names (interleaved sampling, Keller & Heidrich
+  /// 2001), so each receiver still tests eyesPerRegion eyes but a room's texels together test all of them.
+  /// With every receiver on the same eyes, a room lit through doors took the visibility of two points of each
+  /// region for its mean: plan 4's room three doors from the lamp read 1.067 / 1.071 / 1.130 of the
+  /// reference over three eye sequences. 1: one set, every receiver on the same eyes.
+  int eyeSetsPerEdge = 2;
   /// A receiver near a region (nearer than farField × its radius) sees each of its pieces by its own ray
   /// rather than through the region's eyes.
   bool nearRays = true;

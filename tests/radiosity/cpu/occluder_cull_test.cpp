@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "core/quads.h"
 #include "tests/radiosity/test_scenes.h"
@@ -82,6 +83,45 @@ TEST(ConvexOccluders, WhatItHidesNoRaySees) {
     }
   }
   EXPECT_GT(hidden, 200);
+}
+
+// A region's eyes asked together (hidesFromEvery, as the interleaved eye sets are): hidden only where every
+// segment from every one of them to the sphere meets something, and as often hidden as one eye alone.
+TEST(ConvexOccluders, WhatItHidesFromAGroupNoRayFromAnyOfItSees) {
+  Scene s;
+  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(10.0f, 3.0f, 10.0f), m);
+  addRect(s, {5.0f, 0.0f, 0.0f}, {0, 0, 10.0f}, {0, 3.0f, 0}, m);  // a wall across the room, x = 5, both
+  addRect(s, {5.0f, 0.0f, 0.0f}, {0, 3.0f, 0}, {0, 0, 10.0f}, m);  // faces, with no opening
+  addRect(s, {6.0f, 0.0f, 2.0f}, {0, 2.0f, 0}, {1.0f, 0, 0}, m);   // a panel behind it, x in [6, 7]
+  const LightmapAtlas atlas = atlasOf(s);
+  const RayScene rays(s);
+  const ConvexOccluders occluders(s, atlas);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  int hiddenGroups = 0, hiddenFirst = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    // Four eyes within a metre on the near side of x = 5 (some beside the wall's end at z = 10 − 0.2 too).
+    const glm::vec3 at(0.5f + 3.5f * unit(random), 0.2f + 2.6f * unit(random), 0.5f + 9.0f * unit(random));
+    std::vector<glm::vec3> eyes;
+    for (int e = 0; e < 4; ++e)
+      eyes.push_back(glm::clamp(at + glm::vec3(unit(random), unit(random), unit(random)) - 0.5f,
+                                glm::vec3(0.1f), glm::vec3(4.9f, 2.9f, 9.9f)));
+    const glm::vec4 sphere(5.2f + 4.5f * unit(random), 0.3f + 2.4f * unit(random), 0.3f + 9.4f * unit(random),
+                           0.05f + 0.3f * unit(random));
+    hiddenFirst += occluders.hides(rays, eyes[0], sphere, 1e-3f) ? 1 : 0;
+    if (!occluders.hidesFromEvery(rays, eyes, sphere, 1e-3f)) continue;
+    ++hiddenGroups;
+    for (const glm::vec3& eye : eyes)
+      for (int k = 0; k < 16; ++k) {
+        glm::vec3 d(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f);
+        const glm::vec3 p = glm::vec3(sphere) + sphere.w * unit(random) * glm::normalize(d + 1e-6f);
+        const float length = glm::distance(eye, p);
+        ASSERT_TRUE(rays.occluded(eye, (p - eye) / length, 0.0f, length - 1e-3f))
+            << "trial " << trial << " sees a point the cull hid from the group";
+      }
+  }
+  EXPECT_GT(hiddenGroups, 0.9 * hiddenFirst);
 }
 
 // Tiles are the chart's texels in blocks of at most 8 × 8, each texel in one, with a sphere holding them.

@@ -211,6 +211,10 @@ int main(int argc, char** argv) {
       }
     std::printf("portal %s: %dx%d texels of %.3f m², %zu receivers; %d bins\n", portal->name.c_str(), n1, n2,
                 texelArea, receivers.size(), kArrivalBins);
+    glm::dvec3 through(0.0);
+    for (const PortalTexel& pt : texels) through += glm::dvec3(pt.irradiance) * double(texelArea);
+    std::printf("power through it from %s: %.6g W (R %.6g G %.6g B %.6g)\n", argv[4],
+                through.r + through.g + through.b, through.r, through.g, through.b);
     std::printf("%-12s", "group");
     for (int m = 1; m < kModels; ++m) std::printf(" %10s", names[m]);
     std::printf("  (ratio to truth)\n");

@@ -4,6 +4,19 @@
 #include "radiosity/solve/emission_lobes.h"
 
 namespace cpgi {
+namespace {
+
+// A cell's solve, its portals shot through finer visibility regions (ShotShape::openingPatches): each
+// sits in its wall's thickness, partly hidden by a jamb from receivers off its axis.
+SolveResult solveCell(const CellState& s, const SolverParams& settings, ShotEngine& engine, Context& ctx,
+                      const SolveControls& controls, ShotShape shape) {
+  const std::vector<char> portal = portalPatchFlags(s);
+  const std::vector<uint8_t> openings(portal.begin(), portal.end());
+  shape.openingPatches = openings;
+  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls, shape);
+}
+
+}  // namespace
 
 SolveResult DiffusePortals::solve(size_t, const CellState& s, const SolverParams& settings,
                                   const SolveControls& controls, ShotShape shape, ShotEngine& engine,
@@ -12,7 +25,7 @@ SolveResult DiffusePortals::solve(size_t, const CellState& s, const SolverParams
   // cell_first_shot.h), so nothing in it is a lamp to shoot by rays.
   SolverParams own = settings;
   own.lampRays = 0;
-  return solveProgressive(s.cs.scene, s.atlas, own, engine, ctx, controls, shape);
+  return solveCell(s, own, engine, ctx, controls, shape);
 }
 
 SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverParams& settings,
@@ -24,7 +37,7 @@ SolveResult DirectionalPortals::solve(size_t, const CellState& s, const SolverPa
       fitEmissionLobes(s.pendingMoments.empty() ? none : s.pendingMoments, s.atlas, lobeMinWidth_);
   shape.directionalEmission = true;
   shape.emissionLobes = lobes;
-  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls, shape);
+  return solveCell(s, settings, engine, ctx, controls, shape);
 }
 
 SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams& settings,
@@ -46,7 +59,7 @@ SolveResult BinnedPortals::solve(size_t, const CellState& s, const SolverParams&
   shape.arrivalMoments = false;  // the bins are traced after the solve (cell_round.h)
   shape.emissionLobes = lobes;
   shape.emissionBins = bins;
-  return solveProgressive(s.cs.scene, s.atlas, settings, engine, ctx, controls, shape);
+  return solveCell(s, settings, engine, ctx, controls, shape);
 }
 
 std::unique_ptr<PortalTransfer> makePortalTransfer(const CellSolveParams& params) {

@@ -61,18 +61,20 @@ class RayShotBackend final : public ShotBackend {
         strongShotParams_{params.farField, params.coverageRays, params.strongEyesPerRegion},
         emission_{shape.directionalEmission ? shape.emissionLobes : std::span<const glm::vec4>{},
                   shape.emissionBins, shape.directionalEmission && shape.arrivalMoments},
+        openings_(shape.openingPatches.begin(), shape.openingPatches.end()),
         firstShotNumber_(shape.firstShotNumber) {}
 
   // The shooters' layouts (most of the set-up: a second of CPU on a furnished house, minutes of wall at load
   // 30 before the triangles were binned), stopped between batches of patches at `deadline`: false then.
   bool layOut(const SolverParams& params, Context& ctx, std::chrono::steady_clock::time_point deadline) {
     ctx.progress("set-up", 0.25, "the rays engine: the shooters' eyes");
-    layouts_ = layoutShooters(scene_, atlas_, {params.regionSize, params.maxRegions}, deadline);
+    layouts_ = layoutShooters(scene_, atlas_, {params.regionSize, params.maxRegions, openings_}, deadline);
     if (layouts_.size() < atlas_.patches.size()) return false;
     const int strongRegions = params.strongShotRegions > 0 ? params.strongShotRegions : params.maxRegions;
     if (strongRegions != params.maxRegions) {
       ctx.progress("set-up", 0.6, "the rays engine: the strong shots' eyes");
-      strongLayouts_ = layoutShooters(scene_, atlas_, {params.regionSize, strongRegions}, deadline);
+      strongLayouts_ =
+          layoutShooters(scene_, atlas_, {params.regionSize, strongRegions, openings_}, deadline);
       if (strongLayouts_.size() < atlas_.patches.size()) return false;
     }
     return std::chrono::steady_clock::now() < deadline;
@@ -194,6 +196,7 @@ class RayShotBackend final : public ShotBackend {
   size_t shooter_ = 0;
   const ShooterEmission emission_;   // ShotShape's lobes and bins
   std::vector<glm::vec4> arrivals_;  // per atlas texel, once a shot noted any
+  std::vector<uint8_t> openings_;    // ShotShape::openingPatches
   uint32_t firstShotNumber_ = 0;     // ShotShape::firstShotNumber
   uint32_t shotNumber_ = 0;
 };

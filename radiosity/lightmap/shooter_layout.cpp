@@ -136,7 +136,9 @@ ShooterLayout layoutPatch(const Scene& scene, const LightmapAtlas& atlas, const 
   l.tangent = glm::normalize(glm::length(u) > 0.0f ? u : glm::cross(glm::vec3(0.6f, 0.8f, 0.0f), p.normal));
   l.bitangent = glm::cross(l.normal, l.tangent);
   l.texelRadius = 0.5f * std::max(glm::length(p.texelU + p.texelV), glm::length(p.texelU - p.texelV));
+  const bool opening = pi < params.openings.size() && params.openings[pi] != 0;
   auto regionsAlong = [&](float length, int texels) {
+    if (opening) return std::clamp(params.openingRegions, 1, std::max(texels, 1));
     const int n = static_cast<int>(std::ceil(length / params.regionSize - 1e-3f));
     return std::clamp(n, 1, std::min(params.maxRegions, texels));
   };

@@ -7,6 +7,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,8 +27,19 @@ struct ShooterLayout {
 };
 
 struct LayoutParams {
+  LayoutParams() = default;
+  LayoutParams(float size, int regions, std::vector<uint8_t> openingPatches = {})
+      : regionSize(size), maxRegions(regions), openings(std::move(openingPatches)) {}
+
   float regionSize = 1.0f;  ///< metres per region along a chart edge (see SolverParams)
   int maxRegions = 2;       ///< per chart edge
+  /// Per patch (empty: none), non-zero for an opening: a cell's portal, cut into `openingRegions` per
+  /// chart edge whatever its size (up to its texels). A portal sits in its wall's thickness, between
+  /// the reveals, so a receiver off its axis sees a strip of it hidden by a jamb; one eye for a 1 m region
+  /// gave the region's whole light past that jamb (a door 5 m away got 9 % more than exact from plan 8's
+  /// R1:R3 portal, bench/RESULTS.md "The portals' error").
+  std::vector<uint8_t> openings;
+  int openingRegions = 4;
 };
 
 /// Lays out every patch of the atlas. For each region the eye is the candidate texel (the centre and a

@@ -354,14 +354,16 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
 // without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and the
 // ambient term. Their decomposition runs beside the bake's own buffers: it may take what they leave of the
 // memory limit.
-RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_point deadline, Context& ctx) {
+RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_point deadline,
+                     const CpuShare& load, Context& ctx) {
   const CellGraph& cells = *in.cells;
   if (!cells.empty() && !cells.definedByVolumes()) return {};
   ctx.progress("set-up", 0.0, "the rooms of the texels");
   const double bakeBytes = bakeMemory(s, *in.scene, in.atlas, 0.0).total();
   const double limit = double(s.cells.decompose.memoryLimit);
   const uint64_t roomsMemory = limit <= 0.0 ? 0 : (limit > bakeBytes ? uint64_t(limit - bakeBytes) : 1);
-  return labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, deadline, roomsMemory);
+  return labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, deadline, roomsMemory,
+                           load.ratio());
 }
 
 }  // namespace
@@ -430,7 +432,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   const CellGraph& cells = *in.cells;
-  const RoomLabels rooms = bakeRooms(s, in, solveDeadline, ctx);
+  const RoomLabels rooms = bakeRooms(s, in, solveDeadline, load, ctx);
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);

@@ -249,7 +249,7 @@ int coarseningThatFits(const LayoutCost& cost, const AtlasParams& params, double
   if (!(cost.texelSeconds > 0.0)) return kMostCoarsening;
   for (int factor = 2; factor < kMostCoarsening; factor *= 2)
     if (coarseLayoutSeconds(cost, params, factor) + outputsSeconds(coarseTexels(cost, params, factor)) <=
-        secondsLeft)
+        kRelayoutTimeShare * secondsLeft)
       return factor;
   return kMostCoarsening;
 }

@@ -173,8 +173,14 @@ size_t coarseTexels(const LayoutCost& cost, const AtlasParams& params, int facto
 /// The wall seconds of that layout at `cost`'s rates, with room to spare (the gutters of a fill stopped
 /// before them, the load moving).
 double coarseLayoutSeconds(const LayoutCost& cost, const AtlasParams& params, int factor);
+/// The share of the time left that a layout and its files may be planned in: the stages between them (the
+/// costs' probes again, the rooms, the sky's first pass, the lamps) cannot stop part-way either, and the
+/// share of a core moves. oa_dm7 at 120 s beside 16 busy loops and two other bakes chose 1/4 on the whole
+/// time left at 2 % of a core and wrote its files at 1.3 %, 32 s past the limit.
+inline constexpr double kRelayoutTimeShare = 0.5;
 /// The finest factor (2, 4, 8, 16) whose layout and its required outputs (`outputsSeconds` of its texels)
-/// fit in `secondsLeft`; kMostCoarsening when none does or the fill's rate was not measured.
+/// fit in kRelayoutTimeShare of `secondsLeft`; kMostCoarsening when none does or the fill's rate was not
+/// measured.
 int coarseningThatFits(const LayoutCost& cost, const AtlasParams& params, double secondsLeft,
                        const std::function<double(size_t)>& outputsSeconds);
 /// The CPU seconds of the least layout of `scene` (kMostCoarsening of `params`: its charts, about one a

@@ -110,9 +110,11 @@ AtlasParams coarser(const AtlasParams& params, int factor) {
   return coarse;
 }
 
-// Whether the required outputs of `atlas` would not be written by limits.end.
+// Whether the required outputs of `atlas` would not be written by limits.end with the stages before them
+// (kRelayoutTimeShare of the time left).
 bool tooLateFor(const LightmapAtlas& atlas, const AtlasLimits& limits) {
-  return limits.outputsSeconds && limits.outputsSeconds(atlas.texelCount()) > secondsLeft(limits.end);
+  return limits.outputsSeconds &&
+         limits.outputsSeconds(atlas.texelCount()) > kRelayoutTimeShare * secondsLeft(limits.end);
 }
 
 // `params` laid out at 1/`factor` of its texels per metre (fitTexelBudget), its own warnings (charts capped)

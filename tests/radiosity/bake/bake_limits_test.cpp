@@ -461,7 +461,7 @@ TEST(BakeLimits, TheCpuShareIsTheClocksOwnUncapped) {
 }
 
 // After a layout stopped, the finest scale whose layout (at the first attempt's measured rate, with room
-// to spare) and files fit in the time left, else the least layout; with no rate measured, the least.
+// to spare) and files fit in half the time left, else the least layout; with no rate measured, the least.
 TEST(BakeLimits, AStoppedLayoutGoesStraightToTheScaleItsRateFits) {
   const bake_steps::LayoutCost cost{
       .chartSeconds = 1.0, .texelSeconds = 1e-5, .texels = 1000000, .charts = 1000};
@@ -469,11 +469,12 @@ TEST(BakeLimits, AStoppedLayoutGoesStraightToTheScaleItsRateFits) {
   EXPECT_EQ(bake_steps::coarseTexels(cost, params, 2), 250000u + 16000u);
   EXPECT_NEAR(bake_steps::coarseLayoutSeconds(cost, params, 2), 2.0 * (1.0 + 2.66), 1e-9);
   const auto files = [](size_t texels) { return 1e-5 * double(texels); };
-  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 10.0, files), 2);  // 7.32 + 2.66 s
-  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 5.0, files), 4);   // 3.57 + 0.785 s
-  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 3.0, files), 8);
-  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 2.7, files), 16);
-  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 1.0, files), bake_steps::kMostCoarsening);
+  // Planned in half the time left: the stages before the files cannot stop either.
+  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 20.0, files), 2);  // 7.32 + 2.66 s
+  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 10.0, files), 4);  // 3.57 + 0.785 s
+  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 6.0, files), 8);
+  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 5.4, files), 16);
+  EXPECT_EQ(bake_steps::coarseningThatFits(cost, params, 2.0, files), bake_steps::kMostCoarsening);
   bake_steps::LayoutCost unmeasured = cost;
   unmeasured.texelSeconds = 0.0;  // stopped before its first chart was filled
   EXPECT_EQ(bake_steps::coarseningThatFits(unmeasured, params, 1e6, files), bake_steps::kMostCoarsening);

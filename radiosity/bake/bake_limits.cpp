@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 
 #include <pthread.h>
@@ -199,11 +200,12 @@ double CpuShare::share() const {
   const std::lock_guard lock(mutex_);
   const double whole = shareBetween(start_, now);
   if (whole <= 0.0) return 0.0;
-  // The newest reading at least a window old starts the recent share.
+  // The newest reading at least a window old starts the recent share; the older ones are not needed again.
   double recent = 0.0;
   for (auto r = readings_.rbegin(); r != readings_.rend(); ++r)
     if (std::chrono::duration<double>(now.wall - r->wall).count() >= kCpuShareWindow) {
       recent = shareBetween(*r, now);
+      readings_.erase(readings_.begin(), std::prev(r.base()));
       break;
     }
   readings_.push_back(now);

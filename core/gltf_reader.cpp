@@ -306,8 +306,8 @@ bool keepImageEncoded(tinygltf::Image* image, const int, std::string* err, std::
 class GltfReader {
  public:
   GltfReader(const std::string& path, const tinygltf::Model& model, const ReferencedFiles& files,
-             size_t maxTriangles)
-      : path_(path), m_(model), files_(files), maxTriangles_(maxTriangles) {}
+             const LoadOptions& options)
+      : path_(path), m_(model), files_(files), maxTriangles_(options.maxTriangles), options_(options) {}
 
   RawScene read() {
     for (const std::string& ext : m_.extensionsRequired)
@@ -422,6 +422,8 @@ class GltfReader {
     if (node.mesh >= 0) {
       if (node.mesh >= static_cast<int>(m_.meshes.size()))
         fail("node '" + name + "': mesh index out of range");
+      requireReadingTime(path_, options_, std::to_string(meshesRead_) + " meshes read");
+      ++meshesRead_;
       addMesh(m_.meshes[node.mesh], world, path, cell, tagged);
     }
     // Nothing below a tagged node can add another tagged node, so `tagged` stays valid.
@@ -651,6 +653,7 @@ class GltfReader {
     if (image.image.empty() && image.bufferView < 0 && files_.missing(image.uri))
       fail(which + " '" + percentDecode(image.uri) + "': no such file");
     if (image.image.empty()) fail(which + " is empty");
+    requireReadingTime(path_, options_, std::to_string(imageMeans_.size()) + " texture images decoded");
     const glm::vec3 mean = meanTextureColour(image.image.data(), image.image.size(), path_, which);
     imageMeans_.emplace(source, mean);
     return mean;
@@ -868,7 +871,9 @@ class GltfReader {
   const tinygltf::Model& m_;
   const ReferencedFiles& files_;
   size_t maxTriangles_;
-  size_t placed_ = 0;  // triangles placed so far, tagged meshes included
+  const LoadOptions& options_;
+  size_t meshesRead_ = 0;  // mesh nodes read so far, for a time limit passing while they are
+  size_t placed_ = 0;      // triangles placed so far, tagged meshes included
   RawScene raw_;
   std::vector<int> materialIndex_;
   std::map<int, glm::vec3> imageMeans_;           // by image index: each image is decoded once
@@ -911,7 +916,8 @@ RawScene readGltf(const std::string& path, const LoadOptions& options) {
   if (!ok)
     throw InputError(path, "invalid glTF: " + (err.empty() ? std::string("rejected by the parser")
                                                            : printable(firstLine(err), 200)));
-  return GltfReader(path, model, files, options.maxTriangles).read();
+  requireReadingTime(path, options, "parsed, no mesh read yet");
+  return GltfReader(path, model, files, options).read();
 }
 
 }  // namespace cpgi::detail

@@ -153,6 +153,7 @@ RawScene readObj(const std::string& path, const LoadOptions& options) {
     error = firstLineOf(error);
     throw InputError(path, "invalid OBJ: " + (error.empty() ? std::string("rejected by the parser") : error));
   }
+  requireReadingTime(path, options, "parsed, no object read yet");
   RawScene raw;
   if (!warning.empty()) {
     warning = firstLineOf(warning);
@@ -186,7 +187,11 @@ RawScene readObj(const std::string& path, const LoadOptions& options) {
     return glm::vec3(array[3 * index], array[3 * index + 1], array[3 * index + 2]);
   };
 
+  size_t objectsRead = 0;
   for (const tinyobj::shape_t& shape : shapes) {
+    requireReadingTime(
+        path, options,
+        std::to_string(objectsRead++) + " of " + std::to_string(shapes.size()) + " objects read");
     const std::string name = shape.name.empty() ? "object" : shape.name;
     const CellTag tag = parseCellTag(path, name);
     RawScene::TaggedMesh* tagged = nullptr;

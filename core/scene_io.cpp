@@ -353,7 +353,14 @@ static uint32_t keepSurfaceUV(RawScene& raw, size_t i, const Triangle& t) {
   return uint32_t(raw.scene.looks.uvs.size() - 1);
 }
 
+void requireReadingTime(const std::string& path, const LoadOptions& options, const std::string& step) {
+  if (std::chrono::steady_clock::now() < options.deadline) return;
+  throw InputError("time limit",
+                   "came while " + path + " was read (" + step + "), before any light was solved; raise it");
+}
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options) {
+  requireReadingTime(path, options, "its triangles read, not yet checked");
   LoadedScene out;
   out.warnings = std::move(raw.warnings);
   Scene& scene = raw.scene;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -51,6 +52,10 @@ struct LoadOptions {
   /// The most triangles a scene may place (about 80 bytes each, before the atlas): a small glTF whose
   /// thousands of nodes instance one large mesh would otherwise expand into gigabytes.
   size_t maxTriangles = 10'000'000;
+  /// Past this instant (bake --time-limit) the reading stops between its steps (the file parsed, each mesh,
+  /// each texture image decoded, the checks after them) with InputError("time limit", ...) naming the file
+  /// and how far it came: a bake whose limit passed while it read has no time left for any result.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,

@@ -57,6 +57,10 @@ RawScene readObj(const std::string& path, const LoadOptions& options);
 
 /// The checks shared by every format (non-finite positions, degenerate and duplicate triangles, empty
 /// scene) and the cell graph (portal quads, orientation, validateCells).
+/// Throws InputError("time limit", ...) when options.deadline has passed: `path` was being read, `step` says
+/// how far (e.g. "after 3 of 40 meshes").
+void requireReadingTime(const std::string& path, const LoadOptions& options, const std::string& step);
+
 LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions& options);
 
 /// Orders a portal's 4 distinct corners around their boundary; throws InputError when the mesh is not

@@ -96,7 +96,7 @@ struct SolveInput {
   const ShotEngines& engines;
   Clock::time_point deadline;
   const std::filesystem::path* gatherPlan;
-  const LoadMeter& load;  ///< the wall a CPU second takes now: the two-level set-up's estimate
+  const CpuShare& load;  ///< the wall a CPU second takes now: the two-level set-up's estimate
 };
 
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
@@ -125,6 +125,7 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   }
   CellSolveParams params = cellSolveParams(s, in);
   params.deadline = x.deadline;
+  params.load = controls.load;
   // Cell jobs and on-demand cells are one level: a job's plan has one atlas, and an on-demand bake's
   // cells outside the selection are lit by the whole atlas's first shot.
   const bool oneLevel = cells && (x.gatherPlan || in.onDemand.active);
@@ -291,9 +292,10 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
                           written.skippedOutputs.end());
 }
 
-// The texels of the coarsest atlas a bake of `scene` can end with: a layout stopped by the time limit is laid
-// out again at a quarter of the texels per metre (bake_steps.cpp, layOutWithin), from the density asked or
-// with --density auto the least it chooses.
+// The texels of the least atlas a bake of `scene` can end with: a layout stopped by the time limit is laid
+// out again at most kMostCoarsening times coarser (bake_steps.cpp, coarsenToFit), from the density asked or
+// with --density auto the least it chooses; every chart keeps its least size with its gutter (about one
+// chart for two triangles).
 size_t leastTexels(const BakeSettings& s, const Scene& scene) {
   double texels = 0.0;
   if (s.atlas.densityAuto) {  // at least the pilot's even density, which a bake with no time for it takes
@@ -303,13 +305,23 @@ size_t leastTexels(const BakeSettings& s, const Scene& scene) {
     texels = 0.5 * double(scene.triangles.size()) * std::pow(double(s.atlas.params.texelsPerQuad), 2.0);
   else
     texels = texelsByArea(scene, {}, s.atlas.params.density);
-  return size_t(texels / 16.0);
+  const double chart = std::pow(double(s.atlas.params.minTexels + 2 * s.atlas.params.padding), 2.0);
+  return size_t(texels / double(kMostCoarsening * kMostCoarsening) +
+                0.5 * double(scene.triangles.size()) * chart);
 }
 
-// Seconds from now to `until` (none: a day).
-double secondsUntil(Clock::time_point until) {
-  if (until == Clock::time_point::max()) return 86400.0;
-  return std::chrono::duration<double>(until - Clock::now()).count();
+// The least a bake of `scene` writes, at `costs` (the share of a core measured so far): the least layout
+// and the lightmap's files and report of its texels, in wall seconds.
+LeastBake leastBake(const BakeSettings& s, const Scene& scene, const MachineCosts& costs,
+                    const CpuShare& load) {
+  LeastBake least;
+  least.texels = leastTexels(s, scene);
+  const OutputEstimate files =
+      estimateOutputs(scene, {}, s.output.views, least.texels, least.texels, costs, EngineOutputParams{});
+  least.layoutSeconds = leastLayoutCpuSeconds(scene, least.texels) * load.ratio();
+  least.seconds = least.layoutSeconds + files.filesSeconds + files.pageSeconds;
+  least.share = load.share();
+  return least;
 }
 
 // The optional outputs that fit in the time left after the solve, among those `early` planned before it,
@@ -318,7 +330,7 @@ double secondsUntil(Clock::time_point until) {
 // (estimateOutputs). Its `skipped` names those either plan left out.
 OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
                           const ViewParams& views, const LightmapAtlas& atlas, const OutputEstimate& before,
-                          const OutputPlan& early, const LoadMeter& load, Clock::time_point deadline) {
+                          const OutputPlan& early, const CpuShare& load, Clock::time_point deadline) {
   EngineOutputParams asked = s.output.engine;
   asked.directional = early.directional, asked.probes = early.probes;
   MachineCosts now{.ray = before.raySeconds,
@@ -328,7 +340,7 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
   if (before.load > 0.0) now.ray *= std::max(1.0, now.load / before.load);
   const OutputEstimate e =
       estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, asked);
-  OutputPlan plan = planOutputs(secondsUntil(deadline), e, early.views, asked);
+  OutputPlan plan = planOutputs(secondsLeft(deadline), e, early.views, asked);
   std::vector<std::string> skipped;
   for (const char* o : {"views", "probes", "directional"})
     if (std::count(early.skipped.begin(), early.skipped.end(), o) ||
@@ -342,14 +354,16 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
 // without any is labelled by its automatic rooms, for the stop per cell, the per-cell figures and the
 // ambient term. Their decomposition runs beside the bake's own buffers: it may take what they leave of the
 // memory limit.
-RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_point deadline, Context& ctx) {
+RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_point deadline,
+                     const CpuShare& load, Context& ctx) {
   const CellGraph& cells = *in.cells;
   if (!cells.empty() && !cells.definedByVolumes()) return {};
   ctx.progress("set-up", 0.0, "the rooms of the texels");
   const double bakeBytes = bakeMemory(s, *in.scene, in.atlas, 0.0).total();
   const double limit = double(s.cells.decompose.memoryLimit);
   const uint64_t roomsMemory = limit <= 0.0 ? 0 : (limit > bakeBytes ? uint64_t(limit - bakeBytes) : 1);
-  return labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, deadline, roomsMemory);
+  return labelTexelsByRoom(*in.scene, s.input.scene, in.atlas, ctx, cells, deadline, roomsMemory,
+                           load.ratio());
 }
 
 }  // namespace
@@ -357,7 +371,8 @@ RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_poi
 BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
                       const std::filesystem::path* gatherPlan) {
   const Clock::time_point deadline = deadlineOf(s, run.start);
-  const LoadMeter load;  // the wall over the CPU this bake gets, observed as it goes
+  // The share of a core this bake gets, from its start (its loading included) as it goes.
+  const CpuShare load(run.clocks, run.cpuAtStart);
   std::optional<OutputDir> out;
   if (!s.output.folder.empty()) out.emplace(s.output.folder, kLightmapResultNames);
   BakeEngines engines(s.solver.backend, s.solver.indirect, run.gl, ctx);
@@ -369,6 +384,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   const bool limited = deadline != Clock::time_point::max();
   // Measured as the machine runs now, and again before the solve: the load moves in minutes.
   const auto measureCosts = [&] {
+    auto t = ctx.time("time probes");
     return MachineCosts{.ray = limited ? probeRaySeconds(*in.scene) : 0.0,
                         .texel = limited ? probeTexelSeconds() : 0.0,
                         .texelCpu = limited ? probeTexelCpuSeconds() : 0.0,
@@ -376,20 +392,21 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   };
   const MachineCosts costs = measureCosts();
   const size_t budget = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
-  // The least: the files and page of the coarsest atlas a stopped layout falls back to (a sixteenth of
-  // the texel budget, or of the texels the density asks for).
-  const size_t coarsest = leastTexels(s, *in.scene);
-  const OutputEstimate least =
-      estimateOutputs(*in.scene, {}, s.output.views, coarsest, coarsest, costs, EngineOutputParams{});
-  requireTimeForMinimum(s.limits.timeLimit, least.filesSeconds + least.pageSeconds, coarsest);
+  // The least: the least layout (a stopped one falls back to) and its files and page, against the time
+  // the loading left when it was read here (else the whole limit).
+  LeastBake least = leastBake(s, *in.scene, costs, load);
+  least.spentSeconds = in.loadedHere ? s.limits.timeLimit - secondsLeft(deadline) : 0.0;
+  requireTimeForMinimum(s.limits.timeLimit, least);
   const Clock::time_point beforeOutputs =
       keepBack(deadline, outputsKeptBack(s, estimateOutputs(*in.scene, cameras, s.output.views, budget,
                                                             budget, costs, s.output.engine)));
   // The pilot shoots before the layout; else the engines wait until the atlas fits the memory. A layout
-  // still going when only the outputs' time is left is laid out again coarse (a sixteenth of its texels,
-  // of its fill and gutters) in that time's margin.
-  AtlasLimits atlasLimits{
-      .pilot = pilotDeadline(beforeOutputs), .layout = beforeOutputs, .end = deadline, .outputsSeconds = {}};
+  // still going when only the outputs' time and the least layout's are left is laid out again coarser, at
+  // the scale its own measured rate fits in what is left (bake_steps.cpp, coarsenToFit).
+  AtlasLimits atlasLimits{.pilot = pilotDeadline(beforeOutputs),
+                          .layout = keepBack(beforeOutputs, least.layoutSeconds),
+                          .end = deadline,
+                          .outputsSeconds = {}};
   if (limited)
     atlasLimits.outputsSeconds = [&](size_t texels) {
       const OutputEstimate e = estimateOutputs(
@@ -415,7 +432,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   requireConvergence(s, *in.scene, in.atlas);
   if (run.sized) run.sized(bakeSizeLine(s, in));
   const CellGraph& cells = *in.cells;
-  const RoomLabels rooms = bakeRooms(s, in, solveDeadline, ctx);
+  const RoomLabels rooms = bakeRooms(s, in, solveDeadline, load, ctx);
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;
   const ExrChannel texelCells = rooms.graph.empty() ? cellChannel(in.atlas, *in.scene, cells) : rooms.channel;
   const AmbientTransfer transfer = bakeAmbientTransfer(s, in, texelGraph, texelCells, ctx);
@@ -478,8 +495,14 @@ BakeResult bake(const Scene& scene, const CellGraph& cells, const BakeSettings& 
 }
 
 BakeResult bake(const BakeSettings& settings, Context& ctx, const BakeRun& run) {
-  const BakeScene in = loadBakeScene(settings, ctx, run);
-  return bake(in.loaded.scene, in.graph, settings, ctx, run);
+  const BakeScene loaded = loadBakeScene(settings, ctx, run);
+  const BakeSettings s = bake_steps::resolved(settings);
+  bake_steps::BakeInput in;
+  in.scene = &loaded.loaded.scene;
+  in.cells = &loaded.graph;
+  in.onDemand = bake_steps::resolveOnDemand(s, loaded.loaded.scene, loaded.graph);
+  in.loadedHere = true;
+  return bake_steps::bakeLoaded(s, in, run, ctx);
 }
 
 Context::ProgressFn bakeNotes(Context::ProgressFn inner, const BakeSettings& settings,

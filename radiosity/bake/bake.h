@@ -26,6 +26,7 @@
 #include "core/scene.h"
 #include "core/scene_io.h"
 #include "radiosity/bake/bake_settings.h"
+#include "radiosity/bake/cpu_clocks.h"
 #include "radiosity/cpu/ray_shot_engine.h"
 #include "radiosity/gpu/egl_context.h"
 #include "radiosity/gpu/gl_shot_engine.h"
@@ -56,13 +57,17 @@ struct BakeRun {
   /// Called once the atlas is laid out and the memory checked, before the solve, with the bake's size in
   /// one line ("bake: N texels in P patches (...), about M MB; ...") for a caller to show (bakeNotes).
   std::function<void(const std::string&)> sized;
+  /// The clocks the bake's share of a core is read on (real ones; tests give fake ones) and their reading
+  /// at `start`: the loading's CPU over its wall is the first share the bake's estimates see.
+  CpuClocks clocks = cpuClocks();
+  CpuReading cpuAtStart = clocks();
 };
 
 /// Step 1: reads settings.input.scene with its load options, applies settings.sky to it (core/sky.h),
 /// refuses a scene nothing lights (unless input.allowDark) and, with BakeMethod::Cells, resolves the cells
 /// of settings.cells.source (cell_source.h). Warnings go to ctx. Throws InputError. Limits::timeLimit counts
-/// from run.start: a load that ends past it is said in a warning (the bake then does only what a valid
-/// result needs), and a decomposition into cells it interrupts is an InputError naming the time limit.
+/// from run.start: a load it interrupts (between the file's meshes and images) and a decomposition into
+/// cells it interrupts are each an InputError naming the time limit.
 BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRun& run = {});
 
 struct BakeResult {
@@ -85,7 +90,9 @@ struct BakeResult {
 BakeResult bake(const Scene& scene, const CellGraph& cells, const BakeSettings& settings, Context& ctx,
                 const BakeRun& run = {});
 
-/// loadBakeScene, then bake() on what it read.
+/// loadBakeScene, then bake() on what it read; a limit whose time left after the loading cannot hold the
+/// least the bake writes at the share of a core the loading got is refused in one line (InputError on
+/// --time-limit), nothing written.
 BakeResult bake(const BakeSettings& settings, Context& ctx, const BakeRun& run = {});
 
 /// The backend of a two-level bake's interreflection: whether `solver` shoots it by Embree rays on the CPU

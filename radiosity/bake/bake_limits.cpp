@@ -5,9 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 
-#include <sys/resource.h>
+#include <pthread.h>
 #include <time.h>
 
 #include <tbb/blocked_range.h>
@@ -53,6 +54,14 @@ constexpr int kProbeRays = 1 << 17;
 // A gather's ray (directional lightmap, probes): a nearest hit and the baked radiance looked up there; its
 // emitter samples a shadow ray each.
 constexpr double kRaysPerGatherRay = 2.0;
+// A layout's wall seconds from a first attempt's rates, with room to spare: a fill stopped before its
+// gutters did not price them, and the load moves.
+constexpr double kLayoutSpare = 2.0;
+// The least layout's CPU seconds on an idle core: its charts (found, split, packed: about one a triangle)
+// and its texels filled with their gutters (bench/RESULTS.md, "Never past --time-limit when the bake gets
+// 2 % of a core"), with room to spare.
+constexpr double kLayoutCpuPerTriangle = 4e-6;
+constexpr double kLayoutCpuPerTexel = 2e-7;
 
 // Embree's high-quality BVH with its triangles, and RayScene's own copy of them.
 constexpr double kRaySceneBytesPerTriangle = 256.0;
@@ -141,25 +150,114 @@ double probeTexelCpuSeconds() {
 }
 
 double processCpuSeconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
-LoadMeter::LoadMeter() : wall_(std::chrono::steady_clock::now()), cpu_(processCpuSeconds()) {}
-
-double LoadMeter::observed() const {
-  return processCpuSeconds() - cpu_ > 0.1 ? ratio() : 0.0;
+double secondsLeft(std::chrono::steady_clock::time_point until) {
+  if (until == std::chrono::steady_clock::time_point::max()) return 86400.0;
+  return std::chrono::duration<double>(until - std::chrono::steady_clock::now()).count();
 }
 
-double LoadMeter::ratio() const {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_).count();
-  const double cpu = processCpuSeconds() - cpu_;
-  // Under a tenth of a second of CPU says nothing yet.
-  if (!(cpu > 0.1)) return 1.0;
-  const double cores = std::max(1, tbb::this_task_arena::max_concurrency());
-  return std::clamp(wall * cores / cpu, 1.0, kMostLoadRatio);
+}  // namespace cpgi::bake_steps
+
+namespace cpgi {
+
+CpuClocks cpuClocks() {
+  clockid_t thread{};
+  const bool known = pthread_getcpuclockid(pthread_self(), &thread) == 0;
+  return [thread, known] {
+    CpuReading r{std::chrono::steady_clock::now(), bake_steps::processCpuSeconds(), -1.0};
+    timespec t{};
+    // The thread may have ended (a server's worker): the process's clock alone then.
+    if (known && clock_gettime(thread, &t) == 0) r.thread = double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+    return r;
+  };
+}
+
+}  // namespace cpgi
+
+namespace cpgi::bake_steps {
+
+CpuShare::CpuShare(CpuClocks clocks, std::optional<CpuReading> start, int cores)
+    : clocks_(std::move(clocks)),
+      start_(start ? *start : clocks_()),
+      cores_(cores > 0 ? cores : std::max(1, tbb::this_task_arena::max_concurrency())) {}
+
+double CpuShare::shareBetween(const CpuReading& a, const CpuReading& b) const {
+  const double wall = std::chrono::duration<double>(b.wall - a.wall).count();
+  const double process = b.process - a.process;
+  if (!(process >= kLeastCpuSeconds) || !(wall > 0.0)) return 0.0;
+  double share = process / (wall * double(cores_));
+  if (a.thread >= 0.0 && b.thread >= 0.0) share = std::max(share, (b.thread - a.thread) / wall);
+  // A thousandth of a core is as far as a bake's estimates need to see.
+  return std::clamp(share, 1e-3, 1.0);
+}
+
+double CpuShare::share() const {
+  const CpuReading now = clocks_();
+  const std::lock_guard lock(mutex_);
+  const double whole = shareBetween(start_, now);
+  if (whole <= 0.0) return 0.0;
+  // The newest reading at least a window old starts the recent share; the older ones are not needed again.
+  double recent = 0.0;
+  for (auto r = readings_.rbegin(); r != readings_.rend(); ++r)
+    if (std::chrono::duration<double>(now.wall - r->wall).count() >= kCpuShareWindow) {
+      recent = shareBetween(*r, now);
+      readings_.erase(readings_.begin(), std::prev(r.base()));
+      break;
+    }
+  readings_.push_back(now);
+  return recent > 0.0 ? std::min(whole, recent) : whole;
+}
+
+double CpuShare::ratio() const {
+  const double s = share();
+  return s > 0.0 ? 1.0 / s : 1.0;
+}
+
+double CpuShare::observed() const {
+  const double s = share();
+  return s > 0.0 ? 1.0 / s : 0.0;
+}
+
+LayoutCost stoppedLayoutCost(const AtlasLayoutStopped& stopped) {
+  return LayoutCost{
+      .chartSeconds = stopped.chartSeconds,
+      .texelSeconds = stopped.filledTexels > 0 ? stopped.fillSeconds / double(stopped.filledTexels) : 0.0,
+      .texels = stopped.texels,
+      .charts = stopped.charts};
+}
+
+LayoutCost wholeLayoutCost(double seconds, size_t texels, size_t charts) {
+  return LayoutCost{.chartSeconds = seconds,
+                    .texelSeconds = texels > 0 ? seconds / double(texels) : 0.0,
+                    .texels = texels,
+                    .charts = charts};
+}
+
+size_t coarseTexels(const LayoutCost& cost, const AtlasParams& params, int factor) {
+  const double least = std::pow(double(params.minTexels + 2 * params.padding), 2.0);
+  return size_t(double(cost.texels) / double(factor * factor) + double(cost.charts) * least);
+}
+
+double coarseLayoutSeconds(const LayoutCost& cost, const AtlasParams& params, int factor) {
+  return kLayoutSpare * (cost.chartSeconds + double(coarseTexels(cost, params, factor)) * cost.texelSeconds);
+}
+
+int coarseningThatFits(const LayoutCost& cost, const AtlasParams& params, double secondsLeft,
+                       const std::function<double(size_t)>& outputsSeconds) {
+  if (!(cost.texelSeconds > 0.0)) return kMostCoarsening;
+  for (int factor = 2; factor < kMostCoarsening; factor *= 2)
+    if (coarseLayoutSeconds(cost, params, factor) + outputsSeconds(coarseTexels(cost, params, factor)) <=
+        kRelayoutTimeShare * secondsLeft)
+      return factor;
+  return kMostCoarsening;
+}
+
+double leastLayoutCpuSeconds(const Scene& scene, size_t texels) {
+  return kLayoutCpuPerTriangle * double(scene.triangles.size()) + kLayoutCpuPerTexel * double(texels);
 }
 
 OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
@@ -181,13 +279,19 @@ OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAs
   return plan;
 }
 
-void requireTimeForMinimum(double timeLimit, double minimumSeconds, size_t texels) {
-  if (!(timeLimit > 0.0) || timeLimit >= minimumSeconds) return;
-  char line[320];
+void requireTimeForMinimum(double timeLimit, const LeastBake& least) {
+  if (!(timeLimit > 0.0) || timeLimit - least.spentSeconds >= least.seconds) return;
+  char share[80] = "";
+  if (least.share > 0.0) std::snprintf(share, sizeof share, " at %.2g %% of a core", 100.0 * least.share);
+  char spent[80] = "";
+  if (least.spentSeconds > 0.0)
+    std::snprintf(spent, sizeof spent, " after %.3g s of loading", least.spentSeconds);
+  char line[480];
   std::snprintf(line, sizeof line,
-                "%.3g s is less than the least a bake of this scene writes here as the machine runs now: "
-                "about %.3g s for its lightmap's files and report at %zu texels; raise it",
-                timeLimit, minimumSeconds, texels);
+                "%.3g s is less than the least a bake of this scene writes here as the machine runs now%s: "
+                "about %.3g s for its least layout and its lightmap's files and report at %zu texels%s; "
+                "at this load it needs at least %.3g s; raise it",
+                timeLimit, share, least.seconds, least.texels, spent, least.spentSeconds + least.seconds);
   throw InputError("--time-limit", line);
 }
 

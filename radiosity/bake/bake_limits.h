@@ -6,6 +6,9 @@
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "core/context.h"
 #include "core/scene.h"
 #include "radiosity/bake/bake_settings.h"
+#include "radiosity/bake/cpu_clocks.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/views.h"
@@ -29,35 +33,54 @@ double probeRaySeconds(const Scene& scene);
 double probeTexelSeconds();
 
 /// The CPU seconds (this thread's) of a pixel of probeTexelSeconds' PNG encoding: what a texel costs the
-/// machine unloaded, which LoadMeter's ratio turns into wall seconds as the load moves.
+/// machine unloaded, which CpuShare turns into wall seconds as the load moves.
 double probeTexelCpuSeconds();
 
-/// The ratio of wall time to the CPU time this process got since the meter started (its load): the
-/// wall seconds × the cores the bake may use over the CPU seconds of every thread of the process. 1 on an
-/// idle machine with every core busy for the bake; 5–20 at load 10–40 on 2 cores; more where the bake
-/// waited (conservative: it only ever reserves more). At least 1, at most kMostLoadRatio.
-class LoadMeter {
+/// The share of a core one thread of this process gets, measured directly: CPU seconds over wall seconds,
+/// the larger of the thread that made the clocks (the bake's own thread, which works in every stage, serial
+/// or parallel) and the process's every thread over every core (a stage whose own thread waits on the GL
+/// driver's). Over the last kCpuShareWindow seconds and over the whole bake, the lower (a load that rose is
+/// seen within the window; one that fell only once the bake's mean says so). 1 on an idle machine; 0.05 at
+/// load 40 on 2 cores; 0.015-0.02 where the bake ran beside 16 busy loops and three other engineers' work
+/// (bench/RESULTS.md, "Never past --time-limit when the bake gets 2 % of a core"). Not capped: the outputs'
+/// reserve and the set-up's estimate are wall seconds = CPU seconds / share.
+class CpuShare {
  public:
-  LoadMeter();
+  /// From `start` (the bake's start, before its loading, BakeRun::cpu) on `clocks`; `cores` (0: the task
+  /// arena's) is what the process's CPU is shared over.
+  explicit CpuShare(CpuClocks clocks = cpuClocks(), std::optional<CpuReading> start = std::nullopt,
+                    int cores = 0);
+  /// In (0, 1]; 0 before kLeastCpuSeconds of CPU say anything.
+  double share() const;
+  /// The wall seconds a CPU second of one thread takes now: 1 / share(), or 1 before one is measured.
   double ratio() const;
-  /// ratio(), or 0 before the process has spent enough CPU to say (a tenth of a second).
+  /// ratio(), or 0 before a share is measured.
   double observed() const;
 
  private:
-  std::chrono::steady_clock::time_point wall_;
-  double cpu_ = 0.0;
+  double shareBetween(const CpuReading& a, const CpuReading& b) const;
+  CpuClocks clocks_;
+  CpuReading start_;
+  int cores_;
+  mutable std::mutex mutex_;
+  mutable std::vector<CpuReading> readings_;  ///< one a call of share(), the window's starts
 };
-inline constexpr double kMostLoadRatio = 40.0;
+/// The window of CpuShare's recent share (wall seconds).
+inline constexpr double kCpuShareWindow = 10.0;
+/// The CPU seconds a share is read from: a few of the scheduler's slices.
+inline constexpr double kLeastCpuSeconds = 0.02;
 /// CPU seconds of every thread of this process so far (user + system).
 double processCpuSeconds();
+/// Seconds from now to `until` (none: a day; past: negative).
+double secondsLeft(std::chrono::steady_clock::time_point until);
 
 /// This machine's costs as it runs now, the outputs' estimates' units.
 struct MachineCosts {
   double ray = 0.0;       ///< probeRaySeconds
   double texel = 0.0;     ///< probeTexelSeconds
   double texelCpu = 0.0;  ///< probeTexelCpuSeconds
-  /// LoadMeter::observed: with one, the files are estimated at texelCpu × load (with room to spare);
-  /// without, at the wall probe `texel`.
+  /// CpuShare::observed (wall seconds per CPU second): with one, the files are estimated at texelCpu × load
+  /// (with room to spare); without, at the wall probe `texel`.
   double load = 0.0;
 };
 
@@ -76,7 +99,7 @@ struct OutputEstimate {
   double raySeconds = 0.0;          ///< the cost of a ray they are counted in (probeRaySeconds)
   double texelSeconds = 0.0;        ///< the cost of a texel the files are counted in (probeTexelSeconds)
   double texelCpuSeconds = 0.0;     ///< probeTexelCpuSeconds, at the load below
-  double load = 0.0;                ///< LoadMeter::observed when estimated (0: none yet)
+  double load = 0.0;                ///< CpuShare::observed when estimated (0: none yet)
   double gatherSeconds() const { return directionalSeconds + probesSeconds; }
   double seconds() const { return viewSeconds + filesSeconds + pageSeconds + gatherSeconds(); }
 };
@@ -103,10 +126,19 @@ struct OutputPlan {
 OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
                        const EngineOutputParams& engine);
 
-/// The least a bake can write: its required files and page (planOutputs) at `texels`, as estimated.
-/// A --time-limit under it, with the machine's load, is refused in one line (InputError on --time-limit)
-/// before anything else runs: a bake that cannot write its lightmap in time would end past the limit.
-void requireTimeForMinimum(double timeLimit, double minimumSeconds, size_t texels);
+/// The least a bake can write: its least layout and its required files and page (planOutputs) at `texels`,
+/// as estimated at the share of a core measured so far.
+struct LeastBake {
+  double seconds = 0.0;        ///< wall seconds, the layout's included
+  double layoutSeconds = 0.0;  ///< of which the least layout's
+  size_t texels = 0;           ///< the least layout's texels
+  double share = 0.0;          ///< CpuShare::share when estimated (0: not yet measured)
+  double spentSeconds = 0.0;   ///< of the limit before it (the loading, when the bake read its scene)
+};
+/// A --time-limit whose time left after `least.spentSeconds` is under `least.seconds` is refused in one line
+/// (InputError on --time-limit) before anything else runs, with the least limit that would do at this load:
+/// a bake that cannot write its lightmap in time would end past the limit.
+void requireTimeForMinimum(double timeLimit, const LeastBake& least);
 
 /// The most of --time-limit the directional gather and the probes' estimate keeps back from the solve:
 /// the rest is the solve's, and what they do not finish by their deadline is left out (said).
@@ -119,6 +151,42 @@ inline constexpr double kPilotTimeShare = 0.25;
 /// `deadline` moved `seconds` earlier (no deadline stays none).
 std::chrono::steady_clock::time_point keepBack(std::chrono::steady_clock::time_point deadline,
                                                double seconds);
+
+/// What a layout of the output's atlas costs on this machine as it runs, measured on one attempt: its
+/// charts (laid out and packed again at every scale) and its texels (filled, with their gutters).
+struct LayoutCost {
+  double chartSeconds = 0.0;  ///< wall seconds of the charts
+  double texelSeconds = 0.0;  ///< wall seconds a texel (0: not measured)
+  size_t texels = 0;          ///< the attempt's atlas, width × height
+  size_t charts = 0;          ///< its charts
+};
+/// From a layout that stopped: its charts' seconds, its fill's rate (none when it filled nothing).
+LayoutCost stoppedLayoutCost(const AtlasLayoutStopped& stopped);
+/// From a layout laid out whole in `seconds`: every second counted both as its charts' and its texels'
+/// (their split not measured), which only ever prices a coarser layout higher.
+LayoutCost wholeLayoutCost(double seconds, size_t texels, size_t charts);
+/// The most a stopped layout is coarsened: 1/32 of the texels per metre, the least layout, which runs whole.
+inline constexpr int kMostCoarsening = 32;
+/// The texels (width × height) of a layout at 1/`factor` of the texels per metre of `cost`'s: its texels
+/// over factor², and every chart at least at `params`' least size with its gutter.
+size_t coarseTexels(const LayoutCost& cost, const AtlasParams& params, int factor);
+/// The wall seconds of that layout at `cost`'s rates, with room to spare (the gutters of a fill stopped
+/// before them, the load moving).
+double coarseLayoutSeconds(const LayoutCost& cost, const AtlasParams& params, int factor);
+/// The share of the time left that a layout and its files may be planned in: the stages between them (the
+/// costs' probes again, the rooms, the sky's first pass, the lamps) cannot stop part-way either, and the
+/// share of a core moves. oa_dm7 at 120 s beside 16 busy loops and two other bakes chose 1/4 on the whole
+/// time left at 2 % of a core and wrote its files at 1.3 %, 32 s past the limit.
+inline constexpr double kRelayoutTimeShare = 0.5;
+/// The finest factor (2, 4, 8, 16) whose layout and its required outputs (`outputsSeconds` of its texels)
+/// fit in kRelayoutTimeShare of `secondsLeft`; kMostCoarsening when none does or the fill's rate was not
+/// measured.
+int coarseningThatFits(const LayoutCost& cost, const AtlasParams& params, double secondsLeft,
+                       const std::function<double(size_t)>& outputsSeconds);
+/// The CPU seconds of the least layout of `scene` (kMostCoarsening of `params`: its charts, about one a
+/// triangle, and their texels), on this machine unloaded (bench/RESULTS.md, "Never past --time-limit when
+/// the bake gets 2 % of a core"), for the least a bake writes.
+double leastLayoutCpuSeconds(const Scene& scene, size_t texels);
 
 /// The memory of a bake at its peak, by what takes it (bytes).
 struct BakeMemory {

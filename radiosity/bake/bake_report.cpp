@@ -220,7 +220,8 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
                                  {"ray", f.outputs.raySeconds},
                                  {"texel", f.outputs.texelSeconds},
                                  {"texel_cpu", f.outputs.texelCpuSeconds},
-                                 {"load", f.outputs.load}};
+                                 {"load", f.outputs.load},
+                                 {"cpu_share", f.outputs.load > 0.0 ? 1.0 / f.outputs.load : 0.0}};
   report["views_skipped"] = f.skippedViews;
   std::vector<std::string> skipped = f.outputsLeftOut;
   skipped.insert(skipped.end(), f.skippedOutputs.begin(), f.skippedOutputs.end());

@@ -32,13 +32,12 @@ BakeScene loadBakeScene(const BakeSettings& settings, Context& ctx, const BakeRu
   {
     auto t = ctx.time("load");
     ctx.progress("load", 0.0, s.input.scene);
-    in.loaded = loadScene(s.input.scene, s.input.load);
+    // A limit that passes while the scene is read leaves no time for any result: the reading stops
+    // between its steps with one line (InputError "time limit").
+    LoadOptions load = s.input.load;
+    load.deadline = std::min(load.deadline, deadline);
+    in.loaded = loadScene(s.input.scene, load);
   }
-  // The loader has no point to stop at; past the limit the bake goes on with the least a valid result
-  // needs (the atlas, the first shot and the sky's first pass, the files but the views).
-  if (bake_steps::Clock::now() >= deadline)
-    ctx.warn("load: the time limit came while " + s.input.scene +
-             " was read; the bake does only what a valid result needs, without views");
   applySky(s.sky, in.loaded.scene);
   requireLight(in.loaded, s.input.scene, s.input.allowDark);
   for (const std::string& w : in.loaded.warnings) ctx.warn(s.input.scene + ": " + w);
@@ -111,49 +110,60 @@ AtlasParams coarser(const AtlasParams& params, int factor) {
   return coarse;
 }
 
-// The most a stopped layout is coarsened: 1/32 of the texels per metre, a thousandth of the texels.
-constexpr int kMostCoarsening = 32;
-
-// Whether the required outputs of `atlas` would not be written by limits.end.
+// Whether the required outputs of `atlas` would not be written by limits.end with the stages before them
+// (kRelayoutTimeShare of the time left).
 bool tooLateFor(const LightmapAtlas& atlas, const AtlasLimits& limits) {
-  return limits.outputsSeconds && limits.outputsSeconds(atlas.texelCount()) >
-                                      std::chrono::duration<double>(limits.end - Clock::now()).count();
+  return limits.outputsSeconds &&
+         limits.outputsSeconds(atlas.texelCount()) > kRelayoutTimeShare * secondsLeft(limits.end);
 }
 
-// `atlas` laid out again coarser by halves from 1/`factor` of `params`' texels per metre while its required
-// outputs would not be written by limits.end (at most kMostCoarsening); `params` becomes the last used.
-// Returns the factor.
-int coarsenToFit(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
-                 const AtlasLimits& limits, LightmapAtlas& atlas, int factor) {
+// `params` laid out at 1/`factor` of its texels per metre (fitTexelBudget), its own warnings (charts capped)
+// not the user's resolution's; stops at `deadline`.
+LightmapAtlas laidOutCoarser(const BakeSettings& s, BakeInput& in, const AtlasParams& asked, int factor,
+                             AtlasParams& params, TexelBudget& budget, Clock::time_point deadline) {
   const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
-  const AtlasParams asked = params;
-  Context quiet;  // the coarse layout's own warnings (charts capped) are not the user's resolution's
-  if (factor > 1) {
-    params = coarser(asked, factor);
-    atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, quiet, &budget);
-  }
-  while (factor < kMostCoarsening && tooLateFor(atlas, limits)) {
-    factor = std::max(2, factor * 2);
-    params = coarser(asked, factor);
-    atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, quiet, &budget);
-  }
-  return factor;
+  Context quiet;
+  params = coarser(asked, factor);
+  return fitTexelBudget(*in.scene, in.quads, params, maxTexels, quiet, &budget, deadline);
 }
 
-// The output's atlas within `limits.layout` (--time-limit): past it in the middle of a large layout
-// (AtlasLayoutStopped), laid out again at a quarter of the texels per metre, a sixteenth of the texels;
-// and either way coarser by halves while the outputs of that atlas (limits.outputsSeconds) would not be
-// written by limits.end. Said in one warning; the solve after it stops at once and the result is written
-// as partial.
+// After a layout stopped at limits.layout (or one whose files would not be written by limits.end): the
+// coarsest scale its measured cost (`cost`) says fits with its files before limits.end, laid out once with a
+// deadline that keeps their time back; else, or when that one stops too, the least layout
+// (1/kMostCoarsening), which runs whole. So after the first attempt at most two more, each bounded by an
+// estimate or the least. `params` becomes the last used; returns the factor.
+int coarsenToFit(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
+                 const AtlasLimits& limits, const LayoutCost& cost, LightmapAtlas& atlas) {
+  const AtlasParams asked = params;
+  const std::function<double(size_t)> outputs =
+      limits.outputsSeconds ? limits.outputsSeconds : [](size_t) { return 0.0; };
+  const int factor = coarseningThatFits(cost, asked, secondsLeft(limits.end), outputs);
+  if (factor < kMostCoarsening) {
+    try {
+      const Clock::time_point until = keepBack(limits.end, outputs(coarseTexels(cost, asked, factor)));
+      atlas = laidOutCoarser(s, in, asked, factor, params, budget, until);
+      return factor;
+    } catch (const AtlasLayoutStopped&) {  // slower than measured: the least, below
+    }
+  }
+  atlas = laidOutCoarser(s, in, asked, kMostCoarsening, params, budget, Clock::time_point::max());
+  return kMostCoarsening;
+}
+
+// The output's atlas within `limits.layout` (--time-limit): past it in the middle of a layout
+// (AtlasLayoutStopped), or laid out whole but with files that would not be written by limits.end, laid out
+// again coarser at the scale its measured cost fits in the time left (coarsenToFit). Said in one warning;
+// the solve after it stops at once and the result is written as partial.
 LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& params, TexelBudget& budget,
                            Context& ctx, const AtlasLimits& limits) {
   const size_t maxTexels = s.atlas.densityAuto ? s.atlas.autoDensity.maxTexels : 0;
   char line[300];
   LightmapAtlas atlas;
+  const Clock::time_point started = Clock::now();
   try {
     atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, limits.layout);
   } catch (const AtlasLayoutStopped& stopped) {
-    const int factor = coarsenToFit(s, in, params, budget, limits, atlas, 4);
+    const int factor = coarsenToFit(s, in, params, budget, limits, stoppedLayoutCost(stopped), atlas);
     std::snprintf(line, sizeof line,
                   "atlas: the time limit came while laying out the lightmap (%zu of %zu texels filled): laid "
                   "out again at 1/%d of the texels per metre, %zu texels",
@@ -163,7 +173,9 @@ LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& pa
   }
   if (!tooLateFor(atlas, limits)) return atlas;
   const size_t laidOut = atlas.validTexels();
-  const int factor = coarsenToFit(s, in, params, budget, limits, atlas, 1);
+  const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  const int factor = coarsenToFit(s, in, params, budget, limits,
+                                  wholeLayoutCost(seconds, atlas.texelCount(), atlas.patches.size()), atlas);
   std::snprintf(line, sizeof line,
                 "atlas: the lightmap's files at %zu texels would not be written by the time limit: laid out "
                 "again at 1/%d of the texels per metre, %zu texels",

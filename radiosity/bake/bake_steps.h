@@ -54,6 +54,9 @@ struct BakeInput {
   std::optional<AutoDensityData> autoDensity;  ///< with --density auto
   /// With --density auto: per scene triangle, the texels per metre of the output's atlas and the cells'.
   std::vector<float> triangleDensity;
+  /// Read by this bake (bake(settings)): its time limit counts the loading, so the least it writes is
+  /// checked against the time the loading left (requireTimeForMinimum).
+  bool loadedHere = false;
 };
 
 /// When the atlas's steps stop (none: no limit).

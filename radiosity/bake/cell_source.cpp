@@ -1,5 +1,6 @@
 #include "radiosity/bake/cell_source.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <tuple>
@@ -130,9 +131,19 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
   return graph;
 }
 
+// The decomposition's CPU seconds a voxel on an idle core (voxels, distances, watershed, portals), with
+// room to spare (bench/RESULTS.md, "Never past --time-limit when the bake gets 2 % of a core").
+constexpr double kRoomsCpuPerVoxel = 4e-7;
+
+double roomsCpuSeconds(const Scene& scene) {
+  const double voxel = decomp::chooseVoxelSize(scene, decomp::DecomposeParams{});
+  const glm::dvec3 size = glm::dvec3(scene.bounds().size()) + 2.0 * decomp::DecomposeParams{}.outsideMargin;
+  return kRoomsCpuPerVoxel * (size.x / voxel + 1.0) * (size.y / voxel + 1.0) * (size.z / voxel + 1.0);
+}
+
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
                              Context& ctx, const CellGraph& volumes, Clock::time_point deadline,
-                             uint64_t memoryLimit) {
+                             uint64_t memoryLimit, double wallPerCpuSecond) {
   auto t = ctx.time("rooms");
   RoomLabels out;
   const char* late =
@@ -142,6 +153,20 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
   if (Clock::now() >= deadline) {
     ctx.warn(late);
     return out;
+  }
+  if (deadline != Clock::time_point::max() && !volumes.definedByVolumes()) {
+    const double estimate = roomsCpuSeconds(scene) * std::max(1.0, wallPerCpuSecond);
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (estimate > left) {
+      char line[300];
+      std::snprintf(line, sizeof line,
+                    "rooms: the decomposition into rooms, estimated at %.3g s as the machine runs, would end "
+                    "past the time limit (%.3g s left): not started; the stop per room and the ambient term "
+                    "take the scene as one room",
+                    estimate, left);
+      ctx.warn(line);
+      return out;
+    }
   }
   decomp::Decomposition d;
   try {

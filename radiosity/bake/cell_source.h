@@ -54,10 +54,17 @@ struct RoomLabels {
 /// those volumes' cells (decomp::decomposeFromVolumes) instead.
 /// `memoryLimit`: bytes the decomposition may take (DecomposeParams::memoryLimit, 0: none); a
 /// decomposition that would take more is not made (said in a warning): the scene is one room.
+/// `wallPerCpuSecond`: the wall seconds a CPU second takes as the machine runs (the bake's CpuShare::ratio);
+/// a decomposition whose estimate (roomsCpuSeconds at it) would end past `deadline` is not started (said in
+/// a warning): a stage of it cannot stop part-way, and at 2 % of a core one took 20-45 s.
 RoomLabels labelTexelsByRoom(
     const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas, Context& ctx,
     const CellGraph& volumes = {},
     std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
-    uint64_t memoryLimit = 0);
+    uint64_t memoryLimit = 0, double wallPerCpuSecond = 1.0);
+
+/// The CPU seconds of labelTexelsByRoom's decomposition of `scene` on an idle core, from its voxels at the
+/// automatic voxel size (bench/RESULTS.md, "Never past --time-limit when the bake gets 2 % of a core").
+double roomsCpuSeconds(const Scene& scene);
 
 }  // namespace cpgi

@@ -262,7 +262,7 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
     p.firstShot = c.priorShot;
     return solveCells(scene, graph, coarse, p, engines.reflections, ctx);
   };
-  SolveControls controls{.readTransfer = true, .deadline = params.deadline};
+  SolveControls controls{.readTransfer = true, .deadline = params.deadline, .load = params.load};
   return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, engines, ctx, controls,
                        data, cellByCell);
 }

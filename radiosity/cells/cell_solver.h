@@ -9,6 +9,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,9 @@ struct CellSolveParams {
   /// flight stays pending, counted as unshot, and the result has SolveResult::timedOut. The direct step
   /// (the emitters' first shot) always runs.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// The wall seconds a CPU second takes as the machine runs now (SolveControls::load): a two-level cells
+  /// solve's set-up is estimated with it. Empty: 1.
+  std::function<double()> load = {};
   /// The stop per cell (radiosity/cells/round_stop.h): at the unshot target, rounds go on while in some
   /// cell the ambient term would be more than this share of its light (bake --ambient-share); 0: the
   /// target alone.

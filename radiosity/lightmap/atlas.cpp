@@ -360,6 +360,7 @@ ChartLayout layOutCharts(const Scene& scene, const QuadSet& quads, const AtlasPa
 LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
                          const std::vector<uint32_t>& subset,
                          std::chrono::steady_clock::time_point deadline) {
+  const auto started = std::chrono::steady_clock::now();
   checkParams(params);
   const size_t triangleCount = scene.triangles.size();
   if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
@@ -393,27 +394,29 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   atlas.emission.assign(n, glm::vec3(0.0f));
   atlas.area.assign(n, 0.0f);
   atlas.triangleUV.assign(triangleCount, {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
-  size_t filled = 0, sinceCheck = 0;
-  auto check = [&](size_t texels) {
-    filled += texels, sinceCheck += texels;
-    if (sinceCheck < kAtlasDeadlineTexels) return;
-    sinceCheck = 0;
-    if (std::chrono::steady_clock::now() >= deadline) throw AtlasLayoutStopped(filled, n);
+  // The clock is read after every chart: at a few per cent of a core a fixed count of texels between
+  // looks was tens of seconds.
+  const auto fillStart = std::chrono::steady_clock::now();
+  const double chartSeconds = std::chrono::duration<double>(fillStart - started).count();
+  size_t filled = 0;
+  const auto stopped = [&] {
+    const double fill = std::chrono::duration<double>(std::chrono::steady_clock::now() - fillStart).count();
+    return AtlasLayoutStopped(filled, n, atlas.patches.size(), chartSeconds, fill);
   };
   for (size_t i = 0; i < atlas.patches.size(); ++i) {
+    if (std::chrono::steady_clock::now() >= deadline) throw stopped();
     const Patch& p = atlas.patches[i];
     if (p.quad >= 0)
       fillQuad(atlas, int(i), layout.corners[i], scene);
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
-    check(size_t(p.w) * size_t(p.h));
+    filled += size_t(p.w) * size_t(p.h);
   }
-  if (filled >= kAtlasDeadlineTexels && std::chrono::steady_clock::now() >= deadline)
-    throw AtlasLayoutStopped(filled, n);
-  // A large atlas's gutters stop at the deadline too; a small one's are always made.
-  atlas.gutter =
-      seamGutters(atlas, scene, params.padding,
-                  filled >= kAtlasDeadlineTexels ? deadline : std::chrono::steady_clock::time_point::max());
+  try {
+    atlas.gutter = seamGutters(atlas, scene, params.padding, deadline);
+  } catch (const AtlasLayoutStopped&) {
+    throw stopped();  // with the fill's figures, the gutters' seconds in its rate
+  }
   return atlas;
 }
 

@@ -115,22 +115,28 @@ struct LightmapAtlas {
 /// of its quad's two in a merged grid (row-major, each quad w/grid.x × h/grid.y texels), else the chart's.
 int32_t texelTriangle(const Patch& p, int i, int j);
 
-/// Thrown by buildAtlas when its deadline passes while it fills a large atlas: the charts filled so far
-/// and all of them, in texels.
+/// Thrown by buildAtlas when its deadline passes while it lays out an atlas: how far it came and the wall
+/// seconds it took, from which a caller prices a coarser layout (its charts again, and its texels at the rate
+/// they were filled here) before starting one.
 struct AtlasLayoutStopped : std::runtime_error {
-  size_t filledTexels = 0, texels = 0;
-  AtlasLayoutStopped(size_t filled, size_t all)
-      : std::runtime_error("atlas: the deadline came during the layout"), filledTexels(filled), texels(all) {}
+  size_t filledTexels = 0, texels = 0;  ///< texels of the charts filled (and gutters made), of width × height
+  size_t charts = 0;                    ///< the atlas's charts
+  double chartSeconds = 0.0;            ///< laying out and packing the charts, before the fill
+  double fillSeconds = 0.0;             ///< filling `filledTexels` and making their gutters
+  AtlasLayoutStopped(size_t filled, size_t all, size_t charts = 0, double chartSeconds = 0.0,
+                     double fillSeconds = 0.0)
+      : std::runtime_error("atlas: the deadline came during the layout"),
+        filledTexels(filled),
+        texels(all),
+        charts(charts),
+        chartSeconds(chartSeconds),
+        fillSeconds(fillSeconds) {}
 };
 
-/// An atlas's deadline is looked at after every this many texels filled (and before its gutters): a small
-/// atlas is always laid out whole, and a large one (a million texels: seconds on a loaded machine) stops
-/// within a fraction of a second of it.
-inline constexpr size_t kAtlasDeadlineTexels = size_t(1) << 17;
-
 /// Lays out and fills the atlas for the given scene triangles (all when `subset` is empty).
-/// Deterministic: the same scene and params give the same atlas. Past `deadline` (in its fill and its
-/// gutters), once kAtlasDeadlineTexels have been filled, throws AtlasLayoutStopped.
+/// Deterministic: the same scene and params give the same atlas. Past `deadline`, looked at by the clock
+/// after every chart filled and before each chart's gutters (a fixed count of texels between looks was
+/// 10-50 s of wall at 2 % of a core), throws AtlasLayoutStopped, however small the atlas.
 LightmapAtlas buildAtlas(
     const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
     const std::vector<uint32_t>& subset = {},

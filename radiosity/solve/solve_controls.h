@@ -78,7 +78,7 @@ struct SolveControls {
   /// with SolveResult::timedOut set and what is left counted as unshot, so the energy still balances.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   /// The wall seconds a CPU second of this process takes as the machine runs now (its load: the bake's
-  /// LoadMeter, radiosity/bake/bake_limits.h; at least 1): a two-level solve's set-up is estimated with it
+  /// CpuShare, radiosity/bake/bake_limits.h; at least 1): a two-level solve's set-up is estimated with it
   /// and not started when it would end past the deadline (two_level_solve.h). Empty: 1.
   std::function<double()> load = {};
   /// The least work, in shots × receiver texels, the stop per room may add past its first refusal

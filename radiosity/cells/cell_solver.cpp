@@ -262,7 +262,11 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
     p.firstShot = c.priorShot;
     return solveCells(scene, graph, coarse, p, engines.reflections, ctx);
   };
-  SolveControls controls{.readTransfer = true, .deadline = params.deadline, .load = params.load};
+  // Member by member: GCC 12 takes roomStop's std::function for uninitialized under designated initializers.
+  SolveControls controls;
+  controls.readTransfer = true;
+  controls.deadline = params.deadline;
+  controls.load = params.load;
   return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, engines, ctx, controls,
                        data, cellByCell);
 }

@@ -258,7 +258,7 @@ void expectNoLightBehindTheWall(float shiftB) {
   const std::vector<int> cellOf = s.cells.cellOfTriangle(s.scene.triangles.size());
   const int b = s.cells.findCell("B");
   ASSERT_GE(b, 0);
-  for (const auto [itemBuffer, density, bound] :
+  for (const auto& [itemBuffer, density, bound] :
        {std::tuple{16, 20.0f, 1e-5}, {64, 20.0f, 1e-5}, {512, 10.0f, 1e-6}}) {
     SolverParams p;
     p.itemBuffer = itemBuffer;

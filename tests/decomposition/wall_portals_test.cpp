@@ -13,19 +13,26 @@
 namespace cpgi::decomp {
 namespace {
 
-// A 12 × 6 × 12 grid of 1 m voxels (centres at whole metres), the border solid, split at x = 5.5: cell 0
-// (x ≤ 5) and cell 1 (x ≥ 6), and two portals in that plane side by side, z 0.5–5.5 and 5.5–10.5, which
-// together cover every face between the cells.
-PortalSet twoPortalsSideBySide(GridFrame& f) {
+// A 12 × 6 × 12 grid of 1 m voxels (centres at whole metres), the border and the voxels `solid` says
+// solid, the rest split at x = 5.5: cell 0 (x ≤ 5) and cell 1 (x ≥ 6). No portals yet.
+template <typename Solid>
+PortalSet twoCells(GridFrame& f, Solid solid) {
   f.dims = {12, 6, 12};
   f.voxel = 1.0;
   PortalSet set;
   set.cell.assign(f.count(), -1);
   for (size_t i = 0; i < f.count(); ++i) {
     const glm::ivec3 c = f.coord(i);
-    if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1))) continue;
+    if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1)) || solid(c)) continue;
     set.cell[i] = c.x <= 5 ? 0 : 1;
   }
+  return set;
+}
+
+// Two cells (twoCells), and two portals in their plane side by side, z 0.5–5.5 and 5.5–10.5, which
+// together cover every face between the cells.
+PortalSet twoPortalsSideBySide(GridFrame& f) {
+  PortalSet set = twoCells(f, [](const glm::ivec3&) { return false; });
   for (float z0 : {0.5f, 5.5f}) {
     FittedPortal p;
     p.quad.corners = {glm::vec3(5.5f, 0.5f, z0), glm::vec3(5.5f, 4.5f, z0), glm::vec3(5.5f, 4.5f, z0 + 5.0f),
@@ -85,16 +92,9 @@ TEST(WallPortals, MovesThatWouldOpenUncoveredFacesAreUndone) {
 // corners were no longer a rectangle, which a cell's atlas charts as two loose triangles.
 TEST(WallPortals, AnAskewPortalIsFlattenedOntoItsZeroThicknessWallAsARectangle) {
   GridFrame f;
-  f.dims = {12, 6, 12};
-  f.voxel = 1.0;
-  PortalSet set;
-  set.cell.assign(f.count(), -1);
-  for (size_t i = 0; i < f.count(); ++i) {
-    const glm::ivec3 c = f.coord(i);
-    if (glm::any(glm::equal(c, glm::ivec3(0))) || glm::any(glm::equal(c, f.dims - 1))) continue;
-    if ((c.x == 5 || c.x == 6) && (c.z <= 2 || c.z >= 9)) continue;  // the wall's voxels beside the door
-    set.cell[i] = c.x <= 5 ? 0 : 1;
-  }
+  // The wall's voxels beside the door are solid.
+  PortalSet set =
+      twoCells(f, [](const glm::ivec3& c) { return (c.x == 5 || c.x == 6) && (c.z <= 2 || c.z >= 9); });
   const glm::mat4 turn = glm::rotate(glm::rotate(glm::mat4(1.0f), glm::radians(3.0f), glm::vec3(0, 1, 0)),
                                      glm::radians(3.0f), glm::vec3(0, 0, 1));
   const glm::vec3 centre(5.5f, 2.5f, 5.5f);

@@ -10,6 +10,7 @@
 #include "radiosity/cpu/ray_shot.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
+#include "tests/radiosity/cpu/exact_transfer.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -17,8 +18,6 @@ namespace {
 
 using testing::addMaterial;
 using testing::addRect;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Room A (x, y in [0, 4]) and room B (y in [4, 8]), 2.6 m high, z up, a zero-thickness wall between them at
 // y = 4 with a door 0.8 m wide and 2 m high near one end. A's floor comes first: it is the shooter.
@@ -84,32 +83,9 @@ struct DoorShot {
   // The same from 4 × 4 points per shooter texel, each seen by its own ray: nothing shared with the shot
   // but the ray scene.
   double roomBExact() const {
-    const Patch& sp = atlas.patches[size_t(shooter)];
-    const float eps = 1e-4f * rays->diagonal();
-    std::vector<size_t> from;
-    for (size_t s = 0; s < atlas.texelCount(); ++s)
-      if (atlas.patch[s] == shooter) from.push_back(s);
     double sum = 0.0;
-    for (size_t t = 0; t < atlas.texelCount(); ++t) {
-      if (!inB(t)) continue;
-      const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
-      double e = 0.0;
-      for (size_t s : from)
-        for (int j = 0; j < 4; ++j)
-          for (int i = 0; i < 4; ++i) {
-            const glm::vec3 y = atlas.position[s] + ((i + 0.5f) / 4.0f - 0.5f) * sp.texelU +
-                                ((j + 0.5f) / 4.0f - 0.5f) * sp.texelV;
-            const glm::vec3 v = y - x;
-            const float r2 = glm::dot(v, v), r = std::sqrt(r2);
-            const float ci = glm::dot(n, v) / r, cs = -glm::dot(sp.normal, v) / r;
-            if (ci <= 0.0f || cs <= 0.0f) continue;
-            const glm::vec3 a = x + n * eps, b = y + sp.normal * eps;
-            const float length = glm::distance(a, b);
-            if (rays->occluded(a, (b - a) / length, 0.0f, length - eps)) continue;
-            e += atlas.area[s] / 16.0 * ci * cs / (kPi * r2);
-          }
-      sum += e * atlas.area[t];
-    }
+    for (size_t t = 0; t < atlas.texelCount(); ++t)
+      if (inB(t)) sum += testing::exactIrradiance(atlas, *rays, shooter, t, 4) * atlas.area[t];
     return sum;
   }
 };

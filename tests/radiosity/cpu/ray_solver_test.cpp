@@ -15,6 +15,7 @@
 #include "radiosity/metrics/form_factors.h"
 #include "radiosity/solve/progressive_loop.h"
 #include "radiosity/solve/solve.h"
+#include "tests/radiosity/cpu/exact_transfer.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -23,8 +24,6 @@ namespace {
 using testing::addClosedBox;
 using testing::addMaterial;
 using testing::addRect;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A scene's atlas and rays, and one shot from `shooter` of unit radiosity (per channel) on all its texels.
 struct OneShot {
@@ -59,29 +58,7 @@ struct OneShot {
   }
   // The irradiance at texel t by 8 × 8 points per shooter texel, each seen by its own ray: nothing shared
   // with the solver but the ray scene.
-  double exact(size_t t) const {
-    const Patch& sp = atlas.patches[size_t(shooter)];
-    const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
-    const float eps = 1e-4f * rays->diagonal();
-    double sum = 0.0;
-    for (size_t s = 0; s < atlas.texelCount(); ++s) {
-      if (atlas.patch[s] != shooter) continue;
-      for (int j = 0; j < 8; ++j)
-        for (int i = 0; i < 8; ++i) {
-          const glm::vec3 y = atlas.position[s] + ((i + 0.5f) / 8.0f - 0.5f) * sp.texelU +
-                              ((j + 0.5f) / 8.0f - 0.5f) * sp.texelV;
-          const glm::vec3 v = y - x;
-          const float r2 = glm::dot(v, v), r = std::sqrt(r2);
-          const float ci = glm::dot(n, v) / r, cs = -glm::dot(sp.normal, v) / r;
-          if (ci <= 0.0f || cs <= 0.0f) continue;
-          const glm::vec3 from = x + n * eps, to = y + sp.normal * eps;
-          const float length = glm::distance(from, to);
-          if (rays->occluded(from, (to - from) / length, 0.0f, length - eps)) continue;
-          sum += atlas.area[s] / 64.0 * ci * cs / (kPi * r2);
-        }
-    }
-    return sum;
-  }
+  double exact(size_t t) const { return testing::exactIrradiance(atlas, *rays, shooter, t, 8); }
 };
 
 // Two 1 m squares 1 m apart, facing each other: every receiver texel gathers the shooter's exact form

@@ -47,6 +47,19 @@ TEST(ConvexOccluders, AWallHidesATileAndAWindowInTheConeUndoesIt) {
   }
 }
 
+// A point drawn in `sphere` (centre, radius).
+glm::vec3 pointIn(const glm::vec4& sphere, std::mt19937& random) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const glm::vec3 d(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f);
+  return glm::vec3(sphere) + sphere.w * unit(random) * glm::normalize(d + 1e-6f);
+}
+
+// Whether the segment from `eye` to `p` meets a surface (short of p by a millimetre).
+bool segmentMeetsSomething(const RayScene& rays, const glm::vec3& eye, const glm::vec3& p) {
+  const float length = glm::distance(eye, p);
+  return rays.occluded(eye, (p - eye) / length, 0.0f, length - 1e-3f);
+}
+
 // Never hides what a ray sees: boxes standing in a room, eyes and spheres drawn at random; wherever the
 // cull says hidden, every segment from the eye to 64 points in the sphere meets something.
 TEST(ConvexOccluders, WhatItHidesNoRaySees) {
@@ -74,13 +87,9 @@ TEST(ConvexOccluders, WhatItHidesNoRaySees) {
     const glm::vec4 sphere(inRoom(), 0.05f + 0.5f * unit(random));
     if (!occluders.hides(rays, eye, sphere, 1e-3f)) continue;
     ++hidden;
-    for (int k = 0; k < 64; ++k) {
-      glm::vec3 d(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f);
-      const glm::vec3 p = glm::vec3(sphere) + sphere.w * unit(random) * glm::normalize(d + 1e-6f);
-      const float length = glm::distance(eye, p);
-      ASSERT_TRUE(rays.occluded(eye, (p - eye) / length, 0.0f, length - 1e-3f))
+    for (int k = 0; k < 64; ++k)
+      ASSERT_TRUE(segmentMeetsSomething(rays, eye, pointIn(sphere, random)))
           << "trial " << trial << " sees a point the cull hid";
-    }
   }
   EXPECT_GT(hidden, 200);
 }
@@ -113,13 +122,9 @@ TEST(ConvexOccluders, WhatItHidesFromAGroupNoRayFromAnyOfItSees) {
     if (!occluders.hidesFromEvery(rays, eyes, sphere, 1e-3f)) continue;
     ++hiddenGroups;
     for (const glm::vec3& eye : eyes)
-      for (int k = 0; k < 16; ++k) {
-        glm::vec3 d(unit(random) - 0.5f, unit(random) - 0.5f, unit(random) - 0.5f);
-        const glm::vec3 p = glm::vec3(sphere) + sphere.w * unit(random) * glm::normalize(d + 1e-6f);
-        const float length = glm::distance(eye, p);
-        ASSERT_TRUE(rays.occluded(eye, (p - eye) / length, 0.0f, length - 1e-3f))
+      for (int k = 0; k < 16; ++k)
+        ASSERT_TRUE(segmentMeetsSomething(rays, eye, pointIn(sphere, random)))
             << "trial " << trial << " sees a point the cull hid from the group";
-      }
   }
   EXPECT_GT(hiddenGroups, 0.9 * hiddenFirst);
 }

@@ -86,10 +86,16 @@ UnitsCheck checkUnits(const Scene& scene) {
   }
   out.samples = int(heights.size());
   if (out.samples < kUnitsSamples / 8) return out;  // mostly open: no storey to measure
+  // Spaces of a person's height in metres over a share of the floors: the scene is in metres whatever its
+  // median says. A game level's sealed sky box, 30–54 m over most of its floor, read as storeys in feet,
+  // while its corridors and rooms are 2–6 m; in feet or any smaller unit no room is that low.
+  const auto personHeight = std::count_if(heights.begin(), heights.end(), [](float x) {
+    return x >= kPersonHeightInMetres.first && x <= kPersonHeightInMetres.second;
+  });
   std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
   const double h = heights[heights.size() / 2];
   out.storeyHeight = h;
-  if (h <= 10.0) return out;
+  if (h <= 10.0 || double(personHeight) >= kPersonHeightShare * double(heights.size())) return out;
   const char* why = nullptr;
   if (h <= 60.0)
     out.unit = "feet", out.scale = 0.3048;

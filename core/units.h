@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "core/scene.h"
 
@@ -29,8 +30,13 @@ struct UnitsCheck {
 /// 600 centimetres or inches (a game's tall rooms: the warning names both), 600 to 2 000 inches (a game's
 /// open arenas: OpenArena's oa_ctf2 measures 864; millimetres would be rooms under 2 m), 2 000 to 6 000
 /// millimetres. OpenArena's maps measure 144 (dm4ish), 160 (aggressor), 218 (oa_dm1), 256 (kaos), 448
-/// (hydronex), 864 (oa_ctf2).
+/// (hydronex), 864 (oa_ctf2). A scene with spaces of a person's height in metres under a share of its
+/// floors is in metres whatever its median (a game level in metres under a sealed sky box 30–54 m up).
 inline constexpr int kUnitsSamples = 256;
+/// Heights under a ceiling that are a room's or a corridor's in metres (and too low for one in feet).
+inline constexpr std::pair<float, float> kPersonHeightInMetres{1.8f, 6.0f};
+/// The share of the samples at those heights that says a scene is in metres whatever its median height.
+inline constexpr double kPersonHeightShare = 0.05;
 UnitsCheck checkUnits(const Scene& scene);
 
 }  // namespace cpgi

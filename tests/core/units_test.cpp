@@ -70,6 +70,26 @@ TEST(Units, MetresPassFeetInchesCentimetresAndMillimetresAreNamed) {
   EXPECT_EQ(checkUnits(open).warning, "");
 }
 
+// A game level in metres under its sealed sky box: a hall 40 m tall over 90 % of the floors, a corridor 3 m
+// tall beside it. Its median says feet; its corridor, a person's height in metres, says metres. The same
+// level in inches is still told.
+TEST(Units, ALevelInMetresUnderATallSkyIsNotTakenForFeet) {
+  auto level = [](float unit) {
+    Scene s;
+    s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+    addQuad(s, {0, 0, 0}, {0, 0, 10 * unit}, {9 * unit, 0, 0});                // the hall's floor
+    addQuad(s, {0, 40 * unit, 0}, {9 * unit, 0, 0}, {0, 0, 10 * unit});        // its sky
+    addQuad(s, {9 * unit, 0, 0}, {0, 0, 10 * unit}, {1 * unit, 0, 0});         // the corridor's floor
+    addQuad(s, {9 * unit, 3 * unit, 0}, {1 * unit, 0, 0}, {0, 0, 10 * unit});  // its ceiling
+    return s;
+  };
+  const UnitsCheck metres = checkUnits(level(1.0f));
+  EXPECT_NEAR(metres.storeyHeight, 40.0, 1e-3);
+  EXPECT_EQ(metres.warning, "");
+  const UnitsCheck inches = checkUnits(level(1.0f / 0.0254f));
+  EXPECT_NE(inches.warning.find("--scale 0.0254"), std::string::npos) << inches.warning;
+}
+
 TEST(Units, AHouseInCentimetresIsToldAndScaleMakesItMetres) {
   test::TempDir dir;
   const std::string file = dir / "house_cm.glb";

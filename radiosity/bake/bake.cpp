@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/output_dir.h"
 #include "core/progress.h"
+#include "decomposition/outside_portals.h"
 #include "radiosity/bake/bake_limits.h"
 #include "radiosity/bake/bake_steps.h"
 #include "radiosity/bake/cell_source.h"
@@ -25,6 +26,7 @@
 #include "radiosity/lightmap/finite_result.h"
 #include "radiosity/lightmap/lightmap_output.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/sky_openings.h"
 #include "radiosity/solve/ambient.h"
 #include "radiosity/solve/ambient_transfer.h"
 
@@ -99,6 +101,15 @@ struct SolveInput {
   const CpuShare& load;  ///< the wall a CPU second takes now: the two-level set-up's estimate
 };
 
+// The openings the sky gather draws towards (sky_openings.h): the rooms' portals onto the outside, faced out
+// of their rooms (a file's may face into them: decomposition/outside_portals.h; the automatic rooms' face
+// from cell A into B already and keep no triangles to turn them by).
+std::vector<SkyOpening> bakeSkyOpenings(const Scene& scene, const CellGraph& rooms) {
+  CellGraph faced = rooms;
+  decomp::orientOutsidePortals(scene, faced);
+  return skyOpeningsOf(faced);
+}
+
 // Step 2: the solve, global or cell by cell (one result type: radiosity, energy, per-cell data).
 // A global solve (on the output's atlas) reaching its unshot stop shoots on while in some cell of
 // `texelCells` the ambient term would be more than the ambient share of the light (ambientShares).
@@ -107,6 +118,7 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   auto t = ctx.time("solve");
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
+  controls.skyOpenings = bakeSkyOpenings(*in.scene, x.texelGraph);
   controls.load = [&load = x.load] { return load.ratio(); };
   std::optional<RoomStop> roomStop;  // the time estimate asks the same rule cell by cell
   if (!cells && s.solver.ambientShare > 0.0) {

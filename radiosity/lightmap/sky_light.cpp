@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -29,11 +30,17 @@ float fraction(double x) {
   return float(x - std::floor(x));
 }
 
-// A texel's cosine-distributed directions k in [from, to) that leave the scene, their sky radiance summed
-// into `sum`: the estimate after N directions is (π/N) Σ L(ω_k) (pdf cos θ/π, so each sample's estimate of
-// ∫ L cos θ dω is π L). The same directions in the same order whether gathered in one pass or several.
-void gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origin, const glm::vec3& n,
-              uint64_t texel, int from, int to, double& sum) {
+// The share of a texel's directions drawn by the cosine where it has openings to draw the others towards.
+constexpr double kCosineShare = 0.5;
+
+// A texel's directions k in [from, to) that leave the scene, their estimates of ∫ L cos θ dω summed into
+// `sum` (the texel's irradiance after N directions is sum / N). Without openings, cosine-distributed
+// directions, each estimating π L. With them (sky_openings.h), every even k a cosine direction and every
+// odd one a direction through an opening, each weighted by the balance heuristic: L cos θ over the mixed
+// density kCosineShare cos θ/π + (1 - kCosineShare) p_openings. The same directions in the same order
+// whether gathered in one pass or several (the passes end on even counts).
+void gatherAt(const Sky& sky, const RayScene& occluders, const std::vector<SkyOpening>& openings,
+              const glm::vec3& origin, const glm::vec3& n, uint64_t texel, int from, int to, double& sum) {
   // An orthonormal frame about n (Duff et al. 2017).
   const float sign = std::copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
@@ -41,13 +48,44 @@ void gatherAt(const Sky& sky, const RayScene& occluders, const glm::vec3& origin
   const uint64_t h = mix64(texel);
   const double shift1 = double(h >> 40) * 0x1p-24, shift2 = double((h >> 16) & 0xffffff) * 0x1p-24;
   constexpr double g = 1.32471795724474602596;  // plastic number: Roberts' R2 sequence
-  for (int k = from; k < to; ++k) {
+  auto cosineDirection = [&](int k) {
     const float u1 = fraction(shift1 + double(k) / g), u2 = fraction(shift2 + double(k) / (g * g));
     const float phi = 2.0f * kPi * u1, r = std::sqrt(u2);
-    const glm::vec3 dir =
-        glm::normalize(r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(1.0f - u2) * n);
-    const float radiance = skyRadiance(sky, dir);
-    if (radiance > 0.0f && !occluders.occluded(origin, dir, 0.0f, 3.0e38f)) sum += radiance;
+    return glm::normalize(r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(1.0f - u2) * n);
+  };
+  const std::optional<TexelOpenings> towards =
+      openings.empty() ? std::nullopt : std::optional<TexelOpenings>(std::in_place, openings, origin, n);
+  if (!towards || towards->empty()) {
+    for (int k = from; k < to; ++k) {
+      const glm::vec3 dir = cosineDirection(k);
+      const float radiance = skyRadiance(sky, dir);
+      if (radiance > 0.0f && !occluders.occluded(origin, dir, 0.0f, 3.0e38f)) sum += double(kPi) * radiance;
+    }
+    return;
+  }
+  // The openings' directions: Roberts' R3 sequence (its first coordinate picks the opening), shifted by
+  // another hash of the texel.
+  const uint64_t h3 = mix64(h);
+  const double shift3[3] = {double(h3 >> 40) * 0x1p-24, double((h3 >> 16) & 0xffffff) * 0x1p-24,
+                            double(h3 & 0xffff) * 0x1p-16};
+  constexpr double g3 = 1.22074408460575947536;  // x⁴ = x + 1: Roberts' R3 sequence
+  const glm::dvec3 normal(n);
+  for (int k = from; k < to; ++k) {
+    glm::dvec3 dir;
+    if (k % 2 == 0) {
+      dir = glm::dvec3(cosineDirection(k / 2));
+    } else {
+      const double i = double(k / 2);
+      dir = towards->sample(double(fraction(shift3[0] + i / g3)), double(fraction(shift3[1] + i / (g3 * g3))),
+                            double(fraction(shift3[2] + i / (g3 * g3 * g3))));
+    }
+    const double cosine = glm::dot(dir, normal);
+    if (!(cosine > 0.0)) continue;
+    const float radiance = skyRadiance(sky, glm::vec3(dir));
+    if (!(radiance > 0.0f) || occluders.occluded(origin, glm::vec3(dir), 0.0f, 3.0e38f)) continue;
+    const double density =
+        kCosineShare * cosine / std::numbers::pi + (1.0 - kCosineShare) * towards->pdf(dir);
+    sum += double(radiance) * cosine / density;
   }
 }
 
@@ -146,7 +184,8 @@ constexpr size_t kFirstChunk = size_t(1) << 13;
 }  // namespace
 
 SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas,
-                          DirectLight& direct, Context& ctx, std::chrono::steady_clock::time_point deadline) {
+                          DirectLight& direct, Context& ctx, std::chrono::steady_clock::time_point deadline,
+                          const std::vector<SkyOpening>& openings) {
   SkyGatherData data{.requestedRays = sky.gatherRays, .rays = sky.gatherRays};
   if (!sky.lights()) return data;
   auto timer = ctx.time("sky light");
@@ -183,8 +222,8 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
       tbb::parallel_for(tbb::blocked_range<size_t>(c, end, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
           const size_t j = order.order[k], i = texels[j];
-          gatherAt(sky, occluders, atlas.position[i] + offset * atlas.normal[i], atlas.normal[i], i, from, to,
-                   next[j]);
+          gatherAt(sky, occluders, openings, atlas.position[i] + offset * atlas.normal[i], atlas.normal[i], i,
+                   from, to, next[j]);
         }
       });
       if (p == 0) firstPass = end;
@@ -215,7 +254,7 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
   // Summed in texel order: the same total whatever the thread count.
   double landed = 0.0;
   for (size_t j = 0; j < texels.size(); ++j) {
-    const float irradiance = float(double(kPi) * sums[j] / done);
+    const float irradiance = float(sums[j] / done);
     if (!(irradiance > 0.0f)) continue;
     direct.irradiance[texels[j]] += glm::vec3(irradiance);
     landed += 3.0 * double(irradiance) * atlas.area[texels[j]];
@@ -239,10 +278,11 @@ SkyGatherData addSkyLight(const Sky& sky, const RayScene& occluders, const Light
 }
 
 DirectLight shootPunctualAndSky(const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
-                                std::chrono::steady_clock::time_point deadline) {
+                                std::chrono::steady_clock::time_point deadline,
+                                const std::vector<SkyOpening>& openings) {
   const RayScene rays(scene);
   DirectLight direct = shootPunctualLights(scene.lights, rays, atlas, ctx);
-  addSkyLight(scene.sky, rays, atlas, direct, ctx, deadline);
+  addSkyLight(scene.sky, rays, atlas, direct, ctx, deadline, openings);
   return direct;
 }
 

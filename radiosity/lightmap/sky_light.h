@@ -18,6 +18,7 @@
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/direct_light.h"
 #include "radiosity/lightmap/ray_scene.h"
+#include "radiosity/lightmap/sky_openings.h"
 
 namespace cpgi {
 
@@ -39,14 +40,20 @@ struct SkyGatherData {
 /// row's first texel and every 16th after it, then over the others by a halving stride: cut short past
 /// those, every texel it did not reach takes the estimate of the one before it in its row (within 15
 /// texels). Without a deadline the result is that of one pass of gatherRays.
+/// With `openings` (sky_openings.h: the outside's portals), a texel inside one of them draws half its
+/// directions towards those before it, combined with the cosine half by the balance heuristic: the same
+/// mean, without the noise of a sky seen through a small far door in a few of its cosine directions.
 SkyGatherData addSkyLight(
     const Sky& sky, const RayScene& occluders, const LightmapAtlas& atlas, DirectLight& direct, Context& ctx,
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    const std::vector<SkyOpening>& openings = {});
 
 /// The whole first shot made on the CPU: the scene's punctual lights (direct_light.h) and its sky, over
-/// a ray scene of all its triangles; the sky gather stops at `deadline` as addSkyLight says.
+/// a ray scene of all its triangles; the sky gather stops at `deadline` and draws towards `openings` as
+/// addSkyLight says.
 DirectLight shootPunctualAndSky(
     const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    const std::vector<SkyOpening>& openings = {});
 
 }  // namespace cpgi

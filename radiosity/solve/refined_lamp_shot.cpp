@@ -44,9 +44,9 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
 
 // Punctual lights and sky only: their exact shot is the whole first step.
 SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
-                              std::chrono::steady_clock::time_point deadline) {
+                              const SolveControls& controls) {
   SolveResult r;
-  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx, deadline);
+  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx, controls.deadline, controls.skyOpenings);
   r.incident = d.irradiance;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -95,15 +95,16 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   const bool late = std::chrono::steady_clock::now() >= controls.deadline;
   if (settings.lampRays > 0 || !engine.features().lampShots || late) {
     const auto start = std::chrono::steady_clock::now();
-    SolveResult byRays = shootFirstOnCpu(
-        scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls.deadline);
+    SolveResult byRays =
+        shootFirstOnCpu(scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx,
+                        controls.deadline, controls.skyOpenings);
     if (data) *data = {0, atlas.validTexels(), 0.0, seconds(start)};
     return byRays;
   }
   const int emitters = emitterPatches(atlas);
   if (emitters == 0) {
     if (data) *data = {0, atlas.validTexels(), 0.0, 0.0};
-    return shootPunctualOnly(scene, atlas, ctx, controls.deadline);
+    return shootPunctualOnly(scene, atlas, ctx, controls);
   }
   const auto start = std::chrono::steady_clock::now();
   const LightmapAtlas coarse =

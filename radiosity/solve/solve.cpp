@@ -57,7 +57,7 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
     s.emitted = controls.priorShot->emitted;
     s.any = true;
   } else if (!scene.lights.empty() || scene.sky.lights()) {
-    s.direct = shootPunctualAndSky(scene, atlas, ctx, controls.deadline);
+    s.direct = shootPunctualAndSky(scene, atlas, ctx, controls.deadline, controls.skyOpenings);
     s.emitted = punctualEmitted(scene.lights, s.direct.directionalLanded);
     s.any = true;
   }
@@ -148,12 +148,14 @@ std::vector<int> patchCells(const LightmapAtlas& atlas, const std::vector<int>& 
 }  // namespace
 
 SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
-                            std::chrono::steady_clock::time_point deadline) {
+                            std::chrono::steady_clock::time_point deadline,
+                            const std::vector<SkyOpening>& skyOpenings) {
   if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
   SolverParams settings;
   settings.lampRays = lampRays;
-  return firstShotResult(
-      atlas, shootFirst(scene, atlas, settings, SolveControls{.deadline = deadline}, ShotShape{}, ctx));
+  SolveControls controls;
+  controls.deadline = deadline, controls.skyOpenings = skyOpenings;
+  return firstShotResult(atlas, shootFirst(scene, atlas, settings, controls, ShotShape{}, ctx));
 }
 
 SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, const SolverParams& settings,

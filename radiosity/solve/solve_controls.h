@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "radiosity/lightmap/sky_openings.h"
 #include "radiosity/solve/ambient.h"
 
 namespace cpgi {
@@ -84,6 +85,9 @@ struct SolveControls {
   /// The least work, in shots × receiver texels, the stop per room may add past its first refusal
   /// (kStopRefusedTexelShots; tests set 0 to see the bound in shots alone).
   double refusedStopTexelShots = kStopRefusedTexelShots;
+  /// The openings onto the outside the sky gather draws part of its directions towards (sky_openings.h:
+  /// the outside cell's portals of the bake's rooms). Empty: cosine directions alone.
+  std::vector<SkyOpening> skyOpenings = {};
 };
 
 }  // namespace cpgi

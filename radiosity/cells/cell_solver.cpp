@@ -13,6 +13,7 @@
 #include "radiosity/cells/cell_workers.h"
 #include "radiosity/cells/portal_transfer.h"
 #include "radiosity/cells/round_stop.h"
+#include "radiosity/lightmap/sky_openings.h"
 
 namespace cpgi {
 namespace {
@@ -267,6 +268,9 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
   controls.readTransfer = true;
   controls.deadline = params.deadline;
   controls.load = params.load;
+  // The sky's gather on the output atlas draws towards the cells' portals onto the outside (the graph's
+  // face out of their rooms: resolveCells turns a file's).
+  controls.skyOpenings = skyOpeningsOf(graph);
   return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, engines, ctx, controls,
                        data, cellByCell);
 }

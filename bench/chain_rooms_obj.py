@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A chain of N rooms along +x, 4 x 4 x 2.6 m, walls T thick (0: coincident faces), a door W wide in each
 shared wall, centred or D from the side wall, a 1 m^2 lamp of 100 W/m^2 under R1's ceiling only; cells
-R1..RN as `g cell:` groups (bench/RESULTS.md, "The dim rooms' bias is the solve density's").
+R1..RN as `g cell:` groups (bench/RESULTS.md, "The dim rooms' bias apart").
 
   chain_rooms_obj.py OUT.obj [N] [T] [W] [D]"""
 import sys

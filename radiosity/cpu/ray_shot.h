@@ -55,6 +55,9 @@ struct RayShotParams {
   bool nearRays = true;
   /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
   bool cull = true;
+  /// A receiver texel near a piece of the shooter gathers the mean of its texel's irradiance from it (up
+  /// to 4 × 4 points), not its centre's (ray_shot.cpp, Gather::footprintPoints).
+  bool receiverFootprint = true;
   /// A region whose bounding radius is under this (m) is seen from one eye: on a furnished house's books
   /// and handles the eyes fell within a coarse texel of each other, each costing a ray per receiver.
   float oneEyeRadius = 0.25f;

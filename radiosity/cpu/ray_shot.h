@@ -58,6 +58,10 @@ struct RayShotParams {
   /// A receiver texel near a piece of the shooter gathers the mean of its texel's irradiance from it (up
   /// to 4 × 4 points), not its centre's (ray_shot.cpp, Gather::footprintPoints).
   bool receiverFootprint = true;
+  /// Per patch (empty: none), non-zero for an opening (a cell's portal, ShotShape::openingPatches): its
+  /// receiver texels are seen through kOpeningPoints² points over their texel, each with its share of
+  /// the light, rather than through their centre alone (ray_shot.cpp).
+  std::span<const uint8_t> openings = {};
   /// A region whose bounding radius is under this (m) is seen from one eye: on a furnished house's books
   /// and handles the eyes fell within a coarse texel of each other, each costing a ray per receiver.
   float oneEyeRadius = 0.25f;

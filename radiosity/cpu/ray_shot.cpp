@@ -307,10 +307,6 @@ struct Gather {
   std::span<const float> nodeBins = {};       // the region's (RegionPieces::nodeBins)
   BinFrame frame{};                           // the shooter's bins' frame
   float receiverArea = 0.0f;                  // m², for the lobe's blur over the receiver texel
-  // The receiver texel's footprint: its parallelogram's edges and half its longer diagonal (zero: the
-  // receiver is its centre alone; footprint()).
-  glm::vec3 footU{0.0f}, footV{0.0f};
-  float footRadius = 0.0f;
 
   // The receiver texel's angular variance seen from the shooter (directional.glsl, receiverBlur): a beam
   // narrower than the texel would otherwise light it fully or not at all.
@@ -394,44 +390,9 @@ struct Gather {
                  a, t.radiosity, t.lobe);
     return sum;
   }
-  // Sub-points per edge of the receiver texel for a piece (centre c, radius) near it: 1 beyond farField
-  // of the texel's radii from the piece's edge, up to kFootprintPoints at contact. The texel's light is
-  // its mean irradiance, and next to a piece that is not its centre's: a reveal 9 cm deep at 90° to a
-  // portal sends nearly half its light into the portal's row along their shared edge, most of it within
-  // a few centimetres of the edge, and the row's centres 15 cm off saw two thirds of it. The shot's
-  // scaling to its power then gave what was missing to every other receiver: the far door of plan 8's
-  // room got 6–10 % too much from each of its reveals' shots (bench/RESULTS.md, "The portals' error").
-  int footprintPoints(const glm::vec3& c, float radius) const {
-    constexpr int kFootprintPoints = 4;
-    if (!(footRadius > 0.0f)) return 1;
-    const float gap = glm::distance(c, x) - radius, reach = farField * footRadius;
-    if (gap >= reach) return 1;
-    return std::clamp(int(std::ceil(reach / std::max(gap, 0.25f * footRadius))), 2, kFootprintPoints);
-  }
-  // eval(gather) averaged over the receiver texel's sub-points for a piece near it.
-  template <class Eval>
-  glm::vec3 overFootprint(const glm::vec3& c, float radius, Eval&& eval) const {
-    const int k = footprintPoints(c, radius);
-    if (k == 1) return eval(*this);
-    Gather at = *this;
-    at.footRadius = 0.0f;
-    glm::vec3 sum(0.0f);
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i) {
-        at.x =
-            x + ((float(i) + 0.5f) / float(k) - 0.5f) * footU + ((float(j) + 0.5f) / float(k) - 0.5f) * footV;
-        sum += eval(at);
-      }
-    return sum / float(k * k);
-  }
-  // A piece stands whole for its texels when far from the receiver and from every point of its texel.
-  bool wholePiece(const FarPiece& f) const {
-    return farPieceFor(f) && footprintPoints(f.centre, f.radius) == 1;
-  }
   // The region's light at the receiver through its quadtree, each piece handed to `use(point, light)`:
   // a node far from the receiver whole, a texel near it by itself (`point`: the piece's power mean, or the
-  // texel's centre, which a caller may test for visibility), each averaged over the receiver's texel where
-  // it is near (overFootprint).
+  // texel's centre, which a caller may test for visibility).
   template <class Use>
   void walk(const RegionPieces& r, const Patch& p, float texelRadius, Use&& use) const {
     // Depth first: at most three nodes wait per level, and a chart's edge (≤ the atlas's 8 192 texels) gives
@@ -443,12 +404,10 @@ struct Gather {
       const PieceNode& node = r.nodes[size_t(stack[--top])];
       if (node.texel >= 0) {
         const ShooterTexel& t = r.texels[size_t(node.texel)];
-        use(t.position, overFootprint(t.position, texelRadius, [&](const Gather& at) {
-              return at.texel(t, p.texelU, p.texelV, texelRadius);
-            }));
+        use(t.position, texel(t, p.texelU, p.texelV, texelRadius));
         continue;
       }
-      if (wholePiece(node.piece)) {
+      if (farPieceFor(node.piece)) {
         use(node.piece.mean, piece(node.piece));
         continue;
       }
@@ -464,13 +423,12 @@ struct Gather {
 };
 
 // Texel t's footprint as a receiver: its parallelogram's edges (a quad's texel is whole; a loose triangle's
-// valid texel is shrunk to its area) and half its longer diagonal.
-void footprint(const LightmapAtlas& atlas, uint32_t t, glm::vec3& u, glm::vec3& v, float& radius) {
+// valid texel is shrunk to its area).
+void footprint(const LightmapAtlas& atlas, uint32_t t, glm::vec3& u, glm::vec3& v) {
   const Patch& p = atlas.patches[size_t(atlas.patch[t])];
   const float whole = glm::length(glm::cross(p.texelU, p.texelV));
   const float shrink = whole > 0.0f ? std::min(1.0f, std::sqrt(atlas.area[t] / whole)) : 0.0f;
   u = shrink * p.texelU, v = shrink * p.texelV;
-  radius = 0.5f * std::max(glm::length(u + v), glm::length(u - v));
 }
 
 // Share of region r's eye's hemisphere (cosine-weighted) covered by a receiver facing it, and open.
@@ -591,8 +549,7 @@ struct ReceiverEnds {
   ReceiverEnds(const RayShotScene& s, uint32_t t, uint32_t index, std::span<const uint8_t> openings)
       : lifted(s.atlas.position[t] + s.atlas.normal[t] * s.offset), k(index) {
     opening = !openings.empty() && openings[size_t(s.atlas.patch[t])] != 0;
-    float radius = 0.0f;
-    if (opening) footprint(s.atlas, t, u, v, radius);
+    if (opening) footprint(s.atlas, t, u, v);
   }
   // The segment between the receiver and `other`, the receiver's end first when `fromReceiver`.
   void queue(Queued& q, bool fromReceiver, const glm::vec3& other, const glm::vec3& light,
@@ -675,7 +632,6 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
           // factors spared (the margin keeps receivers on the plane on the whole path).
           if (glm::dot(ns, x - plane) < -s.offset) continue;
           Gather g{x, n, ns, params.farField};
-          if (params.receiverFootprint) footprint(s.atlas, t, g.footU, g.footV, g.footRadius);
           const ReceiverEnds ends(s, t, uint32_t(k), params.openings);
           // The receiver's eye set: its place in a setsEdge × setsEdge tile of the atlas.
           const size_t place = (t % s.atlas.width) % size_t(setsEdge) +
@@ -696,7 +652,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
               continue;
             }
             const glm::vec3 f =
-                g.wholePiece(r.whole()) ? g.piece(r.whole()) : g.region(r, p, layout.texelRadius);
+                g.farPieceFor(r.whole()) ? g.piece(r.whole()) : g.region(r, p, layout.texelRadius);
             if (f == glm::vec3(0.0f)) continue;
             const size_t set = place % size_t(r.sets), stride = size_t(r.sets);
             const glm::vec3 share = f / float(r.eyesPerSet());

@@ -55,9 +55,6 @@ struct RayShotParams {
   bool nearRays = true;
   /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
   bool cull = true;
-  /// A receiver texel near a piece of the shooter gathers the mean of its texel's irradiance from it (up
-  /// to 4 × 4 points), not its centre's (ray_shot.cpp, Gather::footprintPoints).
-  bool receiverFootprint = true;
   /// Per patch (empty: none), non-zero for an opening (a cell's portal, ShotShape::openingPatches): its
   /// receiver texels are seen through kOpeningPoints² points over their texel, each with its share of
   /// the light, rather than through their centre alone (ray_shot.cpp).

@@ -163,45 +163,6 @@ TEST(RayShot, TheOccluderCullChangesNoReceiversLight) {
   EXPECT_GT(gathered, 0.0);
 }
 
-// A door's reveal as the cells see it: a strip 9 cm wide along the foot of a wall, at 90° to it, in a
-// closed 2 m room, shooting at the solve's density (texels 29 cm, three times the strip's width). The
-// wall's row along the strip takes some 40 % of the strip's light, nearly all within a few centimetres of
-// the edge they share.
-TEST(RayShot, ARevealsShotReachesItsNeighbourAtContactAndNoMoreThanItsShareFarAway) {
-  Scene s;
-  const uint32_t m = addMaterial(s, glm::vec3(0.5f));
-  const float w = 0.09f;
-  addRect(s, {0, 0, 0}, {w, 0, 0}, {0, 2, 0}, m);      // the strip, normal +z
-  addRect(s, {w, 0, 0}, {2 - w, 0, 0}, {0, 2, 0}, m);  // the rest of the floor
-  addRect(s, {0, 0, 2.1f}, {0, 2, 0}, {2, 0, 0}, m);   // the ceiling, normal −z
-  addRect(s, {0, 0, 0}, {0, 2, 0}, {0, 0, 2.1f}, m);   // x = 0, normal +x: at contact
-  addRect(s, {2, 0, 0}, {0, 0, 2.1f}, {0, 2, 0}, m);   // x = 2, normal −x: far
-  addRect(s, {0, 0, 0}, {0, 0, 2.1f}, {2, 0, 0}, m);   // y = 0, normal +y
-  addRect(s, {0, 2, 0}, {2, 0, 0}, {0, 0, 2.1f}, m);   // y = 2, normal −y
-  OneShot shot(std::move(s), 3.45f, {0, 0, 1});
-  shot.shooter = -1;
-  for (size_t p = 0; p < shot.atlas.patches.size(); ++p)
-    if (shot.atlas.patches[p].normal.z > 0.99f && shot.atlas.patches[p].area < 0.5f) shot.shooter = int(p);
-  ASSERT_GE(shot.shooter, 0);
-  for (size_t t = 0; t < shot.atlas.texelCount(); ++t)
-    shot.residual[t] = glm::vec3(shot.atlas.patch[t] == shot.shooter ? 1.0f : 0.0f);
-  const double power = shot.atlas.patches[size_t(shot.shooter)].area;
-  const std::vector<double> e = shot.gathered(4);
-  double gathered = 0.0, far = 0.0, farExact = 0.0;
-  for (size_t t = 0; t < shot.atlas.texelCount(); ++t) {
-    if (shot.atlas.patch[t] < 0 || shot.atlas.patch[t] == shot.shooter) continue;
-    gathered += e[t] * shot.atlas.area[t];
-    const glm::vec3 n = shot.atlas.normal[t];
-    if (n.x < -0.99f || n.z < -0.99f)  // the far wall and the ceiling
-      far += e[t] * shot.atlas.area[t], farExact += shot.exact(t) * shot.atlas.area[t];
-  }
-  // Closed: every watt lands. Gathered at the receivers' centres, the wall at contact took 0.054 of its
-  // 0.084 W, the shot 0.83 of its power, and scaled to its power the far wall and ceiling got 1.20 of
-  // their exact light.
-  EXPECT_NEAR(gathered / power, 1.0, 0.02);
-  EXPECT_NEAR(far * (power / gathered) / farExact, 1.0, 0.02);
-}
-
 // A cell's portal 1 m square at the mid-plane of an 18 cm wall, its reveals 9 cm deep on the lit side, and
 // a 1 m square shooting at it from 45–60° off its axis: the jamb on the shooter's side hides a strip 9–16 cm
 // wide along the portal's edge. The portal's texels (25 cm) are an opening's: each is seen through points

@@ -19,6 +19,8 @@ constexpr float kPi = 3.14159265358979f;
 // A node holding binned texels stands for them whole only beyond this many of its radii, where it looks
 // smaller than about half the narrowest bins (shaders/directional.glsl, BIN_FAR).
 constexpr float kBinFar = 10.0f;
+// Points per edge of an opening's receiver texel, each seen by its own segment (RayShotParams::openings).
+constexpr int kOpeningPoints = 4;
 // The most sub-disks per edge of a binned texel near a receiver (Gather::nearSubdisks; receive.comp's
 // NEAR_BIN_SUBDISKS).
 constexpr int kNearBinSubdisks = 32;
@@ -420,6 +422,15 @@ struct Gather {
   }
 };
 
+// Texel t's footprint as a receiver: its parallelogram's edges (a quad's texel is whole; a loose triangle's
+// valid texel is shrunk to its area).
+void footprint(const LightmapAtlas& atlas, uint32_t t, glm::vec3& u, glm::vec3& v) {
+  const Patch& p = atlas.patches[size_t(atlas.patch[t])];
+  const float whole = glm::length(glm::cross(p.texelU, p.texelV));
+  const float shrink = whole > 0.0f ? std::min(1.0f, std::sqrt(atlas.area[t] / whole)) : 0.0f;
+  u = shrink * p.texelU, v = shrink * p.texelV;
+}
+
 // Share of region r's eye's hemisphere (cosine-weighted) covered by a receiver facing it, and open.
 glm::dvec2 eyeCoverage(const RayShotScene& s, const ShooterLayout& l, const glm::vec3& eye, int rays,
                        uint32_t shotNumber) {
@@ -503,6 +514,60 @@ std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::
   return hidden;
 }
 
+// A shot's segments of a chunk of receivers, each with the light it carries when nothing hides it.
+struct Pending {
+  uint32_t receiver;
+  glm::vec3 light;
+  glm::vec3 source;  // where on the shooter it left (for the arrival moments)
+};
+struct Queued {
+  float offset = 0.0f;  // RayShotScene::offset
+  std::vector<RayScene::Segment> segments;
+  std::vector<Pending> light;
+  std::vector<uint8_t> hidden;
+  size_t saved = 0;
+  void add(uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light,
+           const glm::vec3& source) {
+    const glm::vec3 d = to - from;
+    const float length = glm::length(d);
+    if (length <= 2.0f * offset) return;
+    segments.push_back({from, length - offset, d / length});
+    this->light.push_back({k, light, source});
+  }
+};
+
+// Where a receiver texel's segments end: its centre lifted off its surface, or an opening's texel
+// (RayShotParams::openings) kOpeningPoints² points over it, each with its share of the light. A portal
+// sits at its wall's mid-plane behind reveals, and the jamb nearer a shooter hides a strip along the
+// portal's edge, from the edge itself; a texel's centre saw past strips under half the texel, and the
+// light through plan 8's doors and windows was 5–13 % more than the reference's (bench/RESULTS.md, "The
+// portals' error").
+struct ReceiverEnds {
+  glm::vec3 lifted{0.0f}, u{0.0f}, v{0.0f};
+  uint32_t k = 0;
+  bool opening = false;
+  ReceiverEnds(const RayShotScene& s, uint32_t t, uint32_t index, std::span<const uint8_t> openings)
+      : lifted(s.atlas.position[t] + s.atlas.normal[t] * s.offset), k(index) {
+    opening = !openings.empty() && openings[size_t(s.atlas.patch[t])] != 0;
+    if (opening) footprint(s.atlas, t, u, v);
+  }
+  // The segment between the receiver and `other`, the receiver's end first when `fromReceiver`.
+  void queue(Queued& q, bool fromReceiver, const glm::vec3& other, const glm::vec3& light,
+             const glm::vec3& source) const {
+    const int m = opening ? kOpeningPoints : 1;
+    const glm::vec3 part = light / float(m * m);
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const glm::vec3 at =
+            lifted + ((float(i) + 0.5f) / float(m) - 0.5f) * u + ((float(j) + 0.5f) / float(m) - 0.5f) * v;
+        if (fromReceiver)
+          q.add(k, at, other, part, source);
+        else
+          q.add(k, other, at, part, source);
+      }
+  }
+};
+
 }  // namespace
 
 RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RayScene& r)
@@ -554,37 +619,20 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
   // The chunks are fixed (a simple partitioner splits the same way every run): Embree packs a stream's
   // rays into packets, whose answers for a ray grazing an edge may differ from a single ray's, and chunks
   // that followed the threads' stealing made the bake differ in the 8th digit from run to run.
-  struct Pending {
-    uint32_t receiver;
-    glm::vec3 light;
-    glm::vec3 source;  // where on the shooter it left (for the arrival moments)
-  };
-  struct Queued {
-    std::vector<RayScene::Segment> segments;
-    std::vector<Pending> light;
-    std::vector<uint8_t> hidden;
-    size_t saved = 0;
-  };
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, s.texels.size(), 64),
       [&](const tbb::blocked_range<size_t>& range) {
         Queued q;  // per chunk, not per thread: nothing here may share it with another chunk
-        auto queue = [&](uint32_t k, const glm::vec3& from, const glm::vec3& to, const glm::vec3& light,
-                         const glm::vec3& source) {
-          const glm::vec3 d = to - from;
-          const float length = glm::length(d);
-          if (length <= 2.0f * s.offset) return;
-          q.segments.push_back({from, length - s.offset, d / length});
-          q.light.push_back({k, light, source});
-        };
+        q.offset = s.offset;
         for (size_t k = range.begin(); k < range.end(); ++k) {
           const uint32_t t = s.texels[k];
           if (s.atlas.patch[t] == shooter) continue;
-          const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t], lifted = x + n * s.offset;
+          const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t];
           // Behind the shooter's plane every piece's cosine is ≤ 0: the receiver gets nothing, its form
           // factors spared (the margin keeps receivers on the plane on the whole path).
           if (glm::dot(ns, x - plane) < -s.offset) continue;
           Gather g{x, n, ns, params.farField};
+          const ReceiverEnds ends(s, t, uint32_t(k), params.openings);
           // The receiver's eye set: its place in a setsEdge × setsEdge tile of the atlas.
           const size_t place = (t % s.atlas.width) % size_t(setsEdge) +
                                size_t(setsEdge) * ((t / s.atlas.width) % size_t(setsEdge));
@@ -599,7 +647,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
               // 12–68 % of the floor's light, bench/shot_probe.cpp), and the shot's scaling to its power
               // spread what they missed over every other receiver.
               g.walk(r, p, layout.texelRadius, [&](const glm::vec3& y, const glm::vec3& light) {
-                if (light != glm::vec3(0.0f)) queue(uint32_t(k), lifted, y + ns * s.offset, light, y);
+                if (light != glm::vec3(0.0f)) ends.queue(q, true, y + ns * s.offset, light, y);
               });
               continue;
             }
@@ -617,7 +665,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
               if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]])
                 ++q.saved;
               else
-                queue(uint32_t(k), eye, lifted, share, eye);
+                ends.queue(q, false, eye, share, eye);
             }
           }
         }

@@ -55,6 +55,10 @@ struct RayShotParams {
   bool nearRays = true;
   /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
   bool cull = true;
+  /// Per patch (empty: none), non-zero for an opening (a cell's portal, ShotShape::openingPatches): its
+  /// receiver texels are seen through kOpeningPoints² points over their texel, each with its share of
+  /// the light, rather than through their centre alone (ray_shot.cpp).
+  std::span<const uint8_t> openings = {};
   /// A region whose bounding radius is under this (m) is seen from one eye: on a furnished house's books
   /// and handles the eyes fell within a coarse texel of each other, each costing a ray per receiver.
   float oneEyeRadius = 0.25f;

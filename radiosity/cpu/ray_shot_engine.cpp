@@ -123,6 +123,7 @@ class RayShotBackend final : public ShotBackend {
     const ShooterLayout& layout = (strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_)[shooter_];
     RayShotParams shot = strong ? strongShotParams_ : shotParams_;
     shot.cull = cull_.next();
+    shot.openings = openings_;
     gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot,
                         emission_);
     if (emission_.arrivals) {  // unscaled, as the item buffers note them: only their direction is read

@@ -11,11 +11,10 @@
 
 namespace cpgi::testing {
 
-inline double exactIrradiance(const LightmapAtlas& atlas, const RayScene& rays, int shooter, size_t t,
-                              int k) {
+inline double exactIrradianceAt(const LightmapAtlas& atlas, const RayScene& rays, int shooter, glm::vec3 x,
+                                glm::vec3 n, int k) {
   constexpr double kPi = 3.14159265358979323846;
   const Patch& sp = atlas.patches[size_t(shooter)];
-  const glm::vec3 x = atlas.position[t], n = atlas.normal[t];
   const float eps = 1e-4f * rays.diagonal();
   double sum = 0.0;
   for (size_t s = 0; s < atlas.texelCount(); ++s) {
@@ -35,6 +34,25 @@ inline double exactIrradiance(const LightmapAtlas& atlas, const RayScene& rays, 
       }
   }
   return sum;
+}
+
+inline double exactIrradiance(const LightmapAtlas& atlas, const RayScene& rays, int shooter, size_t t,
+                              int k) {
+  return exactIrradianceAt(atlas, rays, shooter, atlas.position[t], atlas.normal[t], k);
+}
+
+/// The mean of exactIrradiance over m × m points of receiver texel t (its whole parallelogram).
+inline double exactTexelIrradiance(const LightmapAtlas& atlas, const RayScene& rays, int shooter, size_t t,
+                                   int k, int m) {
+  const Patch& rp = atlas.patches[size_t(atlas.patch[t])];
+  double sum = 0.0;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const glm::vec3 x = atlas.position[t] + ((float(i) + 0.5f) / float(m) - 0.5f) * rp.texelU +
+                          ((float(j) + 0.5f) / float(m) - 0.5f) * rp.texelV;
+      sum += exactIrradianceAt(atlas, rays, shooter, x, atlas.normal[t], k);
+    }
+  return sum / double(m * m);
 }
 
 }  // namespace cpgi::testing

@@ -5,7 +5,8 @@
 // Texel semantics, shared by the GPU solver, the reference path tracer and the metrics:
 //  - a valid texel (patch >= 0) stands for the part of its patch whose parameter square it covers;
 //    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
-//    texels = the patch's area);
+//    texels = the patch's area), unless that centre lies inside another solid: then the point is moved
+//    just out of it, within a texel (radiosity/lightmap/texel_validity.h);
 //  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
 //    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each
 //    quad keeping the texels it would have alone;
@@ -49,6 +50,10 @@ struct AtlasParams {
   /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
   /// before any per-texel array: InputError naming the size option when passed. 0: no limit.
   uint64_t memoryLimit = 0;
+  /// Move the sample point of a texel whose centre lies inside a solid its face runs through (a reveal
+  /// through a pane, a wall through a slab) out onto the open side (radiosity/lightmap/texel_validity.h);
+  /// false: every sample point at its texel's centre.
+  bool samplePointsOutOfSolids = true;
 };
 
 /// What one atlas texel costs through a bake: the atlas's arrays (56 bytes), the solver's seven RGBA32F
@@ -103,6 +108,9 @@ struct LightmapAtlas {
   /// Per scene triangle, the atlas coordinates (in [0,1]², v down the rows) of its three corners;
   /// triangles not in the atlas (e.g. outside the cell being baked) get all zeros.
   std::vector<std::array<glm::vec2, 3>> triangleUV;
+
+  /// Valid texels whose sample point lies off their centre, moved out of a solid their face runs through.
+  size_t movedSamplePoints = 0;
 
   /// The gutter texels dilate() fills from a neighbouring chart of their surface, not from their own.
   std::vector<GutterTap> gutter;

@@ -21,8 +21,8 @@
 namespace cpgi {
 
 /// Moves the sample point (atlas.position) of every valid texel of `atlas` whose centre lies inside a solid
-/// of `scene` out to its nearest open side, within one texel of it. Inside: the first face that one of eight
-/// rays from the centre along the texel's own plane (lifted off it by a thousandth of the texel) meets
+/// of `scene` out to its nearest open side, within one texel of it. Inside: the first face that one of four
+/// rays from the centre along the texel's axes in its plane (lifted off it by a thousandth of the texel) meets
 /// within a texel is seen from behind; the point goes just past the nearest such face. A centre in the open
 /// meets front faces only and stays, so a floor texel in a room's corner keeps its point. `rays` must be
 /// built from `scene`. Returns how many texels moved; a centre deeper in a solid than a texel stays.

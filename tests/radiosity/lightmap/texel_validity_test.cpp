@@ -58,7 +58,7 @@ TEST(SamplePointsOutOfSolids, FloorTexelsUnderABoxMoveOutWithinATexelAndNoOtherM
     ++under;
     out += !underTheBox(x);
     EXPECT_EQ(x.y, c.y);                          // on the floor's plane
-    EXPECT_LT(glm::distance(c, x), 0.1f * 1.5f);  // within a texel (diagonally)
+    EXPECT_LT(glm::distance(c, x), 0.1f);       // within a texel
   }
   EXPECT_EQ(under, 16u);
   EXPECT_EQ(out, 16u);

@@ -11,9 +11,7 @@
 #include "core/error.h"
 #include "core/memory_limit.h"
 #include "radiosity/lightmap/quad_grids.h"
-#include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/seam_gutters.h"
-#include "radiosity/lightmap/texel_validity.h"
 
 namespace cpgi {
 namespace {
@@ -413,11 +411,6 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
     else
       fillTriangle(atlas, int(i), uint32_t(p.triangles[0]), scene);
     filled += size_t(p.w) * size_t(p.h);
-  }
-  if (params.samplePointsOutOfSolids && !scene.triangles.empty()) {
-    if (std::chrono::steady_clock::now() >= deadline) throw stopped();
-    auto timer = ctx.time("sample points out of solids");
-    atlas.movedSamplePoints = moveSamplePointsOutOfSolids(atlas, scene, RayScene(scene));
   }
   try {
     atlas.gutter = seamGutters(atlas, scene, params.padding, deadline);

@@ -5,8 +5,8 @@
 // Texel semantics, shared by the GPU solver, the reference path tracer and the metrics:
 //  - a valid texel (patch >= 0) stands for the part of its patch whose parameter square it covers;
 //    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
-//    texels = the patch's area), unless that centre lies inside another solid: then the point is moved
-//    just out of it, within a texel (radiosity/lightmap/texel_validity.h);
+//    texels = the patch's area); buildAtlas leaves it there even inside another solid (moving it out,
+//    radiosity/lightmap/texel_validity.h, is a caller's step: not yet safe for the lamps' shot);
 //  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
 //    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each
 //    quad keeping the texels it would have alone;
@@ -50,9 +50,9 @@ struct AtlasParams {
   /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
   /// before any per-texel array: InputError naming the size option when passed. 0: no limit.
   uint64_t memoryLimit = 0;
-  /// Move the sample point of a texel whose centre lies inside a solid its face runs through (a reveal
-  /// through a pane, a wall through a slab) out onto the open side (radiosity/lightmap/texel_validity.h);
-  /// false: every sample point at its texel's centre.
+  /// Keep each output texel's light on its side of a solid its face runs through (a reveal through a
+  /// pane, a wall through a slab): two levels interpolate it only from coarse texels it sees (mapAtlas's
+  /// rays); false: from its bilinear taps whatever lies between. (Named for the sample points' stage.)
   bool samplePointsOutOfSolids = true;
 };
 
@@ -109,7 +109,7 @@ struct LightmapAtlas {
   /// triangles not in the atlas (e.g. outside the cell being baked) get all zeros.
   std::vector<std::array<glm::vec2, 3>> triangleUV;
 
-  /// Valid texels whose sample point lies off their centre, moved out of a solid their face runs through.
+  /// Valid texels moveSamplePointsOutOfSolids moved out of a solid (texel_validity.h); buildAtlas: 0.
   size_t movedSamplePoints = 0;
 
   /// The gutter texels dilate() fills from a neighbouring chart of their surface, not from their own.

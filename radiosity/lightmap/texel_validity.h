@@ -7,9 +7,11 @@
 // its own plane find a face seen from behind within the texel, i.e. a solid the centre is in, and the
 // sample point moves just past it, onto the open side.
 //
-// Run on a filled atlas, before anything lights it: every engine (the GL item buffers, the rays, the lamps'
-// and the sky's direct light) and the reference path tracer read the same moved atlas.position, so they
-// agree.
+// Run on a filled atlas, before anything lights it, every engine and the reference read the same moved
+// atlas.position. buildAtlas does not run it yet: the lamps' shot (lamp_light.cpp, seeLamp) samples points
+// over the texel's footprint around its sample point, and those still reach past the solid — moved, the
+// bottom row of a fin wall through a slab came out lit in the storey above (bench/RESULTS.md, "Light
+// through a solid a face runs through"); and a coarse texel moved to one side carries both sides' light.
 #pragma once
 
 #include <cstddef>
@@ -22,9 +24,9 @@ namespace cpgi {
 
 /// Moves the sample point (atlas.position) of every valid texel of `atlas` whose centre lies inside a solid
 /// of `scene` out to its nearest open side, within one texel of it. Inside: the first face that one of four
-/// rays from the centre along the texel's axes in its plane (lifted off it by a thousandth of the texel) meets
-/// within a texel is seen from behind; the point goes just past the nearest such face. A centre in the open
-/// meets front faces only and stays, so a floor texel in a room's corner keeps its point. `rays` must be
+/// rays from the centre along the texel's axes in its plane (lifted off it by a thousandth of the texel)
+/// meets within a texel is seen from behind; the point goes just past the nearest such face. A centre in the
+/// open meets front faces only and stays, so a floor texel in a room's corner keeps its point. `rays` must be
 /// built from `scene`. Returns how many texels moved; a centre deeper in a solid than a texel stays.
 size_t moveSamplePointsOutOfSolids(LightmapAtlas& atlas, const Scene& scene, const RayScene& rays);
 

@@ -76,7 +76,6 @@ AtlasParams coarseLampAtlas(const LightmapAtlas& atlas, const AtlasParams& atlas
   AtlasParams coarse = atlasParams;
   coarse.texelsPerQuad = 0;
   coarse.density = p.minDensity;
-  coarse.samplePointsOutOfSolids = false;  // as the interreflection's coarse level (two_level_solve.cpp)
   coarse.triangleDensity = outputDensity(atlas, triangles);
   for (float& d : coarse.triangleDensity)
     if (d > 0.0f) d = std::min(d, std::max(d / p.coarsening, p.minDensity));

@@ -247,12 +247,9 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   coarseParams.texelsPerQuad = 0;
   coarseParams.density = levels.solveDensity;
   coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
-  // A coarse texel often straddles a solid its face runs through (a 20 cm reveal is one texel across).
-  // Moved to either side it carries the light its output texels took on both sides into that one: a closed
-  // room behind a sunlit pane took 0.88 W/m² so, against 0.004 left inside the pane, where it neither
-  // sees nor is seen. The output texels keep to their own side's coarse texels instead (mapAtlas).
+  // A coarse texel often straddles a solid its face runs through (a 20 cm reveal is one texel across) and
+  // holds both sides' light: the output texels take only coarse texels they see (mapAtlas's rays).
   const bool keepSides = coarseParams.samplePointsOutOfSolids;
-  coarseParams.samplePointsOutOfSolids = false;
   ctx.progress("set-up", 0.0, "the interreflection's atlas");
   size_t refined = 0;
   // Past the deadline already, or with too little time left for the set-up's estimate, the lamps' shot below

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "scenes/buildings.h"
+#include "scenes/contact_scenes.h"
 #include "scenes/office_building.h"
 #include "scenes/openings_scene.h"
 #include "scenes/scene_builder.h"
@@ -171,6 +172,7 @@ const std::vector<std::string>& builtinSceneNames() {
                                     "thin-wall", "thin-wall-5cm", "openings"};
     all.insert(all.end(), buildingNames().begin(), buildingNames().end());
     all.insert(all.end(), {"point-light", "spot-light", "office", "office-small"});
+    all.insert(all.end(), {"pane-through", "pane-split", "slab-through"});
     return all;
   }();
   return names;
@@ -186,6 +188,9 @@ SeedScene makeBuiltinScene(const std::string& name) {
   if (name == "openings") return makeOpeningsScene();
   if (name == "point-light") return makePointLightRooms();
   if (name == "spot-light") return makeSpotLightThroughDoor();
+  if (name == "pane-through") return makePaneRoom(true);
+  if (name == "pane-split") return makePaneRoom(false);
+  if (name == "slab-through") return makeStoreysThroughSlab();
   // Many rooms for cell jobs (issue 16): 108 rooms on 3 storeys, and 4 rooms on 2 for the tests.
   if (name == "office") return makeOfficeBuilding(OfficeLayout{3, 6, 6});
   if (name == "office-small") return makeOfficeBuilding(OfficeLayout{2, 1, 2});

@@ -5,7 +5,7 @@
 // Texel semantics, shared by the GPU solver, the reference path tracer and the metrics:
 //  - a valid texel (patch >= 0) stands for the part of its patch whose parameter square it covers;
 //    its sample point is the centre of that part, `area` is that part's area in m² (Σ over a patch's
-//    texels = the patch's area);
+//    texels = the patch's area); buildAtlas leaves it there even inside another solid;
 //  - quads: texel (i, j) of a w×h chart sits at corners[0] + (i+½)/w·(c1−c0) + (j+½)/h·(c3−c0); a grid
 //    of equal coplanar quads is one chart over the merged rectangle (radiosity/lightmap/quad_grids.h), each
 //    quad keeping the texels it would have alone;
@@ -49,6 +49,10 @@ struct AtlasParams {
   /// Bytes a bake may take for this atlas (kBakeBytesPerTexel per texel), checked right after packing,
   /// before any per-texel array: InputError naming the size option when passed. 0: no limit.
   uint64_t memoryLimit = 0;
+  /// Keep each output texel's light on its side of a solid its face runs through (a reveal through a
+  /// pane, a wall through a slab): two levels interpolate it only from coarse texels it sees (mapAtlas's
+  /// rays); false: from its bilinear taps whatever lies between.
+  bool keepLightOnItsSideOfSolids = true;
 };
 
 /// What one atlas texel costs through a bake: the atlas's arrays (56 bytes), the solver's seven RGBA32F

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace cpgi {
 
@@ -34,6 +38,92 @@ int64_t texelUnder(const LightmapAtlas& atlas, int32_t cp, glm::vec2 at) {
   return atlas.patch[size_t(ct)] == cp ? ct : nearestValidTexel(atlas, cp, at);
 }
 
+// Off the surface by this share of the fine texel's smaller edge: under a solid whose faces end on the
+// surface's plane.
+constexpr float kSideLift = 1e-3f;
+// Below this share of the bilinear weight left on the fine texel's side, the nearest coarse texel it sees
+// stands for it instead.
+constexpr double kLeastSideWeight = 0.25;
+// Coarse texels of the chart tried, nearest first, for that one.
+constexpr int kSideCandidates = 8;
+
+// A fine texel's sample point lifted off its surface, and what it sees along that surface.
+struct SidePoint {
+  glm::vec3 at{0.0f};
+  float lift = 0.0f;
+  bool sees(const RayScene& rays, const LightmapAtlas& coarse, int64_t c) const {
+    const glm::vec3 to = coarse.position[size_t(c)] + lift * coarse.normal[size_t(c)];
+    const float length = glm::length(to - at);
+    return !(length > 0.0f) || !rays.occluded(at, (to - at) / length, 0.0f, length);
+  }
+};
+
+SidePoint sidePoint(const LightmapAtlas& fine, size_t t) {
+  const Patch& p = fine.patches[size_t(fine.patch[t])];
+  const float lift = kSideLift * std::min(glm::length(p.texelU), glm::length(p.texelV));
+  return {fine.position[t] + lift * fine.normal[t], lift};
+}
+
+// Taps without those across a solid (bit k of `hidden` for taps.texel[k]), renormalised; where too little
+// weight is left, the nearest coarse texel of the chart the point sees, or none.
+BilinearTaps tapsOnItsSide(const BilinearTaps& taps, uint8_t hidden, const SidePoint& point,
+                           const LightmapAtlas& coarse, int32_t cp, glm::vec2 at, const RayScene& rays) {
+  BilinearTaps kept;
+  double weight = 0.0;
+  for (int k = 0; k < taps.count; ++k)
+    if (!(hidden >> k & 1)) {
+      kept.texel[size_t(kept.count)] = taps.texel[size_t(k)];
+      kept.weight[size_t(kept.count)] = taps.weight[size_t(k)];
+      weight += taps.weight[size_t(k)];
+      ++kept.count;
+    }
+  if (weight >= kLeastSideWeight) {
+    for (int k = 0; k < kept.count; ++k) kept.weight[size_t(k)] /= weight;
+    return kept;
+  }
+  const Patch& c = coarse.patches[size_t(cp)];
+  std::vector<std::pair<float, int64_t>> near;
+  for (int j = 0; j < c.h; ++j)
+    for (int i = 0; i < c.w; ++i) {
+      const int64_t ct = int64_t(c.y + j) * coarse.width + (c.x + i);
+      const glm::vec2 d = glm::vec2(float(i) + 0.5f, float(j) + 0.5f) - at;
+      if (coarse.patch[size_t(ct)] == cp) near.emplace_back(glm::dot(d, d), ct);
+    }
+  const size_t tried = std::min(near.size(), size_t(kSideCandidates));
+  std::partial_sort(near.begin(), near.begin() + std::ptrdiff_t(tried), near.end());
+  kept = BilinearTaps{};
+  for (size_t k = 0; k < tried; ++k)
+    if (point.sees(rays, coarse, near[k].second)) {
+      kept.texel[0] = near[k].second, kept.weight[0] = 1.0, kept.count = 1;
+      break;
+    }
+  return kept;
+}
+
+// Fills m.sideTaps: per fine texel, the bilinear taps whose sample points a solid hides from its own.
+void keepTapsOnTheirSide(AtlasMapping& m, const LightmapAtlas& fine, const LightmapAtlas& coarse,
+                         const RayScene& rays) {
+  std::vector<uint8_t> hidden(fine.texelCount(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, fine.texelCount(), 1024),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t t = r.begin(); t < r.end(); ++t) {
+                        const BilinearTaps taps = bilinearTaps(m, coarse, t);
+                        if (taps.count == 0) continue;
+                        const SidePoint point = sidePoint(fine, t);
+                        for (int k = 0; k < taps.count; ++k)
+                          if (!point.sees(rays, coarse, taps.texel[size_t(k)])) hidden[t] |= uint8_t(1u << k);
+                      }
+                    });
+  m.sideTapsOf.assign(fine.texelCount(), -1);
+  for (size_t t = 0; t < fine.texelCount(); ++t) {
+    if (hidden[t] == 0) continue;
+    const BilinearTaps side = tapsOnItsSide(bilinearTaps(m, coarse, t), hidden[t], sidePoint(fine, t), coarse,
+                                            m.coarsePatch[t], m.chartPoint[t], rays);
+    m.sideTapsOf[t] = int32_t(m.sideTaps.size());
+    m.sideTaps.push_back(side);
+  }
+}
+
 }  // namespace
 
 glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x) {
@@ -46,7 +136,7 @@ glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x) {
   return glm::vec2(du * vv - dv * uv, dv * uu - du * uv) / det;
 }
 
-AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse) {
+AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse, const RayScene* solids) {
   if (fine.triangleUV.size() != coarse.triangleUV.size())
     throw std::invalid_argument("mapAtlas: the atlases are of different scenes");
   std::vector<int32_t> coarsePatchOf(coarse.triangleUV.size(), -1);
@@ -70,6 +160,7 @@ AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse) {
         m.chartPoint[t] = at;
         m.coarseTexel[t] = texelUnder(coarse, cp, at);
       }
+  if (solids) keepTapsOnTheirSide(m, fine, coarse, *solids);
   return m;
 }
 
@@ -180,6 +271,7 @@ BilinearTaps chartTaps(const LightmapAtlas& atlas, int32_t patch, glm::vec2 at) 
 }
 
 BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t) {
+  if (!m.sideTapsOf.empty() && m.sideTapsOf[t] >= 0) return m.sideTaps[size_t(m.sideTapsOf[t])];
   const int32_t cp = m.coarsePatch[t];
   return cp < 0 ? BilinearTaps{} : chartTaps(coarse, cp, m.chartPoint[t]);
 }

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "radiosity/lightmap/atlas.h"
+#include "radiosity/lightmap/ray_scene.h"
 
 namespace cpgi {
 
@@ -23,11 +24,20 @@ struct AtlasMapping {
   std::vector<glm::vec2> chartPoint;
   /// Per fine texel, the coarse atlas texel its centre falls in (−1 where coarsePatch is −1).
   std::vector<int64_t> coarseTexel;
+  /// Per fine texel, −1, or where a solid runs through its chart between its sample point and some of the
+  /// coarse texels it would be interpolated from (a reveal through a pane, a wall through a slab), its
+  /// entry in `sideTaps`: the coarse texels on its own side of the solid, renormalised (none when there is
+  /// none near it). Empty when mapAtlas was given no ray scene.
+  std::vector<int32_t> sideTapsOf;
+  std::vector<BilinearTaps> sideTaps;
 };
 
 /// Maps `fine` onto `coarse`; both must be atlases of the same scene (same triangle count).
-/// Throws std::invalid_argument otherwise.
-AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse);
+/// Throws std::invalid_argument otherwise. With `solids` (the scene's rays), the light interpolated onto
+/// a fine texel comes only from coarse texels whose sample points it sees along its surface, so that the
+/// light of one side of a solid that a face runs through stays on that side.
+AtlasMapping mapAtlas(const LightmapAtlas& fine, const LightmapAtlas& coarse,
+                      const RayScene* solids = nullptr);
 
 /// Per coarse texel, the area-weighted mean of `values` over the fine texels that fall in it (0 where
 /// none does), each chart scaled so that Σ value × area over it is what its fine texels held.
@@ -52,7 +62,8 @@ glm::vec2 chartCoordinates(const Patch& p, const glm::vec3& x);
 BilinearTaps chartTaps(const LightmapAtlas& atlas, int32_t patch, glm::vec2 at);
 
 /// The coarse texels upsample() interpolates fine texel `t` from: chartTaps at its centre's point on its
-/// coarse chart; none on fine padding.
+/// coarse chart, or its side's taps where a solid runs between (AtlasMapping::sideTaps); none on fine
+/// padding.
 BilinearTaps bilinearTaps(const AtlasMapping& m, const LightmapAtlas& coarse, size_t t);
 
 /// Per fine texel, 1 where `values` (per coarse texel) cannot be interpolated to it: a coarse texel it

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "radiosity/lightmap/atlas_resample.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/direct_light.h"
+#include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/sky_light.h"
 
 namespace cpgi {
@@ -122,7 +124,9 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   const double coarseSeconds = seconds(start);
 
   // 2. The output texels that cannot take it interpolated.
-  const AtlasMapping mapping = mapAtlas(atlas, coarse);
+  const std::optional<RayScene> solids =
+      atlasParams.keepLightOnItsSideOfSolids ? std::optional<RayScene>(std::in_place, scene) : std::nullopt;
+  const AtlasMapping mapping = mapAtlas(atlas, coarse, solids ? &*solids : nullptr);
   double litSum = 0.0, litArea = 0.0;
   for (size_t c = 0; c < coarse.texelCount(); ++c) {
     const float v = lit.incident[c].r + lit.incident[c].g + lit.incident[c].b;

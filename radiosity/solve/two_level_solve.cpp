@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <ctime>
 #include <map>
+#include <optional>
 
 #include "core/progress.h"
 #include "radiosity/lightmap/atlas_resample.h"
@@ -163,13 +164,17 @@ SetupWork expectedWork(const Scene& scene, const LightmapAtlas& atlas, const Atl
 }
 
 // Steps 2 and 3: the interreflection on the coarse atlas, started from the lamps' light `lit` averaged
-// over its texels, and its light back onto the output's texels. `figures` gets the coarse solve's.
+// over its texels, and its light back onto the output's texels (with `keepSides`, each from the coarse
+// texels on its own side of a solid its face runs through). `figures` gets the coarse solve's.
 SolveResult interreflect(const Scene& scene, const LightmapAtlas& atlas, LightmapAtlas& coarse,
-                         const AtlasParams& coarseParams, const SolveResult& lit,
+                         const AtlasParams& coarseParams, bool keepSides, const SolveResult& lit,
                          const TwoLevelParams& levels, const SolverParams& settings,
                          const ShotEngines& engines, Context& ctx, const SolveControls& controls,
                          const CoarseSolve& solveCoarse, TwoLevelData& figures) {
-  const AtlasMapping mapping = mapAtlas(atlas, coarse);
+  // Where a face runs through a solid, the coarse light of one side stays on that side's output texels.
+  const std::optional<RayScene> solids =
+      keepSides ? std::optional<RayScene>(std::in_place, scene) : std::nullopt;
+  const AtlasMapping mapping = mapAtlas(atlas, coarse, solids ? &*solids : nullptr);
   // The coarse atlas lit by the lamps' light averaged over its texels: the solve starts after that first
   // shot, with the emitted power of the lamps.
   std::fill(coarse.emission.begin(), coarse.emission.end(), glm::vec3(0.0f));
@@ -242,6 +247,9 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
   coarseParams.texelsPerQuad = 0;
   coarseParams.density = levels.solveDensity;
   coarseParams.minTexels = std::min(levels.minTexels, coarseParams.minTexels);
+  // A coarse texel often straddles a solid its face runs through (a 20 cm reveal is one texel across) and
+  // holds both sides' light: the output texels take only coarse texels they see (mapAtlas's rays).
+  const bool keepSides = coarseParams.keepLightOnItsSideOfSolids;
   ctx.progress("set-up", 0.0, "the interreflection's atlas");
   size_t refined = 0;
   // Past the deadline already, or with too little time left for the set-up's estimate, the lamps' shot below
@@ -307,8 +315,8 @@ SolveResult solveTwoLevel(const Scene& scene, const QuadSet& quads, const Lightm
     return lit;
   }
   const double engineCpuBefore = ctx.totalSeconds("solve: setup (cpu)");
-  SolveResult out = interreflect(scene, atlas, coarse, coarseParams, lit, levels, settings, engines, ctx,
-                                 controls, solveCoarse, figures);
+  SolveResult out = interreflect(scene, atlas, coarse, coarseParams, keepSides, lit, levels, settings,
+                                 engines, ctx, controls, solveCoarse, figures);
   out.seconds = seconds(start);
   figures.setupEstimate = setup.estimate;
   figures.setupSeconds = atlasSeconds + out.setupSeconds - lit.setupSeconds;

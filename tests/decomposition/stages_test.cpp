@@ -135,6 +135,29 @@ TEST(Merge, StoreysStayApartThroughAWideHoleInTheFloor) {
   EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noStoreys, ctx).cellCount(), 1);
 }
 
+TEST(Merge, AGalleryStaysApartFromTheDoubleHeightRoomItOverlooks) {
+  // A double-height room 20 × 23 × 21 voxels and beside it a gallery 11 × 11 × 21 on a slab 12 voxels
+  // up, open to it over a parapet along their whole shared wall (8 × 21 open): the opening is 0.9 of the
+  // gallery's cross-section, past the opening ratio, but their floors stand 12 voxels apart.
+  const glm::ivec3 dims(36, 27, 25);
+  const Synthetic s = synthetic(dims, [](glm::ivec3 c) {
+    const bool shell = c.x == 1 || c.x == 34 || c.y == 1 || c.y == 25 || c.z == 1 || c.z == 23;
+    const bool parapet = c.x == 22 && c.y <= 16;
+    const bool underGallery = c.x > 22 && c.y <= 13;
+    return shell || parapet || underGallery;
+  });
+  Context ctx;
+  const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
+  const CellLabels cells = mergeBasins(floodWatershed(d, {}, ctx), {}, ctx);
+  ASSERT_EQ(cells.cellCount(), 2);
+  const GridFrame& f = d.frame;
+  EXPECT_NE(cells.cell[f.index(12, 6, 12)], cells.cell[f.index(28, 18, 12)]);
+  EXPECT_EQ(cells.cell[f.index(12, 22, 12)], cells.cell[f.index(12, 6, 12)]);
+  MergeParams noGalleries;
+  noGalleries.galleryFloorRise = 0.0;
+  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noGalleries, ctx).cellCount(), 1);
+}
+
 TEST(Voxelize, ThinRotatedShellDoesNotLeak) {
   // A closed 3 m cube of single-sided inward faces, turned by awkward angles: the 6-connected outside
   // flood must not get in, whatever the planes' orientation against the grid.

@@ -20,7 +20,7 @@ struct Group {
   int version = 0;
   bool alive = true;
   bool outside = false;  // holds the outside marker basin: infinitely high, never the "smaller" room
-  double sumY = 0.0, sumY2 = 0.0;  // of its voxels' heights (y index), for the storey rule
+  double sumY = 0.0, sumY2 = 0.0;             // of its voxels' heights (y index), for the storey rule
   double floorSumY = 0.0, floorVoxels = 0.0;  // of its voxels resting on the geometry, for the gallery rule
   double meanY() const { return volume > 0.0 ? sumY / volume : 0.0; }
   double spreadY() const {
@@ -51,10 +51,10 @@ bool shouldMerge(const Group& x, const Group& y, const Interface& iface, const M
       return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
   }
   // A gallery: side by side, but their floors a storey apart.
-  const bool gallery = !x.outside && !y.outside && params.galleryFloorRise > 0.0 && x.floorVoxels > 0.0 &&
-                       y.floorVoxels > 0.0 &&
-                       std::abs(x.floorSumY / x.floorVoxels - y.floorSumY / y.floorVoxels) * h >
-                           params.galleryFloorRise;
+  const bool gallery =
+      !x.outside && !y.outside && params.galleryFloorRise > 0.0 && x.floorVoxels > 0.0 &&
+      y.floorVoxels > 0.0 &&
+      std::abs(x.floorSumY / x.floorVoxels - y.floorSumY / y.floorVoxels) * h > params.galleryFloorRise;
   const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
   if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
   if (lowPeak - iface.saddle < params.minDepth) return true;

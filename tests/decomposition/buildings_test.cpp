@@ -272,15 +272,17 @@ TEST(Buildings, IfcHouseOpenRiserStair) { expectIfcHouse("open-riser", 0.0); }
 TEST(Buildings, IfcHouseLShapedStairKeepsTheStoreysApart) { expectIfcHouse("l", 0.05); }
 TEST(Buildings, IfcHouseSpiralStair) { expectIfcHouse("spiral", 0.0); }
 
-// The IFC-like house with a gallery (issue 46): the landing overlooks the double-height living room over a
-// 1 m parapet along their whole 6 m wall. An architect's two rooms, and for the light one vertical portal
-// over the parapet: the opening is 0.7 of the landing's cross-section, which the opening ratio alone
-// merged (ARI 0.78), but their floors stand a storey apart. Every room its own cell, the stair one
-// horizontal portal across its hole, the gallery one vertical portal in its opening.
-TEST(Buildings, IfcGalleryHouseLandingIsItsOwnCellAtTheAutomaticVoxel) {
-  const Building b = makeIfcGalleryHouse();
-  const Scored s = decomposeBuilding(b, 0.0);
-  expectRoomsAndFrontDoor(b, s, 0.0);
+// The IFC-like house with a gallery (issue 46): the landing overlooks the double-height living room along
+// their whole 6 m wall, over a 1 m parapet or a balustrade of spindles. An architect's two rooms, and for
+// the light one vertical portal over the parapet: the opening is 0.7 (parapet) or 1.1 (balustrade) of the
+// landing's cross-section, which the opening ratio alone merged (ARI 0.78), but their floors stand a
+// storey apart. Every room its own cell, the stair one horizontal portal across its hole, the gallery one
+// vertical portal in its opening.
+void expectGalleryHouse(bool balustrade, double voxel) {
+  SCOPED_TRACE(balustrade ? "balustrade" : "parapet");
+  const Building b = makeIfcGalleryHouse(balustrade);
+  const Scored s = decomposeBuilding(b, voxel);
+  expectRoomsAndFrontDoor(b, s, voxel);
   expectStairPortal(b, s);
   int landing = -1, living = -1;
   for (size_t r = 0; r < b.rooms.size(); ++r) {
@@ -295,6 +297,9 @@ TEST(Buildings, IfcGalleryHouseLandingIsItsOwnCellAtTheAutomaticVoxel) {
   const glm::vec3 size = opening.box.hi - opening.box.lo;
   EXPECT_NEAR(between.front()->area, size.y * size.z, 0.25f * size.y * size.z);
 }
+
+TEST(Buildings, IfcGalleryHouseLandingIsItsOwnCellAtTheAutomaticVoxel) { expectGalleryHouse(false, 0.0); }
+TEST(Buildings, IfcGalleryHouseOverABalustradeLandingIsItsOwnCell) { expectGalleryHouse(true, 0.0); }
 
 // The same house with the gallery rule off: the landing is one cell with the living room, so the hall
 // meets that cell through the door to the living room and through the stair's hole. At the automatic

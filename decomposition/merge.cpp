@@ -23,6 +23,7 @@ struct Group {
   double sumY = 0.0, sumY2 = 0.0;             // of its voxels' heights (y index), for the storey rule
   double floorSumY = 0.0, floorVoxels = 0.0;  // of its voxels resting on the geometry, for the gallery rule
   double meanY() const { return volume > 0.0 ? sumY / volume : 0.0; }
+  double floorY() const { return floorVoxels > 0.0 ? floorSumY / floorVoxels : 0.0; }
   double spreadY() const {
     if (volume <= 0.0) return 0.0;
     const double m = meanY();
@@ -50,11 +51,15 @@ bool shouldMerge(const Group& x, const Group& y, const Interface& iface, const M
     if (double(iface.facesUp) < params.storeyOpening * floorArea)
       return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
   }
-  // A gallery: side by side, but their floors a storey apart.
-  const bool gallery =
-      !x.outside && !y.outside && params.galleryFloorRise > 0.0 && x.floorVoxels > 0.0 &&
-      y.floorVoxels > 0.0 &&
-      std::abs(x.floorSumY / x.floorVoxels - y.floorSumY / y.floorVoxels) * h > params.galleryFloorRise;
+  // A gallery: side by side, their floors a storey apart, the higher one roofed at a storey's height.
+  bool gallery = false;
+  if (!x.outside && !y.outside && params.galleryFloorRise > 0.0 && x.floorVoxels > 0.0 &&
+      y.floorVoxels > 0.0) {
+    const Group& upper = x.floorY() > y.floorY() ? x : y;
+    const Group& lower = &upper == &x ? y : x;
+    gallery = (upper.floorY() - lower.floorY()) * h > params.galleryFloorRise &&
+              (upper.meanY() - upper.floorY()) * h < params.galleryHeadroom;
+  }
   const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
   if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
   if (lowPeak - iface.saddle < params.minDepth) return true;

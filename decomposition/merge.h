@@ -55,6 +55,11 @@ struct MergeParams {
   /// saddle, depth and size rules still do). 1.5 m as roomNames cuts storeys; a room's floor and its
   /// furniture's tops stay well under it. 0 disables.
   double galleryFloorRise = 1.5;
+  /// Metres: the higher group is a gallery only when its space is a storey's, its mean height over its
+  /// floor under this (a room of clear height under twice this): a landing 2.7 m high has 1.35 m, a
+  /// game level's platform open to the sky box over an arena has tens of metres and is left to the
+  /// opening ratio.
+  double galleryHeadroom = 2.0;
 };
 
 struct CellLabels {

@@ -95,6 +95,7 @@ constexpr ParameterFlag kFlags[] = {
     {"minimum cell volume", "--min-cell-volume"},
     {"outside saddle ratio", "--outside-saddle-ratio"},
     {"storey spread", "--storey-spread"},
+    {"gallery floor rise", "--gallery-floor-rise"},
 };
 
 std::string flag(std::string_view parameter) {
@@ -394,6 +395,10 @@ void addDecomposeOptions(CLI::App& cmd, decomp::DecomposeParams& params, OptionS
       "Groups whose mean heights are further apart than this x the sum of their heights' standard "
       "deviations are storeys: a hole in the floor between them stays a portal however wide; 0 disables",
       kNonNegative);
+  addChecked(cmd, scope, "gallery floor rise", params.merge.galleryFloorRise,
+             "Groups side by side whose floors stand more than this apart, metres, are a gallery and the "
+             "room it overlooks: a long parapet's opening does not merge them; 0 disables",
+             kNonNegative);
 }
 
 void addSppOption(CLI::App& cmd, int& spp, OptionScope scope) {

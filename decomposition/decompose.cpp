@@ -41,6 +41,8 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& p) {
   if (p.merge.minDepth < 0.0) throw InputError("minimum depth", "must be ≥ 0");
   if (p.merge.minCellVolume < 0.0) throw InputError("minimum cell volume", "must be ≥ 0");
   if (p.merge.openingRatio < 0.0) throw InputError("opening ratio", "must be ≥ 0");
+  if (!(p.merge.galleryFloorRise >= 0.0)) throw InputError("gallery floor rise", "must be ≥ 0 metres");
+  if (!(p.merge.galleryHeadroom >= 0.0)) throw InputError("gallery headroom", "must be ≥ 0 metres");
 }
 
 double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {

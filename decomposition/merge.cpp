@@ -20,8 +20,10 @@ struct Group {
   int version = 0;
   bool alive = true;
   bool outside = false;  // holds the outside marker basin: infinitely high, never the "smaller" room
-  double sumY = 0.0, sumY2 = 0.0;  // of its voxels' heights (y index), for the storey rule
+  double sumY = 0.0, sumY2 = 0.0;             // of its voxels' heights (y index), for the storey rule
+  double floorSumY = 0.0, floorVoxels = 0.0;  // of its voxels resting on the geometry, for the gallery rule
   double meanY() const { return volume > 0.0 ? sumY / volume : 0.0; }
+  double floorY() const { return floorVoxels > 0.0 ? floorSumY / floorVoxels : 0.0; }
   double spreadY() const {
     if (volume <= 0.0) return 0.0;
     const double m = meanY();
@@ -49,11 +51,21 @@ bool shouldMerge(const Group& x, const Group& y, const Interface& iface, const M
     if (double(iface.facesUp) < params.storeyOpening * floorArea)
       return std::min(x.peak, y.peak) - iface.saddle < params.minDepth;
   }
+  // A gallery: side by side, their floors a storey apart, the higher one roofed at a storey's height.
+  bool gallery = false;
+  if (!x.outside && !y.outside && params.galleryFloorRise > 0.0 && x.floorVoxels > 0.0 &&
+      y.floorVoxels > 0.0) {
+    const Group& upper = x.floorY() > y.floorY() ? x : y;
+    const Group& lower = &upper == &x ? y : x;
+    gallery = (upper.floorY() - lower.floorY()) * h > params.galleryFloorRise &&
+              (upper.meanY() - upper.floorY()) * h < params.galleryHeadroom;
+  }
   const double ratio = x.outside || y.outside ? params.outsideSaddleRatio : params.saddleRatio;
   if (lowPeak <= 0.0f || iface.saddle / lowPeak > ratio) return true;
   if (lowPeak - iface.saddle < params.minDepth) return true;
   const double crossSection = std::pow(small.volume, 2.0 / 3.0) * h * h;
-  return params.openingRatio > 0.0 && double(iface.faces) * h * h > params.openingRatio * crossSection;
+  return !gallery && params.openingRatio > 0.0 &&
+         double(iface.faces) * h * h > params.openingRatio * crossSection;
 }
 
 // Group `gone` folded into `keep`: its interfaces (the deepest saddle, the faces added), peak, volume and
@@ -76,6 +88,7 @@ void fold(std::vector<Group>& groups, int keep, int gone) {
   k.volume += g.volume;
   k.outside = k.outside || g.outside;
   k.sumY += g.sumY, k.sumY2 += g.sumY2;
+  k.floorSumY += g.floorSumY, k.floorVoxels += g.floorVoxels;
   ++k.version;
   g.alive = false;
   g.neighbours.clear();
@@ -93,12 +106,17 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     groups[size_t(b)].peak = basins.peak[size_t(b)], groups[size_t(b)].volume = basins.volume[size_t(b)];
   if (basins.outsideBasin >= 0) groups[size_t(basins.outsideBasin)].outside = true;
   {
+    // A voxel over one of no basin (solid, or void) rests on the geometry: its group's floor.
+    const size_t below = size_t(f.dims.x);
     size_t i = 0;
     for (int z = 0; z < f.dims.z; ++z)
       for (int y = 0; y < f.dims.y; ++y)
         for (int x = 0; x < f.dims.x; ++x, ++i)
-          if (const int b = basins.basin[i]; b >= 0)
-            groups[size_t(b)].sumY += y, groups[size_t(b)].sumY2 += double(y) * y;
+          if (const int b = basins.basin[i]; b >= 0) {
+            Group& g = groups[size_t(b)];
+            g.sumY += y, g.sumY2 += double(y) * y;
+            if (y > 0 && basins.basin[i - below] < 0) g.floorSumY += y, ++g.floorVoxels;
+          }
   }
   for (const BasinContact& c : basins.contacts) {
     groups[size_t(c.a)].neighbours[c.b] = {c.saddle, c.faces, c.facesUp};

@@ -48,6 +48,18 @@ struct MergeParams {
   /// merge them (small groups and shallow dips still do). 0 disables.
   double storeySpread = 1.5;
   double storeyOpening = 0.5;
+  /// Galleries, metres: two groups side by side whose floors (the mean height of their voxels that rest
+  /// on the geometry) stand more than this apart are on two storeys, a landing overlooking a
+  /// double-height room over its parapet: an architect's two rooms, and for the light one vertical
+  /// portal over the parapet. The opening ratio does not merge them, however long the parapet (the
+  /// saddle, depth and size rules still do). 1.5 m as roomNames cuts storeys; a room's floor and its
+  /// furniture's tops stay well under it. 0 disables.
+  double galleryFloorRise = 1.5;
+  /// Metres: the higher group is a gallery only when its space is a storey's, its mean height over its
+  /// floor under this (a room of clear height under twice this): a landing 2.7 m high has 1.35 m, a
+  /// game level's platform open to the sky box over an arena has tens of metres and is left to the
+  /// opening ratio.
+  double galleryHeadroom = 2.0;
 };
 
 struct CellLabels {

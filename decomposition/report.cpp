@@ -23,6 +23,8 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
       {"min_cell_volume_m3", params.merge.minCellVolume},
       {"storey_spread", params.merge.storeySpread},
       {"storey_opening", params.merge.storeyOpening},
+      {"gallery_floor_rise_m", params.merge.galleryFloorRise},
+      {"gallery_headroom_m", params.merge.galleryHeadroom},
       {"min_component_volume_m3", params.classify.minComponentVolume},
       {"portal_margin_voxels", params.portals.marginVoxels},
       {"portal_search_m", params.portals.searchRange},

@@ -427,6 +427,10 @@ namespace {
 // The kind of stair between the IFC-like house's storeys.
 enum class IfcStair { Straight, OpenRiser, LShaped, Spiral };
 
+// Whether the IFC-like house's living room rises through both storeys, and what stands along the edge of
+// the landing that overlooks it: a 1 m parapet wall, or a balustrade of spindles on the floor's edge.
+enum class IfcGallery { None, Parapet, Balustrade };
+
 // A glass pane (2 cm, opaque to the decomposition as an IFC window's glazing is) across the middle of a
 // window hole through the wall at `at` along `axis`.
 void glazedWindow(BuildingMaker& m, int axis, float at, float from, float to, float y0, float y1) {
@@ -482,7 +486,7 @@ Box3 ifcStair(BuildingMaker& m, IfcStair stair) {
 
 // The IFC-like house's furniture, and a balustrade of spindles along the open sides of the stair's hole
 // `hl` on the landing.
-void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl, bool gallery) {
+void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl, IfcGallery gallery) {
   const float y2 = kLevel2, width = 1.0f;
   const bool spiral = stair == IfcStair::Spiral;
   SceneBuilder b(m.scene());
@@ -536,7 +540,7 @@ void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl, bool gallery
   f.block({{wx0 + wt, wt, wz1 - wt}, {wx1 - wt, wh - wt, wz1}}, f.wood(), in("bedroom"));
   f.block({{wx0 + wt, wt, wz0}, {wx1 - wt, wh - wt, wz0 + wt}}, f.wood(), in("bedroom"));
   // Upstairs: beds, a desk, a bath tub (with the gallery, no room1 or room2 over the living room).
-  if (!gallery) {
+  if (gallery == IfcGallery::None) {
     f.bed({5.0f, y2, 3.0f}, {2.0f, 0.9f}, true, in("room1"));
     f.table({9.5f, y2, 1.0f}, {1.2f, 0.6f}, false, in("room2"));
     f.chair({9.5f, y2, 1.5f}, Facing::MinusZ, in("room2"));
@@ -548,20 +552,21 @@ void ifcFurniture(BuildingMaker& m, IfcStair stair, const Box3& hl, bool gallery
 // The house in the shape an IFC export has (issue 46): two storeys of rooms behind doorways whose leaves
 // are missing, windows glazed (closed), two exterior doors open, furniture, a shower enclosure of glass
 // and a wardrobe, and a stair of `stair`'s kind from the hall up to the landing through a hole in the
-// floor with a balustrade of spindles round it. With `gallery` the living room rises through both storeys
-// (no room1 or room2 over it, its upper windows high ones of its own) and the landing overlooks it above
-// a 1 m parapet along their whole shared wall; room3 is then reached through bath2.
-void ifcHouse(BuildingMaker& m, IfcStair stair, bool gallery) {
+// floor with a balustrade of spindles round it. With a `gallery` the living room rises through both storeys
+// (no room1 or room2 over it, its upper windows high ones of its own) and the landing overlooks it along
+// their whole shared wall, over a 1 m parapet or a balustrade; room3 is then reached through bath2.
+void ifcHouse(BuildingMaker& m, IfcStair stair, IfcGallery gallery) {
+  const bool open = gallery != IfcGallery::None;
   houseShell(m, 12.0f, 10.0f, 2, 1.0f, 1.0f);
   const float H = kStorey, y2 = kLevel2, H2 = kLevel2 + kStorey, w = 0.15f;  // interior walls 15 cm
   const float hx = 3.6f;  // the hall's and the landing's east wall
   m.room("hall", {box(0.2f, 0, 0.2f, hx, H, 6.2f)});
-  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, gallery ? H2 : H, 6.2f)});
+  m.room("living", {box(hx + w, 0, 0.2f, 11.8f, open ? H2 : H, 6.2f)});
   m.room("kitchen", {box(0.2f, 0, 6.2f + w, 5.0f, H, 9.8f)});
   m.room("bathroom", {box(5.0f + w, 0, 6.2f + w, 7.6f, H, 9.8f)});
   m.room("bedroom", {box(7.6f + w, 0, 6.2f + w, 11.8f, H, 9.8f)});
   m.room("landing", {box(0.2f, y2, 0.2f, hx, H2, 6.2f)});
-  if (!gallery) {
+  if (!open) {
     m.room("room1", {box(hx + w, y2, 0.2f, 7.6f, H2, 6.2f)});
     m.room("room2", {box(7.6f + w, y2, 0.2f, 11.8f, H2, 6.2f)});
   }
@@ -580,9 +585,12 @@ void ifcHouse(BuildingMaker& m, IfcStair stair, bool gallery) {
   interior("door-living-bathroom", 2, 6.2f, 5.6f, 6.4f, 0, "living", "bathroom");
   interior("door-living-bedroom", 2, 6.2f, 9.0f, 9.9f, 0, "living", "bedroom");
   interior("door-landing-bath2", 2, 6.2f, 2.4f, 3.3f, y2, "landing", "bath2");
-  if (gallery) {
+  if (open) {
     interior("door-bath2-room3", 0, 5.0f, 7.0f, 7.9f, y2, "bath2", "room3");
-    m.opening("gallery", box(hx, y2 + 1.0f, 0.2f, hx + w, H2, 6.2f), 0, "landing", "living");
+    // The wall between them stops at the parapet's top, or at the landing's floor (a 15 cm edge that
+    // carries the balustrade).
+    const float sill = gallery == IfcGallery::Parapet ? y2 + 1.0f : y2;
+    m.opening("gallery", box(hx, sill, 0.2f, hx + w, H2, 6.2f), 0, "landing", "living");
   } else {
     interior("door-landing-room1", 0, hx, 1.0f, 1.9f, y2, "landing", "room1");
     interior("door-room1-room2", 0, 7.6f, 4.6f, 5.5f, y2, "room1", "room2");
@@ -601,6 +609,11 @@ void ifcHouse(BuildingMaker& m, IfcStair stair, bool gallery) {
   const Box3 hl = ifcStair(m, stair);
   m.opening("stair", hl, 1, "hall", "landing");
   ifcFurniture(m, stair, hl, gallery);
+  if (gallery == IfcGallery::Balustrade) {
+    SceneBuilder b(m.scene());
+    Furniture(b).balustrade({{hx + 0.5f * w, y2, 0.25f}, {hx + 0.5f * w, y2, 6.15f}}, 0.9f, 0.12f,
+                            b.node("landing/furniture"));
+  }
 }
 
 }  // namespace
@@ -616,13 +629,13 @@ Building makeIfcLikeHouse(const std::string& stair) {
   else if (stair != "straight")
     throw std::invalid_argument("unknown stair '" + stair + "'");
   BuildingMaker m;
-  ifcHouse(m, kind, false);
+  ifcHouse(m, kind, IfcGallery::None);
   return m.finish();
 }
 
-Building makeIfcGalleryHouse() {
+Building makeIfcGalleryHouse(bool balustrade) {
   BuildingMaker m;
-  ifcHouse(m, IfcStair::Straight, true);
+  ifcHouse(m, IfcStair::Straight, balustrade ? IfcGallery::Balustrade : IfcGallery::Parapet);
   return m.finish();
 }
 
@@ -630,7 +643,8 @@ const std::vector<std::string>& buildingNames() {
   static const std::vector<std::string> names = {
       "house-open",           "house-stair",         "house-spiral",     "open-plan",        "porch",
       "house-stair-closed",   "house-spiral-closed", "house-gallery",    "house-furnished",  "ifc-house",
-      "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral", "ifc-house-gallery"};
+      "ifc-house-open-riser", "ifc-house-l-stair",   "ifc-house-spiral", "ifc-house-gallery",
+      "ifc-house-gallery-balustrade"};
   return names;
 }
 
@@ -649,6 +663,7 @@ Building makeBuilding(const std::string& name) {
   if (name == "ifc-house-l-stair") return makeIfcLikeHouse("l");
   if (name == "ifc-house-spiral") return makeIfcLikeHouse("spiral");
   if (name == "ifc-house-gallery") return makeIfcGalleryHouse();
+  if (name == "ifc-house-gallery-balustrade") return makeIfcGalleryHouse(true);
   throw std::invalid_argument("unknown building '" + name + "'");
 }
 

@@ -72,12 +72,13 @@ Building makePorchHouse();
 Building makeIfcLikeHouse(const std::string& stair);
 /// The IFC-like house with a gallery: the living room rises through both storeys (no room1 or room2 over
 /// it) and the landing overlooks it above a 1 m parapet along their whole 6 m shared wall (6 × 1.7 m
-/// open); the straight stair; room3 reached through bath2; eight rooms.
-Building makeIfcGalleryHouse();
+/// open), or with `balustrade` over a 0.9 m balustrade of spindles on the landing floor's edge (6 × 2.7 m
+/// open between and above them); the straight stair; room3 reached through bath2; eight rooms.
+Building makeIfcGalleryHouse(bool balustrade = false);
 
 /// "house-open", "house-stair", "house-spiral", "open-plan", "porch", "house-stair-closed",
 /// "house-spiral-closed", "house-gallery", "house-furnished", "ifc-house", "ifc-house-open-riser",
-/// "ifc-house-l-stair", "ifc-house-spiral", "ifc-house-gallery".
+/// "ifc-house-l-stair", "ifc-house-spiral", "ifc-house-gallery", "ifc-house-gallery-balustrade".
 const std::vector<std::string>& buildingNames();
 /// Throws std::invalid_argument for a name not in buildingNames().
 Building makeBuilding(const std::string& name);

@@ -135,6 +135,36 @@ TEST(Merge, StoreysStayApartThroughAWideHoleInTheFloor) {
   EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noStoreys, ctx).cellCount(), 1);
 }
 
+TEST(Merge, AGalleryStaysApartFromTheDoubleHeightRoomItOverlooks) {
+  // In 0.25 m voxels, a double-height room 20 × 23 × 21 voxels and beside it a gallery 11 × 11 × 21 (2.75 m
+  // high) on a slab 12 voxels (3 m) up, open to it over a parapet along their whole shared wall (8 × 21
+  // open): the opening is 0.9 of the gallery's cross-section, past the opening ratio, but their floors
+  // stand a storey apart.
+  const glm::ivec3 dims(36, 27, 25);
+  Synthetic s = synthetic(dims, [](glm::ivec3 c) {
+    const bool shell = c.x == 1 || c.x == 34 || c.y == 1 || c.y == 25 || c.z == 1 || c.z == 23;
+    const bool parapet = c.x == 22 && c.y <= 16;
+    const bool underGallery = c.x > 22 && c.y <= 13;
+    return shell || parapet || underGallery;
+  });
+  s.solid.frame.voxel = s.space.frame.voxel = 0.25;
+  Context ctx;
+  const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
+  const CellLabels cells = mergeBasins(floodWatershed(d, {}, ctx), {}, ctx);
+  ASSERT_EQ(cells.cellCount(), 2);
+  const GridFrame& f = d.frame;
+  EXPECT_NE(cells.cell[f.index(12, 6, 12)], cells.cell[f.index(28, 18, 12)]);
+  EXPECT_EQ(cells.cell[f.index(12, 22, 12)], cells.cell[f.index(12, 6, 12)]);
+  MergeParams noGalleries;
+  noGalleries.galleryFloorRise = 0.0;
+  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noGalleries, ctx).cellCount(), 1);
+  // A space higher than a storey over its floor (a platform open to a game level's sky box) is no gallery:
+  // with the headroom under this one's 1.4 m the opening ratio merges them again.
+  MergeParams lowHeadroom;
+  lowHeadroom.galleryHeadroom = 1.0;
+  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), lowHeadroom, ctx).cellCount(), 1);
+}
+
 TEST(Voxelize, ThinRotatedShellDoesNotLeak) {
   // A closed 3 m cube of single-sided inward faces, turned by awkward angles: the 6-connected outside
   // flood must not get in, whatever the planes' orientation against the grid.

@@ -192,6 +192,7 @@ TEST(BehindGeometry, ASealedLevelsPocketLookingAtSomeFrontsIsTheOutside) {
   ASSERT_GE(kept.outsideCell, 0);
   EXPECT_EQ(kept.foldedBehind, 0);
   EXPECT_FALSE(kept.graph.connected());
+  EXPECT_FALSE(kept.reachableOrClosed);  // the pocket and the outside: apart from the room, not closed
 
   Context ctx;
   const Decomposition d = run(b.scene(), ctx);
@@ -199,6 +200,7 @@ TEST(BehindGeometry, ASealedLevelsPocketLookingAtSomeFrontsIsTheOutside) {
   EXPECT_EQ(d.outsideCell, -1);
   ASSERT_EQ(d.graph.cells.size(), 1u);
   EXPECT_TRUE(d.graph.connected());
+  EXPECT_TRUE(d.reachableOrClosed);
   EXPECT_EQ(d.leakingFaces, 0u);
 }
 

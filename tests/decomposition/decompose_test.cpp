@@ -310,6 +310,9 @@ TEST(Decompose, ASealedRoomIsAClosedRoomAndACupboardNoCell) {
   EXPECT_TRUE(d.graph.portalsOf(closed).empty());
   EXPECT_TRUE(d.connectedOpen);
   EXPECT_FALSE(d.graph.connected());
+  // Said as what it is: every cell reachable or a closed room, the three rooms reachable, it not.
+  EXPECT_TRUE(d.reachableOrClosed);
+  for (size_t c = 0; c < d.graph.cells.size(); ++c) EXPECT_EQ(bool(d.reachable[c]), int(c) != closed) << c;
   EXPECT_EQ(d.leakingFaces, 0u);
   EXPECT_TRUE(anyWarningContains(ctx, "is a closed room"));
 }

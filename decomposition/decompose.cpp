@@ -198,8 +198,7 @@ void markParts(Decomposition& out, int cellCount) {
   }
   std::vector<double> volume(size_t(parts), 0.0);
   for (int c = 0; c < cellCount; ++c)
-    if (c != out.outsideCell && !out.closedRoom[size_t(c)])
-      volume[size_t(part[size_t(c)])] += out.cellStats[size_t(c)].volume;
+    if (c != out.outsideCell) volume[size_t(part[size_t(c)])] += out.cellStats[size_t(c)].volume;
   const int mainPart = int(std::max_element(volume.begin(), volume.end()) - volume.begin());
   out.reachable.assign(size_t(cellCount), 0);
   out.reachableOrClosed = true;

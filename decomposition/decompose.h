@@ -101,8 +101,9 @@ struct Decomposition {
   /// its pockets when no portal joins them to the rest (a sealed level), are left out.
   bool connectedOpen = true;
   /// Per cell: reached through portals from the scene's main part (the part of the portal graph holding
-  /// the most room volume). A closed room never is: light cannot cross what the geometry seals (a game
-  /// level's room that only a teleporter reaches is, for the light, a closed room).
+  /// the most room volume, a closed room's included: a sealed level's one room is its main part). A closed
+  /// room never is: light cannot cross what the geometry seals (a game level's room that only a teleporter
+  /// reaches is, for the light, a closed room).
   std::vector<char> reachable;
   /// Every cell reachable or a closed room (each said as one): what "connected" means for a bake, whose
   /// light crosses portals only. An outside pocket, or a group of rooms apart, makes it false.

@@ -89,6 +89,11 @@ int runDecompose(DecomposeOptions o) {
   std::printf("closed rooms (no portal, touching no other cell): %s; the rooms are %s through portals\n",
               closed.empty() ? "none" : closed.c_str(),
               d.connectedOpen ? "all reachable from each other" : "NOT all reachable from each other");
+  std::string apart;
+  for (size_t c = 0; c < d.reachable.size(); ++c)
+    if (!d.reachable[c] && !d.closedRoom[c]) apart += (apart.empty() ? "" : ", ") + d.graph.cells[c].name;
+  std::printf("every cell reachable through portals or a closed room: %s\n",
+              apart.empty() ? "yes" : ("NO: not reached from the main part: " + apart).c_str());
   if (!pockets.empty())
     std::printf(
         "sealed from the outside: no portal joins the rooms to it; only it reaches %s (space behind "

@@ -9,7 +9,7 @@
 # (space behind a sealed level's one-sided walls), whether every room is reachable from every other,
 # and for the houses the portals between the storeys and the adjusted Rand index against the house's
 # own rooms (`cpgi compare-cells SCENE auto SCENE`); whether the whole graph is connected (every cell,
-# the outside too, reachable from every other), the cells folded as space behind the geometry, the closed
+# the outside too, reachable from every other), whether every cell is reachable or a closed room, the cells folded as space behind the geometry, the closed
 # cells dropped because no triangle faces them (the inside of a brush), the portal pieces merged into one, and the pairs of cells with more than one portal (pair: count).
 # MAP_VOXELS runs the maps at those voxel sizes too (the automatic one always).
 # BAKE=1 also bakes every model with daylight at the defaults (`cpgi bake MODEL -o DIR --sky uniform --sun
@@ -76,6 +76,7 @@ rooms = [r["best_iou"] for r in c.get("matched_iou_per_cell", []) if r["cell"] !
 cols = [name, "%.3f" % d["parameters"]["voxel_m"], d["counts"]["cells"], d["counts"]["portals"],
         ch["leaking_faces"], ch.get("closed_rooms", "-"), ch.get("outside_pockets", "-"),
         "yes" if ch["connected"] else "NO", "yes" if ch.get("graph_connected") else "NO",
+        {True: "yes", False: "NO"}.get(ch.get("reachable_or_closed"), "-"),
         ch.get("behind_geometry_folded", "-"), ch.get("unfaced_closed_dropped", "-"), ch.get("portal_pieces_merged", "-"),
         ch.get("leak_merges", "-"),
         (", ".join("%.2f m2 %s" % (p["area_m2"], kind(p["normal"])) for p in stair) or "none") if house == "1" else "-",
@@ -123,8 +124,8 @@ PY
   if [ -n "$keep" ]; then rm -rf "$keep/bake-$name-$limit" && cp -r "$out" "$keep/bake-$name-$limit"; fi
 }
 
-echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | folded behind | unfaced dropped | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| model | voxel m | cells | portals | leaking faces | closed rooms | outside pockets | rooms connected | graph connected | reachable or closed | folded behind | unfaced dropped | pieces merged | pairs merged | portals between storeys | ARI vs its rooms | worst room IoU | pairs with several portals | CPU s | wall s | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for h in "${houses[@]}"; do
   "$cpgi" generate "$h" --volumes-only -o "$work/$h.glb" >/dev/null
   for v in 0 "${sizes[@]}"; do row "$h" "$work/$h.glb" "$v" 1; done

@@ -67,25 +67,38 @@ std::vector<int> groupsOf(CellContacts& k, const std::vector<char>& behind) {
   return group;
 }
 
-}  // namespace
+// Cells that meet no room, by contact (union-find over the cells' voxel faces, the outside left out):
+// per cell, its group's root, and whether the group lies apart from the rooms — closed (it meets nothing),
+// or meeting only the outside in a level whose largest group of rooms does not meet the outside (a sealed
+// level: the void round it reaches that group only through gaps behind the walls). The largest group is
+// never apart.
+std::vector<char> apartFromTheRooms(CellContacts& k, const CellLabels& cells, std::vector<int>& group) {
+  const int n = cells.cellCount();
+  std::vector<char> room(size_t(n), 0);
+  for (int c = 0; c < n; ++c) room[size_t(c)] = c != cells.outsideCell;
+  group = groupsOf(k, room);
+  std::vector<double> volume(size_t(n), 0.0);
+  std::vector<char> meetsOutside(size_t(n), 0);
+  for (int c = 0; c < n; ++c) {
+    if (!room[size_t(c)]) continue;
+    volume[size_t(group[size_t(c)])] += cells.volume[size_t(c)];
+    meetsOutside[size_t(group[size_t(c)])] |= k.at(c, n) > 0 ? 1 : 0;
+  }
+  const int largest = int(std::max_element(volume.begin(), volume.end()) - volume.begin());
+  const bool sealedLevel = !meetsOutside[size_t(largest)];
+  std::vector<char> apart(size_t(n), 0);
+  for (int c = 0; c < n; ++c) {
+    const int g = group[size_t(c)];
+    apart[size_t(c)] = room[size_t(c)] && g != largest && (!meetsOutside[size_t(g)] || sealedLevel);
+  }
+  return apart;
+}
 
-FoldedCells foldCellsBehindGeometry(CellLabels& cells, const Scene& scene, const SolidGrid& solid,
-                                    const std::vector<Space>& space, const BehindParams& params,
-                                    Context& ctx) {
-  auto timer = ctx.time("behind");
+// Folds the cells marked `behind` (with the groups they form by contact) into the outside when a group
+// meets it, else into the room it shares the most voxel faces with, else drops them; renumbers the rest.
+FoldedCells foldMarkedCells(CellLabels& cells, CellContacts& k, const std::vector<char>& behind) {
   FoldedCells out;
   const int n = cells.cellCount();
-  if (!(params.backToFront > 0.0) || n == 0) return out;
-  CellContacts k = countContacts(cells, scene, solid, space);
-  std::vector<char> behind(size_t(n), 0);
-  for (int c = 0; c < n; ++c)
-    behind[size_t(c)] = c != cells.outsideCell && k.back[size_t(c)] > params.backToFront * k.front[size_t(c)];
-  // Only beside a room that faces the right way: in a model whose faces all point away from its rooms
-  // (a flipped export) every room would look behind the geometry, and nothing is folded.
-  bool anyBehind = false, anyRoom = false;
-  for (int c = 0; c < n; ++c)
-    if (c != cells.outsideCell) (behind[size_t(c)] ? anyBehind : anyRoom) = true;
-  if (!anyBehind || !anyRoom) return out;
   const std::vector<int> group = groupsOf(k, behind);
   // Where each group goes: the outside (kFolded marks it, the outside may be no cell), a room, or nowhere.
   constexpr int kOutside = -2;
@@ -142,6 +155,50 @@ FoldedCells foldCellsBehindGeometry(CellLabels& cells, const Scene& scene, const
   cells.peak = std::move(peak);
   cells.volume = std::move(volume);
   cells.outsideCell = outsideAfter;
+  return out;
+}
+
+}  // namespace
+
+FoldedCells foldCellsBehindGeometry(CellLabels& cells, const Scene& scene, const SolidGrid& solid,
+                                    const std::vector<Space>& space, const BehindParams& params,
+                                    Context& ctx) {
+  auto timer = ctx.time("behind");
+  FoldedCells out;
+  if (!(params.backToFront > 0.0) || cells.cellCount() == 0) return out;
+  // Only beside a room that faces the right way: in a model whose faces all point away from its rooms
+  // (a flipped export) every room would look behind the geometry, and nothing is folded.
+  auto anyBehindBesideARoom = [&](const std::vector<char>& behind) {
+    bool anyBehind = false, anyRoom = false;
+    for (int c = 0; c < cells.cellCount(); ++c)
+      if (c != cells.outsideCell) (behind[size_t(c)] ? anyBehind : anyRoom) = true;
+    return anyBehind && anyRoom;
+  };
+  CellContacts k = countContacts(cells, scene, solid, space);
+  std::vector<char> behind(size_t(cells.cellCount()), 0);
+  for (int c = 0; c < cells.cellCount(); ++c)
+    behind[size_t(c)] = c != cells.outsideCell && k.back[size_t(c)] > params.backToFront * k.front[size_t(c)];
+  if (anyBehindBesideARoom(behind)) out = foldMarkedCells(cells, k, behind);
+  if (!(params.apartBackToFront > 0.0) || cells.cellCount() == 0) return out;
+
+  // Then the groups apart from the rooms, with what was folded into them, by the lower share.
+  k = countContacts(cells, scene, solid, space);
+  std::vector<int> group;
+  const std::vector<char> apart = apartFromTheRooms(k, cells, group);
+  std::vector<double> front(size_t(cells.cellCount()), 0.0), back(front.size(), 0.0);
+  for (int c = 0; c < cells.cellCount(); ++c)
+    if (apart[size_t(c)])
+      front[size_t(group[size_t(c)])] += k.front[size_t(c)],
+          back[size_t(group[size_t(c)])] += k.back[size_t(c)];
+  behind.assign(size_t(cells.cellCount()), 0);
+  for (int c = 0; c < cells.cellCount(); ++c) {
+    const int g = group[size_t(c)];
+    behind[size_t(c)] = apart[size_t(c)] && back[size_t(g)] > params.apartBackToFront * front[size_t(g)];
+  }
+  if (!anyBehindBesideARoom(behind)) return out;
+  const FoldedCells apartFolded = foldMarkedCells(cells, k, behind);
+  out.folded += apartFolded.folded;
+  out.outsideDropped = out.outsideDropped || apartFolded.outsideDropped;
   return out;
 }
 

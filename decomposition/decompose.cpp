@@ -198,6 +198,16 @@ void markParts(Decomposition& out, int cellCount) {
   } else {
     out.connectedOpen = openParts <= 1;
   }
+  std::vector<double> volume(size_t(parts), 0.0);
+  for (int c = 0; c < cellCount; ++c)
+    if (c != out.outsideCell) volume[size_t(part[size_t(c)])] += out.cellStats[size_t(c)].volume;
+  const int mainPart = int(std::max_element(volume.begin(), volume.end()) - volume.begin());
+  out.reachable.assign(size_t(cellCount), 0);
+  out.reachableOrClosed = true;
+  for (int c = 0; c < cellCount; ++c) {
+    out.reachable[size_t(c)] = !out.closedRoom[size_t(c)] && part[size_t(c)] == mainPart;
+    out.reachableOrClosed = out.reachableOrClosed && (out.reachable[size_t(c)] || out.closedRoom[size_t(c)]);
+  }
 }
 
 // Drops the closed cells (no portal, not the outside) that no triangle was given to, unless that would

@@ -100,6 +100,14 @@ struct Decomposition {
   /// Every cell reachable from every other through portals once the closed rooms, and the outside with
   /// its pockets when no portal joins them to the rest (a sealed level), are left out.
   bool connectedOpen = true;
+  /// Per cell: reached through portals from the scene's main part (the part of the portal graph holding
+  /// the most room volume, a closed room's included: a sealed level's one room is its main part). A closed
+  /// room never is: light cannot cross what the geometry seals (a game level's room that only a teleporter
+  /// reaches is, for the light, a closed room).
+  std::vector<char> reachable;
+  /// Every cell reachable or a closed room (each said as one): what "connected" means for a bake, whose
+  /// light crosses portals only. An outside pocket, or a group of rooms apart, makes it false.
+  bool reachableOrClosed = true;
   int regions = 0;  ///< connected parts of the portal graph, closed rooms and the outside's part included
   size_t leakingFaces = 0;  ///< see PortalSet::leakingFaces
   size_t inputTriangles = 0;

@@ -162,7 +162,9 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
   auto kept = [&](int r) {
     if (r == outsideRoot) return !anyRoom || !groups[size_t(r)].neighbours.empty();
     const Group& g = groups[size_t(r)];
-    return g.volume >= minVoxels && !(g.neighbours.empty() && g.peak < params.minClosedPeak);
+    // The peak is measured to the nearest solid voxel's centre; the surface lies about half a voxel
+    // nearer, so a cavity one voxel thick reads as h deep at any voxel (0.4 m at a game level's 0.4 m).
+    return g.volume >= minVoxels && !(g.neighbours.empty() && g.peak - 0.5 * h < params.minClosedPeak);
   };
   CellLabels out;
   out.frame = f;

@@ -30,7 +30,9 @@ struct MergeParams {
   double minCellVolume = 2.5;
   /// A group that meets no other (a closed space) whose peak, metres, is under this is dropped too: a
   /// cavity nowhere 0.7 m across (the inside of a hollow platform, a game level's sealed gap under a
-  /// floor) is no room, however long. A closed room a person stands in has a peak over 0.45 m.
+  /// floor) is no room, however long. A closed room a person stands in has a peak over 0.45 m. The peak
+  /// is taken less half a voxel (the distance to the surface rather than to the solid voxel's centre):
+  /// a cavity one voxel thick (a hollow pillar, a brush's inside at a level's 0.3–0.6 m voxel) is one.
   double minClosedPeak = 0.35;
   /// saddleRatio between a room and the outside, in [0, 1]. Higher than saddleRatio: exterior doors are
   /// wide (a 2 m terrace door into a 2.7 m high room has 1.0 / 1.35 = 0.74), and whether a space is a

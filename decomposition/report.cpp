@@ -3,11 +3,14 @@
 namespace cpgi::decomp {
 namespace {
 
-nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
 
 }  // namespace
 
-nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams& params, const Context& ctx) {
+nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams& params,
+                                   const Context& ctx) {
   using nlohmann::json;
   json j;
   j["scene"] = params.sourceName;
@@ -40,16 +43,18 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                {"void", counts[size_t(Space::Void)]},
                {"sealed", d.sealedVoxels}};
   j["enclosed"] = d.enclosed;
-  j["outside_cell"] = d.outsideCell >= 0 ? nlohmann::json(d.graph.cells[size_t(d.outsideCell)].name) : nlohmann::json();
+  j["outside_cell"] =
+      d.outsideCell >= 0 ? nlohmann::json(d.graph.cells[size_t(d.outsideCell)].name) : nlohmann::json();
   json cells = json::array();
   for (size_t c = 0; c < d.graph.cells.size(); ++c) {
     const CellStats& s = d.cellStats[c];
     cells.push_back({{"name", d.graph.cells[c].name},
                      {"exterior", int(c) == d.outsideCell},
-                     {"kind", int(c) == d.outsideCell                               ? "outside"
+                     {"kind", int(c) == d.outsideCell                            ? "outside"
                               : c < d.closedRoom.size() && d.closedRoom[c]       ? "closed_room"
                               : c < d.outsidePocket.size() && d.outsidePocket[c] ? "outside_pocket"
-                                                                                   : "room"},
+                                                                                 : "room"},
+                     {"reachable", c < d.reachable.size() && d.reachable[c]},
                      {"volume_m3", s.volume},
                      {"bounds_m", {vec(s.bounds.lo), vec(s.bounds.hi)}},
                      {"peak_m", s.peak},
@@ -69,7 +74,8 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
               {"centre", vec(q.centre())},
               {"normal", vec(q.normal)},
               {"area_m2", q.area}};
-    if (p < d.portals.size()) e["half_width_m"] = d.portals[p].halfWidth, e["interface_faces"] = d.portals[p].faces;
+    if (p < d.portals.size())
+      e["half_width_m"] = d.portals[p].halfWidth, e["interface_faces"] = d.portals[p].faces;
     portals.push_back(e);
   }
   j["portals"] = portals;
@@ -83,10 +89,13 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
   size_t closedRooms = 0, pockets = 0;
   for (char c : d.closedRoom) closedRooms += c ? 1 : 0;
   for (char c : d.outsidePocket) pockets += c ? 1 : 0;
-  // connected: every cell but the closed rooms reachable through portals; graph_connected: all cells.
+  // connected: every cell but the closed rooms (and a sealed level's outside with its pockets) reachable
+  // through portals; reachable_or_closed: every cell reachable from the main part or a closed room;
+  // graph_connected: all cells.
   j["checks"] = {{"leaking_faces", d.leakingFaces},
                  {"thin_wall_area_m2", d.thinWallArea},
                  {"connected", d.connectedOpen},
+                 {"reachable_or_closed", d.reachableOrClosed},
                  {"graph_connected", d.graph.connected()},
                  {"closed_rooms", closedRooms},
                  {"outside_pockets", pockets},

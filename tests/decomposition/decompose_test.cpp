@@ -130,7 +130,9 @@ TEST(Compare, CellVolumesLabelTheVoxelsTheyEnclose) {
     agree += labels[i] == rooms[i];
   }
   EXPECT_EQ(labelled, agree);
-  EXPECT_GT(double(labelled), 0.99 * double(d.space.size() > 0 ? std::count(d.space.begin(), d.space.end(), Space::Inside) : 0));
+  EXPECT_GT(
+      double(labelled),
+      0.99 * double(d.space.size() > 0 ? std::count(d.space.begin(), d.space.end(), Space::Inside) : 0));
 }
 
 TEST(Decompose, FurnishedRoomIsOneCell) {
@@ -163,11 +165,11 @@ TEST(Decompose, LShapedCorridorIsOneCell) {
   const float w = 0.2f, W = 1.2f, H = 2.5f;
   b.box({-w, -w, -w}, {8 + w, 0, 6 + w});
   b.box({-w, H, -w}, {8 + w, H + w, 6 + w});
-  b.box({-w, 0, -w}, {8 + w, H, 0});          // outer wall along x
-  b.box({8, 0, 0}, {8 + w, H, 6 + w});        // outer wall along z
-  b.box({-w, 0, 0}, {0, H, W});               // start cap
-  b.box({-w, 0, W}, {8 - W, H, 6 + w});       // the inner block
-  b.box({8 - W, 0, 6}, {8, H, 6 + w});        // end cap
+  b.box({-w, 0, -w}, {8 + w, H, 0});     // outer wall along x
+  b.box({8, 0, 0}, {8 + w, H, 6 + w});   // outer wall along z
+  b.box({-w, 0, 0}, {0, H, W});          // start cap
+  b.box({-w, 0, W}, {8 - W, H, 6 + w});  // the inner block
+  b.box({8 - W, 0, 6}, {8, H, 6 + w});   // end cap
   Context ctx;
   const Decomposition d = run(b.scene(), 0.05, ctx);
   EXPECT_EQ(d.graph.cells.size(), 1u);
@@ -185,7 +187,8 @@ TEST(Decompose, HallOfPillarsIsNotOverSegmented) {
   b.box({0, 0, -w}, {L, H, 0});
   b.box({0, 0, L}, {L, H, L + w});
   for (int i = 1; i < 4; ++i)
-    for (int k = 1; k < 4; ++k) b.box({2.5f * i - 0.2f, 0, 2.5f * k - 0.2f}, {2.5f * i + 0.2f, H, 2.5f * k + 0.2f});
+    for (int k = 1; k < 4; ++k)
+      b.box({2.5f * i - 0.2f, 0, 2.5f * k - 0.2f}, {2.5f * i + 0.2f, H, 2.5f * k + 0.2f});
   Context ctx;
   const Decomposition d = run(b.scene(), 0.1, ctx);
   EXPECT_EQ(d.graph.cells.size(), 1u);
@@ -307,6 +310,9 @@ TEST(Decompose, ASealedRoomIsAClosedRoomAndACupboardNoCell) {
   EXPECT_TRUE(d.graph.portalsOf(closed).empty());
   EXPECT_TRUE(d.connectedOpen);
   EXPECT_FALSE(d.graph.connected());
+  // Said as what it is: every cell reachable or a closed room, the three rooms reachable, it not.
+  EXPECT_TRUE(d.reachableOrClosed);
+  for (size_t c = 0; c < d.graph.cells.size(); ++c) EXPECT_EQ(bool(d.reachable[c]), int(c) != closed) << c;
   EXPECT_EQ(d.leakingFaces, 0u);
   EXPECT_TRUE(anyWarningContains(ctx, "is a closed room"));
 }
@@ -324,6 +330,31 @@ TEST(Decompose, ASealedFlatCavityIsNoCell) {
   for (char closed : d.closedRoom) EXPECT_FALSE(closed);
   EXPECT_TRUE(d.graph.connected());
   EXPECT_EQ(d.leakingFaces, 0u);
+}
+
+// Issue 46 (kaos, oa_shouse, islanddm at 0.4–0.56 m voxels): a sealed cavity one voxel thick inside (a
+// hollow pillar's, a brush's; here 1.4 m between faces, two layers of 0.4 m voxels once the faces' own
+// voxels are solid) has its voxels 0.4 m from the nearest solid voxel's centre, over the 0.35 m minimum
+// peak at any voxel that coarse: it was a closed room. Its surface lies half a voxel nearer than those
+// centres; with that it is no cell.
+TEST(Decompose, ASealedCavityOneVoxelThickIsNoCellAtACoarseVoxel) {
+  SceneBuilder b;
+  b.box({0.0f, 0.0f, 0.0f}, {8.0f, 3.0f, 8.0f});                      // a room
+  b.box({1.0f, 3.4f, 1.0f}, {5.0f, 4.8f, 5.0f});                      // the cavity over its ceiling
+  for (Triangle& t : b.scene().triangles) std::swap(t.p[1], t.p[2]);  // faces looking in, as a level's
+  DecomposeParams p;
+  p.voxelSize = 0.4;
+  p.merge.minClosedPeak = 0.35 - 0.5 * p.voxelSize;  // the rule as it was: the peak against 0.35 m
+  Context before;
+  const Decomposition kept = decompose(b.scene(), p, before);
+  ASSERT_EQ(kept.graph.cells.size(), 2u);
+  EXPECT_TRUE(kept.closedRoom[0] && kept.closedRoom[1]);
+
+  p.merge.minClosedPeak = MergeParams().minClosedPeak;
+  Context ctx;
+  const Decomposition d = decompose(b.scene(), p, ctx);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_LT(d.cellStats[0].bounds.hi.y, 3.5f);  // the room
 }
 
 }  // namespace

@@ -47,7 +47,7 @@ BakeSettings everyFieldChanged() {
   q.outsideMargin = 1.5, q.classify.minComponentVolume = 0.2, q.watershed.levelStep = 0.25;
   q.merge.saddleRatio = 0.5, q.merge.minDepth = 0.3, q.merge.openingRatio = 0.7, q.merge.minCellVolume = 2.0;
   q.merge.minClosedPeak = 0.4, q.merge.outsideSaddleRatio = 0.8;
-  q.behind.backToFront = 2.0;
+  q.behind.backToFront = 2.0, q.behind.apartBackToFront = 0.5;
   q.portalMerge = {30.0f, 3.0f, 2.0f};
   q.portals = {0.7, 0.9f, 3}, q.assign = {1.5, 6, 3, 0.4}, q.sourceName = "house";
   s.cells.onlyCells = "A,B", s.cells.around = "1,2,3", s.cells.depth = 2,
@@ -143,6 +143,7 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(u.merge.minClosedPeak, v.merge.minClosedPeak);
   EXPECT_EQ(u.merge.outsideSaddleRatio, v.merge.outsideSaddleRatio);
   EXPECT_EQ(u.behind.backToFront, v.behind.backToFront);
+  EXPECT_EQ(u.behind.apartBackToFront, v.behind.apartBackToFront);
   EXPECT_EQ(u.portalMerge.maxAngleDegrees, v.portalMerge.maxAngleDegrees);
   EXPECT_EQ(u.portalMerge.maxGapVoxels, v.portalMerge.maxGapVoxels);
   EXPECT_EQ(u.portalMerge.maxFill, v.portalMerge.maxFill);

@@ -79,6 +79,21 @@ TEST(BehindGeometry, ASealedLevelsPocketBehindItsWallsIsTheOutside) {
   EXPECT_EQ(d.leakingFaces, 0u);
 }
 
+// The cell of a brush in the corner of a 6 × 3 × 6 m room (the one under 10 m³), or −1.
+int brushCell(const Decomposition& d) {
+  for (size_t c = 0; c < d.graph.cells.size(); ++c)
+    if (d.cellStats[c].volume < 10.0) return int(c);
+  return -1;
+}
+
+// That room is the one cell left, round a brush of side w in its corner whose voxels are no cell's.
+void expectTheRoomRoundTheBrushAlone(const Decomposition& d, float w) {
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0 - w * w * 3.0, 10.0);
+  EXPECT_EQ(d.voxelCell[d.frame.index(d.frame.voxelOf({0.7f, 1.5f, 0.7f}))], -1);
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
 // Issue 46 (kaos, ctf_inyard, oasago2): a brush in a room's corner, floor to ceiling, whose two faces look
 // into the room; the compiler leaves the room's walls, floor and ceiling behind it. Its inside is closed
 // and looks at the fronts of four of its sides and the backs of two, so the behind stage keeps it, and
@@ -98,9 +113,7 @@ TEST(BehindGeometry, ABrushsClosedInsideThatNoFaceLooksIntoIsNoRoom) {
   const Decomposition kept = decompose(b.scene(), p, before);
   ASSERT_EQ(kept.graph.cells.size(), 2u);
   EXPECT_EQ(kept.foldedBehind, 0);
-  int pocket = -1;
-  for (size_t c = 0; c < kept.graph.cells.size(); ++c)
-    if (kept.cellStats[c].volume < 10.0) pocket = int(c);
+  const int pocket = brushCell(kept);
   ASSERT_GE(pocket, 0);
   EXPECT_TRUE(kept.graph.cells[size_t(pocket)].triangles.empty());
   EXPECT_TRUE(kept.closedRoom[size_t(pocket)]);
@@ -109,10 +122,7 @@ TEST(BehindGeometry, ABrushsClosedInsideThatNoFaceLooksIntoIsNoRoom) {
   Context ctx;
   const Decomposition d = decompose(b.scene(), p, ctx);
   EXPECT_EQ(d.droppedUnfaced, 1);
-  ASSERT_EQ(d.graph.cells.size(), 1u);
-  EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0 - w * w * 3.0, 10.0);  // the room round the brush
-  EXPECT_EQ(d.voxelCell[d.frame.index(d.frame.voxelOf({0.7f, 1.5f, 0.7f}))], -1);
-  EXPECT_EQ(d.leakingFaces, 0u);
+  expectTheRoomRoundTheBrushAlone(d, w);
 }
 
 // Issue 46 (aggressor): a slab of space behind a room's wall, opening into the room through a gap, was
@@ -155,9 +165,7 @@ TEST(BehindGeometry, ADetailBrushsInsideLookingAtTheWallsBehindItIsNoRoom) {
   Context before;
   const Decomposition kept = run(b.scene(), before, BehindParams().backToFront, 0.0);
   ASSERT_EQ(kept.graph.cells.size(), 2u);
-  int brush = -1;
-  for (size_t c = 0; c < kept.graph.cells.size(); ++c)
-    if (kept.cellStats[c].volume < 10.0) brush = int(c);
+  const int brush = brushCell(kept);
   ASSERT_GE(brush, 0);
   EXPECT_FALSE(kept.graph.cells[size_t(brush)].triangles.empty());
   EXPECT_TRUE(kept.closedRoom[size_t(brush)]);
@@ -165,10 +173,7 @@ TEST(BehindGeometry, ADetailBrushsInsideLookingAtTheWallsBehindItIsNoRoom) {
   Context ctx;
   const Decomposition d = run(b.scene(), ctx);
   EXPECT_EQ(d.foldedBehind, 1);
-  ASSERT_EQ(d.graph.cells.size(), 1u);
-  EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0 - w * w * 3.0, 10.0);  // the room round the brush
-  EXPECT_EQ(d.voxelCell[d.frame.index(d.frame.voxelOf({0.7f, 1.5f, 0.7f}))], -1);
-  EXPECT_EQ(d.leakingFaces, 0u);
+  expectTheRoomRoundTheBrushAlone(d, w);
 }
 
 // Issue 46 (oa_dm2, oa_dm5): a sealed level's pocket that the void reaches through a gap, bounded by the

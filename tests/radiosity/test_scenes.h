@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/context.h"
+#include "core/quads.h"
 #include "core/scene.h"
 #include "radiosity/lightmap/atlas.h"
 #include "scenes/scene_builder.h"
@@ -34,6 +36,14 @@ inline void addRect(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, ui
 }
 
 /// The six inward-facing faces of the box [lo, hi].
+/// The atlas of `scene` at `density` texels a metre, every other parameter the default.
+inline LightmapAtlas atlasAtDensity(const Scene& scene, float density) {
+  Context ctx;
+  AtlasParams p;
+  p.density = density;
+  return buildAtlas(scene, findQuads(scene), p, ctx);
+}
+
 inline void addClosedBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
   const glm::vec3 d = hi - lo;
   const glm::vec3 X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);

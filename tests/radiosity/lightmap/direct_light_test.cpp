@@ -15,6 +15,7 @@ namespace {
 
 using testing::addMaterial;
 using testing::addRect;
+using testing::atlasAtDensity;
 
 // A 2 m × 2 m floor (y = 0, facing up) centred on the origin.
 Scene floorScene() {
@@ -24,20 +25,13 @@ Scene floorScene() {
   return s;
 }
 
-LightmapAtlas atlasOf(const Scene& s, float density) {
-  Context ctx;
-  AtlasParams p;
-  p.density = density;
-  return buildAtlas(s, findQuads(s), p, ctx);
-}
-
 TEST(DirectLight, PointAboveASquareDeliversIntensityTimesSolidAngle) {
   Scene s = floorScene();
   PunctualLight lamp;
   lamp.position = {0, 1, 0};
   lamp.intensity = {1.0f, 2.0f, 3.0f};
   s.lights.push_back(lamp);
-  const LightmapAtlas atlas = atlasOf(s, 64.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 64.0f);
   Context ctx;
   const DirectLight d = shootPunctualLights(s.lights, RayScene(s), atlas, ctx);
   const double omega = 4.0 * std::asin(0.5);  // a = h = 1
@@ -64,7 +58,7 @@ TEST(DirectLight, OccludersCastHardShadowsAndSkippedPatchesGetNothing) {
   lamp.position = {0, 1, 0};
   lamp.intensity = glm::vec3(1.0f);
   s.lights.push_back(lamp);
-  const LightmapAtlas atlas = atlasOf(s, 32.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 32.0f);
   Context ctx;
   const RayScene rays(s);
   const DirectLight d = shootPunctualLights(s.lights, rays, atlas, ctx);
@@ -98,7 +92,7 @@ TEST(DirectLight, DirectionalDeliversIrradianceTimesCosineTimesArea) {
   sun.direction = glm::normalize(glm::vec3(1, -1, 0));
   sun.intensity = glm::vec3(2.0f);
   s.lights.push_back(sun);
-  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 8.0f);
   Context ctx;
   const DirectLight d = shootPunctualLights(s.lights, RayScene(s), atlas, ctx);
   const double expected = 3.0 * 2.0 * std::sqrt(0.5) * 4.0;  // RGB × E × cos 45° × 4 m²

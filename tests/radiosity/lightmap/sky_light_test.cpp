@@ -21,15 +21,9 @@ namespace {
 using testing::addClosedBox;
 using testing::addMaterial;
 using testing::addRect;
+using testing::atlasAtDensity;
 
 constexpr double kPi = std::numbers::pi;
-
-LightmapAtlas atlasOf(const Scene& s, float density) {
-  Context ctx;
-  AtlasParams p;
-  p.density = density;
-  return buildAtlas(s, findQuads(s), p, ctx);
-}
 
 DirectLight gather(const Scene& s, const LightmapAtlas& atlas) {
   Context ctx;
@@ -77,7 +71,7 @@ double formFactorUp(const glm::dvec3& x, const std::array<glm::dvec3, 4>& polygo
 TEST(SkyLight, OpenFloorGetsTheWholeSky) {
   Scene s;
   addRect(s, {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, addMaterial(s, glm::vec3(0.5f)));
-  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 8.0f);
   for (const auto& [kind, irradiance] :
        {std::pair{Sky::Kind::Uniform, kPi}, {Sky::Kind::CieOvercast, 7.0 * kPi / 9.0}}) {
     s.sky = skyOf(kind, 2.0f, 5.0f);  // the ground below the horizon: a floor facing up never sees it
@@ -98,7 +92,7 @@ TEST(SkyLight, OpenFloorGetsTheWholeSky) {
 // deadline the gather in passes is the same as its 1 024 directions in one.
 TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
   const Scene s = openBox(1024);
-  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 8.0f);
   Context ctx;
   DirectLight late;
   const SkyGatherData data = gatherPastDeadline(s, atlas, ctx, late);
@@ -133,7 +127,7 @@ TEST(SkyLight, ADeadlineStopsTheGatherAfterAWholePass) {
 // before them in their row, so every texel of the open box has sky light to within the 8 directions' noise.
 TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
   const Scene s = openBox(32);  // the whole gather to compare with, kept short
-  const LightmapAtlas atlas = atlasOf(s, 80.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 80.0f);
   ASSERT_GT(atlas.validTexels(), 3u * 32768u);
   Context ctx;
   DirectLight late;
@@ -162,7 +156,7 @@ TEST(SkyLight, ADeadlineCutsTheFirstPassOfALargeAtlasPartWay) {
 // and no more than one chunk of rays was traced past the deadline.
 TEST(SkyLight, ADeadlineStopsTheFirstPassAfterItsFirstChunkOfSeeds) {
   const Scene s = openBox(32);
-  const LightmapAtlas atlas = atlasOf(s, 160.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 160.0f);
   ASSERT_GT(atlas.validTexels() / 16, 2u * 8192u);  // seeds enough for more than two chunks
   Context ctx;
   DirectLight late;
@@ -184,7 +178,7 @@ TEST(SkyLight, ADeadlineStopsTheFirstPassAfterItsFirstChunkOfSeeds) {
 
 TEST(SkyLight, ThroughAHoleInTheCeilingMatchesTheFormFactor) {
   const Scene s = openBox(1024);
-  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 8.0f);
   const DirectLight d = gather(s, atlas);
   double got = 0.0, want = 0.0;
   testing::forEachTexelOf(atlas, 0, [&](size_t t) {
@@ -201,13 +195,13 @@ TEST(SkyLight, ClosedScenesGetNoneInside) {
   Scene box;
   addClosedBox(box, glm::vec3(0.0f), glm::vec3(2.0f), addMaterial(box, glm::vec3(0.5f)));
   box.sky = skyOf(Sky::Kind::CieOvercast, 4.0f, 1.0f);
-  const DirectLight closed = gather(box, atlasOf(box, 4.0f));
+  const DirectLight closed = gather(box, atlasAtDensity(box, 4.0f));
   EXPECT_EQ(closed.landed, 0.0);
 
   // seed1's faces all face into its rooms (its walls have no outer faces): none sees the sky.
   Scene seed = makeSeedScene(1).scene;
   seed.sky = box.sky;
-  const LightmapAtlas atlas = atlasOf(seed, 4.0f);
+  const LightmapAtlas atlas = atlasAtDensity(seed, 4.0f);
   const DirectLight d = gather(seed, atlas);
   EXPECT_EQ(d.landed, 0.0);
   for (const glm::vec3& e : d.irradiance) EXPECT_EQ(e, glm::vec3(0.0f));

@@ -19,15 +19,9 @@ namespace {
 
 using testing::addMaterial;
 using testing::addRect;
+using testing::atlasAtDensity;
 
 constexpr double kPi = std::numbers::pi;
-
-LightmapAtlas atlasOf(const Scene& s, float density) {
-  Context ctx;
-  AtlasParams p;
-  p.density = density;
-  return buildAtlas(s, findQuads(s), p, ctx);
-}
 
 // A wall in the plane z = `z` across x in [0, 3], y in [0, 2.5], with a door x in [1.2, 1.8], y in [0, 2];
 // its normal +z (`towardsPlusZ`) or −z.
@@ -147,7 +141,7 @@ TEST(SkyOpenings, TheSphericalRectangleIsUniformInItsSolidAngle) {
 // relative RMSE of 78 % against 4 096 rays; 256 drawn half towards the front door, 2.3 %.
 TEST(SkyOpenings, AWallBehindTwoDoorsIsSmoothAt256Rays) {
   const std::vector<SkyOpening> openings = skyOpeningsOf(twoDoors().rooms);
-  const LightmapAtlas atlas = atlasOf(twoDoors().backWall, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(twoDoors().backWall, 8.0f);
   const std::vector<float> truth = backWallLight(atlas, 4096, openings);
   const double cosine = relativeRmse(backWallLight(atlas, 256, {}), truth);
   const double towards = relativeRmse(backWallLight(atlas, 256, openings), truth);
@@ -165,7 +159,7 @@ TEST(SkyOpenings, AWallBehindTwoDoorsIsSmoothAt256Rays) {
 // the front door costs rays, not light): 0.00699 and 0.00698 W/m² here; 16 384 cosine rays a texel hold
 // the mean to about 1 %.
 TEST(SkyOpenings, TheOpeningsGatherIsUnbiased) {
-  const LightmapAtlas atlas = atlasOf(twoDoors().backWall, 4.0f);
+  const LightmapAtlas atlas = atlasAtDensity(twoDoors().backWall, 4.0f);
   const double cosine = mean(backWallLight(atlas, 16384, {}));
   const double towards = mean(backWallLight(atlas, 1024, skyOpeningsOf(twoDoors().rooms)));
   ASSERT_GT(cosine, 0.0);
@@ -181,7 +175,7 @@ TEST(SkyOpenings, ThroughAHoleInTheCeilingTheFloorIsTheFormFactorsAtFewRays) {
   const std::array<glm::dvec3, 4> hole = testing::skyHole();
   const std::vector<SkyOpening> openings = {
       {.corner = hole[0], .edgeU = hole[1] - hole[0], .edgeV = hole[3] - hole[0], .outward = {0, 1, 0}}};
-  const LightmapAtlas atlas = atlasOf(s, 8.0f);
+  const LightmapAtlas atlas = atlasAtDensity(s, 8.0f);
   std::vector<float> exact;
   testing::forEachTexelOf(atlas, 0, [&](size_t t) {
     // F(point → square above it, facing it): Lambert's contour formula for a receiver of normal +y.

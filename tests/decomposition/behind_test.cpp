@@ -57,6 +57,15 @@ Decomposition run(const Scene& scene, Context& ctx, double backToFront = BehindP
   return decompose(scene, p, ctx);
 }
 
+// A sealed level's pocket folded into the outside, which then meets no room: the level one room, whole.
+void expectThePocketFoldedIntoTheOutside(const Decomposition& d) {
+  EXPECT_EQ(d.foldedBehind, 1);
+  EXPECT_EQ(d.outsideCell, -1);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_TRUE(d.graph.connected());
+  EXPECT_EQ(d.leakingFaces, 0u);
+}
+
 // Issue 46 (oa_dm1, oa_dm7): a sealed level's space behind its walls, reached from the void through a
 // narrow gap, was a cell of its own that only the outside reached; the outside then was a cell apart from
 // the rooms and the graph was not connected. It is the outside: folded into it, and the outside, meeting
@@ -71,12 +80,8 @@ TEST(BehindGeometry, ASealedLevelsPocketBehindItsWallsIsTheOutside) {
   EXPECT_FALSE(kept.graph.connected());
   Context ctx;
   const Decomposition d = run(b.scene(), ctx);
-  EXPECT_EQ(d.foldedBehind, 1);
-  EXPECT_EQ(d.outsideCell, -1);
-  ASSERT_EQ(d.graph.cells.size(), 1u);
-  EXPECT_TRUE(d.graph.connected());
+  expectThePocketFoldedIntoTheOutside(d);
   EXPECT_NEAR(d.cellStats[0].volume, 6.0 * 3.0 * 6.0, 20.0);
-  EXPECT_EQ(d.leakingFaces, 0u);
 }
 
 // The cell of a brush in the corner of a 6 × 3 × 6 m room (the one under 10 m³), or −1.
@@ -201,12 +206,8 @@ TEST(BehindGeometry, ASealedLevelsPocketLookingAtSomeFrontsIsTheOutside) {
 
   Context ctx;
   const Decomposition d = run(b.scene(), ctx);
-  EXPECT_EQ(d.foldedBehind, 1);
-  EXPECT_EQ(d.outsideCell, -1);
-  ASSERT_EQ(d.graph.cells.size(), 1u);
-  EXPECT_TRUE(d.graph.connected());
+  expectThePocketFoldedIntoTheOutside(d);
   EXPECT_TRUE(d.reachableOrClosed);
-  EXPECT_EQ(d.leakingFaces, 0u);
 }
 
 // Folding needs rooms in front of the geometry to trust its faces' sides: in a model whose faces all

@@ -4,20 +4,20 @@ shared wall, centred or D from the side wall, a 1 m^2 lamp of 100 W/m^2 under R1
 R1..RN as `g cell:` groups (bench/RESULTS.md, "The dim rooms' bias apart").
 
   chain_rooms_obj.py OUT.obj [N] [T] [W] [D]"""
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cell_obj import CellObj  # noqa: E402
+
 out = sys.argv[1]
 N = int(sys.argv[2]) if len(sys.argv) > 2 else 4
 T = float(sys.argv[3]) if len(sys.argv) > 3 else 0.2
 W = float(sys.argv[4]) if len(sys.argv) > 4 else 1.0
 D = float(sys.argv[5]) if len(sys.argv) > 5 else -1.0  # door start from the side wall; <0: centred
 h, dh, L = 2.6, 2.1, 4.0
-V, F = [], []
-def quad(p0, p1, p2, p3, n, mat):
-    a = [p1[i]-p0[i] for i in range(3)]; b = [p2[i]-p0[i] for i in range(3)]
-    c = [a[1]*b[2]-a[2]*b[1], a[2]*b[0]-a[0]*b[2], a[0]*b[1]-a[1]*b[0]]
-    pts = [p0, p1, p2, p3] if sum(c[i]*n[i] for i in range(3)) > 0 else [p3, p2, p1, p0]
-    base = len(V) + 1
-    V.extend(pts); F.append((mat, [base, base+1, base+2, base+3]))
+obj = CellObj()
+quad = obj.quad
 def doorSpan(z0, z1):
     if D < 0: zc = 0.5*(z0+z1); return zc-W/2, zc+W/2
     return z0+D, z0+D+W
@@ -32,7 +32,7 @@ def xwall(x, sgn, z0, z1, door, mat):
     quad((x,dh,d0),(x,h,d0),(x,h,d1),(x,dh,d1),n,mat)
 for r in range(N):
     x0 = r*(L+T); x1 = x0+L; z0, z1 = 0.0, L
-    F.append(("group", "R%d" % (r+1)))
+    obj.group("R%d" % (r+1))
     quad((x0,0,z0),(x1,0,z0),(x1,0,z1),(x0,0,z1),(0,1,0),"floor")
     quad((x0,h,z0),(x1,h,z0),(x1,h,z1),(x0,h,z1),(0,-1,0),"ceiling")
     xwall(x0, 1, z0, z1, r > 0, "wall")
@@ -48,14 +48,5 @@ for r in range(N):
         quad((a,0,d1),(b,0,d1),(b,dh,d1),(a,dh,d1),(0,0,-1),"reveal")
         quad((a,dh,d0),(b,dh,d0),(b,dh,d1),(a,dh,d1),(0,-1,0),"reveal")
         quad((a,0,d0),(b,0,d0),(b,0,d1),(a,0,d1),(0,1,0),"floor")
-with open(out.replace('.obj','.mtl'),'w') as m:
-    m.write("newmtl wall\nKd 0.7 0.7 0.7\nnewmtl floor\nKd 0.5 0.5 0.5\nnewmtl ceiling\nKd 0.8 0.8 0.8\n"
+obj.write(out, "newmtl wall\nKd 0.7 0.7 0.7\nnewmtl floor\nKd 0.5 0.5 0.5\nnewmtl ceiling\nKd 0.8 0.8 0.8\n"
             "newmtl reveal\nKd 0.7 0.7 0.7\nnewmtl light\nKd 0.8 0.8 0.8\nKe 100 100 100\n")
-with open(out,'w') as o:
-    o.write("mtllib %s\n" % out.split('/')[-1].replace('.obj','.mtl'))
-    for v in V: o.write("v %g %g %g\n" % v)
-    cur = None
-    for mat, f in F:
-        if mat == "group": o.write("g cell:%s\n" % f); cur = None; continue
-        if mat != cur: o.write("usemtl %s\n" % mat); cur = mat
-        o.write("f %s\n" % " ".join(map(str, f)))

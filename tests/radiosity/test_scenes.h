@@ -55,6 +55,25 @@ inline void addClosedBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t mate
   addRect(scene, lo + Y, X, Z, material);  // y = hi, normal -y
 }
 
+/// Two 3 × 3 × 2.5 m rooms along x (z up), joined by a 1 × 2 m door in a zero-thickness partition at
+/// x = 3; a 0.6 m lamp 1 cm under the first room's ceiling. The second room is lit only through the door.
+inline Scene twoRoomsThroughADoor() {
+  Scene s;
+  const uint32_t grey = addMaterial(s, glm::vec3(0.6f));
+  const uint32_t lamp = addMaterial(s, glm::vec3(0.0f), glm::vec3(50.0f));
+  addClosedBox(s, glm::vec3(0.0f), glm::vec3(6.0f, 3.0f, 2.5f), grey);
+  // The partition's pieces round the door (y 1..2, z 0..2), each with a face into either room.
+  auto piece = [&](glm::vec3 o, glm::vec3 u, glm::vec3 v) {
+    addRect(s, o, v, u, grey);  // faces −x
+    addRect(s, o, u, v, grey);  // faces +x
+  };
+  piece({3, 0, 0}, {0, 1, 0}, {0, 0, 2.5f});
+  piece({3, 2, 0}, {0, 1, 0}, {0, 0, 2.5f});
+  piece({3, 1, 2}, {0, 1, 0}, {0, 0, 0.5f});
+  addRect(s, {1.2f, 1.2f, 2.49f}, {0, 0.6f, 0}, {0.6f, 0, 0}, lamp);
+  return s;
+}
+
 /// Calls visit(t) for every atlas texel t of the patch that holds triangle `triangle`.
 template <typename Visit>
 void forEachTexelOf(const LightmapAtlas& atlas, int triangle, Visit visit) {

@@ -14,25 +14,12 @@
 namespace cpgi {
 namespace {
 
-using testing::addClosedBox;
-using testing::addMaterial;
 using testing::addRect;
 
-// Two 3 × 3 × 2.5 m rooms along x (z up) joined by a 1 × 2 m door in a zero-thickness partition at x = 3;
-// a 0.6 m lamp 1 cm under the first room's ceiling and a 0.8 m table top (both faces) 0.8 m above its floor.
+// testing::twoRoomsThroughADoor with a 0.8 m table top (both faces) 0.8 m above the first room's floor.
 Scene roomsWithTable() {
-  Scene s;
-  const uint32_t grey = addMaterial(s, glm::vec3(0.6f));
-  const uint32_t lamp = addMaterial(s, glm::vec3(0.0f), glm::vec3(50.0f));
-  addClosedBox(s, glm::vec3(0.0f), glm::vec3(6.0f, 3.0f, 2.5f), grey);
-  auto piece = [&](glm::vec3 o, glm::vec3 u, glm::vec3 v) {
-    addRect(s, o, v, u, grey);  // faces −x
-    addRect(s, o, u, v, grey);  // faces +x
-  };
-  piece({3, 0, 0}, {0, 1, 0}, {0, 0, 2.5f});
-  piece({3, 2, 0}, {0, 1, 0}, {0, 0, 2.5f});
-  piece({3, 1, 2}, {0, 1, 0}, {0, 0, 0.5f});
-  addRect(s, {1.2f, 1.2f, 2.49f}, {0, 0.6f, 0}, {0.6f, 0, 0}, lamp);
+  Scene s = testing::twoRoomsThroughADoor();
+  const uint32_t grey = 0;                                           // twoRoomsThroughADoor's first material
   addRect(s, {1.0f, 1.1f, 0.8f}, {0.8f, 0, 0}, {0, 0.8f, 0}, grey);  // top, faces +z
   addRect(s, {1.0f, 1.1f, 0.8f}, {0, 0.8f, 0}, {0.8f, 0, 0}, grey);  // underside, faces −z
   return s;

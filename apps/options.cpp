@@ -341,17 +341,16 @@ void addTimeLimitOption(CLI::App& cmd, double& seconds) {
 
 void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
   const OptionGroup group(cmd, "Cells");
-  scoped(
-      addChoice(
-          cmd, flag("portal light"), cells.portals,
-          {{"diffuse", PortalLight::Diffuse},
-           {"directional", PortalLight::Directional},
-           {"binned", PortalLight::Binned}},
-          help(scope,
-               "Portal light with --method cells: diffuse (re-emits the irradiance as a "
-               "Lambertian area light), directional (keeps the directions the light arrived "
-               "with, as one lobe) or binned (keeps them per colour channel in 12 x 12 bins found by rays)")),
-      scope);
+  scoped(addChoice(cmd, flag("portal light"), cells.portals,
+                   {{"diffuse", PortalLight::Diffuse},
+                    {"directional", PortalLight::Directional},
+                    {"binned", PortalLight::Binned}},
+                   help(scope,
+                        "Portal light with --method cells: diffuse (re-emits the irradiance as a "
+                        "Lambertian area light), directional (keeps the directions the light arrived "
+                        "with, as one lobe) or binned (keeps them per colour channel in 18 x 18 bins of 10 "
+                        "degrees found by rays)")),
+         scope);
   addChecked(cmd, scope, "portal lobe width", cells.lobeMinWidth,
              "With --portals directional: the narrowest lobe a portal texel re-emits, as the standard "
              "deviation of sin θ (about radians when small); arrivals spread wider keep their own spread",

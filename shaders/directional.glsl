@@ -9,9 +9,9 @@ layout(std430, binding = 18) buffer Arrivals { vec4 arrivals[]; };  // Σ w (u +
 layout(std430, binding = 19) buffer NodeLobes { vec4 nodeLobe[]; };  // per pyramid node, indexed like nodes[]
 // Binned emission (radiosity/solve/emission_bins.h): a texel whose lobe is (0, 0, 0, −(k + 1)) emits with
 // f per bin and channel from emissionLobe[k …], a bin a vec4 (red, green, blue, unused) after the texels'
-// lobes (llvmpipe allows a compute shader 16 storage blocks, all taken), each channel normalised to mean 1
-// over equal-area bins of the projected disk.
-#define BIN_GRID 12
+// lobes (llvmpipe allows a compute shader 16 storage blocks, all taken), each channel normalised on the
+// CPU so that the bilinear reading below integrates to the exitance; the square's radius is θ / (π/2).
+#define BIN_GRID 18
 
 #ifdef BINNED
 #define BIN_SLOT_VEC4 (BIN_GRID * BIN_GRID)  // an emitter's bins
@@ -28,7 +28,7 @@ uniform vec3 uBinT1, uBinT2;  // the shooter's binFrame (receive.comp only), set
 // binSquarePoint of its binFrame.
 vec2 binSquarePoint(vec3 omega) {
   float a = dot(omega, uBinT1), b = dot(omega, uBinT2);
-  float r = min(sqrt(a * a + b * b), 1.0), phi = atan(b, a);
+  float r = asin(min(sqrt(a * a + b * b), 1.0)) * (2.0 / PI), phi = atan(b, a);  // rings of equal θ
   if (phi < -0.25 * PI) phi += 2.0 * PI;
   vec2 xy;
   if (phi < 0.25 * PI) xy = vec2(r, r * phi * (4.0 / PI));

@@ -128,8 +128,9 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
     // Each channel scaled to the light the solve delivered; a channel no ray met (a sliver the rays
     // missed) spread as a Lambertian.
     for (int c = 0; c < 3; ++c)
-      for (glm::vec3& x : b)
-        x[c] = sum[c] > 0.0 ? float(double(x[c]) * w[c] / sum[c]) : w[c] / float(kArrivalBins);
+      for (size_t i = 0; i < b.size(); ++i)
+        b[i][c] = sum[c] > 0.0 ? float(double(b[i][c]) * w[c] / sum[c])
+                               : float(double(w[c]) * binProjectedArea(int(i)));
     bins[k] = b;
   });
   return bins;

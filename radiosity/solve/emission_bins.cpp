@@ -21,6 +21,55 @@ struct SplitMix {
   }
 };
 
+// The square's radius of a direction at sin θ = r: θ / (π/2), rings of equal angle.
+float squareRadius(float r) {
+  return std::asin(std::min(r, 1.0f)) * (2.0f / kPi);
+}
+
+// Per bin, its share of the projected disk (area) and the integral of its bilinear tap weight times the
+// projected solid angle (hat), each as a share of the whole: f reads back ∫ f cos θ dω / π = Σ f_b hat_b.
+// By the midpoint rule over kSub × kSub points a cell: binDensity is smooth, and the shares are right to
+// about 1e-5.
+struct BinWeights {
+  std::array<double, kArrivalBins> area{}, hat{};
+};
+
+const BinWeights& binWeights() {
+  static const BinWeights weights = [] {
+    constexpr int kSub = 24, n = kBinGrid * kSub;
+    BinWeights w;
+    double total = 0.0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::vec2 s((float(x) + 0.5f) / float(kSub), (float(y) + 0.5f) / float(kSub));
+        const double d = binDensity(s);
+        w.area[size_t((y / kSub) * kBinGrid + x / kSub)] += d;
+        const glm::vec2 c = s - 0.5f, lo = glm::floor(c), t = c - lo;
+        const glm::ivec2 i0 = glm::clamp(glm::ivec2(lo), 0, kBinGrid - 1),
+                         i1 = glm::clamp(glm::ivec2(lo) + 1, 0, kBinGrid - 1);
+        w.hat[size_t(i0.y * kBinGrid + i0.x)] += d * (1.0f - t.x) * (1.0f - t.y);
+        w.hat[size_t(i0.y * kBinGrid + i1.x)] += d * t.x * (1.0f - t.y);
+        w.hat[size_t(i1.y * kBinGrid + i0.x)] += d * (1.0f - t.x) * t.y;
+        w.hat[size_t(i1.y * kBinGrid + i1.x)] += d * t.x * t.y;
+        total += d;
+      }
+    for (double& a : w.area) a /= total;
+    for (double& h : w.hat) h /= total;
+    return w;
+  }();
+  return weights;
+}
+
+// Σ_b bins_b / area_b · hat_b per channel: what the bins' f read bilinearly integrates to, times π, before
+// normalising.
+glm::dvec3 binnedIntegral(const ArrivalBins& bins) {
+  const BinWeights& w = binWeights();
+  glm::dvec3 sum(0.0);
+  for (size_t b = 0; b < bins.size(); ++b)
+    sum += glm::dvec3(glm::max(bins[b], glm::vec3(0.0f))) * (w.hat[b] / w.area[b]);
+  return sum;
+}
+
 }  // namespace
 
 BinFrame binFrame(const glm::vec3& n) {
@@ -33,7 +82,7 @@ glm::vec2 binSquarePoint(const BinFrame& frame, const glm::vec3& omega) {
   // The inverse of the concentric map: the disk point at radius r and angle φ comes from the square's
   // boundary of half-width r, φ measured along it from the right edge's middle.
   const float a = glm::dot(omega, frame.t1), b = glm::dot(omega, frame.t2);
-  const float r = std::min(std::sqrt(a * a + b * b), 1.0f);
+  const float r = squareRadius(std::sqrt(a * a + b * b));
   float phi = std::atan2(b, a);
   if (phi < -0.25f * kPi) phi += kTwoPi;
   glm::vec2 xy;
@@ -53,6 +102,32 @@ int arrivalBin(const BinFrame& frame, const glm::vec3& omega) {
   return ij.y * kBinGrid + ij.x;
 }
 
+glm::vec3 binDirection(const BinFrame& frame, const glm::vec2& square) {
+  // The concentric map (Shirley and Chiu), then the square's radius ρ as the angle θ = ρ π/2.
+  const glm::vec2 xy = square * (2.0f / float(kBinGrid)) - 1.0f;
+  float rho = 0.0f, phi = 0.0f;
+  if (std::abs(xy.x) > std::abs(xy.y)) {
+    rho = xy.x, phi = 0.25f * kPi * (xy.y / xy.x);
+  } else if (xy.y != 0.0f) {
+    rho = xy.y, phi = 0.5f * kPi - 0.25f * kPi * (xy.x / xy.y);
+  }
+  const float theta = 0.5f * kPi * std::abs(rho), sign = rho < 0.0f ? -1.0f : 1.0f;
+  const float s = std::sin(theta) * sign;
+  return glm::normalize(s * std::cos(phi) * frame.t1 + s * std::sin(phi) * frame.t2 +
+                        std::cos(theta) * frame.n);
+}
+
+float binDensity(const glm::vec2& square) {
+  // Projected disk area per square area, r r'(ρ) / ρ with r = sin(ρ π/2), over its mean π/4: (π/4) sin(πρ)/ρ.
+  const glm::vec2 xy = square * (2.0f / float(kBinGrid)) - 1.0f;
+  const float rho = std::max(std::abs(xy.x), std::abs(xy.y));
+  return rho > 1e-6f ? 0.25f * kPi * std::sin(kPi * rho) / rho : 0.25f * kPi * kPi;
+}
+
+double binProjectedArea(int b) {
+  return binWeights().area[size_t(b)];
+}
+
 BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega) {
   const glm::vec2 s = binSquarePoint(frame, omega) - 0.5f;
   const glm::vec2 lo = glm::floor(s), t = s - lo;
@@ -70,24 +145,28 @@ glm::dvec3 binTotals(const ArrivalBins& bins) {
 
 glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
   if (!(glm::dot(omega, frame.n) > 0.0f)) return glm::vec3(0.0f);
-  const glm::dvec3 total = binTotals(bins);
+  const glm::dvec3 total = binnedIntegral(bins);
   const BinTaps taps = binTaps(frame, omega);
-  glm::vec3 w(0.0f);
-  for (int k = 0; k < 4; ++k)
-    w += taps.weight[size_t(k)] * glm::max(bins[size_t(taps.bin[size_t(k)])], glm::vec3(0.0f));
+  glm::dvec3 w(0.0);
+  for (int k = 0; k < 4; ++k) {
+    const size_t b = size_t(taps.bin[size_t(k)]);
+    w += double(taps.weight[size_t(k)]) * glm::dvec3(glm::max(bins[b], glm::vec3(0.0f))) /
+         binWeights().area[b];
+  }
   glm::vec3 f(1.0f);
   for (int c = 0; c < 3; ++c)
-    if (total[c] > 0.0) f[c] = float(double(w[c]) * double(kArrivalBins) / total[c]);
+    if (total[c] > 0.0) f[c] = float(w[c] / total[c]);
   return f;
 }
 
 EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins) {
-  const glm::dvec3 total = binTotals(bins);
+  const glm::dvec3 total = binnedIntegral(bins);
+  const BinWeights& w = binWeights();
   EmissionBinSlot f{};
   for (size_t b = 0; b < bins.size(); ++b)
     for (int c = 0; c < 3; ++c)
       f[4 * b + size_t(c)] =
-          total[c] > 0.0 ? float(std::max(double(bins[b][c]), 0.0) * double(kArrivalBins) / total[c]) : 1.0f;
+          total[c] > 0.0 ? float(std::max(double(bins[b][c]), 0.0) / w.area[b] / total[c]) : 1.0f;
   return f;
 }
 
@@ -110,25 +189,30 @@ ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, c
   if (rayCount <= 0) return bins;
   const BinFrame far = binFrame(-facing);
   SplitMix rng{uint64_t(seed) * 0x2545F4914F6CDD1Dull + 1};
-  // Stratified over the point (√N × √N cells) and, per ray, over the disk: cosine weighting makes the
-  // estimate of the irradiance (1/N) Σ M, M the exitance met.
+  // Stratified over the point (√N × √N cells) and over the bins. A ray through point s of the square
+  // estimates the irradiance as (1/N) M binDensity(s), M the exitance met; through its own bin, of n_b
+  // rays, as binProjectedArea-weighted: M binDensity(s) / (kArrivalBins n_b).
   const int side = std::max(1, int(std::sqrt(double(rayCount))));
+  const bool perBin = rayCount >= kArrivalBins;
   const float offset = 1e-4f * rays.diagonal();
   for (int k = 0; k < rayCount; ++k) {
     const int cell = k % (side * side);
     const float su = (float(cell % side) + rng.next()) / float(side);
     const float sv = (float(cell / side) + rng.next()) / float(side);
     const glm::vec3 y = origin + su * edgeU + sv * edgeV;
-    const float r = std::sqrt(rng.next()), phi = kTwoPi * rng.next();
-    const glm::vec3 d = glm::normalize(r * std::cos(phi) * far.t1 + r * std::sin(phi) * far.t2 +
-                                       std::sqrt(std::max(0.0f, 1.0f - r * r)) * facing);
-    const RayScene::Hit hit = rays.intersect(y, d, offset);
+    const int bin =
+        perBin ? k % kArrivalBins : std::min(int(rng.next() * float(kArrivalBins)), kArrivalBins - 1);
+    const glm::vec2 s(float(bin % kBinGrid) + rng.next(), float(bin / kBinGrid) + rng.next());
+    const glm::vec3 omega = binDirection(far, s);  // the light travels from the hit towards the point, and on
+    const RayScene::Hit hit = rays.intersect(y, -omega, offset);
     if (!hit) continue;
     const int64_t t = texelAtHit(atlas, hit.triangle, hit.u, hit.v);
     if (t < 0) continue;
-    const glm::vec3 omega = -d;  // the light travels from the hit towards the point, and on
     const glm::vec3 m = glm::max(exitance(size_t(t), omega), glm::vec3(0.0f));
-    if (m.r + m.g + m.b > 0.0f) bins[size_t(arrivalBin(far, omega))] += m / float(rayCount);
+    if (!(m.r + m.g + m.b > 0.0f)) continue;
+    const int raysInBin = perBin ? rayCount / kArrivalBins + (bin < rayCount % kArrivalBins ? 1 : 0) : 0;
+    const float weight = perBin ? 1.0f / float(kArrivalBins * raysInBin) : 1.0f / float(rayCount);
+    bins[size_t(bin)] += m * (binDensity(s) * weight);
   }
   return bins;
 }

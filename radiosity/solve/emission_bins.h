@@ -1,15 +1,22 @@
 // Binned directional emission, for portals whose light is more concentrated than one lobe can say: a
-// portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f given per bin of kArrivalBins bins of
-// equal area on the projected disk (u = ω_t, |u| = sin θ), the cells of a kBinGrid × kBinGrid square
-// mapped onto the disk by Shirley and Chiu's concentric map, which keeps areas and keeps the cells near
-// square everywhere, and read bilinearly between the cells' centres (binTaps). Equal areas there are
-// equal projected solid angles, so f normalised to mean 1 over the bins gives ∫ f cos θ dω = π exactly:
-// the exitance, hence the bookkeeping, does not depend on the shape.
+// portal texel re-emits its exitance M with L(ω) = M f(ω) / π, f given per bin of kArrivalBins bins, the
+// cells of a kBinGrid × kBinGrid square mapped onto the hemisphere by Shirley and Chiu's concentric map with
+// the square's radius ρ = θ / (π/2): rings of equal angle, each cell about 90° / (kBinGrid / 2) across from
+// the pole to the rim, read bilinearly between the cells' centres (binTaps). Each bin's projected solid
+// angle is its share of the projected disk (binProjectedArea), and f is normalised so that ∫ f cos θ dω = π
+// exactly for the bilinear reading (normalisedEmissionBins): the exitance, hence the bookkeeping, does not
+// depend on the shape.
+//
+// Why rings of equal angle, not of equal projected area (ρ = sin θ, the plain concentric map): a door in
+// a wall at right angles to a room's back wall lights that wall only from grazing directions, and the
+// outermost ring of a 12 × 12 equal-area grid spans 56–90°: the whole first metre and a half of the wall
+// took one bin's light, and a peak between 45 and 60° was spread over both rings, a band +30 % beside one
+// −30 % (random plan 22, room R7). 18 × 18 cells of 10° give that wall within 12 % of the light through
+// the opening (bench/portal_oracle.cpp; 12 × 12 equal-area: 0.64–2.1).
 //
 // Why that grid, not rings and sectors: light that goes straight through two doors in a row leaves the
 // second near its normal, where 8 rings of 16 sectors were wedges 21° long meeting at the pole; the beam
-// spread over them, and the wall facing the doors got 7 % too little (random plan 3, room R8), the rest
-// of the room too much. A 12 × 12 grid has cells 10° across at the pole.
+// spread over them, and the wall facing the doors got 7 % too little (random plan 3, room R8).
 //
 // Each colour channel has its own f: the light a door passes in one direction is the colour of the wall it
 // came from (a red wall straight through the door, a white ceiling above it), and one shape for the three
@@ -36,11 +43,11 @@
 
 namespace cpgi {
 
-inline constexpr int kBinGrid = 12, kArrivalBins = kBinGrid * kBinGrid;
+inline constexpr int kBinGrid = 18, kArrivalBins = kBinGrid * kBinGrid;
 /// Irradiance per arrival bin, per channel (W/m²).
 using ArrivalBins = std::array<glm::vec3, kArrivalBins>;
 /// The factors of one binned emitter as the solver reads them: per bin f of red, green and blue and an
-/// unused fourth (a vec4 a bin for the shaders), each channel normalised to mean 1 over the bins. Must
+/// unused fourth (a vec4 a bin for the shaders), each channel normalised so that ∫ f cos θ dω = π. Must
 /// match shaders/directional.glsl.
 inline constexpr int kBinSlotFloats = 4 * kArrivalBins;
 using EmissionBinSlot = std::array<float, kBinSlotFloats>;
@@ -61,23 +68,35 @@ glm::vec2 binSquarePoint(const BinFrame& frame, const glm::vec3& omega);
 /// concentric map's square. The histogram a portal's arrival is gathered into.
 int arrivalBin(const BinFrame& frame, const glm::vec3& omega);
 
+/// The unit direction leaving the surface at point `square` of the concentric map's square, in cells:
+/// [0, kBinGrid)² (column, row); binSquarePoint's inverse.
+glm::vec3 binDirection(const BinFrame& frame, const glm::vec2& square);
+
+/// The projected solid angle per unit area of the square at point `square` (in cells), relative to its
+/// mean over the square: how much more of the projected disk a cell near the pole holds than one at the rim.
+float binDensity(const glm::vec2& square);
+
+/// Bin b's share of the projected disk, ∫_b cos θ dω / π (the shares sum to 1).
+double binProjectedArea(int b);
+
 /// The four bins and weights that f(ω) interpolates between: bilinear in the square between the cells'
 /// centres, each edge cell's value held out to the edge. The emission reads f so, not as steps: a beam
 /// narrower than a bin lit a wall with the bin's hard edges, a step of 0.6 to 1.3 across half a metre
-/// (random plan 3, room R4). Interpolated that way, the mean over the square of f is still the mean of
-/// its bins, so the exitance does not change. Must match shaders/directional.glsl.
+/// (random plan 3, room R4). The normalisation (normalisedEmissionBins) integrates that reading, so the
+/// exitance does not change. Must match shaders/directional.glsl.
 struct BinTaps {
   std::array<int, 4> bin;
   std::array<float, 4> weight;
 };
 BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega);
 
-/// f(ω) per channel of bins holding any non-negative weights (each channel normalised here to mean 1): 0
-/// behind the surface, 1 for a channel whose bins are all zero (a Lambertian).
+/// f(ω) per channel of bins holding the irradiance arriving through each (non-negative; normalised here
+/// so that ∫ f cos θ dω = π): 0 behind the surface, 1 for a channel whose bins are all zero (a Lambertian).
 glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
 
-/// The bins as the solver reads them (ShotShape::emissionBins): f per bin and channel, mean 1 in each
-/// channel; all ones for a channel whose bins are all zero.
+/// The bins as the solver reads them (ShotShape::emissionBins): f per bin and channel, each bin's
+/// irradiance over its projected solid angle, scaled so that ∫ f cos θ dω = π under the bilinear reading
+/// (binTaps); all ones for a channel whose bins are all zero.
 EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins);
 
 /// The sum over the bins, per channel.
@@ -94,8 +113,10 @@ inline glm::vec4 binnedLobe(int slot) {
 using ExitanceToward = std::function<glm::vec3(size_t texel, const glm::vec3& omega)>;
 
 /// Irradiance per arrival bin and channel (W/m²) at the parallelogram origin + [0,1]·edgeU + [0,1]·edgeV of
-/// a surface of unit normal `facing` (towards where the light comes from), by `rayCount` cosine-weighted
-/// rays from points stratified over it; the bins are those of the far side (normal −facing), on which the
+/// a surface of unit normal `facing` (towards where the light comes from), by `rayCount` rays from points
+/// stratified over it, as many through each bin (at least one each when there are that many rays, else
+/// spread over the square), each weighted by its projected solid angle: the rim's bins, small in projected
+/// area, get as many rays as the pole's. The bins are those of the far side (normal −facing), on which the
 /// light travels on. A ray that hits nothing or a texel outside the atlas brings nothing. Deterministic
 /// for a given `seed`.
 ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,

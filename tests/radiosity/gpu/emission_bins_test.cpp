@@ -1,7 +1,7 @@
-// Binned directional emission (radiosity/solve/emission_bins.h): equal-area bins make ∫ f cos θ dω = π for
-// any weights, in each channel; a square above a point gives, by rays, its closed-form irradiance, all of
-// it in the bins its directions fall in; an emitter whose colour depends on the direction lights a wall
-// with the colour each part of it gets.
+// Binned directional emission (radiosity/solve/emission_bins.h): bins normalised by their projected solid
+// angle make ∫ f cos θ dω = π for any weights, in each channel; a square above a point gives, by rays, its
+// closed-form irradiance, all of it in the bins its directions fall in; an emitter whose colour depends on
+// the direction lights a wall with the colour each part of it gets.
 #include "radiosity/solve/emission_bins.h"
 
 #include <cmath>
@@ -56,27 +56,54 @@ TEST(EmissionBins, AnyWeightsKeepTheExitance) {
   }
 }
 
-TEST(EmissionBins, BinsHaveEqualProjectedSolidAngle) {
-  // Cosine-weighted directions fall evenly into the bins.
+TEST(EmissionBins, BinsHoldTheirProjectedSolidAngle) {
+  // Cosine-weighted directions fall into each bin in proportion to its share of the projected disk; the
+  // rings are of equal angle, so a rim bin holds far less than one at the pole.
   const BinFrame frame = binFrame(glm::vec3(0, 1, 0));
   std::vector<int> count(kArrivalBins, 0);
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> U(0.0f, 1.0f);
-  const int samples = 256000;
+  const int samples = 400000;
   for (int k = 0; k < samples; ++k) {
     const float r = std::sqrt(U(rng)), phi = float(2.0 * kPi) * U(rng);
     const glm::vec3 w = r * std::cos(phi) * frame.t1 + r * std::sin(phi) * frame.t2 +
                         std::sqrt(std::max(0.0f, 1.0f - r * r)) * frame.n;
     ++count[size_t(arrivalBin(frame, glm::normalize(w)))];
   }
-  for (int b = 0; b < kArrivalBins; ++b)
-    EXPECT_NEAR(count[size_t(b)], samples / kArrivalBins, 150) << "bin " << b;
+  double shares = 0.0;
+  for (int b = 0; b < kArrivalBins; ++b) {
+    const double expected = samples * binProjectedArea(b);
+    EXPECT_NEAR(count[size_t(b)], expected, 4.0 * std::sqrt(expected) + 2.0) << "bin " << b;
+    shares += binProjectedArea(b);
+  }
+  EXPECT_NEAR(shares, 1.0, 1e-9);
+  const int centre = (kBinGrid / 2) * kBinGrid + kBinGrid / 2;
+  EXPECT_GT(binProjectedArea(centre), 5.0 * binProjectedArea(0));  // a corner of the rim
+}
+
+TEST(EmissionBins, EachBinsDirectionsFallInIt) {
+  // binDirection is binSquarePoint's inverse: a point of a cell gives a direction of that cell's bin, in
+  // rings of equal angle (the middle of the square's right edge half-way out: 45° off the normal).
+  const BinFrame frame = binFrame(glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> U(0.02f, 0.98f);
+  for (int b = 0; b < kArrivalBins; ++b) {
+    const glm::vec2 s(float(b % kBinGrid) + U(rng), float(b / kBinGrid) + U(rng));
+    const glm::vec3 w = binDirection(frame, s);
+    EXPECT_GT(glm::dot(w, frame.n), 0.0f);
+    EXPECT_EQ(arrivalBin(frame, w), b);
+    const glm::vec2 back = binSquarePoint(frame, w);
+    EXPECT_NEAR(back.x, s.x, 1e-3f);
+    EXPECT_NEAR(back.y, s.y, 1e-3f);
+  }
+  const glm::vec3 halfway = binDirection(frame, glm::vec2(0.75f, 0.5f) * float(kBinGrid));
+  EXPECT_NEAR(glm::dot(halfway, frame.n), std::cos(kPi / 4.0), 1e-5);
 }
 
 TEST(EmissionBins, RaysGiveASquaresIrradianceInItsDirections) {
   // A 1 m square 1 m above a small patch at the origin, sending 1 W/m² everywhere: the point-to-square
   // form factor (2/π)(2 · 0.5/√1.25 · atan(0.5/√1.25)) = 0.2394; every direction from it lies within
-  // sin θ ≤ 1/√3, inside the concentric map's square of half-width 0.58.
+  // sin θ ≤ 1/√3 (θ ≤ 35.3°), inside the concentric map's square of half-width 0.39.
   Scene scene;
   const uint32_t m = addMaterial(scene, glm::vec3(0.5f));
   addRect(scene, {-0.5f, -0.5f, 1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, m);  // faces −z
@@ -92,8 +119,9 @@ TEST(EmissionBins, RaysGiveASquaresIrradianceInItsDirections) {
   glm::dvec3 total(0.0), outer(0.0);
   for (int b = 0; b < kArrivalBins; ++b) {
     total += glm::dvec3(bins[size_t(b)]);
-    const int i = b % kBinGrid, j = b / kBinGrid;  // cells wholly past 2/3 of the square's half-width
-    if (std::min({i, j, kBinGrid - 1 - i, kBinGrid - 1 - j}) < kBinGrid / 6)
+    // Cells wholly past 0.4 of the square's half-width: beyond 36° of the normal.
+    const int i = b % kBinGrid, j = b / kBinGrid;
+    if (std::min({i, j, kBinGrid - 1 - i, kBinGrid - 1 - j}) < int(0.3f * float(kBinGrid)))
       outer += glm::dvec3(bins[size_t(b)]);
   }
   const double expected = 2.0 / kPi * (2.0 * 0.5 / std::sqrt(1.25) * std::atan(0.5 / std::sqrt(1.25)));

@@ -164,7 +164,8 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
     const Group& g = groups[size_t(r)];
     // The peak is measured to the nearest solid voxel's centre; the surface lies about half a voxel
     // nearer, so a cavity one voxel thick reads as h deep at any voxel (0.4 m at a game level's 0.4 m).
-    return g.volume >= minVoxels && !(g.neighbours.empty() && g.peak - 0.5 * h < params.minClosedPeak);
+    const bool tooThin = g.peak - 0.5 * h < params.minClosedPeak || g.peak < params.minClosedPeakVoxels * h;
+    return g.volume >= minVoxels && !(g.neighbours.empty() && tooThin);
   };
   CellLabels out;
   out.frame = f;

@@ -34,6 +34,15 @@ struct MergeParams {
   /// is taken less half a voxel (the distance to the surface rather than to the solid voxel's centre):
   /// a cavity one voxel thick (a hollow pillar, a brush's inside at a level's 0.3–0.6 m voxel) is one.
   double minClosedPeak = 0.35;
+  /// A group that meets no other is dropped too when its peak is under this many voxels: every voxel of
+  /// it then touches the solid by a face (the peak is one voxel; the next a grid can give is √2), so it
+  /// is nowhere more than two voxels thick and the grid resolves no space inside it. At a game level's
+  /// 0.7–1.2 m voxel that is up to 2 m between faces, over minClosedPeak, and it is what such a voxel
+  /// makes of a brush whose faces the compiler partly dropped (a platform's glowing band with no top or
+  /// bottom, the wedge under a ramp) or of a slot sealed by the voxel's coarseness. Only voxels over
+  /// 0.35 m are concerned (under them minClosedPeak drops more); a closed room resolved by the grid,
+  /// a cupboard at a house's voxel or a sealed arena, is kept. 0 disables.
+  double minClosedPeakVoxels = 1.5;
   /// saddleRatio between a room and the outside, in [0, 1]. Higher than saddleRatio: exterior doors are
   /// wide (a 2 m terrace door into a 2.7 m high room has 1.0 / 1.35 = 0.74), and whether a space is a
   /// room or part of the outside is better told by how much of it is open (openingRatio): a porch open

@@ -163,7 +163,7 @@ namespace decomp {
 CPGI_JSON_FIELDS(ClassifyParams, minComponentVolume)
 CPGI_JSON_FIELDS(WatershedParams, levelStep)
 CPGI_JSON_FIELDS(MergeParams, saddleRatio, minDepth, openingRatio, minCellVolume, minClosedPeak,
-                 outsideSaddleRatio)
+                 minClosedPeakVoxels, outsideSaddleRatio)
 CPGI_JSON_FIELDS(BehindParams, backToFront, apartBackToFront)
 CPGI_JSON_FIELDS(PortalMergeParams, maxAngleDegrees, maxGapVoxels, maxFill)
 CPGI_JSON_FIELDS(PortalParams, marginVoxels, searchRange, extraRounds)

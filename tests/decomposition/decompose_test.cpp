@@ -345,6 +345,7 @@ TEST(Decompose, ASealedCavityOneVoxelThickIsNoCellAtACoarseVoxel) {
   DecomposeParams p;
   p.voxelSize = 0.4;
   p.merge.minClosedPeak = 0.35 - 0.5 * p.voxelSize;  // the rule as it was: the peak against 0.35 m
+  p.merge.minClosedPeakVoxels = 0.0;                 // and none in voxels
   Context before;
   const Decomposition kept = decompose(b.scene(), p, before);
   ASSERT_EQ(kept.graph.cells.size(), 2u);
@@ -355,6 +356,41 @@ TEST(Decompose, ASealedCavityOneVoxelThickIsNoCellAtACoarseVoxel) {
   const Decomposition d = decompose(b.scene(), p, ctx);
   ASSERT_EQ(d.graph.cells.size(), 1u);
   EXPECT_LT(d.cellStats[0].bounds.hi.y, 3.5f);  // the room
+}
+
+// Issue 46 (oa_shine at 0.77 m, wrackdm17 at 1.17 m): at a voxel that coarse a brush's inside whose faces
+// the compiler partly dropped (a platform's band with no top or bottom between two plates looking at it,
+// the wedge under a ramp) is a sealed cavity two voxels thick, 1.6 m between faces: its peak, one voxel,
+// is over 0.35 m even less half a voxel, and it was a closed room. Every voxel of it touches the solid,
+// the grid resolves no space in it: no cell. A sealed 3.6 m box beside it, resolved, stays a closed room,
+// and at a house's voxel the same cavity is one too.
+TEST(Decompose, ASealedCavityTwoVoxelsThickIsNoCellAtAGameLevelsVoxel) {
+  SceneBuilder b;
+  b.box({0.0f, 0.0f, 0.0f}, {16.0f, 6.0f, 16.0f});                    // the level's room
+  b.box({2.0f, 6.5f, 2.0f}, {10.0f, 8.1f, 10.0f});                    // the slab over its ceiling
+  b.box({18.0f, 0.0f, 2.0f}, {21.6f, 3.6f, 5.6f});                    // a sealed room beside it
+  for (Triangle& t : b.scene().triangles) std::swap(t.p[1], t.p[2]);  // faces looking in, as a level's
+  DecomposeParams p;
+  p.voxelSize = 0.8;
+  p.merge.minClosedPeakVoxels = 0.0;  // the rule as it was
+  Context before;
+  const Decomposition kept = decompose(b.scene(), p, before);
+  ASSERT_EQ(kept.graph.cells.size(), 3u);
+  for (size_t c = 0; c < 3; ++c) EXPECT_TRUE(kept.closedRoom[c]) << c;
+
+  p.merge.minClosedPeakVoxels = MergeParams().minClosedPeakVoxels;
+  Context ctx;
+  const Decomposition d = decompose(b.scene(), p, ctx);
+  ASSERT_EQ(d.graph.cells.size(), 2u);
+  for (size_t c = 0; c < 2; ++c) {
+    EXPECT_TRUE(d.closedRoom[c]) << c;
+    EXPECT_LT(d.cellStats[c].bounds.hi.y, 6.2f) << c;  // the room and the sealed box, not the slab
+  }
+  EXPECT_TRUE(d.reachableOrClosed);
+
+  p.voxelSize = 0.2;
+  Context fine;
+  EXPECT_EQ(decompose(b.scene(), p, fine).graph.cells.size(), 3u);
 }
 
 }  // namespace

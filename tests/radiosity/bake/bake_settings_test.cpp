@@ -46,7 +46,7 @@ BakeSettings everyFieldChanged() {
   q.voxelSize = 0.08, q.minAutoVoxel = 0.04, q.autoVoxelBudget = 1e6, q.sealRadius = 0.1, q.memoryLimit = 99;
   q.outsideMargin = 1.5, q.classify.minComponentVolume = 0.2, q.watershed.levelStep = 0.25;
   q.merge.saddleRatio = 0.5, q.merge.minDepth = 0.3, q.merge.openingRatio = 0.7, q.merge.minCellVolume = 2.0;
-  q.merge.minClosedPeak = 0.4, q.merge.outsideSaddleRatio = 0.8;
+  q.merge.minClosedPeak = 0.4, q.merge.minClosedPeakVoxels = 2.0, q.merge.outsideSaddleRatio = 0.8;
   q.behind.backToFront = 2.0, q.behind.apartBackToFront = 0.5;
   q.portalMerge = {30.0f, 3.0f, 2.0f};
   q.portals = {0.7, 0.9f, 3}, q.assign = {1.5, 6, 3, 0.4}, q.sourceName = "house";
@@ -141,6 +141,7 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(u.merge.openingRatio, v.merge.openingRatio);
   EXPECT_EQ(u.merge.minCellVolume, v.merge.minCellVolume);
   EXPECT_EQ(u.merge.minClosedPeak, v.merge.minClosedPeak);
+  EXPECT_EQ(u.merge.minClosedPeakVoxels, v.merge.minClosedPeakVoxels);
   EXPECT_EQ(u.merge.outsideSaddleRatio, v.merge.outsideSaddleRatio);
   EXPECT_EQ(u.behind.backToFront, v.behind.backToFront);
   EXPECT_EQ(u.behind.apartBackToFront, v.behind.apartBackToFront);

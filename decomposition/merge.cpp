@@ -159,13 +159,22 @@ CellLabels mergeBasins(WatershedLabels basins, const MergeParams& params, Contex
   bool anyRoom = false;
   for (int b = 0; b < count; ++b)
     anyRoom = anyRoom || (root(b) != outsideRoot && groups[size_t(root(b))].volume >= minVoxels);
+  // A closed group too thin for a room. The peak is measured to the nearest solid voxel's centre; the
+  // surface lies about half a voxel nearer, so a cavity one voxel thick reads as h deep at any voxel
+  // (0.4 m at a game level's 0.4 m).
+  auto tooThin = [&](const Group& g) {
+    return g.neighbours.empty() &&
+           (g.peak - 0.5 * h < params.minClosedPeak || g.peak < params.minClosedPeakVoxels * h);
+  };
+  // Unless every room is: then they are what space the scene has (a decomposition of no cell says nothing).
+  bool anyThickRoom = false;
+  for (int b = 0; b < count; ++b)
+    anyThickRoom = anyThickRoom || (root(b) != outsideRoot && groups[size_t(root(b))].volume >= minVoxels &&
+                                    !tooThin(groups[size_t(root(b))]));
   auto kept = [&](int r) {
     if (r == outsideRoot) return !anyRoom || !groups[size_t(r)].neighbours.empty();
     const Group& g = groups[size_t(r)];
-    // The peak is measured to the nearest solid voxel's centre; the surface lies about half a voxel
-    // nearer, so a cavity one voxel thick reads as h deep at any voxel (0.4 m at a game level's 0.4 m).
-    const bool tooThin = g.peak - 0.5 * h < params.minClosedPeak || g.peak < params.minClosedPeakVoxels * h;
-    return g.volume >= minVoxels && !(g.neighbours.empty() && tooThin);
+    return g.volume >= minVoxels && !(anyThickRoom && tooThin(g));
   };
   CellLabels out;
   out.frame = f;

@@ -393,5 +393,20 @@ TEST(Decompose, ASealedCavityTwoVoxelsThickIsNoCellAtAGameLevelsVoxel) {
   EXPECT_EQ(decompose(b.scene(), p, fine).graph.cells.size(), 3u);
 }
 
+// A scene whose every space is too thin for a room at its voxel keeps them: a decomposition of no cell
+// said "the whole scene is one outside cell" with no cell at all.
+TEST(Decompose, ASceneOfOneThinSealedCavityKeepsItAsItsCell) {
+  SceneBuilder b;
+  b.box({0.0f, 0.0f, 0.0f}, {8.0f, 1.6f, 8.0f});
+  for (Triangle& t : b.scene().triangles) std::swap(t.p[1], t.p[2]);  // faces looking in
+  DecomposeParams p;
+  p.voxelSize = 0.8;
+  Context ctx;
+  const Decomposition d = decompose(b.scene(), p, ctx);
+  ASSERT_EQ(d.graph.cells.size(), 1u);
+  EXPECT_TRUE(d.closedRoom[0]);
+  EXPECT_EQ(d.graph.cells[0].triangles.size(), 12u);
+}
+
 }  // namespace
 }  // namespace cpgi::decomp

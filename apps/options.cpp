@@ -95,6 +95,7 @@ constexpr ParameterFlag kFlags[] = {
     {"minimum cell volume", "--min-cell-volume"},
     {"outside saddle ratio", "--outside-saddle-ratio"},
     {"storey spread", "--storey-spread"},
+    {"keep contacts", "--keep-contacts"},
     {"gallery floor rise", "--gallery-floor-rise"},
 };
 
@@ -562,6 +563,10 @@ void addLoadOptions(CLI::App& cmd, LoadOptions& load) {
   // Kept for scripts written when refusing was the default: dropping is the default now.
   const std::string repairHelp = "Drop zero-area and duplicate triangles (the default; excludes --strict)";
   cmd.add_flag(flag("repair"), repairHelp)->excludes(strict);
+  cmd.add_flag_callback(
+      flag("keep contacts"), [&load] { load.cutContacts = false; },
+      "Keep faces whole where other geometry runs through them (default: cut there and drop the pieces "
+      "inside solids, so that no lightmap chart runs across a wall, a slab or a pane)");
   cmd.add_flag(flag("outside files"), load.allowOutsideFiles,
                "Read files the scene refers to (buffers, images, mtllib) even outside its folder");
   // One value per occurrence (repeat the flag), so that it never swallows the scene argument.

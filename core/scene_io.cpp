@@ -455,6 +455,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
     }
     out.warnings.insert(out.warnings.end(), v.warnings.begin(), v.warnings.end());
   }
+  if (options.cutContacts && out.lightmapUVs.empty()) out.contactCuts = cutAtContacts(scene, graph);
   out.scene = std::move(scene);
   if (const UnitsCheck units = checkUnits(out.scene); !units.warning.empty())
     out.warnings.push_back(units.warning);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/cell_graph.h"
+#include "core/contact_cuts.h"
 #include "core/scene.h"
 
 namespace cpgi {
@@ -21,6 +22,7 @@ struct LoadedScene {
   /// Per scene triangle, the lightmap coordinates of its corners when every triangle of the file has a
   /// TEXCOORD_1 (a baked.glb: GltfWriteOptions::lightmapUVs read back); empty otherwise.
   std::vector<std::array<glm::vec2, 3>> lightmapUVs;
+  ContactCuts contactCuts;  ///< what LoadOptions::cutContacts cut
 };
 
 /// A material's light or colour set by name instead of by the file (the CLI's --emit, --albedo): a raw
@@ -56,6 +58,10 @@ struct LoadOptions {
   /// each texture image decoded, the checks after them) with InputError("time limit", ...) naming the file
   /// and how far it came: a bake whose limit passed while it read has no time left for any result.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// Faces cut where other geometry runs through them and the pieces inside solids dropped
+  /// (core/contact_cuts.h), so that no lightmap chart runs across a solid (the CLI's --keep-contacts turns
+  /// it off). Not done on a scene whose every triangle has its own lightmap coordinates (a baked.glb).
+  bool cutContacts = true;
 };
 
 /// Loads by extension (.glb, .gltf, .obj). Throws InputError for a missing, truncated or invalid file,

@@ -1,0 +1,52 @@
+// Faces cut where other geometry runs through them (issue 46: IFC walls through slabs, panes set in
+// reveals, furniture sunk into floors). A lightmap chart that runs across a solid mixes, in every bilinear
+// lookup near the contact line, the light of its visible side with the black of the part buried in the
+// solid: a light or dark strip along the line. Cut along the contact lines, the buried pieces dropped, the
+// visible part's chart ends at the line with its own gutter, and the buried part costs no texels.
+//
+// Runs on the loaded scene before anything charts it (core/scene_io.cpp, LoadOptions::cutContacts), so that
+// the bake, the reference, the views and compare-light all see the same triangles.
+#pragma once
+
+#include <cstddef>
+
+#include "core/cell_graph.h"
+#include "core/scene.h"
+
+namespace cpgi {
+
+struct ContactCutParams {
+  /// Metres: an intersection segment shorter than this, or within it of a face's edge, cuts nothing; a
+  /// cut within it of another along the same axis is the same cut.
+  double tolerance = 1e-4;
+  /// Metres a piece's test point is lifted off its front before its rays leave (far below a pane's 2 cm).
+  double lift = 1e-3;
+  /// Rays over the front hemisphere of a piece's test point; the piece is buried when at least
+  /// `buriedShare` of them first meet a face from behind (the point lies inside a solid).
+  int rays = 16;
+  double buriedShare = 0.75;
+  /// A face whose cut would make more pieces than this is left whole (a game map's brush faces crossing
+  /// many others); such faces are counted in ContactCuts::leftWhole.
+  size_t maxPiecesPerFace = 64;
+};
+
+/// What cutAtContacts did.
+struct ContactCuts {
+  size_t trianglesBefore = 0, trianglesAfter = 0;
+  size_t facesCut = 0;      ///< quads and loose triangles cut into pieces
+  size_t buriedPieces = 0;  ///< pieces dropped as lying inside a solid
+  double buriedArea = 0.0;  ///< m² of faces dropped
+  size_t leftWhole = 0;     ///< faces maxPiecesPerFace kept from cutting
+};
+
+/// Cuts every face of `scene` along the segments where other triangles cross or touch its inside (CGAL's
+/// Box_intersection_d for the candidate pairs, its triangle–triangle intersection for the segments), and
+/// drops the pieces that lie inside a closed solid. A quad (core/quads.h) whose cuts all run along its edges
+/// is cut into rectangles (the grid through its cuts, merged back into the largest rectangles that cross no
+/// cut), so that its pieces are quads again; any other face is cut by a constrained Delaunay triangulation
+/// in its plane. Pieces keep their face's material, node, texture coordinates (SurfaceUV holds over the
+/// plane) and cell; normals are interpolated. Faces no segment crosses keep their triangles and order.
+/// Must run before charting: it renumbers the triangles, and `cells` (hand-made cells) with them.
+ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams& params = {});
+
+}  // namespace cpgi

@@ -8,8 +8,11 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Cartesian_converter.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
@@ -19,24 +22,37 @@ namespace cpgi {
 
 namespace {
 
+// Exact predicates filter the candidate pairs; the segments and the cuts in a face's plane are constructed
+// exactly (real exports hold near-degenerate pairs whose inexact constructions come out NaN); the rays that
+// find buried pieces need neither.
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
+using Plain = CGAL::Simple_cartesian<double>;
 using Point3 = K::Point_3;
 using Triangle3 = K::Triangle_3;
-using Segment3 = K::Segment_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, uint32_t>;
-using TriangleIt = std::vector<Triangle3>::const_iterator;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, TriangleIt>>>;
+using RayTriangles = std::vector<Plain::Triangle_3>;
+using Tree = CGAL::AABB_tree<
+    CGAL::AABB_traits<Plain, CGAL::AABB_triangle_primitive<Plain, RayTriangles::const_iterator>>>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
-    K,
-    CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<K>,
-                                         CGAL::Constrained_triangulation_face_base_2<K>>,
-    CGAL::Exact_predicates_tag>;
+    Exact,
+    CGAL::Triangulation_data_structure_2<CGAL::Triangulation_vertex_base_2<Exact>,
+                                         CGAL::Constrained_triangulation_face_base_2<Exact>>,
+    CGAL::Exact_intersections_tag>;
 
 Point3 point(const glm::dvec3& p) {
   return {p.x, p.y, p.z};
 }
-glm::dvec3 vec(const Point3& p) {
-  return {p.x(), p.y(), p.z()};
+glm::dvec3 vec(const Exact::Point_3& p) {
+  return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+// Whether triangles a and b share an edge: then they meet along it alone, which cuts neither.
+bool shareEdge(const Triangle& a, const Triangle& b) {
+  int shared = 0;
+  for (const glm::vec3& p : a.p)
+    for (const glm::vec3& q : b.p) shared += p == q;
+  return shared >= 2;
 }
 
 struct Segment {
@@ -55,9 +71,11 @@ std::vector<std::vector<Segment>> contactSegments(const Scene& scene, const std:
     const uint32_t i = x.info(), j = y.info();
     const glm::vec3 ni = scene.triangles[i].geometricNormal(), nj = scene.triangles[j].geometricNormal();
     if (std::abs(glm::dot(ni, nj)) > 1.0f - 1e-6f) return;  // parallel: apart, or coplanar
-    const auto hit = CGAL::intersection(tris[i], tris[j]);
+    if (shareEdge(scene.triangles[i], scene.triangles[j]) || !CGAL::do_intersect(tris[i], tris[j])) return;
+    const CGAL::Cartesian_converter<K, Exact> exact;
+    const auto hit = CGAL::intersection(exact(tris[i]), exact(tris[j]));
     if (!hit) return;
-    if (const Segment3* s = boost::get<Segment3>(&*hit)) {
+    if (const Exact::Segment_3* s = boost::get<Exact::Segment_3>(&*hit)) {
       const Segment seg{vec(s->source()), vec(s->target())};
       out[i].push_back(seg), out[j].push_back(seg);
     }
@@ -73,8 +91,11 @@ class BuriedTest {
              const ContactCutParams& params)
       : params_(params) {
     for (size_t i = 0; i < tris.size(); ++i)
-      if (valid[i])
-        kept_.push_back(tris[i]), normals_.push_back(glm::dvec3(scene.triangles[i].geometricNormal()));
+      if (valid[i]) {
+        const Triangle& t = scene.triangles[i];
+        kept_.emplace_back(plain(t.p[0]), plain(t.p[1]), plain(t.p[2]));
+        normals_.push_back(glm::dvec3(t.geometricNormal()));
+      }
     tree_.insert(kept_.begin(), kept_.end());
     tree_.build();
   }
@@ -82,22 +103,25 @@ class BuriedTest {
   bool operator()(const glm::dvec3& p, const glm::dvec3& n) const {
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 t = glm::normalize(glm::cross(n, helper)), b = glm::cross(n, t);
-    const Point3 origin = point(p + params_.lift * n);
+    const Plain::Point_3 origin = plain(p + params_.lift * n);
     const int rays = std::max(1, params_.rays);
     int behind = 0;
     for (int k = 0; k < rays; ++k) {
       // A Fibonacci spiral over the hemisphere, grazing directions (cosine under 0.2) left out.
       const double z = 1.0 - 0.8 * (k + 0.5) / rays, r = std::sqrt(1.0 - z * z), phi = 2.39996323 * k;
       const glm::dvec3 d = r * std::cos(phi) * t + r * std::sin(phi) * b + z * n;
-      const auto hit = tree_.first_intersected_primitive(K::Ray_3(origin, K::Vector_3(d.x, d.y, d.z)));
+      const auto hit =
+          tree_.first_intersected_primitive(Plain::Ray_3(origin, Plain::Vector_3(d.x, d.y, d.z)));
       if (hit && glm::dot(normals_[size_t(*hit - kept_.begin())], d) > 0.0) ++behind;
     }
     return behind >= params_.buriedShare * rays;
   }
 
  private:
+  static Plain::Point_3 plain(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+
   const ContactCutParams& params_;
-  std::vector<Triangle3> kept_;
+  RayTriangles kept_;
   std::vector<glm::dvec3> normals_;
   Tree tree_;
 };
@@ -160,19 +184,29 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
   const glm::dvec3 c0(q.corners[0]), u = glm::dvec3(q.corners[1]) - c0, v = glm::dvec3(q.corners[3]) - c0;
   const double w = glm::length(u), h = glm::length(v), tol = params.tolerance;
   std::vector<AxisCut> sCuts, tCuts;
+  const auto onBorder = [&](const glm::dvec2& p) {
+    return std::min(p.x, 1.0 - p.x) * w < tol || std::min(p.y, 1.0 - p.y) * h < tol;
+  };
   for (const Segment& g : segs) {
     const glm::dvec2 a(glm::dot(g.a - c0, u) / (w * w), glm::dot(g.a - c0, v) / (h * h));
     const glm::dvec2 b(glm::dot(g.b - c0, u) / (w * w), glm::dot(g.b - c0, v) / (h * h));
     if (glm::length(g.b - g.a) < tol) continue;
     const bool sConst = std::abs(a.x - b.x) * w < tol, tConst = std::abs(a.y - b.y) * h < tol;
+    // Only cuts from edge to edge: a solid standing inside a face (furniture on a floor) would cut it into
+    // rectangles round its foot, each then given texels for its own light by `--density auto` (the furnished
+    // house: 3.5 times the texels); its shade at the foot is a contact shadow, not a strip.
+    const double sLo = std::min(a.y, b.y), sHi = std::max(a.y, b.y), tLo = std::min(a.x, b.x),
+                 tHi = std::max(a.x, b.x);
     if (sConst) {
       const double s = 0.5 * (a.x + b.x);
-      if (s * w > tol && (1.0 - s) * w > tol) sCuts.push_back({s, std::min(a.y, b.y), std::max(a.y, b.y)});
+      if (s * w > tol && (1.0 - s) * w > tol && sLo * h < tol && (1.0 - sHi) * h < tol)
+        sCuts.push_back({s, sLo, sHi});
     } else if (tConst) {
       const double t = 0.5 * (a.y + b.y);
-      if (t * h > tol && (1.0 - t) * h > tol) tCuts.push_back({t, std::min(a.x, b.x), std::max(a.x, b.x)});
-    } else {
-      return std::nullopt;
+      if (t * h > tol && (1.0 - t) * h > tol && tLo * w < tol && (1.0 - tHi) * w < tol)
+        tCuts.push_back({t, tLo, tHi});
+    } else if (onBorder(a) && onBorder(b)) {
+      return std::nullopt;  // askew from edge to edge: cut by triangles
     }
   }
   FaceResult r;
@@ -180,9 +214,6 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
   std::vector<double> sAt, tAt;
   for (const AxisCut& c : sCuts) sAt.push_back(c.at);
   for (const AxisCut& c : tCuts) tAt.push_back(c.at);
-  // The other axis's ends of each cut are grid lines too: a cut that stops inside the face.
-  for (const AxisCut& c : sCuts) tAt.push_back(c.lo), tAt.push_back(c.hi);
-  for (const AxisCut& c : tCuts) sAt.push_back(c.lo), sAt.push_back(c.hi);
   const std::vector<double> sb = breaks(sAt, tol / w), tb = breaks(tAt, tol / h);
   const int ns = int(sb.size()) - 1, nt = int(tb.size()) - 1;
   if (size_t(ns) * size_t(nt) > 4 * params.maxPiecesPerFace) {
@@ -282,11 +313,23 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
     }
     return false;
   };
-  const auto flat = [&](const glm::dvec3& p) { return K::Point_2(glm::dot(p - o, e1), glm::dot(p - o, e2)); };
+  const auto onBoundary = [&](const glm::dvec3& p) {
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 c = corner[k], d = corner[(k + 1) % 3] - c;
+      const double f = std::clamp(glm::dot(p - c, d) / glm::dot(d, d), 0.0, 1.0);
+      if (glm::length(c + f * d - p) < tol) return true;
+    }
+    return false;
+  };
+  const auto flat = [&](const glm::dvec3& p) {
+    return Exact::Point_2(glm::dot(p - o, e1), glm::dot(p - o, e2));
+  };
   std::vector<std::pair<glm::dvec3, glm::dvec3>> inside;
   for (const Segment& g : segs) {
     const glm::dvec3 a = snap(g.a), b = snap(g.b);
-    if (glm::length(b - a) >= tol && !onEdge(a, b)) inside.push_back({a, b});
+    // Edge to edge only, as on quads (cutQuad).
+    if (glm::length(b - a) >= tol && !onEdge(a, b) && onBoundary(a) && onBoundary(b))
+      inside.push_back({a, b});
   }
   if (inside.empty()) return r;
   if (inside.size() > 4 * params.maxPiecesPerFace) {
@@ -300,8 +343,8 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     std::array<glm::dvec3, 3> p;
     for (int k = 0; k < 3; ++k) {
-      const K::Point_2& q = f->vertex(k)->point();
-      p[k] = o + q.x() * e1 + q.y() * e2;
+      const Exact::Point_2& q = f->vertex(k)->point();
+      p[k] = o + CGAL::to_double(q.x()) * e1 + CGAL::to_double(q.y()) * e2;
     }
     const double area = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     if (area < tol * tol) continue;

@@ -39,14 +39,16 @@ struct ContactCuts {
   size_t leftWhole = 0;     ///< faces maxPiecesPerFace kept from cutting
 };
 
-/// Cuts every face of `scene` along the segments where other triangles cross or touch its inside (CGAL's
-/// Box_intersection_d for the candidate pairs, its triangle–triangle intersection for the segments), and
-/// drops the pieces that lie inside a closed solid. A quad (core/quads.h) whose cuts all run along its edges
-/// is cut into rectangles (the grid through its cuts, merged back into the largest rectangles that cross no
-/// cut), so that its pieces are quads again; any other face is cut by a constrained Delaunay triangulation
-/// in its plane. Pieces keep their face's material, node, texture coordinates (SurfaceUV holds over the
-/// plane) and cell; normals are interpolated. Faces no segment crosses keep their triangles and order.
-/// Must run before charting: it renumbers the triangles, and `cells` (hand-made cells) with them.
+/// Cuts every face of `scene` along the segments where other triangles cross or touch it from one of its
+/// edges to another (CGAL's Box_intersection_d for the candidate pairs, its triangle–triangle intersection
+/// for the segments), and drops the pieces that lie inside a closed solid. A solid standing inside a face
+/// (furniture on a floor) cuts nothing: its pieces round the foot would each get texels for their own light.
+/// A quad (core/quads.h) whose cuts all run along its edges is cut into rectangles (the grid through its
+/// cuts, merged back into the largest rectangles that cross no cut), so that its pieces are quads again; any
+/// other face is cut by a constrained Delaunay triangulation in its plane. Pieces keep their face's material,
+/// node, texture coordinates (SurfaceUV holds over the plane) and cell; normals are interpolated. Faces no
+/// segment crosses keep their triangles and order. Must run before charting: it renumbers the triangles, and
+/// `cells` (hand-made cells) with them.
 ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams& params = {});
 
 }  // namespace cpgi

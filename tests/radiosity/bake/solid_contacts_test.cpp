@@ -1,11 +1,14 @@
 // Faces that run through other solids (scenes/contact_scenes.h; mapAtlas's sides): the side a solid closes
 // off stays black, at one level and at two, on the GL engine and on the rays.
+#include <cstdio>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "core/contact_cuts.h"
 #include "core/sky.h"
 #include "radiosity/bake/bake.h"
+#include "radiosity/lightmap/lightmap_sampling.h"
 #include "scenes/contact_scenes.h"
 #include "tests/support/in_process_bake.h"
 
@@ -80,6 +83,91 @@ INSTANTIATE_TEST_SUITE_P(BothEnginesBothLevels, SolidContacts,
                          testing::Values(Case{Backend::Gl, false}, Case{Backend::Gl, true},
                                          Case{Backend::Rays, false}, Case{Backend::Rays, true}),
                          caseName);
+
+// The lightmap as an engine reads it at `x` on the face that faces `normal`: the triangle under the point,
+// its atlas coordinates interpolated, the bilinear lookup between texel centres, the gutters filled as the
+// written lightmap's are. -1 where no triangle holds the point.
+class LookedUp {
+ public:
+  LookedUp(const Scene& scene, const BakeResult& r) : scene_(scene), r_(r), light_(r.radiosity) {
+    dilate(r.atlas, light_);
+  }
+  double operator()(glm::vec3 x, glm::vec3 normal) const {
+    for (size_t i = 0; i < scene_.triangles.size(); ++i) {
+      const Triangle& t = scene_.triangles[i];
+      if (glm::dot(t.geometricNormal(), normal) < 0.99f || std::abs(glm::dot(x - t.p[0], normal)) > 1e-4f)
+        continue;
+      const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0], q = x - t.p[0];
+      const float d00 = glm::dot(e1, e1), d01 = glm::dot(e1, e2), d11 = glm::dot(e2, e2);
+      const float d20 = glm::dot(q, e1), d21 = glm::dot(q, e2), den = d00 * d11 - d01 * d01;
+      const float v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den, u = 1.0f - v - w;
+      if (u < -1e-5f || v < -1e-5f || w < -1e-5f) continue;
+      const auto& uv = r_.atlas.triangleUV[i];
+      const glm::vec3 b =
+          sampleBilinear(r_.atlas.width, r_.atlas.height, light_, u * uv[0] + v * uv[1] + w * uv[2]);
+      return double(b.r + b.g + b.b) / 3.0;
+    }
+    return -1.0;
+  }
+
+ private:
+  const Scene& scene_;
+  const BakeResult& r_;
+  std::vector<glm::vec3> light_;
+};
+
+// A contact scene baked on the rays at one level, with its faces cut at the contacts or left whole.
+BakeResult bakeContacts(SeedScene& s, bool cut) {
+  if (cut) cutAtContacts(s.scene, s.cells);
+  return test::bakeHere(s.scene, s.cells, settingsFor(Case{Backend::Rays, false}));
+}
+
+// The strip along the pane: the reveal's soffit read 1 cm on the room's side of the pane, where the lookup
+// of a chart running through the pane mixed the sunlit outside's texels into the black room's (0.3 of the
+// outside's light on whole faces). Cut at the pane, the room's piece ends there with its own gutter.
+TEST(ContactStrip, TheRevealOnTheRoomsSideOfThePaneStaysBlackUpToThePane) {
+  double strip[2] = {0.0, 0.0};
+  for (const bool cut : {false, true}) {
+    SeedScene pane = makePaneRoom(true);
+    SkyRequest sun;
+    sun.towardsSun = glm::vec3(0.3f, 1.0f, 0.2f);
+    sun.sunIrradiance = 500.0f;
+    applySky(sun, pane.scene);
+    const BakeResult r = bakeContacts(pane, cut);
+    const LookedUp at(pane.scene, r);
+    const glm::vec3 soffit(0.0f, -1.0f, 0.0f);
+    const double lit = at({2.0f, 2.0f, 4.16f}, soffit), nearLine = at({2.0f, 2.0f, 4.08f}, soffit),
+                 away = at({2.0f, 2.0f, 4.03f}, soffit);
+    ASSERT_GT(lit, 10.0) << "cut " << cut;  // the outside in the sun
+    strip[cut] = nearLine / lit;
+    std::printf("pane-through, cut %d: soffit 1 cm from the pane %.4g, 6 cm %.4g, outside %.4g W/m2\n", cut,
+                nearLine, away, lit);
+    if (cut) EXPECT_LT(nearLine, 1e-3 * lit) << "6 cm from the pane " << away;
+  }
+  EXPECT_GT(strip[0], 0.05) << "the whole reveal's lookup no longer crosses the pane: the test shows nothing";
+}
+
+// The strips where a wall runs through a slab: the fin's face 2 cm under the lower ceiling against 20 cm
+// under it (whole, its texels centred inside the slab took the slab's black into the band under the
+// ceiling), and 2 cm above the upper floor, where the storey stays black.
+TEST(ContactStrip, TheFinThroughTheSlabHasNoBandAtTheCeilingAndNoLightAboveTheFloor) {
+  for (const bool cut : {false, true}) {
+    SeedScene slab = makeStoreysThroughSlab();
+    const BakeResult r = bakeContacts(slab, cut);
+    const LookedUp at(slab.scene, r);
+    const glm::vec3 fin(-1.0f, 0.0f, 0.0f);
+    const double under = at({1.95f, 2.98f, 2.0f}, fin), away = at({1.95f, 2.8f, 2.0f}, fin),
+                 above = at({1.95f, 3.22f, 2.0f}, fin);
+    ASSERT_GT(away, 1.0) << "cut " << cut;
+    std::printf(
+        "slab-through, cut %d: fin 2 cm under the ceiling %.4g, 20 cm %.4g, 2 cm above the floor %.4g\n", cut,
+        under, away, above);
+    if (!cut) continue;
+    EXPECT_GT(under / away, 0.8);
+    EXPECT_LT(under / away, 1.25);
+    EXPECT_LT(above, 1e-3 * away);
+  }
+}
 
 }  // namespace
 }  // namespace cpgi

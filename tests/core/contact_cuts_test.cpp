@@ -1,0 +1,121 @@
+// Faces cut where other geometry runs through them (core/contact_cuts.h): the contact lines become edges,
+// the pieces inside solids go, everything else stays as it was.
+#include "core/contact_cuts.h"
+
+#include <gtest/gtest.h>
+
+namespace cpgi {
+namespace {
+
+// The rectangle from `o` along `u` and `v` as two triangles facing u × v.
+void quad(Scene& s, glm::vec3 o, glm::vec3 u, glm::vec3 v, uint32_t material = 0, uint32_t node = 0) {
+  const glm::vec3 n = glm::normalize(glm::cross(u, v));
+  Triangle a{{o, o + u, o + u + v}, {n, n, n}, material, node};
+  Triangle b{{o, o + u + v, o + v}, {n, n, n}, material, node};
+  s.triangles.push_back(a), s.triangles.push_back(b);
+}
+
+// The closed box [lo, hi], its faces outward.
+void box(Scene& s, glm::vec3 lo, glm::vec3 hi, uint32_t node = 1) {
+  const glm::vec3 d = hi - lo, x(d.x, 0, 0), y(0, d.y, 0), z(0, 0, d.z);
+  quad(s, lo, z, y, 0, node), quad(s, lo + x, y, z, 0, node);  // −x, +x
+  quad(s, lo, x, z, 0, node), quad(s, lo + y, z, x, 0, node);  // −y, +y
+  quad(s, lo, y, x, 0, node), quad(s, lo + z, x, y, 0, node);  // −z, +z
+}
+
+double area(const Scene& s, uint32_t node) {
+  double a = 0.0;
+  for (const Triangle& t : s.triangles)
+    if (t.node == node) a += t.area();
+  return a;
+}
+
+Scene twoNodes() {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.materials.push_back(Material{.name = "wall", .albedo = glm::vec3(0.3f)});
+  s.nodePaths = {"face", "solid"};
+  return s;
+}
+
+// A wall face (x = 0.5, facing +x) from y −1 to 1 through a 20 cm slab (y 0 to 0.2): cut at the slab's two
+// faces, the strip inside dropped, its material, node and cell kept.
+TEST(ContactCuts, AFaceThroughASlabIsCutAtItsFacesAndTheStripInsideDropped) {
+  Scene s = twoNodes();
+  quad(s, {0.5f, -1.0f, 0.2f}, {0, 2, 0}, {0, 0, 0.6f}, 1, 0);
+  box(s, {0, 0, 0}, {1, 0.2f, 1});
+  CellGraph cells;
+  cells.cells.push_back(Cell{"room", {0, 1}, {}});
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.buriedPieces, 1u);
+  EXPECT_NEAR(c.buriedArea, 0.2 * 0.6, 1e-5);
+  EXPECT_NEAR(area(s, 0), 1.8 * 0.6, 1e-5);
+  size_t faceTriangles = 0;
+  for (const Triangle& t : s.triangles) {
+    if (t.node != 0) continue;
+    ++faceTriangles;
+    EXPECT_EQ(t.material, 1u);
+    EXPECT_GT(t.geometricNormal().x, 0.99f);
+    const float lo = std::min({t.p[0].y, t.p[1].y, t.p[2].y}), hi = std::max({t.p[0].y, t.p[1].y, t.p[2].y});
+    EXPECT_TRUE(hi <= 1e-5f || lo >= 0.2f - 1e-5f) << "a piece straddles the slab: y " << lo << " to " << hi;
+  }
+  EXPECT_EQ(faceTriangles, 4u);  // two rectangles, quads again
+  ASSERT_EQ(cells.cells[0].triangles.size(), 4u);
+  for (uint32_t i : cells.cells[0].triangles) EXPECT_EQ(s.triangles[i].node, 0u);
+}
+
+// A wall (a closed box) across a floor from edge to edge: the floor cut at its two faces, the strip under it
+// dropped; a box standing inside the floor cuts nothing (its shade at the foot is a contact shadow, and
+// pieces round it would each get texels of their own).
+TEST(ContactCuts, AWallAcrossAFloorCutsItAndABoxStandingInsideItDoesNot) {
+  Scene s = twoNodes();
+  quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});  // facing +y
+  box(s, {1.9f, -0.3f, -1}, {2.1f, 2.5f, 5});
+  box(s, {0.5f, 0, 0.5f}, {1.5f, 1, 1.5f});
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_NEAR(area(s, 0), 16.0 - 0.2 * 4.0, 1e-4);
+  size_t floorTriangles = 0;
+  for (const Triangle& t : s.triangles)
+    if (t.node == 0) {
+      ++floorTriangles;
+      const float lo = std::min({t.p[0].x, t.p[1].x, t.p[2].x}),
+                  hi = std::max({t.p[0].x, t.p[1].x, t.p[2].x});
+      EXPECT_TRUE(hi <= 1.9f + 1e-5f || lo >= 2.1f - 1e-5f)
+          << "a floor piece under the wall: x " << lo << " to " << hi;
+    }
+  EXPECT_EQ(floorTriangles, 4u);  // two rectangles, the box inside the floor no cut
+}
+
+// A floor that is one loose triangle (no quad) is cut by a constrained triangulation in its plane.
+TEST(ContactCuts, ALooseTriangleIsCutByATriangulationInItsPlane) {
+  Scene s = twoNodes();
+  s.triangles.push_back(Triangle{{glm::vec3(0, 0, 0), glm::vec3(0, 0, 4), glm::vec3(4, 0, 0)},
+                                 {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)}});
+  box(s, {1.0f, -0.3f, -1}, {1.5f, 1, 5});
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.buriedPieces > 0, true);
+  EXPECT_NEAR(area(s, 0), 8.0 - 1.375, 1e-4);  // the strip 1 < x < 1.5 of x + z < 4 gone
+  for (const Triangle& t : s.triangles)
+    if (t.node == 0) {
+      EXPECT_GT(t.geometricNormal().y, 0.99f);
+      EXPECT_FALSE(t.centroid().x > 1.0f && t.centroid().x < 1.5f);
+    }
+}
+
+// Faces that only meet along their edges (a closed box's own faces, two boxes apart) stay as they were.
+TEST(ContactCuts, FacesMeetingOnlyAtTheirEdgesStayAsTheyWere) {
+  Scene s = twoNodes();
+  box(s, {0, 0, 0}, {1, 1, 1});
+  box(s, {1, 0, 0}, {2, 1, 1});  // touching the first along a whole face
+  const std::vector<Triangle> before = s.triangles;
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.facesCut, 0u);
+  ASSERT_EQ(s.triangles.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(s.triangles[i].p, before[i].p);
+}
+
+}  // namespace
+}  // namespace cpgi

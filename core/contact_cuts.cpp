@@ -83,6 +83,31 @@ std::vector<std::vector<Segment>> contactSegments(const Scene& scene, const std:
   return out;
 }
 
+// `segs` with the collinear ones that overlap or touch joined: a line across a face meets each of the
+// triangles of the solid's face (and of this face's quad) apart, and only the whole line runs edge to edge.
+std::vector<Segment> joinCollinear(std::vector<Segment> segs, double tol) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (size_t i = 0; i < segs.size() && !joined; ++i)
+      for (size_t j = i + 1; j < segs.size() && !joined; ++j) {
+        const glm::dvec3 a = segs[i].a, d = segs[i].b - a;
+        const double len = glm::length(d);
+        if (len < tol) continue;
+        const glm::dvec3 u = d / len;
+        const auto off = [&](const glm::dvec3& p) { return glm::length((p - a) - glm::dot(p - a, u) * u); };
+        if (off(segs[j].a) > tol || off(segs[j].b) > tol) continue;
+        const double t0 = glm::dot(segs[j].a - a, u), t1 = glm::dot(segs[j].b - a, u);
+        const double lo = std::min(t0, t1), hi = std::max(t0, t1);
+        if (lo > len + tol || hi < -tol) continue;
+        const double from = std::min(0.0, lo), to = std::max(len, hi);
+        segs[i] = {a + from * u, a + to * u};
+        segs.erase(segs.begin() + std::ptrdiff_t(j));
+        joined = true;
+      }
+  }
+  return segs;
+}
+
 // Whether the point `p` lifted off a face of normal `n` lies inside a solid: most rays over its front
 // hemisphere first meet a face from behind.
 class BuriedTest {
@@ -392,14 +417,15 @@ ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams
     if (segs[a].empty() && segs[b].empty()) continue;
     std::vector<Segment> both = segs[a];
     both.insert(both.end(), segs[b].begin(), segs[b].end());
-    if (const std::optional<FaceResult> r = cutQuad(scene, q, both, buried, params)) {
+    if (const std::optional<FaceResult> r =
+            cutQuad(scene, q, joinCollinear(std::move(both), params.tolerance), buried, params)) {
       take(*r, {a, b});
       done[a] = done[b] = 1;
     }
   }
   for (uint32_t i = 0; i < count; ++i)
     if (!done[i] && valid[i] && !segs[i].empty())
-      take(cutTriangle(scene.triangles[i], segs[i], buried, params), {i});
+      take(cutTriangle(scene.triangles[i], joinCollinear(segs[i], params.tolerance), buried, params), {i});
   if (stats.facesCut == 0) return stats;
 
   std::vector<Triangle> out;

@@ -119,6 +119,7 @@ SolveResult solveBake(const BakeSettings& s, const BakeInput& in, const SolveInp
   const bool cells = s.cells.method == BakeMethod::Cells;
   SolveControls controls{.readTransfer = s.solver.ambient, .deadline = x.deadline};  // the residual
   controls.skyOpenings = bakeSkyOpenings(*in.scene, x.texelGraph);
+  controls.skyTimeShare = kBakeSkyTimeShare;
   controls.load = [&load = x.load] { return load.ratio(); };
   std::optional<RoomStop> roomStop;  // the time estimate asks the same rule cell by cell
   if (!cells && s.solver.ambientShare > 0.0) {

@@ -271,6 +271,7 @@ SolveResult solveCellsTwoLevel(const Scene& scene, const CellGraph& graph, const
   // The sky's gather on the output atlas draws towards the cells' portals onto the outside (the graph's
   // face out of their rooms: resolveCells turns a file's).
   controls.skyOpenings = skyOpeningsOf(graph);
+  controls.skyTimeShare = kBakeSkyTimeShare;
   return solveTwoLevel(scene, quads, global, params.atlas, levels, params.solver, engines, ctx, controls,
                        data, cellByCell);
 }

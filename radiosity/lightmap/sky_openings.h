@@ -63,11 +63,15 @@ class TexelOpenings {
   glm::dvec3 sample(double pick, double u, double v) const;
   /// The density of sample()'s directions at unit `dir`, per steradian.
   double pdf(const glm::dvec3& dir) const;
+  /// The spherical rectangles set up to choose them (the costly part): no more than the openings kept
+  /// while the others' bound on their weight is under the least kept.
+  int rectanglesSetUp() const { return rectangles_; }
 
  private:
   const std::vector<SkyOpening>* openings_;
   glm::dvec3 eye_;
   int count_ = 0;
+  int rectangles_ = 0;
   std::array<int, kMostOpenings> index_{};
   std::array<double, kMostOpenings> odds_{}, cumulative_{}, solidAngle_{};
   std::array<SphericalRectangle, kMostOpenings> rect_;

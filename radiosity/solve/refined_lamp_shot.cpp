@@ -48,7 +48,7 @@ SolveResult shootEmitters(const Scene& scene, const LightmapAtlas& atlas, int em
 SolveResult shootPunctualOnly(const Scene& scene, const LightmapAtlas& atlas, Context& ctx,
                               const SolveControls& controls) {
   SolveResult r;
-  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx, controls.deadline, controls.skyOpenings);
+  const DirectLight d = shootPunctualAndSky(scene, atlas, ctx, skyDeadline(controls), controls.skyOpenings);
   r.incident = d.irradiance;
   r.radiosity.assign(atlas.texelCount(), glm::vec3(0.0f));
   r.residual.assign(atlas.texelCount(), glm::vec3(0.0f));
@@ -97,9 +97,8 @@ SolveResult shootLampsRefined(const Scene& scene, const QuadSet& quads, const Li
   const bool late = std::chrono::steady_clock::now() >= controls.deadline;
   if (settings.lampRays > 0 || !engine.features().lampShots || late) {
     const auto start = std::chrono::steady_clock::now();
-    SolveResult byRays =
-        shootFirstOnCpu(scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx,
-                        controls.deadline, controls.skyOpenings);
+    SolveResult byRays = shootFirstOnCpu(
+        scene, atlas, settings.lampRays > 0 ? settings.lampRays : kLampRaysOnCpu, ctx, controls);
     if (data) *data = {0, atlas.validTexels(), 0.0, seconds(start)};
     return byRays;
   }

@@ -57,7 +57,7 @@ DirectStart shootFirst(const Scene& scene, const LightmapAtlas& atlas, const Sol
     s.emitted = controls.priorShot->emitted;
     s.any = true;
   } else if (!scene.lights.empty() || scene.sky.lights()) {
-    s.direct = shootPunctualAndSky(scene, atlas, ctx, controls.deadline, controls.skyOpenings);
+    s.direct = shootPunctualAndSky(scene, atlas, ctx, skyDeadline(controls), controls.skyOpenings);
     s.emitted = punctualEmitted(scene.lights, s.direct.directionalLanded);
     s.any = true;
   }
@@ -148,13 +148,13 @@ std::vector<int> patchCells(const LightmapAtlas& atlas, const std::vector<int>& 
 }  // namespace
 
 SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
-                            std::chrono::steady_clock::time_point deadline,
-                            const std::vector<SkyOpening>& skyOpenings) {
+                            const SolveControls& given) {
   if (lampRays <= 0) throw InputError("solver", "the lamps' first shot on the CPU needs lamp rays > 0");
   SolverParams settings;
   settings.lampRays = lampRays;
   SolveControls controls;
-  controls.deadline = deadline, controls.skyOpenings = skyOpenings;
+  controls.deadline = given.deadline, controls.skyOpenings = given.skyOpenings;
+  controls.skyTimeShare = given.skyTimeShare;
   return firstShotResult(atlas, shootFirst(scene, atlas, settings, controls, ShotShape{}, ctx));
 }
 

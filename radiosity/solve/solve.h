@@ -29,13 +29,12 @@ SolveResult solveProgressive(const Scene& scene, const LightmapAtlas& atlas, con
 
 /// The first shot alone, all of it on the CPU: the punctual lights and sky, and the lamps by `lampRays`
 /// shadow rays per texel and lamp (> 0; 16× in penumbrae, radiosity/lightmap/lamp_light.h), up to
-/// `deadline`, the sky drawn partly towards `skyOpenings` (SolveControls::skyOpenings). As a solve after
-/// it: per texel the radiosity (emission + ρE), the irradiance E and the residual ρE (the lamps' own light
-/// spent); energy with the lights' power emitted and shot. What an engine without lamp shots of its own
-/// (EngineFeatures::lampShots) starts a two-level solve from.
-SolveResult shootFirstOnCpu(
-    const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
-    const std::vector<SkyOpening>& skyOpenings = {});
+/// `controls.deadline`, the sky drawn partly towards `controls.skyOpenings` and stopped at skyDeadline (the
+/// rest of `controls` is not read). As a solve after it: per texel the radiosity (emission + ρE), the
+/// irradiance E and the residual ρE (the lamps' own light spent); energy with the lights' power emitted and
+/// shot. What an engine without lamp shots of its own (EngineFeatures::lampShots) starts a two-level solve
+/// from.
+SolveResult shootFirstOnCpu(const Scene& scene, const LightmapAtlas& atlas, int lampRays, Context& ctx,
+                            const SolveControls& controls = {});
 
 }  // namespace cpgi

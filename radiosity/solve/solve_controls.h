@@ -1,6 +1,7 @@
 // What a caller sets to drive a progressive solve (solve.h), beside the user's settings (solver_params.h).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <span>
@@ -88,6 +89,26 @@ struct SolveControls {
   /// The openings onto the outside the sky gather draws part of its directions towards (sky_openings.h:
   /// the outside cell's portals of the bake's rooms). Empty: cosine directions alone.
   std::vector<SkyOpening> skyOpenings = {};
+  /// The share of the time from the sky gather's start to `deadline` the gather may take (skyDeadline):
+  /// its passes stop there with the rays they have, and the interreflection gets the rest. 1: all of it,
+  /// which on a map of a million texels left the solve no shot (bench/RESULTS.md, "The daylit maps").
+  double skyTimeShare = 1.0;
 };
+
+/// A bake's SolveControls::skyTimeShare, global or cells: the sky gather and the interreflection halve the
+/// time to the solve's deadline. A gather cut at 64 rays a texel is noisier; a solve cut before its first
+/// shot leaves all the reflected light to the flat ambient term.
+inline constexpr double kBakeSkyTimeShare = 0.5;
+
+/// The sky gather's own deadline under `controls`: skyTimeShare of the time from now to its deadline (none
+/// stays none, a deadline passed stays passed).
+inline std::chrono::steady_clock::time_point skyDeadline(const SolveControls& controls) {
+  const auto now = std::chrono::steady_clock::now();
+  if (controls.deadline == std::chrono::steady_clock::time_point::max() || controls.deadline <= now)
+    return controls.deadline;
+  const double share = std::clamp(controls.skyTimeShare, 0.0, 1.0);
+  return now +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>((controls.deadline - now) * share);
+}
 
 }  // namespace cpgi

@@ -14,6 +14,7 @@
 #include "core/quads.h"
 #include "radiosity/bake/bake.h"
 #include "radiosity/bake/bake_limits.h"
+#include "radiosity/cpu/ray_shot_engine.h"
 #include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/solve/solve.h"
 #include "scenes/seed_scenes.h"
@@ -181,6 +182,42 @@ TEST(BakeDeadlines, StoppedBeforeAnyShotTheEnergyIsAbsorbedEscapedAndUnshot) {
   expectStoppedBooks(s, "two levels, the sky by the lamps' rays");
   s.solver.params.lampRays = 0;
   expectStoppedBooks(s, "two levels, the sky alone (no emitter: shootPunctualOnly)");
+}
+
+// The sky gather takes SolveControls::skyTimeShare of the time to the solve's deadline, the interreflection
+// the rest: given all of it, a daylit map's gather of a million texels took a 600 s limit whole and the
+// solve shot nothing. With a share of the hour that has passed before the gather's first chunk is traced
+// (a few microseconds), the gather keeps its first pass and the solve still shoots, on both ways the first
+// shot is made; with the whole hour, every ray. Nothing here waits for the deadline.
+TEST(BakeDeadlines, TheSkyGatherLeavesTheSolveItsShareOfTheTime) {
+  Scene box = testing::boxOpenToTheSky(0.5f, 0.5f);
+  box.sky.kind = Sky::Kind::Uniform;
+  box.sky.zenithRadiance = 3.0f;
+  box.sky.gatherRays = 64;
+  Context atlasCtx;
+  AtlasParams p;
+  p.density = 12.0f;
+  const LightmapAtlas atlas = buildAtlas(box, findQuads(box), p, atlasCtx);
+  RayShotEngine rays;
+  SolveControls controls;
+  controls.deadline = Clock::now() + std::chrono::hours(1);
+  EXPECT_EQ(skyDeadline(controls), controls.deadline);  // the whole time unless a share is asked
+  for (const double share : {1e-9, 1.0}) {
+    SCOPED_TRACE(share);
+    controls.skyTimeShare = share;
+    const int stops = share < 1.0 ? 1 : 0;
+    Context ctx;
+    const SolveResult r = solveProgressive(box, atlas, SolverParams{}, rays, ctx, controls);
+    EXPECT_EQ(warningsStarting(ctx, "sky light: the deadline came after 8 of 64 rays a texel"), stops);
+    EXPECT_FALSE(r.timedOut);
+    EXPECT_GT(r.shots, 0);
+    EXPECT_NEAR(r.energy.absorbed + r.energy.escaped() + r.energy.unshot, r.energy.emitted,
+                1e-3 * r.energy.emitted);
+    Context first;
+    const SolveResult byRays = shootFirstOnCpu(box, atlas, 4, first, controls);
+    EXPECT_EQ(warningsStarting(first, "sky light: the deadline came after 8 of 64 rays a texel"), stops);
+    EXPECT_GT(byRays.energy.emitted, 0.0);
+  }
 }
 
 }  // namespace

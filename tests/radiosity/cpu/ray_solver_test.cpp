@@ -325,11 +325,15 @@ TEST(RaySolver, RefusedStopIsBoundedByTheShotsToReachIt) {
   EXPECT_EQ(cheap.shots, cheap.stopRefusedAt + floorShots);
 }
 
-TEST(RaySolver, RefusedStopBoundIsTheLargerOfShotsAgainAndTheWorkFloor) {
+TEST(RaySolver, RefusedStopBoundIsShotsAgainUpToAWorkCeilingOrTheWorkFloor) {
   EXPECT_EQ(refusedStopBound(100, 1'000'000, kStopRefusedTexelShots), 200);  // dear shots: as many again
   EXPECT_EQ(refusedStopBound(100, 10'000, kStopRefusedTexelShots),
             100 + int(std::ceil(kStopRefusedTexelShots / 10'000.0)));  // cheap shots: the work floor
   EXPECT_EQ(refusedStopBound(0, 0, 0.0), 1);
+  // A game map's dear shots: refused after 10 000 shots over 250 000 coarse texels, 2 000 more (5e8
+  // texel-shots' worth), not 10 000; the floor still holds above that ceiling.
+  EXPECT_EQ(refusedStopBound(10'000, 250'000, kStopRefusedTexelShots), 12'000);
+  EXPECT_EQ(refusedStopBound(10'000, 250'000, 1e9), 14'000);
 }
 
 // The lamps shot first by shadow rays (SolverParams::lampRays) are spent: the rays engine starts from the

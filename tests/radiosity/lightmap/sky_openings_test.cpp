@@ -3,6 +3,7 @@
 // aligned doors (the IFC house's kitchen, issue 46) as smooth as a many-ray gather where 256 cosine rays
 // are blotchy; and the openings' gather unbiased: the hole in a ceiling's form factor per texel, and the
 // two doors' light the cosine gather's at many rays.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -200,6 +201,58 @@ TEST(SkyOpenings, ThroughAHoleInTheCeilingTheFloorIsTheFormFactorsAtFewRays) {
   EXPECT_NEAR(mean(drawn), mean(exact), 0.01 * mean(exact));
   EXPECT_GT(relativeRmse(floorLight({}), exact), 0.15);
   EXPECT_EQ(floorLight(openings), drawn);  // the same directions every run, whatever the threads
+}
+
+// A texel under 96 skylights (a 12 × 8 grid of 1 m squares 1.5 m apart, 3 m over it), as a map's rooms open
+// onto its sky through a hundred portals: only the openings whose bound on their weight could beat the 8
+// kept set up their spherical rectangle (all 96 did: 7 µs a texel a pass on oa_dm2), and the openings and
+// odds kept are those of setting up every one: the density of each direction the same.
+TEST(SkyOpenings, AnOpeningThatCannotBeAmongTheKeptIsNotSetUp) {
+  std::vector<SkyOpening> openings;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 8; ++j)
+      openings.push_back({.corner = {i * 1.5 - 8.0, 3.0, j * 1.5 - 5.0},
+                          .edgeU = {0, 0, 1},
+                          .edgeV = {1, 0, 0},
+                          .outward = {0, 1, 0}});
+  const glm::dvec3 eye(0.2, 0.0, 0.3), normal(0, 1, 0);
+  const TexelOpenings towards(openings, eye, normal);
+  EXPECT_LT(towards.rectanglesSetUp(), 32);
+  // Every opening set up, the 8 of the largest solid angle × rise kept.
+  std::vector<std::pair<double, size_t>> weights;
+  for (size_t i = 0; i < openings.size(); ++i) {
+    const SkyOpening& o = openings[i];
+    double rise = -1.0;
+    for (const glm::dvec3& c : {o.corner, o.corner + o.edgeU, o.corner + o.edgeV,
+                                o.corner + o.edgeU + o.edgeV, o.corner + 0.5 * (o.edgeU + o.edgeV)})
+      rise = std::max(rise, glm::dot(glm::normalize(c - eye), normal));
+    weights.push_back({SphericalRectangle(eye, o).solidAngle() * std::max(rise, 0.1), i});
+  }
+  std::sort(weights.begin(), weights.end(), [](auto& a, auto& b) { return a.first > b.first; });
+  weights.resize(TexelOpenings::kMostOpenings);
+  double total = 0.0;
+  for (const auto& w : weights) total += w.first;
+  auto pdfOfAll = [&](const glm::dvec3& dir) {
+    double p = 0.0;
+    for (const auto& [w, i] : weights)
+      if (crosses(openings[i], eye, dir)) p += w / total / SphericalRectangle(eye, openings[i]).solidAngle();
+    return p;
+  };
+  int through = 0;
+  for (int k = 0; k < 400; ++k) {
+    const double u = (k + 0.5) / 400.0, v = std::fmod(k * 0.6180339887, 1.0),
+                 w = std::fmod(k * 0.7548776662, 1.0);
+    const glm::dvec3 drawn = towards.sample(u, v, w);
+    // and a direction over the whole hemisphere, most of them through no kept opening
+    const double phi = 2.0 * kPi * v, r = std::sqrt(w);
+    const glm::dvec3 any(r * std::cos(phi), std::sqrt(1.0 - w), r * std::sin(phi));
+    for (const glm::dvec3& dir : {drawn, any}) {
+      const double expected = pdfOfAll(dir);
+      through += expected > 0.0;
+      EXPECT_NEAR(towards.pdf(dir), expected, 1e-9 * (1.0 + expected)) << k;
+    }
+  }
+  EXPECT_GT(through, 400);
 }
 
 }  // namespace

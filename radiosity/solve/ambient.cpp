@@ -103,11 +103,19 @@ struct Irradiance {
   std::vector<glm::dvec3> perEntry;
   glm::dvec3 landed{0.0};
 };
+// `texelUnshot` (per atlas texel, W; or empty) and `texelArea` (m²): where the unshot power leaves from,
+// with measured arrivals (ambientLandedByArrivals).
 Irradiance ambientIrradiance(const std::vector<AmbientRoom>& rooms,
-                             const std::vector<AmbientOpening>& openings,
-                             const std::vector<std::vector<double>>* measured) {
-  const std::vector<glm::dvec3> landed =
-      measured ? ambientLandedByShares(rooms, *measured) : ambientLanded(rooms, openings);
+                             const std::vector<AmbientOpening>& openings, const AmbientTransfer* measured,
+                             std::span<const double> texelUnshot, std::span<const float> texelArea) {
+  std::vector<glm::dvec3> landed;
+  if (measured && !measured->arrivals.empty()) {
+    std::vector<glm::dvec3> unshot(rooms.size());
+    for (size_t c = 0; c < rooms.size(); ++c) unshot[c] = rooms[c].unshot;
+    landed = ambientLandedByArrivals(unshot, *measured, texelUnshot, texelArea);
+  } else {
+    landed = measured ? ambientLandedByShares(rooms, measured->share) : ambientLanded(rooms, openings);
+  }
   Irradiance out;
   out.perEntry.assign(rooms.size(), glm::dvec3(0.0));
   for (size_t c = 0; c < rooms.size(); ++c) {
@@ -117,8 +125,8 @@ Irradiance ambientIrradiance(const std::vector<AmbientRoom>& rooms,
   return out;
 }
 
-const std::vector<std::vector<double>>* measuredShares(const AmbientTransfer* measured, size_t entries) {
-  return measured && measured->share.size() == entries ? &measured->share : nullptr;
+const AmbientTransfer* measuredShares(const AmbientTransfer* measured, size_t entries) {
+  return measured && measured->share.size() == entries ? measured : nullptr;
 }
 
 }  // namespace
@@ -133,13 +141,19 @@ glm::dvec3 addAmbient(const LightmapAtlas& atlas, const std::vector<glm::vec3>& 
   CellSurfaces s = cellSurfaces(atlas, texelCell, graph);
   if (!(s.area > 0.0)) return glm::dvec3(0.0);
   for (AmbientRoom& room : s.rooms) room.unshot = unshotPower * (room.area / s.area);
+  std::vector<double> texelUnshot;
   if (!residual.empty()) {
     for (AmbientRoom& room : s.rooms) room.unshot = glm::dvec3(0.0);
+    texelUnshot.assign(residual.size(), 0.0);
     for (size_t i = 0; i < residual.size(); ++i)
-      if (atlas.patch[i] >= 0)
-        s.rooms[s.texelEntry[i]].unshot += double(atlas.area[i]) * glm::dvec3(residual[i]);
+      if (atlas.patch[i] >= 0) {
+        const glm::dvec3 power = double(atlas.area[i]) * glm::dvec3(residual[i]);
+        s.rooms[s.texelEntry[i]].unshot += power;
+        texelUnshot[i] = power.r + power.g + power.b;
+      }
   }
-  const Irradiance e = ambientIrradiance(s.rooms, s.openings, measuredShares(measured, s.rooms.size()));
+  const Irradiance e = ambientIrradiance(s.rooms, s.openings, measuredShares(measured, s.rooms.size()),
+                                         texelUnshot, atlas.area);
   for (size_t i = 0; i < radiosity.size(); ++i)
     if (atlas.patch[i] >= 0)
       radiosity[i] += glm::vec3(glm::dvec3(atlas.albedo[i]) * e.perEntry[s.texelEntry[i]]);
@@ -153,7 +167,7 @@ RoomStop::RoomStop(const LightmapAtlas& atlas, std::span<const float> texelCell,
   texelEntry_ = std::move(s.texelEntry);
   rooms_ = std::move(s.rooms);
   openings_ = std::move(s.openings);
-  if (const auto* m = measuredShares(measured, rooms_.size())) transfer_ = *m;
+  if (const AmbientTransfer* m = measuredShares(measured, rooms_.size())) transfer_ = *m;
   reflectorAlbedoArea_.assign(rooms_.size(), glm::dvec3(0.0));
   reflectorArea_.assign(rooms_.size(), 0.0);
   for (size_t i = 0; i < texelEntry_.size(); ++i) {
@@ -177,10 +191,12 @@ CellLight RoomStop::cellLight(const std::vector<glm::vec3>& radiosity,
   CellLight out;
   out.unshot.assign(rooms_.size(), glm::dvec3(0.0));
   out.light.assign(rooms_.size(), 0.0);
+  out.texelUnshot.assign(texelEntry_.size(), 0.0);
   for (size_t i = 0; i < texelEntry_.size(); ++i) {
     if (atlas_.patch[i] < 0) continue;
     const double a = atlas_.area[i];
     out.unshot[texelEntry_[i]] += a * glm::dvec3(residual[i]);
+    out.texelUnshot[i] = a * (double(residual[i].r) + residual[i].g + residual[i].b);
     if (atlas_.emission[i] == glm::vec3(0.0f))
       out.light[texelEntry_[i]] += a * (double(radiosity[i].r) + radiosity[i].g + radiosity[i].b);
   }
@@ -193,7 +209,9 @@ std::vector<double> RoomStop::shares(const CellLight& cells) const {
   std::vector<AmbientRoom> rooms = rooms_;
   for (size_t c = 0; c < rooms.size(); ++c) rooms[c].unshot = cells.unshot[c];
   const std::vector<glm::dvec3> irradiance =
-      ambientIrradiance(rooms, openings_, transfer_.empty() ? nullptr : &transfer_).perEntry;
+      ambientIrradiance(rooms, openings_, transfer_.share.empty() ? nullptr : &transfer_, cells.texelUnshot,
+                        atlas_.area)
+          .perEntry;
   std::vector<double> ambient(rooms.size(), 0.0), light(rooms.size(), 0.0);
   for (size_t c = 0; c < rooms.size(); ++c) {
     ambient[c] = glm::dot(reflectorAlbedoArea_[c], irradiance[c]);

@@ -72,6 +72,9 @@ std::vector<double> ambientShareOfLitCells(const std::vector<double>& ambient,
 struct CellLight {
   std::vector<glm::dvec3> unshot;
   std::vector<double> light;
+  /// Per atlas texel, the power it holds unshot (W, R + G + B): where each cell's unshot power leaves
+  /// from. Empty: spread over the cell's surfaces by area (the time estimate's cells).
+  std::vector<double> texelUnshot;
 };
 
 /// The stop per room (bake --ambient-share): a progressive solve that reaches its unshot stop stops only
@@ -101,7 +104,7 @@ class RoomStop {
   std::vector<size_t> texelEntry_;
   std::vector<AmbientRoom> rooms_;  // every surface: where the unshot power bounces
   std::vector<AmbientOpening> openings_;
-  std::vector<std::vector<double>> transfer_;    // measured, or empty: the openings' areas
+  AmbientTransfer transfer_;                     // measured, or empty: the openings' areas
   std::vector<glm::dvec3> reflectorAlbedoArea_;  // the lamps left out: what shows the ambient term
   std::vector<double> reflectorArea_;
 };

@@ -53,7 +53,8 @@ class ModelCells {
     for (size_t c = 0; c < sum_.size(); ++c) sum_[c] += back * landing_[c], light_[c] += back * landing_[c];
   }
   bool accepted() const {
-    CellLight now{rooms_.now.unshot, light_};
+    // Each cell's unshot power as the model foresees it, leaving from where it is now.
+    CellLight now{rooms_.now.unshot, light_, rooms_.now.texelUnshot};
     for (size_t c = 0; c < sum_.size(); ++c) {
       const double u = std::max(sum_[c], 0.0);
       now.unshot[c] = start_[c] > 0.0 ? rooms_.now.unshot[c] * (u / start_[c]) : glm::dvec3(u / 3.0);

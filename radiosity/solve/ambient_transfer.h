@@ -8,10 +8,12 @@
 // Nor is a room's light spread evenly over it, as the series over `share` alone assumes of every bounce:
 // light that came in through a door lands on the surfaces that see that door, and what they reflect
 // finds the room's other doors less often than light leaving the whole room would (and goes back out
-// of the door it came in by more often). Spread evenly, the light still unshot in the lit rooms reached a
-// room three and four doors away at the default stop 1.5-2 times as much as it does run on (random plan 4's
-// R3, plan 17's R1). So the light is followed by random walks, per arrival: into cell d from cell c, its
-// bounces in d at each surface's own albedo until it lands in another cell, which is the next arrival.
+// of the door it came in by more often); and a dim room's unshot power lies where its light came in. Both
+// spread evenly, the ambient term put 12-18 % too much light in rooms three and four doors from the lamps
+// at the default stop (random plans 4, 10, 17: bench/RESULTS.md, "The ambient term per room"). So the
+// light is followed by random walks, per arrival: into cell d from cell c, its bounces in d at each
+// surface's own albedo until it lands in another cell, which is the next arrival; and each cell's first
+// rays are weighed by the unshot power where they leave.
 #pragma once
 
 #include <cstdint>

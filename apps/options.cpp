@@ -289,7 +289,8 @@ void addSolverOptions(CLI::App& cmd, SolverParams& solver, OptionScope scope) {
   addChecked(cmd, scope, "visibility regions", solver.maxRegions,
              "Visibility regions per edge of a large shooter, each with its own item "
              "buffer: soft light through doors from large shooters, at up to N² item "
-             "buffers per shot",
+             "buffers per shot (the GL engine's weak shots: twice as many, up to 4, of "
+             "half --region-size)",
              within(1, 4));
   addChecked(cmd, scope, "strong-shot regions", solver.strongShotRegions,
              "Visibility regions per edge for the strong shots, those carrying at least "

@@ -7,18 +7,27 @@
 // it too (up to its noise), so the same check tells which of the two is off. Also per receiving room, the
 // share of H from each source room. With --shoot ROOM, the same light of ROOM's surfaces shot patch by
 // patch by the rays engine (radiosity/cpu/ray_shot.h, each shot scaled as the loop scales it, averaged over
-// --draws eye draws) against the exact gather of it, per receiving room: which transfer is off.
+// --draws eye draws) against the exact gather of it, per receiving room: which transfer is off. With
+// --engine gl, the GL engine's shots instead (SolverParams' defaults; GATHER_REGIONS and
+// GATHER_REGION_SIZE set --regions and --region-size, GATHER_STRONG makes every shot strong), each draw a
+// fresh solve. With --shoot solve, a whole GL solve of SCENE (its lamps shot by the GL engine too,
+// GATHER_UNSHOT its stop, 1e-4 by default) with every reflector shot's delivery at the receivers against
+// the exact transfer of the residual it shot, per shooting and receiving room, then shot by shot.
 //
-//   cpgi_gather_check SCENE LIGHT_DIR --density D [--every N] [--rooms R3,R9] [--shoot ROOM [--draws K]]
+//   cpgi_gather_check SCENE LIGHT_DIR --density D [--every N] [--rooms R3,R9]
+//                     [--shoot ROOM|solve [--draws K] [--engine rays|gl]]
 //
 // LIGHT_DIR is a bake (one level: --solve-density 0, and --density D) or a reference at --density D;
 // --every N takes every N-th valid texel of the chosen rooms as a receiver (default 4).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,9 +37,12 @@
 #include "core/quads.h"
 #include "core/scene_io.h"
 #include "radiosity/cpu/ray_shot.h"
+#include "radiosity/gpu/egl_context.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/lightmap/atlas.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
+#include "radiosity/solve/solve.h"
 
 namespace {
 
@@ -71,6 +83,63 @@ glm::dvec3 fromTexel(const cpgi::LightmapAtlas& atlas, const cpgi::RayScene& ray
   return sum * glm::dvec3(b);
 }
 
+// A solve's shots watched one by one (--solve): before each shot the residual and the radiosity, after it
+// the radiosity again, handed to `watch` (shooter, emitting, residual, before, after).
+using ShotWatch = std::function<void(int, bool, const std::vector<glm::vec3>&, const std::vector<glm::vec3>&,
+                                     const std::vector<glm::vec3>&)>;
+
+class WatchedBackend final : public cpgi::ShotBackend {
+ public:
+  WatchedBackend(std::unique_ptr<cpgi::ShotBackend> inner, const ShotWatch& watch)
+      : inner_(std::move(inner)), watch_(watch) {}
+  cpgi::EnergyTotals start() override { return inner_->start(); }
+  cpgi::ShooterChoice next() override { return inner_->next(); }
+  cpgi::ShotGathered shoot(const cpgi::ShooterChoice& c, bool strong, bool lamp) override {
+    shooter_ = c.patch, emitting_ = c.emitting;
+    residual_ = inner_->residual(), before_ = inner_->radiosity();
+    return inner_->shoot(c, strong, lamp);
+  }
+  double deliver(float scale) override {
+    const double d = inner_->deliver(scale);
+    watch_(shooter_, emitting_, residual_, before_, inner_->radiosity());
+    return d;
+  }
+  cpgi::TexelSums sums() const override { return inner_->sums(); }
+  std::vector<glm::vec3> radiosity() override { return inner_->radiosity(); }
+  std::vector<glm::vec3> residual() override { return inner_->residual(); }
+  std::vector<double> patchUnshot() override { return inner_->patchUnshot(); }
+  int shotEyes(int patch, bool strong) const override { return inner_->shotEyes(patch, strong); }
+  void readBack(const cpgi::ReadBack& what, cpgi::SolveResult& result, cpgi::Context& ctx) override {
+    inner_->readBack(what, result, ctx);
+  }
+
+ private:
+  std::unique_ptr<cpgi::ShotBackend> inner_;
+  const ShotWatch& watch_;
+  int shooter_ = -1;
+  bool emitting_ = false;
+  std::vector<glm::vec3> residual_, before_;
+};
+
+class WatchedEngine final : public cpgi::ShotEngine {
+ public:
+  WatchedEngine(cpgi::ShotEngine& inner, const ShotWatch& watch) : inner_(inner), watch_(watch) {}
+  std::string name() const override { return inner_.name(); }
+  cpgi::EngineFeatures features() const override { return inner_.features(); }
+  std::unique_ptr<cpgi::ShotBackend> backend(const cpgi::Scene& scene, const cpgi::LightmapAtlas& atlas,
+                                             const cpgi::SolverParams& settings, const cpgi::ShotShape& shape,
+                                             const cpgi::FirstShot& first, cpgi::Context& ctx,
+                                             std::chrono::steady_clock::time_point deadline) override {
+    return std::make_unique<WatchedBackend>(
+        inner_.backend(scene, atlas, settings, shape, first, ctx, deadline), watch_);
+  }
+  std::unique_ptr<cpgi::ShotEngine> forThisThread() const override { return nullptr; }
+
+ private:
+  cpgi::ShotEngine& inner_;
+  const ShotWatch& watch_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,12 +149,13 @@ int main(int argc, char** argv) {
     return 1;
   }
   int every = 4, draws = 8;
-  std::string rooms, shoot;
+  std::string rooms, shoot, engine = "rays";
   for (int i = 5; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--every")) every = std::max(1, std::atoi(argv[i + 1]));
     if (!std::strcmp(argv[i], "--rooms")) rooms = "," + std::string(argv[i + 1]) + ",";
     if (!std::strcmp(argv[i], "--shoot")) shoot = argv[i + 1];
     if (!std::strcmp(argv[i], "--draws")) draws = std::max(1, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--engine")) engine = argv[i + 1];
   }
   try {
     const LoadedScene loaded = loadScene(argv[1]);
@@ -180,6 +250,158 @@ int main(int argc, char** argv) {
       std::printf("\n");
     }
     if (shoot.empty()) return 0;
+    if (shoot == "solve") {
+      // --shoot solve: a GL solve of the scene (its lamps shot by the GL engine too) with every reflector
+      // shot's delivery at the receivers against the exact transfer of the residual it shot, per shooting
+      // and receiving room.
+      std::vector<std::vector<uint32_t>> patchTexels(atlas.patches.size());
+      for (size_t t = 0; t < atlas.texelCount(); ++t)
+        if (atlas.patch[t] >= 0) patchTexels[size_t(atlas.patch[t])].push_back(uint32_t(t));
+      std::map<std::pair<size_t, size_t>, glm::dvec2> tally;  // (shooting, receiving room): exact, GL
+      struct Shot {
+        int number, patch;
+        size_t room;
+        double exact, gl, power;
+      };
+      std::vector<Shot> log;
+      int number = 0;
+      const ShotWatch watch = [&](int p, bool emitting, const std::vector<glm::vec3>& residual,
+                                  const std::vector<glm::vec3>& before, const std::vector<glm::vec3>& after) {
+        ++number;
+        if (emitting) return;
+        const std::vector<uint32_t>& texels = patchTexels[size_t(p)];
+        double power = 0.0;
+        for (uint32_t s : texels)
+          power += double(residual[s].r + residual[s].g + residual[s].b) * atlas.area[s];
+        std::vector<double> exactHere(receivers.size(), 0.0);
+        tbb::parallel_for(size_t(0), receivers.size(), [&](size_t k) {
+          const size_t t = receivers[k];
+          if (atlas.patch[t] == p) return;
+          glm::dvec3 h(0.0);
+          for (uint32_t s : texels) h += fromTexel(atlas, rays, eps, t, s, residual[s]);
+          h *= glm::dvec3(atlas.albedo[t]);
+          exactHere[k] = h.r + h.g + h.b;
+        });
+        const size_t from = cellIndex(texels[0]);
+        std::map<size_t, glm::dvec2> here;
+        for (size_t k = 0; k < receivers.size(); ++k) {
+          const size_t t = receivers[k];
+          const glm::vec3 d = atlas.patch[t] == p ? glm::vec3(0.0f) : after[t] - before[t];
+          here[cellIndex(t)] += double(atlas.area[t]) * glm::dvec2(exactHere[k], d.r + d.g + d.b);
+        }
+        for (const auto& [c, v] : here) {
+          tally[{from, c}] += v;
+          if (v.x > 0.0 || v.y > 0.0) log.push_back({number, p, c, v.x, v.y, power});
+        }
+      };
+      const EglContext gl(ctx);
+      GlShotEngine glEngine(gl);
+      WatchedEngine watched(glEngine, watch);
+      SolverParams settings;
+      settings.unshotFraction = std::getenv("GATHER_UNSHOT") ? std::stod(std::getenv("GATHER_UNSHOT")) : 1e-4;
+      if (const char* v = std::getenv("GATHER_REGIONS")) settings.maxRegions = std::atoi(v);
+      if (const char* v = std::getenv("GATHER_REGION_SIZE")) settings.regionSize = std::stof(v);
+      const SolveResult solved = solveProgressive(loaded.scene, atlas, settings, watched, ctx);
+      std::printf("solve: %d shots, unshot %.3g\nfrom  to  exact  gl  ratio\n", solved.shots,
+                  solved.unshotFraction);
+      for (const auto& [k, v] : tally)
+        if (v.x > 0.0 || v.y > 0.0)
+          std::printf("%-5s %-5s %.5g %.5g %.4f\n", k.first < names.size() ? names[k.first].c_str() : "-",
+                      k.second < names.size() ? names[k.second].c_str() : "-", v.x, v.y, v.y / v.x);
+      for (const Shot& s : log)
+        std::printf("shot %d patch %d %s -> %s %.3g W: %.4g/%.4g\n", s.number, s.patch,
+                    nameOf((*cell)[patchTexels[size_t(s.patch)][0]]).c_str(),
+                    s.room < names.size() ? names[s.room].c_str() : "-", s.power, s.gl, s.exact);
+      return 0;
+    }
+    if (engine == "gl") {
+      // The GL engine's shots of ROOM's patches one by one, each with the residual it holds when shot (the
+      // lightmap's light, plus what the room's earlier shots sent it), against the exact transfer of that
+      // residual per receiving room, each shot scaled as the loop scales it.
+      LightmapAtlas dark = atlas;
+      std::fill(dark.emission.begin(), dark.emission.end(), glm::vec3(0.0f));
+      std::vector<std::vector<uint32_t>> patchTexels(atlas.patches.size());
+      for (size_t t = 0; t < atlas.texelCount(); ++t)
+        if (atlas.patch[t] >= 0) patchTexels[size_t(atlas.patch[t])].push_back(uint32_t(t));
+      std::vector<glm::vec3> irradiance(atlas.texelCount(), glm::vec3(0.0f));
+      std::vector<size_t> shooters;
+      for (size_t p = 0; p < atlas.patches.size(); ++p) {
+        if (patchTexels[p].empty() || nameOf((*cell)[patchTexels[p][0]]) != shoot) continue;
+        shooters.push_back(p);
+        for (uint32_t t : patchTexels[p])
+          irradiance[t] = light.pixels[t] / glm::max(atlas.albedo[t], glm::vec3(1e-6f));
+      }
+      const EglContext gl(ctx);
+      GlShotEngine glEngine(gl);
+      SolverParams settings;
+      if (const char* v = std::getenv("GATHER_REGIONS")) settings.maxRegions = std::atoi(v);
+      if (const char* v = std::getenv("GATHER_REGION_SIZE")) settings.regionSize = std::stof(v);
+      const ShotShape shape;
+      const FirstShot first{irradiance, 0.0, {}};
+      const bool strong = std::getenv("GATHER_STRONG") != nullptr;
+      std::map<size_t, glm::dvec2> total;  // per receiving room: exact, GL
+      double shotPower = 0.0, scaled = 0.0;
+      // Each draw a fresh solve with the room's patches shot in an order turned by one, so that every
+      // patch is shot with other eye draws (the engine draws them by its shot count).
+      for (int d = 0; d < draws; ++d) {
+        std::unique_ptr<ShotBackend> backend = glEngine.backend(
+            loaded.scene, dark, settings, shape, first, ctx, std::chrono::steady_clock::time_point::max());
+        backend->start();
+        for (size_t i = 0; i < shooters.size(); ++i) {
+          const size_t p = shooters[(i + size_t(d)) % shooters.size()];
+          const std::vector<glm::vec3> residual = backend->residual(), before = backend->radiosity();
+          double power = 0.0;
+          for (uint32_t t : patchTexels[p])
+            power += double(residual[t].r + residual[t].g + residual[t].b) * atlas.area[t];
+          if (power <= 0.0) continue;
+          const ShotGathered g = backend->shoot({int(p), power, false, true}, strong, false);
+          const double target = g.open < 1e-3
+                                    ? power * std::min(g.covered, 1.0)
+                                    : std::min(g.gathered, power * std::min(g.covered + g.open, 1.0));
+          const bool rescale =
+              g.gathered > 0.0 && (g.gathered - target > 1e-5 * power || target - g.gathered > 2e-3 * power);
+          const float scale = rescale ? float(target / g.gathered) : 1.0f;
+          backend->deliver(scale);
+          const std::vector<glm::vec3> after = backend->radiosity();
+          std::vector<double> exactHere(receivers.size(), 0.0);
+          tbb::parallel_for(size_t(0), receivers.size(), [&](size_t k) {
+            const size_t t = receivers[k];
+            if (atlas.patch[t] == int32_t(p)) return;
+            glm::dvec3 h(0.0);
+            for (uint32_t s : patchTexels[p]) h += fromTexel(atlas, rays, eps, t, s, residual[s]);
+            h *= glm::dvec3(atlas.albedo[t]);
+            exactHere[k] = h.r + h.g + h.b;
+          });
+          std::map<size_t, glm::dvec2> here;
+          for (size_t k = 0; k < receivers.size(); ++k) {
+            const size_t t = receivers[k];
+            const glm::vec3 d = atlas.patch[t] == int32_t(p) ? glm::vec3(0.0f) : after[t] - before[t];
+            here[cellIndex(t)] += double(atlas.area[t]) * glm::dvec2(exactHere[k], d.r + d.g + d.b);
+          }
+          const Patch& q = atlas.patches[p];
+          std::printf(
+              "patch %zu %s %dx%d n %+.0f %+.0f %+.0f at %.2f %.2f %.2f, %.3g W, gathered %.3f covered %.3f "
+              "scale %.3f:",
+              p, loaded.scene.nodePaths[loaded.scene.triangles[size_t(q.triangles[0])].node].c_str(), q.w,
+              q.h, q.normal.x, q.normal.y, q.normal.z, q.origin.x, q.origin.y, q.origin.z, power,
+              g.gathered / power, g.covered, scale);
+          for (const auto& [c, v] : here)
+            if (v.x > 0.0 || v.y > 0.0) {
+              std::printf("  %s %.3g/%.3g=%.3f", c < names.size() ? names[c].c_str() : "-", v.y, v.x,
+                          v.y / v.x);
+              total[c] += v;
+            }
+          std::printf("\n");
+          shotPower += power;
+          scaled += scale * power;
+        }
+      }
+      std::printf("%s shot by gl: %.5g W, scaled on average by %.4f\nroom  exact  gl  ratio\n", shoot.c_str(),
+                  shotPower, shotPower > 0.0 ? scaled / shotPower : 0.0);
+      for (const auto& [c, v] : total)
+        std::printf("%-5s %.5g %.5g %.4f\n", c < names.size() ? names[c].c_str() : "-", v.x, v.y, v.y / v.x);
+      return 0;
+    }
     // The rays engine's shots of ROOM's patches, each with the bake's radiosity there as its unshot light.
     std::vector<double> byRays(atlas.texelCount(), 0.0);
     const RayShotScene shots(loaded.scene, atlas, rays);

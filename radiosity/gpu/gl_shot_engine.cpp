@@ -339,13 +339,15 @@ class GlShotBackend final : public ShotBackend {
     ctx.progress("set-up", 0.2, "the gl engine: the shooters' eyes");
     layouts_ = layoutShooters(scene_, atlas_, weakLayout(), deadline);
     if (layouts_.size() < atlas_.patches.size()) return false;
-    if (strongRegions() != weakLayout().maxRegions) {
-      // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
-      // small lamp still gets several eyes, so with drawn eyes (jitteredEyes) its light through a narrow
-      // door, or out of a housing, is a stratified estimate rather than one texel's view.
-      strongLayouts_ = layoutShooters(scene_, atlas_, LayoutParams{1e-3f, strongRegions()}, deadline);
-      if (strongLayouts_.size() < atlas_.patches.size()) return false;
-    }
+    // Strong shots at strongShotRegions per edge whatever the shooter's size (within its texels): a
+    // small lamp still gets several eyes, so with drawn eyes (jitteredEyes) its light through a narrow
+    // door, or out of a housing, is a stratified estimate rather than one texel's view. Where the settings
+    // ask for as many as --regions, the settings' own layout.
+    const LayoutParams strong = strongRegions() != params_.maxRegions
+                                    ? LayoutParams{1e-3f, strongRegions()}
+                                    : LayoutParams{params_.regionSize, params_.maxRegions};
+    strongLayouts_ = layoutShooters(scene_, atlas_, strong, deadline);
+    if (strongLayouts_.size() < atlas_.patches.size()) return false;
     if (late()) return false;
     ctx.progress("set-up", 0.5, "the gl engine: the atlas's buffers");
     uploadAtlas();
@@ -1162,10 +1164,10 @@ class GlShotBackend final : public ShotBackend {
   gl::Buffer faceMasks_, chunkSlots_, faceIndices_, faceDraws_;  ///< item_cull.comp's, hemicube only
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
-  std::vector<ShooterLayout> layouts_, strongLayouts_;  // strongLayouts_ empty when it would be layouts_
+  std::vector<ShooterLayout> layouts_, strongLayouts_;  // the weak shots' (weakLayout) and the strong ones'
   bool culled() const { return params_.visibility == Visibility::Hemicube && params_.cullItemBuffers; }
   int strongRegions() const {
-    return params_.strongShotRegions > 0 ? params_.strongShotRegions : weakLayout().maxRegions;
+    return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions;
   }
   // The weak shots' regions: half the settings' size, twice their count per edge (within kMaxRegions). A
   // region's eye decides for the whole region whether a receiver sees it, and gives it the region's whole

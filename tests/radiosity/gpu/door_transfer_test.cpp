@@ -119,8 +119,9 @@ TEST(DoorTransfer, AWeakShotGivesTheRoomBehindADoorItsExactLight) {
   }
   ASSERT_GT(exact, 0.0);
   const double ratio = byGl / exact;
-  RecordProperty("ratio", std::to_string(ratio));
   std::printf("room B: GL %.5g W, exact %.5g W, ratio %.4f\n", byGl, exact, ratio);
+  // Measured: 1.116 at one region, 1.057 at 2 × 2 of 1.5 m (the settings' layout), 1.025 at 4 × 3 of
+  // 1 m, 1.004 at 4 × 4 (the GL engine's weak layout, gl_shot_engine.cpp: weakLayout).
   EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 

@@ -142,7 +142,9 @@ TEST(ContactStrip, TheRevealOnTheRoomsSideOfThePaneStaysBlackUpToThePane) {
     strip[cut] = nearLine / lit;
     std::printf("pane-through, cut %d: soffit 1 cm from the pane %.4g, 6 cm %.4g, outside %.4g W/m2\n", cut,
                 nearLine, away, lit);
-    if (cut) EXPECT_LT(nearLine, 1e-3 * lit) << "6 cm from the pane " << away;
+    if (cut) {
+      EXPECT_LT(nearLine, 1e-3 * lit) << "6 cm from the pane " << away;
+    }
   }
   EXPECT_GT(strip[0], 0.05) << "the whole reveal's lookup no longer crosses the pane: the test shows nothing";
 }
@@ -180,10 +182,13 @@ TEST(ContactStrip, TheFinThroughTheSlabHasNoBandAtTheCeilingAndNoLightAboveTheFl
         "slab-through, cut %d: fin 2 cm under the ceiling %.4g, its nearest texel in the room %.4g, "
         "2 cm above the floor %.4g W/m2\n",
         cut, looked, texel, above);
-    if (cut) EXPECT_LT(above, 1e-3 * texel);
+    if (cut) {
+      EXPECT_LT(above, 1e-3 * texel);
+    }
   }
   EXPECT_GT(band[1], 0.95);
-  EXPECT_LT(band[0], 0.85) << "the whole fin's lookup no longer reaches into the slab: the test shows nothing";
+  EXPECT_LT(band[0], 0.85)
+      << "the whole fin's lookup no longer reaches into the slab: the test shows nothing";
 }
 
 }  // namespace

@@ -18,6 +18,11 @@ struct InfoOptions {
   std::string scene;
   bool json = false;
   LoadOptions load;  ///< --strict, --allow-outside-files, --emit, --albedo
+  InfoOptions() {
+    // info counts the file as written; the faces cut where solids run through them are the bake's
+    // (core/contact_cuts.h), said in its report.
+    load.cutContacts = false;
+  }
 };
 
 std::string fmt(const char* format, double a, double b = 0, double c = 0) {
@@ -145,6 +150,7 @@ void addInfoCommand(CLI::App& app, CommandFn& selected) {
   sub->add_option("scene", options->scene, "Scene file (.glb, .gltf or .obj)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text")->group("Output");
   addLoadOptions(*sub, options->load);
+  sub->remove_option(sub->get_option(flagOf("keep contacts")));  // info never cuts (InfoOptions)
   sub->callback([options, &selected] {
     selected = [options] {
       const LoadedScene loaded = loadScene(options->scene, options->load);

@@ -40,13 +40,20 @@ Synthetic synthetic(glm::ivec3 dims, IsSolid isSolid) {
   return s;
 }
 
+// The cells of a distance field: its watershed's basins merged with `params`.
+CellLabels mergedCells(const DistanceGrid& d, const MergeParams& params = {}) {
+  Context ctx;
+  return mergeBasins(floodWatershed(d, {}, ctx), params, ctx);
+}
+
 TEST(Distance, MatchesBruteForce) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::ivec3 dims(13, 9, 11);
   std::vector<char> pattern(size_t(dims.x * dims.y * dims.z));
   for (char& c : pattern) c = u(rng) < 0.04f;
-  const Synthetic s = synthetic(dims, [&](glm::ivec3 c) { return pattern[size_t((c.z * dims.y + c.y) * dims.x + c.x)] != 0; });
+  const Synthetic s = synthetic(
+      dims, [&](glm::ivec3 c) { return pattern[size_t((c.z * dims.y + c.y) * dims.x + c.x)] != 0; });
   Context ctx;
   const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
   const GridFrame& f = s.solid.frame;
@@ -91,10 +98,8 @@ TEST(Watershed, TwoChambersMeetAtTheDoorHalfWidth) {
   // Each chamber is one cell, split at the wall.
   const GridFrame& f = d.frame;
   EXPECT_NE(cells.cell[f.index(12, 12, 12)], cells.cell[f.index(34, 12, 12)]);
-  for (int x : {2, 10, 20})
-    EXPECT_EQ(cells.cell[f.index(x, 5, 18)], cells.cell[f.index(12, 12, 12)]);
-  for (int x : {26, 35, 44})
-    EXPECT_EQ(cells.cell[f.index(x, 5, 18)], cells.cell[f.index(34, 12, 12)]);
+  for (int x : {2, 10, 20}) EXPECT_EQ(cells.cell[f.index(x, 5, 18)], cells.cell[f.index(12, 12, 12)]);
+  for (int x : {26, 35, 44}) EXPECT_EQ(cells.cell[f.index(x, 5, 18)], cells.cell[f.index(34, 12, 12)]);
 }
 
 TEST(Merge, WideOpeningMergesNarrowOneDoesNot) {
@@ -107,11 +112,11 @@ TEST(Merge, WideOpeningMergesNarrowOneDoesNot) {
   });
   Context ctx;
   const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
-  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), {}, ctx).cellCount(), 1);
+  EXPECT_EQ(mergedCells(d).cellCount(), 1);
   // With every merge rule switched off but the saddle ratio at its maximum, the raw basins survive.
   MergeParams keep;
   keep.saddleRatio = 1.0, keep.minDepth = 0.0, keep.openingRatio = 0.0, keep.minCellVolume = 0.0;
-  EXPECT_GE(mergeBasins(floodWatershed(d, {}, ctx), keep, ctx).cellCount(), 2);
+  EXPECT_GE(mergedCells(d, keep).cellCount(), 2);
 }
 
 TEST(Merge, StoreysStayApartThroughAWideHoleInTheFloor) {
@@ -126,13 +131,13 @@ TEST(Merge, StoreysStayApartThroughAWideHoleInTheFloor) {
   });
   Context ctx;
   const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
-  const CellLabels cells = mergeBasins(floodWatershed(d, {}, ctx), {}, ctx);
+  const CellLabels cells = mergedCells(d);
   ASSERT_EQ(cells.cellCount(), 2);
   const GridFrame& f = d.frame;
   EXPECT_NE(cells.cell[f.index(18, 6, 18)], cells.cell[f.index(18, 19, 18)]);
   MergeParams noStoreys;
   noStoreys.storeySpread = 0.0;
-  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noStoreys, ctx).cellCount(), 1);
+  EXPECT_EQ(mergedCells(d, noStoreys).cellCount(), 1);
 }
 
 TEST(Merge, AGalleryStaysApartFromTheDoubleHeightRoomItOverlooks) {
@@ -150,19 +155,19 @@ TEST(Merge, AGalleryStaysApartFromTheDoubleHeightRoomItOverlooks) {
   s.solid.frame.voxel = s.space.frame.voxel = 0.25;
   Context ctx;
   const DistanceGrid d = distanceToGeometry(s.solid, s.space, ctx);
-  const CellLabels cells = mergeBasins(floodWatershed(d, {}, ctx), {}, ctx);
+  const CellLabels cells = mergedCells(d);
   ASSERT_EQ(cells.cellCount(), 2);
   const GridFrame& f = d.frame;
   EXPECT_NE(cells.cell[f.index(12, 6, 12)], cells.cell[f.index(28, 18, 12)]);
   EXPECT_EQ(cells.cell[f.index(12, 22, 12)], cells.cell[f.index(12, 6, 12)]);
   MergeParams noGalleries;
   noGalleries.galleryFloorRise = 0.0;
-  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), noGalleries, ctx).cellCount(), 1);
+  EXPECT_EQ(mergedCells(d, noGalleries).cellCount(), 1);
   // A space higher than a storey over its floor (a platform open to a game level's sky box) is no gallery:
   // with the headroom under this one's 1.4 m the opening ratio merges them again.
   MergeParams lowHeadroom;
   lowHeadroom.galleryHeadroom = 1.0;
-  EXPECT_EQ(mergeBasins(floodWatershed(d, {}, ctx), lowHeadroom, ctx).cellCount(), 1);
+  EXPECT_EQ(mergedCells(d, lowHeadroom).cellCount(), 1);
 }
 
 TEST(Voxelize, ThinRotatedShellDoesNotLeak) {
@@ -171,12 +176,16 @@ TEST(Voxelize, ThinRotatedShellDoesNotLeak) {
   for (float angle : {0.0f, 0.3f, 0.7853f, 1.1f}) {
     testing::SceneBuilder b;
     const float c = std::cos(angle), s = std::sin(angle);
-    auto rot = [&](glm::vec3 p) { return glm::vec3(c * p.x - s * p.y, s * c * p.x + c * c * p.y - s * p.z, s * s * p.x + s * c * p.y + c * p.z); };
+    auto rot = [&](glm::vec3 p) {
+      return glm::vec3(c * p.x - s * p.y, s * c * p.x + c * c * p.y - s * p.z,
+                       s * s * p.x + s * c * p.y + c * p.z);
+    };
     const glm::vec3 lo(-1.5f), hi(1.5f);
     const glm::vec3 p[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
                             {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
     auto quadIn = [&](int a, int bb, int cc, int d) { b.quad(rot(p[d]), rot(p[cc]), rot(p[bb]), rot(p[a])); };
-    quadIn(0, 3, 2, 1), quadIn(4, 5, 6, 7), quadIn(0, 4, 7, 3), quadIn(1, 2, 6, 5), quadIn(0, 1, 5, 4), quadIn(3, 7, 6, 2);
+    quadIn(0, 3, 2, 1), quadIn(4, 5, 6, 7), quadIn(0, 4, 7, 3), quadIn(1, 2, 6, 5), quadIn(0, 1, 5, 4),
+        quadIn(3, 7, 6, 2);
     Context ctx;
     VoxelizeParams vp;
     vp.voxelSize = 0.1;
@@ -208,8 +217,8 @@ TEST(Compare, PortalMatchMeasures) {
   ref.corners = {glm::vec3(0, 0, 0), glm::vec3(0, 0, 1), glm::vec3(0, 2, 1), glm::vec3(0, 2, 0)};
   computePortalFrame(ref);
   const float t = 0.1f;  // the candidate: moved 0.1 m, tilted by atan(0.1), 1.5 × the area
-  cand.corners = {glm::vec3(0.1f, 0, 0), glm::vec3(0.1f + t * 1.5f, 0, 1.5f), glm::vec3(0.1f + t * 1.5f, 2, 1.5f),
-                  glm::vec3(0.1f, 2, 0)};
+  cand.corners = {glm::vec3(0.1f, 0, 0), glm::vec3(0.1f + t * 1.5f, 0, 1.5f),
+                  glm::vec3(0.1f + t * 1.5f, 2, 1.5f), glm::vec3(0.1f, 2, 0)};
   computePortalFrame(cand);
   const auto m = matchPortals({ref}, {cand});
   ASSERT_EQ(m.size(), 1u);

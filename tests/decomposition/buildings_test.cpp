@@ -62,6 +62,13 @@ const BuildingOpening& openingNamed(const Building& b, const std::string& name) 
   throw std::runtime_error("no opening " + name);
 }
 
+// The cell that holds the room named `name` (its most voxels).
+int cellOfRoomNamed(const Building& b, const Scored& s, const std::string& name) {
+  for (size_t r = 0; r < b.rooms.size(); ++r)
+    if (b.rooms[r].name == name) return s.cellOfRoom[r];
+  throw std::runtime_error("no room " + name);
+}
+
 // The portals joining cells x and y.
 std::vector<const PortalQuad*> portalsBetween(const Decomposition& d, int x, int y) {
   std::vector<const PortalQuad*> out;
@@ -230,11 +237,7 @@ TEST(Buildings, GalleryIsOneVerticalPortalOverTheBalustrade) {
   const Scored s = decomposeBuilding(b, 0.1);
   expectRoomsAndFrontDoor(b, s, 0.1);
   expectStairPortal(b, s);
-  int gallery = -1, living = -1;
-  for (size_t r = 0; r < b.rooms.size(); ++r) {
-    if (b.rooms[r].name == "gallery") gallery = s.cellOfRoom[r];
-    if (b.rooms[r].name == "living") living = s.cellOfRoom[r];
-  }
+  const int gallery = cellOfRoomNamed(b, s, "gallery"), living = cellOfRoomNamed(b, s, "living");
   const std::vector<const PortalQuad*> between = portalsBetween(s.d, gallery, living);
   ASSERT_EQ(between.size(), 1u);
   const BuildingOpening& opening = openingNamed(b, "gallery");
@@ -266,11 +269,21 @@ void expectIfcHouse(const std::string& stair, double voxel) {
   expectStairPortal(b, s);
 }
 
-TEST(Buildings, IfcHouseStraightStairAtTheAutomaticVoxel) { expectIfcHouse("straight", 0.0); }
-TEST(Buildings, IfcHouseStraightStairAtFiveCentimetres) { expectIfcHouse("straight", 0.05); }
-TEST(Buildings, IfcHouseOpenRiserStair) { expectIfcHouse("open-riser", 0.0); }
-TEST(Buildings, IfcHouseLShapedStairKeepsTheStoreysApart) { expectIfcHouse("l", 0.05); }
-TEST(Buildings, IfcHouseSpiralStair) { expectIfcHouse("spiral", 0.0); }
+TEST(Buildings, IfcHouseStraightStairAtTheAutomaticVoxel) {
+  expectIfcHouse("straight", 0.0);
+}
+TEST(Buildings, IfcHouseStraightStairAtFiveCentimetres) {
+  expectIfcHouse("straight", 0.05);
+}
+TEST(Buildings, IfcHouseOpenRiserStair) {
+  expectIfcHouse("open-riser", 0.0);
+}
+TEST(Buildings, IfcHouseLShapedStairKeepsTheStoreysApart) {
+  expectIfcHouse("l", 0.05);
+}
+TEST(Buildings, IfcHouseSpiralStair) {
+  expectIfcHouse("spiral", 0.0);
+}
 
 // The IFC-like house with a gallery (issue 46): the landing overlooks the double-height living room along
 // their whole 6 m wall, over a 1 m parapet or a balustrade of spindles. An architect's two rooms, and for
@@ -284,11 +297,7 @@ void expectGalleryHouse(bool balustrade, double voxel) {
   const Scored s = decomposeBuilding(b, voxel);
   expectRoomsAndFrontDoor(b, s, voxel);
   expectStairPortal(b, s);
-  int landing = -1, living = -1;
-  for (size_t r = 0; r < b.rooms.size(); ++r) {
-    if (b.rooms[r].name == "landing") landing = s.cellOfRoom[r];
-    if (b.rooms[r].name == "living") living = s.cellOfRoom[r];
-  }
+  const int landing = cellOfRoomNamed(b, s, "landing"), living = cellOfRoomNamed(b, s, "living");
   const std::vector<const PortalQuad*> between = portalsBetween(s.d, landing, living);
   ASSERT_EQ(between.size(), 1u);
   const BuildingOpening& opening = openingNamed(b, "gallery");
@@ -298,8 +307,12 @@ void expectGalleryHouse(bool balustrade, double voxel) {
   EXPECT_NEAR(between.front()->area, size.y * size.z, 0.25f * size.y * size.z);
 }
 
-TEST(Buildings, IfcGalleryHouseLandingIsItsOwnCellAtTheAutomaticVoxel) { expectGalleryHouse(false, 0.0); }
-TEST(Buildings, IfcGalleryHouseOverABalustradeLandingIsItsOwnCell) { expectGalleryHouse(true, 0.0); }
+TEST(Buildings, IfcGalleryHouseLandingIsItsOwnCellAtTheAutomaticVoxel) {
+  expectGalleryHouse(false, 0.0);
+}
+TEST(Buildings, IfcGalleryHouseOverABalustradeLandingIsItsOwnCell) {
+  expectGalleryHouse(true, 0.0);
+}
 
 // The same house with the gallery rule off: the landing is one cell with the living room, so the hall
 // meets that cell through the door to the living room and through the stair's hole. At the automatic
@@ -375,8 +388,9 @@ TEST(Buildings, OpenGroundAroundAHouseIsCutOffWithoutChangingItsCells) {
   EXPECT_EQ(cut.outsideCell, whole.outsideCell);
   for (size_t k = 0; k < cut.graph.portals.size(); ++k)
     for (int c = 0; c < 4; ++c)
-      EXPECT_LE(glm::length(cut.graph.portals[k].corners[size_t(c)] - whole.graph.portals[k].corners[size_t(c)]),
-                float(p.voxelSize))
+      EXPECT_LE(
+          glm::length(cut.graph.portals[k].corners[size_t(c)] - whole.graph.portals[k].corners[size_t(c)]),
+          float(p.voxelSize))
           << cut.graph.portals[k].name;
   // Every room's voxels, voxel for voxel: the two grids share their lattice.
   for (size_t c = 0; c < cut.graph.cells.size(); ++c)

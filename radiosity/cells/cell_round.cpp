@@ -101,15 +101,23 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
                                            const RayScene& rays, const PortalLink& link,
                                            const std::vector<glm::vec3>& weights, int rayCount) {
   const LightmapAtlas& a = s.atlas;
+  // A binned emitter (a portal of this cell re-emitting its neighbour's light) is met by many of the
+  // rays: its bins normalised once here, not per ray over all kArrivalBins of them.
+  std::vector<BinnedEmitter> emitters;
+  emitters.reserve(s.pendingBins.size());
+  std::vector<int32_t> emitterOf(s.pendingBins.empty() ? 0 : a.texelCount(), -1);
+  for (const auto& [t, b] : s.pendingBins) {
+    if (size_t(t) >= emitterOf.size()) continue;
+    emitterOf[size_t(t)] = int32_t(emitters.size());
+    emitters.push_back(binnedEmitter(b, a.normal[size_t(t)]));
+  }
   // What texel t shot in this solve towards ω (W/m² per channel): its pending exitance (the atlas's
-  // emission) and what it gained, less what it left unshot; a binned emitter (a portal of this cell
-  // re-emitting its neighbour's light) shapes it by its own bins.
+  // emission) and what it gained, less what it left unshot; a binned emitter shapes it by its own bins.
   const ExitanceToward shotToward = [&](size_t t, const glm::vec3& omega) {
     glm::vec3 shot =
         glm::max(a.emission[t] + a.albedo[t] * solved.incident[t] - solved.residual[t], glm::vec3(0.0f));
-    if (shot.r + shot.g + shot.b > 0.0f)
-      if (auto own = s.pendingBins.find(int32_t(t)); own != s.pendingBins.end())
-        shot *= binnedEmissionFactor(own->second, binFrame(a.normal[t]), omega);
+    if (shot.r + shot.g + shot.b > 0.0f && t < emitterOf.size() && emitterOf[t] >= 0)
+      shot *= binnedEmissionFactor(emitters[size_t(emitterOf[t])], omega);
     return shot;
   };
   std::vector<ArrivalBins> bins(link.texels.size());

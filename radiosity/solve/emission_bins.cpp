@@ -143,20 +143,29 @@ glm::dvec3 binTotals(const ArrivalBins& bins) {
   return total;
 }
 
-glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
-  if (!(glm::dot(omega, frame.n) > 0.0f)) return glm::vec3(0.0f);
-  const glm::dvec3 total = binnedIntegral(bins);
-  const BinTaps taps = binTaps(frame, omega);
+BinnedEmitter binnedEmitter(const ArrivalBins& bins, const glm::vec3& normal) {
+  return {&bins, binFrame(normal), binnedIntegral(bins)};
+}
+
+glm::vec3 binnedEmissionFactor(const BinnedEmitter& e, const glm::vec3& omega) {
+  if (!(glm::dot(omega, e.frame.n) > 0.0f)) return glm::vec3(0.0f);
+  const BinTaps taps = binTaps(e.frame, omega);
+  const BinWeights& weights = binWeights();
   glm::dvec3 w(0.0);
   for (int k = 0; k < 4; ++k) {
     const size_t b = size_t(taps.bin[size_t(k)]);
-    w += double(taps.weight[size_t(k)]) * glm::dvec3(glm::max(bins[b], glm::vec3(0.0f))) /
-         binWeights().area[b];
+    w += double(taps.weight[size_t(k)]) * glm::dvec3(glm::max((*e.bins)[b], glm::vec3(0.0f))) /
+         weights.area[b];
   }
   glm::vec3 f(1.0f);
   for (int c = 0; c < 3; ++c)
-    if (total[c] > 0.0) f[c] = float(w[c] / total[c]);
+    if (e.total[c] > 0.0) f[c] = float(w[c] / e.total[c]);
   return f;
+}
+
+glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega) {
+  if (!(glm::dot(omega, frame.n) > 0.0f)) return glm::vec3(0.0f);
+  return binnedEmissionFactor(BinnedEmitter{&bins, frame, binnedIntegral(bins)}, omega);
 }
 
 EmissionBinSlot normalisedEmissionBins(const ArrivalBins& bins) {

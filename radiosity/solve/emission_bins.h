@@ -94,6 +94,18 @@ BinTaps binTaps(const BinFrame& frame, const glm::vec3& omega);
 /// so that ∫ f cos θ dω = π): 0 behind the surface, 1 for a channel whose bins are all zero (a Lambertian).
 glm::vec3 binnedEmissionFactor(const ArrivalBins& bins, const BinFrame& frame, const glm::vec3& omega);
 
+/// A binned emitter read in many directions: its bins, frame and normalisation (the integral over every
+/// bin) found once, so that each reading costs its four taps, not a pass over the kArrivalBins bins.
+/// Refers to `bins`, which must outlive it.
+struct BinnedEmitter {
+  const ArrivalBins* bins = nullptr;
+  BinFrame frame;
+  glm::dvec3 total{0.0};  ///< per channel, what the bins' f read bilinearly integrates to before normalising
+};
+BinnedEmitter binnedEmitter(const ArrivalBins& bins, const glm::vec3& normal);
+/// binnedEmissionFactor(*e.bins, e.frame, ω), the same floats.
+glm::vec3 binnedEmissionFactor(const BinnedEmitter& e, const glm::vec3& omega);
+
 /// The bins as the solver reads them (ShotShape::emissionBins): f per bin and channel, each bin's
 /// irradiance over its projected solid angle, scaled so that ∫ f cos θ dω = π under the bilinear reading
 /// (binTaps); all ones for a channel whose bins are all zero.

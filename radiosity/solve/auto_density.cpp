@@ -51,6 +51,10 @@ std::vector<float> chooseAutoDensity(const Scene& scene, const QuadSet& quads, c
       }
   }
   evenOverSurfaces(scene, density);
+  // A triangle the pilot charted no texel of (zero area: a face cut at a contact can leave one, which
+  // every atlas leaves out) still needs a density the output's atlas accepts.
+  for (float& d : density)
+    if (!(d > 0.0f)) d = params.light.minDensity;
   if (data)
     *data = {pilot.validTexels(), pilotParams.density,
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

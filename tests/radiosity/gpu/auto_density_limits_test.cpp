@@ -93,5 +93,28 @@ TEST(AutoDensityLimits, ThePilotAndTheOutputKeepToTheTexelBudget) {
           .validTexels());
 }
 
+// Faces cut where other geometry runs through them can leave a triangle of zero area (oa_dm2: two, each with
+// two corners at one point), which no atlas charts: the pilot gives it no light and so no density, and the
+// output's atlas refused the bake ("a chart's density must be positive").
+TEST(AutoDensityLimits, AZeroAreaTriangleGetsADensityTheOutputAccepts) {
+  Scene s = daylitBox();
+  Triangle flat = s.triangles.front();
+  flat.p[2] = flat.p[1];
+  s.triangles.push_back(flat);
+  const QuadSet quads = findQuads(s);
+  RayShotEngine rays;
+  Context ctx;
+  const std::vector<float> density =
+      chooseAutoDensity(s, quads, AtlasParams{}, AutoDensityParams{}, SolverParams{}, rays, ctx);
+  ASSERT_EQ(density.size(), s.triangles.size());
+  for (float d : density) EXPECT_GT(d, 0.0f);
+  AtlasParams out;
+  out.triangleDensity = density;
+  Context layout;
+  const LightmapAtlas atlas = buildAtlas(s, quads, out, layout);
+  EXPECT_TRUE(saidOnce(layout, "1 zero-area triangle(s) left out"));
+  EXPECT_GT(atlas.validTexels(), 0u);
+}
+
 }  // namespace
 }  // namespace cpgi

@@ -46,6 +46,35 @@ struct Books {
   }
 };
 
+// What of the light still unshot will leave the scene rather than arrive on a surface: the share of the
+// reflectors' recent shots (kWindow of them, weighed by their power) that their eyes saw open
+// (ShotGathered::open). The unshot stop weighs the light that can still arrive, so a daylit map stops where
+// a closed scene with as much light left to arrive would: oa_dm2's shots sent about a third of their power
+// out through the sky, and 10 000 shots to 1 % unshot counted it as if it would all land. A closed scene's
+// shots see nothing open: 0, the stop as before. At most kMost: the recent shooters are a sample of the
+// patches still holding light, and the indoor ones among them may see less sky.
+class LeavingShare {
+ public:
+  void add(double power, double open) {
+    shots_.push_back({power, power * std::clamp(open, 0.0, 1.0)});
+    power_ += shots_.back().power, open_ += shots_.back().open;
+    if (shots_.size() > kWindow) {
+      power_ -= shots_.front().power, open_ -= shots_.front().open;
+      shots_.pop_front();
+    }
+  }
+  double share() const { return power_ > 0.0 ? std::clamp(open_ / power_, 0.0, kMost) : 0.0; }
+
+ private:
+  static constexpr size_t kWindow = 256;
+  static constexpr double kMost = 0.5;
+  struct Shot {
+    double power, open;
+  };
+  std::deque<Shot> shots_;
+  double power_ = 0.0, open_ = 0.0;
+};
+
 // The factor a shot is scaled by. A shot whose eyes see nothing open delivers what they see covered; no
 // shot delivers more than its power (design.md §5: received ≤ shot) nor more than its eyes see covered or
 // open. The receivers' form factors, each gated by one eye's visibility, share the shot out but do not sum
@@ -192,6 +221,9 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   const double strongAt =
       controls.strongShotPower > 0.0 ? controls.strongShotPower : settings.strongShotFraction * e.emitted;
   LoopProgress progress(strongAt, controls, backend, ctx);
+  // The stop is on the light that can still arrive: the unshot share less what of it leaves the scene.
+  LeavingShare leaving;
+  const auto arrivingShare = [&] { return books.unshotShare() * (1.0 - leaving.share()); };
   double stopAt = settings.unshotFraction;
   int bound = 0;  // past the first refused stop, the shot the loop stops at (kStopRefusedShots)
   ShooterChoice next = backend.next();
@@ -200,12 +232,12 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
       result.stopBounded = true;
       break;
     }
-    if (books.unshotShare() <= stopAt) {
+    if (arrivingShare() <= stopAt) {
       if (!controls.acceptStop) break;
       ++result.stopChecks;
       const std::vector<glm::vec3> radiosity = backend.radiosity();
       if (controls.acceptStop(radiosity, backend.residual())) break;
-      stopAt = books.unshotShare() * kStopRecheck;
+      stopAt = arrivingShare() * kStopRecheck;
       if (bound == 0) {
         result.stopRefusedAt = result.shots;
         bound = refusedStopBound(result.shots, radiosity.size(), controls.refusedStopTexelShots);
@@ -224,6 +256,7 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     const float scale = given ? controls.patchShotScale[size_t(shooter.patch)]
                               : shotScale(seen, shooter.power, controls.lobedEmission);
     const double delivered = backend.deliver(scale);
+    if (!shooter.emitting) leaving.add(shooter.power, seen.open);
     e.shot += shooter.power;
     books.read(backend.sums());
     // A shot scaled by a coarser shot's factor checks nothing here (its receivers are only some).
@@ -234,8 +267,10 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
     result.history.push_back(e);
     next = backend.next();
     if (!given)
+      // The progress and the estimate read the unshot share, so the stop is said as the share it is now.
       progress.shot({result.shots, shooter.patch, strong, shooter.power, books.unshotShare(),
-                     e.unshot / e.emitted, e.received - e.absorbed, e.emitted, stopAt, bound, next.emitting});
+                     e.unshot / e.emitted, e.received - e.absorbed, e.emitted,
+                     stopAt / (1.0 - leaving.share()), bound, next.emitting});
   }
   result.energy = e;
   if (result.stopBounded) {
@@ -256,7 +291,13 @@ SolveResult runProgressiveLoop(ShotBackend& backend, const ShotSettings& setting
   }
   result.unshotFraction = e.emitted > 0.0 ? e.unshot / e.emitted : 0.0;
   ctx.addTiming("solve: shots", secondsSince(start));
-  ctx.progress(solveProgress(1.0, result.shots, std::min(books.unshotShare(), 1.0), -1.0, -1.0));
+  Progress last = solveProgress(1.0, result.shots, std::min(books.unshotShare(), 1.0), -1.0, -1.0);
+  if (leaving.share() > 0.0) {
+    char leaves[64];
+    std::snprintf(leaves, sizeof leaves, ", %.0f%% of it leaving the scene", 100.0 * leaving.share());
+    last.status += leaves;
+  }
+  ctx.progress(last);
   return result;
 }
 

@@ -17,6 +17,7 @@
 #include "radiosity/solve/solve.h"
 #include "tests/radiosity/cpu/exact_transfer.h"
 #include "tests/radiosity/test_scenes.h"
+#include "tests/radiosity/test_sky_scenes.h"
 
 namespace cpgi {
 namespace {
@@ -365,6 +366,83 @@ TEST(RaySolver, LampsShotByRaysFirstAreShotOnce) {
     if (atlas.patch[t] >= 0 && atlas.emission[t] == glm::vec3(0.0f))
       a += byItself.radiosity[t].r * atlas.area[t], b += lampsFirst.radiosity[t].r * atlas.area[t];
   EXPECT_NEAR(b / a, 1.0, 0.02);
+}
+
+// The unshot share as the loop's stop weighs it before any of it is counted as leaving (the light reflected
+// so far, or emitted if less).
+double plainUnshotShare(const EnergyTotals& e) {
+  return e.unshot / std::min(e.emitted, e.received - e.absorbed);
+}
+
+// The first shot after which that share is at most `stop`.
+int firstShotUnder(const SolveResult& r, double stop) {
+  for (size_t k = 0; k < r.history.size(); ++k)
+    if (plainUnshotShare(r.history[k]) <= stop) return int(k);
+  return -1;
+}
+
+// A solve of `scene` from 10 W/m² landed on its floor (normal `up`), as the sky's gather leaves it, to
+// `unshot`.
+SolveResult solveFromTheFloor(const Scene& scene, const LightmapAtlas& atlas, glm::vec3 up, double unshot) {
+  std::vector<glm::vec3> landed(atlas.texelCount(), glm::vec3(0.0f));
+  double power = 0.0;
+  for (size_t t = 0; t < atlas.texelCount(); ++t)
+    if (atlas.patch[t] >= 0 && glm::dot(atlas.normal[t], up) > 0.9f)
+      landed[t] = glm::vec3(10.0f), power += 30.0 * atlas.area[t];
+  const PriorShot first{.irradiance = landed, .emitted = power};
+  SolverParams params;
+  params.unshotFraction = unshot;
+  Context ctx;
+  RayShotEngine rays;
+  return solveProgressive(scene, atlas, params, rays, ctx, SolveControls{.priorShot = &first});
+}
+
+// A daylit room: the light lands on its floor and a share of what every surface sends leaves through the
+// hole in its ceiling, many small patches each holding a little of it. The stop weighs the light that can
+// still arrive: it comes before the unshot share alone reaches 1 % (a third fewer shots on oa_dm2), and
+// the light that arrived after it, every bounce, is no more than a closed room of that albedo leaves after
+// the same stop. A closed room's shots see nothing open: it stops where the unshot share does.
+TEST(RaySolver, TheStopWeighsTheLightThatCanStillArriveNotWhatLeaves) {
+  const float albedo = 0.6f;
+  // A court open to the sky: the box's floor and walls without its ceiling, in 0.5 m tiles of a material
+  // each, a patch each.
+  Scene open = testing::boxOpenToTheSky(albedo, albedo);
+  const std::vector<Triangle> whole(open.triangles.begin(), open.triangles.begin() + 10);
+  open.triangles.clear();
+  for (size_t k = 0; k < whole.size(); k += 2) {
+    const Triangle& t = whole[k];
+    const glm::vec3 o = t.p[0], u = (t.p[1] - t.p[0]) / 4.0f, v = (t.p[2] - t.p[1]) / 4.0f;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        addRect(open, o + float(i) * u + float(j) * v, u, v, addMaterial(open, glm::vec3(albedo)));
+  }
+  Context ctx;
+  const LightmapAtlas atlas = buildAtlas(open, findQuads(open), AtlasParams{.density = 8.0f}, ctx);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const double stop = 0.01;
+  const SolveResult r = solveFromTheFloor(open, atlas, up, stop);
+  const SolveResult converged = solveFromTheFloor(open, atlas, up, 1e-5);
+  const int plainStop = firstShotUnder(converged, stop);
+  ASSERT_GT(plainStop, 0);
+              plainUnshotShare(r.energy));
+              EXPECT_LT(r.shots, plainStop);
+              EXPECT_GT(plainUnshotShare(r.energy), stop);
+              const double reflected = std::min(r.energy.emitted, r.energy.received - r.energy.absorbed);
+              const double later = converged.energy.received - r.energy.received;
+              EXPECT_GT(later, 0.0);
+              EXPECT_LE(later, stop / (1.0 - albedo) * reflected);
+              for (const SolveResult* s : {&r, &converged}) {
+                EXPECT_LE(s->energy.created, 1e-4 * s->energy.emitted);
+                EXPECT_NEAR(s->energy.absorbed + s->energy.unshot + s->energy.escaped(), s->energy.emitted,
+                            1e-4 * s->energy.emitted);
+              }
+
+              Scene closed;
+              addClosedBox(closed, glm::vec3(0.0f), glm::vec3(2.0f), addMaterial(closed, glm::vec3(albedo)));
+              const LightmapAtlas closedAtlas =
+                  buildAtlas(closed, findQuads(closed), AtlasParams{.density = 8.0f}, ctx);
+              const SolveResult c = solveFromTheFloor(closed, closedAtlas, glm::vec3(0.0f, 0.0f, 1.0f), stop);
+              EXPECT_EQ(c.shots, firstShotUnder(c, stop));
 }
 
 }  // namespace

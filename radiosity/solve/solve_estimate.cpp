@@ -16,6 +16,10 @@ constexpr int kMinShots = 8;
 // The share of the solve's time the model may take: it runs again once the solve has spent this many
 // times its last run since.
 constexpr double kModelEvery = 40.0;
+// A stop that moved by less than this share of the one the model ran to does not run it again: the unshot
+// stop moves a little every shot with the share of the light leaving the scene (progressive_loop.cpp), and
+// running the model each time was as dear as the shots; a refused stop moves it by 30 % (kStopRecheck).
+constexpr double kStopDrift = 0.05;
 // Patch updates per run of the model (shots × patches): about a tenth of a second.
 constexpr double kModelWork = 1e8;
 // Before any weak shot, their seconds per eye against the strong ones': measured 1.43-1.59 on seed1-3 by
@@ -170,7 +174,7 @@ void SolveEstimate::addShot(int patch, bool strong, int eyes, double power, doub
 bool SolveEstimate::wantsPatches(int shots, double stop, double seconds) const {
   if (firstUnshot_.empty()) return true;  // where the light is counted from
   if (reflectorShots_ < kMinShots) return false;
-  if (!ran_ || stop != modelStop_) return true;
+  if (!ran_ || std::abs(stop - modelStop_) > kStopDrift * modelStop_) return true;
   const bool overrun = modelReached_ && double(shots - modelShot_) >= double(modelShots_.size()) + beyond_;
   return overrun || seconds - modelSeconds_ >= kModelEvery * modelCost_;
 }

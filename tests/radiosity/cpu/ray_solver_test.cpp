@@ -424,25 +424,23 @@ TEST(RaySolver, TheStopWeighsTheLightThatCanStillArriveNotWhatLeaves) {
   const SolveResult converged = solveFromTheFloor(open, atlas, up, 1e-5);
   const int plainStop = firstShotUnder(converged, stop);
   ASSERT_GT(plainStop, 0);
-              plainUnshotShare(r.energy));
-              EXPECT_LT(r.shots, plainStop);
-              EXPECT_GT(plainUnshotShare(r.energy), stop);
-              const double reflected = std::min(r.energy.emitted, r.energy.received - r.energy.absorbed);
-              const double later = converged.energy.received - r.energy.received;
-              EXPECT_GT(later, 0.0);
-              EXPECT_LE(later, stop / (1.0 - albedo) * reflected);
-              for (const SolveResult* s : {&r, &converged}) {
-                EXPECT_LE(s->energy.created, 1e-4 * s->energy.emitted);
-                EXPECT_NEAR(s->energy.absorbed + s->energy.unshot + s->energy.escaped(), s->energy.emitted,
-                            1e-4 * s->energy.emitted);
-              }
+  EXPECT_LT(r.shots, plainStop);
+  EXPECT_GT(plainUnshotShare(r.energy), stop);
+  const double reflected = std::min(r.energy.emitted, r.energy.received - r.energy.absorbed);
+  const double later = converged.energy.received - r.energy.received;
+  EXPECT_GT(later, 0.0);
+  EXPECT_LE(later, stop / (1.0 - albedo) * reflected);
+  for (const SolveResult* s : {&r, &converged}) {
+    EXPECT_LE(s->energy.created, 1e-4 * s->energy.emitted);
+    EXPECT_NEAR(s->energy.absorbed + s->energy.unshot + s->energy.escaped(), s->energy.emitted,
+                1e-4 * s->energy.emitted);
+  }
 
-              Scene closed;
-              addClosedBox(closed, glm::vec3(0.0f), glm::vec3(2.0f), addMaterial(closed, glm::vec3(albedo)));
-              const LightmapAtlas closedAtlas =
-                  buildAtlas(closed, findQuads(closed), AtlasParams{.density = 8.0f}, ctx);
-              const SolveResult c = solveFromTheFloor(closed, closedAtlas, glm::vec3(0.0f, 0.0f, 1.0f), stop);
-              EXPECT_EQ(c.shots, firstShotUnder(c, stop));
+  Scene closed;
+  addClosedBox(closed, glm::vec3(0.0f), glm::vec3(2.0f), addMaterial(closed, glm::vec3(albedo)));
+  const LightmapAtlas closedAtlas = buildAtlas(closed, findQuads(closed), AtlasParams{.density = 8.0f}, ctx);
+  const SolveResult c = solveFromTheFloor(closed, closedAtlas, glm::vec3(0.0f, 0.0f, 1.0f), stop);
+  EXPECT_EQ(c.shots, firstShotUnder(c, stop));
 }
 
 }  // namespace

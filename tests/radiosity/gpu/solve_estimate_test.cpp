@@ -96,6 +96,20 @@ TEST(SolveEstimate, ForeseesTheShotsFromWhereTheLightLands) {
   }
 }
 
+// The unshot stop drifts a little every shot with the share of the light that leaves the scene
+// (progressive_loop.cpp): that does not run the model again, as a refused stop's move (kStopRecheck) does.
+TEST(SolveEstimate, AStopThatDriftsALittleDoesNotRunTheModelAgain) {
+  const double stop = 0.01;
+  HandSolve s = handSolve(400, 3.0);
+  SolveEstimate e(s.strongPower);
+  while (s.shots < 100) feed(e, s, s.shoot(), stop);
+  ASSERT_GE(e.shotsLeft(s.shots), 0.0);
+  EXPECT_FALSE(e.wantsPatches(s.shots, stop, s.seconds));
+  EXPECT_FALSE(e.wantsPatches(s.shots, stop * 1.02, s.seconds));
+  EXPECT_FALSE(e.wantsPatches(s.shots, stop / 1.02, s.seconds));
+  EXPECT_TRUE(e.wantsPatches(s.shots, stop * kStopRecheck, s.seconds));
+}
+
 // One patch that gets back half of what it shoots: the share halves each shot, 1 → 1/64 in 6 shots, the
 // first two strong; with too little work to shoot them all, the rest is extrapolated at the same rate.
 TEST(SolveEstimate, TheModelShootsToTheStopAndExtrapolatesPastItsWork) {

@@ -140,8 +140,10 @@ int runCompare(const CompareOptions& o) {
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   ctx.setProgress(stderrProgress(false));
-  const double h = decomp::chooseVoxelSize(loaded.scene, params);
-  const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx, params.memoryLimit);
+  const decomp::GridChoice grid = decomp::chooseGrid(loaded.scene, params, ctx);
+  const double h = grid.voxel;
+  const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx, params.memoryLimit,
+                                                           grid.extent.trimmed ? grid.extent.box : Bounds{});
   const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);
   const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.load, o.bake, ctx);
 

@@ -89,6 +89,7 @@ int runDecompose(DecomposeOptions o) {
   std::printf("closed rooms (no portal, touching no other cell): %s; the rooms are %s through portals\n",
               closed.empty() ? "none" : closed.c_str(),
               d.connectedOpen ? "all reachable from each other" : "NOT all reachable from each other");
+  std::printf("%s\n", decomp::graphSummary(d).c_str());
   std::string apart;
   for (size_t c = 0; c < d.reachable.size(); ++c)
     if (!d.reachable[c] && !d.closedRoom[c]) apart += (apart.empty() ? "" : ", ") + d.graph.cells[c].name;

@@ -95,10 +95,13 @@ UnitsCheck checkUnits(const Scene& scene) {
   std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
   const double h = heights[heights.size() / 2];
   out.storeyHeight = h;
-  if (h <= 10.0 || double(personHeight) >= kPersonHeightShare * double(heights.size())) return out;
+  if (h <= kFeetStoreys.first || double(personHeight) >= kPersonHeightShare * double(heights.size()))
+    return out;
   const char* why = nullptr;
-  if (h <= 60.0)
+  if (h <= kFeetStoreys.second)
     out.unit = "feet", out.scale = 0.3048;
+  else if (h <= 60.0)
+    return out;  // a hangar in feet or an arena under its sky in metres: see kFeetStoreys
   else if (h <= 200.0)
     out.unit = "inches (Quake units)", out.scale = 0.0254;
   else if (h <= 600.0)

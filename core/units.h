@@ -26,13 +26,21 @@ struct UnitsCheck {
 
 /// The storey height is measured from up to kUnitsSamples points on the floors (faces whose normal is
 /// within 25° of +y, spread over them by area), each a ray straight up to the nearest face turned down.
-/// Storeys of 10 to 60 units are feet (--scale 0.3048), 60 to 200 inches (0.0254: Quake's units), 200 to
+/// Storeys of 10 to 20 units are feet (--scale 0.3048), 60 to 200 inches (0.0254: Quake's units), 200 to
 /// 600 centimetres or inches (a game's tall rooms: the warning names both), 600 to 2 000 inches (a game's
 /// open arenas: OpenArena's oa_ctf2 measures 864; millimetres would be rooms under 2 m), 2 000 to 6 000
 /// millimetres. OpenArena's maps measure 144 (dm4ish), 160 (aggressor), 218 (oa_dm1), 256 (kaos), 448
 /// (hydronex), 864 (oa_ctf2). A scene with spaces of a person's height in metres under a share of its
 /// floors is in metres whatever its median (a game level in metres under a sealed sky box 30–54 m up).
+/// Storeys of 20 to 60 units are told as nothing: in feet they would be 6–18 m over most of the floor, a
+/// hangar's and no building's storey, while a game level in metres measures just that from its open
+/// arenas up to its sky box (OpenArena's oa_shouse 30, islanddm 35, czest1tourney 54 at 0.03 m a unit).
+/// A level's proportions are a feet building's (16-unit steps are 0.48 m at 0.03 m a unit), so nothing in
+/// the heights tells the two apart; a metre scene called feet would be shrunk 3.3 times by a user who
+/// believed it, a hangar in feet left untold is only baked at its size.
 inline constexpr int kUnitsSamples = 256;
+/// The storey heights, units, read as feet: a room's 3–6 m.
+inline constexpr std::pair<double, double> kFeetStoreys{10.0, 20.0};
 /// Heights under a ceiling that are a room's or a corridor's in metres (and too low for one in feet).
 inline constexpr std::pair<float, float> kPersonHeightInMetres{1.8f, 6.0f};
 /// The share of the samples at those heights that says a scene is in metres whatever its median height.

@@ -13,12 +13,16 @@
 namespace cpgi::decomp {
 namespace {
 
-double choose2(double n) { return 0.5 * n * (n - 1.0); }
+double choose2(double n) {
+  return 0.5 * n * (n - 1.0);
+}
 
 }  // namespace
 
-VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit) {
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit,
+                           const Bounds& extent) {
   VoxelizeParams vp;
+  vp.extent = extent;
   vp.voxelSize = voxelSize;
   vp.memoryLimit = memoryLimit;
   const SolidGrid solid = voxelize(scene, vp, ctx);
@@ -44,7 +48,8 @@ std::vector<int32_t> labelsFromCells(const Scene& scene, const CellGraph& graph,
   for (const PortalQuad& q : graph.portals) {
     Bounds box;
     for (const glm::vec3& c : q.corners) box.extend(c - h * q.normal), box.extend(c + h * q.normal);
-    const glm::ivec3 lo = glm::max(f.voxelOf(box.lo) - 1, glm::ivec3(0)), hi = glm::min(f.voxelOf(box.hi) + 1, f.dims - 1);
+    const glm::ivec3 lo = glm::max(f.voxelOf(box.lo) - 1, glm::ivec3(0)),
+                     hi = glm::min(f.voxelOf(box.hi) + 1, f.dims - 1);
     const glm::vec3 o = q.corners[0], eu = q.corners[1] - o, ev = q.corners[3] - o;
     const float lu = glm::length(eu), lv = glm::length(ev);
     if (lu <= 0.0f || lv <= 0.0f) continue;
@@ -170,7 +175,8 @@ InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int out
   return out;
 }
 
-std::vector<PortalMatch> matchPortals(const std::vector<PortalQuad>& reference, const std::vector<PortalQuad>& candidate) {
+std::vector<PortalMatch> matchPortals(const std::vector<PortalQuad>& reference,
+                                      const std::vector<PortalQuad>& candidate) {
   std::vector<PortalMatch> out;
   for (size_t r = 0; r < reference.size(); ++r) {
     PortalMatch m;

@@ -20,7 +20,8 @@ struct VoxelSpace {
   GridFrame frame;
   std::vector<Space> space;
 };
-VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit = 0);
+VoxelSpace buildVoxelSpace(const Scene& scene, double voxelSize, Context& ctx, uint64_t memoryLimit = 0,
+                           const Bounds& extent = {});
 
 /// Labels the inside voxels of `space` by the cells of `graph` over `scene` (the scene the graph's triangle
 /// indices refer to; it must have the same geometry as the one `space` was made from). A cell with a
@@ -60,14 +61,15 @@ InteriorLabels interiorLabels(const std::vector<int32_t>& a, int countA, int out
                               const std::vector<int32_t>& b, int countB, int outsideB);
 
 struct PortalMatch {
-  int reference = -1;       ///< index into the reference portals
-  int candidate = -1;       ///< the candidate portal with the nearest centre, -1 when there is none
-  float centreDistance = 0; ///< metres
-  float normalAngle = 0;    ///< degrees between the planes (orientation ignored), in [0, 90]
-  float areaRatio = 0;      ///< candidate area / reference area
+  int reference = -1;        ///< index into the reference portals
+  int candidate = -1;        ///< the candidate portal with the nearest centre, -1 when there is none
+  float centreDistance = 0;  ///< metres
+  float normalAngle = 0;     ///< degrees between the planes (orientation ignored), in [0, 90]
+  float areaRatio = 0;       ///< candidate area / reference area
 };
 
 /// Each reference portal matched to the candidate portal whose centre is nearest.
-std::vector<PortalMatch> matchPortals(const std::vector<PortalQuad>& reference, const std::vector<PortalQuad>& candidate);
+std::vector<PortalMatch> matchPortals(const std::vector<PortalQuad>& reference,
+                                      const std::vector<PortalQuad>& candidate);
 
 }  // namespace cpgi::decomp

@@ -45,31 +45,81 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& p) {
   if (!(p.merge.galleryHeadroom >= 0.0)) throw InputError("gallery headroom", "must be ≥ 0 metres");
 }
 
-double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {
+namespace {
+
+// The automatic voxel for a grid over `size` metres: max(minAutoVoxel, cbrt(padded volume / budget)),
+// rounded up to a whole millimetre; `volume` gets the padded volume.
+double autoVoxel(glm::dvec3 size, const DecomposeParams& params, double& volume) {
+  size += 0.5;  // padded so flat scenes get a volume
+  volume = size.x * size.y * size.z;
+  const double fromBudget = std::cbrt(volume / params.autoVoxelBudget);
+  return std::ceil(std::max(params.minAutoVoxel, fromBudget) * 1000.0) / 1000.0;
+}
+
+}  // namespace
+
+GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context& ctx) {
+  GridChoice out;
+  double boundsVolume = 0.0;
+  autoVoxel(glm::dvec3(scene.bounds().size()), params, boundsVolume);
+  // The coarse pass costs its band (surface / voxel²) and its columns (footprint / voxel²): as fine as
+  // extentBudget of each allows, so a house's 3 m rooms on a square kilometre of terrain are still seen.
+  double area = 0.0;
+  for (const Triangle& t : scene.triangles) area += double(t.area());
+  const glm::dvec3 size = glm::dvec3(scene.bounds().size());
+  RoomExtentParams ep;
+  ep.voxel = std::max(params.minExtentVoxel, std::sqrt(std::max(area, size.x * size.z) / params.extentBudget));
+  ep.coverHeight = VoxelizeParams().coverHeight;
+  ep.margin = params.outsideMargin;
+  ep.minPartShare = params.minPartShare;
+  out.extent = findRoomExtent(scene, ep, ctx);
+  double volume = 0.0;
+  const double fromRooms = autoVoxel(glm::dvec3(out.extent.box.size()), params, volume);
+  std::ostringstream s;
   if (params.voxelSize > 0.0) {
-    if (how) *how = "given";
-    return params.voxelSize;
+    out.voxel = params.voxelSize;
+    s << "given";
+  } else {
+    out.voxel = fromRooms;
+    s << "auto: max(" << params.minAutoVoxel << " m, cbrt(padded "
+      << (out.extent.trimmed ? "rooms'" : "bounds") << " volume " << volume << " m3 / "
+      << params.autoVoxelBudget << " voxels) = " << std::cbrt(volume / params.autoVoxelBudget)
+      << " m), rounded up to 1 mm";
   }
-  const glm::dvec3 size = glm::dvec3(scene.bounds().size()) + 0.5;  // padded so flat scenes get a volume
-  const double fromBudget = std::cbrt(size.x * size.y * size.z / params.autoVoxelBudget);
-  const double h = std::ceil(std::max(params.minAutoVoxel, fromBudget) * 1000.0) / 1000.0;
-  if (how) {
-    std::ostringstream s;
-    s << "auto: max(" << params.minAutoVoxel << " m, cbrt(padded bounds volume " << size.x * size.y * size.z
-      << " m3 / " << params.autoVoxelBudget << " voxels) = " << fromBudget << " m), rounded up to 1 mm";
-    *how = s.str();
+  if (out.extent.trimmed) {
+    const Bounds& b = out.extent.box;
+    s << "; the grid spans where the rooms are, " << out.extent.keptParts << " of " << out.extent.parts
+      << " parts of covered ground (x " << b.lo.x << "…" << b.hi.x << ", y " << b.lo.y << "…" << b.hi.y
+      << ", z " << b.lo.z << "…" << b.hi.z << " m; the bounds' padded volume " << boundsVolume << " m3), "
+      << out.extent.farTriangles << " triangles wholly past it";
   }
-  return h;
+  out.how = s.str();
+  return out;
+}
+
+double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how) {
+  Context ctx;
+  GridChoice g = chooseGrid(scene, params, ctx);
+  if (how) *how = std::move(g.how);
+  return g.voxel;
 }
 
 EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params, Context& ctx) {
   EmptySpace e;
-  e.voxelSize = chooseVoxelSize(scene, params, &e.voxelChoice);
+  const GridChoice grid = chooseGrid(scene, params, ctx);
+  e.voxelSize = grid.voxel;
+  e.voxelChoice = grid.how;
+  if (grid.extent.farTriangles > 0)
+    ctx.warn("decompose: " + params.sourceName + ": " + std::to_string(grid.extent.farTriangles) +
+             " triangles lie past the grid round the rooms (far scenery, " +
+             std::to_string(grid.extent.parts - grid.extent.keptParts) +
+             " parts of covered ground left out): each goes to the nearest cell");
   VoxelizeParams vp;
   vp.voxelSize = e.voxelSize;
   vp.sealRadius = params.sealRadius;
   vp.memoryLimit = params.memoryLimit;
   vp.outsideMargin = params.outsideMargin;
+  if (grid.extent.trimmed) vp.extent = grid.extent.box;
   e.solid = voxelize(scene, vp, ctx);
   e.space = classifySpace(scene, e.solid, params.classify, ctx);
   e.distance = distanceToGeometry(e.solid, e.space, ctx);

@@ -32,18 +32,28 @@
 #include "decomposition/merge.h"
 #include "decomposition/portal_merge.h"
 #include "decomposition/portals.h"
+#include "decomposition/voxelize.h"
 #include "decomposition/watershed.h"
 
 namespace cpgi::decomp {
 
 struct DecomposeParams {
-  /// Voxel edge, metres; 0 = choose from the scene: max(minAutoVoxel, cbrt(padded bounds volume /
-  /// autoVoxelBudget)), rounded up to a whole millimetre. Explicit values must be in (0, 10].
+  /// Voxel edge, metres; 0 = choose from the scene: max(minAutoVoxel, cbrt(padded volume /
+  /// autoVoxelBudget)), rounded up to a whole millimetre, over the part of the scene where its rooms are
+  /// (findRoomExtent: its bounds unless far pieces or open ground lie round them). Explicit values must be
+  /// in (0, 10]; the grid spans that part either way.
   double voxelSize = 0.0;
   double minAutoVoxel = 0.05;      ///< metres: finer than needed for 0.7 m doors at 14 voxels
   double autoVoxelBudget = 4.0e6;  ///< voxels the automatic choice aims at
-  double sealRadius = 0.0;         ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
-  uint64_t memoryLimit = 0;        ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
+  /// The pass that finds where the rooms are (findRoomExtent) runs at max(minExtentVoxel, sqrt(max(surface
+  /// area, footprint) / extentBudget)): its band and its columns each about extentBudget voxels at most,
+  /// a fraction of the real pass's, and fine enough for a 1 m gap under a roof in any room.
+  double minExtentVoxel = 0.1;     ///< metres
+  double extentBudget = 4.0e6;     ///< voxels
+  /// See RoomExtentParams::minPartShare.
+  double minPartShare = RoomExtentParams().minPartShare;
+  double sealRadius = 0.0;   ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
+  uint64_t memoryLimit = 0;  ///< bytes, see VoxelizeParams::memoryLimit; 0: no limit
   /// Metres of open space kept around the covered part of the scene, see VoxelizeParams::outsideMargin.
   double outsideMargin = VoxelizeParams().outsideMargin;
   ClassifyParams classify;
@@ -117,7 +127,15 @@ struct Decomposition {
   size_t sealedVoxels = 0;
 };
 
-/// Picks the voxel size for `scene` by the rule in DecomposeParams::voxelSize; `how` gets the rule in words.
+/// The voxel size and the part of the scene the grid spans.
+struct GridChoice {
+  double voxel = 0.0;  ///< metres
+  RoomExtent extent;
+  std::string how;  ///< the rule in words
+};
+/// Picks the grid for `scene` by the rule in DecomposeParams::voxelSize.
+GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context& ctx);
+/// chooseGrid's voxel; `how` gets the rule in words.
 double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::string* how = nullptr);
 
 /// Stages 1–3, shared by decompose and decomposeFromVolumes: the voxel size, the solid grid, empty space

@@ -1,5 +1,7 @@
 #include "decomposition/report.h"
 
+#include <algorithm>
+
 namespace cpgi::decomp {
 namespace {
 
@@ -114,6 +116,39 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
   j["timings_s"] = timings;
   j["warnings"] = ctx.warnings();
   return j;
+}
+
+std::string graphSummary(const Decomposition& d) {
+  int reached = 0, closed = 0;
+  std::string closedNames, apartNames;
+  for (size_t c = 0; c < d.graph.cells.size(); ++c) {
+    const std::string& name = d.graph.cells[c].name;
+    if (c < d.reachable.size() && d.reachable[c]) ++reached;
+    if (c < d.closedRoom.size() && d.closedRoom[c])
+      ++closed, closedNames += (closedNames.empty() ? "" : ", ") + name;
+    else if (c < d.reachable.size() && !d.reachable[c])
+      apartNames += (apartNames.empty() ? "" : ", ") + name;
+  }
+  const int parts = std::max(d.regions, 1);
+  const int apart = std::max(0, parts - closed - (reached > 0 ? 1 : 0));
+  auto count = [](int n, const char* one, const char* many) {
+    return (n == 1 ? std::string("one ") + one : std::to_string(n) + " " + many);
+  };
+  std::string line = "graph: " + count(parts, "part", "parts") + " — ";
+  std::string sep;
+  if (reached > 0) {
+    line += parts == 1 ? "every cell reached through portals"
+                       : "the main one of " + count(reached, "cell", "cells") + " joined by portals";
+    sep = ", ";
+  }
+  if (closed > 0)
+    line += sep + count(closed, "closed room", "closed rooms") + " with no opening (" + closedNames +
+            (closed == 1 ? ": lit by its own lamps alone)" : ": each lit by its own lamps alone)"),
+        sep = ", ";
+  if (apart > 0)
+    line += sep + count(apart, "part", "parts") + " apart that no portal joins to the main one (" +
+            apartNames + ")";
+  return line;
 }
 
 }  // namespace cpgi::decomp

@@ -1,6 +1,8 @@
 // cells.json: the graph and the numbers behind it (design.md §3), for people and for the checks.
 #pragma once
 
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "core/context.h"
@@ -14,5 +16,10 @@ namespace cpgi::decomp {
 /// "stage.part" entries for parts of a stage; total sums the stages},
 /// warnings, and the checks (leaking_faces, thin_wall_area_m2, split_triangles).
 nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams& params, const Context& ctx);
+
+/// The portal graph's parts in one line for a user: "graph: 3 parts — the main one of 12 cells joined by
+/// portals, 2 closed rooms with no opening (s1-6m2, s2-21m2: lit by their own lamps alone)". A closed
+/// room is a part of its own; a part apart is neither the main one nor a closed room (a fault).
+std::string graphSummary(const Decomposition& d);
 
 }  // namespace cpgi::decomp

@@ -34,6 +34,9 @@ struct VoxelizeParams {
   /// terrain, a slab or a wall alone never is. Rooms are always covered; a space open to the sky is
   /// reached from the grid's top and is outside anyway.
   double coverHeight = 1.0;
+  /// The part of the scene to grid (findRoomExtent); empty: the scene's bounds. Triangles past it (and the
+  /// padding) are left out of the grid.
+  Bounds extent;
 };
 
 /// What one voxel of the grid costs at the decomposition's peak, the assignment of triangles to cells
@@ -56,21 +59,50 @@ inline constexpr double kBandBytesPerSurfaceVoxel = 120.0;
 /// first dense grids when the surface is large for the volume (many thin layers), whichever is more.
 double decompositionBytes(double voxels, double voxel, double surfaceArea);
 
+struct RoomExtentParams {
+  double voxel = 0.1;        ///< the coarse pass's voxel edge, metres: the scene's bounds' automatic one
+  double coverHeight = 1.0;  ///< metres, see VoxelizeParams::coverHeight
+  /// Metres: covered columns this close are one part, and this much is kept round the kept parts (see
+  /// VoxelizeParams::outsideMargin); infinite: the scene's bounds.
+  double margin = 2.0;
+  /// A part is kept when the triangles whose centre stands over it are at least this share of the most
+  /// any part has: a building's wings are kept, a far piece of scenery (a game level's distant set of a
+  /// few large faces, a lone box) is not.
+  double minPartShare = 0.1;
+};
+
+struct RoomExtent {
+  Bounds box;               ///< what the grid should span: the scene's bounds unless trimmed
+  bool trimmed = false;     ///< box is smaller than the scene's bounds
+  int parts = 0;            ///< parts of covered columns found
+  int keptParts = 0;        ///< of those, inside box
+  size_t farTriangles = 0;  ///< triangles wholly outside box (trimmed only)
+};
+
+/// Where the scene's rooms are: a coarse sparse pass (the same unsigned distance band as voxelize) finds
+/// the covered columns (a floor under a roof, see coverHeight), joins those within `margin` of each other
+/// into parts, and keeps the parts holding at least minPartShare of the triangles the fullest one holds; the
+/// box is their columns and the margin round them across, and every solid voxel over those columns up. So a
+/// level's far scenery, a terrain around a house or a lone distant object neither coarsens the automatic
+/// voxel nor widens the grid. The box is the scene's bounds when nothing is covered, when the margin is
+/// infinite, or when the kept parts reach within a coarse voxel of the bounds on every side.
+RoomExtent findRoomExtent(const Scene& scene, const RoomExtentParams& params, Context& ctx);
+
 struct SolidGrid {
   GridFrame frame;
-  std::vector<uint8_t> solid;            ///< 1 where a triangle passes within half a voxel (or sealed)
+  std::vector<uint8_t> solid;  ///< 1 where a triangle passes within half a voxel (or sealed)
   /// The closest triangle to each voxel within two voxels of the surface, -1 elsewhere (from OpenVDB's
   /// polygon index grid); lets later stages tell the front of a surface from its back.
   std::vector<int32_t> nearestTriangle;
-  int sealVoxels = 0;                    ///< the closing radius actually used, voxels
-  size_t sealedVoxels = 0;               ///< voxels the closing turned solid
+  int sealVoxels = 0;       ///< the closing radius actually used, voxels
+  size_t sealedVoxels = 0;  ///< voxels the closing turned solid
 };
 
 /// Rasterises every triangle by OpenVDB's meshToVolume (unsigned distance, 2-voxel band); a voxel is
 /// solid when its centre is within half a voxel of a triangle, which makes any plane at least one face-
-/// connected layer thick, so 6-connected empty space cannot leak through it. The grid is the scene's
-/// bounds padded by 2 + seal voxels, cut across the horizontal to params.outsideMargin around the covered
-/// columns: its border is empty except where open ground (a terrain) runs through the cut.
+/// connected layer thick, so 6-connected empty space cannot leak through it. The grid is params.extent (or
+/// the scene's bounds) padded by 2 + seal voxels, cut across the horizontal to params.outsideMargin around
+/// the covered columns: its border is empty except where open ground (a terrain) runs through the cut.
 /// @throws InputError("voxel size", ...) when the grid would exceed params.maxVoxels, or the decomposition
 /// over it params.memoryLimit.
 SolidGrid voxelize(const Scene& scene, const VoxelizeParams& params, Context& ctx);

@@ -136,8 +136,12 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
 constexpr double kRoomsCpuPerVoxel = 4e-7;
 
 double roomsCpuSeconds(const Scene& scene) {
-  const double voxel = decomp::chooseVoxelSize(scene, decomp::DecomposeParams{});
-  const glm::dvec3 size = glm::dvec3(scene.bounds().size()) + 2.0 * decomp::DecomposeParams{}.outsideMargin;
+  // The grid spans where the rooms are (decomp::chooseGrid), not the bounds: a level's far scenery would
+  // otherwise make a fine voxel's grid look hundreds of times larger than it is.
+  Context quiet;
+  const decomp::GridChoice grid = decomp::chooseGrid(scene, decomp::DecomposeParams{}, quiet);
+  const double voxel = grid.voxel;
+  const glm::dvec3 size = glm::dvec3(grid.extent.box.size()) + 2.0 * decomp::DecomposeParams{}.outsideMargin;
   return kRoomsCpuPerVoxel * (size.x / voxel + 1.0) * (size.y / voxel + 1.0) * (size.z / voxel + 1.0);
 }
 

@@ -90,6 +90,28 @@ TEST(Units, ALevelInMetresUnderATallSkyIsNotTakenForFeet) {
   EXPECT_NE(inches.warning.find("--scale 0.0254"), std::string::npos) << inches.warning;
 }
 
+// An open arena in metres under its sky box 35 m up with no corridor at all (OpenArena's islanddm, oa_shouse,
+// czest1tourney): storeys of 35 would be 11 m in feet, no building's storey, so no line; the same arena in
+// Quake units is still told, and so is a house of 13 ft storeys in feet.
+TEST(Units, AnArenaUnderASkyTensOfMetresUpIsNotTakenForFeet) {
+  auto arena = [](float unit) {
+    Scene s;
+    s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+    addQuad(s, {0, 0, 0}, {0, 0, 60 * unit}, {60 * unit, 0, 0});          // the arena's floor
+    addQuad(s, {0, 35 * unit, 0}, {60 * unit, 0, 0}, {0, 0, 60 * unit});  // its sky
+    return s;
+  };
+  const UnitsCheck metres = checkUnits(arena(1.0f));
+  EXPECT_NEAR(metres.storeyHeight, 35.0, 1e-3);
+  EXPECT_EQ(metres.warning, "");
+  const UnitsCheck quake = checkUnits(arena(1.0f / 0.03f));
+  EXPECT_NE(quake.warning.find("--scale 0.0254"), std::string::npos) << quake.warning;
+  const UnitsCheck feet = checkUnits(twoRooms(4.0f / 0.3048f, 5.0f / 0.3048f, 13.0f));
+  EXPECT_NE(feet.warning.find("feet: --scale 0.3048"), std::string::npos) << feet.warning;
+  // A storey of 19 ft (5.8 m) is still a storey: the feet band's top.
+  EXPECT_NE(checkUnits(twoRooms(13.0f, 16.0f, 19.0f)).warning.find("--scale 0.3048"), std::string::npos);
+}
+
 TEST(Units, AHouseInCentimetresIsToldAndScaleMakesItMetres) {
   test::TempDir dir;
   const std::string file = dir / "house_cm.glb";

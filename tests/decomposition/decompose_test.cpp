@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "decomposition/compare.h"
+#include "decomposition/report.h"
 #include "tests/decomposition/scene_builder.h"
 
 namespace cpgi::decomp {
@@ -270,6 +271,53 @@ TEST(Decompose, ChoosesTheVoxelFromTheScene) {
   EXPECT_NEAR(chooseVoxelSize(big.scene(), p), std::cbrt(200.5 * 20.5 * 100.5 / 4e6), 1e-3);
 }
 
+// The grid follows where the rooms are: a lone 2 m box 200 m away (a game level's far scenery, a shed at
+// the end of a plot) and a square kilometre of terrain under the building change neither the automatic
+// voxel nor the rooms' cells; the far box's triangles go to a cell, said in one warning.
+Scene withFarBox(Scene scene) {
+  SceneBuilder far;
+  far.box({200, 0, 0}, {202, 2, 2});
+  for (const Triangle& t : far.scene().triangles) scene.triangles.push_back(t);
+  return scene;
+}
+
+Scene onTerrain(Scene scene) {
+  SceneBuilder ground;
+  ground.quad({-500, -0.5f, -500}, {-500, -0.5f, 500}, {500, -0.5f, 500}, {500, -0.5f, -500});  // facing up
+  for (const Triangle& t : ground.scene().triangles) scene.triangles.push_back(t);
+  return scene;
+}
+
+TEST(Decompose, AFarObjectOrATerrainLeavesTheVoxelAndTheRoomsAsTheyWere) {
+  const Scene rooms = makeThreeRooms();
+  DecomposeParams p;
+  p.minAutoVoxel = 0.1;  // the automatic voxel's floor, for speed: the rule above it is the same
+  Context ctx;
+  const Decomposition alone = decompose(rooms, p, ctx);
+  for (const Scene& scene : {withFarBox(rooms), onTerrain(rooms)}) {
+    Context c;
+    const Decomposition d = decompose(scene, p, c);
+    EXPECT_DOUBLE_EQ(d.frame.voxel, alone.frame.voxel) << d.voxelChoice;
+    EXPECT_NE(d.voxelChoice.find("where the rooms are"), std::string::npos) << d.voxelChoice;
+    EXPECT_LT(d.frame.dims.x, alone.frame.dims.x + int(std::ceil(2 * 2.0 / d.frame.voxel)) + 1);
+    EXPECT_EQ(d.leakingFaces, 0u);
+    // The same rooms voxel for voxel (an outside may come with the terrain: the rooms are what count).
+    std::vector<size_t> a, b;
+    for (size_t k = 0; k < alone.cellStats.size(); ++k)
+      if (int(k) != alone.outsideCell) a.push_back(alone.cellStats[k].voxels);
+    for (size_t k = 0; k < d.cellStats.size(); ++k)
+      if (int(k) != d.outsideCell) b.push_back(d.cellStats[k].voxels);
+    std::sort(a.begin(), a.end()), std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b);
+    size_t given = 0;
+    for (const Cell& cell : d.graph.cells) given += cell.triangles.size();
+    EXPECT_GE(given, scene.triangles.size());  // every triangle in some cell (split ones count twice)
+  }
+  Context c;
+  decompose(withFarBox(rooms), p, c);
+  EXPECT_TRUE(anyWarningContains(c, "12 triangles lie past the grid round the rooms")) << c.warnings().size();
+}
+
 }  // namespace
 }  // namespace cpgi::decomp
 
@@ -315,6 +363,10 @@ TEST(Decompose, ASealedRoomIsAClosedRoomAndACupboardNoCell) {
   for (size_t c = 0; c < d.graph.cells.size(); ++c) EXPECT_EQ(bool(d.reachable[c]), int(c) != closed) << c;
   EXPECT_EQ(d.leakingFaces, 0u);
   EXPECT_TRUE(anyWarningContains(ctx, "is a closed room"));
+  EXPECT_EQ(graphSummary(d),
+            "graph: 2 parts — the main one of 3 cells joined by portals, one closed room with "
+            "no opening (" +
+                d.graph.cells[size_t(closed)].name + ": lit by its own lamps alone)");
 }
 
 // Issue 46 (oa_dm1 at 0.15 m): a sealed flat cavity, 4 × 0.4 × 4 m inside (6.4 m3, over the minimum

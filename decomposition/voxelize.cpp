@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -232,9 +230,6 @@ RoomExtent findRoomExtent(const Scene& scene, const RoomExtentParams& params, Co
     if (keep(part[i]) && columns[i].covered(gap))
       kept.extend({int(i % size_t(f.dims.x)), int(i / size_t(f.dims.x))});
   for (int p = 0; p < out.parts; ++p) out.keptParts += keep(p);
-  if (std::getenv("CPGI_DEBUG_EXTENT"))
-    for (int p = 0; p < out.parts; ++p)
-      std::fprintf(stderr, "extent part %d: %zu triangles\n", p, triangles[size_t(p)]);
   // Across: the kept parts' columns and the margin round them; up: the triangles whose centre stands over
   // them (not every solid voxel over them: a far sky's giant faces pass over a level's columns too).
   const glm::ivec2 lo = glm::max(kept.lo - reach, glm::ivec2(0));

@@ -39,6 +39,7 @@ struct CompareLightOptions {
   std::string report;  ///< a folder for report.html with the error heat map, or empty
   std::string bench;   ///< with `report`: bench results for its speed-against-accuracy chart, or empty
   std::string scene;   ///< A read at B's texels through this scene when their atlases differ, or empty
+  LoadOptions load;    ///< how `scene` is read (--keep-contacts: as a reference traced uncut was)
 };
 
 struct Lightmap {
@@ -147,7 +148,7 @@ void readOnAtlasOf(const CompareLightOptions& o, const Lightmap& b, Lightmap& a)
                 << "'s texels through " << scene << "\n";
   }
   std::vector<char> unread;
-  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height, &unread);
+  a.rgb = sampleOnReferenceAtlas(scene, o.a, a.rgb, o.b, b.area, b.rgb.width, b.rgb.height, &unread, o.load);
   a.area = b.area;  // 0 where A has nothing to read: left out of every figure
   const size_t left = size_t(std::count(unread.begin(), unread.end(), char(1)));
   for (size_t i = 0; i < unread.size(); ++i)
@@ -237,7 +238,7 @@ int runCompareLight(const CompareLightOptions& o) {
   std::string seamsWhy;
   j["portal_seams"] = portalSeamsJson(o.scene.empty() ? recordedScene(o.b, o.a) : o.scene, o.b, a.rgb.pixels,
                                       b.rgb.pixels, reflectors ? reflectorArea(area, emissive) : area, b.area,
-                                      b.rgb.width, b.rgb.height, seamsWhy);
+                                      b.rgb.width, b.rgb.height, seamsWhy, o.load);
   if (!o.report.empty()) writeReportPage(o, j, a, b, area, emissive, bench);
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -297,6 +298,11 @@ void addCompareLightCommand(CLI::App& app, CommandFn& selected) {
                   "from; A is read at B's texel centres as an engine reads A's baked.glb (bilinear), B's "
                   "atlas rebuilt from the scene with the options its report.json records (default: the scene "
                   "B's or A's report.json names, when that file is there)")
+      ->group("Input");
+  cmd->add_flag_callback(
+         "--keep-contacts", [opts] { opts->load.cutContacts = false; },
+         "With --scene: read the scene with its faces whole where other geometry runs through them, as "
+         "B was made (a reference traced before faces were cut at their contacts, or with --keep-contacts)")
       ->group("Input");
   cmd->callback([opts, &selected] { selected = [opts] { return runCompareLight(*opts); }; });
 }

@@ -61,15 +61,15 @@ LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scene
 
 ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
                                 const std::string& bDir, const std::vector<float>& bArea, int bWidth,
-                                int bHeight, std::vector<char>* unreadTexels) {
-  const LoadedScene scene = loadScene(scenePath);
+                                int bHeight, std::vector<char>* unreadTexels, const LoadOptions& load) {
+  const LoadedScene scene = loadScene(scenePath, load);
   const LightmapAtlas atlas = rebuildReferenceAtlas(scene.scene, scenePath, bDir, bArea, bWidth, bHeight);
 
   const fs::path glb = previewGlb(aDir);
   if (!fs::is_regular_file(glb))
     throw InputError(glb.string(),
                      "no such file (A must be a bake or a full reference to be read at B's texels)");
-  const LoadedScene baked = loadScene(glb.string());
+  const LoadedScene baked = loadScene(glb.string(), load);
   if (baked.lightmapUVs.size() != baked.scene.triangles.size())
     throw InputError(glb.string(), "has no lightmap coordinates (TEXCOORD_1) on every triangle");
   const std::vector<int32_t> source = matchTriangles(scene.scene, baked.scene);

@@ -7,6 +7,7 @@
 
 #include "core/image_io.h"
 #include "core/scene.h"
+#include "core/scene_io.h"
 #include "radiosity/lightmap/atlas.h"
 
 namespace cpgi::cli {
@@ -23,9 +24,12 @@ LightmapAtlas rebuildReferenceAtlas(const Scene& scene, const std::string& scene
 /// the scene's triangles by their corners, else (a bake on the automatic cells, which splits triangles on
 /// its portal planes) the piece of A's that holds the texel's point. Throws InputError naming the file
 /// when the scene does not give B's atlas or A's baked.glb lacks a surface B's texels lie on; with
-/// `unreadTexels`, up to 1 % of B's valid texels may lie on none, marked there (1) and left 0.
+/// `unreadTexels`, up to 1 % of B's valid texels may lie on none, marked there (1) and left 0. `load`:
+/// how the scene is read, as B was made (a reference traced before faces were cut at their contacts, or
+/// with --keep-contacts, needs cutContacts off to give B's atlas).
 ImageRGB sampleOnReferenceAtlas(const std::string& scenePath, const std::string& aDir, const ImageRGB& aImage,
                                 const std::string& bDir, const std::vector<float>& bArea, int bWidth,
-                                int bHeight, std::vector<char>* unreadTexels = nullptr);
+                                int bHeight, std::vector<char>* unreadTexels = nullptr,
+                                const LoadOptions& load = {});
 
 }  // namespace cpgi::cli

@@ -22,7 +22,7 @@ nlohmann::json number(double v) {
 nlohmann::json portalSeamsJson(const std::string& scenePath, const std::string& bDir,
                                const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
                                const std::vector<float>& weight, const std::vector<float>& bArea, int width,
-                               int height, std::string& why) {
+                               int height, std::string& why, const LoadOptions& load) {
   if (scenePath.empty()) {
     why = "no scene (give --scene)";
     return nullptr;
@@ -30,7 +30,7 @@ nlohmann::json portalSeamsJson(const std::string& scenePath, const std::string& 
   LightmapAtlas atlas;
   std::vector<SeamPortal> portals;
   try {
-    const LoadedScene scene = loadScene(scenePath);
+    const LoadedScene scene = loadScene(scenePath, load);
     for (const PortalQuad& p : scene.cells.portals) portals.push_back({p.name, p.corners});
     if (portals.empty()) {
       why = scenePath + " has no hand-made portals";

@@ -8,6 +8,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/scene_io.h"
+
 namespace cpgi::cli {
 
 /// "portal_seams": per portal of `scenePath`'s hand-made cells {name, measured, texels_a, texels_b, step,
@@ -19,7 +21,7 @@ namespace cpgi::cli {
 nlohmann::json portalSeamsJson(const std::string& scenePath, const std::string& bDir,
                                const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
                                const std::vector<float>& weight, const std::vector<float>& bArea, int width,
-                               int height, std::string& why);
+                               int height, std::string& why, const LoadOptions& load = {});
 
 /// The seams' lines of compare-light's text output.
 void printPortalSeams(const nlohmann::json& seams);

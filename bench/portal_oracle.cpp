@@ -10,7 +10,8 @@
 // RMSE relative to the destination's mean.
 //
 //   cpgi_portal_oracle SCENE BAKE_DIR PORTAL_NAME SOURCE_CELL [--density D] [--portal-texel M]
-//                      [--arrival-rays N] [--portal-points K] [--lobe-width W]
+//                      [--arrival-rays N] [--portal-points K] [--lobe-width W] [--keep-contacts 1]
+// --keep-contacts 1: the scene read with its faces whole, as a bake made before the contact cuts was.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -62,6 +63,7 @@ int main(int argc, char** argv) {
   }
   float density = 10.0f, portalTexel = 0.1f, lobeWidth = 0.2f;
   int arrivalRays = 4096, portalPoints = 4;
+  LoadOptions load;
   for (int a = 5; a + 1 < argc; a += 2) {
     const std::string o = argv[a];
     const float v = std::stof(argv[a + 1]);
@@ -75,13 +77,15 @@ int main(int argc, char** argv) {
       portalPoints = int(v);
     else if (o == "--lobe-width")
       lobeWidth = v;
+    else if (o == "--keep-contacts")
+      load.cutContacts = v == 0.0f;
     else {
       std::fprintf(stderr, "unknown option %s\n", o.c_str());
       return 1;
     }
   }
   try {
-    const LoadedScene loaded = loadScene(argv[1]);
+    const LoadedScene loaded = loadScene(argv[1], load);
     const Scene& scene = loaded.scene;
     const CellGraph& cells = loaded.cells;
     AtlasParams params;

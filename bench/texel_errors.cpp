@@ -2,13 +2,18 @@
 // its chart's edge, the bake's and the reference's radiosity (R + G + B, then per channel), its chart's
 // material and the reference's noise, as CSV
 // for a script to group (by cell, by distance to an edge, by surface). The atlas is rebuilt from the scene
-// with the bake's atlas options, so that texel positions come without a glTF reader.
+// with the reference's atlas options, so that texel positions come without a glTF reader; a bake on an
+// atlas of its own (`--density auto`) is read at the reference's texel centres as compare-light --scene
+// reads it (bilinear, through its baked.glb).
 //
-//   cpgi_texel_errors SCENE BAKE_DIR REFERENCE_DIR (--density D | --texels-per-quad N) > texels.csv
+//   cpgi_texel_errors SCENE BAKE_DIR REFERENCE_DIR (--density D | --texels-per-quad N) [--keep-contacts]
+//     > texels.csv
+// --keep-contacts: the scene read with its faces whole, as a reference traced before the contact cuts was.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "apps/compare_light_resample.h"
 #include "core/image_io.h"
 #include "core/quads.h"
 #include "core/scene_io.h"
@@ -25,14 +30,18 @@ const std::vector<float>* channel(const std::vector<cpgi::ExrChannel>& channels,
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 6) {
-    std::fprintf(stderr, "usage: %s SCENE BAKE_DIR REFERENCE_DIR (--density D | --texels-per-quad N)\n",
+  if (argc != 6 && !(argc == 7 && std::string(argv[6]) == "--keep-contacts")) {
+    std::fprintf(stderr,
+                 "usage: %s SCENE BAKE_DIR REFERENCE_DIR (--density D | --texels-per-quad N) "
+                 "[--keep-contacts]\n",
                  argv[0]);
     return 1;
   }
   using namespace cpgi;
   try {
-    const LoadedScene loaded = loadScene(argv[1]);
+    LoadOptions load;
+    load.cutContacts = argc != 7;
+    const LoadedScene loaded = loadScene(argv[1], load);
     AtlasParams params;
     if (std::string(argv[4]) == "--density")
       params.density = std::stof(argv[5]);
@@ -41,9 +50,12 @@ int main(int argc, char** argv) {
     Context ctx;
     const LightmapAtlas atlas = buildAtlas(loaded.scene, findQuads(loaded.scene), params, ctx);
     std::vector<ExrChannel> bakeChannels, refChannels;
-    const ImageRGB bake = readExr(std::string(argv[2]) + "/lightmap.exr", &bakeChannels);
+    ImageRGB bake = readExr(std::string(argv[2]) + "/lightmap.exr", &bakeChannels);
     const ImageRGB ref = readExr(std::string(argv[3]) + "/lightmap.exr", &refChannels);
-    if (bake.width != atlas.width || ref.width != atlas.width || bake.height != atlas.height) {
+    if (bake.width != ref.width || bake.height != ref.height)
+      bake = cli::sampleOnReferenceAtlas(argv[1], argv[2], bake, argv[3], atlas.area, atlas.width,
+                                         atlas.height, nullptr, load);
+    if (ref.width != atlas.width || ref.height != atlas.height) {
       std::fprintf(stderr, "the lightmaps are not of this atlas (%dx%d)\n", atlas.width, atlas.height);
       return 1;
     }

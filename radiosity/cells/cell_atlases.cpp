@@ -108,12 +108,13 @@ void mapPatchTexels(const LightmapAtlas& from, int fromPatch, const LightmapAtla
 
 // A cell's atlas settings: the scene's per-triangle densities (bake --density auto) carried over to the
 // cell scene's triangles, so that its charts are the whole scene's; its portals take the plain density.
-AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs) {
+AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs, float portalDensityScale) {
   AtlasParams p = params;
-  if (params.triangleDensity.empty()) return p;
-  p.triangleDensity.assign(cs.scene.triangles.size(), params.density);
+  if (params.texelsPerQuad > 0 || (params.triangleDensity.empty() && portalDensityScale == 1.0f)) return p;
+  p.triangleDensity.assign(cs.scene.triangles.size(), params.density * portalDensityScale);
   for (size_t i = 0; i < cs.ownTriangles; ++i)
-    p.triangleDensity[i] = params.triangleDensity.at(cs.globalTriangle[i]);
+    p.triangleDensity[i] =
+        params.triangleDensity.empty() ? params.density : params.triangleDensity.at(cs.globalTriangle[i]);
   return p;
 }
 
@@ -131,8 +132,10 @@ std::vector<CellState> buildCellAtlases(const Scene& scene, const CellGraph& gra
     CellState& s = cells[c];
     s.cs = makeCellScene(scene, graph, int(c));
     for (size_t i = 0; i < s.cs.ownTriangles; ++i) localIndex[s.cs.globalTriangle[i]] = int32_t(i);
-    s.atlas = buildAtlas(s.cs.scene, findQuads(s.cs.scene),
-                         cellAtlasParams(s.boundary ? params.boundaryAtlas : params.atlas, s.cs), cellCtx[c]);
+    s.atlas = buildAtlas(
+        s.cs.scene, findQuads(s.cs.scene),
+        cellAtlasParams(s.boundary ? params.boundaryAtlas : params.atlas, s.cs, params.portalDensityScale),
+        cellCtx[c]);
     s.patchOfTriangle = patchOfTriangle(s.atlas, s.cs.scene.triangles.size());
     for (size_t k = 0; k < s.cs.portals.size(); ++k) {
       std::array<int, 2> patches{s.patchOfTriangle[s.cs.ownTriangles + 2 * k],

@@ -73,8 +73,9 @@ struct PortalLink {
 };
 
 /// `params` for cell scene `cs`'s atlas: per-triangle densities (AtlasParams::triangleDensity, one per
-/// scene triangle) carried to its own triangles; its portals get `params.density`.
-AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs);
+/// scene triangle) carried to its own triangles; its portals get `params.density` × `portalDensityScale`
+/// (CellSolveParams::portalDensityScale; with texelsPerQuad, the quads' own count).
+AtlasParams cellAtlasParams(const AtlasParams& params, const CellScene& cs, float portalDensityScale = 1.0f);
 
 /// Every cell's scene and atlas (cells side by side), its own emitters pending. Boundary cells
 /// (CellSolveParams::boundaryCells) get params.boundaryAtlas. `localIndex` receives, per scene triangle,

@@ -38,6 +38,8 @@ void checkCells(const Scene& scene, const CellGraph& graph, const CellSolveParam
   if (params.portals == PortalLight::Binned &&
       !(params.portalBinRays >= 64 && params.portalBinRays <= 1 << 20))
     throw InputError("solver", "rays per portal texel for binned portals must be in [64, 1048576]");
+  if (!(params.portalDensityScale >= 1.0f && params.portalDensityScale <= 8.0f))
+    throw InputError("solver", "the portals' density scale must be in [1, 8]");
 }
 
 // The result before the first round: every cell's name, emitted power and texels.

@@ -55,6 +55,13 @@ struct CellSolveParams {
   float lobeMinWidth = 0.2f;
   /// Binned portals: rays per sending portal texel that find its arrival bins (>= 64).
   int portalBinRays = 2048;
+  /// The portals' texels per metre as a multiple of the atlas's density (>= 1). A portal texel re-emits
+  /// one distribution of directions from its whole area; what comes through a door varies across it
+  /// (one jamb sees the lit room's wall, the other its floor), and a wall at right angles to the door
+  /// sees each texel from 45–90°. At the solve's 0.2 m a room lit through one door read a strip +30 %
+  /// beside one −30 % on that wall; at 0.1 m it is the global bake's within its noise (bench/RESULTS.md,
+  /// "The portals' texels").
+  float portalDensityScale = 2.0f;
   /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
   /// (radiosity/cells/cell_workers.h). Any value gives the same result as 1.
   int jobs = 1;

@@ -14,7 +14,7 @@
 //    R7's back wall still read a strip +30 % at the corner beside the door's wall and a band −15 % beside
 //    it, and the room was 3.4 points of RMSE over the global bake's against the reference; with the
 //    portals at twice the density, 0.0 (bench/RESULTS.md, "The portals' texels"); the back wall against
-//    the global bake texel by texel 0.173 → 0.132.
+//    the global bake texel by texel 0.173 → 0.132, at 2.4× the cells' CPU: not the default.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -114,8 +114,8 @@ TEST_F(PortalRegions, TheWallBesideADoorAtRightAnglesIsTheGlobalBakesTexelByTexe
               rmse);
   // In bins of equal projected solid angle (12 × 12) it read 0.268; in rings of equal angle (18 × 18)
   // 0.173, the portals' texels at the solve's 0.2 m; at twice the density (CellSolveParams::
-  // portalDensityScale) 0.132.
-  EXPECT_LT(rmse, 0.15);
+  // portalDensityScale, not the default) 0.132.
+  EXPECT_LT(rmse, 0.21);
 }
 
 }  // namespace

@@ -57,21 +57,64 @@ bool shareEdge(const Triangle& a, const Triangle& b) {
 
 struct Segment {
   glm::dvec3 a, b;
+  /// Where a solid standing on the face's front meets it (the outline of its foot), rather than where one
+  /// runs through it.
+  bool standing = false;
 };
 
-// Per scene triangle, the segments where other triangles meet it (coplanar overlaps left out: a face lying
-// on another hides nothing the cut would show).
+// The segment of face `f` under the foot of `s` when `s` stands on f's front: one edge of s lies within
+// `standOff` of f's plane and the rest of s in front of it. The edge is projected onto the plane (exactly:
+// a foot a few millimetres up must cut as one that touches) and clipped to f.
+std::optional<Segment> footOn(const Triangle& f, const Triangle3& fExact, const Triangle& s,
+                              double standOff) {
+  const glm::dvec3 o(f.p[0]);
+  const glm::dvec3 n = glm::normalize(glm::cross(glm::dvec3(f.p[1]) - o, glm::dvec3(f.p[2]) - o));
+  int low[3], lows = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = glm::dot(glm::dvec3(s.p[k]) - o, n);
+    if (d < -standOff) return std::nullopt;  // through f or behind it
+    if (d <= standOff) low[lows++] = k;
+  }
+  if (lows != 2) return std::nullopt;  // a corner on f, or s lying on it
+  const CGAL::Cartesian_converter<K, Exact> exact;
+  const Exact::Triangle_3 face = exact(fExact);
+  const Exact::Plane_3 plane = face.supporting_plane();
+  const Exact::Segment_3 edge(plane.projection(exact(point(s.p[low[0]]))),
+                              plane.projection(exact(point(s.p[low[1]]))));
+  const auto hit = CGAL::intersection(edge, face);
+  if (!hit) return std::nullopt;
+  if (const Exact::Segment_3* g = boost::get<Exact::Segment_3>(&*hit))
+    return Segment{vec(g->source()), vec(g->target()), true};
+  return std::nullopt;
+}
+
+// Per scene triangle, the segments where other triangles meet it: where one runs through it, and where
+// one stands on its front within `standOff` (coplanar overlaps left out: a face lying on another hides
+// nothing the cut would show).
 std::vector<std::vector<Segment>> contactSegments(const Scene& scene, const std::vector<Triangle3>& tris,
-                                                  const std::vector<char>& valid) {
+                                                  const std::vector<char>& valid, double standOff) {
   std::vector<Box> boxes;
   for (uint32_t i = 0; i < tris.size(); ++i)
-    if (valid[i]) boxes.emplace_back(tris[i].bbox(), i);
+    if (valid[i]) {
+      const CGAL::Bbox_3 b = tris[i].bbox();
+      boxes.emplace_back(CGAL::Bbox_3(b.xmin() - standOff, b.ymin() - standOff, b.zmin() - standOff,
+                                      b.xmax() + standOff, b.ymax() + standOff, b.zmax() + standOff),
+                         i);
+    }
   std::vector<std::vector<Segment>> out(tris.size());
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
     const uint32_t i = x.info(), j = y.info();
-    const glm::vec3 ni = scene.triangles[i].geometricNormal(), nj = scene.triangles[j].geometricNormal();
-    if (std::abs(glm::dot(ni, nj)) > 1.0f - 1e-6f) return;  // parallel: apart, or coplanar
-    if (shareEdge(scene.triangles[i], scene.triangles[j]) || !CGAL::do_intersect(tris[i], tris[j])) return;
+    const Triangle &ti = scene.triangles[i], &tj = scene.triangles[j];
+    if (std::abs(glm::dot(ti.geometricNormal(), tj.geometricNormal())) > 1.0f - 1e-6f)
+      return;  // parallel: apart, or coplanar
+    if (shareEdge(ti, tj)) return;
+    // A solid standing on a face meets it along its foot's edges alone, which lie on the solid's own
+    // boundary: only the face under it is cut.
+    const std::optional<Segment> jOnI = footOn(ti, tris[i], tj, standOff);
+    const std::optional<Segment> iOnJ = footOn(tj, tris[j], ti, standOff);
+    if (jOnI) out[i].push_back(*jOnI);
+    if (iOnJ) out[j].push_back(*iOnJ);
+    if (jOnI || iOnJ || !CGAL::do_intersect(tris[i], tris[j])) return;
     const CGAL::Cartesian_converter<K, Exact> exact;
     const auto hit = CGAL::intersection(exact(tris[i]), exact(tris[j]));
     if (!hit) return;
@@ -100,7 +143,7 @@ std::vector<Segment> joinCollinear(std::vector<Segment> segs, double tol) {
         const double lo = std::min(t0, t1), hi = std::max(t0, t1);
         if (lo > len + tol || hi < -tol) continue;
         const double from = std::min(0.0, lo), to = std::max(len, hi);
-        segs[i] = {a + from * u, a + to * u};
+        segs[i] = {a + from * u, a + to * u, segs[i].standing || segs[j].standing};
         segs.erase(segs.begin() + std::ptrdiff_t(j));
         joined = true;
       }
@@ -125,10 +168,11 @@ class BuriedTest {
     tree_.build();
   }
 
-  bool operator()(const glm::dvec3& p, const glm::dvec3& n) const {
+  /// `lift`: metres off the face the rays leave from (past a foot standing up to that far off it).
+  bool operator()(const glm::dvec3& p, const glm::dvec3& n, double lift) const {
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 t = glm::normalize(glm::cross(n, helper)), b = glm::cross(n, t);
-    const Plain::Point_3 origin = plain(p + params_.lift * n);
+    const Plain::Point_3 origin = plain(p + lift * n);
     const int rays = std::max(1, params_.rays);
     int behind = 0;
     for (int k = 0; k < rays; ++k) {
@@ -212,24 +256,48 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
   const auto onBorder = [&](const glm::dvec2& p) {
     return std::min(p.x, 1.0 - p.x) * w < tol || std::min(p.y, 1.0 - p.y) * h < tol;
   };
+  bool standing = false;
   for (const Segment& g : segs) {
     const glm::dvec2 a(glm::dot(g.a - c0, u) / (w * w), glm::dot(g.a - c0, v) / (h * h));
     const glm::dvec2 b(glm::dot(g.b - c0, u) / (w * w), glm::dot(g.b - c0, v) / (h * h));
-    if (glm::length(g.b - g.a) < tol) continue;
+    const double length = glm::length(g.b - g.a);
+    if (length < tol) continue;
     const bool sConst = std::abs(a.x - b.x) * w < tol, tConst = std::abs(a.y - b.y) * h < tol;
-    // Only cuts from edge to edge: a solid standing inside a face (furniture on a floor) would cut it into
-    // rectangles round its foot, each then given texels for its own light by `--density auto` (the furnished
-    // house: 3.5 times the texels); its shade at the foot is a contact shadow, not a strip.
     const double sLo = std::min(a.y, b.y), sHi = std::max(a.y, b.y), tLo = std::min(a.x, b.x),
                  tHi = std::max(a.x, b.x);
+    if (g.standing) {
+      // A foot's outline: an edge of it narrower than minFootprint (a table's leg) or askew to the quad
+      // cuts nothing, and one within standOff of the quad's edge lies on that edge (a wardrobe set a few
+      // millimetres off the wall leaves no sliver behind it); its ends likewise.
+      if (length < params.minFootprint || (!sConst && !tConst)) continue;
+      const double near = params.standOff;
+      const auto snapped = [&](double lo, double hi, double size) {
+        return std::pair(lo * size < near ? 0.0 : lo, (1.0 - hi) * size < near ? 1.0 : hi);
+      };
+      if (sConst) {
+        const double at = 0.5 * (a.x + b.x);
+        if (at * w < near || (1.0 - at) * w < near) continue;
+        const auto [lo, hi] = snapped(sLo, sHi, h);
+        sCuts.push_back({at, lo, hi});
+      } else {
+        const double at = 0.5 * (a.y + b.y);
+        if (at * h < near || (1.0 - at) * h < near) continue;
+        const auto [lo, hi] = snapped(tLo, tHi, w);
+        tCuts.push_back({at, lo, hi});
+      }
+      standing = true;
+      continue;
+    }
+    // A solid through the face cuts it from edge to edge only: one sunk into it mid-face (a cabinet 5 cm into
+    // a slab) meets it along no edge of its own and shades its foot as a contact shadow.
     if (sConst) {
-      const double s = 0.5 * (a.x + b.x);
-      if (s * w > tol && (1.0 - s) * w > tol && sLo * h < tol && (1.0 - sHi) * h < tol)
-        sCuts.push_back({s, sLo, sHi});
+      const double at = 0.5 * (a.x + b.x);
+      if (at * w > tol && (1.0 - at) * w > tol && sLo * h < tol && (1.0 - sHi) * h < tol)
+        sCuts.push_back({at, sLo, sHi});
     } else if (tConst) {
-      const double t = 0.5 * (a.y + b.y);
-      if (t * h > tol && (1.0 - t) * h > tol && tLo * w < tol && (1.0 - tHi) * w < tol)
-        tCuts.push_back({t, tLo, tHi});
+      const double at = 0.5 * (a.y + b.y);
+      if (at * h > tol && (1.0 - at) * h > tol && tLo * w < tol && (1.0 - tHi) * w < tol)
+        tCuts.push_back({at, tLo, tHi});
     } else if (onBorder(a) && onBorder(b)) {
       return std::nullopt;  // askew from edge to edge: cut by triangles
     }
@@ -260,12 +328,13 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
     return covered(tCuts, tb[size_t(j)], sb[size_t(i)], sb[size_t(i) + 1], h);
   };
   const glm::dvec3 n = glm::normalize(glm::cross(u, v));
+  const double lift = params.lift + (standing ? params.standOff : 0.0);
   const auto at = [&](double s, double t) { return c0 + s * u + t * v; };
   std::vector<char> visible(size_t(ns * nt)), taken(size_t(ns * nt), 0);
   for (int j = 0; j < nt; ++j)
     for (int i = 0; i < ns; ++i) {
       const glm::dvec3 centre = at(0.5 * (sb[i] + sb[i + 1]), 0.5 * (tb[j] + tb[j + 1]));
-      visible[size_t(j * ns + i)] = !buried(centre, n);
+      visible[size_t(j * ns + i)] = !buried(centre, n, lift);
       if (!visible[size_t(j * ns + i)]) {
         ++r.buried;
         r.buriedArea += (sb[i + 1] - sb[i]) * w * (tb[j + 1] - tb[j]) * h;
@@ -319,14 +388,14 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
   const glm::dvec3 e1 = glm::normalize(p1 - o), e2 = glm::cross(n, e1);
   const std::array<glm::dvec3, 3> corner{o, p1, p2};
   // An end within the tolerance of a corner or an edge is put on it: no sliver along the edge.
-  const auto snap = [&](glm::dvec3 p) {
+  const auto snap = [&](glm::dvec3 p, double near) {
     p -= glm::dot(p - o, n) * n;
     for (const glm::dvec3& c : corner)
-      if (glm::length(p - c) < tol) return c;
+      if (glm::length(p - c) < near) return c;
     for (int k = 0; k < 3; ++k) {
       const glm::dvec3 a = corner[k], d = corner[(k + 1) % 3] - a;
       const double f = std::clamp(glm::dot(p - a, d) / glm::dot(d, d), 0.0, 1.0);
-      if (glm::length(a + f * d - p) < tol) return a + f * d;
+      if (glm::length(a + f * d - p) < near) return a + f * d;
     }
     return p;
   };
@@ -350,12 +419,21 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
     return Exact::Point_2(glm::dot(p - o, e1), glm::dot(p - o, e2));
   };
   std::vector<std::pair<glm::dvec3, glm::dvec3>> inside;
+  bool standing = false;
   for (const Segment& g : segs) {
-    const glm::dvec3 a = snap(g.a), b = snap(g.b);
-    // Edge to edge only, as on quads (cutQuad).
+    if (g.standing) {
+      // A foot's outline, as on quads (cutQuad): not a leg's, not along the face's edge.
+      const glm::dvec3 a = snap(g.a, params.standOff), b = snap(g.b, params.standOff);
+      if (glm::length(b - a) >= params.minFootprint && !onEdge(a, b))
+        inside.push_back({a, b}), standing = true;
+      continue;
+    }
+    const glm::dvec3 a = snap(g.a, tol), b = snap(g.b, tol);
+    // Through-cuts from edge to edge only, as on quads (cutQuad).
     if (glm::length(b - a) >= tol && !onEdge(a, b) && onBoundary(a) && onBoundary(b))
       inside.push_back({a, b});
   }
+  const double lift = params.lift + (standing ? params.standOff : 0.0);
   if (inside.empty()) return r;
   if (inside.size() > 4 * params.maxPiecesPerFace) {
     r.leftWhole = true;
@@ -373,7 +451,7 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
     }
     const double area = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     if (area < tol * tol) continue;
-    if (buried((p[0] + p[1] + p[2]) / 3.0, n)) {
+    if (buried((p[0] + p[1] + p[2]) / 3.0, n, lift)) {
       ++r.buried, r.buriedArea += area;
       continue;
     }
@@ -397,7 +475,7 @@ ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams
     tris[i] = Triangle3(point(t.p[0]), point(t.p[1]), point(t.p[2]));
     valid[i] = !tris[i].is_degenerate() && t.area() > 0.0f;
   }
-  const std::vector<std::vector<Segment>> segs = contactSegments(scene, tris, valid);
+  const std::vector<std::vector<Segment>> segs = contactSegments(scene, tris, valid, params.standOff);
   if (std::all_of(segs.begin(), segs.end(), [](const auto& s) { return s.empty(); })) return stats;
   const BuriedTest buried(scene, tris, valid, params);
   const QuadSet quads = findQuads(scene);

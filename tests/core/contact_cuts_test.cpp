@@ -65,26 +65,100 @@ TEST(ContactCuts, AFaceThroughASlabIsCutAtItsFacesAndTheStripInsideDropped) {
 }
 
 // A wall (a closed box) across a floor from edge to edge: the floor cut at its two faces, the strip under it
-// dropped; a box standing inside the floor cuts nothing (its shade at the foot is a contact shadow, and
-// pieces round it would each get texels of their own).
-TEST(ContactCuts, AWallAcrossAFloorCutsItAndABoxStandingInsideItDoesNot) {
+// dropped, as is the foot of a box standing inside the floor.
+TEST(ContactCuts, AWallAcrossAFloorAndABoxStandingOnItCutIt) {
   Scene s = twoNodes();
   quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});  // facing +y
   box(s, {1.9f, -0.3f, -1}, {2.1f, 2.5f, 5});
   box(s, {0.5f, 0, 0.5f}, {1.5f, 1, 1.5f});
   CellGraph cells;
-  const ContactCuts c = cutAtContacts(s, cells);
-  EXPECT_NEAR(area(s, 0), 16.0 - 0.2 * 4.0, 1e-4);
-  size_t floorTriangles = 0;
+  cutAtContacts(s, cells);
+  EXPECT_NEAR(area(s, 0), 16.0 - 0.2 * 4.0 - 1.0, 1e-4);
   for (const Triangle& t : s.triangles)
     if (t.node == 0) {
-      ++floorTriangles;
       const float lo = std::min({t.p[0].x, t.p[1].x, t.p[2].x}),
                   hi = std::max({t.p[0].x, t.p[1].x, t.p[2].x});
       EXPECT_TRUE(hi <= 1.9f + 1e-5f || lo >= 2.1f - 1e-5f)
           << "a floor piece under the wall: x " << lo << " to " << hi;
     }
-  EXPECT_EQ(floorTriangles, 4u);  // two rectangles, the box inside the floor no cut
+}
+
+// The floor's pieces of node 0 outside the rectangle [lo, hi] of x and z (a foot), none inside it.
+void expectFloorAroundFoot(const Scene& s, glm::vec2 lo, glm::vec2 hi) {
+  size_t pieces = 0;
+  for (const Triangle& t : s.triangles) {
+    if (t.node != 0) continue;
+    ++pieces;
+    EXPECT_GT(t.geometricNormal().y, 0.99f);
+    const glm::vec3 c = t.centroid();
+    EXPECT_FALSE(c.x > lo.x && c.x < hi.x && c.z > lo.y && c.z < hi.y)
+        << "a floor piece under the foot at " << c.x << ", " << c.z;
+    for (const glm::vec3& p : t.p) {  // no piece straddles the foot's outline
+      const bool inX = p.x > lo.x + 1e-4f && p.x<hi.x - 1e-4f, inZ = p.z> lo.y + 1e-4f && p.z < hi.y - 1e-4f;
+      EXPECT_FALSE(inX && inZ) << "a corner under the foot at " << p.x << ", " << p.z;
+    }
+  }
+  EXPECT_EQ(pieces % 2, 0u);  // rectangles, quads again
+}
+
+// A cabinet standing on a floor (its foot on the floor's plane, or a few millimetres above it): the floor
+// is cut along its outline into rectangles, the piece under it gone, the floor round it whole.
+TEST(ContactCuts, ABoxStandingOnAFloorTakesTheFloorUnderItAway) {
+  for (const float gap : {0.0f, 0.003f}) {
+    Scene s = twoNodes();
+    quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0}, 1, 0);  // facing +y
+    box(s, {1.0f, gap, 1.5f}, {2.0f, 0.8f, 2.1f});
+    CellGraph cells;
+    cells.cells.push_back(Cell{"room", {0, 1}, {}});
+    const ContactCuts c = cutAtContacts(s, cells);
+    EXPECT_EQ(c.facesCut, 1u) << "gap " << gap;
+    EXPECT_NEAR(c.buriedArea, 0.6, 1e-4) << "gap " << gap;
+    EXPECT_NEAR(area(s, 0), 16.0 - 0.6, 1e-4) << "gap " << gap;
+    expectFloorAroundFoot(s, {1.0f, 1.5f}, {2.0f, 2.1f});
+    for (const Triangle& t : s.triangles) {
+      if (t.node == 0) EXPECT_EQ(t.material, 1u);
+    }
+    size_t inCell = 0;
+    for (uint32_t i : cells.cells[0].triangles) inCell += s.triangles[i].node == 0;
+    EXPECT_EQ(inCell, cells.cells[0].triangles.size());
+    EXPECT_GT(inCell, 2u);
+  }
+}
+
+// A wardrobe against a wall, standing on the floor 2 mm off the wall: the wall behind it and the floor under
+// it go, and no 2 mm sliver of floor stays behind it.
+TEST(ContactCuts, AWardrobeAgainstAWallTakesTheWallBehindItAndTheFloorUnderItAway) {
+  Scene s = twoNodes();
+  quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});           // floor, facing +y
+  quad(s, {0, 0, 0}, {0, 2.5f, 0}, {0, 0, 4}, 0, 2);  // wall x = 0, facing +x
+  box(s, {0.002f, 0, 1.0f}, {0.6f, 2.0f, 2.2f});
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.facesCut, 2u);
+  EXPECT_NEAR(area(s, 0), 16.0 - 0.6 * 1.2, 1e-4);       // the floor: to the wall's foot
+  EXPECT_NEAR(area(s, 2), 2.5 * 4.0 - 2.0 * 1.2, 1e-4);  // the wall: the wardrobe 2 mm off it
+  expectFloorAroundFoot(s, {0.0f, 1.0f}, {0.6f, 2.2f});
+  for (const Triangle& t : s.triangles)
+    if (t.node == 2) {
+      const glm::vec3 m = t.centroid();
+      EXPECT_FALSE(m.y < 2.0f && m.z > 1.0f && m.z < 2.2f) << "a wall piece behind the wardrobe";
+    }
+}
+
+// A box near a floor but not on it (2 cm up: a shelf's underside), a table's leg on it (5 cm square), and a
+// box under the floor's back: the floor stays as it was.
+TEST(ContactCuts, AFloorNearAFootOrUnderALegIsNotCut) {
+  Scene s = twoNodes();
+  quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});  // facing +y
+  box(s, {1.0f, 0.02f, 1.0f}, {2.0f, 0.8f, 2.0f});
+  box(s, {3.0f, 0.0f, 3.0f}, {3.05f, 0.7f, 3.05f});
+  box(s, {0.5f, -1.0f, 2.5f}, {1.5f, 0.0f, 3.5f});
+  const std::vector<Triangle> before = s.triangles;
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.facesCut, 0u);
+  ASSERT_EQ(s.triangles.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(s.triangles[i].p, before[i].p);
 }
 
 // A floor that is one loose triangle (no quad) is cut by a constrained triangulation in its plane.
@@ -101,6 +175,23 @@ TEST(ContactCuts, ALooseTriangleIsCutByATriangulationInItsPlane) {
     if (t.node == 0) {
       EXPECT_GT(t.geometricNormal().y, 0.99f);
       EXPECT_FALSE(t.centroid().x > 1.0f && t.centroid().x < 1.5f);
+    }
+}
+
+// A loose-triangle floor under a box standing on it: cut by the triangulation along the foot, the area
+// under it gone exactly.
+TEST(ContactCuts, ABoxOnALooseTriangleIsCutOutByTheTriangulation) {
+  Scene s = twoNodes();
+  s.triangles.push_back(Triangle{{glm::vec3(0, 0, 0), glm::vec3(0, 0, 4), glm::vec3(4, 0, 0)},
+                                 {glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0)}});
+  box(s, {0.5f, 0, 0.5f}, {1.5f, 1, 1.5f});
+  CellGraph cells;
+  cutAtContacts(s, cells);
+  EXPECT_NEAR(area(s, 0), 8.0 - 1.0, 1e-4);
+  for (const Triangle& t : s.triangles)
+    if (t.node == 0) {
+      const glm::vec3 c = t.centroid();
+      EXPECT_FALSE(c.x > 0.5f && c.x < 1.5f && c.z > 0.5f && c.z < 1.5f);
     }
 }
 

@@ -9,7 +9,9 @@
 #include "core/sky.h"
 #include "radiosity/bake/bake.h"
 #include "radiosity/lightmap/lightmap_sampling.h"
+#include "radiosity/reference/reference_tracer.h"
 #include "scenes/contact_scenes.h"
+#include "scenes/scene_builder.h"
 #include "tests/support/in_process_bake.h"
 
 namespace cpgi {
@@ -189,6 +191,68 @@ TEST(ContactStrip, TheFinThroughTheSlabHasNoBandAtTheCeilingAndNoLightAboveTheFl
   EXPECT_GT(band[1], 0.95);
   EXPECT_LT(band[0], 0.85)
       << "the whole fin's lookup no longer reaches into the slab: the test shows nothing";
+}
+
+// A 4 x 2.6 x 4 m room lit by a 1 x 1 m panel under its ceiling, a cabinet standing on its floor and a
+// wardrobe against its west wall (x = 0), both boxes without a bottom as furniture comes.
+SeedScene makeFurnishedRoom() {
+  SeedScene s;
+  SceneBuilder b(s.scene);
+  const uint32_t white = b.material("white", glm::vec3(0.7f)), wood = b.material("wood", glm::vec3(0.4f));
+  const uint32_t lamp = b.material("lamp", glm::vec3(0.8f), glm::vec3(60.0f));
+  SceneBuilder::Room room;
+  room.name = "room";
+  room.hi = {4.0f, 2.6f, 4.0f};
+  room.floor = room.ceiling = room.south = room.north = room.west = room.east = white;
+  b.room(room);
+  b.quad({1.5f, 2.59f, 1.5f}, {1.0f, 0, 0}, {0, 0, 1.0f}, lamp, b.node("room/lamp"));  // facing down
+  b.boxOnFloor({2.2f, 0.0f, 1.2f}, {3.2f, 0.8f, 1.8f}, wood, b.node("room/cabinet"));
+  b.boxOnFloor({0.0f, 0.0f, 2.4f}, {0.6f, 2.0f, 3.6f}, wood, b.node("room/wardrobe"));
+  return s;
+}
+
+// The dark halo round a foot: the floor 1, 2 and 5 cm off the cabinet's and the wardrobe's feet and the wall
+// 2 cm above the wardrobe, read as an engine reads the lightmap, against the path-traced light at those
+// points. A whole floor's lookup there takes the black of its texels under the furniture; cut along the
+// foot, the floor's chart ends there with its own gutter.
+TEST(ContactStrip, TheFloorRoundAFurnituresFootHasNoDarkHalo) {
+  const glm::vec3 up(0, 1, 0), east(1, 0, 0);
+  struct Probe {
+    glm::vec3 x, normal;
+  };
+  std::vector<Probe> probes;
+  for (const float d : {0.01f, 0.02f, 0.05f, 0.2f}) {
+    probes.push_back({{2.7f, 0.0f, 1.8f + d}, up});    // north of the cabinet
+    probes.push_back({{0.6f + d, 0.0f, 3.0f}, up});    // east of the wardrobe
+    probes.push_back({{0.0f, 2.0f + d, 3.0f}, east});  // the wall above the wardrobe
+  }
+  SeedScene truth = makeFurnishedRoom();
+  std::vector<SamplePoint> points;
+  for (const Probe& p : probes) points.push_back({p.x + 1e-4f * p.normal, p.normal, glm::vec3(0.7f)});
+  ReferenceParams refParams;
+  refParams.spp = 1024;
+  Context ctx;
+  const ReferenceResult ref = traceReference(truth.scene, points, refParams, ctx);
+  double worst[2] = {0.0, 0.0};  // the largest shortfall against the reference, whole and cut
+  for (const bool cut : {false, true}) {
+    SeedScene room = makeFurnishedRoom();
+    if (cut) cutAtContacts(room.scene, room.cells);
+    BakeSettings settings = settingsFor(Case{Backend::Rays, false});
+    settings.atlas.densityAuto = false;  // 10 texels a metre: a halo of half a texel, 5 cm
+    const BakeResult r = test::bakeHere(room.scene, room.cells, settings);
+    const LookedUp at(room.scene, r);
+    for (size_t k = 0; k < probes.size(); ++k) {
+      const double looked = at(probes[k].x, probes[k].normal);
+      const double truthAt = double(ref.radiosity[k].r + ref.radiosity[k].g + ref.radiosity[k].b) / 3.0;
+      ASSERT_GT(looked, 0.0) << "cut " << cut << ": no face holds probe " << k;
+      std::printf(
+          "furnished room, cut %d, probe %zu (%.2f, %.2f, %.2f): looked up %.4g, traced %.4g (%.3f)\n", cut,
+          k, probes[k].x.x, probes[k].x.y, probes[k].x.z, looked, truthAt, looked / truthAt);
+      if (k < 9) worst[cut] = std::max(worst[cut], 1.0 - looked / truthAt);
+    }
+  }
+  EXPECT_GT(worst[0], 0.3) << "the whole floor's lookup shows no halo: the test shows nothing";
+  EXPECT_LT(worst[1], 0.15);
 }
 
 }  // namespace

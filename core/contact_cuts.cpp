@@ -330,11 +330,22 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
   const glm::dvec3 n = glm::normalize(glm::cross(u, v));
   const double lift = params.lift + (standing ? params.standOff : 0.0);
   const auto at = [&](double s, double t) { return c0 + s * u + t * v; };
+  // A cell is buried when its centre and its corners, pulled standOff into it, all are: a foot edge too short
+  // to cut (a 5 cm panel's end) leaves a cell that runs past the foot, of which only a part is covered.
+  const auto buriedCell = [&](glm::dvec2 lo, glm::dvec2 hi) {
+    if (!buried(at(0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y)), n, lift)) return false;
+    const double ds = std::min(params.standOff / w, 0.25 * (hi.x - lo.x)),
+                 dt = std::min(params.standOff / h, 0.25 * (hi.y - lo.y));
+    for (const glm::dvec2 c : {glm::dvec2(lo.x + ds, lo.y + dt), glm::dvec2(hi.x - ds, lo.y + dt),
+                               glm::dvec2(hi.x - ds, hi.y - dt), glm::dvec2(lo.x + ds, hi.y - dt)})
+      if (!buried(at(c.x, c.y), n, lift)) return false;
+    return true;
+  };
   std::vector<char> visible(size_t(ns * nt)), taken(size_t(ns * nt), 0);
   for (int j = 0; j < nt; ++j)
     for (int i = 0; i < ns; ++i) {
-      const glm::dvec3 centre = at(0.5 * (sb[i] + sb[i + 1]), 0.5 * (tb[j] + tb[j + 1]));
-      visible[size_t(j * ns + i)] = !buried(centre, n, lift);
+      const glm::dvec2 lo(sb[i], tb[j]), hi(sb[i + 1], tb[j + 1]);
+      visible[size_t(j * ns + i)] = !buriedCell(lo, hi);
       if (!visible[size_t(j * ns + i)]) {
         ++r.buried;
         r.buriedArea += (sb[i + 1] - sb[i]) * w * (tb[j + 1] - tb[j]) * h;
@@ -451,7 +462,15 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
     }
     const double area = 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     if (area < tol * tol) continue;
-    if (buried((p[0] + p[1] + p[2]) / 3.0, n, lift)) {
+    // Buried when its centroid and its corners pulled standOff towards it all are, as a quad's cells.
+    const glm::dvec3 centroid = (p[0] + p[1] + p[2]) / 3.0;
+    const bool covered =
+        buried(centroid, n, lift) && std::all_of(p.begin(), p.end(), [&](const glm::dvec3& c) {
+          const double d = glm::length(centroid - c);
+          return buried(c + std::min(params.standOff, 0.5 * d) / std::max(d, 1e-12) * (centroid - c), n,
+                        lift);
+        });
+    if (covered) {
       ++r.buried, r.buriedArea += area;
       continue;
     }

@@ -116,7 +116,9 @@ TEST(ContactCuts, ABoxStandingOnAFloorTakesTheFloorUnderItAway) {
     EXPECT_NEAR(area(s, 0), 16.0 - 0.6, 1e-4) << "gap " << gap;
     expectFloorAroundFoot(s, {1.0f, 1.5f}, {2.0f, 2.1f});
     for (const Triangle& t : s.triangles) {
-      if (t.node == 0) EXPECT_EQ(t.material, 1u);
+      if (t.node == 0) {
+        EXPECT_EQ(t.material, 1u);
+      }
     }
     size_t inCell = 0;
     for (uint32_t i : cells.cells[0].triangles) inCell += s.triangles[i].node == 0;
@@ -176,6 +178,17 @@ TEST(ContactCuts, ALooseTriangleIsCutByATriangulationInItsPlane) {
       EXPECT_GT(t.geometricNormal().y, 0.99f);
       EXPECT_FALSE(t.centroid().x > 1.0f && t.centroid().x < 1.5f);
     }
+}
+
+// A 5 cm panel standing on a floor: its ends too short to cut, its long sides cut the floor into a strip
+// that runs past its ends; that strip is not under the panel and stays, so the floor has no hole.
+TEST(ContactCuts, APanelsStripPastItsEndsStays) {
+  Scene s = twoNodes();
+  quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});  // facing +y
+  box(s, {1.0f, 0, 2.0f}, {3.0f, 1.5f, 2.05f});
+  CellGraph cells;
+  cutAtContacts(s, cells);
+  EXPECT_NEAR(area(s, 0), 16.0, 1e-4);
 }
 
 // A loose-triangle floor under a box standing on it: cut by the triangulation along the foot, the area

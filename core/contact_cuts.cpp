@@ -246,17 +246,19 @@ struct AxisCut {
   double at, lo, hi;
 };
 
-// A quad cut into rectangles: the grid through its cuts, each cell buried or not, the visible cells merged
-// into the largest rectangles that cross no cut. nullopt when a cut runs askew to its edges.
-std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::vector<Segment>& segs,
-                                  const BuriedTest& buried, const ContactCutParams& params) {
-  const glm::dvec3 c0(q.corners[0]), u = glm::dvec3(q.corners[1]) - c0, v = glm::dvec3(q.corners[3]) - c0;
+// A quad's cuts in its (s, t) frame from the segments on it: through-cuts from edge to edge, feet's outlines
+// (QuadCuts::standing when there is one). nullopt when a through-cut runs askew to its edges.
+struct QuadCuts {
+  std::vector<AxisCut> s, t;
+  bool standing = false;
+};
+std::optional<QuadCuts> quadCuts(const std::vector<Segment>& segs, const glm::dvec3& c0, const glm::dvec3& u,
+                                 const glm::dvec3& v, const ContactCutParams& params) {
   const double w = glm::length(u), h = glm::length(v), tol = params.tolerance;
-  std::vector<AxisCut> sCuts, tCuts;
+  QuadCuts cuts;
   const auto onBorder = [&](const glm::dvec2& p) {
     return std::min(p.x, 1.0 - p.x) * w < tol || std::min(p.y, 1.0 - p.y) * h < tol;
   };
-  bool standing = false;
   for (const Segment& g : segs) {
     const glm::dvec2 a(glm::dot(g.a - c0, u) / (w * w), glm::dot(g.a - c0, v) / (h * h));
     const glm::dvec2 b(glm::dot(g.b - c0, u) / (w * w), glm::dot(g.b - c0, v) / (h * h));
@@ -278,14 +280,14 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
         const double at = 0.5 * (a.x + b.x);
         if (at * w < near || (1.0 - at) * w < near) continue;
         const auto [lo, hi] = snapped(sLo, sHi, h);
-        sCuts.push_back({at, lo, hi});
+        cuts.s.push_back({at, lo, hi});
       } else {
         const double at = 0.5 * (a.y + b.y);
         if (at * h < near || (1.0 - at) * h < near) continue;
         const auto [lo, hi] = snapped(tLo, tHi, w);
-        tCuts.push_back({at, lo, hi});
+        cuts.t.push_back({at, lo, hi});
       }
-      standing = true;
+      cuts.standing = true;
       continue;
     }
     // A solid through the face cuts it from edge to edge only: one sunk into it mid-face (a cabinet 5 cm into
@@ -293,15 +295,28 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
     if (sConst) {
       const double at = 0.5 * (a.x + b.x);
       if (at * w > tol && (1.0 - at) * w > tol && sLo * h < tol && (1.0 - sHi) * h < tol)
-        sCuts.push_back({at, sLo, sHi});
+        cuts.s.push_back({at, sLo, sHi});
     } else if (tConst) {
       const double at = 0.5 * (a.y + b.y);
       if (at * h > tol && (1.0 - at) * h > tol && tLo * w < tol && (1.0 - tHi) * w < tol)
-        tCuts.push_back({at, tLo, tHi});
+        cuts.t.push_back({at, tLo, tHi});
     } else if (onBorder(a) && onBorder(b)) {
       return std::nullopt;  // askew from edge to edge: cut by triangles
     }
   }
+  return cuts;
+}
+
+// A quad cut into rectangles: the grid through its cuts, each cell buried or not, the visible cells merged
+// into the largest rectangles that cross no cut. nullopt when a cut runs askew to its edges.
+std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::vector<Segment>& segs,
+                                  const BuriedTest& buried, const ContactCutParams& params) {
+  const glm::dvec3 c0(q.corners[0]), u = glm::dvec3(q.corners[1]) - c0, v = glm::dvec3(q.corners[3]) - c0;
+  const double w = glm::length(u), h = glm::length(v), tol = params.tolerance;
+  const std::optional<QuadCuts> cuts = quadCuts(segs, c0, u, v, params);
+  if (!cuts) return std::nullopt;
+  const std::vector<AxisCut>&sCuts = cuts->s, &tCuts = cuts->t;
+  const bool standing = cuts->standing;
   FaceResult r;
   if (sCuts.empty() && tCuts.empty()) return r;
   std::vector<double> sAt, tAt;

@@ -4,7 +4,7 @@
 // of 1 W/m², or with --lit X,Y,Z what a downward-facing point lamp there gives them (a wall lit by a
 // ceiling lamp: bright in a band, dark at the top), or with --residual-from the radiosity a bake of the
 // scene left there (its lightmap.exr, at the same density); the solver shoots once, and the figures are what
-// its receive pass gathered before the shot was scaled to what its eyes saw covered (gl_shot_engine.cpp).
+// its receive pass gathered before the shot was scaled to what its eyes saw covered (gl_shot_backend.cpp).
 //
 //   cpgi_shot_probe SCENE_NAME PATCH [--density D] [--points N] [--hemisphere] [--regions R]
 //                   [--far-field F] [--lit X,Y,Z | --residual-from BAKE_DIR] [--draws N] [--texels P]

@@ -1,5 +1,5 @@
 // Declarations shared by the solver's compute passes. The layout of every buffer is mirrored in
-// radiosity/gpu/gl_shot_engine.cpp (GpuPatch, GpuStats, GpuNode, GpuRegion, GpuSelection).
+// radiosity/gpu/gl_shot_backend.h (GpuPatch, GpuStats, GpuNode, GpuRegion, GpuSelection).
 #define PI 3.14159265358979
 
 struct PatchInfo {

@@ -33,7 +33,7 @@ uniform uint uTriangles;
 uniform uint uIndexCount;
 uniform mat3 uToShooter;
 // Plane 0 the shooter's (a triangle behind it is clipped in every face), then per face 5: x > w, x < −w,
-// y > w, y < −w, w < near, as (a, threshold) in shooter coordinates (gl_shot_engine.cpp, cullPlanes).
+// y > w, y < −w, w < near, as (a, threshold) in shooter coordinates (gl_item_buffers.cpp, cullItemFaces).
 uniform vec4 uPlanes[26];
 uniform float uScale;  // the largest |uToShooter eye| + near: the size the rounding is relative to (m)
 

@@ -11,7 +11,7 @@ layout(std430, binding = 0) readonly buffer Patches { PatchInfo patches[]; };
 layout(std430, binding = 15) readonly buffer Nodes { Node nodes[]; };
 layout(std430, binding = 20) writeonly buffer Eyes { vec4 eyes[]; };  // xyz, w = 1; w = 0: no power
 uniform int uShooter;
-uniform int uRegionCount;  // entries: uBaseRegions regions, then their replicas (gl_shot_engine.cpp)
+uniform int uRegionCount;  // entries: uBaseRegions regions, then their replicas (gl_shot_regions.cpp)
 uniform int uBaseRegions;
 uniform uint uShot;
 

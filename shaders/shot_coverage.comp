@@ -2,7 +2,7 @@
 // and how much open (nothing drawn there), weighted by the cosine of the shooter (the hemicube's delta
 // form factors; the hemisphere buffer is Nusselt's analogue, so every pixel inside the disk weighs the
 // same). Where no eye sees anything open, the region's form factors to everything sum to exactly the
-// covered share, and the shot delivers that (gl_shot_engine.cpp): the receivers' analytic form factors
+// covered share, and the shot delivers that (gl_shot_backend.cpp): the receivers' analytic form factors
 // from the whole region, each gated by one eye's visibility, do not sum to it when visibility and form
 // factor vary together across the region (an eye drawn beside a column sees the column fill half its
 // view, but the column gets only the region-wide form factor: seed3's room C floor shots delivered 22 %

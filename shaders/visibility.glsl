@@ -96,7 +96,7 @@ bool visibleFromShooter(vec3 local, vec3 normal, int id, int layer) {
     vec2 c = (vec2(p) + 0.5) / float(n) * 2.0 - 1.0;
     return visibleAt(p, ivec2(0), ivec2(n - 1), vec3(c, 1.0), local, normal, id, layer);
   }
-  // Side faces: right, up (= shooter normal), forward as in hemicubeFaces() of gl_shot_engine.cpp.
+  // Side faces: right, up (= shooter normal), forward as in kFaces of gl_item_buffers.cpp.
   int face;
   vec3 v;
   if (a.x >= a.y) {

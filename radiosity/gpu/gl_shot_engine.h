@@ -35,7 +35,7 @@ class SolverPrograms {
   ~SolverPrograms();
   SolverPrograms(const SolverPrograms&) = delete;
   SolverPrograms& operator=(const SolverPrograms&) = delete;
-  struct Set;  // gl_shot_engine.cpp
+  struct Set;  // gl_shot_backend.h
   /// The programs for `settings` with or without directional emission (their #defines: visibility mode,
   /// ...), compiled at first use; null when `deadline` came between two of their compilations (none kept).
   const Set* get(const SolverParams& settings, bool directionalEmission, bool binnedEmission,

@@ -1,4 +1,4 @@
-// How the progressive solvers cut a shooter patch up (radiosity/gpu/gl_shot_engine.cpp,
+// How the progressive solvers cut a shooter patch up (radiosity/gpu/gl_shot_regions.cpp,
 // radiosity/cpu/ray_shot.cpp): visibility regions, each seen from an eye point on the region (an item buffer
 // on the GPU, rays on the CPU) and with its own residual pyramid (sub-shooters for the form factor,
 // shaders/shooter_pyramid.comp). The eye is placed where the region is open: a lamp hanging 1 cm under a

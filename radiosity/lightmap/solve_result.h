@@ -95,7 +95,7 @@ struct SolveResult {
   std::vector<glm::vec4> arrivals;
   std::vector<EnergyTotals> history;  ///< after the initial state and after every shot
   std::vector<int> shooters;          ///< the patch of every shot, in order
-  /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gl_shot_engine.cpp).
+  /// Per shot, the factor what it gathered was scaled by to what its eyes saw (1: none; gl_shot_backend.cpp).
   std::vector<float> shotScales;
   /// With ShotShape::readLampFlags, per atlas texel, LampFlag bits of what the lamps' shots found there.
   std::vector<uint8_t> lampFlags;

@@ -121,7 +121,7 @@ TEST(DoorTransfer, AWeakShotGivesTheRoomBehindADoorItsExactLight) {
   const double ratio = byGl / exact;
   std::printf("room B: GL %.5g W, exact %.5g W, ratio %.4f\n", byGl, exact, ratio);
   // Measured: 1.116 at one region, 1.057 at 2 × 2 of 1.5 m (the settings' layout), 1.025 at 4 × 3 of
-  // 1 m, 1.004 at 4 × 4 (the GL engine's weak layout, gl_shot_engine.cpp: weakLayout).
+  // 1 m, 1.004 at 4 × 4 (the GL engine's weak layout, gl_shot_regions.cpp: weakLayout).
   EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 

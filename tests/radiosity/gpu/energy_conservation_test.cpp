@@ -236,7 +236,7 @@ TEST(EnergyConservation, HemisphereBufferAgreesWithTheHemicube) {
 //  - pixel centres aligned with the scene's axis-aligned edges: from a floor's eye, a pixel whose centre
 //    ray ran along the wall's top edge, where both rooms' ceilings meet it, went to the far room's
 //    ceiling by the rasterizer's tie rule, and that ceiling counted as seen through the wall. The item
-//    buffer now turns about the shooter's normal from shot to shot (gl_shot_engine.cpp). 16-pixel buffer:
+//    buffer now turns about the shooter's normal from shot to shot (gl_shot_backend.cpp). 16-pixel buffer:
 //    6.7e-4 of the lit room's radiosity power in B on ad2b8db, 0 now;
 //  - a pixel showing the lit room's floor just in front of the wall's foot also covers the floor behind
 //    it, in the same plane, and a face in the receiver's plane counted as no occluder. It now counts only

@@ -40,6 +40,16 @@ Scene twoNodes() {
 
 // A wall face (x = 0.5, facing +x) from y −1 to 1 through a 20 cm slab (y 0 to 0.2): cut at the slab's two
 // faces, the strip inside dropped, its material, node and cell kept.
+// The cut at the contacts leaves `s` as it was: no face cut, every triangle where it was.
+void expectNothingCut(Scene& s) {
+  const std::vector<Triangle> before = s.triangles;
+  CellGraph cells;
+  const ContactCuts c = cutAtContacts(s, cells);
+  EXPECT_EQ(c.facesCut, 0u);
+  ASSERT_EQ(s.triangles.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(s.triangles[i].p, before[i].p);
+}
+
 TEST(ContactCuts, AFaceThroughASlabIsCutAtItsFacesAndTheStripInsideDropped) {
   Scene s = twoNodes();
   quad(s, {0.5f, -1.0f, 0.2f}, {0, 2, 0}, {0, 0, 0.6f}, 1, 0);
@@ -155,12 +165,7 @@ TEST(ContactCuts, AFloorNearAFootOrUnderALegIsNotCut) {
   box(s, {1.0f, 0.02f, 1.0f}, {2.0f, 0.8f, 2.0f});
   box(s, {3.0f, 0.0f, 3.0f}, {3.05f, 0.7f, 3.05f});
   box(s, {0.5f, -1.0f, 2.5f}, {1.5f, 0.0f, 3.5f});
-  const std::vector<Triangle> before = s.triangles;
-  CellGraph cells;
-  const ContactCuts c = cutAtContacts(s, cells);
-  EXPECT_EQ(c.facesCut, 0u);
-  ASSERT_EQ(s.triangles.size(), before.size());
-  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(s.triangles[i].p, before[i].p);
+  expectNothingCut(s);
 }
 
 // A floor that is one loose triangle (no quad) is cut by a constrained triangulation in its plane.
@@ -213,12 +218,7 @@ TEST(ContactCuts, FacesMeetingOnlyAtTheirEdgesStayAsTheyWere) {
   Scene s = twoNodes();
   box(s, {0, 0, 0}, {1, 1, 1});
   box(s, {1, 0, 0}, {2, 1, 1});  // touching the first along a whole face
-  const std::vector<Triangle> before = s.triangles;
-  CellGraph cells;
-  const ContactCuts c = cutAtContacts(s, cells);
-  EXPECT_EQ(c.facesCut, 0u);
-  ASSERT_EQ(s.triangles.size(), before.size());
-  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(s.triangles[i].p, before[i].p);
+  expectNothingCut(s);
 }
 
 }  // namespace

@@ -24,6 +24,15 @@ void addQuad(Scene& s, glm::vec3 o, glm::vec3 u, glm::vec3 v) {
 
 // Two rooms of w × d, `height` tall (y up), side by side, each a floor (normal +y) and a ceiling (−y), a
 // lamp light at head height and a camera: a house in whatever unit `height` is given in.
+// A hall `w` × `d` with its sky `sky` up, in units of `unit` metres: a game level's open arena.
+Scene hallUnderASky(float unit, float w, float d, float sky) {
+  Scene s;
+  s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+  addQuad(s, {0, 0, 0}, {0, 0, d * unit}, {w * unit, 0, 0});           // the floor
+  addQuad(s, {0, sky * unit, 0}, {w * unit, 0, 0}, {0, 0, d * unit});  // the sky
+  return s;
+}
+
 Scene twoRooms(float w, float d, float height) {
   Scene s;
   s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
@@ -75,10 +84,7 @@ TEST(Units, MetresPassFeetInchesCentimetresAndMillimetresAreNamed) {
 // level in inches is still told.
 TEST(Units, ALevelInMetresUnderATallSkyIsNotTakenForFeet) {
   auto level = [](float unit) {
-    Scene s;
-    s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
-    addQuad(s, {0, 0, 0}, {0, 0, 10 * unit}, {9 * unit, 0, 0});                // the hall's floor
-    addQuad(s, {0, 40 * unit, 0}, {9 * unit, 0, 0}, {0, 0, 10 * unit});        // its sky
+    Scene s = hallUnderASky(unit, 9.0f, 10.0f, 40.0f);
     addQuad(s, {9 * unit, 0, 0}, {0, 0, 10 * unit}, {1 * unit, 0, 0});         // the corridor's floor
     addQuad(s, {9 * unit, 3 * unit, 0}, {1 * unit, 0, 0}, {0, 0, 10 * unit});  // its ceiling
     return s;
@@ -94,13 +100,7 @@ TEST(Units, ALevelInMetresUnderATallSkyIsNotTakenForFeet) {
 // czest1tourney): storeys of 35 would be 11 m in feet, no building's storey, so no line; the same arena in
 // Quake units is still told, and so is a house of 13 ft storeys in feet.
 TEST(Units, AnArenaUnderASkyTensOfMetresUpIsNotTakenForFeet) {
-  auto arena = [](float unit) {
-    Scene s;
-    s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
-    addQuad(s, {0, 0, 0}, {0, 0, 60 * unit}, {60 * unit, 0, 0});          // the arena's floor
-    addQuad(s, {0, 35 * unit, 0}, {60 * unit, 0, 0}, {0, 0, 60 * unit});  // its sky
-    return s;
-  };
+  auto arena = [](float unit) { return hallUnderASky(unit, 60.0f, 60.0f, 35.0f); };
   const UnitsCheck metres = checkUnits(arena(1.0f));
   EXPECT_NEAR(metres.storeyHeight, 35.0, 1e-3);
   EXPECT_EQ(metres.warning, "");

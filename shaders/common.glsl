@@ -27,7 +27,8 @@ struct Node {
   vec4 moments;
 };
 
-#define MAX_REGIONS 16
+// Entries (regions and their replicas, one eye each) of a shot: gl_shot_backend.h's kMaxEyes.
+#define MAX_REGIONS 64
 #define MAX_LEVELS 14
 // Per region: its texel rectangle in the atlas (x0, y0, x1, y1, exclusive), its top level (1×1 nodes),
 // and where each level's nodes start in the node buffer (row-major within a level).

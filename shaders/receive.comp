@@ -300,6 +300,7 @@ void main() {
   // pixel shows its own patch: the other rules (what the pixel shows lies behind the receiver's plane)
   // read a crack between a zero-thickness wall and the floor as a view through it, and 20 points a texel
   // found 3× the cracks (EnergyConservation.NoLightOverAWallIntoTheRoomBehind: 6e-5 of the light).
+  // In a lamp's shot (at most 16 entries, gl_shot_backend.cpp: shootGl):
   int seenBy = 0;  // bit r: region r's eye sees the receiver's centre
   int shooting = 0;  // bit r: region r shoots something
   bool edge = false;
@@ -307,7 +308,7 @@ void main() {
   float texelSize = max(length(texelU), length(texelV));
   for (int r = 0; r < uRegionCount; ++r) {
     if (!blocksOf(r)) continue;
-    shooting |= 1 << r;
+    if (uLampShot) shooting |= 1 << r;
     gOccluderGap = 1e30;
     bool seen = seesPoint(r, x, np.xyz, tile.z);
     float centreGap = gOccluderGap;
@@ -317,7 +318,7 @@ void main() {
       edge = seen ? !corner && gOccluderGap > texelSize : corner && gSeenOwn && centreGap > texelSize;
     }
     if (!seen) continue;
-    seenBy |= 1 << r;
+    if (uLampShot) seenBy |= 1 << r;
     e += fromRegionWhole(x, np.xyz, r);
   }
   // In a lamp's shot, edge texels and receivers within a few of their own texels of the lamp are

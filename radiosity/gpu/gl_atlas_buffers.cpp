@@ -131,7 +131,7 @@ void GlShotBackend::uploadAtlas() {
   ssbo(tileStats_, kTileStats, tiles.size() * sizeof(GpuStats), nullptr);
   ssbo(tileList_, kTileList, kListHeader + tiles.size() * 4, nullptr);
   ssbo(patchList_, kPatchList, kListHeader + np * 4, nullptr);
-  ssbo(regions_, kRegions, kMaxRegions * kMaxRegions * sizeof(GpuRegion), nullptr);
+  ssbo(regions_, kRegions, kMaxEyes * sizeof(GpuRegion), nullptr);
   ssbo(nodes_, kNodes, maxPyramidNodes() * sizeof(GpuNode), nullptr);
   for (const ShooterLayout& l : allLayouts())
     for (const glm::ivec4& c : l.rects)
@@ -139,9 +139,8 @@ void GlShotBackend::uploadAtlas() {
         throw InputError("atlas", "a chart wider than 2^14 texels");
   ssbo(pending_, kPending, np * 4, pending.data());
   ssbo(selection_, kSelection, sizeof(GpuSelection), nullptr);
-  ssbo(eyes_, kEyes, kMaxRegions * kMaxRegions * sizeof(glm::vec4), nullptr);
-  ssbo(coverage_, kCoverage, kMaxRegions * kMaxRegions * size_t(params_.itemBuffer) * sizeof(glm::vec4),
-       nullptr);
+  ssbo(eyes_, kEyes, kMaxEyes * sizeof(glm::vec4), nullptr);
+  ssbo(coverage_, kCoverage, size_t(mostEyes()) * size_t(params_.itemBuffer) * sizeof(glm::vec4), nullptr);
   const GLuint zero = 0;
   glClearNamedBufferData(stats_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }

@@ -170,15 +170,15 @@ void GlShotBackend::makeItemBuffer() {
   GLuint items = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &items);
   items_ = gl::Texture(items);
-  const int perEdge = std::max(weakLayout().maxRegions, strongRegions());
-  glTextureStorage3D(items, 1, GL_R32I, w, h, perEdge * perEdge);
+  const int layers = mostEyes();
+  glTextureStorage3D(items, 1, GL_R32I, w, h, layers);
   glTextureParameteri(items, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // else incomplete for texelFetch
   glTextureParameteri(items, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   // The distance from the eye of what each pixel shows (item.frag), for the receivers' plane test.
   GLuint distances = 0;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &distances);
   distances_ = gl::Texture(distances);
-  glTextureStorage3D(distances, 1, GL_R32F, w, h, perEdge * perEdge);
+  glTextureStorage3D(distances, 1, GL_R32F, w, h, layers);
   glTextureParameteri(distances, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(distances, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   depth_ = gl::makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);

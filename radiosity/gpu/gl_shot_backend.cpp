@@ -18,6 +18,12 @@ bool GlShotBackend::setUp(Context& ctx, std::chrono::steady_clock::time_point de
   if (layouts_.size() < atlas_.patches.size()) return false;
   strongLayouts_ = layoutShooters(scene_, atlas_, strongLayout(), deadline);
   if (strongLayouts_.size() < atlas_.patches.size()) return false;
+  strongReflectorLayouts_ = layoutShooters(scene_, atlas_, strongReflectorLayout(), deadline);
+  if (strongReflectorLayouts_.size() < atlas_.patches.size()) return false;
+  for (size_t i = 0; i < strongLayouts_.size(); ++i) {
+    const glm::ivec2 fine = strongReflectorLayouts_[i].regions, coarse = strongLayouts_[i].regions;
+    if (fine.x * fine.y <= coarse.x * coarse.y) strongReflectorLayouts_[i] = strongLayouts_[i];
+  }
   if (late()) return false;
   ctx.progress("set-up", 0.5, "the gl engine: the atlas's buffers");
   uploadAtlas();
@@ -66,14 +72,14 @@ double GlShotBackend::deliver(float scale) {
   return channelSum(sel_.incident) - receivedBefore_;
 }
 
-// The patch statistics' unshot sums (patch_stats.comp), 48 bytes a patch: far less than the texels.
-// An item buffer a region (a lamp's strong shot draws its regions again: shootGl's replicas).
+// An item buffer a region (a lamp's strong shot has its own layout and may draw its regions again:
+// shootGl's replicas).
 int GlShotBackend::shotEyes(int patch, bool strong) const {
-  const ShooterLayout& l =
-      strong && !strongLayouts_.empty() ? strongLayouts_[size_t(patch)] : layouts_[size_t(patch)];
+  const ShooterLayout& l = layoutOf(patch, strong, false);
   return l.regions.x * l.regions.y;
 }
 
+// The patch statistics' unshot sums (patch_stats.comp), 48 bytes a patch: far less than the texels.
 std::vector<double> GlShotBackend::patchUnshot() {
   std::vector<GpuStats> stats(atlas_.patches.size());
   glGetNamedBufferSubData(stats_.get(), 0, GLsizeiptr(stats.size() * sizeof(GpuStats)), stats.data());
@@ -115,7 +121,7 @@ GpuSelection GlShotBackend::startGl() {
 /// emitter's own shot, whose receivers crossed by a shadow or beam edge, or near it, are resampled
 /// (receive.comp).
 GpuSelection GlShotBackend::shootGl(int shooter, bool strong, bool lamp) {
-  const ShooterLayout& l = strong && !strongLayouts_.empty() ? strongLayouts_[shooter] : layouts_[shooter];
+  const ShooterLayout& l = layoutOf(shooter, strong, lamp);
   const Patch& p = atlas_.patches[shooter];
   const int baseRegions = l.regions.x * l.regions.y;
   // A lamp with fewer texels than a strong shot may have regions (--strong-regions per edge, squared)
@@ -225,9 +231,9 @@ void GlShotBackend::drawEyes(int shooter, const ShooterLayout& l, int regions, i
   set(pickEyesProgram_, "uBaseRegions", baseRegions);
   setU(pickEyesProgram_, "uShot", GLuint(shotCount_));
   glUseProgram(pickEyesProgram_.get());
-  glDispatchCompute(1, 1, 1);
+  glDispatchCompute(groups(size_t(regions), 16), 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::array<glm::vec4, kMaxRegions * kMaxRegions> drawn{};
+  std::array<glm::vec4, kMaxEyes> drawn{};
   glGetNamedBufferSubData(eyes_.get(), 0, GLsizeiptr(regions * sizeof(glm::vec4)), drawn.data());
   for (int r = 0; r < regions; ++r)
     if (drawn[r].w > 0.0f) eyes[r] = glm::vec3(drawn[r]) + l.normal * eyeOffset_;

@@ -51,9 +51,13 @@ static_assert(sizeof(GpuPatch) == 96 && sizeof(GpuNode) == 48 && sizeof(GpuRegio
 
 constexpr int kTile = 8;                         // receiver work groups are kTile × kTile texels
 constexpr uint32_t kNotReceiving = 0x80000000u;  // receive.comp's texel flag: ShotShape::receivers
-constexpr int kMaxRegions = 4;                   // per chart edge; common.glsl's MAX_REGIONS is its square
-constexpr GLuint kListHeader = 16;               // count + 3 dispatch arguments, in bytes
-constexpr int kCoverageStride = 4;               // shot_coverage.comp's STRIDE
+constexpr int kMaxRegions = 4;  // per chart edge, as the settings may ask (SolverParams::maxRegions)
+// Per chart edge in a reflector's strong shot (strongReflectorLayout), and so the most eyes (item-buffer
+// layers) a shot has: common.glsl's MAX_REGIONS.
+constexpr int kMaxStrongRegions = 8;
+constexpr int kMaxEyes = kMaxStrongRegions * kMaxStrongRegions;
+constexpr GLuint kListHeader = 16;  // count + 3 dispatch arguments, in bytes
+constexpr int kCoverageStride = 4;  // shot_coverage.comp's STRIDE
 
 // Shader-storage binding points (shaders/*.comp).
 // The per-texel atlas data lives in buffers too (shaders/atlas_buffers.glsl), indexed like the atlas.
@@ -285,6 +289,9 @@ class GlShotBackend final : public ShotBackend {
   // The shooters' visibility regions (gl_shot_regions.cpp).
   LayoutParams weakLayout() const;
   LayoutParams strongLayout() const;
+  LayoutParams strongReflectorLayout() const;
+  const ShooterLayout& layoutOf(int patch, bool strong, bool lamp) const;
+  int mostEyes() const;
   int strongRegions() const {
     return params_.strongShotRegions > 0 ? params_.strongShotRegions : params_.maxRegions;
   }
@@ -345,7 +352,9 @@ class GlShotBackend final : public ShotBackend {
   gl::Buffer faceMasks_, chunkSlots_, faceIndices_, faceDraws_;  ///< item_cull.comp's, hemicube only
   gl::VertexArray vao_;
   gl::Framebuffer fbo_;
-  std::vector<ShooterLayout> layouts_, strongLayouts_;  // the weak shots' (weakLayout) and the strong ones'
+  // The weak shots' (weakLayout), the lamps' strong ones (strongLayout) and the other strong ones
+  // (strongReflectorLayout, or strongLayout's where that has more regions).
+  std::vector<ShooterLayout> layouts_, strongLayouts_, strongReflectorLayouts_;
   PassClock clock_;
   GpuSelection sel_{};         ///< the selection and sums after the last pass
   double receivedBefore_ = 0;  ///< the received sum before the last shot

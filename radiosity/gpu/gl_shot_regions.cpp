@@ -82,6 +82,7 @@ LayoutParams GlShotBackend::weakLayout() const {
 std::vector<ShooterLayout> GlShotBackend::allLayouts() const {
   std::vector<ShooterLayout> all = layouts_;
   all.insert(all.end(), strongLayouts_.begin(), strongLayouts_.end());
+  all.insert(all.end(), strongReflectorLayouts_.begin(), strongReflectorLayouts_.end());
   return all;
 }
 
@@ -92,6 +93,30 @@ std::vector<ShooterLayout> GlShotBackend::allLayouts() const {
 LayoutParams GlShotBackend::strongLayout() const {
   return strongRegions() != params_.maxRegions ? LayoutParams{1e-3f, strongRegions()}
                                                : LayoutParams{params_.regionSize, params_.maxRegions};
+}
+
+// A reflector's strong shot: as the weak shots, half the settings' region size at twice their count per
+// edge (up to kMaxStrongRegions), where that gives more regions than strongLayout. Such a shot carries a
+// lit room's light into its neighbours, and a receiver behind a door sees only part of a region through
+// it, the part farthest from the door where the form factor is smallest, yet gets the region's whole
+// light from its eye: with strongLayout's 4 per edge of a 5 m floor, plan 4's R2 floor's first shot gave
+// R8 1.5x its exact transfer. Lamps keep strongLayout: their shots' replicas and edge resampling
+// (receive.comp) are per region.
+LayoutParams GlShotBackend::strongReflectorLayout() const {
+  return LayoutParams{0.5f * params_.regionSize, std::min(2 * strongRegions(), kMaxStrongRegions)};
+}
+
+const ShooterLayout& GlShotBackend::layoutOf(int patch, bool strong, bool lamp) const {
+  if (!strong) return layouts_[size_t(patch)];
+  return lamp ? strongLayouts_[size_t(patch)] : strongReflectorLayouts_[size_t(patch)];
+}
+
+// The most eyes a shot draws: the item buffers' layers. A lamp's strong shot replicates its regions up to
+// strongRegions() squared (shootGl).
+int GlShotBackend::mostEyes() const {
+  int most = strongRegions() * strongRegions();
+  for (const ShooterLayout& l : allLayouts()) most = std::max(most, l.regions.x * l.regions.y);
+  return std::min(most, kMaxEyes);
 }
 
 }  // namespace cpgi::gl_engine

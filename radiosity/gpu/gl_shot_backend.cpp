@@ -173,6 +173,9 @@ GpuSelection GlShotBackend::shootGl(int shooter, bool strong, bool lamp) {
   for (int r = 0; r < regions; ++r) renderItemBuffer(r, eyes[r], toShooter);
   clock_.mark(lamp ? "item buffers (lamp shots)" : "item buffers");
   set(coverageProgram_, "uToShooter", toShooter);
+  // A back face within a shooter texel of an eye is one the eye's texel ends against or hangs over
+  // (shot_coverage.comp): left out of the coverage.
+  set(coverageProgram_, "uNearBack", l.texelRadius);
   glUseProgram(coverageProgram_.get());
   glDispatchCompute(groups(coverageColumns(), 16), GLuint(regions), 1);
   clock_.mark("coverage");

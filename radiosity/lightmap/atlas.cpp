@@ -368,9 +368,13 @@ LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasPa
   const std::vector<uint32_t> chosen = chosenTriangles(subset, triangleCount);
   warnCappedDensity(scene, chosen, params, ctx);
   ChartLayout layout = layOutCharts(scene, quads, params, chosen);
-  if (layout.degenerate > 0)
-    ctx.warn("atlas: " + std::to_string(layout.degenerate) +
-             " zero-area triangle(s) left out of the lightmap");
+  if (layout.degenerate > 0) {
+    // A bake lays its atlas out several times (density pilot, solve, output) on one context: the same
+    // triangles are left out each time, and a game map printed the line five times.
+    const std::string line =
+        "atlas: " + std::to_string(layout.degenerate) + " zero-area triangle(s) left out of the lightmap";
+    if (std::find(ctx.warnings().begin(), ctx.warnings().end(), line) == ctx.warnings().end()) ctx.warn(line);
+  }
 
   LightmapAtlas atlas;
   atlas.patches = std::move(layout.patches);

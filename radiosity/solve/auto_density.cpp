@@ -106,7 +106,10 @@ LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasPara
     layout = Context();
     atlas = buildAtlas(scene, quads, params, layout, {}, deadline);
   }
-  for (const std::string& w : layout.warnings()) ctx.warn(w);
+  // A line the bake's context holds already (the same triangles left out by an earlier layout) is not
+  // said twice.
+  for (const std::string& w : layout.warnings())
+    if (std::find(ctx.warnings().begin(), ctx.warnings().end(), w) == ctx.warnings().end()) ctx.warn(w);
   if (b.scale < 1.0f) {
     char line[240];
     std::snprintf(line, sizeof line,

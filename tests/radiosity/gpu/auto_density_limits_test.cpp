@@ -116,5 +116,23 @@ TEST(AutoDensityLimits, AZeroAreaTriangleGetsADensityTheOutputAccepts) {
   EXPECT_GT(atlas.validTexels(), 0u);
 }
 
+// A bake lays its atlas out more than once on its context (the density pilot, the budget's fit, the output):
+// the zero-area triangles left out are said once, whichever layout said it first (ctf_gate1's daylit bake
+// printed "14 zero-area triangle(s) left out" twice).
+TEST(AutoDensityLimits, AZeroAreaTriangleLeftOutIsSaidOnceAcrossTheBudgetsLayouts) {
+  Scene s = daylitBox();
+  Triangle flat = s.triangles.front();
+  flat.p[2] = flat.p[1];
+  s.triangles.push_back(flat);
+  const QuadSet quads = findQuads(s);
+  Context ctx;
+  AtlasParams asked;
+  asked.triangleDensity.assign(s.triangles.size(), 4.0f);
+  buildAtlas(s, quads, asked, ctx);
+  TexelBudget budget;
+  fitTexelBudget(s, quads, asked, 2000, ctx, &budget);
+  EXPECT_TRUE(saidOnce(ctx, "1 zero-area triangle(s) left out")) << ctx.warnings().size();
+}
+
 }  // namespace
 }  // namespace cpgi

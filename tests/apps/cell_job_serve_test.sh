@@ -14,7 +14,8 @@ trap '[ -n "$server_pid" ] && kill -9 "$server_pid" 2>/dev/null; rm -rf "$work"'
 cd "$work"
 fail() { echo "FAIL: $*"; exit 1; }
 "$cpgi" generate office-small -o office.glb >/dev/null
-options=(--cells office.glb --density 2)
+# Item buffers of 128²: the jobs are checked against the single process bit for bit, at any resolution.
+options=(--cells office.glb --density 2 --item-buffer 128)
 "$cpgi" bake office.glb -o single --method cells "${options[@]}" -q
 "$cpgi" bake office.glb -o served --method cells "${options[@]}" --plan plan -q
 

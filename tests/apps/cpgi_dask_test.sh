@@ -11,7 +11,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 "$cpgi" generate office-small -o office.glb >/dev/null
-options=(--cells office.glb --density 2)
+# Item buffers of 128²: the jobs are checked against the single process bit for bit, at any resolution.
+options=(--cells office.glb --density 2 --item-buffer 128)
 "$cpgi" bake office.glb -o single --method cells "${options[@]}" -q
 "$dask" office.glb -o distributed --workers 2 --lose-worker 2 "${options[@]}" | tee dask.log
 grep -q "^cpgi-dask: killed worker" dask.log || { echo "FAIL: no worker was lost"; exit 1; }

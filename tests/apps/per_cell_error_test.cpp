@@ -49,9 +49,10 @@ Options twoLevels(const Options& more) {  // --solve-density 2.5
 }
 
 // The openings scene, its sampled reference, and the bakes `bakes` (folder name, options) against it, in
-// process at --density 5 (their folders for compare-light). CTest runs every test in a process of its own:
-// each fixture bakes only what its tests compare. The scene and the reference are made once per process
-// and kept for the fixtures after (the test binary run whole), which bake into folders of their own.
+// process at --density 5 (their folders for compare-light). Each fixture bakes only what its tests compare.
+// The scene and the reference are made once per process and kept for the fixtures after, which bake into
+// folders of their own: CTest runs the four suites in one process (OpeningsBakes.SharedBakes,
+// tests/CMakeLists.txt), one reference and each bake once.
 class OpeningsBakes : public ::testing::Test {
  public:
   void SetUp() override { setup_.require(); }
@@ -161,8 +162,7 @@ void expectCompareLightReportsEveryCellAndTheWorst() {
 // stop, plus twice the ratio's own error (1.2 % in C at this size). On 7089168 B read 1.15 and C 1.17
 // converged; on 531185c the eyes' lost light and the reference's back faces on the zero-thickness
 // partition moved C by ±4 %; now A/B/C = 0.992 / 1.015 / 1.018 converged, C 1.022 at the default stop.
-// With the two checks above, one test over the fixture's reference and bakes (about 20 s): CTest runs
-// every test in its own process, which would make them again for each.
+// With the two checks above, one test over the fixture's reference and bakes.
 TEST_F(PerCellError, RoomsLitThroughOpeningsMatchTheReference) {
   expectLightmapsCarryEveryTexelsCell();
   expectCompareLightReportsEveryCellAndTheWorst();

@@ -17,7 +17,14 @@ main_build="${CPGI_BUILD_DIR:-$root/build}"  # the ordinary build: its cpgi make
 
 command -v clang++ >/dev/null || { echo "run.sh: clang++ and libFuzzer are needed (apt install clang libclang-rt-14-dev)" >&2; exit 1; }
 # The whole tree configures, report.html's writer too: it takes the npm packages ./setup.sh put in build/web.
+# -O1 -gline-tables-only as OSS-Fuzz builds: the sanitizers' reports keep their file:line stacks, and the
+# CGAL in contact_cuts.cpp, most of this build, compiles in FUZZ_FLAGS_SAVING of the time of -O2 -g.
+# ccache, when there is one, keeps the objects from one run to the next.
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+flags="-O1 -gline-tables-only -DNDEBUG"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCPGI_FUZZ=ON \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$flags" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$flags" "${launcher[@]}" \
   -DCPGI_WEB_DIR="$main_build/web" >/dev/null || exit 1
 nice cmake --build "$build" -j2 -t $(printf 'fuzz_%s ' "${targets[@]}") >/dev/null || exit 1
 

@@ -47,9 +47,9 @@ TEST_F(GltfValidator, BakedSeedAndStabilityScenesHaveNoErrors) {
   for (const char* name : {"seed1", "seed2", "seed3", "spot-door", "thin-wall", "thin-wall-5cm"}) {
     const std::string scene = dir / (std::string(name) + ".glb"), out = dir / name;
     ASSERT_EQ(cpgi(dir, std::string("generate ") + name + " -o " + quote(scene)).status, 0) << name;
-    // A coarse atlas: the glb's structure is what is checked, not the light.
-    const test::CommandRun r =
-        cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) + " --density 2 --unshot 0.2 -q");
+    // A coarse atlas and small item buffers: the glb's structure is what is checked, not the light.
+    const test::CommandRun r = cpgi(
+        dir, "bake " + quote(scene) + " -o " + quote(out) + " --density 2 --unshot 0.2 --item-buffer 64 -q");
     ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     files.push_back(scene);
     files.push_back(std::filesystem::path(out) / "baked.glb");
@@ -62,7 +62,7 @@ TEST_F(GltfValidator, CellsBakeReferenceAndDecompositionHaveNoErrors) {
   ASSERT_EQ(cpgi(dir, "generate seed1 -o " + quote(scene)).status, 0);
   test::CommandRun r =
       cpgi(dir, "bake " + quote(scene) + " -o " + quote(dir / "cells") + " --method cells --cells " +
-                    quote(scene) + " --density 2 --unshot 0.2 -q");
+                    quote(scene) + " --density 2 --unshot 0.2 --item-buffer 64 -q");
   ASSERT_EQ(r.status, 0) << r.err;
   r = cpgi(dir, "reference " + quote(scene) + " -o " + quote(dir / "reference") + " --density 2 --spp 2 -q");
   ASSERT_EQ(r.status, 0) << r.err;

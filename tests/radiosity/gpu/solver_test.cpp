@@ -1,7 +1,7 @@
 // The GPU solver against closed forms: Lambert's point-to-polygon form factor, the parallel and
 // perpendicular unit squares, the white furnace, energy bookkeeping and determinism.
-#include "radiosity/solve/progressive_loop.h"
 #include "radiosity/gpu/gl_shot_engine.h"
+#include "radiosity/solve/progressive_loop.h"
 
 #include <algorithm>
 
@@ -57,7 +57,8 @@ double patchMean(const Solved& s, int tri) {
 double lambert(glm::dvec3 x, glm::dvec3 n, const std::vector<glm::dvec3>& polygon) {
   double sum = 0.0;
   for (size_t i = 0; i < polygon.size(); ++i) {
-    const glm::dvec3 a = glm::normalize(polygon[i] - x), b = glm::normalize(polygon[(i + 1) % polygon.size()] - x);
+    const glm::dvec3 a = glm::normalize(polygon[i] - x),
+                     b = glm::normalize(polygon[(i + 1) % polygon.size()] - x);
     const glm::dvec3 c = glm::cross(a, b);
     sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, c) / glm::length(c);
   }
@@ -81,7 +82,7 @@ TEST_P(SolverVisibility, ParallelUnitSquares) {
   Scene s;
   const uint32_t lamp = addMaterial(s, glm::vec3(0.0f), glm::vec3(1.0f));
   const uint32_t white = addMaterial(s, glm::vec3(1.0f));
-  addRect(s, glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), lamp);  // normal −z
+  addRect(s, glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), lamp);   // normal −z
   addRect(s, glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), white);  // normal +z
   const Solved r = solve(s, AtlasParams{.texelsPerQuad = 16}, oneShot(GetParam()));
   EXPECT_EQ(r.result.shots, 1);
@@ -105,7 +106,8 @@ TEST_P(SolverVisibility, PerpendicularUnitSquares) {
   EXPECT_NEAR(f, 0.20004, 0.01 * 0.20004);  // both modes, as above (hemisphere on main: 0.25–0.99)
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, SolverVisibility, ::testing::Values(Visibility::Hemisphere, Visibility::Hemicube),
+INSTANTIATE_TEST_SUITE_P(Modes, SolverVisibility,
+                         ::testing::Values(Visibility::Hemisphere, Visibility::Hemicube),
                          [](const auto& info) { return std::string(visibilityName(info.param)); });
 
 // One texel against Lambert's formula, far from the emitter (one disk) and close to it (blocks, texels).
@@ -211,7 +213,8 @@ TEST(Solver, ARefusedStopShootsOnAndAsksAgain) {
 TEST(Solver, Deterministic) {
   Scene s;
   addClosedBox(s, glm::vec3(0.0f), glm::vec3(2.0f, 1.5f, 1.0f), addMaterial(s, glm::vec3(0.7f)));
-  addRect(s, glm::vec3(0.5f, 0.5f, 0.5f), glm::vec3(0.6f, 0, 0), glm::vec3(0, 0, 0.4f), addMaterial(s, glm::vec3(0.3f)));
+  addRect(s, glm::vec3(0.5f, 0.5f, 0.5f), glm::vec3(0.6f, 0, 0), glm::vec3(0, 0, 0.4f),
+          addMaterial(s, glm::vec3(0.3f)));
   addRect(s, glm::vec3(0.8f, 0.5f, 0.99f), glm::vec3(0, 0.4f, 0), glm::vec3(0.4f, 0, 0),
           addMaterial(s, glm::vec3(0.0f), glm::vec3(5.0f)));
   SolverParams params;
@@ -227,11 +230,13 @@ TEST(Solver, Deterministic) {
 // Culling the item buffers per hemicube face only leaves out triangles the rasterizer clips and keeps the
 // rest in their order: the solve is bit-identical to drawing every triangle into every face. seed3 (columns,
 // furniture, lamps; triangles across every face's edges) for its first 60 shots, strong ones with 16 eyes
-// among them.
+// among them. Item buffers of 128²: the faces' edges clip the same triangles at any resolution, and the
+// default 512² draws 16 times the pixels for the same check.
 TEST(Solver, CulledItemBuffersAreBitIdentical) {
   const SeedScene seed = makeSeedScene(3);
   SolverParams params;
   params.maxShots = 60;
+  params.itemBuffer = 128;
   const Solved culled = solve(seed.scene, AtlasParams{.density = 10.0f}, params);
   params.cullItemBuffers = false;
   const Solved drawn = solve(seed.scene, AtlasParams{.density = 10.0f}, params);
@@ -244,7 +249,8 @@ TEST(Solver, CulledItemBuffersAreBitIdentical) {
 
 TEST(Solver, RejectsBadParameters) {
   Scene s;
-  addRect(s, glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), addMaterial(s, glm::vec3(0.5f), glm::vec3(1.0f)));
+  addRect(s, glm::vec3(0.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0),
+          addMaterial(s, glm::vec3(0.5f), glm::vec3(1.0f)));
   SolverParams p;
   p.itemBuffer = 7;
   EXPECT_THROW(solve(s, AtlasParams{.texelsPerQuad = 4}, p), InputError);

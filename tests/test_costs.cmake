@@ -1,0 +1,38 @@
+# CTest runs the longest tests first when it knows their costs. After a run it takes them from
+# Testing/Temporary/CTestCostData.txt; on a fresh checkout (CI) it has only the COST properties, without
+# which it starts tests in the order they were declared, and a test of a minute or more could start last
+# and run alone on one core while the other sits idle. These are the discovered GoogleTest tests' costs
+# (tests/CMakeLists.txt gives the others theirs): CPU seconds on a 2-core llvmpipe machine, rounded; only
+# their order matters. CTest reads this file after the discovered tests exist; a name that no longer
+# does is ignored.
+set_tests_properties(SolveDensity.AutoIsOneLevelForASmallAtlasAndTwoForALargeOne PROPERTIES COST 120)
+set_tests_properties(GltfValidator.BakedSeedAndStabilityScenesHaveNoErrors PROPERTIES COST 92)
+set_tests_properties(SolveStop.MaxShotsBoundsTheSolve PROPERTIES COST 83)
+set_tests_properties(EngineGlb.Seed1TexturedAndFurnishedHouseHaveNoValidatorErrors PROPERTIES COST 76)
+set_tests_properties(BinnedPortals.RoomBehindTheNarrowDoorGetsTheWholeScenesLight PROPERTIES COST 74)
+set_tests_properties(PunctualLightBakes.MatchTheReferencePerCellAndCountTheLightsPowerAsEmitted PROPERTIES COST 71)
+set_tests_properties(EngineGlbInThreeJs.PerObjectLightmapsEachObjectShowsItsOwn PROPERTIES COST 65)
+set_tests_properties(AutoDensity.CellsAndCellJobsFollowTheWholeScenesPilot PROPERTIES COST 65)
+set_tests_properties(Solver.CulledItemBuffersAreBitIdentical PROPERTIES COST 60)
+set_tests_properties(EngineUv.TheScenesOwnTexcoord1HoldsTheLightmap PROPERTIES COST 50)
+set_tests_properties(ContactStrip.TheFinThroughTheSlabHasNoBandAtTheCeilingAndNoLightAboveTheFloor PROPERTIES COST 50)
+set_tests_properties(EnergyConservation.NoLightOverAWallIntoTheRoomBehind PROPERTIES COST 45)
+set_tests_properties(EnergyConservation.NoLightOverAWallIntoARoomBesideACorner PROPERTIES COST 38)
+set_tests_properties(EnergyConservation.ShotsBesideColumnsDeliverTheirPower PROPERTIES COST 35)
+set_tests_properties(EnergyConservation.HemisphereBufferAgreesWithTheHemicube PROPERTIES COST 28)
+set_tests_properties(CellSolver.TwoLevelsGiveEachRoomTheLightOfOne PROPERTIES COST 27)
+set_tests_properties(RoundStop.LampRoomLitByWhatComesBackIsRightAtTheDefaultStop PROPERTIES COST 27)
+set_tests_properties(ReportInBrowser.Seed1ComparisonShowsTheErrorHeatMap PROPERTIES COST 26)
+set_tests_properties(AutoDensity.ChoosesTexelsPerSurfaceAndIsReadAtAnotherAtlassTexels PROPERTIES COST 25)
+set_tests_properties(EngineGlbInThreeJs.Seed1IsLitByItsLightmapOnTexcoord1 PROPERTIES COST 22)
+set_tests_properties(VolumeCellsCommand.RoomsGivenAsVolumesBakeCellByCell PROPERTIES COST 22)
+set_tests_properties(SolveDensity.CellsSolveInTwoLevelsWhenAsked PROPERTIES COST 21)
+set_tests_properties(ReportInBrowser.Seed1CellsBakeShowsLitSceneCellsAndPortals PROPERTIES COST 21)
+set_tests_properties(EngineGlbInThreeJs.Seed1DirectionalLightmapShowsANormalMapAndProbesLightASphere PROPERTIES COST 21)
+set_tests_properties(ContactStrip.TheFloorRoundAFurnituresFootHasNoDarkHalo PROPERTIES COST 21)
+set_tests_properties(CellsBake.DefaultPortalsAreBinnedAlsoAsCellJobs PROPERTIES COST 20)
+set_tests_properties(CellsBake.CellsFromAnotherFileKeepEachFaceOfAThinWallInItsRoom PROPERTIES COST 18)
+set_tests_properties(SolverPrograms.ReusedProgramsGiveTheFreshResult PROPERTIES COST 17)
+set_tests_properties(DirectionalBake.SpotThroughADoorAgainstTheReference PROPERTIES COST 17)
+set_tests_properties(CellsBake.Seed1AgainstGlobalAndReference PROPERTIES COST 17)
+set_tests_properties(ReportPages.ComparisonCarriesTheErrorPerTexel PROPERTIES COST 16)

@@ -72,9 +72,8 @@ class EngineGlb : public ::testing::Test {
     const std::string missing = test::missingNodeTools();
     if (!missing.empty()) GTEST_SKIP() << "SKIPPED, NOT TESTED: the node tools cannot run: " << missing;
   }
-  // `cpgi bake SCENE -o DIR` at a coarse atlas, an early stop and item buffers of 128² (the default 512²
-  // cost about a CPU second a shot on llvmpipe): the files' structure is what is checked, and that the
-  // scene is lit.
+  // `cpgi bake SCENE -o DIR` at a coarse atlas, an early stop and item buffers of 128² (a sixteenth of the
+  // default's pixels a shot): the files' structure is what is checked, and that the scene is lit.
   void bake(const std::string& scene, const std::string& out, const std::string& more = "",
             const std::string& atlas = " --density 3") {
     const test::CommandRun r = cpgi(dir, "bake " + quote(scene) + " -o " + quote(out) + atlas +

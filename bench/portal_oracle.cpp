@@ -4,7 +4,10 @@
 // receive from the portal (a) through it, as the truth: the ray from the texel through a portal point
 // continues into the source cell and takes the radiance it meets, and (b) from the portal re-emitting its
 // irradiance per portal texel as a Lambertian, as the moment-fitted lobe of radiosity/solve/emission_lobes.h,
-// or as a histogram of arrival directions in radiosity/solve/emission_bins.h's bins. Only the first pass
+// or as a histogram of arrival directions in radiosity/solve/emission_bins.h's bins — and the bins read
+// between neighbouring texels' centres (bins-lerp: the bins alone; light-lerp: irradiance times bins), or
+// per quarter of the texel with the texel's irradiance (bins/4): what a texel's light spread over its area
+// without finer texels would give. Only the first pass
 // through the portal; no interreflection in the destination. Prints, per destination surface orientation
 // and per band of distance from the portal plane, the ratio of each model to the truth, and the per-texel
 // RMSE relative to the destination's mean.
@@ -13,6 +16,7 @@
 //                      [--arrival-rays N] [--portal-points K] [--lobe-width W] [--keep-contacts 1]
 // --keep-contacts 1: the scene read with its faces whole, as a bake made before the contact cuts was.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -51,7 +55,8 @@ struct PortalTexel {
   glm::vec3 irradiance{0.0f};  ///< from the source side, RGB
   glm::vec4 moments{0.0f};
   glm::vec4 lobe{0.0f};
-  ArrivalBins bins{};  ///< irradiance per arrival bin
+  ArrivalBins bins{};                        ///< irradiance per arrival bin
+  std::array<ArrivalBins, 4> quarterBins{};  ///< the same per quarter of the texel (u, v halves)
 };
 
 }  // namespace
@@ -119,7 +124,8 @@ int main(int argc, char** argv) {
       std::mt19937 rng(1234u + unsigned(k));
       std::uniform_real_distribution<float> U(0.0f, 1.0f);
       for (int s = 0; s < arrivalRays; ++s) {
-        const glm::vec3 y = o + (float(i) + U(rng)) / float(n1) * e1 + (float(j) + U(rng)) / float(n2) * e2;
+        const float ru = U(rng), rv = U(rng);
+        const glm::vec3 y = o + (float(i) + ru) / float(n1) * e1 + (float(j) + rv) / float(n2) * e2;
         // Cosine-weighted direction into the source side (−nOut), stratified-ish by random.
         const float r = std::sqrt(U(rng)), phi = 2.0f * kPi * U(rng);
         const glm::vec3 inward = -nOut;
@@ -134,6 +140,8 @@ int main(int argc, char** argv) {
         const glm::vec3 omega = -d;  // the light travels into dest
         pt.moments += arrivalMoment(omega, nOut, w);
         pt.bins[size_t(arrivalBin(bins, omega))] += b / float(arrivalRays);
+        pt.quarterBins[size_t((ru < 0.5f ? 0 : 1) + (rv < 0.5f ? 0 : 2))][size_t(arrivalBin(bins, omega))] +=
+            b / float(arrivalRays);
       }
       pt.lobe = fitEmissionLobe(pt.moments, nOut, lobeWidth);
     });
@@ -147,7 +155,7 @@ int main(int argc, char** argv) {
       if (cellOf[size_t(p.triangles.front())] != dest) continue;
       receivers.push_back(t);
     }
-    constexpr int kModels = 5;  // truth, lambert, lobe, lobe+blur, bins
+    constexpr int kModels = 8;  // truth, lambert, lobe, lobe+blur, bins, bins between texels (2), quarters
     std::vector<std::array<double, kModels>> got(receivers.size());
     tbb::parallel_for(size_t(0), receivers.size(), [&](size_t q) {
       const size_t t = receivers[q];
@@ -184,13 +192,34 @@ int main(int argc, char** argv) {
           const float blur = std::min(atlas.area[t] * cx / (12.0f * r2 * cs * cs * cs), 0.1f);
           sum[3] += m * g * emissionLobeFactor(pt.lobe, nOut, omega, blur);
           sum[4] += g * glm::dot(pt.irradiance, binnedEmissionFactor(pt.bins, bins, omega));
+          // Between the texels' centres, bilinearly, held at the portal's edges: the bins alone (the
+          // texel's own irradiance), or the light (irradiance times bins).
+          const float gx = std::clamp(float(i) + su - 0.5f, 0.0f, float(n1 - 1)),
+                      gy = std::clamp(float(j) + sv - 0.5f, 0.0f, float(n2 - 1));
+          const int i0 = std::min(int(gx), n1 - 1), j0 = std::min(int(gy), n2 - 1);
+          const int i1 = std::min(i0 + 1, n1 - 1), j1 = std::min(j0 + 1, n2 - 1);
+          const float fx = gx - float(i0), fy = gy - float(j0);
+          const int at[4] = {j0 * n1 + i0, j0 * n1 + i1, j1 * n1 + i0, j1 * n1 + i1};
+          const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+          glm::vec3 f(0.0f), light(0.0f);
+          for (int q = 0; q < 4; ++q) {
+            const PortalTexel& nb = texels[size_t(at[q])];
+            const glm::vec3 fq = binnedEmissionFactor(nb.bins, bins, omega);
+            f += w[q] * fq, light += w[q] * nb.irradiance * fq;
+          }
+          sum[5] += g * glm::dot(pt.irradiance, f);
+          sum[6] += g * (light.r + light.g + light.b);
+          // The texel's irradiance, in the directions of the quarter of it the point is in.
+          const ArrivalBins& quarter = pt.quarterBins[size_t((su < 0.5f ? 0 : 1) + (sv < 0.5f ? 0 : 2))];
+          sum[7] += g * glm::dot(pt.irradiance, binnedEmissionFactor(quarter, bins, omega));
         }
       }
       got[q] = sum;
     });
 
     // Report: by surface orientation, and by distance bands from the portal plane.
-    const char* names[kModels] = {"truth", "lambert", "lobe", "lobe+blur", "bins"};
+    const char* names[kModels] = {"truth", "lambert",   "lobe",       "lobe+blur",
+                                  "bins",  "bins-lerp", "light-lerp", "bins/4"};
     std::map<std::string, std::array<double, kModels>> byGroup;
     std::array<double, kModels> total{}, sq{};
     double area = 0.0;

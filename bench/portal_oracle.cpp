@@ -7,10 +7,9 @@
 // or as a histogram of arrival directions in radiosity/solve/emission_bins.h's bins — and the bins read
 // between neighbouring texels' centres (bins-lerp: the bins alone; light-lerp: irradiance times bins), or
 // per quarter of the texel with the texel's irradiance (bins/4): what a texel's light spread over its area
-// without finer texels would give. Only the first pass
-// through the portal; no interreflection in the destination. Prints, per destination surface orientation
-// and per band of distance from the portal plane, the ratio of each model to the truth, and the per-texel
-// RMSE relative to the destination's mean.
+// without finer texels would give. Only the first pass through the portal; no interreflection in the
+// destination. Prints, per destination surface orientation and per band of distance from the portal
+// plane, the ratio of each model to the truth, and the per-texel RMSE relative to the destination's mean.
 //
 //   cpgi_portal_oracle SCENE BAKE_DIR PORTAL_NAME SOURCE_CELL [--density D] [--portal-texel M]
 //                      [--arrival-rays N] [--portal-points K] [--lobe-width W] [--keep-contacts 1]

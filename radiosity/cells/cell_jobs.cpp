@@ -479,8 +479,7 @@ RoundSettings roundSettings(const fs::path& dir, const CellJobPlan& plan, int ro
   RoundSettings s;
   s.target = stop.target();
   s.controls.readTransfer = true;
-  s.settings =
-      roundBudget(params.solver, s.target, r.before, plan.emitted, s.controls, s.shape, plan.globalPatches);
+  s.settings = roundBudget(params, s.target, r.before, plan.emitted, s.controls, s.shape, plan.globalPatches);
   return s;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <memory>
 #include <tuple>
 
@@ -87,13 +88,15 @@ bool cellSolvesRound(const CellState& s, double target) {
   return cellPower(s.pending, s.atlas) > 1e-6 * target;
 }
 
-SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
+SolverParams roundBudget(const CellSolveParams& params, double target, double unshot, double emitted,
                          SolveControls& controls, ShotShape& shape, size_t globalPatches) {
+  const SolverParams& settings = params.solver;
   SolverParams round = settings;
   round.unshotFraction = std::clamp(0.5 * target / unshot, 1e-9, 0.999999);
   controls.minShotPower = 0.5 * target / double(std::max<size_t>(globalPatches, 1));
   shape.strongShotPower = settings.strongShotFraction * emitted;
   shape.emittersAreLamps = false;  // a cell's emitters are its portals; its lamps shot first, globally
+  shape.openingPoints = std::max(1, int(std::lround(4.0f / params.portalDensityScale)));
   return round;
 }
 

@@ -86,7 +86,8 @@ bool cellSolvesRound(const CellState& s, double target);
 /// A cell lit only through a door must not be solved to the scene's fraction of its own small input: a
 /// room of many small patches would then take more shots than the whole scene. For the same reason a
 /// shot is strong (more eyes) by the scene's `emitted` power (W), not by the cell's input.
-SolverParams roundBudget(const SolverParams& settings, double target, double unshot, double emitted,
+/// A portal's receiver texels are seen through points as far apart at any portalDensityScale.
+SolverParams roundBudget(const CellSolveParams& params, double target, double unshot, double emitted,
                          SolveControls& controls, ShotShape& shape, size_t globalPatches);
 
 /// Cell `c`'s round after its solve `solved` (of `s`, its pending light as the atlas's emission): its

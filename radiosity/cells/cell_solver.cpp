@@ -232,7 +232,7 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
     }
     ++rounds;
     const SolverParams settings =
-        roundBudget(params.solver, stop.target(), unshot, emitted, controls, shape, global.patches.size());
+        roundBudget(params, stop.target(), unshot, emitted, controls, shape, global.patches.size());
     const std::vector<size_t> active = activeCells(cells, stop.target());
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
     const std::vector<CellRound> round =

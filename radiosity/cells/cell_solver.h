@@ -60,9 +60,12 @@ struct CellSolveParams {
   /// (one jamb sees the lit room's wall, the other its floor), and a wall at right angles to the door
   /// sees each texel from 45–90°. At the solve's 0.2 m a room lit through one door read a strip +30 %
   /// beside one −30 % on that wall; at 0.1 m it is the global bake's within its noise (bench/RESULTS.md,
-  /// "The portals' texels"). It is 1 by default: at 2 the cells bake of the random plans cost 2.4× the
-  /// CPU (4× the global bake's), which the cells' reason to exist cannot pay; the strip wants a cheaper
-  /// cure (the portal texel's light varied across its area, not more texels).
+  /// "The portals' texels"). The light read between texels, or its eyes spread over them, did not do it.
+  /// It is 1 by default. At 2 a portal's receiving texels are seen through 2 × 2 points (roundBudget:
+  /// ShotShape::openingPoints), the same points a square metre; with portalBinRays 1024 the random plans'
+  /// cells bakes cost 1.3× main's and their rooms over the global bake's RMSE + 2 points went 7 → 3 of
+  /// 37, where 2048 rays and 4 × 4 points cost 2.4× (bench/RESULTS.md, "The portals' texels at half the
+  /// cost"); the bake's tests at those settings were not run.
   float portalDensityScale = 1.0f;
   /// Cells solved at once within a round (>= 1), each extra one on its own thread and GL context
   /// (radiosity/cells/cell_workers.h). Any value gives the same result as 1.

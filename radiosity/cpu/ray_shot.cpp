@@ -19,8 +19,6 @@ constexpr float kPi = 3.14159265358979f;
 // A node holding binned texels stands for them whole only beyond this many of its radii, where it looks
 // smaller than about half the narrowest bins (shaders/directional.glsl, BIN_FAR).
 constexpr float kBinFar = 10.0f;
-// Points per edge of an opening's receiver texel, each seen by its own segment (RayShotParams::openings).
-constexpr int kOpeningPoints = 4;
 // The most sub-disks per edge of a binned texel near a receiver (Gather::nearSubdisks; receive.comp's
 // NEAR_BIN_SUBDISKS).
 constexpr int kNearBinSubdisks = 32;
@@ -537,24 +535,25 @@ struct Queued {
 };
 
 // Where a receiver texel's segments end: its centre lifted off its surface, or an opening's texel
-// (RayShotParams::openings) kOpeningPoints² points over it, each with its share of the light. A portal
-// sits at its wall's mid-plane behind reveals, and the jamb nearer a shooter hides a strip along the
+// (RayShotParams::openings) RayShotParams::openingPoints² points over it, each with its share of the light. A
+// portal sits at its wall's mid-plane behind reveals, and the jamb nearer a shooter hides a strip along the
 // portal's edge, from the edge itself; a texel's centre saw past strips under half the texel, and the
 // light through plan 8's doors and windows was 5–13 % more than the reference's (bench/RESULTS.md, "The
 // portals' error").
 struct ReceiverEnds {
   glm::vec3 lifted{0.0f}, u{0.0f}, v{0.0f};
   uint32_t k = 0;
-  bool opening = false;
-  ReceiverEnds(const RayShotScene& s, uint32_t t, uint32_t index, std::span<const uint8_t> openings)
+  int points = 1;  // per edge
+  ReceiverEnds(const RayShotScene& s, uint32_t t, uint32_t index, const RayShotParams& params)
       : lifted(s.atlas.position[t] + s.atlas.normal[t] * s.offset), k(index) {
-    opening = !openings.empty() && openings[size_t(s.atlas.patch[t])] != 0;
-    if (opening) footprint(s.atlas, t, u, v);
+    if (params.openings.empty() || params.openings[size_t(s.atlas.patch[t])] == 0) return;
+    footprint(s.atlas, t, u, v);
+    points = std::max(params.openingPoints, 1);
   }
   // The segment between the receiver and `other`, the receiver's end first when `fromReceiver`.
   void queue(Queued& q, bool fromReceiver, const glm::vec3& other, const glm::vec3& light,
              const glm::vec3& source) const {
-    const int m = opening ? kOpeningPoints : 1;
+    const int m = points;
     const glm::vec3 part = light / float(m * m);
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < m; ++i) {
@@ -632,7 +631,7 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
           // factors spared (the margin keeps receivers on the plane on the whole path).
           if (glm::dot(ns, x - plane) < -s.offset) continue;
           Gather g{x, n, ns, params.farField};
-          const ReceiverEnds ends(s, t, uint32_t(k), params.openings);
+          const ReceiverEnds ends(s, t, uint32_t(k), params);
           // The receiver's eye set: its place in a setsEdge × setsEdge tile of the atlas.
           const size_t place = (t % s.atlas.width) % size_t(setsEdge) +
                                size_t(setsEdge) * ((t / s.atlas.width) % size_t(setsEdge));

@@ -56,9 +56,11 @@ struct RayShotParams {
   /// Leave out an eye's segments to a tile of receivers that one surface hides whole (occluder_cull.h).
   bool cull = true;
   /// Per patch (empty: none), non-zero for an opening (a cell's portal, ShotShape::openingPatches): its
-  /// receiver texels are seen through kOpeningPoints² points over their texel, each with its share of
+  /// receiver texels are seen through openingPoints² points over their texel, each with its share of
   /// the light, rather than through their centre alone (ray_shot.cpp).
   std::span<const uint8_t> openings = {};
+  /// Points per edge of an opening's receiver texel (ShotShape::openingPoints).
+  int openingPoints = 4;
   /// A region whose bounding radius is under this (m) is seen from one eye: on a furnished house's books
   /// and handles the eyes fell within a coarse texel of each other, each costing a ray per receiver.
   float oneEyeRadius = 0.25f;

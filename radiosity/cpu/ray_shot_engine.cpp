@@ -62,6 +62,7 @@ class RayShotBackend final : public ShotBackend {
         emission_{shape.directionalEmission ? shape.emissionLobes : std::span<const glm::vec4>{},
                   shape.emissionBins, shape.directionalEmission && shape.arrivalMoments},
         openings_(shape.openingPatches.begin(), shape.openingPatches.end()),
+        openingPoints_(shape.openingPoints),
         firstShotNumber_(shape.firstShotNumber) {}
 
   // The shooters' layouts (most of the set-up: a second of CPU on a furnished house, minutes of wall at load
@@ -124,6 +125,7 @@ class RayShotBackend final : public ShotBackend {
     RayShotParams shot = strong ? strongShotParams_ : shotParams_;
     shot.cull = cull_.next();
     shot.openings = openings_;
+    shot.openingPoints = openingPoints_;
     gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot,
                         emission_);
     if (emission_.arrivals) {  // unscaled, as the item buffers note them: only their direction is read
@@ -198,6 +200,7 @@ class RayShotBackend final : public ShotBackend {
   const ShooterEmission emission_;   // ShotShape's lobes and bins
   std::vector<glm::vec4> arrivals_;  // per atlas texel, once a shot noted any
   std::vector<uint8_t> openings_;    // ShotShape::openingPatches
+  int openingPoints_ = 4;            // ShotShape::openingPoints
   uint32_t firstShotNumber_ = 0;     // ShotShape::firstShotNumber
   uint32_t shotNumber_ = 0;
 };

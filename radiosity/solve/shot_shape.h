@@ -55,6 +55,11 @@ struct ShotShape {
   /// lays them out as any patch: its cells' portals passed the light through them within 0.1 % of the
   /// reference's where the rays engine's gave 5–13 % more.
   std::span<const uint8_t> openingPatches = {};
+  /// Points per edge over an opening's receiver texel on the rays engine, each seen by its own segment
+  /// (a jamb hides a strip along the portal's edge from part of the texel): 4 on the solve's 0.2 m portal
+  /// texels; portals charted at twice the density (CellSolveParams::portalDensityScale) take 2, the same
+  /// points a square metre rather than four times the segments.
+  int openingPoints = 4;
   /// Also read back what the lamps' shots found at each texel (SolveResult::lampFlags).
   bool readLampFlags = false;
 

@@ -18,6 +18,9 @@ struct WallPlane {
   bool zeroThickness = false;  ///< the wall's two faces lie in it
 };
 
+// Within this of each other, two coordinates are one (a rectangle's corners, a triangle edge along an axis).
+constexpr double kSameCoordinate = 1e-4;  // metres
+
 // The mid-plane of the wall around portal q, if the scene's faces show one.
 std::optional<WallPlane> wallMidPlane(const Scene& scene, const PortalQuad& q, int axis, double maxThickness,
                                       double slack, double grow) {
@@ -141,6 +144,143 @@ void squareInPlane(PortalQuad& q, int axis) {
   }
 }
 
+// Where the opening's side beyond one edge of the portal lies: the edge at coordinate `at` along in-plane
+// axis `across`, `low` when the opening lies above it (the sill, the left jamb).
+struct EdgeSide {
+  int across = 0;
+  bool low = true;
+};
+
+// The face of a thick wall's opening that bounds that edge: a reveal (a sill facing up, a jamb facing the
+// opening, a lintel facing down) through the wall's mid-plane, along the edge for at least half its length.
+std::optional<double> revealAt(const Triangle& t, int axis, double wall, EdgeSide side, double alongLo,
+                               double alongHi, int along) {
+  const glm::vec3 n = t.geometricNormal();
+  if (std::abs(n[side.across]) < 0.999f || (n[side.across] > 0.0f) != side.low) return std::nullopt;
+  const auto extent = [&](int k) {
+    return std::pair{std::min({t.p[0][k], t.p[1][k], t.p[2][k]}),
+                     std::max({t.p[0][k], t.p[1][k], t.p[2][k]})};
+  };
+  const auto [axisLo, axisHi] = extent(axis);
+  if (axisLo > wall + kSameCoordinate || axisHi < wall - kSameCoordinate) return std::nullopt;
+  const auto [lo, hi] = extent(along);
+  if (std::min(double(hi), alongHi) - std::max(double(lo), alongLo) < 0.5 * (alongHi - alongLo))
+    return std::nullopt;
+  return double(t.p[0][side.across]);
+}
+
+// The edge of a zero-thickness wall's face that bounds that edge: a side of a face in the wall's plane,
+// along the portal's edge for at least half its length, with the face beyond it (below a sill).
+std::optional<double> wallEdgeAt(const Triangle& t, int axis, double wall, EdgeSide side, double alongLo,
+                                 double alongHi, int along) {
+  if (std::abs(t.geometricNormal()[axis]) < 0.999f || std::abs(double(t.p[0][axis]) - wall) > kPlaneTolerance)
+    return std::nullopt;
+  std::optional<double> out;
+  for (int e = 0; e < 3; ++e) {
+    const glm::vec3 &p = t.p[size_t(e)], &q = t.p[size_t((e + 1) % 3)], &r = t.p[size_t((e + 2) % 3)];
+    if (std::abs(double(p[side.across]) - double(q[side.across])) > kSameCoordinate) continue;
+    const double at = double(p[side.across]);
+    if ((double(r[side.across]) < at) != side.low) continue;  // the face on the opening's side of it
+    const double lo = std::min(p[along], q[along]), hi = std::max(p[along], q[along]);
+    if (std::min(hi, alongHi) - std::max(lo, alongLo) >= 0.5 * (alongHi - alongLo)) out = at;
+  }
+  return out;
+}
+
+// Moves each edge of a portal lying in its wall's plane as a rectangle along the wall's in-plane axes onto
+// the nearest edge of the opening within `reach`: the voxels put the portal's edges on their lattice, up to
+// half a voxel off the opening's. A sill 2 cm under a window's portal lets the light that a cell sends
+// through the gap out of the cell, which the rooms behind (plan 22's R8, −5.6 % with the automatic cells
+// against −0.9 % with the plan's own) never get; the gap between a jamb and the portal likewise. Returns
+// whether an edge moved.
+bool fitToOpening(const Scene& scene, int axis, const WallPlane& wall, double reach, PortalQuad& q) {
+  const int inPlane[2] = {(axis + 1) % 3, (axis + 2) % 3};
+  glm::dvec3 lo(q.corners[0]), hi(q.corners[0]);
+  for (const glm::vec3& c : q.corners) lo = glm::min(lo, glm::dvec3(c)), hi = glm::max(hi, glm::dvec3(c));
+  // A rectangle turned in the wall's plane (fitted a few degrees askew and squared there) becomes the one
+  // along the axes whose four edges are all the opening's; otherwise it is left.
+  bool alongAxes = true;
+  for (const glm::vec3& c : q.corners)
+    for (int k : inPlane)
+      alongAxes =
+          alongAxes && (std::abs(c[k] - lo[k]) < kSameCoordinate || std::abs(c[k] - hi[k]) < kSameCoordinate);
+  double to[2][2], distance[2][2];  // [in-plane axis][low, high edge]
+  for (int m = 0; m < 2; ++m) {
+    to[m][0] = lo[inPlane[m]], to[m][1] = hi[inPlane[m]];
+    distance[m][0] = distance[m][1] = reach;
+  }
+  bool found[2][2] = {{false, false}, {false, false}};
+  for (const Triangle& t : scene.triangles)
+    for (int m = 0; m < 2; ++m)
+      for (int s = 0; s < 2; ++s) {
+        const int across = inPlane[m], along = inPlane[1 - m];
+        const EdgeSide side{across, s == 0};
+        const std::optional<double> at = wall.zeroThickness
+                                             ? wallEdgeAt(t, axis, wall.at, side, lo[along], hi[along], along)
+                                             : revealAt(t, axis, wall.at, side, lo[along], hi[along], along);
+        const double edge = s == 0 ? lo[across] : hi[across];
+        if (at && std::abs(*at - edge) <= distance[m][s])
+          distance[m][s] = std::abs(*at - edge), to[m][s] = *at, found[m][s] = true;
+      }
+  const bool allFound = found[0][0] && found[0][1] && found[1][0] && found[1][1];
+  if (!alongAxes && !allFound) return false;
+  bool moved = !alongAxes;
+  for (int m = 0; m < 2; ++m) {
+    if (to[m][1] - to[m][0] < reach) return false;  // the opening would close up: not this opening's edges
+    moved = moved || to[m][0] != lo[inPlane[m]] || to[m][1] != hi[inPlane[m]];
+  }
+  if (!moved) return false;
+  // The corners keep their winding: each takes the low or the high side it was nearer along each axis,
+  // which for a turned rectangle is read about its centre.
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  for (glm::vec3& c : q.corners)
+    for (int m = 0; m < 2; ++m) {
+      const int k = inPlane[m];
+      c[k] = float(double(c[k]) < centre[k] ? to[m][0] : to[m][1]);
+    }
+  const glm::vec3 normal = q.normal;
+  computePortalFrame(q);
+  q.normal = normal;
+  return true;
+}
+
+// Fits each portal lying in its wall's plane to the opening's edges (fitToOpening), and puts back the
+// portals of any pair of cells that the fit would leave a voxel face between uncovered. Returns how many
+// portals kept a fitted edge.
+int fitPortalsToOpenings(const Scene& scene, const GridFrame& f, double maxThickness, PortalSet& set) {
+  const double h = f.voxel;
+  const std::vector<PortalQuad> before = quadsOf(set.portals);
+  std::vector<char> fitted(set.portals.size(), 0);
+  for (size_t k = 0; k < set.portals.size(); ++k) {
+    PortalQuad& q = set.portals[k].quad;
+    const glm::vec3 a = glm::abs(q.normal);
+    const int axis = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+    if (a[axis] < 0.99999f) continue;
+    const std::optional<WallPlane> wall = wallMidPlane(scene, q, axis, maxThickness, 1.5 * h, h);
+    if (!wall || std::abs(double(q.corners[0][axis]) - wall->at) > kSameCoordinate) continue;
+    fitted[k] = fitToOpening(scene, axis, *wall, h, q);
+  }
+  if (std::none_of(fitted.begin(), fitted.end(), [](char c) { return c != 0; })) return 0;
+  const auto leaksBefore = leakingFacesByPair(f, set.cell, before);
+  const auto leaksAfter = leakingFacesByPair(f, set.cell, quadsOf(set.portals));
+  const auto count = [](const auto& byPair, std::pair<int, int> pair) {
+    const auto it = byPair.find(pair);
+    return it == byPair.end() ? size_t(0) : it->second;
+  };
+  int kept = 0;
+  for (size_t k = 0; k < set.portals.size(); ++k) {
+    const PortalQuad& q = set.portals[k].quad;
+    const std::pair pair{std::min(q.cellA, q.cellB), std::max(q.cellA, q.cellB)};
+    if (count(leaksAfter, pair) > count(leaksBefore, pair)) {
+      set.portals[k].quad = before[k];
+    } else {
+      kept += fitted[k];
+    }
+  }
+  set.leakingFaces = countLeakingFaces(f, set.cell, quadsOf(set.portals));
+  return kept;
+}
+
 }  // namespace
 
 WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxThickness, PortalSet& set,
@@ -182,6 +322,7 @@ WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& f, double maxTh
     set = fitted;
     out = WallSnap{};
   }
+  out.fittedToOpening = fitPortalsToOpenings(scene, f, maxThickness, set);
   ctx.progress("wall_portals", 1.0);
   return out;
 }

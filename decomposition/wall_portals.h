@@ -16,6 +16,7 @@ namespace cpgi::decomp {
 struct WallSnap {
   int moved = 0;            ///< portals moved onto their wall's mid-plane
   double largestShift = 0;  ///< metres
+  int fittedToOpening = 0;  ///< portals in their wall's plane with an edge moved onto the opening's
 };
 
 /// Moves each portal of `set` along a grid axis (within 8°: a door by a corner is fitted a few degrees askew)
@@ -25,7 +26,10 @@ struct WallSnap {
 /// take 1.5 voxels and its tilt; the two may be one plane (a zero-thickness wall). The quad is flattened onto
 /// that plane as the rectangle round its pressed corners.
 /// The voxels of the portal's cells between the old plane and the new, within its quad, are relabelled by the
-/// side of the new plane; set.leakingFaces is recounted. Run after mergePortalPieces, before assignTriangles.
+/// side of the new plane; set.leakingFaces is recounted. Then each portal in its wall's plane as a rectangle
+/// along the wall's axes has its edges moved, each by up to a voxel, onto the opening's: a thick wall's
+/// reveals (sill, jambs, lintel) or the edges of a zero-thickness wall's faces, unless that uncovers a voxel
+/// face between its cells. Run after mergePortalPieces, before assignTriangles.
 WallSnap snapPortalsToWalls(const Scene& scene, const GridFrame& frame, double maxThickness, PortalSet& set,
                             Context& ctx);
 

@@ -198,6 +198,25 @@ TEST(RandomPlans, TheAutomaticDecompositionFindsTheRoomsAndNoOutside) {
     EXPECT_EQ(d.leakingFaces, 0u) << seed;
     EXPECT_TRUE(d.connectedOpen) << seed;
     EXPECT_NEAR(double(d.graph.cells.size()), double(p.rooms.size()), 1.0) << seed;
+    // Each automatic portal over one of the plan's openings is that opening's rectangle: its edges on the
+    // sill, jambs and lintel, not on the voxels' lattice (a gap left the cells' light out).
+    int matched = 0;
+    for (const PortalQuad& q : d.graph.portals) {
+      glm::vec3 lo(1e9f), hi(-1e9f);
+      for (const glm::vec3& c : q.corners) lo = glm::min(lo, c), hi = glm::max(hi, c);
+      for (const PortalQuad& own : s.cells.portals) {
+        glm::vec3 ownLo(1e9f), ownHi(-1e9f);
+        for (const glm::vec3& c : own.corners) ownLo = glm::min(ownLo, c), ownHi = glm::max(ownHi, c);
+        const glm::bvec3 overlaps = glm::lessThan(glm::max(lo, ownLo), glm::min(hi, ownHi) + 1e-3f);
+        if (!glm::all(overlaps) || std::abs(glm::dot(q.normal, own.normal)) < 0.999f) continue;
+        ++matched;
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(lo[k], ownLo[k], 2e-3f) << seed << " " << q.name << " axis " << k;
+          EXPECT_NEAR(hi[k], ownHi[k], 2e-3f) << seed << " " << q.name << " axis " << k;
+        }
+      }
+    }
+    EXPECT_GE(matched, int(d.graph.portals.size()) - 1) << seed;
   }
 }
 

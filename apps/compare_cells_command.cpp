@@ -140,9 +140,12 @@ int runCompare(const CompareOptions& o) {
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   ctx.setProgress(stderrProgress(false));
-  const decomp::GridChoice grid = decomp::chooseGrid(loaded.scene, params, ctx);
+  // The grid the decomposition makes: from the faces whole (decompose.h, withBuriedPieces).
+  const Scene withBuried = decomp::withBuriedPieces(loaded.scene);
+  const Scene& surfaces = loaded.scene.buriedPieces.empty() ? loaded.scene : withBuried;
+  const decomp::GridChoice grid = decomp::chooseGrid(surfaces, params, ctx);
   const double h = grid.voxel;
-  const decomp::VoxelSpace space = decomp::buildVoxelSpace(loaded.scene, h, ctx, params.memoryLimit,
+  const decomp::VoxelSpace space = decomp::buildVoxelSpace(surfaces, h, ctx, params.memoryLimit,
                                                            grid.extent.trimmed ? grid.extent.box : Bounds{});
   const Labelled a = labelsFor(o.a, loaded, o.scene, space, params, o.load, o.bake, ctx);
   const Labelled b = labelsFor(o.b, loaded, o.scene, space, params, o.load, o.bake, ctx);

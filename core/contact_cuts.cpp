@@ -81,6 +81,9 @@ std::optional<Segment> footOn(const Triangle& f, const Triangle3& fExact, const 
   const Exact::Plane_3 plane = face.supporting_plane();
   const Exact::Segment_3 edge(plane.projection(exact(point(s.p[low[0]]))),
                               plane.projection(exact(point(s.p[low[1]]))));
+  // An edge across the plane shorter than twice the stand-off projects to a point: no outline (CGAL's
+  // segment-triangle intersection asserts on a degenerate segment).
+  if (edge.is_degenerate()) return std::nullopt;
   const auto hit = CGAL::intersection(edge, face);
   if (!hit) return std::nullopt;
   if (const Exact::Segment_3* g = boost::get<Exact::Segment_3>(&*hit))
@@ -224,6 +227,7 @@ struct FaceResult {
   bool cut = false;
   bool leftWhole = false;
   std::vector<Triangle> pieces;
+  std::vector<Triangle> buriedPieces;  ///< the pieces dropped, for Scene::buriedPieces
   size_t buried = 0;
   double buriedArea = 0.0;
 };
@@ -361,12 +365,18 @@ std::optional<FaceResult> cutQuad(const Scene& scene, const Quad& q, const std::
     for (int i = 0; i < ns; ++i) {
       const glm::dvec2 lo(sb[i], tb[j]), hi(sb[i + 1], tb[j + 1]);
       visible[size_t(j * ns + i)] = !buriedCell(lo, hi);
-      if (!visible[size_t(j * ns + i)]) {
-        ++r.buried;
-        r.buriedArea += (sb[i + 1] - sb[i]) * w * (tb[j + 1] - tb[j]) * h;
-      }
     }
   const Triangle* sources[2] = {&scene.triangles[q.triangles[0]], &scene.triangles[q.triangles[1]]};
+  for (int j = 0; j < nt; ++j)
+    for (int i = 0; i < ns; ++i) {
+      if (visible[size_t(j * ns + i)]) continue;
+      ++r.buried;
+      r.buriedArea += (sb[i + 1] - sb[i]) * w * (tb[j + 1] - tb[j]) * h;
+      const glm::dvec3 p00 = at(sb[i], tb[j]), p10 = at(sb[i + 1], tb[j]), p11 = at(sb[i + 1], tb[j + 1]),
+                       p01 = at(sb[i], tb[j + 1]);
+      r.buriedPieces.push_back(piece(*sources[0], sources, {p00, p10, p11}));
+      r.buriedPieces.push_back(piece(*sources[0], sources, {p00, p11, p01}));
+    }
   const auto free = [&](int i, int j) { return visible[size_t(j * ns + i)] && !taken[size_t(j * ns + i)]; };
   for (int j = 0; j < nt; ++j)
     for (int i = 0; i < ns; ++i) {
@@ -487,6 +497,7 @@ FaceResult cutTriangle(const Triangle& t, const std::vector<Segment>& segs, cons
         });
     if (covered) {
       ++r.buried, r.buriedArea += area;
+      r.buriedPieces.push_back(piece(t, sources, p));
       continue;
     }
     r.pieces.push_back(piece(t, sources, p));
@@ -516,10 +527,12 @@ ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams
 
   // Per scene triangle, what replaces it: nothing cut (nullopt), or its pieces (a quad's all on its first).
   std::vector<std::optional<std::vector<Triangle>>> replaced(count);
+  std::vector<Triangle> buriedPieces;
   const auto take = [&](const FaceResult& r, std::initializer_list<uint32_t> faceTriangles) {
     if (r.leftWhole) ++stats.leftWhole;
     if (!r.cut || r.leftWhole) return;
     ++stats.facesCut, stats.buriedPieces += r.buried, stats.buriedArea += r.buriedArea;
+    buriedPieces.insert(buriedPieces.end(), r.buriedPieces.begin(), r.buriedPieces.end());
     bool first = true;
     for (uint32_t i : faceTriangles) replaced[i] = first ? r.pieces : std::vector<Triangle>{}, first = false;
   };
@@ -556,6 +569,7 @@ ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams
     c.triangles = std::move(mapped);
   }
   scene.triangles = std::move(out);
+  scene.buriedPieces.insert(scene.buriedPieces.end(), buriedPieces.begin(), buriedPieces.end());
   stats.trianglesAfter = scene.triangles.size();
   return stats;
 }

@@ -58,7 +58,8 @@ struct ContactCuts {
 /// other face is cut by a constrained Delaunay triangulation in its plane. Pieces keep their face's material,
 /// node, texture coordinates (SurfaceUV holds over the plane) and cell; normals are interpolated. Faces no
 /// segment crosses keep their triangles and order. Must run before charting: it renumbers the triangles, and
-/// `cells` (hand-made cells) with them.
+/// `cells` (hand-made cells) with them. The pieces dropped go to Scene::buriedPieces (the decomposition's
+/// solid).
 ContactCuts cutAtContacts(Scene& scene, CellGraph& cells, const ContactCutParams& params = {});
 
 }  // namespace cpgi

@@ -126,6 +126,11 @@ struct Bounds {
 struct Scene {
   std::vector<Material> materials;
   std::vector<Triangle> triangles;
+  /// The pieces of faces the contact cuts dropped as lying inside a solid (core/contact_cuts.h): neither
+  /// drawn nor lit, yet where the solid's surface runs. The decomposition voxelizes them with `triangles`, so
+  /// that its empty space is that of the faces whole: a piece judged buried next to a room would otherwise
+  /// open a hole in the voxels' walls.
+  std::vector<Triangle> buriedPieces;
   /// Slash-joined glTF node names from the root ("building/cell:A/walls"); OBJ: the object/group name.
   std::vector<std::string> nodePaths;
   std::vector<Camera> cameras;

@@ -68,7 +68,8 @@ GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context
   for (const Triangle& t : scene.triangles) area += double(t.area());
   const glm::dvec3 size = glm::dvec3(scene.bounds().size());
   RoomExtentParams ep;
-  ep.voxel = std::max(params.minExtentVoxel, std::sqrt(std::max(area, size.x * size.z) / params.extentBudget));
+  ep.voxel =
+      std::max(params.minExtentVoxel, std::sqrt(std::max(area, size.x * size.z) / params.extentBudget));
   ep.coverHeight = VoxelizeParams().coverHeight;
   ep.margin = params.outsideMargin;
   ep.minPartShare = params.minPartShare;
@@ -102,6 +103,15 @@ double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::s
   GridChoice g = chooseGrid(scene, params, ctx);
   if (how) *how = std::move(g.how);
   return g.voxel;
+}
+
+Scene withBuriedPieces(const Scene& scene) {
+  Scene out;
+  if (scene.buriedPieces.empty()) return out;
+  out.triangles.reserve(scene.triangles.size() + scene.buriedPieces.size());
+  out.triangles = scene.triangles;
+  out.triangles.insert(out.triangles.end(), scene.buriedPieces.begin(), scene.buriedPieces.end());
+  return out;
 }
 
 EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params, Context& ctx) {
@@ -154,7 +164,9 @@ std::vector<std::string> roomNames(const std::vector<CellStats>& stats, int outs
 
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
   checkDecomposeInput(scene, params);
-  EmptySpace empty = voxelizeEmptySpace(scene, params, ctx);
+  const Scene withBuried = withBuriedPieces(scene);
+  const Scene& surfaces = scene.buriedPieces.empty() ? scene : withBuried;
+  EmptySpace empty = voxelizeEmptySpace(surfaces, params, ctx);
   const double h = empty.voxelSize;
   const SolidGrid& solid = empty.solid;
   SpaceGrid& space = empty.space;
@@ -164,7 +176,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
   WatershedLabels basins = floodWatershed(distance, params.watershed, ctx);
   const int basinCount = basins.basinCount();
   CellLabels cells = mergeBasins(std::move(basins), params.merge, ctx);
-  const FoldedCells folded = foldCellsBehindGeometry(cells, scene, solid, space.space, params.behind, ctx);
+  const FoldedCells folded = foldCellsBehindGeometry(cells, surfaces, solid, space.space, params.behind, ctx);
   std::vector<std::string> names;
   for (int c = 0; c < cells.cellCount(); ++c)
     names.push_back(c == cells.outsideCell ? std::string("outside") : "c" + std::to_string(c));
@@ -174,7 +186,7 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
                   ? "no enclosed empty space"
                   : "no room larger than the minimum cell volume") +
              " at " + metres(h) + " voxels; the whole scene is one outside cell");
-  Decomposition out = finishDecomposition(scene, params, solid, std::move(space.space), distance,
+  Decomposition out = finishDecomposition(scene, surfaces, params, solid, std::move(space.space), distance,
                                           std::move(cells), names, ctx);
   // Named once merged (the leak pass merges too): by storey and floor area, as a person would find them.
   const std::vector<std::string> rooms = roomNames(out.cellStats, out.outsideCell);
@@ -290,8 +302,9 @@ int dropUnfacedClosedCells(Decomposition& out) {
 
 }  // namespace
 
-Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
+Decomposition finishDecomposition(const Scene& scene, const Scene& surfaces, const DecomposeParams& params,
+                                  const SolidGrid& solid, std::vector<Space> space,
+                                  const DistanceGrid& distance, CellLabels cells,
                                   const std::vector<std::string>& names, Context& ctx) {
   Decomposition out;
   const double h = solid.frame.voxel;
@@ -304,7 +317,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   const ClosedLeaks closed =
       closeLeaks(portals, distance, int(peaksBefore.size()), outsideBefore, params.leaks, ctx);
   const MergedPortals merged = mergePortalPieces(portals, solid.frame, params.portalMerge, ctx);
-  snapPortalsToWalls(scene, solid.frame, params.portals.searchRange, portals, ctx);
+  snapPortalsToWalls(surfaces, solid.frame, params.portals.searchRange, portals, ctx);
   std::vector<float> peaks(size_t(closed.cellCount), 0.0f);
   for (size_t c = 0; c < peaksBefore.size(); ++c)
     if (closed.cellOf[c] >= 0)
@@ -314,6 +327,7 @@ Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& par
   out.outsideCell = closed.outsideCell;
   out.enclosed = closed.cellCount - (out.outsideCell >= 0 ? 1 : 0) > 0;
   out.leakMerges = closed.mergedPairs;
+  out.leakPlacements = closed.placements;
   out.mergedPortalPieces = merged.merged;
   out.voxelCell = std::move(portals.cell);
   out.leakingFaces = portals.leakingFaces;

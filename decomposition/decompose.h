@@ -48,8 +48,8 @@ struct DecomposeParams {
   /// The pass that finds where the rooms are (findRoomExtent) runs at max(minExtentVoxel, sqrt(max(surface
   /// area, footprint) / extentBudget)): its band and its columns each about extentBudget voxels at most,
   /// a fraction of the real pass's, and fine enough for a 1 m gap under a roof in any room.
-  double minExtentVoxel = 0.1;     ///< metres
-  double extentBudget = 4.0e6;     ///< voxels
+  double minExtentVoxel = 0.1;  ///< metres
+  double extentBudget = 4.0e6;  ///< voxels
   /// See RoomExtentParams::minPartShare.
   double minPartShare = RoomExtentParams().minPartShare;
   double sealRadius = 0.0;   ///< metres, see VoxelizeParams::sealRadius; in [0, 1]
@@ -97,6 +97,7 @@ struct Decomposition {
   int outsideCell = -1;            ///< the cell named "outside" (always the last), -1 when none
   int basins = 0;                  ///< watershed basins before merging
   int leakMerges = 0;              ///< pairs of cells merged because they met outside any portal
+  size_t leakPlacements = 0;       ///< portal placements the leak pass flooded (leaks.h, ClosedLeaks)
   int mergedPortalPieces = 0;      ///< portal pieces folded into another of the same pair (portal_merge.h)
   int foldedBehind = 0;            ///< cells behind the geometry folded into another (behind.h)
   int droppedUnfaced = 0;          ///< closed cells no triangle faces, dropped (dropUnfacedClosedCells)
@@ -147,7 +148,14 @@ struct EmptySpace {
   SpaceGrid space;
   DistanceGrid distance;
 };
-EmptySpace voxelizeEmptySpace(const Scene& scene, const DecomposeParams& params, Context& ctx);
+/// `surfaces`: the triangles the solid is made of (withBuriedPieces).
+EmptySpace voxelizeEmptySpace(const Scene& surfaces, const DecomposeParams& params, Context& ctx);
+
+/// The surfaces the voxel stages see: `scene`'s triangles with its Scene::buriedPieces put back, so that the
+/// solid is that of the faces whole, as if the contact cuts had not run (a piece they judge buried beside a
+/// room must not open the wall's voxels, and the pieces cut from a brush must not make the watershed new
+/// basins). Only the triangles are copied; empty when the scene has no buried pieces (use `scene` itself).
+Scene withBuriedPieces(const Scene& scene);
 
 /// Runs the seven stages. Warnings (open scene, walls thinner than a voxel, leaks, coarse voxels) go to
 /// ctx.warn; each stage's time to ctx's timers.
@@ -161,9 +169,12 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& params);
 /// Stages 6 and 7 and the graph, over cells labelled by any means (the watershed and merge of decompose,
 /// or a scene's room volumes, volume_cells.h): portals fitted where the cells meet, every triangle given
 /// to the cell it faces (split on portal planes), per-cell statistics. `names` holds one name per cell of
-/// `cells`; `space` and `distance` are those of `solid`.
-Decomposition finishDecomposition(const Scene& scene, const DecomposeParams& params, const SolidGrid& solid,
-                                  std::vector<Space> space, const DistanceGrid& distance, CellLabels cells,
+/// `cells`; `space` and `distance` are those of `solid`, made from `surfaces` (withBuriedPieces: `scene` or
+/// its triangles with the buried pieces), on whose walls the portals are snapped; `scene`'s triangles are
+/// the ones given to the cells.
+Decomposition finishDecomposition(const Scene& scene, const Scene& surfaces, const DecomposeParams& params,
+                                  const SolidGrid& solid, std::vector<Space> space,
+                                  const DistanceGrid& distance, CellLabels cells,
                                   const std::vector<std::string>& names, Context& ctx);
 
 }  // namespace cpgi::decomp

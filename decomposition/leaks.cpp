@@ -93,9 +93,12 @@ size_t absorbFragments(const GridFrame& f, std::vector<int32_t>& cell) {
 // either way: of those that part the two, the one that moves the fewest voxels from one cell to the
 // other. On success `quads` holds the ones used. A quad that stops a voxel short of a door's jamb lets the
 // flood round its edge (the wall takes the extra rim); one pushed past the wall by furniture in front of
-// the door leaves a slab of relabelled voxels that meets the room beyond it edge on.
+// the door leaves a slab of relabelled voxels that meets the room beyond it edge on. Each placement costs
+// its flood (floodSideOfPortals), not a pass over the grid: a level's pair is tried up to 38 times.
+// `placements` counts the placements flooded.
 bool partOnMovedPortals(const GridFrame& f, std::vector<int32_t>& cell, int first, int second, size_t seedA,
-                        size_t seedB, std::vector<PortalQuad>& quads, int maxGrow, int maxShift) {
+                        size_t seedB, std::vector<PortalQuad>& quads, int maxGrow, int maxShift,
+                        size_t& placements) {
   auto candidate = [&](int grow, int shift) {
     std::vector<PortalQuad> q;
     for (const PortalQuad& p : quads) {
@@ -105,27 +108,34 @@ bool partOnMovedPortals(const GridFrame& f, std::vector<int32_t>& cell, int firs
     }
     return q;
   };
-  auto tryOn = [&](std::vector<int32_t>& labels, const std::vector<PortalQuad>& q) {
-    std::vector<const PortalQuad*> barrier;
-    for (const PortalQuad& x : q) barrier.push_back(&x);
-    return relabelAcrossPortals(f, labels, first, second, seedA, seedB, barrier);
+  auto barrier = [](const std::vector<PortalQuad>& q) {
+    std::vector<const PortalQuad*> out;
+    for (const PortalQuad& x : q) out.push_back(&x);
+    return out;
   };
-  if (tryOn(cell, quads)) return true;
+  ++placements;
+  if (relabelAcrossPortals(f, cell, first, second, seedA, seedB, barrier(quads))) return true;
+  // A placement moves the second cell's voxels on the first's side and the first's voxels off it.
+  size_t firstVoxels = 0;
+  for (const int32_t c : cell) firstVoxels += c == first;
+  std::vector<char> reached(f.count(), 0);
+  std::vector<size_t> side;
   size_t fewest = SIZE_MAX;
   std::vector<PortalQuad> best;
-  std::vector<int32_t> trial;
   for (int grow = 0; grow <= maxGrow; ++grow)
     for (int shift = -maxShift; shift <= maxShift; ++shift) {
       if (grow == 0 && shift == 0) continue;
       const std::vector<PortalQuad> q = candidate(grow, shift);
-      trial = cell;
-      if (!tryOn(trial, q)) continue;
-      size_t moved = 0;
-      for (size_t i = 0; i < trial.size(); ++i) moved += trial[i] != cell[i];
+      ++placements;
+      const bool parts = floodSideOfPortals(f, cell, first, second, seedA, seedB, barrier(q), reached, side);
+      size_t firstOnSide = 0;
+      for (const size_t i : side) firstOnSide += cell[i] == first, reached[i] = 0;
+      if (!parts) continue;
+      const size_t moved = (side.size() - firstOnSide) + (firstVoxels - firstOnSide);
       if (moved < fewest) fewest = moved, best = q;
     }
   if (best.empty()) return false;
-  tryOn(cell, best);
+  relabelAcrossPortals(f, cell, first, second, seedA, seedB, barrier(best));
   quads = std::move(best);
   return true;
 }
@@ -258,7 +268,7 @@ class LeakCloser {
         for (size_t n = 0; n < keep; ++n) quads.push_back(set.portals[list[n]].quad);
         if (!partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
                                 quads, keep == 1 && list.size() <= 3 ? 1 : 0,
-                                keep == 1 && list.size() <= 3 ? 2 : 0))
+                                keep == 1 && list.size() <= 3 ? 2 : 0, out.placements))
           continue;
         for (size_t n = 0; n < keep; ++n) set.portals[list[n]].quad = quads[n];
         for (size_t n = keep; n < list.size(); ++n) dropped[list[n]] = 1, ++out.droppedPortals;
@@ -297,7 +307,7 @@ class LeakCloser {
           std::vector<PortalQuad> quads;
           for (size_t k : own) quads.push_back(set.portals[k].quad);
           if (partOnMovedPortals(f, set.cell, first, second, deepest[size_t(first)], deepest[size_t(second)],
-                                 quads, 2, 6)) {
+                                 quads, 2, 6, out.placements)) {
             for (size_t n = 0; n < own.size(); ++n) set.portals[own[n]].quad = quads[n];
             separated = true;
           }

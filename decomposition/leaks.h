@@ -30,13 +30,14 @@ struct LeakParams {
 };
 
 struct ClosedLeaks {
-  std::vector<int32_t> cellOf;  ///< per cell before: its index after (a merged cell: the one it joined)
-  int cellCount = 0;            ///< cells after
+  std::vector<int32_t> cellOf;    ///< per cell before: its index after (a merged cell: the one it joined)
+  int cellCount = 0;              ///< cells after
   std::vector<int32_t> keptCell;  ///< per cell after: its index before
-  int outsideCell = -1;         ///< after; the outside is never merged away, so it stays the last cell
-  int relabelledPairs = 0;      ///< pairs made to meet on their portals
-  int mergedPairs = 0;          ///< pairs merged
-  int droppedPortals = 0;       ///< redundant portals dropped
+  int outsideCell = -1;           ///< after; the outside is never merged away, so it stays the last cell
+  int relabelledPairs = 0;        ///< pairs made to meet on their portals
+  int mergedPairs = 0;            ///< pairs merged
+  int droppedPortals = 0;         ///< redundant portals dropped
+  size_t placements = 0;          ///< portal placements flooded (each a pair's portals grown or moved)
 };
 
 /// Makes every voxel face between two cells of `set` cross a portal of those two cells, by relabelling

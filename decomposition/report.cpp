@@ -103,6 +103,7 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                  {"outside_pockets", pockets},
                  {"regions", d.regions},
                  {"leak_merges", d.leakMerges},
+                 {"leak_placements", d.leakPlacements},
                  {"behind_geometry_folded", d.foldedBehind},
                  {"unfaced_closed_dropped", d.droppedUnfaced},
                  {"portal_pieces_merged", d.mergedPortalPieces}};

@@ -52,8 +52,8 @@ size_t floodLayer(const GridFrame& f, const std::vector<int32_t>& cell, int a, i
 }  // namespace
 
 std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
-                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels, size_t maxArea,
-                                    size_t maxCandidates) {
+                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels,
+                                    size_t maxArea, size_t maxCandidates) {
   if (interfaceVoxels.empty() || maxCandidates == 0) return {};
   struct Layer {
     size_t area;
@@ -72,7 +72,8 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
       lo = std::min(lo, c[axis]), hi = std::max(hi, c[axis]);
     }
     std::vector<glm::ivec2>& sd = seeds[axis];
-    std::sort(sd.begin(), sd.end(), [](glm::ivec2 p, glm::ivec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
+    std::sort(sd.begin(), sd.end(),
+              [](glm::ivec2 p, glm::ivec2 q) { return p.x != q.x ? p.x < q.x : p.y < q.y; });
     sd.erase(std::unique(sd.begin(), sd.end()), sd.end());
     std::vector<uint32_t> stamp(size_t(f.dims[a1]) * size_t(f.dims[a2]), 0);
     areas[axis].assign(size_t(f.dims[axis]), kOpen);
@@ -85,7 +86,8 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
       closed.push_back({area, axis, layer});
     }
   }
-  std::stable_sort(closed.begin(), closed.end(), [](const Layer& x, const Layer& y) { return x.area < y.area; });
+  std::stable_sort(closed.begin(), closed.end(),
+                   [](const Layer& x, const Layer& y) { return x.area < y.area; });
 
   // Each candidate: the run of near-equal layers around a narrowest layer not yet in a chosen run, and
   // its middle (a floor's mid-plane).
@@ -95,7 +97,8 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
     if (out.size() >= maxCandidates) break;
     const std::vector<size_t>& ar = areas[c.axis];
     bool taken = false;
-    for (const auto& [first, last] : runs[c.axis]) taken = taken || (c.layer >= first - 1 && c.layer <= last + 1);
+    for (const auto& [first, last] : runs[c.axis])
+      taken = taken || (c.layer >= first - 1 && c.layer <= last + 1);
     if (taken) continue;
     const size_t limit = c.area + std::max<size_t>(1, c.area / 50);
     int first = c.layer, last = c.layer;
@@ -107,7 +110,8 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
     s.layer = (first + last) / 2;
     const int a1 = (s.axis + 1) % 3, a2 = (s.axis + 2) % 3;
     std::vector<uint32_t> stamp(size_t(f.dims[a1]) * size_t(f.dims[a2]), 0);
-    if (floodLayer(f, cell, a, b, s.axis, s.layer, seeds[s.axis], maxArea, stamp, 1, queue, &s.voxels) == kOpen ||
+    if (floodLayer(f, cell, a, b, s.axis, s.layer, seeds[s.axis], maxArea, stamp, 1, queue, &s.voxels) ==
+            kOpen ||
         s.voxels.empty())
       continue;
     out.push_back(std::move(s));
@@ -123,8 +127,10 @@ std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<in
   return std::move(s.front());
 }
 
-bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,
-                          size_t seedB, const std::vector<const PortalQuad*>& portals) {
+bool floodSideOfPortals(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b, size_t seedA,
+                        size_t seedB, const std::vector<const PortalQuad*>& portals,
+                        std::vector<char>& reached, std::vector<size_t>& side) {
+  side.clear();
   // Portal boxes in voxels (grown by one): only moves touching them need the crossing test.
   struct Near {
     glm::ivec3 lo, hi;
@@ -148,12 +154,11 @@ bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a,
   // Seeds that are not the pair's own voxels tell no side from the other: the flood would hand all of
   // one cell to the other.
   if (seedA >= cell.size() || seedB >= cell.size() || cell[seedA] != a || cell[seedB] != b) return false;
-  std::vector<char> reached(f.count(), 0);
-  std::vector<size_t> queue{seedA};
+  side.push_back(seedA);
   reached[seedA] = 1;
   const ptrdiff_t strides[3] = {1, f.dims.x, ptrdiff_t(f.dims.x) * f.dims.y};
-  for (size_t head = 0; head < queue.size(); ++head) {
-    const size_t i = queue[head];
+  for (size_t head = 0; head < side.size(); ++head) {
+    const size_t i = side[head];
     if (i == seedB) return false;
     const glm::ivec3 c = f.coord(i);
     for (int k = 0; k < 3; ++k)
@@ -162,9 +167,17 @@ bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a,
         const size_t j = size_t(ptrdiff_t(i) + dir * strides[k]);
         if (reached[j] || (cell[j] != a && cell[j] != b) || blocked(i, j)) continue;
         reached[j] = 1;
-        queue.push_back(j);
+        side.push_back(j);
       }
   }
+  return true;
+}
+
+bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,
+                          size_t seedB, const std::vector<const PortalQuad*>& portals) {
+  std::vector<char> reached(f.count(), 0);
+  std::vector<size_t> side;
+  if (!floodSideOfPortals(f, cell, a, b, seedA, seedB, portals, reached, side)) return false;
   for (size_t i = 0; i < cell.size(); ++i)
     if (cell[i] == a || cell[i] == b) cell[i] = reached[i] ? a : b;
   return true;

@@ -36,8 +36,8 @@ std::optional<Section> narrowestSection(const GridFrame& f, const std::vector<in
 /// candidate's run. The narrowest closed section need not separate the two cells (a pocket under a
 /// stair's flight is closed and small); the caller tries them in turn (relabelAcrossPortals).
 std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b,
-                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels, size_t maxArea,
-                                    size_t maxCandidates);
+                                    const std::vector<size_t>& interfaceVoxels, int searchVoxels,
+                                    size_t maxArea, size_t maxCandidates);
 
 /// Relabels the voxels of cells a and b by which side of `portals` (those joining a and b) they are on:
 /// the voxels reachable from `seedA` without crossing a portal become a, the other voxels of a or b
@@ -45,5 +45,14 @@ std::vector<Section> closedSections(const GridFrame& f, const std::vector<int32_
 /// separate the cells) or when `seedA` is not a voxel of a or `seedB` not one of b.
 bool relabelAcrossPortals(const GridFrame& f, std::vector<int32_t>& cell, int a, int b, size_t seedA,
                           size_t seedB, const std::vector<const PortalQuad*>& portals);
+
+/// relabelAcrossPortals's flood alone, labels untouched: the voxels of a or b reachable from `seedA` without
+/// crossing a portal are appended to `side` (cleared first) and set to 1 in `reached` (f.count() long, all 0
+/// on entry; the caller clears the voxels of `side` after). Its cost is the voxels reached, not the grid's,
+/// so a caller weighing many portal placements for one pair pays per placement only for the flood. Returns
+/// false, as relabelAcrossPortals, when `seedB` is reached or a seed is not its cell's.
+bool floodSideOfPortals(const GridFrame& f, const std::vector<int32_t>& cell, int a, int b, size_t seedA,
+                        size_t seedB, const std::vector<const PortalQuad*>& portals,
+                        std::vector<char>& reached, std::vector<size_t>& side);
 
 }  // namespace cpgi::decomp

@@ -155,7 +155,9 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   checkDecomposeInput(scene, params);
   if (!(volumeParams.reach >= 0.0 && volumeParams.reach <= 10.0))
     throw InputError("volume reach", "must be in [0, 10] metres");
-  EmptySpace empty = voxelizeEmptySpace(scene, params, ctx);
+  const Scene withBuried = withBuriedPieces(scene);
+  const Scene& surfaces = scene.buriedPieces.empty() ? scene : withBuried;
+  EmptySpace empty = voxelizeEmptySpace(surfaces, params, ctx);
   const double h = empty.voxelSize;
   const SolidGrid& solid = empty.solid;
   SpaceGrid& space = empty.space;
@@ -228,7 +230,7 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   DecomposeParams roomsKept = params;
   roomsKept.leaks.merge = false;
   roomsKept.dropUnfacedClosedCells = false;
-  Decomposition out = finishDecomposition(scene, roomsKept, solid, std::move(space.space), distance,
+  Decomposition out = finishDecomposition(scene, surfaces, roomsKept, solid, std::move(space.space), distance,
                                           std::move(cells), names, ctx);
   out.voxelChoice = empty.voxelChoice + "; cells from " + std::to_string(rooms) + " cellvolume: meshes";
   return out;

@@ -60,6 +60,15 @@ TEST(ContactCuts, AFaceThroughASlabIsCutAtItsFacesAndTheStripInsideDropped) {
   EXPECT_EQ(c.buriedPieces, 1u);
   EXPECT_NEAR(c.buriedArea, 0.2 * 0.6, 1e-5);
   EXPECT_NEAR(area(s, 0), 1.8 * 0.6, 1e-5);
+  // The strip dropped is kept aside, where it was, for the decomposition's solid.
+  double buried = 0.0;
+  for (const Triangle& t : s.buriedPieces) {
+    buried += t.area();
+    EXPECT_EQ(t.node, 0u);
+    EXPECT_NEAR(t.centroid().x, 0.5f, 1e-5f);
+    for (const glm::vec3& p : t.p) EXPECT_TRUE(p.y >= -1e-5f && p.y <= 0.2f + 1e-5f) << p.y;
+  }
+  EXPECT_NEAR(buried, 0.2 * 0.6, 1e-5);
   size_t faceTriangles = 0;
   for (const Triangle& t : s.triangles) {
     if (t.node != 0) continue;
@@ -159,6 +168,19 @@ TEST(ContactCuts, AWardrobeAgainstAWallTakesTheWallBehindItAndTheFloorUnderItAwa
 
 // A box near a floor but not on it (2 cm up: a shelf's underside), a table's leg on it (5 cm square), and a
 // box under the floor's back: the floor stays as it was.
+// A triangle whose edge crosses the floor's plane within the stand-off, shorter than twice it, is no foot:
+// the edge projects to a point (CGAL asserted on that degenerate segment, an internal error on three
+// OpenArena maps: oa_dm5, kaos, ctf_inyard).
+TEST(ContactCuts, AnEdgeAcrossTheFloorWithinTheStandOffIsNoFoot) {
+  Scene s = twoNodes();
+  quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 0});  // the floor, facing +y
+  Triangle t{{glm::vec3(1.0f, 0.002f, 1.0f), glm::vec3(1.0f, -0.003f, 1.0f), glm::vec3(1.0f, 1.0f, 1.5f)}};
+  t.n.fill(t.geometricNormal());
+  s.triangles.push_back(t);
+  CellGraph cells;
+  EXPECT_NO_THROW(cutAtContacts(s, cells));
+}
+
 TEST(ContactCuts, AFloorNearAFootOrUnderALegIsNotCut) {
   Scene s = twoNodes();
   quad(s, {0, 0, 0}, {0, 0, 4}, {4, 0, 0});  // facing +y

@@ -55,6 +55,7 @@ TEST(Leaks, ABulgeAcrossThePortalIsRelabelled) {
   EXPECT_EQ(t.set.leakingFaces, 0u);
   EXPECT_EQ(t.set.cell[f.index(5, 2, 2)], 0);
   EXPECT_EQ(t.set.portals.size(), 1u);
+  EXPECT_EQ(c.placements, 1u);  // the portal as fitted parts the two: nothing else tried
 }
 
 TEST(Leaks, APocketCutOffFromItsCellJoinsTheCellAroundIt) {
@@ -108,6 +109,8 @@ TEST(Leaks, APortalAVoxelShortOfTheJambIsGrown) {
   float lowest = 1e9f;
   for (const glm::vec3& c : t.set.portals.front().quad.corners) lowest = std::min(lowest, c.z);
   EXPECT_NEAR(lowest, 1.5f, 1e-4f);  // grown by one voxel, not two
+  // The quad as fitted, then every growth and shift (3 × 13 − 1), each one flood of the pair.
+  EXPECT_EQ(c.placements, 39u);
 }
 
 TEST(Leaks, ADoorPortalPushedPastTheWallMovesBackIntoTheDoor) {

@@ -322,7 +322,7 @@ TEST(Decompose, AFarObjectOrATerrainLeavesTheVoxelAndTheRoomsAsTheyWere) {
 // Faces cut at their contacts (core/contact_cuts.h, as every scene is loaded) are voxelized with the pieces
 // the cuts dropped put back: the decomposition is that of the faces whole. Here a 1.2 m box sunk 0.6 m
 // through the floor slab of the middle room takes the floor's faces inside it away; without the pieces the
-// box's inside and the slab's joined into one void (the solid differed by 10 % of its voxels here), and on
+// box's inside and the slab's joined into one void (108 voxels' classes differed), and on
 // OpenArena maps the level's shell opened: oa_dm2's 503 049 enclosed voxels became outside.
 TEST(Decompose, FacesCutAtTheirContactsGiveTheVoxelsAndCellsOfTheFacesWhole) {
   Scene whole = makeThreeRooms();

@@ -147,7 +147,8 @@ CPGI_JSON_FIELDS(LightDensityParams, minDensity, maxDensity, tolerance, floorSha
 CPGI_JSON_FIELDS(AutoDensityParams, pilotDensity, light, contacts, maxContactDensity, maxTexels)
 CPGI_JSON_FIELDS(SolverParams, unshotFraction, maxShots, farField, regionSize, maxRegions, strongShotRegions,
                  strongShotFraction, visibility, itemBuffer, neighbourhood, jitteredEyes, lampRays,
-                 cullItemBuffers, profilePasses, coverageRays, eyesPerRegion, strongEyesPerRegion)
+                 cullItemBuffers, profilePasses, coverageRays, eyesPerRegion, strongEyesPerRegion,
+                 clusterRadius)
 // What a bake reads of CellSolveParams (BakeSettings::Cells::params); the rest is set by the bake.
 CPGI_JSON_FIELDS(CellSolveParams, maxRounds, portals, lobeMinWidth, portalBinRays, jobs)
 CPGI_JSON_FIELDS(ViewParams, width, height, supersample, exposure)

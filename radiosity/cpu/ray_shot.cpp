@@ -54,6 +54,11 @@ struct PieceNode {
 
 struct RegionPieces {
   double power = 0.0;  // R + G + B, W
+  size_t member = 0;   // its patch's place among the shot's (ShotMember)
+  // Its receivers see it through its own eyes (true), or through those of the group it closes or sits in:
+  // a cluster's regions follow each other, the first holding the cluster's eyes (eyePower: theirs all).
+  bool groupEnd = true;
+  double eyePower = 0.0;
   // Drawn by power, stratified: each stands for an equal share of it. `sets` interleaved sets of them
   // (RayShotParams::eyeSetsPerEdge): set k is eyes k, k + sets, k + 2 sets, ..., itself stratified.
   std::vector<glm::vec3> eyes;
@@ -262,6 +267,41 @@ std::vector<glm::vec3> drawEyes(const ChartTexels& all, glm::ivec2 corner, float
   return eyes;
 }
 
+// A cluster's eyes (ShotMember): drawEyes over every texel of its patches, placed on the Z-order curve of
+// the first patch's chart grid (their common plane), one eye and one set when the cluster is no wider than
+// `oneEyeRadius` as a region would be. The first region, which holds them, sees for all.
+void clusterEyes(const RayShotScene& s, std::span<const ShotMember> members,
+                 std::span<const glm::vec3> residual, uint32_t shotNumber, int eyes, int sets,
+                 float oneEyeRadius, std::vector<RegionPieces>& regions) {
+  const Patch& first = s.atlas.patches[size_t(members.front().patch)];
+  const glm::vec3 du = first.texelU / glm::dot(first.texelU, first.texelU),
+                  dv = first.texelV / glm::dot(first.texelV, first.texelV);
+  ChartTexels all;
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const ShotMember& m : members)
+    for (uint32_t t : s.patchTexels[size_t(m.patch)]) {
+      const glm::vec3 at = s.atlas.position[t] - first.origin;
+      const glm::ivec2 cell(int(std::floor(glm::dot(at, du))), int(std::floor(glm::dot(at, dv))));
+      all.push_back({cell, {s.atlas.position[t], s.atlas.area[t], residual[t]}});
+      lo = glm::min(lo, s.atlas.position[t]), hi = glm::max(hi, s.atlas.position[t]);
+    }
+  glm::ivec2 corner(1 << 30);
+  for (const auto& [c, t] : all) corner = glm::min(corner, c);
+  if (all.size() == 1 || 0.5f * glm::length(hi - lo) < oneEyeRadius) eyes = 1, sets = 1;
+  RegionPieces& lead = regions.front();
+  lead.sets = sets, lead.eyes.clear(), lead.eyePower = 0.0;
+  const float u =
+      float((regionHash(uint32_t(members.front().patch)) + shotNumber * 0x9E3779B9u) >> 8) / 16777216.0f;
+  for (const glm::vec3& eye : drawEyes(all, corner, u, eyes * sets))
+    lead.eyes.push_back(eye + first.normal * s.offset);
+  for (RegionPieces& r : regions) {
+    lead.eyePower += r.power;
+    r.groupEnd = false;
+    if (&r != &lead) r.eyes.clear();
+  }
+  regions.back().groupEnd = true;
+}
+
 // The region's pieces and its eyes: texels drawn with probability ∝ their unshot power (pick_eyes.comp's
 // sequence: a hashed offset per region, the golden ratio per shot), stratified; `eyes` per set, `sets`
 // interleaved sets.
@@ -290,6 +330,7 @@ RegionPieces regionPieces(const RayShotScene& s, int shooter, const glm::ivec4& 
   // region a hand's width across (a book's spine) sit closer together than the coarse texels that receive.
   if (all.size() == 1 || out.whole().radius < oneEyeRadius) eyes = 1, sets = 1;
   out.sets = sets;
+  out.eyePower = out.power;
   const float u = float((regionHash(region) + shotNumber * 0x9E3779B9u) >> 8) / 16777216.0f;
   for (const glm::vec3& eye : drawEyes(all, {rect.x, rect.y}, u, eyes * sets))
     out.eyes.push_back(eye + p.normal * s.offset);
@@ -464,12 +505,12 @@ glm::dvec2 shotCoverage(const RayShotScene& s, const ShooterLayout& layout,
   for (const RegionPieces& r : regions) shotPower += r.power;
   std::vector<glm::dvec2> seen(regions.size());
   tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
-    for (const glm::vec3& eye : regions[r].eyes)
+    for (const glm::vec3& eye : regions[r].eyes)  // a cluster's: its first region's, for all its power
       seen[r] += eyeCoverage(s, layout, eye, coverageRays / int(regions[r].eyes.size()), shotNumber) /
                  double(regions[r].eyes.size());
   });
   glm::dvec2 out(0.0);
-  for (size_t r = 0; r < regions.size(); ++r) out += regions[r].power / shotPower * seen[r];
+  for (size_t r = 0; r < regions.size(); ++r) out += regions[r].eyePower / shotPower * seen[r];
   return out;
 }
 
@@ -479,8 +520,8 @@ glm::dvec2 shotCoverage(const RayShotScene& s, const ShooterLayout& layout,
 // it saves. A region's eyes are asked together, one surface for all of them at the rays of one eye: asked
 // one by one, the interleaved sets' four times the eyes cost four times the tests, each leaving out a
 // quarter of the segments (a tile's texels share the sets out).
-std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::vector<RegionPieces>& regions,
-                                 size_t& tests) {
+std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, std::span<const uint8_t> shooters,
+                                 const std::vector<RegionPieces>& regions, size_t& tests) {
   size_t eyeCount = 0;
   for (const RegionPieces& r : regions) eyeCount += r.eyes.size();
   const size_t tiles = s.tiles.spheres.size();
@@ -488,7 +529,9 @@ std::vector<uint8_t> hiddenTiles(const RayShotScene& s, int shooter, const std::
   std::vector<uint8_t> hidden(eyeCount * tiles, 0);
   std::vector<uint32_t> tested(tiles, 0);
   tbb::parallel_for(size_t(0), tiles, [&](size_t tile) {
-    if (s.tiles.counts[tile] < 4 || s.tiles.patches[tile] == shooter) return;
+    const int32_t patch = s.tiles.patches[tile];
+    if (s.tiles.counts[tile] < 4 || patch == shooter || (!shooters.empty() && shooters[size_t(patch)]))
+      return;
     const glm::vec4 sphere = s.tiles.spheres[tile];
     const glm::vec3 centre(sphere);
     std::vector<glm::vec3> group;
@@ -589,31 +632,77 @@ RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RaySce
 RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout& layout,
                         std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
                         const ShooterEmission& emission) {
+  const ShotMember alone{shooter, &layout};
+  return shootByRays(s, std::span<const ShotMember>(&alone, 1), residual, shotNumber, params, emission);
+}
+
+RayShotGain shootByRays(const RayShotScene& s, std::span<const ShotMember> members,
+                        std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
+                        const ShooterEmission& emission) {
+  const int shooter = members.front().patch;
   const Patch& p = s.atlas.patches[size_t(shooter)];
+  const ShooterLayout& layout = *members.front().layout;
   const int setsEdge = std::max(params.eyeSetsPerEdge, 1);
-  std::vector<RegionPieces> regions(layout.rects.size());
+  std::vector<std::pair<size_t, size_t>> rects;  // (member, rect)
+  for (size_t m = 0; m < members.size(); ++m)
+    for (size_t r = 0; r < members[m].layout->rects.size(); ++r) rects.push_back({m, r});
+  std::vector<RegionPieces> regions(rects.size());
   tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
-    regions[r] = regionPieces(s, shooter, layout.rects[r], residual, uint32_t(r), shotNumber,
-                              params.eyesPerRegion, setsEdge * setsEdge, params.oneEyeRadius, emission);
+    const auto [m, rect] = rects[r];
+    regions[r] =
+        regionPieces(s, members[m].patch, members[m].layout->rects[rect], residual, uint32_t(r), shotNumber,
+                     params.eyesPerRegion, setsEdge * setsEdge, params.oneEyeRadius, emission);
+    regions[r].member = m;
   });
   std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
   RayShotGain out;
   out.irradiance.assign(s.texels.size(), glm::vec3(0.0f));
   if (emission.arrivals) out.arrivals.assign(s.texels.size(), glm::vec4(0.0f));
   if (regions.empty()) return out;
+  std::vector<uint8_t> shooters;  // per patch, 1 for the shot's (a cluster's)
+  if (members.size() > 1) {
+    clusterEyes(s, members, residual, shotNumber, params.eyesPerRegion, setsEdge * setsEdge,
+                params.oneEyeRadius, regions);
+    shooters.assign(s.atlas.patches.size(), 0);
+    for (const ShotMember& m : members) shooters[size_t(m.patch)] = 1;
+  }
   const bool lobed = !emission.lobes.empty();
   const BinFrame frame = binFrame(p.normal);
 
   const glm::dvec2 seen = shotCoverage(s, layout, regions, params.coverageRays, shotNumber);
   out.covered = seen.x, out.open = seen.y;
 
-  const glm::vec3 ns = p.normal, plane = regions.front().whole().centre;
+  // The plane receivers behind which get nothing: the lowest of the regions' along the normal (a cluster's
+  // patches lie within ShooterClusterParams::planeGap of each other).
+  const glm::vec3 ns = p.normal;
+  glm::vec3 plane = regions.front().whole().centre;
+  for (const RegionPieces& r : regions)
+    if (glm::dot(ns, r.whole().centre - plane) < 0.0f) plane = r.whole().centre;
   std::vector<size_t> eyeBase(regions.size(), 0);  // each region's first eye among all the shot's
   for (size_t r = 1; r < regions.size(); ++r) eyeBase[r] = eyeBase[r - 1] + regions[r - 1].eyes.size();
   const std::vector<uint8_t> hidden =
-      params.cull ? hiddenTiles(s, shooter, regions, out.cullTests) : std::vector<uint8_t>{};
+      params.cull ? hiddenTiles(s, shooter, shooters, regions, out.cullTests) : std::vector<uint8_t>{};
   std::atomic<size_t> saved{0};
   const size_t tileCount = s.tiles.spheres.size();
+  // Region r's light at g's receiver when far from it; near it (nearer than farField × its radius), each
+  // piece queued with its own segment and nothing returned. One eye for the region put a cube standing on
+  // a floor in the dark wherever the eye was on its far side (its faces gathered 12–68 % of the floor's
+  // light, bench/shot_probe.cpp), and the shot's scaling to its power spread what they missed over every
+  // other receiver.
+  const auto farLight = [&](Gather& g, const RegionPieces& r, const ReceiverEnds& ends, Queued& q) {
+    // Facing away from the whole region (its bounding disk): nothing of it reaches the receiver.
+    if (glm::dot(g.n, r.whole().centre - g.x) < -(r.whole().radius + s.offset)) return glm::vec3(0.0f);
+    const Patch& rp = s.atlas.patches[size_t(members[r.member].patch)];
+    const float texelRadius = members[r.member].layout->texelRadius;
+    g.nodeBins = r.nodeBins;
+    if (params.nearRays && !g.far(r.whole().centre, r.whole().radius)) {
+      g.walk(r, rp, texelRadius, [&](const glm::vec3& y, const glm::vec3& light) {
+        if (light != glm::vec3(0.0f)) ends.queue(q, true, y + ns * s.offset, light, y);
+      });
+      return glm::vec3(0.0f);
+    }
+    return g.farPieceFor(r.whole()) ? g.piece(r.whole()) : g.region(r, rp, texelRadius);
+  };
   // Per chunk of receivers, every piece's light waits on its segment; the segments are traced together.
   // The chunks are fixed (a simple partitioner splits the same way every run): Embree packs a stream's
   // rays into packets, whose answers for a ray grazing an edge may differ from a single ray's, and chunks
@@ -625,7 +714,8 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
         q.offset = s.offset;
         for (size_t k = range.begin(); k < range.end(); ++k) {
           const uint32_t t = s.texels[k];
-          if (s.atlas.patch[t] == shooter) continue;
+          const int32_t at = s.atlas.patch[t];
+          if (at == shooter || (!shooters.empty() && shooters[size_t(at)])) continue;
           const glm::vec3 x = s.atlas.position[t], n = s.atlas.normal[t];
           // Behind the shooter's plane every piece's cosine is ≤ 0: the receiver gets nothing, its form
           // factors spared (the margin keeps receivers on the plane on the whole path).
@@ -636,29 +726,23 @@ RayShotGain shootByRays(const RayShotScene& s, int shooter, const ShooterLayout&
           const size_t place = (t % s.atlas.width) % size_t(setsEdge) +
                                size_t(setsEdge) * ((t / s.atlas.width) % size_t(setsEdge));
           if (lobed) g.emission = &emission, g.frame = frame, g.receiverArea = s.atlas.area[t];
+          // A region's light from afar, summed over its group (a cluster's regions), goes through the
+          // group's eyes; near it, each piece is gated by its own segment.
+          const RegionPieces* lead = nullptr;
+          glm::vec3 f(0.0f);
           for (const RegionPieces& r : regions) {
-            // Facing away from the whole region (its bounding disk): nothing of it reaches the receiver.
-            if (glm::dot(n, r.whole().centre - x) < -(r.whole().radius + s.offset)) continue;
-            g.nodeBins = r.nodeBins;
-            if (params.nearRays && !g.far(r.whole().centre, r.whole().radius)) {
-              // Near the region, each piece is gated by its own segment. One eye for the region put a cube
-              // standing on a floor in the dark wherever the eye was on its far side (its faces gathered
-              // 12–68 % of the floor's light, bench/shot_probe.cpp), and the shot's scaling to its power
-              // spread what they missed over every other receiver.
-              g.walk(r, p, layout.texelRadius, [&](const glm::vec3& y, const glm::vec3& light) {
-                if (light != glm::vec3(0.0f)) ends.queue(q, true, y + ns * s.offset, light, y);
-              });
-              continue;
-            }
-            const glm::vec3 f =
-                g.farPieceFor(r.whole()) ? g.piece(r.whole()) : g.region(r, p, layout.texelRadius);
+            if (!lead) lead = &r, f = glm::vec3(0.0f);
+            f += farLight(g, r, ends, q);
+            if (!r.groupEnd) continue;
+            const RegionPieces& eyes = *lead;
+            lead = nullptr;
             if (f == glm::vec3(0.0f)) continue;
-            const size_t set = place % size_t(r.sets), stride = size_t(r.sets);
-            const glm::vec3 share = f / float(r.eyesPerSet());
+            const size_t set = place % size_t(eyes.sets), stride = size_t(eyes.sets);
+            const glm::vec3 share = f / float(eyes.eyesPerSet());
             const uint8_t* eyeHides =
-                hidden.empty() ? nullptr : &hidden[eyeBase[&r - regions.data()] * tileCount];
-            for (size_t e = set; e < r.eyes.size(); e += stride) {
-              const glm::vec3& eye = r.eyes[e];
+                hidden.empty() ? nullptr : &hidden[eyeBase[&eyes - regions.data()] * tileCount];
+            for (size_t e = set; e < eyes.eyes.size(); e += stride) {
+              const glm::vec3& eye = eyes.eyes[e];
               const glm::vec3 toEye = eye - x;
               if (!(glm::dot(n, toEye) > 0.0f && glm::dot(ns, toEye) < 0.0f)) continue;
               if (eyeHides && eyeHides[e * tileCount + s.tiles.tileOf[k]])

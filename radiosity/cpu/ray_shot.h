@@ -91,6 +91,22 @@ struct RayShotGain {
   std::vector<glm::vec4> arrivals;
 };
 
+/// A patch of a shot and its visibility regions.
+struct ShotMember {
+  int patch = -1;
+  const ShooterLayout* layout = nullptr;
+};
+
+/// Shoots the unshot radiosity `residual` of several patches at once: a cluster of small coplanar patches
+/// (shooter_clusters.h). Each patch's regions give their pieces' form factors as in a shot of its own, but
+/// the receivers see them all through one set of eyes (RayShotParams::eyesPerRegion per receiver, in
+/// eyeSetsPerEdge² sets; one when the cluster is narrower than oneEyeRadius), drawn by power over every
+/// texel of the cluster: a cluster costs a receiver what one region does. The first member's normal and
+/// frame are the shot's. One member: the shot below.
+RayShotGain shootByRays(const RayShotScene& s, std::span<const ShotMember> members,
+                        std::span<const glm::vec3> residual, uint32_t shotNumber, const RayShotParams& params,
+                        const ShooterEmission& emission = {});
+
 /// Shoots patch `shooter`'s unshot radiosity `residual` (per atlas texel) with the regions of `layout`,
 /// eyes drawn by the shot's number `shotNumber`, its texels emitting as `emission` says. Receivers are
 /// every valid texel of the other patches.

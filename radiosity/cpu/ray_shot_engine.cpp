@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "radiosity/cpu/ray_shot.h"
+#include "radiosity/cpu/shooter_clusters.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/lightmap/shooter_layout.h"
 #include "radiosity/solve/shot_backend.h"
@@ -78,6 +79,14 @@ class RayShotBackend final : public ShotBackend {
           layoutShooters(scene_, atlas_, {params.regionSize, strongRegions, openings_}, deadline);
       if (strongLayouts_.size() < atlas_.patches.size()) return false;
     }
+    // Directional shooters (the cells' portals) and the openings shoot alone: their lobes and bins are
+    // per patch frame, their receivers' ends per opening.
+    if (params.clusterRadius > 0.0f && emission_.lobes.empty()) {
+      clusters_ = clusterShooters(atlas_, {.radius = params.clusterRadius}, openings_);
+      ctx.progress("set-up", 0.8,
+                   "the rays engine: " + std::to_string(atlas_.patches.size()) + " patches in " +
+                       std::to_string(clusters_.members.size()) + " shooter clusters");
+    }
     return std::chrono::steady_clock::now() < deadline;
   }
 
@@ -114,20 +123,26 @@ class RayShotBackend final : public ShotBackend {
     sums_ = {e.unshot, e.received, e.absorbed};
     return e;
   }
+  // The patch of most unshot power, with its cluster's patches that hold any (shooter_clusters.h).
   ShooterChoice next() override {
     const size_t p = size_t(std::max_element(patchPower_.begin(), patchPower_.end()) - patchPower_.begin());
-    const double power = p < patchPower_.size() ? patchPower_[p] : 0.0;
+    double power = p < patchPower_.size() ? patchPower_[p] : 0.0;
+    if (power > 0.0 && !clusters_.members.empty())
+      for (int32_t q : clusters_.members[size_t(clusters_.clusterOf[p])])
+        if (size_t(q) != p) power += patchPower_[size_t(q)];
     return {int(p), power, false, power > 0.0};
   }
   ShotGathered shoot(const ShooterChoice& choice, bool strong, bool) override {
-    shooter_ = size_t(choice.patch);
-    const ShooterLayout& layout = (strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_)[shooter_];
+    const std::vector<ShooterLayout>& layouts = strong && !strongLayouts_.empty() ? strongLayouts_ : layouts_;
+    members_.assign(1, {choice.patch, &layouts[size_t(choice.patch)]});
+    if (!clusters_.members.empty())
+      for (int32_t q : clusters_.members[size_t(clusters_.clusterOf[size_t(choice.patch)])])
+        if (q != choice.patch && patchPower_[size_t(q)] > 0.0) members_.push_back({q, &layouts[size_t(q)]});
     RayShotParams shot = strong ? strongShotParams_ : shotParams_;
     shot.cull = cull_.next();
     shot.openings = openings_;
     shot.openingPoints = openingPoints_;
-    gain_ = shootByRays(shots_, choice.patch, layout, residual_, firstShotNumber_ + ++shotNumber_, shot,
-                        emission_);
+    gain_ = shootByRays(shots_, members_, residual_, firstShotNumber_ + ++shotNumber_, shot, emission_);
     if (emission_.arrivals) {  // unscaled, as the item buffers note them: only their direction is read
       if (arrivals_.empty()) arrivals_.assign(atlas_.texelCount(), glm::vec4(0.0f));
       for (size_t k = 0; k < shots_.texels.size(); ++k) arrivals_[shots_.texels[k]] += gain_.arrivals[k];
@@ -149,8 +164,10 @@ class RayShotBackend final : public ShotBackend {
       absorbed += channelSum(g - r) * atlas_.area[t];
       patchPower_[size_t(atlas_.patch[t])] += channelSum(r) * atlas_.area[t];
     }
-    for (uint32_t t : shots_.patchTexels[shooter_]) residual_[t] = glm::vec3(0.0f);
-    patchPower_[shooter_] = 0.0;
+    for (const ShotMember& m : members_) {
+      for (uint32_t t : shots_.patchTexels[size_t(m.patch)]) residual_[t] = glm::vec3(0.0f);
+      patchPower_[size_t(m.patch)] = 0.0;
+    }
     sums_.received += received;
     sums_.absorbed += absorbed;
     sums_.unshot = 0.0;
@@ -195,8 +212,9 @@ class RayShotBackend final : public ShotBackend {
   std::vector<double> patchPower_;                          // per patch, its unshot power
   TexelSums sums_;
   CullControl cull_;
-  RayShotGain gain_;  // the last shot's, until delivered
-  size_t shooter_ = 0;
+  RayShotGain gain_;                 // the last shot's, until delivered
+  std::vector<ShotMember> members_;  // its patches
+  ShooterClusters clusters_;         // empty: every patch shoots alone
   const ShooterEmission emission_;   // ShotShape's lobes and bins
   std::vector<glm::vec4> arrivals_;  // per atlas texel, once a shot noted any
   std::vector<uint8_t> openings_;    // ShotShape::openingPatches
@@ -213,7 +231,8 @@ std::unique_ptr<ShotBackend> RayShotEngine::backend(const Scene& scene, const Li
                                                     std::chrono::steady_clock::time_point deadline) {
   if (!(settings.unshotFraction > 0.0 && settings.unshotFraction < 1.0) || settings.maxShots < 1 ||
       settings.farField < 1.0f || settings.coverageRays < 1 || settings.eyesPerRegion < 1 ||
-      settings.strongEyesPerRegion < 1 || settings.maxRegions < 1 || settings.strongShotRegions < 0)
+      settings.strongEyesPerRegion < 1 || settings.maxRegions < 1 || settings.strongShotRegions < 0 ||
+      !(settings.clusterRadius >= 0.0f))
     throw InputError("solver", "the ray solver's settings are out of range");
   if (atlas.patches.empty()) return nullptr;
   ctx.progress("set-up", 0.0, "the rays engine: the ray scene");

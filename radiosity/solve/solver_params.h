@@ -55,6 +55,10 @@ struct SolverParams : ShotSettings {
   /// openings. 2 → 4, mean of 2–3 eye draws, worst room and CPU: seed3 C 3.16 → 3.01 % (+11 % CPU),
   /// openings C 5.47 → 5.01 % (+13 %), seed1 B 2.26 → 1.89 % (+24 %).
   int strongEyesPerRegion = 4;
+  /// Rays: small coplanar patches within this radius (m) of each other shoot together, seen from one set
+  /// of eyes (radiosity/cpu/shooter_clusters.h); 0: every patch alone. Half of regionSize: a cluster is
+  /// no wider than a visibility region of a large patch, which one set of eyes serves.
+  float clusterRadius = 0.5f;
 };
 
 }  // namespace cpgi

@@ -35,4 +35,19 @@ inline Scene boxOpenToTheSky(float floorAlbedo, float wallAlbedo = 0.0f) {
   return s;
 }
 
+/// boxOpenToTheSky's floor and walls without the ceiling (a court), each in `tiles` × `tiles` squares of a
+/// material of their own (a patch each): a game map's many small sky-lit patches.
+inline Scene tiledCourt(int tiles, float albedo) {
+  const Scene box = boxOpenToTheSky(albedo, albedo);
+  Scene court;
+  for (size_t k = 0; k < 10; k += 2) {
+    const Triangle& t = box.triangles[k];
+    const glm::vec3 o = t.p[0], u = (t.p[1] - t.p[0]) / float(tiles), v = (t.p[2] - t.p[1]) / float(tiles);
+    for (int i = 0; i < tiles; ++i)
+      for (int j = 0; j < tiles; ++j)
+        addRect(court, o + float(i) * u + float(j) * v, u, v, addMaterial(court, glm::vec3(albedo)));
+  }
+  return court;
+}
+
 }  // namespace cpgi::testing

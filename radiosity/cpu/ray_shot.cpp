@@ -610,6 +610,39 @@ struct ReceiverEnds {
   }
 };
 
+// The shot's regions, every member's, with light (power > 0), each with its pieces and eyes; a cluster's
+// regions see through one set of eyes (clusterEyes).
+std::vector<RegionPieces> shotRegions(const RayShotScene& s, std::span<const ShotMember> members,
+                                      std::span<const glm::vec3> residual, uint32_t shotNumber,
+                                      const RayShotParams& params, const ShooterEmission& emission) {
+  const int setsEdge = std::max(params.eyeSetsPerEdge, 1);
+  std::vector<std::pair<size_t, size_t>> rects;  // (member, rect)
+  for (size_t m = 0; m < members.size(); ++m)
+    for (size_t r = 0; r < members[m].layout->rects.size(); ++r) rects.push_back({m, r});
+  std::vector<RegionPieces> regions(rects.size());
+  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
+    const auto [m, rect] = rects[r];
+    regions[r] =
+        regionPieces(s, members[m].patch, members[m].layout->rects[rect], residual, uint32_t(r), shotNumber,
+                     params.eyesPerRegion, setsEdge * setsEdge, params.oneEyeRadius, emission);
+    regions[r].member = m;
+  });
+  std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
+  if (members.size() > 1 && !regions.empty())
+    clusterEyes(s, members, residual, shotNumber, params.eyesPerRegion, setsEdge * setsEdge,
+                params.oneEyeRadius, regions);
+  return regions;
+}
+
+// A point of the plane receivers behind which get nothing: the lowest of the regions' centres along the
+// normal (a cluster's patches lie within ShooterClusterParams::planeGap of each other).
+glm::vec3 lowestCentre(std::span<const RegionPieces> regions, const glm::vec3& normal) {
+  glm::vec3 plane = regions.front().whole().centre;
+  for (const RegionPieces& r : regions)
+    if (glm::dot(normal, r.whole().centre - plane) < 0.0f) plane = r.whole().centre;
+  return plane;
+}
+
 }  // namespace
 
 RayShotScene::RayShotScene(const Scene& sc, const LightmapAtlas& a, const RayScene& r)
@@ -643,26 +676,13 @@ RayShotGain shootByRays(const RayShotScene& s, std::span<const ShotMember> membe
   const Patch& p = s.atlas.patches[size_t(shooter)];
   const ShooterLayout& layout = *members.front().layout;
   const int setsEdge = std::max(params.eyeSetsPerEdge, 1);
-  std::vector<std::pair<size_t, size_t>> rects;  // (member, rect)
-  for (size_t m = 0; m < members.size(); ++m)
-    for (size_t r = 0; r < members[m].layout->rects.size(); ++r) rects.push_back({m, r});
-  std::vector<RegionPieces> regions(rects.size());
-  tbb::parallel_for(size_t(0), regions.size(), [&](size_t r) {
-    const auto [m, rect] = rects[r];
-    regions[r] =
-        regionPieces(s, members[m].patch, members[m].layout->rects[rect], residual, uint32_t(r), shotNumber,
-                     params.eyesPerRegion, setsEdge * setsEdge, params.oneEyeRadius, emission);
-    regions[r].member = m;
-  });
-  std::erase_if(regions, [](const RegionPieces& r) { return !(r.power > 0.0); });
+  const std::vector<RegionPieces> regions = shotRegions(s, members, residual, shotNumber, params, emission);
   RayShotGain out;
   out.irradiance.assign(s.texels.size(), glm::vec3(0.0f));
   if (emission.arrivals) out.arrivals.assign(s.texels.size(), glm::vec4(0.0f));
   if (regions.empty()) return out;
   std::vector<uint8_t> shooters;  // per patch, 1 for the shot's (a cluster's)
   if (members.size() > 1) {
-    clusterEyes(s, members, residual, shotNumber, params.eyesPerRegion, setsEdge * setsEdge,
-                params.oneEyeRadius, regions);
     shooters.assign(s.atlas.patches.size(), 0);
     for (const ShotMember& m : members) shooters[size_t(m.patch)] = 1;
   }
@@ -672,12 +692,8 @@ RayShotGain shootByRays(const RayShotScene& s, std::span<const ShotMember> membe
   const glm::dvec2 seen = shotCoverage(s, layout, regions, params.coverageRays, shotNumber);
   out.covered = seen.x, out.open = seen.y;
 
-  // The plane receivers behind which get nothing: the lowest of the regions' along the normal (a cluster's
-  // patches lie within ShooterClusterParams::planeGap of each other).
   const glm::vec3 ns = p.normal;
-  glm::vec3 plane = regions.front().whole().centre;
-  for (const RegionPieces& r : regions)
-    if (glm::dot(ns, r.whole().centre - plane) < 0.0f) plane = r.whole().centre;
+  const glm::vec3 plane = lowestCentre(regions, ns);
   std::vector<size_t> eyeBase(regions.size(), 0);  // each region's first eye among all the shot's
   for (size_t r = 1; r < regions.size(); ++r) eyeBase[r] = eyeBase[r - 1] + regions[r - 1].eyes.size();
   const std::vector<uint8_t> hidden =

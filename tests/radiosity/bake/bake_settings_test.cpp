@@ -34,7 +34,7 @@ BakeSettings everyFieldChanged() {
   p.strongShotRegions = 2, p.strongShotFraction = 0.01, p.visibility = Visibility::Hemisphere;
   p.itemBuffer = 256, p.neighbourhood = 1, p.jitteredEyes = false, p.lampRays = 16, p.cullItemBuffers = false;
   p.profilePasses = true;
-  p.coverageRays = 256, p.eyesPerRegion = 3, p.strongEyesPerRegion = 5;
+  p.coverageRays = 256, p.eyesPerRegion = 3, p.strongEyesPerRegion = 5, p.clusterRadius = 0.25f;
   s.solver.solveDensity = 2.5f, s.solver.lampCoarsening = 3, s.solver.indirect = IndirectSolver::Rays;
   s.solver.backend = Backend::Rays;
   s.solver.ambient = false, s.solver.ambientShare = 0.25;

@@ -18,8 +18,8 @@ struct Box {
   Scene scene;
   LightmapAtlas atlas;
   std::vector<float> cell;  ///< per texel: 0 for x < 0.5, 1 beyond
-  explicit Box(bool open) {
-    addClosedBox(scene, glm::vec3(0.0f), glm::vec3(1.0f), addMaterial(scene, glm::vec3(0.5f)));
+  explicit Box(bool open, float albedo = 0.5f) {
+    addClosedBox(scene, glm::vec3(0.0f), glm::vec3(1.0f), addMaterial(scene, glm::vec3(albedo)));
     if (open) scene.triangles.erase(scene.triangles.begin() + 2, scene.triangles.begin() + 4);  // the top
     Context ctx;
     atlas = buildAtlas(scene, findQuads(scene), AtlasParams{.density = 16.0f}, ctx);
@@ -57,6 +57,19 @@ TEST(AmbientTransfer, AClosedBoxKeepsAllItsLight) {
   // The same rays for the same seed.
   const AmbientTransfer again = measureAmbientTransfer(box.atlas, RayScene(box.scene), box.cell, 2);
   EXPECT_EQ(t.share, again.share);
+}
+
+// Albedo 1, closed, one cell: no walk loses light or leaves the cell, so only the bounce bound ends them;
+// the arrival's landed light is the bounces followed, at most the bound's 256 and the arrival itself.
+TEST(AmbientTransfer, WalksInAClosedRoomOfAlbedoOneEnd) {
+  Box box(false, 1.0f);
+  for (float& c : box.cell)
+    if (c >= 0.0f) c = 0.0f;
+  const AmbientTransfer t =
+      measureAmbientTransfer(box.atlas, RayScene(box.scene), box.cell, 1, /*raysPerCell=*/256, 0x5eed, 64);
+  ASSERT_EQ(t.arrivals.size(), 1u);
+  EXPECT_LE(t.arrivals[0].landed.r, 257.0);
+  EXPECT_GT(t.arrivals[0].landed.r, 200.0);  // the walks were followed to the bound, not dropped
 }
 
 }  // namespace

@@ -37,6 +37,14 @@ inline void addRect(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, ui
 
 /// The six inward-facing faces of the box [lo, hi].
 /// The atlas of `scene` at `density` texels a metre, every other parameter the default.
+// A copy of the scene's first triangle with two corners at one point: zero area, which no atlas charts
+// (faces cut where other geometry runs through them leave such triangles: oa_dm2 had two).
+inline void addZeroAreaTriangle(Scene& scene) {
+  Triangle flat = scene.triangles.front();
+  flat.p[2] = flat.p[1];
+  scene.triangles.push_back(flat);
+}
+
 inline LightmapAtlas atlasAtDensity(const Scene& scene, float density) {
   Context ctx;
   AtlasParams p;

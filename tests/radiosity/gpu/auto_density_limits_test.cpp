@@ -98,9 +98,7 @@ TEST(AutoDensityLimits, ThePilotAndTheOutputKeepToTheTexelBudget) {
 // output's atlas refused the bake ("a chart's density must be positive").
 TEST(AutoDensityLimits, AZeroAreaTriangleGetsADensityTheOutputAccepts) {
   Scene s = daylitBox();
-  Triangle flat = s.triangles.front();
-  flat.p[2] = flat.p[1];
-  s.triangles.push_back(flat);
+  testing::addZeroAreaTriangle(s);
   const QuadSet quads = findQuads(s);
   RayShotEngine rays;
   Context ctx;
@@ -121,9 +119,7 @@ TEST(AutoDensityLimits, AZeroAreaTriangleGetsADensityTheOutputAccepts) {
 // printed "14 zero-area triangle(s) left out" twice).
 TEST(AutoDensityLimits, AZeroAreaTriangleLeftOutIsSaidOnceAcrossTheBudgetsLayouts) {
   Scene s = daylitBox();
-  Triangle flat = s.triangles.front();
-  flat.p[2] = flat.p[1];
-  s.triangles.push_back(flat);
+  testing::addZeroAreaTriangle(s);
   const QuadSet quads = findQuads(s);
   Context ctx;
   AtlasParams asked;

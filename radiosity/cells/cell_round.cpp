@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -17,7 +18,8 @@ glm::dvec3 texelPower(const glm::vec3& v, float area) {
 
 // One link's send: the irradiance collected on the sending side becomes exitance on the far side.
 PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveResult& solved,
-                       const std::vector<CellState>& cells, const RayScene* rays, int binRays) {
+                       const std::vector<CellState>& cells, const RayScene* rays, int binRays,
+                       std::vector<std::vector<int32_t>>* hits) {
   const LightmapAtlas& to = cells[link.to].atlas;
   glm::dvec3 sent(0.0), arrived(0.0);
   for (const auto& [tt, ft] : link.texels) arrived += texelPower(solved.incident[ft], to.area[tt]);
@@ -52,7 +54,7 @@ PortalSend sendThrough(const PortalLink& link, const CellState& s, const SolveRe
     std::vector<glm::vec3> weights;
     weights.reserve(send.exitance.size());
     for (const auto& [tt, e] : send.exitance) weights.push_back(e);
-    send.bins = portalArrivalBins(s, solved, *rays, link, weights, binRays);
+    send.bins = portalArrivalBins(s, solved, *rays, link, weights, binRays, hits);
   }
   return send;
 }
@@ -102,8 +104,10 @@ SolverParams roundBudget(const CellSolveParams& params, double target, double un
 
 std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
                                            const RayScene& rays, const PortalLink& link,
-                                           const std::vector<glm::vec3>& weights, int rayCount) {
+                                           const std::vector<glm::vec3>& weights, int rayCount,
+                                           std::vector<std::vector<int32_t>>* hits) {
   const LightmapAtlas& a = s.atlas;
+  if (hits) hits->resize(link.texels.size());
   // A binned emitter (a portal of this cell re-emitting its neighbour's light) is met by many of the
   // rays: its bins normalised once here, not per ray over all kArrivalBins of them.
   std::vector<BinnedEmitter> emitters;
@@ -132,8 +136,11 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
     // Seeded by where the texel is, not by any index: a cell job's graph numbers its portals its own way.
     uint32_t seed = 0x811C9DC5u;
     for (int axis = 0; axis < 3; ++axis) seed = (seed ^ std::bit_cast<uint32_t>(origin[axis])) * 0x01000193u;
-    ArrivalBins b =
-        traceArrivalBins(rays, a, origin, p.texelU, p.texelV, a.normal[ft], rayCount, seed, shotToward);
+    std::vector<int32_t> traced;
+    std::vector<int32_t>& met = hits ? (*hits)[k] : traced;
+    if (met.size() != size_t(rayCount))
+      met = traceArrivalHits(rays, a, origin, p.texelU, p.texelV, a.normal[ft], rayCount, seed);
+    ArrivalBins b = arrivalBinsAlongHits(met, a.normal[ft], seed, shotToward);
     const glm::dvec3 sum = binTotals(b);
     const glm::vec3 w = k < weights.size() ? weights[k] : glm::vec3(0.0f);
     // Each channel scaled to the light the solve delivered; a channel no ray met (a sliver the rays
@@ -148,8 +155,8 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
 }
 
 CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
-                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells,
-                      int binRays) {
+                      const std::vector<PortalLink>& links, const std::vector<CellState>& cells, int binRays,
+                      ArrivalHitCache* hits) {
   CellRound r;
   r.cell = int(c);
   r.solved = true;
@@ -189,13 +196,17 @@ CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
         r.reflectorGain += (double(r.radiosity[t].r) + r.radiosity[t].g + r.radiosity[t].b) * s.atlas.area[t];
   }
   double collected = 0.0;
+  // Sized by the caller: cells solved side by side each touch their own links' entries only.
+  if (hits && hits->size() != links.size())
+    throw std::invalid_argument("cellRoundOf: not one hit list a link");
   std::unique_ptr<RayScene> rays;
   if (binRays > 0 &&
       std::any_of(links.begin(), links.end(), [&](const PortalLink& l) { return l.from == int(c); }))
     rays = std::make_unique<RayScene>(s.cs.scene);
-  for (const PortalLink& link : links) {
+  for (size_t l = 0; l < links.size(); ++l) {
+    const PortalLink& link = links[l];
     if (link.from != int(c)) continue;
-    r.sends.push_back(sendThrough(link, s, solved, cells, rays.get(), binRays));
+    r.sends.push_back(sendThrough(link, s, solved, cells, rays.get(), binRays, hits ? &(*hits)[l] : nullptr));
     collected += r.sends.back().watts;
   }
   r.shots = solved.shots;

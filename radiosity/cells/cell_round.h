@@ -46,6 +46,10 @@ struct PortalSend {
   glm::dvec3 arrivingRgb{0.0};  ///< the same per channel (W), for the receiving cell's stop (round_stop.h)
 };
 
+/// Per link, per sending texel, the texels its arrival bins' rays meet (traceArrivalHits), kept from one
+/// round to the next (cellRoundOf).
+using ArrivalHitCache = std::vector<std::vector<std::vector<int32_t>>>;
+
 /// What one cell's round leaves: its own share of the next round's pending light and what it sends.
 struct CellRound {
   int cell = -1;                   ///< graph cell
@@ -96,17 +100,24 @@ SolverParams roundBudget(const CellSolveParams& params, double target, double un
 /// exactly what arrived (the charts of the two sides may differ). Indices are those of `cells`.
 /// `binRays` > 0 (binned portals): each send's entries get their arrival bins by that many rays per
 /// sending texel into the cell (portalArrivalBins).
+/// `hits` (may be null): per link of `links`, per texel, the texels its arrival rays meet
+/// (traceArrivalHits), traced on the first round that needs them and read again on every later one: a
+/// portal texel's rays depend on where it is only, and the cell's geometry and atlas do not change between
+/// rounds. The same floats as without.
 CellRound cellRoundOf(size_t c, const CellState& s, const SolveResult& solved,
                       const std::vector<PortalLink>& links, const std::vector<CellState>& cells,
-                      int binRays = 0);
+                      int binRays = 0, ArrivalHitCache* hits = nullptr);
 
 /// Per entry of `link.texels`, the arrival bins at its sending texel by `rays` rays into cell `s`, each
 /// taking the exitance the texel it meets shot in `solved` (what it held pending, plus what it gained,
 /// less what it left unshot), shaped by that texel's own bins where it has any; each channel scaled to
 /// sum to that channel of `weights[k]`. Deterministic: the rays of a texel depend on where it is only.
+/// `hits` (may be null): per entry of `link.texels`, the texels its rays meet; an entry without
+/// `rayCount` of them is traced and kept there.
 std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult& solved,
                                            const RayScene& rays, const PortalLink& link,
-                                           const std::vector<glm::vec3>& weights, int rayCount);
+                                           const std::vector<glm::vec3>& weights, int rayCount,
+                                           std::vector<std::vector<int32_t>>* hits = nullptr);
 
 /// Cell `c`'s round when it waits: its pending light kept, nothing sent.
 CellRound waitingCellRound(size_t c, const CellState& s);

@@ -98,7 +98,8 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
                                   const std::vector<CellState>& cells, const std::vector<size_t>& active,
                                   const std::vector<PortalLink>& links, const SolverParams& settings,
                                   const SolveControls& controls, const ShotShape& shape,
-                                  const PortalTransfer& transfer, CellWorkers& workers, Context& ctx) {
+                                  const PortalTransfer& transfer, CellWorkers& workers, ArrivalHitCache& hits,
+                                  Context& ctx) {
   std::vector<SolveResult> solvedOf(cells.size());
   std::vector<CellRound> round(cells.size());
   {
@@ -113,7 +114,7 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
             return transfer.solve(c, cells[c], settings, controls, shape, engine, cellCtx);
           },
           taskCtx);
-      round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays());
+      round[c] = cellRoundOf(c, cells[c], solvedOf[c], links, cells, transfer.binRays(), &hits);
     });
   }
   for (size_t c = 0; c < cells.size(); ++c)
@@ -205,6 +206,9 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
   const std::vector<PortalLink> links = linkPortals(graph, cells);
   const std::unique_ptr<PortalTransfer> transfer = makePortalTransfer(params);
   CellWorkers workers(params.jobs, engine);  // an engine per thread for every cell and round
+  // The portals' arrival rays meet the same texels every round: traced once. Sized before the rounds, so
+  // that the cells solved side by side each write their own links' entries only.
+  ArrivalHitCache arrivalHits(links.size());
 
   const CellFirstShot first =
       params.firstShot
@@ -235,8 +239,8 @@ SolveResult solveCells(const Scene& scene, const CellGraph& graph, const Lightma
         roundBudget(params, stop.target(), unshot, emitted, controls, shape, global.patches.size());
     const std::vector<size_t> active = activeCells(cells, stop.target());
     ctx.progress("cells", done, "round " + std::to_string(rounds) + ": " + cellList(graph, active));
-    const std::vector<CellRound> round =
-        solveRound(graph, rounds, cells, active, links, settings, controls, shape, *transfer, workers, ctx);
+    const std::vector<CellRound> round = solveRound(graph, rounds, cells, active, links, settings, controls,
+                                                    shape, *transfer, workers, arrivalHits, ctx);
     for (size_t c : active) {
       addCellRound(round[c], cells[c], graph, result);
       result.timedOut = result.timedOut || round[c].timedOut;

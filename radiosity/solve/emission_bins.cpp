@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 namespace cpgi {
 namespace {
@@ -190,40 +191,97 @@ int64_t texelAtHit(const LightmapAtlas& atlas, int32_t triangle, float u, float 
   return atlas.patch[t] >= 0 ? int64_t(t) : -1;
 }
 
-ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
-                             const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
-                             int rayCount, uint32_t seed, const ExitanceToward& exitance) {
-  ArrivalBins bins;
-  bins.fill(glm::vec3(0.0f));
-  if (rayCount <= 0) return bins;
+namespace {
+
+// traceArrivalBins' rays in order: where each leaves the parallelogram ([0,1]² of its edges), its bin and
+// its point of that bin's cell. Stratified over the point (√N × √N cells) and over the bins: as many rays
+// through each bin when there are at least kArrivalBins of them, else bins drawn at random.
+class ArrivalRays {
+ public:
+  struct Ray {
+    float su, sv;
+    int bin;
+    glm::vec2 s;
+  };
+  ArrivalRays(int rayCount, uint32_t seed)
+      : count_(rayCount),
+        side_(std::max(1, int(std::sqrt(double(rayCount))))),
+        perBin_(rayCount >= kArrivalBins),
+        rng_{uint64_t(seed) * 0x2545F4914F6CDD1Dull + 1} {}
+  Ray next(int k) {
+    Ray r;
+    const int cell = k % (side_ * side_);
+    r.su = (float(cell % side_) + rng_.next()) / float(side_);
+    r.sv = (float(cell / side_) + rng_.next()) / float(side_);
+    r.bin = perBin_ ? k % kArrivalBins : std::min(int(rng_.next() * float(kArrivalBins)), kArrivalBins - 1);
+    const glm::vec2 s(float(r.bin % kBinGrid) + rng_.next(), float(r.bin / kBinGrid) + rng_.next());
+    r.s = s;
+    return r;
+  }
+  // A ray through point s of the square estimates the irradiance as (1/N) M binDensity(s), M the exitance
+  // met; through its own bin, of n_b rays, as binProjectedArea-weighted: M binDensity(s) / (kArrivalBins
+  // n_b).
+  float weight(int bin) const {
+    const int raysInBin = perBin_ ? count_ / kArrivalBins + (bin < count_ % kArrivalBins ? 1 : 0) : 0;
+    return perBin_ ? 1.0f / float(kArrivalBins * raysInBin) : 1.0f / float(count_);
+  }
+
+ private:
+  int count_, side_;
+  bool perBin_;
+  SplitMix rng_;
+};
+
+}  // namespace
+
+std::vector<int32_t> traceArrivalHits(const RayScene& rays, const LightmapAtlas& atlas,
+                                      const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV,
+                                      const glm::vec3& facing, int rayCount, uint32_t seed) {
+  std::vector<int32_t> hits(size_t(std::max(rayCount, 0)), kNoArrivalTexel);
   const BinFrame far = binFrame(-facing);
-  SplitMix rng{uint64_t(seed) * 0x2545F4914F6CDD1Dull + 1};
-  // Stratified over the point (√N × √N cells) and over the bins. A ray through point s of the square
-  // estimates the irradiance as (1/N) M binDensity(s), M the exitance met; through its own bin, of n_b
-  // rays, as binProjectedArea-weighted: M binDensity(s) / (kArrivalBins n_b).
-  const int side = std::max(1, int(std::sqrt(double(rayCount))));
-  const bool perBin = rayCount >= kArrivalBins;
+  ArrivalRays arrival(rayCount, seed);
   const float offset = 1e-4f * rays.diagonal();
   for (int k = 0; k < rayCount; ++k) {
-    const int cell = k % (side * side);
-    const float su = (float(cell % side) + rng.next()) / float(side);
-    const float sv = (float(cell / side) + rng.next()) / float(side);
-    const glm::vec3 y = origin + su * edgeU + sv * edgeV;
-    const int bin =
-        perBin ? k % kArrivalBins : std::min(int(rng.next() * float(kArrivalBins)), kArrivalBins - 1);
-    const glm::vec2 s(float(bin % kBinGrid) + rng.next(), float(bin / kBinGrid) + rng.next());
-    const glm::vec3 omega = binDirection(far, s);  // the light travels from the hit towards the point, and on
+    const ArrivalRays::Ray r = arrival.next(k);
+    const glm::vec3 y = origin + r.su * edgeU + r.sv * edgeV;
+    const glm::vec3 omega =
+        binDirection(far, r.s);  // the light travels from the hit towards the point, and on
     const RayScene::Hit hit = rays.intersect(y, -omega, offset);
     if (!hit) continue;
     const int64_t t = texelAtHit(atlas, hit.triangle, hit.u, hit.v);
-    if (t < 0) continue;
-    const glm::vec3 m = glm::max(exitance(size_t(t), omega), glm::vec3(0.0f));
+    if (t >= 0) hits[size_t(k)] = int32_t(t);
+  }
+  return hits;
+}
+
+ArrivalBins arrivalBinsAlongHits(std::span<const int32_t> hits, const glm::vec3& facing, uint32_t seed,
+                                 const ExitanceToward& exitance) {
+  ArrivalBins bins;
+  bins.fill(glm::vec3(0.0f));
+  const int rayCount = int(hits.size());
+  const BinFrame far = binFrame(-facing);
+  ArrivalRays arrival(rayCount, seed);
+  for (int k = 0; k < rayCount; ++k) {
+    const ArrivalRays::Ray r = arrival.next(k);
+    if (hits[size_t(k)] == kNoArrivalTexel) continue;
+    const glm::vec3 omega = binDirection(far, r.s);
+    const glm::vec3 m = glm::max(exitance(size_t(hits[size_t(k)]), omega), glm::vec3(0.0f));
     if (!(m.r + m.g + m.b > 0.0f)) continue;
-    const int raysInBin = perBin ? rayCount / kArrivalBins + (bin < rayCount % kArrivalBins ? 1 : 0) : 0;
-    const float weight = perBin ? 1.0f / float(kArrivalBins * raysInBin) : 1.0f / float(rayCount);
-    bins[size_t(bin)] += m * (binDensity(s) * weight);
+    bins[size_t(r.bin)] += m * (binDensity(r.s) * arrival.weight(r.bin));
   }
   return bins;
+}
+
+ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
+                             const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
+                             int rayCount, uint32_t seed, const ExitanceToward& exitance) {
+  if (rayCount <= 0) {
+    ArrivalBins none;
+    none.fill(glm::vec3(0.0f));
+    return none;
+  }
+  return arrivalBinsAlongHits(traceArrivalHits(rays, atlas, origin, edgeU, edgeV, facing, rayCount, seed),
+                              facing, seed, exitance);
 }
 
 }  // namespace cpgi

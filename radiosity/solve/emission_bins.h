@@ -35,6 +35,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -134,6 +136,18 @@ using ExitanceToward = std::function<glm::vec3(size_t texel, const glm::vec3& om
 ArrivalBins traceArrivalBins(const RayScene& rays, const LightmapAtlas& atlas, const glm::vec3& origin,
                              const glm::vec3& edgeU, const glm::vec3& edgeV, const glm::vec3& facing,
                              int rayCount, uint32_t seed, const ExitanceToward& exitance);
+
+/// The texel of `atlas` each of traceArrivalBins' rays meets, in the rays' order (kNoArrivalTexel where a
+/// ray meets none): the rays depend on the parallelogram, `rayCount` and `seed` alone, so a portal texel's
+/// rays meet the same texels in every round of a cells solve, whatever light they hold then.
+inline constexpr int32_t kNoArrivalTexel = -1;
+std::vector<int32_t> traceArrivalHits(const RayScene& rays, const LightmapAtlas& atlas,
+                                      const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV,
+                                      const glm::vec3& facing, int rayCount, uint32_t seed);
+/// traceArrivalBins from the texels its rays meet (traceArrivalHits with the same `facing` and `seed`, one
+/// entry a ray): the same floats, without tracing a ray.
+ArrivalBins arrivalBinsAlongHits(std::span<const int32_t> hits, const glm::vec3& facing, uint32_t seed,
+                                 const ExitanceToward& exitance);
 
 /// The atlas texel under a ray's hit on scene triangle `triangle` at barycentrics (u, v), or -1 when the
 /// triangle has no chart or the texel is padding.

@@ -113,9 +113,11 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
   std::vector<BinnedEmitter> emitters;
   emitters.reserve(s.pendingBins.size());
   std::vector<int32_t> emitterOf(s.pendingBins.empty() ? 0 : a.texelCount(), -1);
+  std::vector<uint8_t> binned(a.texelCount(), 0);  // the texels a ray's direction matters for
   for (const auto& [t, b] : s.pendingBins) {
     if (size_t(t) >= emitterOf.size()) continue;
     emitterOf[size_t(t)] = int32_t(emitters.size());
+    binned[size_t(t)] = 1;
     emitters.push_back(binnedEmitter(b, a.normal[size_t(t)]));
   }
   // What texel t shot in this solve towards ω (W/m² per channel): its pending exitance (the atlas's
@@ -140,7 +142,7 @@ std::vector<ArrivalBins> portalArrivalBins(const CellState& s, const SolveResult
     std::vector<int32_t>& met = hits ? (*hits)[k] : traced;
     if (met.size() != size_t(rayCount))
       met = traceArrivalHits(rays, a, origin, p.texelU, p.texelV, a.normal[ft], rayCount, seed);
-    ArrivalBins b = arrivalBinsAlongHits(met, a.normal[ft], seed, shotToward);
+    ArrivalBins b = arrivalBinsAlongHits(met, a.normal[ft], seed, shotToward, binned);
     const glm::dvec3 sum = binTotals(b);
     const glm::vec3 w = k < weights.size() ? weights[k] : glm::vec3(0.0f);
     // Each channel scaled to the light the solve delivered; a channel no ray met (a sliver the rays

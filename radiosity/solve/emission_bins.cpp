@@ -255,7 +255,7 @@ std::vector<int32_t> traceArrivalHits(const RayScene& rays, const LightmapAtlas&
 }
 
 ArrivalBins arrivalBinsAlongHits(std::span<const int32_t> hits, const glm::vec3& facing, uint32_t seed,
-                                 const ExitanceToward& exitance) {
+                                 const ExitanceToward& exitance, std::span<const uint8_t> directional) {
   ArrivalBins bins;
   bins.fill(glm::vec3(0.0f));
   const int rayCount = int(hits.size());
@@ -263,9 +263,11 @@ ArrivalBins arrivalBinsAlongHits(std::span<const int32_t> hits, const glm::vec3&
   ArrivalRays arrival(rayCount, seed);
   for (int k = 0; k < rayCount; ++k) {
     const ArrivalRays::Ray r = arrival.next(k);
-    if (hits[size_t(k)] == kNoArrivalTexel) continue;
-    const glm::vec3 omega = binDirection(far, r.s);
-    const glm::vec3 m = glm::max(exitance(size_t(hits[size_t(k)]), omega), glm::vec3(0.0f));
+    const int32_t t = hits[size_t(k)];
+    if (t == kNoArrivalTexel) continue;
+    const bool towards = directional.empty() || (size_t(t) < directional.size() && directional[size_t(t)]);
+    const glm::vec3 omega = towards ? binDirection(far, r.s) : glm::vec3(0.0f);
+    const glm::vec3 m = glm::max(exitance(size_t(t), omega), glm::vec3(0.0f));
     if (!(m.r + m.g + m.b > 0.0f)) continue;
     bins[size_t(r.bin)] += m * (binDensity(r.s) * arrival.weight(r.bin));
   }

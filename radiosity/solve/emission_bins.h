@@ -145,9 +145,10 @@ std::vector<int32_t> traceArrivalHits(const RayScene& rays, const LightmapAtlas&
                                       const glm::vec3& origin, const glm::vec3& edgeU, const glm::vec3& edgeV,
                                       const glm::vec3& facing, int rayCount, uint32_t seed);
 /// traceArrivalBins from the texels its rays meet (traceArrivalHits with the same `facing` and `seed`, one
-/// entry a ray): the same floats, without tracing a ray.
+/// entry a ray): the same floats, without tracing a ray. With `directional` (per atlas texel, 1 where its
+/// exitance depends on ω), the others are read with ω = 0, their ray's direction not worked out.
 ArrivalBins arrivalBinsAlongHits(std::span<const int32_t> hits, const glm::vec3& facing, uint32_t seed,
-                                 const ExitanceToward& exitance);
+                                 const ExitanceToward& exitance, std::span<const uint8_t> directional = {});
 
 /// The atlas texel under a ray's hit on scene triangle `triangle` at barycentrics (u, v), or -1 when the
 /// triangle has no chart or the texel is padding.

@@ -99,6 +99,7 @@ SolverParams roundBudget(const CellSolveParams& params, double target, double un
   shape.strongShotPower = settings.strongShotFraction * emitted;
   shape.emittersAreLamps = false;  // a cell's emitters are its portals; its lamps shot first, globally
   shape.openingPoints = std::max(1, int(std::lround(4.0f / params.portalDensityScale)));
+  round.coverageRays = std::min(settings.coverageRays, kCellCoverageRays);
   return round;
 }
 

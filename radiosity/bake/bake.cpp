@@ -275,6 +275,16 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
   EngineOutputParams engine = s.output.engine;
   engine.directional = plan.directional;
   engine.probes = plan.probes;
+  const ViewParams shown = plan.smallerViews.value_or(views);
+  if (plan.smallerViews) {
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "views: the time limit leaves too little for %d pixels wide at %d x %d rays a pixel: "
+                  "rendered %d pixels wide at one ray a pixel",
+                  views.width, views.supersample, views.supersample, shown.width);
+    ctx.warn(line);
+  }
+  f.viewWidth = shown.width;
   if (!plan.skipped.empty()) {
     f.outputsLeftOut = plan.skipped;
     std::string names;
@@ -290,9 +300,11 @@ void writeBake(const BakeSettings& s, const BakeInput& in, const SolveInput& x, 
     if (keepBack(until, outputs.probeVoxelSeconds) <= Clock::now()) until = Clock::now();
     probesReport = writeLightProbes(in, r, engine, until, *out, probes, f, ctx);
   }
+  // The first view whatever the deadline: a few tenths of a second at kLimitedViewWidth.
   LightmapOutputs written = writeLightmapOutputs(
-      *out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx, views,
-      plan.views ? keepBack(deadline, outputs.pageSeconds) : Clock::time_point::min(), engine, probes);
+      *out, *in.scene, *in.cells, in.atlas, r.radiosity, {emissive, x.texelCells}, ctx, shown,
+      plan.views ? keepBack(deadline, outputs.pageSeconds) : Clock::time_point::min(), engine, probes,
+      plan.views ? 1 : 0);
   f.engine = std::move(written.engine);
   if (engine.probes) f.engine["probes"] = probesReport;
   // The gathers the plan left out are said where a stopped one is (engine_lightmap.*.skipped).
@@ -354,6 +366,16 @@ OutputPlan plannedOutputs(const BakeSettings& s, const Scene& scene, const std::
   const OutputEstimate e =
       estimateOutputs(scene, cameras, views, atlas.validTexels(), atlas.texelCount(), now, asked);
   OutputPlan plan = planOutputs(secondsLeft(deadline), e, early.views, asked);
+  // Views that do not fit as asked are made smaller, not left out: the user of a time-limited bake sees
+  // what it baked (the first view whatever the deadline: writeBake).
+  if (early.views && !plan.views && !cameras.empty()) {
+    const double gathers =
+        (plan.probes ? e.probesSeconds : 0.0) + (plan.directional ? e.directionalSeconds : 0.0);
+    plan.smallerViews = viewsThatFit(scene, cameras, views,
+                                     secondsLeft(deadline) - e.filesSeconds - e.pageSeconds - gathers, now);
+    plan.views = true;
+    std::erase(plan.skipped, "views");
+  }
   std::vector<std::string> skipped;
   for (const char* o : {"views", "probes", "directional"})
     if (std::count(early.skipped.begin(), early.skipped.end(), o) ||
@@ -381,8 +403,11 @@ RoomLabels bakeRooms(const BakeSettings& s, const BakeInput& in, Clock::time_poi
 
 }  // namespace
 
-BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, Context& ctx,
+BakeResult bakeLoaded(const BakeSettings& settings, BakeInput& in, const BakeRun& run, Context& ctx,
                       const std::filesystem::path* gatherPlan) {
+  const std::vector<Camera> cameras = expectedCameras(*in.scene, *in.cells);
+  // --max-memory before anything is laid out or written: the texel budget lowered to fit, or one line.
+  const BakeSettings s = withinMemory(settings, *in.scene, cameras, ctx);
   const Clock::time_point deadline = deadlineOf(s, run.start);
   // The share of a core this bake gets, from its start (its loading included) as it goes.
   const CpuShare load(run.clocks, run.cpuAtStart);
@@ -393,7 +418,6 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   // The outputs' share of the time limit is kept back from every stage that can stop early: for the pilot
   // estimated at the texel budget (and the pilot given a share of the rest), for the solve at the atlas
   // laid out.
-  const std::vector<Camera> cameras = expectedCameras(*in.scene, *in.cells);
   const bool limited = deadline != Clock::time_point::max();
   // Measured as the machine runs now, and again before the solve: the load moves in minutes.
   const auto measureCosts = [&] {
@@ -443,7 +467,11 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
   asked.views = true, asked.probes = s.output.engine.probes, asked.directional = s.output.engine.directional;
   const Clock::time_point solveDeadline = keepBack(deadline, outputsKeptBack(s, outputs));
   requireConvergence(s, *in.scene, in.atlas);
-  if (run.sized) run.sized(bakeSizeLine(s, in));
+  if (run.sized) {
+    BakeMemory memory = bakeMemory(s, *in.scene, in.atlas, largestViewBytes(cameras, views));
+    memory.layout = double(in.laidOutTexels) * kLayoutBytesPerTexel;
+    run.sized(bakeSizeLine(s, in, memory.total()));
+  }
   const CellGraph& cells = *in.cells;
   const RoomLabels rooms = bakeRooms(s, in, solveDeadline, load, ctx);
   const CellGraph& texelGraph = rooms.graph.empty() ? cells : rooms.graph;

@@ -73,9 +73,17 @@ constexpr double kSkyGatherBytesPerTexel = 8.0 + 16.0 + 12.0;
 // radiance it reads (reflected light and the emitters' chances), and the dilated copy written.
 constexpr double kDirectionalBytesPerTexel = 4 * 12.0 + 12.0 + 16.0 + 12.0;
 
+// The process whatever its atlas, on the 2-core llvmpipe machine: a random plan's bake (a 71 MB atlas and
+// item buffers) peaked at 264 MB, 228 MB of it before its pilot: the GL driver's context, the time
+// probes' ray scene, the program.
+constexpr double kProcessBytes = 256.0 * (1 << 20);
+// A scene triangle through the bake's set-up: the scene, its quads, the charts' lists, the cells' and
+// the sky openings' copies, beside the ray scenes counted on their own.
+constexpr double kSceneBytesPerTriangle = 1024.0;
+
 // The probes' voxels: the decomposition's grids (decompositionBytes) over the scene's bounds at
 // ProbeParams::voxel (an upper bound: voxelize trims open ground), and the baked radiance they read.
-double probeBytes(const Scene& scene, const LightmapAtlas& atlas) {
+double probeBytes(const Scene& scene, size_t atlasTexels) {
   if (scene.triangles.empty()) return 0.0;
   const double voxel = ProbeParams{}.voxel;
   const Bounds b = scene.bounds();
@@ -83,16 +91,16 @@ double probeBytes(const Scene& scene, const LightmapAtlas& atlas) {
   const double voxels = (size.x / voxel + 5.0) * (size.y / voxel + 5.0) * (size.z / voxel + 5.0);
   double area = 0.0;
   for (const Triangle& t : scene.triangles) area += double(t.area());
-  return decomp::decompositionBytes(voxels, voxel, area) + double(atlas.texelCount()) * 16.0;
+  return decomp::decompositionBytes(voxels, voxel, area) + double(atlasTexels) * 16.0;
 }
+
+}  // namespace
 
 double largestViewBytes(const std::vector<Camera>& cameras, const ViewParams& views) {
   double most = 0.0;
   for (const Camera& c : cameras) most = std::max(most, viewBytes(viewSize(c, views)));
   return most;
 }
-
-}  // namespace
 
 std::vector<Camera> expectedCameras(const Scene& scene, const CellGraph& cells) {
   if (!scene.cameras.empty()) return scene.cameras;
@@ -279,6 +287,20 @@ OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAs
   return plan;
 }
 
+ViewParams viewsThatFit(const Scene& scene, const std::vector<Camera>& cameras, const ViewParams& asked,
+                        double seconds, const MachineCosts& costs) {
+  ViewParams v = asked;
+  v.supersample = 1;
+  const int least = std::min(asked.width, kLimitedViewWidth);
+  const auto fits = [&] { return estimateOutputs(scene, cameras, v, 0, 0, costs).viewSeconds <= seconds; };
+  while (!fits() && v.width > least) {
+    const int width = std::max(least, v.width * 4 / 5);
+    if (v.height > 0) v.height = std::max(kMinViewEdge, int(std::lround(double(v.height) * width / v.width)));
+    v.width = width;
+  }
+  return v;
+}
+
 void requireTimeForMinimum(double timeLimit, const LeastBake& least) {
   if (!(timeLimit > 0.0) || timeLimit - least.spentSeconds >= least.seconds) return;
   char share[80] = "";
@@ -357,20 +379,65 @@ std::chrono::steady_clock::time_point keepBack(std::chrono::steady_clock::time_p
 
 BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas,
                       double largestViewBytes) {
+  return bakeMemory(s, scene, atlas.texelCount(), atlas.validTexels(), largestViewBytes);
+}
+
+BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, size_t atlasTexels, size_t validTexels,
+                      double largestViewBytes) {
   BakeMemory m;
-  m.atlas = double(atlas.texelCount()) * kBakeBytesPerTexel;
+  m.base = kProcessBytes + double(scene.triangles.size()) * kSceneBytesPerTriangle;
+  m.atlas = double(atlasTexels) * kBakeBytesPerTexel;
+  // The office's cells bake (233 k texels, a 179 MB atlas and item buffers) peaked at 568 MB in its
+  // cells' set-up.
+  if (s.cells.method == BakeMethod::Cells) m.cells = m.atlas;
   const double edge = s.solver.params.itemBuffer;
   const double regions = std::pow(std::max(s.solver.params.maxRegions, s.solver.params.strongShotRegions), 2);
   // An item and a depth layer (8 bytes a pixel) per region, and half as much again for the GL driver.
   m.itemBuffers = edge * edge * regions * 12.0;
   m.rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
-  if (scene.sky.lights()) m.skyGather = double(atlas.validTexels()) * kSkyGatherBytesPerTexel;
+  if (scene.sky.lights()) m.skyGather = double(validTexels) * kSkyGatherBytesPerTexel;
   m.views = largestViewBytes;
   const EngineOutputParams& engine = s.output.engine;
   const double rayScene = double(scene.triangles.size()) * kRaySceneBytesPerTriangle;
-  if (engine.directional) m.gathers = double(atlas.texelCount()) * kDirectionalBytesPerTexel + rayScene;
-  if (engine.probes) m.gathers = std::max(m.gathers, probeBytes(scene, atlas) + rayScene);
+  if (engine.directional) m.gathers = double(atlasTexels) * kDirectionalBytesPerTexel + rayScene;
+  if (engine.probes) m.gathers = std::max(m.gathers, probeBytes(scene, atlasTexels) + rayScene);
   return m;
+}
+
+BakeSettings withinMemory(const BakeSettings& settings, const Scene& scene,
+                          const std::vector<Camera>& cameras, Context& ctx) {
+  BakeSettings s = settings;
+  const uint64_t limit = s.atlas.params.memoryLimit;
+  const size_t budget = s.atlas.autoDensity.maxTexels;
+  if (limit == 0 || !s.atlas.densityAuto || budget == 0) return s;
+  const double views = largestViewBytes(cameras, s.output.views);
+  const auto bytesAt = [&](size_t texels) {
+    return bakeMemory(s, scene, size_t(double(texels) * kAtlasTexelsPerValidTexel), texels, views);
+  };
+  const BakeMemory asked = bytesAt(budget);
+  if (asked.total() <= double(limit)) return s;
+  // The bytes are affine in the budget: the largest that fits, from the fixed part and the per-texel one.
+  const double fixed = bytesAt(0).total(), perTexel = (asked.total() - fixed) / double(budget);
+  const size_t fits = double(limit) > fixed ? size_t((double(limit) - fixed) / perTexel) : 0;
+  if (fits < kLeastTexelBudget) {
+    std::ostringstream what;
+    what << "the bake at the least texel budget of " << kLeastTexelBudget
+         << " (the program and the GL driver " << formatBytes(asked.base) << ", item buffers "
+         << formatBytes(asked.itemBuffers) << ", ray scene " << formatBytes(asked.rayScene)
+         << ", largest view " << formatBytes(asked.views) << ")";
+    requireMemory(bytesAt(kLeastTexelBudget).total(), limit, "maximum memory", what.str(),
+                  "lower `item buffer` or `view size`, or raise `maximum memory`");
+  }
+  const size_t lowered = std::max(kLeastTexelBudget, fits);
+  s.atlas.autoDensity.maxTexels = lowered;
+  char line[300];
+  std::snprintf(line, sizeof line,
+                "memory: the texel budget lowered from %zu to %zu texels to fit --max-memory %s (the bake at "
+                "%zu: about %s)",
+                budget, lowered, formatBytes(double(limit)).c_str(), budget,
+                formatBytes(asked.total()).c_str());
+  ctx.warn(line);
+  return s;
 }
 
 ViewParams requireBakeMemory(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,

@@ -4,6 +4,7 @@
 // --max-memory. Not for callers outside radiosity/bake/.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <functional>
@@ -122,9 +123,19 @@ OutputEstimate estimateOutputs(const Scene& scene, const std::vector<Camera>& ca
 struct OutputPlan {
   bool views = false, probes = false, directional = false;
   std::vector<std::string> skipped;
+  /// The views' size when the one asked for was made smaller to fit (viewsThatFit); none: as asked.
+  std::optional<ViewParams> smallerViews;
 };
 OutputPlan planOutputs(double secondsLeft, const OutputEstimate& e, bool viewsAsked,
                        const EngineOutputParams& engine);
+
+/// The narrowest view a time-limit makes a bake's views, in pixels: enough to see which rooms are lit.
+inline constexpr int kLimitedViewWidth = 160;
+/// The views of `cameras` a bake renders in `seconds` at `costs`: at one ray a pixel and the widest of
+/// `asked`'s width shrunk by fifths whose estimate fits, down to kLimitedViewWidth (or `asked`'s, if
+/// narrower) however long that takes. The aspect is kept; a time-limited bake's user sees what was baked.
+ViewParams viewsThatFit(const Scene& scene, const std::vector<Camera>& cameras, const ViewParams& asked,
+                        double seconds, const MachineCosts& costs);
 
 /// The least a bake can write: its least layout and its required files and page (planOutputs) at `texels`,
 /// as estimated at the share of a core measured so far.
@@ -188,9 +199,21 @@ int coarseningThatFits(const LayoutCost& cost, const AtlasParams& params, double
 /// the bake gets 2 % of a core"), for the least a bake writes.
 double leastLayoutCpuSeconds(const Scene& scene, size_t texels);
 
-/// The memory of a bake at its peak, by what takes it (bytes).
+/// The memory of a bake at its peak, by what takes it (bytes). The atlas is laid out before its solve at
+/// the size it keeps (fitTexelBudget), so the solve's buffers are the peak: the stages before them (the
+/// pilot's quarter of the texels, the layout's 56 bytes a texel) and the rooms' decomposition (limited to
+/// what this leaves of --max-memory) take less.
 struct BakeMemory {
-  double atlas = 0.0;        ///< kBakeBytesPerTexel a texel of the atlas (its padding included)
+  /// What the process holds whatever the atlas: the program and its libraries, the GL driver's context
+  /// (llvmpipe's threads and caches), the scene and its set-up's own copies (kProcessBytes and
+  /// kSceneBytesPerTriangle).
+  double base = 0.0;
+  double atlas = 0.0;  ///< kBakeBytesPerTexel a texel of the atlas (its padding included)
+  /// With --method cells, the cells' own atlases and their solves' buffers: the atlas's texels again.
+  double cells = 0.0;
+  /// The layout's own peak, before the solve's buffers: kLayoutBytesPerTexel a texel of the largest atlas
+  /// laid out (BakeInput::laidOutTexels), which a time limit can have laid out again coarser.
+  double layout = 0.0;
   double itemBuffers = 0.0;  ///< every visibility region's item and depth layer
   double rayScene = 0.0;     ///< the Embree scene the lamps' rays, the sky, the ambient term and views use
   double skyGather = 0.0;    ///< the sky gather's sums and texel list, with a sky
@@ -199,10 +222,33 @@ struct BakeMemory {
   /// or --probes' (their voxels over the scene's bounds at ProbeParams::voxel), the larger: one runs after
   /// the other.
   double gathers = 0.0;
-  double total() const { return atlas + itemBuffers + rayScene + skyGather + views + gathers; }
+  double total() const {
+    return base + std::max(layout, atlas + cells + itemBuffers + rayScene + skyGather + views + gathers);
+  }
 };
+/// For an atlas of `atlasTexels` (width × height) of which `validTexels` lie on surfaces.
+BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, size_t atlasTexels, size_t validTexels,
+                      double largestViewBytes);
 BakeMemory bakeMemory(const BakeSettings& s, const Scene& scene, const LightmapAtlas& atlas,
                       double largestViewBytes);
+/// The largest of `cameras`' pictures at `views` (they are made one at a time).
+double largestViewBytes(const std::vector<Camera>& cameras, const ViewParams& views);
+
+/// What a texel of an atlas being laid out takes: its arrays (56 bytes) and a gutter tap with its ray.
+inline constexpr double kLayoutBytesPerTexel = 128.0;
+/// An atlas's width × height over its valid texels, at most, on the scenes benched (a loose triangle's
+/// chart is half empty, every chart has its gutter, shelves leave room under short charts): what a texel
+/// budget (valid texels) is counted at before the layout says.
+inline constexpr double kAtlasTexelsPerValidTexel = 3.5;
+/// The least texel budget --max-memory lowers --max-texels to (a 128 × 128 lightmap); under it the bake is
+/// refused.
+inline constexpr size_t kLeastTexelBudget = 16384;
+/// `s` within --max-memory (s.atlas.params.memoryLimit) before anything is laid out: with --density auto
+/// and a texel budget, the bake at that budget (its atlas kAtlasTexelsPerValidTexel times it) estimated by
+/// bakeMemory, and the budget lowered to what fits (said in one warning); under kLeastTexelBudget, one
+/// InputError on `maximum memory`. Other bakes are checked once their atlas is laid out (requireBakeMemory).
+BakeSettings withinMemory(const BakeSettings& s, const Scene& scene, const std::vector<Camera>& cameras,
+                          Context& ctx);
 
 /// Checks bakeMemory against the limit (s.atlas.params.memoryLimit). When the views are what passes it,
 /// their size is lowered (the aspect kept) to fit, said in one warning, and the view parameters to use

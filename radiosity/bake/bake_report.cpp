@@ -223,6 +223,7 @@ nlohmann::json bakeReport(const BakeSettings& s, const BakeInput& in, const Solv
                                  {"load", f.outputs.load},
                                  {"cpu_share", f.outputs.load > 0.0 ? 1.0 / f.outputs.load : 0.0}};
   report["views_skipped"] = f.skippedViews;
+  report["view_width"] = f.viewWidth;
   std::vector<std::string> skipped = f.outputsLeftOut;
   skipped.insert(skipped.end(), f.skippedOutputs.begin(), f.skippedOutputs.end());
   report["outputs_skipped"] = skipped;

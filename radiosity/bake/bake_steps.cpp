@@ -163,6 +163,7 @@ LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& pa
   try {
     atlas = fitTexelBudget(*in.scene, in.quads, params, maxTexels, ctx, &budget, limits.layout);
   } catch (const AtlasLayoutStopped& stopped) {
+    in.laidOutTexels = stopped.texels;
     const int factor = coarsenToFit(s, in, params, budget, limits, stoppedLayoutCost(stopped), atlas);
     std::snprintf(line, sizeof line,
                   "atlas: the time limit came while laying out the lightmap (%zu of %zu texels filled): laid "
@@ -171,6 +172,7 @@ LightmapAtlas layOutWithin(const BakeSettings& s, BakeInput& in, AtlasParams& pa
     ctx.warn(line);
     return atlas;
   }
+  in.laidOutTexels = atlas.texelCount();
   if (!tooLateFor(atlas, limits)) return atlas;
   const size_t laidOut = atlas.validTexels();
   const double seconds = std::chrono::duration<double>(Clock::now() - started).count();
@@ -299,14 +301,14 @@ float chosenSolveDensity(const BakeSettings& s, const LightmapAtlas& atlas) {
   return s.atlas.params.texelsPerQuad > 0 ? kAutoMost : std::min(kAutoMost, s.atlas.params.density / 2.0f);
 }
 
-std::string bakeSizeLine(const BakeSettings& s, const BakeInput& in) {
+std::string bakeSizeLine(const BakeSettings& s, const BakeInput& in, double bytes) {
   std::ostringstream line;
   line << "bake: " << in.atlas.validTexels() << " texels in " << in.atlas.patches.size() << " patches ("
        << in.scene->triangles.size() << " triangles";
   if (s.cells.method == BakeMethod::Cells)
     line << ", " << in.cells->cells.size() << " cells, " << in.cells->portals.size() << " portals";
-  line << "), about " << int(std::ceil(solveBytes(s, in.atlas) / (1 << 20)))
-       << " MB; the time is estimated from the first shots";
+  line << "), about " << int(std::ceil(bytes / (1 << 20)))
+       << " MB at most; the time is estimated from the first shots";
   if (s.limits.timeLimit > 0.0)
     line << "; --time-limit " << s.limits.timeLimit << " s stops it with a partial result";
   return line.str();

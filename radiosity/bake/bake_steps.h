@@ -54,6 +54,9 @@ struct BakeInput {
   std::optional<AutoDensityData> autoDensity;  ///< with --density auto
   /// With --density auto: per scene triangle, the texels per metre of the output's atlas and the cells'.
   std::vector<float> triangleDensity;
+  /// The largest atlas laid out (width × height): the output's, or one a time limit had laid out again
+  /// coarser (bake_steps.cpp, layOutWithin), whose arrays were made all the same.
+  size_t laidOutTexels = 0;
   /// Read by this bake (bake(settings)): its time limit counts the loading, so the least it writes is
   /// checked against the time the loading left (requireTimeForMinimum).
   bool loadedHere = false;
@@ -84,8 +87,8 @@ void requireConvergence(const BakeSettings& s, const Scene& scene, const Lightma
 CellSolveParams cellSolveParams(const BakeSettings& s, const BakeInput& in);
 /// The solve density: 0 for one level (bake.cpp).
 float chosenSolveDensity(const BakeSettings& s, const LightmapAtlas& atlas);
-/// The size line of BakeRun::sized.
-std::string bakeSizeLine(const BakeSettings& s, const BakeInput& in);
+/// The size line of BakeRun::sized, with the bake's memory at its peak (`bytes`, bakeMemory).
+std::string bakeSizeLine(const BakeSettings& s, const BakeInput& in, double bytes);
 
 /// Steps 2–4 of bake() (`in` with its scene and cells set); with `gatherPlan`, the solve is the gather of
 /// that cell-job plan's rounds (the plan's densities are read first).
@@ -96,6 +99,7 @@ BakeResult bakeLoaded(const BakeSettings& s, BakeInput& in, const BakeRun& run, 
 struct BakeFigures {
   std::vector<std::string> views;
   std::vector<std::string> skippedViews;  ///< cameras whose views the time limit left out
+  int viewWidth = 0;                      ///< the views' width in pixels (a time limit can lower it)
   std::vector<std::string> cellNames;     ///< of lightmap.exr's "cell" channel
   glm::dvec3 ambient{0.0};                ///< mean ambient irradiance (W/m²)
   std::vector<double> ambientShares;      ///< per cell of cellNames (and one for no cell), ambientShares

@@ -131,9 +131,11 @@ CellGraph resolveCells(const std::string& source, const std::string& scenePath, 
   return graph;
 }
 
-// The decomposition's CPU seconds a voxel on an idle core (voxels, distances, watershed, portals), with
-// room to spare (bench/RESULTS.md, "Never past --time-limit when the bake gets 2 % of a core").
-constexpr double kRoomsCpuPerVoxel = 4e-7;
+// The decomposition's CPU seconds a voxel on an idle core (voxels, distances, watershed, leaks, portals):
+// game maps decomposed at the automatic 4 M voxels took 5-33 CPU s (bench/RESULTS.md, "Eight OpenArena
+// 0.8.5/0.8.8 maps"), 1.3-8e-6 a voxel since the contact cuts and the leaks stage; at 4e-7 kaos2's rooms,
+// estimated to fit, ran 73 s at 0.1 of a core and took its files' time.
+constexpr double kRoomsCpuPerVoxel = 3e-6;
 
 double roomsCpuSeconds(const Scene& scene) {
   // The grid spans where the rooms are (decomp::chooseGrid), not the bounds: a level's far scenery would
@@ -143,6 +145,14 @@ double roomsCpuSeconds(const Scene& scene) {
   const double voxel = grid.voxel;
   const glm::dvec3 size = glm::dvec3(grid.extent.box.size()) + 2.0 * decomp::DecomposeParams{}.outsideMargin;
   return kRoomsCpuPerVoxel * (size.x / voxel + 1.0) * (size.y / voxel + 1.0) * (size.z / voxel + 1.0);
+}
+
+// The extent's coarse pass a triangle on an idle core, with room to spare: kaos2's 30 511 triangles took
+// 20 s of wall at load 12 on 2 cores (about 0.09 of a core), 1.8 CPU s.
+constexpr double kRoomsExtentCpuPerTriangle = 1e-4;
+
+double roomsExtentCpuSeconds(const Scene& scene) {
+  return kRoomsExtentCpuPerTriangle * double(scene.triangles.size());
 }
 
 RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas,
@@ -159,7 +169,21 @@ RoomLabels labelTexelsByRoom(const Scene& scene, const std::string& scenePath, c
     return out;
   }
   if (deadline != Clock::time_point::max() && !volumes.definedByVolumes()) {
-    const double estimate = roomsCpuSeconds(scene) * std::max(1.0, wallPerCpuSecond);
+    const double ratio = std::max(1.0, wallPerCpuSecond);
+    // The estimate's own coarse pass cannot stop either: on a map it ran 20 s past the limit, to find it
+    // had no time.
+    const double extent = roomsExtentCpuSeconds(scene) * ratio;
+    if (extent > std::chrono::duration<double>(deadline - Clock::now()).count()) {
+      char line[300];
+      std::snprintf(line, sizeof line,
+                    "rooms: the decomposition into rooms would end past the time limit (its first pass alone "
+                    "about %.3g s as the machine runs): not started; the stop per room and the ambient term "
+                    "take the scene as one room",
+                    extent);
+      ctx.warn(line);
+      return out;
+    }
+    const double estimate = roomsCpuSeconds(scene) * ratio;
     const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (estimate > left) {
       char line[300];

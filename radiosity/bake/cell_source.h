@@ -56,7 +56,8 @@ struct RoomLabels {
 /// decomposition that would take more is not made (said in a warning): the scene is one room.
 /// `wallPerCpuSecond`: the wall seconds a CPU second takes as the machine runs (the bake's CpuShare::ratio);
 /// a decomposition whose estimate (roomsCpuSeconds at it) would end past `deadline` is not started (said in
-/// a warning): a stage of it cannot stop part-way, and at 2 % of a core one took 20-45 s.
+/// a warning): a stage of it cannot stop part-way, and at 2 % of a core one took 20-45 s. Nor is the
+/// estimate made when its own coarse pass (roomsExtentCpuSeconds at it) would end past `deadline`.
 RoomLabels labelTexelsByRoom(
     const Scene& scene, const std::string& scenePath, const LightmapAtlas& atlas, Context& ctx,
     const CellGraph& volumes = {},
@@ -66,5 +67,8 @@ RoomLabels labelTexelsByRoom(
 /// The CPU seconds of labelTexelsByRoom's decomposition of `scene` on an idle core, from its voxels at the
 /// automatic voxel size (bench/RESULTS.md, "Never past --time-limit when the bake gets 2 % of a core").
 double roomsCpuSeconds(const Scene& scene);
+/// The most CPU seconds roomsCpuSeconds takes on an idle core: its coarse pass over the scene's triangles
+/// (decomp::chooseGrid's extent).
+double roomsExtentCpuSeconds(const Scene& scene);
 
 }  // namespace cpgi

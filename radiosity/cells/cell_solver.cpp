@@ -106,6 +106,13 @@ std::vector<CellRound> solveRound(const CellGraph& graph, int roundNumber,
     auto t = ctx.time("cells: solve");
     workers.run(active.size(), ctx, [&](size_t k, ShotEngine& engine, Context& taskCtx) {
       const size_t c = active[k];
+      // Past the deadline a cell's solve would still lay out its engine and shoot nothing: the office's
+      // 40 cells after the limit took 20 s so. It waits instead, its light kept as unshot.
+      if (std::chrono::steady_clock::now() >= controls.deadline) {
+        round[c] = waitingCellRound(c, cells[c]);
+        round[c].timedOut = true;
+        return;
+      }
       const std::string label = "cell " + graph.cells[c].name + " (" + std::to_string(k + 1) + " of " +
                                 std::to_string(active.size()) + "), round " + std::to_string(roundNumber);
       solvedOf[c] = solveLabelled(

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/memory_limit.h"
+#include "radiosity/lightmap/atlas_size.h"
 #include "radiosity/lightmap/quad_grids.h"
 #include "radiosity/lightmap/seam_gutters.h"
 
@@ -356,6 +357,20 @@ ChartLayout layOutCharts(const Scene& scene, const QuadSet& quads, const AtlasPa
 }
 
 }  // namespace
+
+AtlasSize measureAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params) {
+  checkParams(params);
+  const size_t triangleCount = scene.triangles.size();
+  if (!params.triangleDensity.empty() && params.triangleDensity.size() != triangleCount)
+    throw InputError("texel density", "per-triangle densities must be one per scene triangle");
+  ChartLayout layout = layOutCharts(scene, quads, params, chosenTriangles({}, triangleCount));
+  const glm::ivec2 size = packShelves(layout.charts, layout.patches, params);
+  AtlasSize measured{std::max(size.x, 1), std::max(size.y, 1), 0};
+  // fillQuad fills a quad chart's every texel, fillTriangle the s(s−1)/2 inside its triangle.
+  for (const Patch& p : layout.patches)
+    measured.validTexels += p.quad >= 0 ? size_t(p.w) * size_t(p.h) : size_t(p.w) * size_t(p.w - 1) / 2;
+  return measured;
+}
 
 LightmapAtlas buildAtlas(const Scene& scene, const QuadSet& quads, const AtlasParams& params, Context& ctx,
                          const std::vector<uint32_t>& subset,

@@ -264,7 +264,8 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
                                      const std::vector<ExrChannel>& extra, Context& ctx,
                                      const ViewParams& viewParams,
                                      std::chrono::steady_clock::time_point viewsDeadline,
-                                     const EngineOutputParams& engine, const nlohmann::json& probes) {
+                                     const EngineOutputParams& engine, const nlohmann::json& probes,
+                                     size_t leastViews) {
   LightmapOutputs result;
   result.engine = writeEngineFiles(out, scene, cells, atlas, radiosity, engine, probes, viewsDeadline,
                                    result.skippedOutputs, ctx);
@@ -285,7 +286,8 @@ LightmapOutputs writeLightmapOutputs(OutputDir& out, const Scene& scene, const C
   // as the user knows it (DIR/preview.glb).
   writeGltf(out.file("preview.glb").string(), scene, gltf);
 
-  RenderedViews views = renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams, viewsDeadline);
+  RenderedViews views =
+      renderViews(scene, cells, atlas, radiosity, out, ctx, viewParams, viewsDeadline, leastViews);
   result.views = std::move(views.written);
   result.skippedViews = std::move(views.skipped);
   return result;

@@ -71,7 +71,8 @@ struct LightmapOutputs {
 ///  - with engine.perObject, lightmap-OBJECT.exr (half float) and lightmap-OBJECT.png (RGBM at the scene's
 ///    range) per object, and lightmap-OBJECT-sh_l0.exr … _l1x.exr with engine.directional; baked.glb
 ///    then references each object's own;
-///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for. The
+///  - view-NAME.exr / .png for every camera (renderViews), those `viewsDeadline` leaves time for and the
+///    first `leastViews` whatever it says. The
 ///    directional gather stops at `viewsDeadline` too, and its files are then not written (said in one
 ///    warning and in skippedOutputs).
 /// Nothing appears in the folder before out.commit(). Throws InputError for `--uv scene` on a scene whose
@@ -81,7 +82,7 @@ LightmapOutputs writeLightmapOutputs(
     std::vector<glm::vec3> radiosity, const std::vector<ExrChannel>& extra, Context& ctx,
     const ViewParams& viewParams = {},
     std::chrono::steady_clock::time_point viewsDeadline = std::chrono::steady_clock::time_point::max(),
-    const EngineOutputParams& engine = {}, const nlohmann::json& probes = {});
+    const EngineOutputParams& engine = {}, const nlohmann::json& probes = {}, size_t leastViews = 0);
 
 /// With UvSource::Scene, throws InputError("--uv scene", ...) naming the meshes when the scene's TEXCOORD_1
 /// fails the checks of scene_uv.h (or there is none): called before the solve, so a refusal costs no bake.

@@ -88,16 +88,19 @@ struct RenderedViews {
 /// params.exposure, or else chosen from what that camera sees, its pixels' 90th percentile of radiance to
 /// 0.8) through `out`; NAME is the camera name made file-safe and unique. A camera whose picture viewSize
 /// clamps is named in one warning. Past `deadline` no view starts, one being rendered is dropped, and the
-/// rest are skipped, said in one warning.
+/// rest are skipped, said in one warning; the first `leastViews` cameras are rendered whatever the deadline
+/// (a time-limited bake shows at least its first view of what it baked).
 RenderedViews renderCameraViews(
     const RayScene& rays, const Scene& scene, std::span<const Camera> cameras, const LightmapAtlas& atlas,
     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx, const ViewParams& params = {},
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    size_t leastViews = 0);
 
 /// renderCameraViews() over viewCameras().
 RenderedViews renderViews(
     const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
     std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx, const ViewParams& params = {},
-    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max(),
+    size_t leastViews = 0);
 
 }  // namespace cpgi

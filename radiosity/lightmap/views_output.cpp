@@ -78,7 +78,7 @@ std::string viewName(const Camera& camera, size_t index, std::set<std::string>& 
 RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::span<const Camera> cameras,
                                 const LightmapAtlas& atlas, std::span<const glm::vec3> lightmap,
                                 OutputDir& out, Context& ctx, const ViewParams& params,
-                                std::chrono::steady_clock::time_point deadline) {
+                                std::chrono::steady_clock::time_point deadline, size_t leastViews) {
   warnClampedViews(cameras, params, ctx);
   const float lightmapExposure = viewExposure(atlas, lightmap);
   RenderedViews views;
@@ -87,9 +87,11 @@ RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::s
     const std::string name = viewName(cameras[c], c, used);
     // A view of a large scene takes seconds: say which one is being rendered.
     ctx.progress("views", double(c) / double(cameras.size()), "rendering " + name);
-    const ImageRGB image = views.skipped.empty()
-                               ? renderView(rays, scene, atlas, lightmap, cameras[c], params, deadline)
-                               : ImageRGB{};
+    const ImageRGB image =
+        views.skipped.empty()
+            ? renderView(rays, scene, atlas, lightmap, cameras[c], params,
+                         c < leastViews ? std::chrono::steady_clock::time_point::max() : deadline)
+            : ImageRGB{};
     if (image.pixels.empty()) {
       views.skipped.push_back(cameras[c].name);
       continue;
@@ -109,9 +111,11 @@ RenderedViews renderCameraViews(const RayScene& rays, const Scene& scene, std::s
 
 RenderedViews renderViews(const Scene& scene, const CellGraph& cells, const LightmapAtlas& atlas,
                           std::span<const glm::vec3> lightmap, OutputDir& out, Context& ctx,
-                          const ViewParams& params, std::chrono::steady_clock::time_point deadline) {
+                          const ViewParams& params, std::chrono::steady_clock::time_point deadline,
+                          size_t leastViews) {
   auto timer = ctx.time("views");
-  if (std::chrono::steady_clock::now() >= deadline && !(scene.cameras.empty() && cells.empty())) {
+  if (leastViews == 0 && std::chrono::steady_clock::now() >= deadline &&
+      !(scene.cameras.empty() && cells.empty())) {
     // Past the deadline before the first: not even the ray scene (seconds for a large scene on a loaded
     // machine); the cameras named as defaultCameras names them, one per room but the outside.
     RenderedViews views;
@@ -127,7 +131,7 @@ RenderedViews renderViews(const Scene& scene, const CellGraph& cells, const Ligh
   }
   const RayScene rays(scene);
   const std::vector<Camera> cameras = viewCameras(rays, scene, cells);
-  return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params, deadline);
+  return renderCameraViews(rays, scene, cameras, atlas, lightmap, out, ctx, params, deadline, leastViews);
 }
 
 }  // namespace cpgi

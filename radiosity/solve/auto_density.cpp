@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "radiosity/lightmap/atlas_size.h"
 #include "radiosity/lightmap/contact_density.h"
 #include "radiosity/lightmap/ray_scene.h"
 #include "radiosity/solve/refined_lamp_shot.h"
@@ -91,21 +92,25 @@ LightmapAtlas fitTexelBudget(const Scene& scene, const QuadSet& quads, AtlasPara
   };
   const double byArea = texelsByArea(scene, params.triangleDensity, params.density);
   b.asked = size_t(byArea);
+  const bool fitted = maxTexels > 0 && params.texelsPerQuad == 0;
   // From the area first: an atlas of the densities asked may be too large to build (a house's 2.96 M).
-  if (maxTexels > 0 && params.texelsPerQuad == 0 && byArea > double(maxTexels))
-    scaled(std::sqrt(double(maxTexels) / byArea));
+  if (fitted && byArea > double(maxTexels)) scaled(std::sqrt(double(maxTexels) / byArea));
+  // Then by the charts (measureAtlas): their borders, rounding and grids at their quads' largest density
+  // add texels the area does not count (oa_dm2: 9.0 M valid texels where the area said 1.09 M). Filled at
+  // each scale tried, that first layout's 19.5 M texels and their gutters made a map's peak (2.4-4.9 GB
+  // for a bake that then solved in 1.2 GB); measured, the atlas is filled once, at the scale that fits.
+  if (fitted) {
+    size_t valid = measureAtlas(scene, quads, params).validTexels;
+    if (b.scale == 1.0f) b.asked = valid;
+    for (int tries = 0; valid > maxTexels && tries < 4; ++tries) {
+      scaled(0.98 * std::sqrt(double(maxTexels) / double(valid)));
+      valid = measureAtlas(scene, quads, params).validTexels;
+    }
+  }
   // Each layout's warnings (a chart capped at its most texels) are the last one's alone, said once.
   Context layout;
   LightmapAtlas atlas = buildAtlas(scene, quads, params, layout, {}, deadline);
-  if (b.scale == 1.0f) b.asked = atlas.validTexels();
-  // Then by the atlas: its charts' borders and rounding add texels the area does not count.
-  for (int tries = 0;
-       maxTexels > 0 && params.texelsPerQuad == 0 && atlas.validTexels() > maxTexels && tries < 4; ++tries) {
-    if (b.scale == 1.0f) b.asked = atlas.validTexels();
-    scaled(0.98 * std::sqrt(double(maxTexels) / double(atlas.validTexels())));
-    layout = Context();
-    atlas = buildAtlas(scene, quads, params, layout, {}, deadline);
-  }
+  if (!fitted && b.scale == 1.0f) b.asked = atlas.validTexels();
   // A line the bake's context holds already (the same triangles left out by an earlier layout) is not
   // said twice.
   for (const std::string& w : layout.warnings())

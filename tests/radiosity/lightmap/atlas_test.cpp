@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "radiosity/lightmap/atlas_size.h"
 #include "tests/radiosity/test_scenes.h"
 
 namespace cpgi {
@@ -306,6 +307,26 @@ TEST(Atlas, AZeroAreaTriangleLeftOutIsSaidOncePerContext) {
   for (const std::string& w : ctx.warnings())
     said += w.find("zero-area triangle(s) left out") != std::string::npos;
   EXPECT_EQ(said, 1);
+}
+
+// measureAtlas is the atlas buildAtlas makes, without its texels: the same size and valid texels, on quads,
+// merged grids and loose triangles (a zero-area one left out), at an even density and per triangle.
+TEST(Atlas, MeasuredIsTheSizeOfTheAtlasBuilt) {
+  Scene s = mixedScene();
+  testing::addZeroAreaTriangle(s);
+  const QuadSet quads = findQuads(s);
+  AtlasParams even;
+  even.density = 7.0f;
+  AtlasParams perTriangle;
+  for (size_t t = 0; t < s.triangles.size(); ++t) perTriangle.triangleDensity.push_back(float(3 + t % 11));
+  for (const AtlasParams& params : {AtlasParams{}, even, perTriangle}) {
+    Context ctx;
+    const LightmapAtlas built = buildAtlas(s, quads, params, ctx);
+    const AtlasSize measured = measureAtlas(s, quads, params);
+    EXPECT_EQ(measured.width, built.width);
+    EXPECT_EQ(measured.height, built.height);
+    EXPECT_EQ(measured.validTexels, built.validTexels());
+  }
 }
 
 }  // namespace

@@ -78,6 +78,7 @@ constexpr ParameterFlag kFlags[] = {
     {"portal light", "--portals"},
     {"portal lobe width", "--lobe-width"},
     {"portal bin rays", "--portal-rays"},
+    {"portal density scale", "--portal-scale"},
     {"maximum rounds", "--max-rounds"},
     {"jobs", "--jobs"},
     {"boundary", "--boundary"},
@@ -360,6 +361,10 @@ void addCellOptions(CLI::App& cmd, CellSolveParams& cells, OptionScope scope) {
   addChecked(cmd, scope, "portal bin rays", cells.portalBinRays,
              "With --portals binned: rays per portal texel that find the directions its light arrived from",
              within(64, 1048576));
+  addChecked(cmd, scope, "portal density scale", cells.portalDensityScale,
+             "With --method cells: the portals' texels per metre as a multiple of the solve's (a finer "
+             "portal carries the edge of the light through a door)",
+             within(1.0, 8.0));
   addChecked(cmd, scope, "maximum rounds", cells.maxRounds,
              "With --method cells: solve rounds (syncs) at most", within(1, 100000));
   addChecked(cmd, scope, "jobs", cells.jobs,

@@ -150,7 +150,7 @@ CPGI_JSON_FIELDS(SolverParams, unshotFraction, maxShots, farField, regionSize, m
                  cullItemBuffers, profilePasses, coverageRays, eyesPerRegion, strongEyesPerRegion,
                  clusterRadius)
 // What a bake reads of CellSolveParams (BakeSettings::Cells::params); the rest is set by the bake.
-CPGI_JSON_FIELDS(CellSolveParams, maxRounds, portals, lobeMinWidth, portalBinRays, jobs)
+CPGI_JSON_FIELDS(CellSolveParams, maxRounds, portals, lobeMinWidth, portalBinRays, portalDensityScale, jobs)
 CPGI_JSON_FIELDS(ViewParams, width, height, supersample, exposure)
 CPGI_JSON_FIELDS(BakeSettings::Input, scene, load, allowDark)
 CPGI_JSON_FIELDS(BakeSettings::Atlas, params, densityAuto, autoDensity)

@@ -121,8 +121,8 @@ struct BakeSettings {
     /// cells or room volumes), a decompose output folder or another glTF of the scene (loadBakeScene);
     /// empty: the scene's own cells when it has them, else "auto".
     std::string source;
-    /// Read: portals (kBakePortalLight), lobeMinWidth, portalBinRays, maxRounds, jobs. Its solver and
-    /// atlas are Solver's and Atlas's; the rest is set by the bake.
+    /// Read: portals (kBakePortalLight), lobeMinWidth, portalBinRays, portalDensityScale, maxRounds, jobs.
+    /// Its solver and atlas are Solver's and Atlas's; the rest is set by the bake.
     CellSolveParams params = [] {
       CellSolveParams p;
       p.portals = kBakePortalLight;

@@ -52,6 +52,9 @@ TEST(Options, FlagsSetTheLibrariesFields) {
   EXPECT_EQ(binned.portals, PortalLight::Binned);
   EXPECT_EQ(binned.portalBinRays, 512);
   EXPECT_FALSE(parse("--portal-rays 8", [&](CLI::App& app) { addCellOptions(app, binned); }));
+  ASSERT_TRUE(parse("--portal-scale 3", [&](CLI::App& app) { addCellOptions(app, binned); }));
+  EXPECT_FLOAT_EQ(binned.portalDensityScale, 3.0f);
+  EXPECT_FALSE(parse("--portal-scale 0.5", [&](CLI::App& app) { addCellOptions(app, binned); }));
   SolverParams other;
   EXPECT_FALSE(parse("--visibility cube", [&](CLI::App& app) { addSolverOptions(app, other); }));
   CellSolveParams spot;

@@ -41,7 +41,7 @@ BakeSettings everyFieldChanged() {
   s.cells.method = BakeMethod::Cells, s.cells.source = "auto";
   CellSolveParams& c = s.cells.params;
   c.maxRounds = 9, c.portals = PortalLight::Directional, c.lobeMinWidth = 0.3f, c.portalBinRays = 128,
-  c.jobs = 2;
+  c.portalDensityScale = 3.0f, c.jobs = 2;
   decomp::DecomposeParams& q = s.cells.decompose;
   q.voxelSize = 0.08, q.minAutoVoxel = 0.04, q.autoVoxelBudget = 1e6, q.sealRadius = 0.1, q.memoryLimit = 99;
   q.outsideMargin = 1.5, q.classify.minComponentVolume = 0.2, q.watershed.levelStep = 0.25;
@@ -126,6 +126,7 @@ void expectSame(const BakeSettings& a, const BakeSettings& b) {
   EXPECT_EQ(c.portals, k.portals);
   EXPECT_EQ(c.lobeMinWidth, k.lobeMinWidth);
   EXPECT_EQ(c.portalBinRays, k.portalBinRays);
+  EXPECT_EQ(c.portalDensityScale, k.portalDensityScale);
   EXPECT_EQ(c.jobs, k.jobs);
   const decomp::DecomposeParams &u = a.cells.decompose, &v = b.cells.decompose;
   EXPECT_EQ(u.voxelSize, v.voxelSize);

@@ -112,6 +112,61 @@ TEST(Units, AnArenaUnderASkyTensOfMetresUpIsNotTakenForFeet) {
   EXPECT_NE(checkUnits(twoRooms(13.0f, 16.0f, 19.0f)).warning.find("--scale 0.3048"), std::string::npos);
 }
 
+// A stair of `count` steps rising `rise` each over treads `tread` deep and `width` wide, its foot at `at`
+// (treads face up, risers face −z, towards the foot), in the scene's units.
+void addStair(Scene& s, glm::vec3 at, int count, float rise, float tread, float width) {
+  for (int k = 0; k < count; ++k) {
+    const glm::vec3 o = at + glm::vec3(0.0f, float(k) * rise, float(k) * tread);
+    addQuad(s, o, {0, rise, 0}, {width, 0, 0});                           // the riser
+    addQuad(s, o + glm::vec3(0, rise, 0), {0, 0, tread}, {width, 0, 0});  // the tread
+  }
+}
+
+// A game level sealed under its sky box, in units of `unit` metres: an arena of 60 × 60 m under a sky
+// `sky` m up (the floor round the stair), with a stair of 0.48 m steps (Quake's 16 units) up to a
+// gallery 7.7 m under the sky along one side.
+Scene sealedArena(float unit, float sky) {
+  Scene s = hallUnderASky(unit, 60.0f, 60.0f, sky);
+  addQuad(s, {0, (sky - 7.7f) * unit, 50 * unit}, {0, 0, 10 * unit}, {60 * unit, 0, 0});  // the gallery
+  addStair(s, {20 * unit, 0, 10 * unit}, 12, 0.48f * unit, 0.64f * unit, 4.0f * unit);
+  return s;
+}
+
+// OpenArena's cbctf1 and am_spacecont are sealed under a sky 104–111 m up, pxlfan under one 15 m up with
+// nothing lower than 7.7 m: by their median they read as inches and feet. Their steps (0.48 m) and their
+// storeys of many heights say metres; the same levels in Quake units are told, with the --scale that fixes
+// them, and a house in feet (one storey height, no step) still is.
+TEST(Units, ASealedLevelInMetresIsToldByItsStepsAndStoreysNotItsSky) {
+  for (const float sky : {15.0f, 104.0f}) {
+    const UnitsCheck metres = checkUnits(sealedArena(1.0f, sky));
+    EXPECT_NEAR(metres.storeyHeight, sky, 1e-3 * sky);
+    EXPECT_EQ(metres.warning, "") << "sky " << sky << " m";
+    const UnitsCheck quake = checkUnits(sealedArena(1.0f / 0.03f, sky));
+    EXPECT_NE(quake.warning.find("--scale 0.0254"), std::string::npos)
+        << "sky " << sky << ": " << quake.warning;
+  }
+  EXPECT_NEAR(checkUnits(sealedArena(1.0f, 104.0f)).stepHeight, 0.48, 1e-3);
+  EXPECT_NEAR(checkUnits(sealedArena(1.0f, 15.0f)).lowStoreyHeight, 7.7, 1e-3);
+  const UnitsCheck feet = checkUnits(twoRooms(4.0f / 0.3048f, 5.0f / 0.3048f, 13.0f));
+  EXPECT_NE(feet.warning.find("feet: --scale 0.3048"), std::string::npos) << feet.warning;
+}
+
+// A daylit level open to the sky has no storey to measure; its steps alone tell Quake units from metres.
+TEST(Units, AnOpenLevelInQuakeUnitsIsToldByItsSteps) {
+  auto open = [](float unit) {
+    Scene s;
+    s.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+    addQuad(s, {0, 0, 0}, {0, 0, 60 * unit}, {60 * unit, 0, 0});
+    addStair(s, {20 * unit, 0, 10 * unit}, 12, 0.48f * unit, 0.64f * unit, 4.0f * unit);
+    return s;
+  };
+  EXPECT_EQ(checkUnits(open(1.0f)).warning, "");
+  const UnitsCheck quake = checkUnits(open(1.0f / 0.03f));
+  EXPECT_NEAR(quake.stepHeight, 16.0, 1e-2);
+  EXPECT_NE(quake.warning.find("the steps are 16 units tall"), std::string::npos) << quake.warning;
+  EXPECT_NE(quake.warning.find("--scale 0.0254"), std::string::npos) << quake.warning;
+}
+
 TEST(Units, AHouseInCentimetresIsToldAndScaleMakesItMetres) {
   test::TempDir dir;
   const std::string file = dir / "house_cm.glb";

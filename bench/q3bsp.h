@@ -88,7 +88,19 @@ struct Mesh {
   std::vector<V3> points;
   std::vector<std::array<size_t, 3>> triangles;
   size_t skippedNodraw = 0, skippedNonsolid = 0, skippedLiquid = 0, skippedInLiquid = 0, skippedSky = 0;
+  /// The shaders (textures lump) by index, and per triangle the index of its face's shader (−1: none).
+  /// Triangles past the end of triangleShader have none either.
+  std::vector<std::string> shaders;
+  std::vector<int32_t> triangleShader;
 };
+
+/// The shader names of the textures lump, by index.
+inline std::vector<std::string> shaderNames(const std::vector<Texture>& textures) {
+  std::vector<std::string> names;
+  for (const Texture& t : textures)
+    names.emplace_back(t.name, std::find(t.name, t.name + sizeof(t.name), '\0'));
+  return names;
+}
 
 namespace detail {
 
@@ -203,6 +215,7 @@ inline Mesh convert(const std::string& file, const Options& options) {
     mesh.triangles.push_back({base, base + 1, base + 2});
   };
   const Model& world = models[0];
+  mesh.shaders = shaderNames(textures);
   // Opaque liquids (lava, slime): the faces seen only from inside one (a pit's walls and floor under the
   // surface, the surface's underside) are left out, as the compiler leaves out the faces towards the
   // void: no light reaches them, and kept they close the liquid's body off as a room without a door under
@@ -282,6 +295,7 @@ inline Mesh convert(const std::string& file, const Options& options) {
             }
         }
     }
+    mesh.triangleShader.resize(mesh.triangles.size(), tex ? f.texture : -1);
   }
   return mesh;
 }

@@ -10,24 +10,52 @@
 // --keep-nonsolid keeps them all. Sky faces (SURF_SKY) are kept as the level's ceiling, which
 // seals it: no daylight comes in. --open-sky leaves them out, so the level opens onto the sky where a
 // player sees it (the outside then floods the open arenas). The data stays outside the repo.
-//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky]
+// Each shader is its own material (OUT.mtl beside OUT.obj, named by the shader's path: bench/q3_materials.h),
+// so that `cpgi bake --emit NAME=W` lights a closed level by its own light shaders. With --pk3 (an archive
+// of the game's data, or a folder of them; repeatable, in the game's order) each material's Kd is its
+// texture's mean colour, the light shaders (q3map_surfacelight) are named, and the --emit flags that
+// light them are printed; without, every material is grey and no shader is known to be a light.
+//   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky] [--pk3 PATH ...]
 //   (default scale 0.03: a 56-unit player is 1.7 m)
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <string>
+#include <vector>
 
+#define STB_IMAGE_IMPLEMENTATION
+#include "q3_materials.h"
 #include "q3bsp.h"
+
+namespace {
+
+// The archives a --pk3 names: the file, or every .pk3 in the folder in name order (pak0, pak1, ...).
+std::vector<std::string> archivesAt(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(path)) return {path};
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(path))
+    if (e.path().extension() == ".pk3") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(
         stderr,
-        "usage: q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky]\n");
+        "usage: q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky] "
+        "[--pk3 PATH ...]\n");
     return 1;
   }
   q3bsp::Options options;
+  std::vector<std::string> archives;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--scale" && a + 1 < argc)
@@ -36,6 +64,8 @@ int main(int argc, char** argv) {
       options.keepNonsolid = true;
     else if (arg == "--open-sky")
       options.openSky = true;
+    else if (arg == "--pk3" && a + 1 < argc)
+      for (const std::string& p : archivesAt(argv[++a])) archives.push_back(p);
     else {
       std::fprintf(stderr, "q3bsp_to_obj: unknown option %s\n", arg.c_str());
       return 1;
@@ -48,15 +78,32 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "q3bsp_to_obj: %s: %s\n", argv[1], mesh.error.c_str());
     return 1;
   }
-  std::ofstream out(argv[2]);
-  out << "# " << argv[1] << " (IBSP v" << mesh.version << "), world model, " << options.scale
-      << " m per unit, y up\no world\n";
-  char line[128];
-  for (const q3bsp::V3& p : mesh.points) {
-    std::snprintf(line, sizeof(line), "v %.5f %.5f %.5f\n", p[0], p[1], p[2]);
-    out << line;
+  std::unique_ptr<q3materials::GameData> data;
+  if (!archives.empty()) {
+    data = std::make_unique<q3materials::GameData>(archives);
+    for (const std::string& p : data->unread)
+      std::fprintf(stderr, "q3bsp_to_obj: %s: not a pk3, skipped\n", p.c_str());
   }
-  for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  const std::string obj = argv[2];
+  const std::string mtl = obj.substr(0, obj.rfind('.')) + ".mtl";
+  char header[512];
+  std::snprintf(header, sizeof header, "%s (IBSP v%d), world model, %g m per unit, y up", argv[1],
+                mesh.version, options.scale);
+  const q3materials::Level level =
+      q3materials::levelFiles(mesh, data.get(), header, std::filesystem::path(mtl).filename().string());
+  std::ofstream(mtl) << level.mtl;
+  std::ofstream(obj) << level.obj;
+  const std::vector<q3materials::Material>& materials = level.materials;
+  size_t found = 0;
+  for (const q3materials::Material& m : materials) found += m.colourFound;
+  std::fprintf(stderr, "%s: %zu materials (one per shader; %zu with their texture's colour, the rest grey)\n",
+               mtl.c_str(), materials.size(), found);
+  if (const std::string emit = q3materials::emitFlags(materials); !emit.empty())
+    std::fprintf(stderr, "light shaders (q3map_surfacelight / 10 as W/m2): cpgi bake %s -o OUT %s\n",
+                 obj.c_str(), emit.c_str());
+  else if (data)
+    std::fprintf(stderr, "no light shader found: light the level with --emit MATERIAL=W/m2 (names in %s)\n",
+                 mtl.c_str());
   std::fprintf(
       stderr,
       "%s: %zu triangles (%zu nodraw, %zu non-solid see-through, %zu water and fog, %zu inside opaque "

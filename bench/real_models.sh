@@ -24,11 +24,19 @@
 # (DIR/MAP.obj, the baked ones DIR/MAP-open.obj), each decomposition (DIR/decompose-MODEL-VOXEL) and each
 # bake (DIR/bake-MODEL-LIMIT).
 #   [MAPS="oa_dm7 aggressor"] [HOUSES="ifc-house"] [MAP_VOXELS="0.12"] [BAKE=1 [LIMIT=120] [UNLIMITED=0] [REFS=DIR]]
-#   [KEEP=DIR]
+#   [KEEP=DIR] [Q3_DATA=DIR]
 #   bench/real_models.sh CPGI_BINARY [VOXEL ...]
 # The maps need `apt-get install openarena-081-maps` (the script says so when they are missing); the
-# converter is compiled into the work folder with the system's c++ when no build of it is given
-# (Q3BSP_TO_OBJ=path). The data stays outside the repo.
+# converter is compiled into the work folder with the system's c++ (and Debian's libstb-dev) when no build
+# of it is given (Q3BSP_TO_OBJ=path). The data stays outside the repo.
+# Materials: the converter writes MAP.mtl beside MAP.obj, one material per shader named by its path
+# (textures/base_light/ceil1_39). With Q3_DATA=DIR (a folder of the game's .pk3 archives: Debian's
+# openarena-data has pak0.pk3 with the shader scripts) each material gets its texture's mean colour and
+# the converter prints the light shaders (q3map_surfacelight) as --emit flags. A closed map (sky faces
+# kept) has no daylight and no lamp of its own otherwise; to bake it by its own lights:
+#   q3bsp_to_obj MAP.bsp MAP.obj --pk3 /usr/share/games/openarena/baseoa
+#   # prints: light shaders (...): cpgi bake MAP.obj -o OUT --emit textures/.../light=100 ...
+#   cpgi bake MAP.obj -o OUT --emit textures/.../light=100 ...   # W/m2 each; scale them to taste
 set -euo pipefail
 cpgi=${1:?usage: real_models.sh CPGI_BINARY [VOXEL ...]}
 shift
@@ -43,6 +51,8 @@ keep=${KEEP:-}
 maps=(${MAPS-oa_dm1 oa_dm4 oa_dm7 aggressor})
 map_sizes=(${MAP_VOXELS-})
 houses=(${HOUSES-ifc-house ifc-house-open-riser ifc-house-l-stair ifc-house-spiral})
+data=()
+[ -n "${Q3_DATA:-}" ] && data=(--pk3 "$Q3_DATA")
 
 # One row: decompose SCENE (VOXEL 0 = automatic), then the figures from cells.json (and ARI for a house).
 row() {
@@ -142,8 +152,8 @@ if [ ${#maps[@]} -gt 0 ]; then
   fi
   for m in "${maps[@]}"; do
     unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"
-    "$conv" "$work/$m.bsp" "$work/$m.obj" 2>/dev/null
-    [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m.obj"
+    "$conv" "$work/$m.bsp" "$work/$m.obj" "${data[@]}" 2>/dev/null
+    [ -n "$keep" ] && cp "$work/$m.obj" "$work/$m.mtl" "$keep/"
     for v in 0 "${map_sizes[@]}"; do row "$m" "$work/$m.obj" "$v" 0; done
   done
 fi
@@ -162,7 +172,7 @@ done
 for m in "${maps[@]}"; do
   sky=(--open-sky)
   [ "${OPEN_SKY:-1}" = 0 ] && sky=()
-  "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" 2>/dev/null
-  [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m-open.obj"
+  "$conv" "$work/$m.bsp" "$work/$m.obj" "${sky[@]}" "${data[@]}" 2>/dev/null
+  [ -n "$keep" ] && cp "$work/$m.obj" "$keep/$m-open.obj" && cp "$work/$m.mtl" "$keep/"
   for l in "${limits[@]}"; do bake_row "$m" "$work/$m.obj" "$l"; done
 done

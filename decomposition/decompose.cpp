@@ -56,6 +56,28 @@ double autoVoxel(glm::dvec3 size, const DecomposeParams& params, double& volume)
   return std::ceil(std::max(params.minAutoVoxel, fromBudget) * 1000.0) / 1000.0;
 }
 
+// Where the budget's voxel would leave the level's narrow passages fewer than voxelsAcrossPassage voxels
+// across, the voxel that spans them, no finer than maxAutoVoxels over `volume` (nor memoryLimit) allows;
+// sets grid.voxel and grid.passage, returns the rule's words ("" when the budget's voxel stays).
+std::string finerForThePassages(const Scene& scene, double volume, const DecomposeParams& params,
+                                GridChoice& grid, Context& ctx) {
+  auto timer = ctx.time("voxelize.passages");
+  grid.passage = measurePassages(scene, grid.extent.box, params.passages).narrow;
+  const double fromPassages = grid.passage / params.voxelsAcrossPassage;
+  if (!(grid.passage > 0.0) || fromPassages >= grid.voxel) return "";
+  double most = params.maxAutoVoxels;
+  if (params.memoryLimit > 0) most = std::min(most, double(params.memoryLimit) / kDecompositionBytesPerVoxel);
+  const double fromMemory = std::cbrt(volume / std::max(most, params.autoVoxelBudget));
+  const double finer = std::ceil(std::max({params.minAutoVoxel, fromMemory, fromPassages}) * 1000.0) / 1000.0;
+  if (finer >= grid.voxel) return "";
+  grid.voxel = finer;
+  std::ostringstream s;
+  s << "; finer for the passages: " << params.voxelsAcrossPassage << " voxels across " << grid.passage
+    << " m (the narrowest " << params.passages.quantile * 100.0
+    << " % of the floor's widths), within cbrt(volume / " << most << " voxels) = " << fromMemory << " m";
+  return s.str();
+}
+
 }  // namespace
 
 GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context& ctx) {
@@ -75,17 +97,18 @@ GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context
   ep.minPartShare = params.minPartShare;
   out.extent = findRoomExtent(scene, ep, ctx);
   double volume = 0.0;
-  const double fromRooms = autoVoxel(glm::dvec3(out.extent.box.size()), params, volume);
+  const double fromBudget = autoVoxel(glm::dvec3(out.extent.box.size()), params, volume);
   std::ostringstream s;
   if (params.voxelSize > 0.0) {
     out.voxel = params.voxelSize;
     s << "given";
   } else {
-    out.voxel = fromRooms;
+    out.voxel = fromBudget;
     s << "auto: max(" << params.minAutoVoxel << " m, cbrt(padded "
       << (out.extent.trimmed ? "rooms'" : "bounds") << " volume " << volume << " m3 / "
       << params.autoVoxelBudget << " voxels) = " << std::cbrt(volume / params.autoVoxelBudget)
       << " m), rounded up to 1 mm";
+    if (fromBudget > params.passageCheckVoxel) s << finerForThePassages(scene, volume, params, out, ctx);
   }
   if (out.extent.trimmed) {
     const Bounds& b = out.extent.box;

@@ -30,6 +30,7 @@
 #include "decomposition/distance.h"
 #include "decomposition/leaks.h"
 #include "decomposition/merge.h"
+#include "decomposition/passages.h"
 #include "decomposition/portal_merge.h"
 #include "decomposition/portals.h"
 #include "decomposition/voxelize.h"
@@ -45,6 +46,14 @@ struct DecomposeParams {
   double voxelSize = 0.0;
   double minAutoVoxel = 0.05;      ///< metres: finer than needed for 0.7 m doors at 14 voxels
   double autoVoxelBudget = 4.0e6;  ///< voxels the automatic choice aims at
+  /// Where the budget's voxel exceeds passageCheckVoxel, the level's narrow passages (measurePassages) are
+  /// measured and the voxel made fine enough to span them with voxelsAcrossPassage voxels, up to
+  /// maxAutoVoxels over the grid (and within memoryLimit): a large level's corridors then stay rooms
+  /// apart, while a small one's voxel (and a house's, always under the check) is the budget's.
+  double passageCheckVoxel = 0.125;  ///< metres: its 8-voxel doors are 1 m
+  double voxelsAcrossPassage = 8.0;
+  double maxAutoVoxels = 16.0e6;  ///< ~640 MB at kDecompositionBytesPerVoxel
+  PassageParams passages;
   /// The pass that finds where the rooms are (findRoomExtent) runs at max(minExtentVoxel, sqrt(max(surface
   /// area, footprint) / extentBudget)): its band and its columns each about extentBudget voxels at most,
   /// a fraction of the real pass's, and fine enough for a 1 m gap under a roof in any room.
@@ -132,7 +141,8 @@ struct Decomposition {
 struct GridChoice {
   double voxel = 0.0;  ///< metres
   RoomExtent extent;
-  std::string how;  ///< the rule in words
+  double passage = 0.0;  ///< the narrow passages' width the voxel spans, metres (0: not measured)
+  std::string how;       ///< the rule in words
 };
 /// Picks the grid for `scene` by the rule in DecomposeParams::voxelSize.
 GridChoice chooseGrid(const Scene& scene, const DecomposeParams& params, Context& ctx);

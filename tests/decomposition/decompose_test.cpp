@@ -2,6 +2,7 @@
 #include "decomposition/decompose.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -270,6 +271,42 @@ TEST(Decompose, ChoosesTheVoxelFromTheScene) {
   SceneBuilder big;
   big.box({0, 0, 0}, {200, 20, 100});
   EXPECT_NEAR(chooseVoxelSize(big.scene(), p), std::cbrt(200.5 * 20.5 * 100.5 / 4e6), 1e-3);
+}
+
+// A game level sealed under its sky box: a hall 80 × 30 × 80 m (faces inward), and with `corridors`, eight
+// corridors 2 m wide and 70 m long between nine walls 2.5 m tall (18 % of the floor).
+Scene hallWithCorridors(bool corridors) {
+  SceneBuilder b;
+  const float w = 80, h = 30;
+  b.quad({0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0});  // the floor, facing up
+  b.quad({0, h, 0}, {w, h, 0}, {w, h, w}, {0, h, w});  // the sky, facing down
+  b.quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});  // the walls, facing in
+  b.quad({0, 0, w}, {0, h, w}, {w, h, w}, {w, 0, w});
+  b.quad({0, 0, 0}, {0, h, 0}, {0, h, w}, {0, 0, w});
+  b.quad({w, 0, 0}, {w, 0, w}, {w, h, w}, {w, h, 0});
+  for (int k = 0; corridors && k < 9; ++k) b.box({10 + 2.2f * k, 0, 5}, {10.2f + 2.2f * k, 2.5f, 75});
+  return b.scene();
+}
+
+// Issue 46: a large level's voxel from its bounds (0.6–1 m) leaves its corridors fewer than the eight
+// voxels a door needs; the passages measured over its floors make it finer, as far as memory allows, and
+// leave it where no passage is narrow (the empty hall) or the budget's voxel is fine already (a house).
+TEST(Decompose, ALargeLevelsVoxelSpansItsCorridorsWithinTheMemory) {
+  DecomposeParams p;
+  p.minExtentVoxel =
+      0.4;  // the coarse pass that finds the rooms' extent, coarse for speed: the hall is its box
+  const double fromBudget = std::ceil(std::cbrt(80.5 * 30.5 * 80.5 / 4e6) * 1000.0) / 1000.0;  // 0.367 m
+  Context ctx;
+  const GridChoice empty = chooseGrid(hallWithCorridors(false), p, ctx);
+  EXPECT_DOUBLE_EQ(empty.voxel, fromBudget) << empty.how;
+  const GridChoice level = chooseGrid(hallWithCorridors(true), p, ctx);
+  EXPECT_NEAR(level.passage, 2.0, 1e-3) << level.how;
+  EXPECT_DOUBLE_EQ(level.voxel, 0.25) << level.how;  // 8 voxels across 2 m
+  EXPECT_NE(level.how.find("finer for the passages"), std::string::npos) << level.how;
+  p.maxAutoVoxels = 12e6;  // memory for fewer voxels than 8 across the corridors take: as fine as it allows
+  EXPECT_DOUBLE_EQ(chooseGrid(hallWithCorridors(true), p, ctx).voxel,
+                   std::ceil(std::cbrt(80.5 * 30.5 * 80.5 / 12e6) * 1000.0) / 1000.0);
+  EXPECT_DOUBLE_EQ(chooseVoxelSize(makeThreeRooms(), DecomposeParams()), 0.05);
 }
 
 // The grid follows where the rooms are: a lone 2 m box 200 m away (a game level's far scenery, a shed at

@@ -155,6 +155,8 @@ UnitsCheck checkUnits(const Scene& scene) {
   char line[300];
   if (out.samples < kUnitsSamples / 8) {
     // Mostly open: no storey to measure, but a daylit game level's steps still tell a scene in inches.
+    // Only over a Quake map's breadth: a town of blocks in metres, kerbless, rises 2–24 m too.
+    if (glm::length(scene.bounds().size()) < kOpenInchSceneSize) return out;
     out.stepHeight = lowestRises(scene);
     if (out.stepHeight >= kInchSteps.first && out.stepHeight < kInchSteps.second) {
       out.unit = "centimetres", out.scale = 0.01;

@@ -68,6 +68,10 @@ inline constexpr double kMetreSteps = 1.0;
 /// map's 8- and 16-unit steps, a stair's 15–20 cm), not millimetres; on a scene with no storey to measure
 /// (a daylit level open to the sky) they alone say it is not in metres.
 inline constexpr std::pair<double, double> kInchSteps{2.0, 24.0};
+/// A scene open to the sky is told by its steps only when it is this many units across (its bounds'
+/// diagonal): every Quake map is (its smallest arena is 40 m, 1 300 units), while a town of blocks in
+/// metres whose rises are all 2–24 m (no kerb, no stair) would be told wrongly if a few hundred metres.
+inline constexpr float kOpenInchSceneSize = 1000.0f;
 /// The fewest rises between floor levels that say what a scene's steps are.
 inline constexpr size_t kMinRises = 16;
 /// The lowest tenth of a building's storeys in feet is at least this share of their median.

@@ -165,6 +165,19 @@ TEST(Units, AnOpenLevelInQuakeUnitsIsToldByItsSteps) {
   EXPECT_NEAR(quake.stepHeight, 16.0, 1e-2);
   EXPECT_NE(quake.warning.find("the steps are 16 units tall"), std::string::npos) << quake.warning;
   EXPECT_NE(quake.warning.find("--scale 0.0254"), std::string::npos) << quake.warning;
+  // A town of 4 m blocks in metres on 300 × 300 m of ground rises 4 m a "step" too: not told.
+  Scene town;
+  town.materials = {Material{"grey", glm::vec3(0.5f), glm::vec3(0.0f)}};
+  addQuad(town, {0, 0, 0}, {0, 0, 300}, {300, 0, 0});
+  for (int k = 0; k < 20; ++k) {
+    const glm::vec3 o(float(k % 5) * 60.0f + 10.0f, 0.0f, float(k / 5) * 60.0f + 10.0f);
+    addQuad(town, o + glm::vec3(0, 4, 0), {0, 0, 10}, {10, 0, 0});  // the roof, facing up
+    addQuad(town, o, {10, 0, 0}, {0, 4, 0});                        // four walls
+    addQuad(town, o + glm::vec3(0, 0, 10), {0, 4, 0}, {10, 0, 0});
+    addQuad(town, o, {0, 4, 0}, {0, 0, 10});
+    addQuad(town, o + glm::vec3(10, 0, 0), {0, 0, 10}, {0, 4, 0});
+  }
+  EXPECT_EQ(checkUnits(town).warning, "");
 }
 
 TEST(Units, AHouseInCentimetresIsToldAndScaleMakesItMetres) {

@@ -30,6 +30,23 @@ bool inside(const Bounds& b, const glm::vec3& p) {
   return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
 }
 
+// The point a share `at` of the way through the floors' cumulative area: in its triangle, the rest of the
+// area along one side and the k-th of a golden-ratio sequence along the other (folded into the triangle),
+// so that a hall's floor of two triangles is sampled all over, not at two centroids.
+glm::vec3 floorPoint(const Scene& scene, const std::vector<uint32_t>& floors,
+                     const std::vector<double>& cumulative, double at, int k) {
+  const double total = cumulative.back();
+  const size_t f = std::min(
+      size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at * total) - cumulative.begin()),
+      floors.size() - 1);
+  const double before = f == 0 ? 0.0 : cumulative[f - 1];
+  float u = float(std::clamp((at * total - before) / std::max(cumulative[f] - before, 1e-30), 0.0, 1.0));
+  float v = float(std::fmod(0.5 + 0.6180339887 * k, 1.0));
+  if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+  const Triangle& t = scene.triangles[floors[f]];
+  return t.p[0] + u * (t.p[1] - t.p[0]) + v * (t.p[2] - t.p[0]);
+}
+
 }  // namespace
 
 PassageWidths measurePassages(const Scene& scene, const Bounds& box, const PassageParams& params) {
@@ -52,9 +69,7 @@ PassageWidths measurePassages(const Scene& scene, const Bounds& box, const Passa
   std::vector<float> widths;
   std::vector<uint32_t> spanning;  // the triangles across the ray's height: the only ones it can meet
   for (int k = 0; k < params.samples; ++k) {
-    const double at = (k + 0.5) / params.samples * total;
-    const size_t f = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
-    const glm::vec3 o = scene.triangles[floors[std::min(f, floors.size() - 1)]].centroid() +
+    const glm::vec3 o = floorPoint(scene, floors, cumulative, (k + 0.5) / params.samples, k) +
                         glm::vec3(0.0f, params.height, 0.0f);
     spanning.clear();
     float ceiling = kInfinity;

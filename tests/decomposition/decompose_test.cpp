@@ -273,18 +273,18 @@ TEST(Decompose, ChoosesTheVoxelFromTheScene) {
   EXPECT_NEAR(chooseVoxelSize(big.scene(), p), std::cbrt(200.5 * 20.5 * 100.5 / 4e6), 1e-3);
 }
 
-// A game level sealed under its sky box: a hall 80 × 30 × 80 m (faces inward), and with `corridors`, eight
-// corridors 2 m wide and 70 m long between nine walls 2.5 m tall (18 % of the floor).
+// A game level sealed under its sky box: a hall 100 × 40 × 100 m (faces inward), and with `corridors`, six
+// corridors 3 m wide and 85 m long between seven walls 2.5 m tall (15 % of the floor).
 Scene hallWithCorridors(bool corridors) {
   SceneBuilder b;
-  const float w = 80, h = 30;
+  const float w = 100, h = 40;
   b.quad({0, 0, 0}, {0, 0, w}, {w, 0, w}, {w, 0, 0});  // the floor, facing up
   b.quad({0, h, 0}, {w, h, 0}, {w, h, w}, {0, h, w});  // the sky, facing down
   b.quad({0, 0, 0}, {w, 0, 0}, {w, h, 0}, {0, h, 0});  // the walls, facing in
   b.quad({0, 0, w}, {0, h, w}, {w, h, w}, {w, 0, w});
   b.quad({0, 0, 0}, {0, h, 0}, {0, h, w}, {0, 0, w});
   b.quad({w, 0, 0}, {w, 0, w}, {w, h, w}, {w, h, 0});
-  for (int k = 0; corridors && k < 9; ++k) b.box({10 + 2.2f * k, 0, 5}, {10.2f + 2.2f * k, 2.5f, 75});
+  for (int k = 0; corridors && k < 7; ++k) b.box({10 + 3.2f * k, 0, 5}, {10.2f + 3.2f * k, 2.5f, 90});
   return b.scene();
 }
 
@@ -295,17 +295,17 @@ TEST(Decompose, ALargeLevelsVoxelSpansItsCorridorsWithinTheMemory) {
   DecomposeParams p;
   p.minExtentVoxel =
       0.4;  // the coarse pass that finds the rooms' extent, coarse for speed: the hall is its box
-  const double fromBudget = std::ceil(std::cbrt(80.5 * 30.5 * 80.5 / 4e6) * 1000.0) / 1000.0;  // 0.367 m
+  const double volume = 100.5 * 40.5 * 100.5;
+  auto millimetres = [](double v) { return std::ceil(v * 1000.0) / 1000.0; };
   Context ctx;
   const GridChoice empty = chooseGrid(hallWithCorridors(false), p, ctx);
-  EXPECT_DOUBLE_EQ(empty.voxel, fromBudget) << empty.how;
+  EXPECT_DOUBLE_EQ(empty.voxel, millimetres(std::cbrt(volume / 4e6))) << empty.how;  // 0.468 m
   const GridChoice level = chooseGrid(hallWithCorridors(true), p, ctx);
-  EXPECT_NEAR(level.passage, 2.0, 1e-3) << level.how;
-  EXPECT_DOUBLE_EQ(level.voxel, 0.25) << level.how;  // 8 voxels across 2 m
+  EXPECT_NEAR(level.passage, 3.0, 1e-3) << level.how;
+  EXPECT_DOUBLE_EQ(level.voxel, 0.375) << level.how;  // 8 voxels across 3 m
   EXPECT_NE(level.how.find("finer for the passages"), std::string::npos) << level.how;
-  p.maxAutoVoxels = 12e6;  // memory for fewer voxels than 8 across the corridors take: as fine as it allows
-  EXPECT_DOUBLE_EQ(chooseGrid(hallWithCorridors(true), p, ctx).voxel,
-                   std::ceil(std::cbrt(80.5 * 30.5 * 80.5 / 12e6) * 1000.0) / 1000.0);
+  p.maxAutoVoxels = 6e6;  // memory for fewer voxels than 8 across the corridors take: as fine as it allows
+  EXPECT_DOUBLE_EQ(chooseGrid(hallWithCorridors(true), p, ctx).voxel, millimetres(std::cbrt(volume / 6e6)));
   EXPECT_DOUBLE_EQ(chooseVoxelSize(makeThreeRooms(), DecomposeParams()), 0.05);
 }
 

@@ -140,9 +140,9 @@ int runCompare(const CompareOptions& o) {
     throw InputError("voxel size", "must be in (0, 10] metres (0 chooses from the scene)");
   Context ctx;
   ctx.setProgress(stderrProgress(false));
-  // The grid the decomposition makes: from the faces whole (decompose.h, withBuriedPieces).
-  const Scene withBuried = decomp::withBuriedPieces(loaded.scene);
-  const Scene& surfaces = loaded.scene.buriedPieces.empty() ? loaded.scene : withBuried;
+  // The grid the decomposition makes: from the faces whole (decompose.h, withUnseenSurfaces).
+  const Scene withUnseen = decomp::withUnseenSurfaces(loaded.scene);
+  const Scene& surfaces = decomp::hasUnseenSurfaces(loaded.scene) ? withUnseen : loaded.scene;
   const decomp::GridChoice grid = decomp::chooseGrid(surfaces, params, ctx);
   const double h = grid.voxel;
   const decomp::VoxelSpace space = decomp::buildVoxelSpace(surfaces, h, ctx, params.memoryLimit,

@@ -50,11 +50,13 @@ int runDecompose(DecomposeOptions o) {
                                 ? decomp::decomposeFromVolumes(loaded.scene, loaded.cells, o.params, {}, ctx)
                                 : decomp::decompose(loaded.scene, o.params, ctx);
   d.scene.lights = loaded.scene.lights;  // cells.glb is the scene split by cell: its lights go with it
+  d.scene.seal = loaded.scene.seal;      // and its seal, so that it decomposes as the scene did
   // The watershed's rooms take the names of the scene's own room volumes where one covers them.
   if (!o.fromVolumes) decomp::nameCellsByVolumes(d, loaded.cells);
 
   GltfWriteOptions gltf;
   gltf.cells = &d.graph;
+  gltf.keepSeal = true;
   // A staged name keeps its extension, by which writeGltf picks the format; a write error names the file
   // as the user knows it (DIR/cells.glb).
   writeGltf(dir.file("cells.glb").string(), d.scene, gltf);

@@ -63,7 +63,8 @@ enum : int32_t {
   kContentsLava = 8,
   kContentsSlime = 16,
   kContentsWater = 32,
-  kContentsFog = 64
+  kContentsFog = 64,
+  kContentsTranslucent = 0x20000000  ///< `surfaceparm trans`: glass, grates; light and sight cross it
 };
 
 /// Light crosses water and fog in the game (a pool's floor is lit through its surface, a fog volume's
@@ -77,7 +78,7 @@ inline bool seeThroughLiquid(const Texture& t) {
 struct Options {
   double scale = 0.03;        ///< metres per unit: a 56-unit player is 1.7 m
   bool keepNonsolid = false;  ///< keep the see-through faces (non-solid, water, fog)
-  bool openSky = false;       ///< leave out the sky faces
+  bool openSky = false;       ///< leave out the sky faces (and, in sealBrushes, the sky's brushes)
 };
 
 using V3 = std::array<double, 3>;
@@ -298,6 +299,49 @@ inline Mesh convert(const std::string& file, const Options& options) {
     mesh.triangleShader.resize(mesh.triangles.size(), tex ? f.texture : -1);
   }
   return mesh;
+}
+
+/// The world's brushes that close the level, as their planes (outward normals, Quake units): every brush
+/// whose sides' contents (OR-ed, as the compiler joins them) are opaque solid (solid and not `trans`) or an
+/// opaque liquid (lava, slime). A compiled map is sealed by its brushes, not by its drawn faces: the top of a
+/// wall under the sky box or the inside of a block no player sees has no face, and the faces alone let the
+/// outside flood the playable space (issue 46: am_lavaarena, ctf_gate1, pul1duel-oa). Detail brushes are
+/// kept too: their hidden sides would otherwise leave their insides open onto the wall behind them. A brush
+/// with a sky side is kept only while the sky seals the level (not with Options::openSky). Water, fog,
+/// clips and hints are no brush of the seal: light crosses them.
+inline std::vector<std::vector<Plane>> sealBrushes(const std::string& file, const Options& options) {
+  using namespace detail;
+  std::vector<std::vector<Plane>> out;
+  if (file.size() < 8 + kLumpCount * 8 || file.compare(0, 4, "IBSP") != 0) return out;
+  Lump lumps[kLumpCount];
+  std::memcpy(lumps, file.data() + 8, sizeof(lumps));
+  const auto textures = lump<Texture>(file, lumps[kTextures]);
+  const auto models = lump<Model>(file, lumps[kModels]);
+  const auto planes = lump<Plane>(file, lumps[kPlanes]);
+  const auto brushes = lump<Brush>(file, lumps[kBrushes]);
+  const auto brushSides = lump<BrushSide>(file, lumps[kBrushSides]);
+  if (models.empty()) return out;
+  const Model& world = models[0];
+  for (int32_t b = world.brush; b >= 0 && b < world.brush + world.nBrushes && b < int32_t(brushes.size());
+       ++b) {
+    const Brush& br = brushes[size_t(b)];
+    int32_t contents = 0, flags = 0;
+    std::vector<Plane> hull;
+    for (int32_t k = br.side; k >= 0 && k < br.side + br.nSides && k < int32_t(brushSides.size()); ++k) {
+      const BrushSide& side = brushSides[size_t(k)];
+      if (side.texture >= 0 && size_t(side.texture) < textures.size())
+        contents |= textures[size_t(side.texture)].contents, flags |= textures[size_t(side.texture)].flags;
+      if (side.plane >= 0 && size_t(side.plane) < planes.size()) hull.push_back(planes[size_t(side.plane)]);
+    }
+    if (br.texture >= 0 && size_t(br.texture) < textures.size())
+      contents |= textures[size_t(br.texture)].contents;
+    const bool opaqueSolid = (contents & kContentsSolid) && !(contents & kContentsTranslucent);
+    const bool opaqueLiquid = contents & (kContentsLava | kContentsSlime);
+    if (!opaqueSolid && !opaqueLiquid) continue;
+    if (options.openSky && (flags & kSurfSky)) continue;
+    if (hull.size() >= 4) out.push_back(std::move(hull));
+  }
+  return out;
 }
 
 }  // namespace q3bsp

@@ -15,8 +15,14 @@
 // of the game's data, or a folder of them; repeatable, in the game's order) each material's Kd is its
 // texture's mean colour, the light shaders (q3map_surfacelight) are named, and the --emit flags that
 // light them are printed; without, every material is grey and no shader is known to be a light.
+// The level's seal follows the drawn faces as the object `seal:brushes` (docs/scenes.md): the world's
+// opaque brushes as closed solids, which the decomposition voxelizes and the bake neither draws nor lights.
+// The drawn faces alone do not close a level (no face where no player looks: a wall's top under the sky
+// box, a block's inside), and the outside flooded the playable space of sealed maps (issue 46). --no-seal
+// leaves it out.
 //   q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky] [--pk3 PATH ...]
-//   (default scale 0.03: a 56-unit player is 1.7 m)
+//     [--no-seal]
+//   (default scale 0.03: a 56-unit player is 1.7 m; compile with -lgmp for CGAL)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -30,8 +36,30 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include "q3_materials.h"
 #include "q3bsp.h"
+#include "q3bsp_seal.h"
 
 namespace {
+
+// The seal as its own OBJ object after `vertexCount` vertices already written.
+std::string sealObject(const q3bsp::Solids& seal, size_t vertexCount) {
+  std::string out = "o seal:brushes\n";
+  char line[128];
+  for (const q3bsp::V3& p : seal.points) {
+    std::snprintf(line, sizeof(line), "v %.5f %.5f %.5f\n", p[0], p[1], p[2]);
+    out += line;
+  }
+  for (const auto& t : seal.triangles)
+    out += "f " + std::to_string(vertexCount + t[0] + 1) + " " + std::to_string(vertexCount + t[1] + 1) + " " +
+           std::to_string(vertexCount + t[2] + 1) + "\n";
+  return out;
+}
+
+// The vertices an OBJ text defines.
+size_t vertexCount(const std::string& obj) {
+  size_t n = obj.rfind("v ", 0) == 0 ? 1 : 0;
+  for (size_t at = obj.find("\nv "); at != std::string::npos; at = obj.find("\nv ", at + 1)) ++n;
+  return n;
+}
 
 // The archives a --pk3 names: the file, or every .pk3 in the folder in name order (pak0, pak1, ...).
 std::vector<std::string> archivesAt(const std::string& path) {
@@ -51,11 +79,12 @@ int main(int argc, char** argv) {
     std::fprintf(
         stderr,
         "usage: q3bsp_to_obj MAP.bsp OUT.obj [--scale METRES_PER_UNIT] [--keep-nonsolid] [--open-sky] "
-        "[--pk3 PATH ...]\n");
+        "[--pk3 PATH ...] [--no-seal]\n");
     return 1;
   }
   q3bsp::Options options;
   std::vector<std::string> archives;
+  bool seal = true;
   for (int a = 3; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--scale" && a + 1 < argc)
@@ -64,6 +93,8 @@ int main(int argc, char** argv) {
       options.keepNonsolid = true;
     else if (arg == "--open-sky")
       options.openSky = true;
+    else if (arg == "--no-seal")
+      seal = false;
     else if (arg == "--pk3" && a + 1 < argc)
       for (const std::string& p : archivesAt(argv[++a])) archives.push_back(p);
     else {
@@ -92,7 +123,9 @@ int main(int argc, char** argv) {
   const q3materials::Level level =
       q3materials::levelFiles(mesh, data.get(), header, std::filesystem::path(mtl).filename().string());
   std::ofstream(mtl) << level.mtl;
-  std::ofstream(obj) << level.obj;
+  const q3bsp::Solids solids =
+      seal ? q3bsp::brushSolids(q3bsp::sealBrushes(file, options), options.scale) : q3bsp::Solids();
+  std::ofstream(obj) << level.obj << (seal ? sealObject(solids, vertexCount(level.obj)) : std::string());
   const std::vector<q3materials::Material>& materials = level.materials;
   size_t found = 0;
   for (const q3materials::Material& m : materials) found += m.colourFound;
@@ -110,5 +143,8 @@ int main(int argc, char** argv) {
       "liquid and %zu sky faces skipped)\n",
       argv[2], mesh.triangles.size(), mesh.skippedNodraw, mesh.skippedNonsolid, mesh.skippedLiquid,
       mesh.skippedInLiquid, mesh.skippedSky);
+  if (seal)
+    std::fprintf(stderr, "%s: seal: %zu brushes as %zu triangles (%zu without volume left out)\n", argv[2],
+                 solids.brushes, solids.triangles.size(), solids.degenerate);
   return 0;
 }

@@ -148,7 +148,7 @@ if [ ${#maps[@]} -gt 0 ]; then
   conv=${Q3BSP_TO_OBJ:-}
   if [ -z "$conv" ]; then
     conv="$work/q3bsp_to_obj"
-    c++ -O2 -std=c++20 -o "$conv" "$here/q3bsp_to_obj.cpp"
+    c++ -O2 -std=c++20 -o "$conv" "$here/q3bsp_to_obj.cpp" -lgmp
   fi
   for m in "${maps[@]}"; do
     unzip -o -q -j "$pk3" "maps/$m.bsp" -d "$work"

@@ -168,6 +168,9 @@ class GltfReader {
       case CellTag::Kind::CellVolume:
         taggedList = &raw_.volumes;
         break;
+      case CellTag::Kind::Seal:
+        taggedList = &raw_.seals;
+        break;
       case CellTag::Kind::None:
         break;
     }

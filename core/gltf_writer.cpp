@@ -204,6 +204,7 @@ class SceneWriter {
     buildTree();
     for (int r : tree_.roots) sceneRoots_.push_back(emitTreeNode(r));
     if (options_.cells && options_.keepHelpers) writeCellExtras();
+    if (options_.keepSeal) writeSeal();
     writeCameras();
     if (options_.keepHelpers) writeLights();
     b_.doc["scenes"] = json::array({{{"nodes", sceneRoots_}}});
@@ -495,6 +496,22 @@ class SceneWriter {
       const int mesh = b_.push("meshes", {{"name", name}, {"primitives", json::array({prim})}});
       sceneRoots_.push_back(b_.push("nodes", {{"name", name}, {"mesh", mesh}}));
     }
+  }
+
+  // The scene's seal (Scene::seal) as one `seal:` mesh, so that the decomposition of the file written finds
+  // the same walls; translucent like the other helpers.
+  void writeSeal() {
+    if (scene_.seal.empty()) return;
+    std::vector<glm::vec3> pos, nrm;
+    for (const Triangle& t : scene_.seal)
+      for (int k = 0; k < 3; ++k) pos.push_back(t.p[k]), nrm.push_back(t.geometricNormal());
+    json attributes = {{"POSITION", b_.addVec3(pos, true)}, {"NORMAL", b_.addVec3(nrm, false)}};
+    json prim = {{"attributes", attributes},
+                 {"material", helperMaterial("cpgi_seal", {0.5f, 0.5f, 0.5f, 0.1f})},
+                 {"mode", 4}};
+    const std::string name = "seal:solids";
+    const int mesh = b_.push("meshes", {{"name", name}, {"primitives", json::array({prim})}});
+    sceneRoots_.push_back(b_.push("nodes", {{"name", name}, {"mesh", mesh}}));
   }
 
   void writeCameras() {

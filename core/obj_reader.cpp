@@ -1,5 +1,5 @@
 // Wavefront OBJ + MTL → RawScene via tinyobjloader: Kd is the albedo, Ke the emission (W/m²); objects
-// and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME` follow the glTF convention.
+// and groups named `cell:NAME`, `portal:A:B`, `cellvolume:NAME`, `seal:NAME` follow the glTF convention.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -195,8 +195,11 @@ RawScene readObj(const std::string& path, const LoadOptions& options) {
     const std::string name = shape.name.empty() ? "object" : shape.name;
     const CellTag tag = parseCellTag(path, name);
     RawScene::TaggedMesh* tagged = nullptr;
-    if (tag.kind == CellTag::Kind::Portal || tag.kind == CellTag::Kind::CellVolume) {
-      auto& list = tag.kind == CellTag::Kind::Portal ? raw.portals : raw.volumes;
+    if (tag.kind == CellTag::Kind::Portal || tag.kind == CellTag::Kind::CellVolume ||
+        tag.kind == CellTag::Kind::Seal) {
+      auto& list = tag.kind == CellTag::Kind::Portal       ? raw.portals
+                   : tag.kind == CellTag::Kind::CellVolume ? raw.volumes
+                                                           : raw.seals;
       list.push_back({name, tag, {}});
       tagged = &list.back();
     }

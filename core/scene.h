@@ -131,6 +131,9 @@ struct Scene {
   /// that its empty space is that of the faces whole: a piece judged buried next to a room would otherwise
   /// open a hole in the voxels' walls.
   std::vector<Triangle> buriedPieces;
+  /// The solid matter that closes the scene where no face is drawn (`seal:` meshes, design.md §3: a game
+  /// level's brushes as closed solids): voxelized by the decomposition as walls, never drawn nor lit.
+  std::vector<Triangle> seal;
   /// Slash-joined glTF node names from the root ("building/cell:A/walls"); OBJ: the object/group name.
   std::vector<std::string> nodePaths;
   std::vector<Camera> cameras;

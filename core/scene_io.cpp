@@ -109,6 +109,9 @@ CellTag parseCellTag(const std::string& file, const std::string& name) {
     tag.kind = CellTag::Kind::CellVolume;
     tag.a =
         requireName(stripBlenderSuffix(name.substr(11)));  // a room of several volumes, as Blender names them
+  } else if (startsWith(name, "seal:")) {
+    tag.kind = CellTag::Kind::Seal;
+    tag.a = name.substr(5);
   } else if (startsWith(name, "cell:")) {
     tag.kind = CellTag::Kind::Cell;
     tag.a = requireName(name.substr(5));
@@ -305,7 +308,7 @@ std::vector<char> dropDegenerate(const std::string& path, const Scene& scene, co
 static void scaleRaw(RawScene& raw, float scale) {
   for (Triangle& t : raw.scene.triangles)
     for (glm::vec3& q : t.p) q *= scale;
-  for (auto* meshes : {&raw.portals, &raw.volumes})
+  for (auto* meshes : {&raw.portals, &raw.volumes, &raw.seals})
     for (RawScene::TaggedMesh& m : *meshes)
       for (Triangle& t : m.triangles)
         for (glm::vec3& q : t.p) q *= scale;
@@ -331,7 +334,7 @@ static void checkCoordinates(const std::string& path, const RawScene& raw, doubl
     for (const glm::vec3& q : t.p)
       if (beyondBound(q))
         throw InputError(path, "node '" + nodeOf(raw.scene, t) + "': a vertex lies " + far(q) + bound + hint);
-  for (const auto* meshes : {&raw.portals, &raw.volumes})
+  for (const auto* meshes : {&raw.portals, &raw.volumes, &raw.seals})
     for (const RawScene::TaggedMesh& m : *meshes)
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
@@ -370,7 +373,7 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       if (!isFinite(q))
         throw InputError(path,
                          "node '" + nodeOf(scene, t) + "': a vertex position is not finite (NaN or inf)");
-  for (const auto* meshes : {&raw.portals, &raw.volumes})
+  for (const auto* meshes : {&raw.portals, &raw.volumes, &raw.seals})
     for (const RawScene::TaggedMesh& m : *meshes)
       for (const Triangle& t : m.triangles)
         for (const glm::vec3& q : t.p)
@@ -396,6 +399,9 @@ LoadedScene finishScene(const std::string& path, RawScene raw, const LoadOptions
       }
     scene.triangles = std::move(kept);
   }
+  for (const RawScene::TaggedMesh& m : raw.seals)
+    for (const Triangle& t : m.triangles)
+      if (!isDegenerate(t)) scene.seal.push_back(t);
   if (scene.triangles.empty())
     throw InputError(path, dropped ? "no triangles left once the degenerate ones are dropped"
                                    : "the scene has no triangles");

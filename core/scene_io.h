@@ -92,6 +92,9 @@ struct GltfWriteOptions {
   /// The helpers (portal: quads, cellvolume: meshes) and the KHR_lights_punctual lamps, which an engine
   /// would draw, or light the baked scene with a second time; `cell:` nodes stay as names either way.
   bool keepHelpers = true;
+  /// The scene's seal (Scene::seal) as a `seal:solids` mesh: decompose's cells.glb keeps it, so that the file
+  /// decomposes as its source did; a bake's glbs never, since viewers would draw it over the level.
+  bool keepSeal = false;
   /// With forEngines, a lightmap per object instead of lightmapPng (bake --per-object): the PNG of each
   /// (sRGB, 1 = lightmapIntensity) and its unique name (its texture's, "lightmap-OBJECT"), and per
   /// triangle the one it lies on (−1: none); lightmapUVs are then coordinates in that lightmap. Each

@@ -14,12 +14,12 @@ namespace cpgi::detail {
 
 /// What a node/object name says about its role in the cell-portal graph.
 struct CellTag {
-  enum class Kind { None, Cell, Portal, CellVolume } kind = Kind::None;
-  std::string a;  ///< the cell (Cell, CellVolume) or the first cell of a portal
+  enum class Kind { None, Cell, Portal, CellVolume, Seal } kind = Kind::None;
+  std::string a;  ///< the cell (Cell, CellVolume), the first cell of a portal, or the seal's name
   std::string b;  ///< the second cell of a portal
 };
-/// Parses `cell:NAME`, `portal:A:B` (a Blender duplicate suffix such as ".001" on B is ignored) and
-/// `cellvolume:NAME`. Throws InputError(file, ...) for a malformed tag such as `portal:A`.
+/// Parses `cell:NAME`, `portal:A:B` (a Blender duplicate suffix such as ".001" on B is ignored),
+/// `cellvolume:NAME` and `seal:NAME`. Throws InputError(file, ...) for a malformed tag such as `portal:A`.
 CellTag parseCellTag(const std::string& file, const std::string& nodeName);
 
 /// A scene as a format reader found it, before the checks and the cell graph are built.
@@ -33,6 +33,7 @@ struct RawScene {
     std::vector<Triangle> triangles;  ///< world space
   };
   std::vector<TaggedMesh> portals, volumes;
+  std::vector<TaggedMesh> seals;  ///< `seal:` meshes: Scene::seal
   std::vector<std::string> warnings;
   /// Per scene triangle, its corners' second texture coordinates (glTF TEXCOORD_1: a baked lightmap's
   /// atlas); kept only when every triangle has them (`everyLightmapUV`).

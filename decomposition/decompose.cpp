@@ -128,12 +128,13 @@ double chooseVoxelSize(const Scene& scene, const DecomposeParams& params, std::s
   return g.voxel;
 }
 
-Scene withBuriedPieces(const Scene& scene) {
+Scene withUnseenSurfaces(const Scene& scene) {
   Scene out;
-  if (scene.buriedPieces.empty()) return out;
-  out.triangles.reserve(scene.triangles.size() + scene.buriedPieces.size());
+  if (!hasUnseenSurfaces(scene)) return out;
+  out.triangles.reserve(scene.triangles.size() + scene.buriedPieces.size() + scene.seal.size());
   out.triangles = scene.triangles;
   out.triangles.insert(out.triangles.end(), scene.buriedPieces.begin(), scene.buriedPieces.end());
+  out.triangles.insert(out.triangles.end(), scene.seal.begin(), scene.seal.end());
   return out;
 }
 
@@ -187,8 +188,8 @@ std::vector<std::string> roomNames(const std::vector<CellStats>& stats, int outs
 
 Decomposition decompose(const Scene& scene, const DecomposeParams& params, Context& ctx) {
   checkDecomposeInput(scene, params);
-  const Scene withBuried = withBuriedPieces(scene);
-  const Scene& surfaces = scene.buriedPieces.empty() ? scene : withBuried;
+  const Scene withUnseen = withUnseenSurfaces(scene);
+  const Scene& surfaces = hasUnseenSurfaces(scene) ? withUnseen : scene;
   EmptySpace empty = voxelizeEmptySpace(surfaces, params, ctx);
   const double h = empty.voxelSize;
   const SolidGrid& solid = empty.solid;
@@ -217,6 +218,13 @@ Decomposition decompose(const Scene& scene, const DecomposeParams& params, Conte
     if (int(c) != out.outsideCell) out.graph.cells[c].name = rooms[c];
   for (PortalQuad& q : out.graph.portals)
     q.name = "portal:" + out.graph.cells[size_t(q.cellA)].name + ":" + out.graph.cells[size_t(q.cellB)].name;
+  out.covered = coveredSpace(out.frame, out.space, out.voxelCell, out.outsideCell);
+  if (out.covered.outsideShare() > kLeakedOutsideShare)
+    ctx.warn("decompose: " + params.sourceName + ": the outside holds " +
+             std::to_string(std::lround(100.0 * out.covered.outsideShare())) +
+             " % of the empty space under a roof: the faces do not close this level and the outside "
+             "flooded its rooms through a gap; give the scene its seal (a seal: mesh of the solids that "
+             "close it, as q3bsp_to_obj writes a map's brushes) or close the gap (--seal METRES)");
   out.voxelChoice = std::move(empty.voxelChoice);
   out.basins = basinCount;
   out.foldedBehind = folded.folded;

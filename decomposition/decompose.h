@@ -27,6 +27,7 @@
 #include "decomposition/assign.h"
 #include "decomposition/behind.h"
 #include "decomposition/classify.h"
+#include "decomposition/covered_outside.h"
 #include "decomposition/distance.h"
 #include "decomposition/leaks.h"
 #include "decomposition/merge.h"
@@ -137,6 +138,9 @@ struct Decomposition {
   size_t fallbackTriangles = 0;
   double thinWallArea = 0.0;  ///< m², see Assignment::thinWallArea
   size_t sealedVoxels = 0;
+  /// The empty space under a roof and the outside's part of it (covered_outside.h): decompose warns when
+  /// the outside holds most of it (a closed level whose playable space leaked out).
+  CoveredSpace covered;
 };
 
 /// The voxel size and the part of the scene the grid spans.
@@ -160,14 +164,18 @@ struct EmptySpace {
   SpaceGrid space;
   DistanceGrid distance;
 };
-/// `surfaces`: the triangles the solid is made of (withBuriedPieces).
+/// `surfaces`: the triangles the solid is made of (withUnseenSurfaces).
 EmptySpace voxelizeEmptySpace(const Scene& surfaces, const DecomposeParams& params, Context& ctx);
 
 /// The surfaces the voxel stages see: `scene`'s triangles with its Scene::buriedPieces put back, so that the
 /// solid is that of the faces whole, as if the contact cuts had not run (a piece they judge buried beside a
 /// room must not open the wall's voxels, and the pieces cut from a brush must not make the watershed new
-/// basins). Only the triangles are copied; empty when the scene has no buried pieces (use `scene` itself).
-Scene withBuriedPieces(const Scene& scene);
+/// basins), and its Scene::seal (the solids that close the scene where no face is drawn). Only the
+/// triangles are copied; empty when the scene has neither (hasUnseenSurfaces; use `scene` itself).
+Scene withUnseenSurfaces(const Scene& scene);
+inline bool hasUnseenSurfaces(const Scene& scene) {
+  return !scene.buriedPieces.empty() || !scene.seal.empty();
+}
 
 /// Runs the seven stages. Warnings (open scene, walls thinner than a voxel, leaks, coarse voxels) go to
 /// ctx.warn; each stage's time to ctx's timers.
@@ -181,7 +189,7 @@ void checkDecomposeInput(const Scene& scene, const DecomposeParams& params);
 /// Stages 6 and 7 and the graph, over cells labelled by any means (the watershed and merge of decompose,
 /// or a scene's room volumes, volume_cells.h): portals fitted where the cells meet, every triangle given
 /// to the cell it faces (split on portal planes), per-cell statistics. `names` holds one name per cell of
-/// `cells`; `space` and `distance` are those of `solid`, made from `surfaces` (withBuriedPieces: `scene` or
+/// `cells`; `space` and `distance` are those of `solid`, made from `surfaces` (withUnseenSurfaces: `scene` or
 /// its triangles with the buried pieces), on whose walls the portals are snapped; `scene`'s triangles are
 /// the ones given to the cells.
 Decomposition finishDecomposition(const Scene& scene, const Scene& surfaces, const DecomposeParams& params,

@@ -106,7 +106,8 @@ nlohmann::json decompositionReport(const Decomposition& d, const DecomposeParams
                  {"leak_placements", d.leakPlacements},
                  {"behind_geometry_folded", d.foldedBehind},
                  {"unfaced_closed_dropped", d.droppedUnfaced},
-                 {"portal_pieces_merged", d.mergedPortalPieces}};
+                 {"portal_pieces_merged", d.mergedPortalPieces},
+                 {"covered_outside_share", d.covered.outsideShare()}};
   json timings = json::object();
   double total = 0.0;
   for (const Context::Timing& t : ctx.timings()) {

@@ -155,8 +155,8 @@ Decomposition decomposeFromVolumes(const Scene& scene, const CellGraph& volumes,
   checkDecomposeInput(scene, params);
   if (!(volumeParams.reach >= 0.0 && volumeParams.reach <= 10.0))
     throw InputError("volume reach", "must be in [0, 10] metres");
-  const Scene withBuried = withBuriedPieces(scene);
-  const Scene& surfaces = scene.buriedPieces.empty() ? scene : withBuried;
+  const Scene withUnseen = withUnseenSurfaces(scene);
+  const Scene& surfaces = hasUnseenSurfaces(scene) ? withUnseen : scene;
   EmptySpace empty = voxelizeEmptySpace(surfaces, params, ctx);
   const double h = empty.voxelSize;
   const SolidGrid& solid = empty.solid;

@@ -1,4 +1,5 @@
 // OBJ + MTL: Kd albedo, Ke emission, object names as node paths and as cell tags.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -52,6 +53,36 @@ TEST(ObjIo, MaterialsObjectsAndCells) {
   EXPECT_EQ(s.scene.nodePaths[loose.node], "loose");
   EXPECT_LE(glm::length(s.scene.materials[loose.material].albedo - glm::vec3(0.5f)), 1e-6f);
   EXPECT_EQ(s.warnings, std::vector<std::string>{"1 triangles are in no cell"});
+}
+
+// The seal (design.md §3): solids the decomposition voxelizes and the bake never draws, read apart from the
+// faces and scaled with them; a decomposition's cells.glb keeps it, a bake's glb does not.
+TEST(ObjIo, ASealIsReadApartFromTheFacesAndWrittenOnlyWhenAsked) {
+  test::TempDir dir;
+  write(dir / "level.obj",
+        "v 0 0 0\nv 0 0 1\nv 1 0 1\nv 1 0 0\n"  // a floor facing up
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"  // a tetrahedron under it
+        "o world\nf 1 2 3 4\n"
+        "o seal:brushes\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n");
+  LoadOptions options;
+  options.scale = 2.0;
+  const LoadedScene s = loadScene(dir / "level.obj", options);
+  ASSERT_EQ(s.scene.triangles.size(), 2u);
+  ASSERT_EQ(s.scene.seal.size(), 4u);
+  float highest = 0.0f;
+  for (const Triangle& t : s.scene.seal)
+    for (const glm::vec3& p : t.p) highest = std::max(highest, p.y);
+  EXPECT_FLOAT_EQ(highest, 2.0f);  // scaled as the faces are
+
+  GltfWriteOptions bake;  // a bake's glb: no seal
+  writeGltf(dir / "baked.glb", s.scene, bake);
+  EXPECT_TRUE(loadScene(dir / "baked.glb").scene.seal.empty());
+  GltfWriteOptions cells;
+  cells.keepSeal = true;
+  writeGltf(dir / "cells.glb", s.scene, cells);
+  const LoadedScene back = loadScene(dir / "cells.glb");
+  EXPECT_EQ(back.scene.triangles.size(), 2u);
+  EXPECT_EQ(back.scene.seal.size(), 4u);
 }
 
 TEST(ObjIo, MissingFileAndEmptyObj) {

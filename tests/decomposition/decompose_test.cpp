@@ -532,5 +532,56 @@ TEST(Decompose, ASceneOfOneThinSealedCavityKeepsItAsItsCell) {
   EXPECT_EQ(d.graph.cells[0].triangles.size(), 12u);
 }
 
+// A game level's hall as its drawn faces: floor, ceiling and three walls facing in; its fourth side is a
+// wall no face shows (a compiled map leaves out the faces no player sees), which the level's seal gives as
+// a solid. Issue 46: without the seal the outside flooded the playable space of sealed maps, unsaid.
+struct UnsealedHall {
+  Scene scene;
+  std::vector<Triangle> seal;
+};
+UnsealedHall makeUnsealedHall() {
+  const float L = 6.0f, H = 3.0f;
+  SceneBuilder b;
+  b.quad({0, 0, 0}, {0, 0, L}, {L, 0, L}, {L, 0, 0});  // floor, up
+  b.quad({0, H, 0}, {L, H, 0}, {L, H, L}, {0, H, L});  // ceiling, down
+  b.quad({L, 0, 0}, {L, 0, L}, {L, H, L}, {L, H, 0});  // x = L, facing −x
+  b.quad({0, 0, 0}, {L, 0, 0}, {L, H, 0}, {0, H, 0});  // z = 0, facing +z
+  b.quad({0, 0, L}, {0, H, L}, {L, H, L}, {L, 0, L});  // z = L, facing −z
+  SceneBuilder wall;
+  wall.box({-0.4f, -0.4f, -0.4f}, {0.0f, H + 0.4f, L + 0.4f});
+  return {b.scene(), wall.scene().triangles};
+}
+
+TEST(Decompose, ASealClosesWhatTheFacesLeaveOpenAndALeakedLevelIsSaidSo) {
+  const UnsealedHall hall = makeUnsealedHall();
+  const std::string leaked = "of the empty space under a roof";
+  {
+    Context ctx;
+    const Decomposition d = run(hall.scene, 0.1, ctx);
+    EXPECT_GT(d.covered.outsideShare(), 0.9);
+    EXPECT_TRUE(anyWarningContains(ctx, leaked));
+    size_t said = 0;
+    for (const std::string& w : ctx.warnings()) said += w.find(leaked) != std::string::npos;
+    EXPECT_EQ(said, 1u);  // one line
+  }
+  Scene sealed = hall.scene;
+  sealed.seal = hall.seal;
+  Context ctx;
+  const Decomposition d = run(sealed, 0.1, ctx);
+  EXPECT_FALSE(anyWarningContains(ctx, leaked));
+  EXPECT_LT(d.covered.outsideShare(), 0.05);
+  ASSERT_TRUE(d.enclosed);
+  // The hall is one room, holding the hall's faces and none of the seal's.
+  int rooms = 0;
+  for (size_t c = 0; c < d.graph.cells.size(); ++c)
+    if (int(c) != d.outsideCell) {
+      ++rooms;
+      EXPECT_NEAR(d.cellStats[c].volume, 6.0 * 6.0 * 3.0, 15.0);
+      EXPECT_EQ(d.graph.cells[c].triangles.size(), hall.scene.triangles.size());
+    }
+  EXPECT_EQ(rooms, 1);
+  EXPECT_EQ(d.scene.triangles.size(), hall.scene.triangles.size());
+}
+
 }  // namespace
 }  // namespace cpgi::decomp

@@ -1,10 +1,17 @@
 // bench/q3bsp.h, the Quake III BSP reader the decomposition's real levels come through, on a BSP built in
-// memory: which faces become walls; and bench/q3_materials.h, the level's materials from the game's data.
+// memory: which faces become walls, which brushes seal the level (bench/q3bsp_seal.h); and
+// bench/q3_materials.h, the level's materials from the game's data.
 #include "bench/q3bsp.h"
+#include "bench/q3bsp_seal.h"
 
 #define STB_IMAGE_IMPLEMENTATION
 #include "bench/q3_materials.h"
 
+#include <map>
+#include <utility>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -202,6 +209,123 @@ TEST(Q3Materials, NamesAreShaderPathsAndScriptsGiveImageAndLight) {
   EXPECT_EQ(shaders.at("textures/a/lamp").surfaceLight, 2500.0);
   EXPECT_EQ(shaders.at("textures/a/lamp").image, "textures/a/lamp_glow.tga");
   EXPECT_EQ(shaders.at("textures/a/plain").surfaceLight, 0.0);
+// A world model of brushes alone: each an axis-aligned box [lo, hi] (Quake units) with the side textures
+// given (flags, contents), the first on its top (+z) and the second on the other five sides.
+struct BoxBrush {
+  std::array<float, 3> lo, hi;
+  std::pair<int32_t, int32_t> top, sides;
+};
+std::string brushesBsp(const std::vector<BoxBrush>& boxes) {
+  std::vector<q3bsp::Texture> tex;
+  std::map<std::pair<int32_t, int32_t>, int32_t> textureOf;
+  auto texture = [&](std::pair<int32_t, int32_t> fc) {
+    if (auto it = textureOf.find(fc); it != textureOf.end()) return it->second;
+    q3bsp::Texture t{};
+    std::snprintf(t.name, sizeof(t.name), "textures/test/%zu", tex.size());
+    t.flags = fc.first, t.contents = fc.second;
+    tex.push_back(t);
+    return textureOf[fc] = int32_t(tex.size() - 1);
+  };
+  std::vector<q3bsp::Plane> planes;
+  std::vector<q3bsp::Brush> brushes;
+  std::vector<q3bsp::BrushSide> sides;
+  for (const BoxBrush& b : boxes) {
+    brushes.push_back({int32_t(sides.size()), 6, texture(b.sides)});
+    for (int axis = 0; axis < 3; ++axis)
+      for (int s = -1; s <= 1; s += 2) {
+        q3bsp::Plane p{};
+        p.normal[axis] = float(s);
+        p.dist = s > 0 ? b.hi[size_t(axis)] : -b.lo[size_t(axis)];
+        planes.push_back(p);
+        sides.push_back({int32_t(planes.size() - 1), texture(axis == 2 && s > 0 ? b.top : b.sides)});
+      }
+  }
+  q3bsp::Model world{};
+  world.brush = 0, world.nBrushes = int32_t(brushes.size());
+  q3bsp::Lump lumps[q3bsp::kLumpCount] = {};
+  std::string body;
+  auto put = [&](int index, const void* data, size_t bytes) {
+    lumps[index] = {int32_t(8 + sizeof(lumps) + body.size()), int32_t(bytes)};
+    body.append(static_cast<const char*>(data), bytes);
+  };
+  put(q3bsp::kTextures, tex.data(), tex.size() * sizeof(q3bsp::Texture));
+  put(q3bsp::kPlanes, planes.data(), planes.size() * sizeof(q3bsp::Plane));
+  put(q3bsp::kModels, &world, sizeof(world));
+  put(q3bsp::kBrushes, brushes.data(), brushes.size() * sizeof(q3bsp::Brush));
+  put(q3bsp::kBrushSides, sides.data(), sides.size() * sizeof(q3bsp::BrushSide));
+  std::string file = "IBSP";
+  const int32_t version = 46;
+  file.append(reinterpret_cast<const char*>(&version), 4);
+  file.append(reinterpret_cast<const char*>(lumps), sizeof(lumps));
+  return file + body;
+}
+
+// Issue 46 (am_lavaarena, ctf_gate1): a sealed map's drawn faces leave its walls' tops and blocks' insides
+// open, and the outside flooded the playable space; its brushes close it. Opaque solids and opaque liquids
+// seal, glass (solid but `trans`), water and clips do not; the sky's brush seals unless the sky is open.
+TEST(Q3Bsp, TheSealIsTheOpaqueBrushesAndTheSkysUnlessOpen) {
+  const std::pair<int32_t, int32_t> caulk{0x80, q3bsp::kContentsSolid},
+      glass{0, q3bsp::kContentsSolid | kTranslucent}, water{0, q3bsp::kContentsWater | kTranslucent},
+      lava{0, q3bsp::kContentsLava | kTranslucent}, sky{q3bsp::kSurfSky, q3bsp::kContentsSolid},
+      playerClip{0x80, 0x10000};
+  const std::string bsp = brushesBsp({
+      {{0, 0, 0}, {64, 64, 8}, caulk, caulk},   // the floor
+      {{0, 0, 8}, {8, 64, 72}, glass, caulk},   // a wall with one glass side: the compiler ORs them
+      {{8, 0, 8}, {16, 64, 16}, water, water},  // a pool
+      {{16, 0, 8}, {24, 64, 16}, lava, lava},   // a lava pit's body
+      {{0, 0, 72}, {64, 64, 80}, sky, caulk},   // the sky over it
+      {{24, 0, 8}, {32, 64, 72}, playerClip, playerClip},
+  });
+  EXPECT_EQ(q3bsp::sealBrushes(bsp, q3bsp::Options()).size(), 3u);  // floor, lava, sky
+  q3bsp::Options open;
+  open.openSky = true;
+  EXPECT_EQ(q3bsp::sealBrushes(bsp, open).size(), 2u);
+}
+
+// The signed volume of a closed triangle mesh (divergence theorem): positive when its faces face out.
+double signedVolume(const q3bsp::Solids& s) {
+  double v = 0.0;
+  for (const auto& t : s.triangles)
+    v += q3bsp::detail::dot(s.points[t[0]], q3bsp::detail::cross(s.points[t[1]], s.points[t[2]])) / 6.0;
+  return v;
+}
+
+TEST(Q3Bsp, ABrushIsAClosedSolidFacingOutInMetresYUp) {
+  // A 64 × 32 × 16 box with a bevel plane that only touches its edge (as the compiler adds for collision)
+  // and one that cuts its edge x = 0, z = 16 off: 10 corners.
+  std::vector<q3bsp::Plane> planes;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int s = -1; s <= 1; s += 2) {
+      q3bsp::Plane p{};
+      p.normal[axis] = float(s);
+      const float hi[3] = {64, 32, 16};
+      p.dist = s > 0 ? hi[axis] : 0.0f;
+      planes.push_back(p);
+    }
+  const float r = float(1.0 / std::sqrt(2.0));
+  planes.push_back({{r, r, 0}, (64 + 32) * r});  // bevel along the +x +y edge: touches, cuts nothing
+  planes.push_back({{-r, 0, r}, (16 - 8) * r});  // cuts the edge x = 0, z = 16 back by 8 units
+  const q3bsp::Solids solids = q3bsp::brushSolids({planes}, 0.5);
+  ASSERT_EQ(solids.brushes, 1u);
+  EXPECT_EQ(solids.degenerate, 0u);
+  std::map<std::pair<size_t, size_t>, int> edges;  // each directed edge once, its reverse once: closed
+  for (const auto& t : solids.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[{t[size_t(k)], t[size_t((k + 1) % 3)]}];
+  for (const auto& [e, n] : edges) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(edges.count({e.second, e.first}), 1u);
+  }
+  // 64 × 32 × 16 less the prism 8 × 8 / 2 × 32, in units of 0.5 m.
+  EXPECT_NEAR(signedVolume(solids), (64.0 * 32 * 16 - 32.0 * 32) * 0.125, 1e-6);
+  double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+  for (const q3bsp::V3& p : solids.points)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[size_t(k)]), hi[k] = std::max(hi[k], p[size_t(k)]);
+  EXPECT_NEAR(hi[1] - lo[1], 8.0, 1e-9);  // Quake's z (16 units) is y
+  EXPECT_NEAR(lo[2], -16.0, 1e-9);        // Quake's y (32 units) is −z
+  EXPECT_NEAR(hi[0], 32.0, 1e-9);
+
+  const std::vector<q3bsp::Plane> flat = {planes[0], planes[1], planes[2], planes[3]};  // no z sides
+  EXPECT_EQ(q3bsp::brushSolids({flat}, 1.0).degenerate, 1u);
 }
 
 TEST(Q3Bsp, ANonBspFileIsSaidSo) {

@@ -49,8 +49,8 @@ std::string sealObject(const q3bsp::Solids& seal, size_t vertexCount) {
     out += line;
   }
   for (const auto& t : seal.triangles)
-    out += "f " + std::to_string(vertexCount + t[0] + 1) + " " + std::to_string(vertexCount + t[1] + 1) + " " +
-           std::to_string(vertexCount + t[2] + 1) + "\n";
+    out += "f " + std::to_string(vertexCount + t[0] + 1) + " " + std::to_string(vertexCount + t[1] + 1) +
+           " " + std::to_string(vertexCount + t[2] + 1) + "\n";
   return out;
 }
 

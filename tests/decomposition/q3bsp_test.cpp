@@ -7,17 +7,16 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include "bench/q3_materials.h"
 
-#include <map>
-#include <utility>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -209,6 +208,8 @@ TEST(Q3Materials, NamesAreShaderPathsAndScriptsGiveImageAndLight) {
   EXPECT_EQ(shaders.at("textures/a/lamp").surfaceLight, 2500.0);
   EXPECT_EQ(shaders.at("textures/a/lamp").image, "textures/a/lamp_glow.tga");
   EXPECT_EQ(shaders.at("textures/a/plain").surfaceLight, 0.0);
+}
+
 // A world model of brushes alone: each an axis-aligned box [lo, hi] (Quake units) with the side textures
 // given (flags, contents), the first on its top (+z) and the second on the other five sides.
 struct BoxBrush {

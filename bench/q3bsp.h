@@ -121,6 +121,13 @@ std::vector<T> lump(const std::string& file, const Lump& l) {
   return out;
 }
 
+// The lump directory of an IBSP file; false when the file is too short for it or not an IBSP file.
+inline bool lumpDirectory(const std::string& file, Lump (&lumps)[kLumpCount]) {
+  if (file.size() < 8 + kLumpCount * 8 || file.compare(0, 4, "IBSP") != 0) return false;
+  std::memcpy(lumps, file.data() + 8, sizeof(lumps));
+  return true;
+}
+
 inline V3 lerp(const V3& a, const V3& b, double t) {
   return {a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
 }
@@ -184,13 +191,12 @@ inline bool looksIntoLiquid(const Face& f, const std::vector<Vertex>& vertices,
 inline Mesh convert(const std::string& file, const Options& options) {
   using namespace detail;
   Mesh mesh;
-  if (file.size() < 8 + kLumpCount * 8 || file.compare(0, 4, "IBSP") != 0) {
+  Lump lumps[kLumpCount];
+  if (!lumpDirectory(file, lumps)) {
     mesh.error = "not an IBSP file";
     return mesh;
   }
   std::memcpy(&mesh.version, file.data() + 4, 4);
-  Lump lumps[kLumpCount];
-  std::memcpy(lumps, file.data() + 8, sizeof(lumps));
   const auto textures = lump<Texture>(file, lumps[kTextures]);
   const auto models = lump<Model>(file, lumps[kModels]);
   const auto vertices = lump<Vertex>(file, lumps[kVertices]);
@@ -312,9 +318,8 @@ inline Mesh convert(const std::string& file, const Options& options) {
 inline std::vector<std::vector<Plane>> sealBrushes(const std::string& file, const Options& options) {
   using namespace detail;
   std::vector<std::vector<Plane>> out;
-  if (file.size() < 8 + kLumpCount * 8 || file.compare(0, 4, "IBSP") != 0) return out;
   Lump lumps[kLumpCount];
-  std::memcpy(lumps, file.data() + 8, sizeof(lumps));
+  if (!lumpDirectory(file, lumps)) return out;
   const auto textures = lump<Texture>(file, lumps[kTextures]);
   const auto models = lump<Model>(file, lumps[kModels]);
   const auto planes = lump<Plane>(file, lumps[kPlanes]);

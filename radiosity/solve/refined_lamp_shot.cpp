@@ -77,8 +77,10 @@ AtlasParams coarseLampAtlas(const LightmapAtlas& atlas, const AtlasParams& atlas
   coarse.texelsPerQuad = 0;
   coarse.density = p.minDensity;
   coarse.triangleDensity = outputDensity(atlas, triangles);
+  // A triangle the output left out (zero area) has no density of its own; the coarse atlas takes any
+  // positive one and leaves it out again (ctf_gate1 lit by its lamp shaders refused the bake here).
   for (float& d : coarse.triangleDensity)
-    if (d > 0.0f) d = std::min(d, std::max(d / p.coarsening, p.minDensity));
+    d = d > 0.0f ? std::min(d, std::max(d / p.coarsening, p.minDensity)) : p.minDensity;
   return coarse;
 }
 

@@ -26,6 +26,24 @@
 
 namespace {
 
+// A version 46 BSP assembled in memory: each lump's data after the header, its offset and size in the
+// header's directory.
+struct BspFile {
+  q3bsp::Lump lumps[q3bsp::kLumpCount] = {};
+  std::string body;
+  void put(int index, const void* data, size_t bytes) {
+    lumps[index] = {int32_t(8 + sizeof(lumps) + body.size()), int32_t(bytes)};
+    body.append(static_cast<const char*>(data), bytes);
+  }
+  std::string bytes() const {
+    std::string file = "IBSP";
+    const int32_t version = 46;
+    file.append(reinterpret_cast<const char*>(&version), 4);
+    file.append(reinterpret_cast<const char*>(lumps), sizeof(lumps));
+    return file + body;
+  }
+};
+
 // A world model of square planar faces 10 units across, one per texture given (flags, contents), each at
 // its own height and facing up, written as a version 46 BSP with the lumps the reader uses.
 std::string squareFacesBsp(const std::vector<std::pair<int32_t, int32_t>>& textures) {
@@ -52,22 +70,13 @@ std::string squareFacesBsp(const std::vector<std::pair<int32_t, int32_t>>& textu
   }
   q3bsp::Model world{};
   world.face = 0, world.nFaces = int32_t(faces.size());
-  q3bsp::Lump lumps[q3bsp::kLumpCount] = {};
-  std::string body;
-  auto put = [&](int index, const void* data, size_t bytes) {
-    lumps[index] = {int32_t(8 + sizeof(lumps) + body.size()), int32_t(bytes)};
-    body.append(static_cast<const char*>(data), bytes);
-  };
-  put(q3bsp::kTextures, tex.data(), tex.size() * sizeof(q3bsp::Texture));
-  put(q3bsp::kModels, &world, sizeof(world));
-  put(q3bsp::kVertices, vertices.data(), vertices.size() * sizeof(q3bsp::Vertex));
-  put(q3bsp::kMeshverts, meshverts.data(), meshverts.size() * sizeof(int32_t));
-  put(q3bsp::kFaces, faces.data(), faces.size() * sizeof(q3bsp::Face));
-  std::string file = "IBSP";
-  const int32_t version = 46;
-  file.append(reinterpret_cast<const char*>(&version), 4);
-  file.append(reinterpret_cast<const char*>(lumps), sizeof(lumps));
-  return file + body;
+  BspFile bsp;
+  bsp.put(q3bsp::kTextures, tex.data(), tex.size() * sizeof(q3bsp::Texture));
+  bsp.put(q3bsp::kModels, &world, sizeof(world));
+  bsp.put(q3bsp::kVertices, vertices.data(), vertices.size() * sizeof(q3bsp::Vertex));
+  bsp.put(q3bsp::kMeshverts, meshverts.data(), meshverts.size() * sizeof(int32_t));
+  bsp.put(q3bsp::kFaces, faces.data(), faces.size() * sizeof(q3bsp::Face));
+  return bsp.bytes();
 }
 
 constexpr int32_t kTranslucent = 0x20000000;
@@ -243,22 +252,13 @@ std::string brushesBsp(const std::vector<BoxBrush>& boxes) {
   }
   q3bsp::Model world{};
   world.brush = 0, world.nBrushes = int32_t(brushes.size());
-  q3bsp::Lump lumps[q3bsp::kLumpCount] = {};
-  std::string body;
-  auto put = [&](int index, const void* data, size_t bytes) {
-    lumps[index] = {int32_t(8 + sizeof(lumps) + body.size()), int32_t(bytes)};
-    body.append(static_cast<const char*>(data), bytes);
-  };
-  put(q3bsp::kTextures, tex.data(), tex.size() * sizeof(q3bsp::Texture));
-  put(q3bsp::kPlanes, planes.data(), planes.size() * sizeof(q3bsp::Plane));
-  put(q3bsp::kModels, &world, sizeof(world));
-  put(q3bsp::kBrushes, brushes.data(), brushes.size() * sizeof(q3bsp::Brush));
-  put(q3bsp::kBrushSides, sides.data(), sides.size() * sizeof(q3bsp::BrushSide));
-  std::string file = "IBSP";
-  const int32_t version = 46;
-  file.append(reinterpret_cast<const char*>(&version), 4);
-  file.append(reinterpret_cast<const char*>(lumps), sizeof(lumps));
-  return file + body;
+  BspFile bsp;
+  bsp.put(q3bsp::kTextures, tex.data(), tex.size() * sizeof(q3bsp::Texture));
+  bsp.put(q3bsp::kPlanes, planes.data(), planes.size() * sizeof(q3bsp::Plane));
+  bsp.put(q3bsp::kModels, &world, sizeof(world));
+  bsp.put(q3bsp::kBrushes, brushes.data(), brushes.size() * sizeof(q3bsp::Brush));
+  bsp.put(q3bsp::kBrushSides, sides.data(), sides.size() * sizeof(q3bsp::BrushSide));
+  return bsp.bytes();
 }
 
 // Issue 46 (am_lavaarena, ctf_gate1): a sealed map's drawn faces leave its walls' tops and blocks' insides

@@ -35,8 +35,6 @@ inline void addRect(Scene& scene, glm::vec3 origin, glm::vec3 u, glm::vec3 v, ui
   addTriangle(scene, c0, c2, c3, material, node);
 }
 
-/// The six inward-facing faces of the box [lo, hi].
-/// The atlas of `scene` at `density` texels a metre, every other parameter the default.
 // A copy of the scene's first triangle with two corners at one point: zero area, which no atlas charts
 // (faces cut where other geometry runs through them leave such triangles: oa_dm2 had two).
 inline void addZeroAreaTriangle(Scene& scene) {
@@ -45,6 +43,7 @@ inline void addZeroAreaTriangle(Scene& scene) {
   scene.triangles.push_back(flat);
 }
 
+/// The atlas of `scene` at `density` texels a metre, every other parameter the default.
 inline LightmapAtlas atlasAtDensity(const Scene& scene, float density) {
   Context ctx;
   AtlasParams p;
@@ -52,6 +51,7 @@ inline LightmapAtlas atlasAtDensity(const Scene& scene, float density) {
   return buildAtlas(scene, findQuads(scene), p, ctx);
 }
 
+/// The six inward-facing faces of the box [lo, hi].
 inline void addClosedBox(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
   const glm::vec3 d = hi - lo;
   const glm::vec3 X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);

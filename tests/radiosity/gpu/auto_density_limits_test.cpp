@@ -9,6 +9,7 @@
 
 #include "core/quads.h"
 #include "radiosity/cpu/ray_shot_engine.h"
+#include "radiosity/gpu/gl_shot_engine.h"
 #include "radiosity/solve/auto_density.h"
 #include "tests/radiosity/test_sky_scenes.h"
 
@@ -112,6 +113,27 @@ TEST(AutoDensityLimits, AZeroAreaTriangleGetsADensityTheOutputAccepts) {
   const LightmapAtlas atlas = buildAtlas(s, quads, out, layout);
   EXPECT_TRUE(saidOnce(layout, "1 zero-area triangle(s) left out"));
   EXPECT_GT(atlas.validTexels(), 0u);
+}
+
+// The same triangle in a room lit by a lamp, on GL: the lamps' refined shot lays a coarse atlas out from the
+// pilot's, where the triangle left out had density 0, and the pilot refused the bake ("a chart's density
+// must be positive": ctf_gate1 baked by its lamp shaders).
+TEST(AutoDensityLimits, AZeroAreaTriangleBesideALampLetsThePilotShootIt) {
+  Scene s;
+  const uint32_t grey = testing::addMaterial(s, glm::vec3(0.6f));
+  const uint32_t lamp = testing::addMaterial(s, glm::vec3(0.0f), glm::vec3(50.0f));
+  testing::addClosedBox(s, glm::vec3(0.0f), glm::vec3(3.0f, 3.0f, 2.5f), grey);
+  testing::addRect(s, glm::vec3(1.2f, 1.8f, 2.49f), glm::vec3(0.6f, 0, 0), glm::vec3(0, -0.6f, 0), lamp);
+  testing::addZeroAreaTriangle(s);
+  const QuadSet quads = findQuads(s);
+  Context ctx;
+  EglContext context(ctx);
+  GlShotEngine gl(context);  // the refined lamp shot is the lamp-shooting engine's
+  std::vector<float> density;
+  ASSERT_NO_THROW(
+      density = chooseAutoDensity(s, quads, AtlasParams{}, AutoDensityParams{}, SolverParams{}, gl, ctx));
+  ASSERT_EQ(density.size(), s.triangles.size());
+  for (float d : density) EXPECT_GT(d, 0.0f);
 }
 
 // A bake lays its atlas out more than once on its context (the density pilot, the budget's fit, the output):

@@ -6,25 +6,15 @@
 #include <limits>
 #include <vector>
 
+#include "core/ray_triangle.h"
+
 namespace cpgi {
 
 namespace {
 
-// Distance along +y from `o` to triangle `t` (Möller–Trumbore with the direction (0, 1, 0)); +inf if missed.
+// Distance along +y from `o` to triangle `t`; +inf if missed.
 float upHit(const glm::vec3& o, const Triangle& t) {
-  const glm::vec3 d(0.0f, 1.0f, 0.0f);
-  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
-  const glm::vec3 p = glm::cross(d, e2);
-  const float det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-20f) return std::numeric_limits<float>::infinity();
-  const glm::vec3 s = o - t.p[0];
-  const float u = glm::dot(s, p) / det;
-  if (u < 0.0f || u > 1.0f) return std::numeric_limits<float>::infinity();
-  const glm::vec3 q = glm::cross(s, e1);
-  const float v = glm::dot(d, q) / det;
-  if (v < 0.0f || u + v > 1.0f) return std::numeric_limits<float>::infinity();
-  const float dist = glm::dot(e2, q) / det;
-  return dist > 0.0f ? dist : std::numeric_limits<float>::infinity();
+  return rayTriangleDistance(o, glm::vec3(0.0f, 1.0f, 0.0f), t);
 }
 
 // The ceilings (faces turned down) binned on a grid over x and z, so a ray up tests only its column's.

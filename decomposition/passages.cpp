@@ -5,26 +5,12 @@
 #include <limits>
 #include <vector>
 
+#include "core/ray_triangle.h"
+
 namespace cpgi::decomp {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-// Distance along `d` from `o` to triangle `t` (Möller–Trumbore, either side), +inf if missed.
-float rayHit(const glm::vec3& o, const glm::vec3& d, const Triangle& t) {
-  const glm::vec3 e1 = t.p[1] - t.p[0], e2 = t.p[2] - t.p[0];
-  const glm::vec3 p = glm::cross(d, e2);
-  const float det = glm::dot(e1, p);
-  if (std::abs(det) < 1e-20f) return kInfinity;
-  const glm::vec3 s = o - t.p[0];
-  const float u = glm::dot(s, p) / det;
-  if (u < 0.0f || u > 1.0f) return kInfinity;
-  const glm::vec3 q = glm::cross(s, e1);
-  const float v = glm::dot(d, q) / det;
-  if (v < 0.0f || u + v > 1.0f) return kInfinity;
-  const float dist = glm::dot(e2, q) / det;
-  return dist > 0.0f ? dist : kInfinity;
-}
 
 bool inside(const Bounds& b, const glm::vec3& p) {
   return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z && p.z <= b.hi.z;
@@ -78,15 +64,16 @@ PassageWidths measurePassages(const Scene& scene, const Bounds& box, const Passa
       const float lo = std::min({tri.p[0].y, tri.p[1].y, tri.p[2].y});
       const float hi = std::max({tri.p[0].y, tri.p[1].y, tri.p[2].y});
       if (lo <= o.y && hi >= o.y) spanning.push_back(t);
-      if (hi > o.y && lo < o.y + params.minClearance) ceiling = std::min(ceiling, rayHit(o, up, tri));
+      if (hi > o.y && lo < o.y + params.minClearance)
+        ceiling = std::min(ceiling, rayTriangleDistance(o, up, tri));
     }
     if (ceiling + params.height < params.minClearance) continue;  // under a table, a low ledge
     float narrowest = kInfinity;
     for (const glm::vec3& d : directions) {
       float ahead = kInfinity, behind = kInfinity;
       for (uint32_t t : spanning) {
-        ahead = std::min(ahead, rayHit(o, d, scene.triangles[t]));
-        behind = std::min(behind, rayHit(o, -d, scene.triangles[t]));
+        ahead = std::min(ahead, rayTriangleDistance(o, d, scene.triangles[t]));
+        behind = std::min(behind, rayTriangleDistance(o, -d, scene.triangles[t]));
       }
       narrowest = std::min(narrowest, ahead + behind);
     }
